@@ -1,0 +1,61 @@
+//! The error type of the `recurrence` crate.
+
+/// A `Result` whose error defaults to this crate's [`Error`].
+pub type Result<T = (), E = Error> = std::result::Result<T, E>;
+
+/// Everything that can go wrong when building or using a recurrence.
+///
+/// All variants describe bad input; none of them is a bug in this crate.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// The matrix has no rows.
+    #[error("the matrix is empty")]
+    EmptyMatrix,
+    /// A row of the matrix does not have as many entries as the matrix has rows.
+    #[error("row {row} of the matrix has {len} entries, expected {expected} (the matrix must be square)")]
+    NotSquare {
+        /// Zero-based index of the offending row.
+        row: usize,
+        /// Number of entries in that row.
+        len: usize,
+        /// Number of rows of the matrix.
+        expected: usize,
+    },
+    /// The number of component names differs from the dimension of the matrix.
+    #[error("{names} component names given for a {dim}x{dim} matrix")]
+    NamesMismatch {
+        /// Number of names given.
+        names: usize,
+        /// Dimension of the matrix.
+        dim: usize,
+    },
+    /// Two components have the same name.
+    #[error("component name `{name}` is used twice")]
+    DuplicateName {
+        /// The repeated name.
+        name: String,
+    },
+    /// A component name is empty or contains characters that cannot appear in a formula.
+    #[error("component name `{name}` is not valid (use letters, digits and `_`, starting with a letter)")]
+    InvalidName {
+        /// The rejected name.
+        name: String,
+    },
+    /// The initial state vector does not have one entry per component.
+    #[error("the initial state has {got} values, expected {expected}")]
+    InitialLength {
+        /// Number of values given.
+        got: usize,
+        /// Dimension of the recurrence.
+        expected: usize,
+    },
+    /// A checked fixed-width computation overflowed.
+    #[error("the counts at level {level} do not fit in {width}")]
+    Overflow {
+        /// The requested level.
+        level: u64,
+        /// The integer type that overflowed, e.g. `i128`.
+        width: &'static str,
+    },
+}

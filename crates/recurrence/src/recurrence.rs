@@ -1,0 +1,160 @@
+//! The [`Recurrence`] type: a matrix with named components.
+
+use num_bigint::BigInt;
+
+use crate::power::{checked_power_apply, CheckedRing, RingMatrix};
+use crate::{Error, IntMatrix, Result};
+
+/// A linear recurrence `x_s = M x_(s-1)` over named components.
+///
+/// # Example: the icosahedron under 4:1 subdivision
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use recurrence::{IntMatrix, Recurrence};
+///
+/// let m = IntMatrix::try_from_rows(vec![vec![1, 1, 0], vec![0, 2, 3], vec![0, 0, 4]])?;
+/// let r = Recurrence::with_names(m, ["V", "E", "F"])?;
+/// let x0 = [12, 30, 20].map(BigInt::from);
+/// let v: Vec<BigInt> = (0..4).map(|s| r.state_at(&x0, s).unwrap()[0].clone()).collect();
+/// assert_eq!(v, [12, 42, 162, 642].map(BigInt::from));
+/// # Ok::<(), recurrence::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Recurrence {
+    matrix: IntMatrix,
+    names: Vec<String>,
+}
+
+impl Recurrence {
+    /// A recurrence whose components are named `x0`, `x1`, ...
+    pub fn new(matrix: IntMatrix) -> Self {
+        let names = (0..matrix.dim()).map(|i| format!("x{i}")).collect();
+        Recurrence { matrix, names }
+    }
+
+    /// A recurrence with the given component names, one per row of the matrix.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NamesMismatch`] when the count differs from the dimension,
+    /// [`Error::DuplicateName`] and [`Error::InvalidName`] for unusable names. A valid name
+    /// starts with an ASCII letter and continues with ASCII letters, digits or `_`.
+    pub fn with_names<I, S>(matrix: IntMatrix, names: I) -> Result<Self>
+    where
+        I: IntoIterator<Item = S>,
+        S: Into<String>,
+    {
+        let names: Vec<String> = names.into_iter().map(Into::into).collect();
+        if names.len() != matrix.dim() {
+            return Err(Error::NamesMismatch {
+                names: names.len(),
+                dim: matrix.dim(),
+            });
+        }
+        for (i, name) in names.iter().enumerate() {
+            if !is_valid_name(name) {
+                return Err(Error::InvalidName { name: name.clone() });
+            }
+            if names[..i].contains(name) {
+                return Err(Error::DuplicateName { name: name.clone() });
+            }
+        }
+        Ok(Recurrence { matrix, names })
+    }
+
+    /// The matrix `M`.
+    pub fn matrix(&self) -> &IntMatrix {
+        &self.matrix
+    }
+
+    /// The component names, in state order.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The number of components.
+    pub fn dim(&self) -> usize {
+        self.matrix.dim()
+    }
+
+    /// The position of the component called `name`.
+    pub fn index_of(&self, name: &str) -> Option<usize> {
+        self.names.iter().position(|n| n == name)
+    }
+
+    /// The exact state `M^s x0`, by exponentiation by squaring over big integers.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InitialLength`] when `x0` does not have one value per component.
+    pub fn state_at(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>> {
+        self.check_len(x0.len())?;
+        Ok(checked_power_apply(&self.matrix, x0, s).expect("big integers do not overflow"))
+    }
+
+    /// The state `M^s x0` in checked `i128` arithmetic.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Overflow`] when an intermediate or final value does not fit in `i128`
+    /// (never a wrapped value), [`Error::InitialLength`] for a wrong-length `x0`.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence, Error};
+    /// let r = Recurrence::new(IntMatrix::try_from_rows(vec![vec![2]])?);
+    /// assert_eq!(r.state_at_i128(&[1], 126)?, vec![1i128 << 126]);
+    /// assert!(matches!(r.state_at_i128(&[1], 127), Err(Error::Overflow { level: 127, .. })));
+    /// # Ok::<(), recurrence::Error>(())
+    /// ```
+    pub fn state_at_i128(&self, x0: &[i128], s: u64) -> Result<Vec<i128>> {
+        self.check_len(x0.len())?;
+        checked_power_apply(&self.matrix, x0, s).ok_or(Error::Overflow {
+            level: s,
+            width: "i128",
+        })
+    }
+
+    /// The states at levels `0..=last`, by repeated multiplication (one matrix-vector product
+    /// per level), which is cheaper than powering when every level is wanted.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InitialLength`] for a wrong-length `x0`.
+    pub fn states_up_to(&self, x0: &[BigInt], last: u64) -> Result<Vec<Vec<BigInt>>> {
+        self.check_len(x0.len())?;
+        let m = RingMatrix::<BigInt>::from_int(&self.matrix).expect("big integers do not overflow");
+        let mut out = Vec::with_capacity(usize::try_from(last).unwrap_or(0).saturating_add(1));
+        let mut x = x0.to_vec();
+        for s in 0..=last {
+            if s > 0 {
+                x = m.checked_apply(&x).expect("big integers do not overflow");
+            }
+            out.push(x.clone());
+        }
+        Ok(out)
+    }
+
+    /// The matrix `M^s` over any [`CheckedRing`], or `None` on overflow.
+    pub fn checked_matrix_power<T: CheckedRing>(&self, s: u64) -> Option<Vec<Vec<T>>> {
+        let p = RingMatrix::<T>::from_int(&self.matrix)?.checked_pow(s)?;
+        Some(p.entries.chunks(p.dim).map(<[T]>::to_vec).collect())
+    }
+
+    fn check_len(&self, got: usize) -> Result {
+        if got == self.dim() {
+            Ok(())
+        } else {
+            Err(Error::InitialLength {
+                got,
+                expected: self.dim(),
+            })
+        }
+    }
+}
+
+fn is_valid_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    matches!(chars.next(), Some(c) if c.is_ascii_alphabetic())
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}

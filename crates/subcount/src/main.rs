@@ -1,0 +1,2 @@
+//! The `subcount` command-line program.
+fn main() {}

@@ -1,0 +1,1 @@
+//! Shared helpers for subcount's cross-crate integration tests.
