@@ -1,2 +1,12 @@
 //! Half-edge meshes: OBJ in and out, statistics, real subdivision.
 #![deny(missing_docs)]
+
+mod error;
+pub mod io;
+mod mesh;
+pub mod shapes;
+mod stats;
+pub mod subdivide;
+
+pub use crate::error::{Error, Result};
+pub use crate::mesh::{EdgeId, FaceId, HalfEdgeMesh, HalfedgeId, VertexId};

@@ -1,0 +1,1 @@
+//! Base meshes generated in code.

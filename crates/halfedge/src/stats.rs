@@ -1,0 +1,1 @@
+//! Mesh statistics ([`schemes::MeshCounts`]).

@@ -1,0 +1,1 @@
+//! Real subdivision for every built-in scheme.
