@@ -1,2 +1,77 @@
-//! The `subcount` command-line program.
-fn main() {}
+//! `subcount`: how big will a subdivision surface be?
+//!
+//! The binary is thin: it parses flags, calls one library function per subcommand, formats the
+//! result and maps errors to exit codes (0 ok, 1 verification mismatch, 2 usage, 3 bad input or
+//! scheme not applicable, 4 refused by a resource guard). Errors are exactly one line on stderr.
+
+mod args;
+mod commands;
+mod failure;
+mod levels;
+mod model;
+mod output;
+
+use std::io::{self, Write};
+use std::process::ExitCode;
+
+use clap::Parser;
+
+use crate::failure::{Failure, Kind};
+
+fn main() -> ExitCode {
+    let cli = match args::Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_error(&e),
+    };
+    let stdout = io::stdout();
+    let mut out = io::BufWriter::new(stdout.lock());
+    let result = commands::run(cli.command, &mut out).and_then(|code| {
+        out.flush()
+            .map_err(|e| Failure::new(Kind::Input, anyhow::Error::new(e).context("cannot write the output")))?;
+        Ok(code)
+    });
+    match result {
+        Ok(code) => ExitCode::from(code),
+        Err(failure) => {
+            if is_broken_pipe(&failure.error) {
+                return ExitCode::SUCCESS;
+            }
+            let message = format!("{:#}", failure.error).replace('\n', " ");
+            let _ = writeln!(io::stderr(), "error: {message}");
+            ExitCode::from(failure.kind.exit_code())
+        }
+    }
+}
+
+/// Help and version go to stdout with exit 0; every other clap error becomes one line.
+fn clap_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        _ => {
+            let rendered = e.render().to_string();
+            let first = rendered
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or("invalid arguments");
+            let first = first.strip_prefix("error: ").unwrap_or(first);
+            let _ = writeln!(io::stderr(), "error: {first}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|cause| {
+        cause
+            .downcast_ref::<io::Error>()
+            .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
+    })
+}

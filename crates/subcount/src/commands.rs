@@ -1,0 +1,140 @@
+//! One function per subcommand: call the libraries, format the result.
+
+use std::io::Write;
+
+use crate::args::{AtArgs, AtFormat, Command, FormulaArgs, FormulaFormat, TableArgs, TableFormat};
+use crate::failure::{usage, Failure, Kind};
+use crate::levels::parse_levels;
+use crate::model::{estimate_log10, Dynamics};
+use crate::output::{self, DigitSummary, Row};
+
+/// Most decimal digits `at` materializes per count without `--allow-large`.
+const MAX_DIGITS: f64 = 1e7;
+
+/// Runs one subcommand, writing its result to `out`; returns the exit code.
+pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure> {
+    match command {
+        Command::Table(args) => table(args, out),
+        Command::At(args) => at(args, out),
+        Command::Formula(args) => formula(args, out),
+    }
+}
+
+fn write_failure(e: std::io::Error) -> Failure {
+    Failure::new(Kind::Input, anyhow::Error::new(e).context("cannot write the output"))
+}
+
+fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let levels = parse_levels(&args.levels).map_err(|e| usage!("invalid --levels: {e}"))?;
+    let dynamics = Dynamics::from_source(&args.source)?;
+    let x0 = dynamics.initial_state(&args.source)?;
+    guard_digits(&dynamics, &x0, *levels.end(), false)?;
+    let rows = dynamics.rows(&x0, levels);
+    let columns = dynamics.columns();
+    match args.format {
+        TableFormat::Text => output::write_table_text(out, &columns, &rows),
+        TableFormat::Json => output::write_table_json(out, &columns, &rows),
+        TableFormat::Csv => output::write_table_csv(out, &columns, &rows),
+    }
+    .map_err(write_failure)?;
+    Ok(0)
+}
+
+fn parse_level(text: &str) -> Result<u64, Failure> {
+    let t = text.trim();
+    t.parse::<u64>().map_err(|_| {
+        if t.starts_with('-') {
+            usage!("invalid --level: `{t}` is negative; levels start at 0")
+        } else {
+            usage!("invalid --level: `{t}` is not a whole number from 0 to {}", u64::MAX)
+        }
+    })
+}
+
+/// Refuses, with exit 4, to materialize counts of more than [`MAX_DIGITS`] decimal digits.
+fn guard_digits(dynamics: &Dynamics, x0: &[num_bigint::BigInt], s: u64, allow_large: bool) -> Result<(), Failure> {
+    if allow_large {
+        return Ok(());
+    }
+    let est = estimate_log10(&dynamics.recurrence, x0, s);
+    let worst = est.iter().cloned().fold(0.0f64, f64::max);
+    if worst > MAX_DIGITS {
+        let bytes = worst * std::f64::consts::LOG2_10 / 8.0;
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: use --summary, or --allow-large to try anyway",
+                worst.ceil(),
+                human_bytes(bytes)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// `1.5 GiB`-style rendering of a byte count.
+pub(crate) fn human_bytes(bytes: f64) -> String {
+    const UNITS: [&str; 7] = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut v = bytes;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{v:.0} bytes")
+    } else if v >= 1024.0 {
+        format!("{:.3e} {}", v, UNITS[unit])
+    } else {
+        format!("{v:.1} {}", UNITS[unit])
+    }
+}
+
+fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let s = parse_level(&args.level)?;
+    let dynamics = Dynamics::from_source(&args.source)?;
+    let x0 = dynamics.initial_state(&args.source)?;
+    let columns = dynamics.columns();
+    guard_digits(&dynamics, &x0, s, args.allow_large)?;
+    let state = dynamics.state_at(&x0, s);
+    let row = Row { level: s, values: state };
+    let result = if args.summary {
+        let sums: Vec<DigitSummary> = row.values.iter().map(|v| DigitSummary::of(v, 20)).collect();
+        match args.format {
+            AtFormat::Text => {
+                let mut r = writeln!(out, "level {s}");
+                for (name, d) in columns.iter().zip(&sums) {
+                    r = r.and_then(|_| writeln!(out, "{name}: {}", d.text()));
+                }
+                r
+            }
+            AtFormat::Json => {
+                let mut text = format!("{{\"level\": {s}");
+                for (name, d) in columns.iter().zip(&sums) {
+                    text.push_str(&format!(", {}: {}", output::json_string(name), d.json()));
+                }
+                text.push('}');
+                writeln!(out, "{text}")
+            }
+        }
+    } else {
+        match args.format {
+            AtFormat::Text => {
+                let mut r = writeln!(out, "level {s}");
+                for (name, v) in columns.iter().zip(&row.values) {
+                    r = r.and_then(|_| writeln!(out, "{name} = {v}"));
+                }
+                r
+            }
+            AtFormat::Json => output::write_row_json(out, &columns, &row).and_then(|_| writeln!(out)),
+        }
+    };
+    result.map_err(write_failure)?;
+    Ok(0)
+}
+
+fn formula(args: FormulaArgs, _out: &mut impl Write) -> Result<u8, Failure> {
+    let _dynamics = Dynamics::from_source(&args.source)?;
+    let _ = FormulaFormat::Text;
+    Err(usage!("formula is not available yet"))
+}

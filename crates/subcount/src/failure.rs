@@ -1,0 +1,78 @@
+//! The CLI's error type: a cause plus the exit code that classifies it.
+//!
+//! Exit codes are a public contract: 0 ok, 1 a verification mismatch, 2 a usage error, 3 a bad
+//! input file or a scheme that does not apply, 4 refused by a resource guard.
+
+use std::fmt;
+
+/// What kind of failure, and so which exit code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kind {
+    /// Exit 1: a real subdivision disagreed with the prediction.
+    Mismatch,
+    /// Exit 2: the command line is wrong.
+    Usage,
+    /// Exit 3: an input file is bad, or the scheme does not apply to the mesh.
+    Input,
+    /// Exit 4: a resource guard refused the work.
+    Guard,
+}
+
+impl Kind {
+    pub(crate) fn exit_code(self) -> u8 {
+        match self {
+            Kind::Mismatch => 1,
+            Kind::Usage => 2,
+            Kind::Input => 3,
+            Kind::Guard => 4,
+        }
+    }
+}
+
+/// A failed command: the cause (printed on one line) and its kind.
+pub(crate) struct Failure {
+    pub(crate) kind: Kind,
+    pub(crate) error: anyhow::Error,
+}
+
+impl Failure {
+    pub(crate) fn new(kind: Kind, error: impl Into<anyhow::Error>) -> Self {
+        Failure {
+            kind,
+            error: error.into(),
+        }
+    }
+}
+
+impl fmt::Debug for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:?}: {:#}", self.kind, self.error)
+    }
+}
+
+/// Shorthands: `usage!("...")` builds an exit-2 failure from a format string.
+macro_rules! usage {
+    ($($arg:tt)*) => {
+        $crate::failure::Failure::new($crate::failure::Kind::Usage, anyhow::anyhow!($($arg)*))
+    };
+}
+
+/// `input!("...")` builds an exit-3 failure from a format string.
+macro_rules! input {
+    ($($arg:tt)*) => {
+        $crate::failure::Failure::new($crate::failure::Kind::Input, anyhow::anyhow!($($arg)*))
+    };
+}
+
+pub(crate) use {input, usage};
+
+/// Converts a library error into a failure of the given kind.
+pub(crate) trait WithKind<T> {
+    fn kind(self, kind: Kind) -> Result<T, Failure>;
+}
+
+impl<T, E: Into<anyhow::Error>> WithKind<T> for Result<T, E> {
+    fn kind(self, kind: Kind) -> Result<T, Failure> {
+        self.map_err(|e| Failure::new(kind, e))
+    }
+}

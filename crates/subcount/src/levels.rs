@@ -1,0 +1,62 @@
+//! Parsing of `--levels`: `N` (meaning `0..=N`), `A..=B` or `A..B`.
+
+use std::ops::RangeInclusive;
+
+/// Parses a level range. The result is never empty.
+pub(crate) fn parse_levels(text: &str) -> Result<RangeInclusive<u64>, String> {
+    let text = text.trim();
+    let number = |t: &str| -> Result<u64, String> {
+        let t = t.trim();
+        t.parse::<u64>().map_err(|_| {
+            if t.starts_with('-') {
+                format!("level `{t}` is negative; levels start at 0")
+            } else {
+                format!("`{t}` is not a level (a whole number from 0 to {})", u64::MAX)
+            }
+        })
+    };
+    let (start, end) = if let Some((a, b)) = text.split_once("..=") {
+        (number(a)?, number(b)?)
+    } else if let Some((a, b)) = text.split_once("..") {
+        let (a, b) = (number(a)?, number(b)?);
+        if b <= a {
+            return Err(format!("the level range `{text}` is empty"));
+        }
+        (a, b - 1)
+    } else {
+        (0, number(text)?)
+    };
+    if end < start {
+        return Err(format!(
+            "the level range `{text}` is inverted (it starts at {start} but ends at {end})"
+        ));
+    }
+    Ok(start..=end)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_levels;
+
+    #[test]
+    fn forms() {
+        assert_eq!(parse_levels("8"), Ok(0..=8));
+        assert_eq!(parse_levels("2..=5"), Ok(2..=5));
+        assert_eq!(parse_levels("2..5"), Ok(2..=4));
+        assert_eq!(parse_levels(" 0..=0 "), Ok(0..=0));
+    }
+
+    #[test]
+    fn errors() {
+        assert_eq!(
+            parse_levels("5..=2").unwrap_err(),
+            "the level range `5..=2` is inverted (it starts at 5 but ends at 2)"
+        );
+        assert_eq!(parse_levels("3..3").unwrap_err(), "the level range `3..3` is empty");
+        assert_eq!(
+            parse_levels("-1").unwrap_err(),
+            "level `-1` is negative; levels start at 0"
+        );
+        assert!(parse_levels("x..=3").unwrap_err().contains("`x` is not a level"));
+    }
+}

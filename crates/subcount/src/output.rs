@@ -1,0 +1,175 @@
+//! Rendering of count tables and single-level results as text, JSON and CSV.
+//!
+//! Counts are written by hand as decimal JSON integers of any size: no quotes, floats or
+//! exponents, so `{"level": 0, "V": 12}` stays exact for a program that reads big integers.
+
+use std::io::{self, Write};
+
+use num_bigint::BigInt;
+
+/// One row of a table: a level and one value per column.
+pub(crate) struct Row {
+    pub(crate) level: u64,
+    pub(crate) values: Vec<BigInt>,
+}
+
+/// Writes a JSON string literal (component names are plain identifiers, but escape anyway).
+pub(crate) fn json_string(s: &str) -> String {
+    serde_json::to_string(s).unwrap_or_else(|_| format!("\"{s}\""))
+}
+
+/// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
+pub(crate) fn write_table_json(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+    writeln!(out, "[")?;
+    for (i, row) in rows.iter().enumerate() {
+        write_row_json(out, columns, row)?;
+        writeln!(out, "{}", if i + 1 < rows.len() { "," } else { "" })?;
+    }
+    writeln!(out, "]")
+}
+
+/// One bare object `{"level": s, "V": .., ...}` without a trailing newline.
+pub(crate) fn write_row_json(out: &mut impl Write, columns: &[String], row: &Row) -> io::Result<()> {
+    write!(out, "{{\"level\": {}", row.level)?;
+    for (name, value) in columns.iter().zip(&row.values) {
+        write!(out, ", {}: {}", json_string(name), value)?;
+    }
+    write!(out, "}}")
+}
+
+/// `level,V,E,F` then one line per level.
+pub(crate) fn write_table_csv(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+    write!(out, "level")?;
+    for c in columns {
+        write!(out, ",{c}")?;
+    }
+    writeln!(out)?;
+    for row in rows {
+        write!(out, "{}", row.level)?;
+        for v in &row.values {
+            write!(out, ",{v}")?;
+        }
+        writeln!(out)?;
+    }
+    Ok(())
+}
+
+/// A right-aligned plain-text table with a header line.
+pub(crate) fn write_table_text(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+    let cells: Vec<Vec<String>> = rows
+        .iter()
+        .map(|r| {
+            std::iter::once(r.level.to_string())
+                .chain(r.values.iter().map(ToString::to_string))
+                .collect()
+        })
+        .collect();
+    let header: Vec<&str> = std::iter::once("level").chain(columns.iter().map(String::as_str)).collect();
+    let widths: Vec<usize> = (0..header.len())
+        .map(|j| {
+            cells
+                .iter()
+                .map(|r| r[j].len())
+                .chain(std::iter::once(header[j].len()))
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let line = |out: &mut dyn Write, items: &[&str]| -> io::Result<()> {
+        for (j, item) in items.iter().enumerate() {
+            if j > 0 {
+                write!(out, "  ")?;
+            }
+            write!(out, "{item:>w$}", w = widths[j])?;
+        }
+        writeln!(out)
+    };
+    line(out, &header)?;
+    for r in &cells {
+        let items: Vec<&str> = r.iter().map(String::as_str).collect();
+        line(out, &items)?;
+    }
+    Ok(())
+}
+
+/// The number of decimal digits of `n` (without sign), its first and last `k` digits.
+pub(crate) struct DigitSummary {
+    pub(crate) digits: u64,
+    pub(crate) leading: String,
+    pub(crate) trailing: String,
+    pub(crate) negative: bool,
+}
+
+impl DigitSummary {
+    pub(crate) fn of(n: &BigInt, k: usize) -> DigitSummary {
+        let s = n.magnitude().to_string();
+        let digits = s.len() as u64;
+        DigitSummary {
+            digits,
+            leading: s[..k.min(s.len())].to_string(),
+            trailing: s[s.len() - k.min(s.len())..].to_string(),
+            negative: n.sign() == num_bigint::Sign::Minus,
+        }
+    }
+
+    pub(crate) fn json(&self) -> String {
+        format!(
+            "{{\"digits\": {}, \"leading\": {}, \"trailing\": {}{}}}",
+            self.digits,
+            json_string(&self.leading),
+            json_string(&self.trailing),
+            if self.negative { ", \"negative\": true" } else { "" }
+        )
+    }
+
+    pub(crate) fn text(&self) -> String {
+        let sign = if self.negative { "-" } else { "" };
+        if (self.leading.len() as u64) >= self.digits {
+            format!("{} digits: {sign}{}", self.digits, self.leading)
+        } else {
+            format!(
+                "{} digits: {sign}{}...{}",
+                self.digits, self.leading, self.trailing
+            )
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows() -> Vec<Row> {
+        vec![
+            Row { level: 0, values: vec![12.into(), 30.into()] },
+            Row { level: 1, values: vec![42.into(), 120.into()] },
+        ]
+    }
+
+    #[test]
+    fn json_csv_text() {
+        let cols = vec!["V".to_string(), "E".to_string()];
+        let mut out = Vec::new();
+        write_table_json(&mut out, &cols, &rows()).unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "[\n{\"level\": 0, \"V\": 12, \"E\": 30},\n{\"level\": 1, \"V\": 42, \"E\": 120}\n]\n"
+        );
+        let mut out = Vec::new();
+        write_table_csv(&mut out, &cols, &rows()).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), "level,V,E\n0,12,30\n1,42,120\n");
+        let mut out = Vec::new();
+        write_table_text(&mut out, &cols, &rows()).unwrap();
+        assert_eq!(String::from_utf8(out).unwrap(), "level   V    E\n    0  12   30\n    1  42  120\n");
+    }
+
+    #[test]
+    fn digit_summary() {
+        let n: BigInt = "123456789012345678901234567890".parse().unwrap();
+        let d = DigitSummary::of(&n, 5);
+        assert_eq!(d.digits, 30);
+        assert_eq!(d.text(), "30 digits: 12345...67890");
+        assert_eq!(d.json(), "{\"digits\": 30, \"leading\": \"12345\", \"trailing\": \"67890\"}");
+        assert_eq!(DigitSummary::of(&BigInt::from(42), 20).text(), "2 digits: 42");
+    }
+}
