@@ -75,7 +75,7 @@ pub(crate) struct TableArgs {
     #[command(flatten)]
     pub(crate) source: Source,
     /// Levels: N (meaning 0..=N), A..=B or A..B.
-    #[arg(long, default_value = "8", value_name = "RANGE")]
+    #[arg(long, default_value = "8", value_name = "RANGE", allow_hyphen_values = true)]
     pub(crate) levels: String,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
@@ -87,7 +87,7 @@ pub(crate) struct AtArgs {
     #[command(flatten)]
     pub(crate) source: Source,
     /// The level.
-    #[arg(long, value_name = "S")]
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
     pub(crate) level: String,
     /// Print per component the digit count and the first and last 20 digits.
     #[arg(long)]

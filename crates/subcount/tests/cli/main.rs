@@ -1,0 +1,4 @@
+//! End-to-end tests of the `subcount` binary.
+
+mod matrix;
+mod util;

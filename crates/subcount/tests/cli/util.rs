@@ -1,0 +1,56 @@
+//! Running the built `subcount` binary, ripgrep-style.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// The outcome of one run: exit code, stdout and stderr as text.
+pub struct Run {
+    pub code: i32,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+/// Runs `subcount` with the given arguments and no standard input.
+pub fn subcount(args: &[&str]) -> Run {
+    let output: Output = Command::new(env!("CARGO_BIN_EXE_subcount"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .expect("the subcount binary runs");
+    Run {
+        code: output.status.code().unwrap_or(-1),
+        stdout: String::from_utf8(output.stdout).expect("stdout is UTF-8"),
+        stderr: String::from_utf8(output.stderr).expect("stderr is UTF-8"),
+    }
+}
+
+/// Runs and asserts success with an empty stderr; returns stdout.
+pub fn ok(args: &[&str]) -> String {
+    let run = subcount(args);
+    assert_eq!(run.code, 0, "subcount {args:?} failed: {}", run.stderr);
+    assert_eq!(run.stderr, "", "subcount {args:?} wrote to stderr");
+    run.stdout
+}
+
+/// Runs and asserts the exit code and a one-line `error: ...` containing `needle`.
+pub fn fails(args: &[&str], code: i32, needle: &str) -> String {
+    let run = subcount(args);
+    assert_eq!(run.code, code, "subcount {args:?}: stdout {:?} stderr {:?}", run.stdout, run.stderr);
+    assert!(run.stderr.starts_with("error: "), "stderr: {:?}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1, "one line of stderr: {:?}", run.stderr);
+    assert!(run.stderr.contains(needle), "stderr {:?} lacks {needle:?}", run.stderr);
+    assert!(!run.stderr.contains("panicked"), "panic: {}", run.stderr);
+    run.stderr
+}
+
+/// The test meshes folder, if `SUBCOUNT_MESHES` is set.
+#[allow(dead_code)]
+pub fn meshes() -> Option<PathBuf> {
+    match std::env::var_os("SUBCOUNT_MESHES") {
+        Some(dir) => Some(PathBuf::from(dir)),
+        None => {
+            eprintln!("note: SUBCOUNT_MESHES is unset; skipping a test over ../shared/meshes");
+            None
+        }
+    }
+}
