@@ -8,5 +8,7 @@ pub mod shapes;
 mod stats;
 pub mod subdivide;
 
-pub use crate::error::{Error, Result};
-pub use crate::mesh::{EdgeId, FaceId, HalfEdgeMesh, HalfedgeId, VertexId};
+pub use crate::error::{Error, FaceVertices, ParseError, Result};
+pub use crate::mesh::{
+    EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,
+};
