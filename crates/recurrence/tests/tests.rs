@@ -1,0 +1,4 @@
+//! Integration tests of the `recurrence` crate, one module per topic.
+
+mod closed_form;
+mod util;
