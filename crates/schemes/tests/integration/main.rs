@@ -1,0 +1,4 @@
+//! Integration tests of the `schemes` crate (one test binary, one module per topic).
+
+mod builtins;
+mod meshes;
