@@ -76,10 +76,10 @@ pub enum ParseError {
     /// The line is not text (binary data or invalid UTF-8).
     #[error("not a text line (binary data?)")]
     NotText,
-    /// An OFF file whose header is missing or malformed.
+    /// A malformed statement not covered by another variant (an OFF header, a short face).
     #[error("{what}")]
-    BadHeader {
-        /// What is wrong with the header.
+    Malformed {
+        /// What is wrong.
         what: String,
     },
     /// An OFF file ended before all its vertices and faces.
@@ -257,5 +257,72 @@ pub enum Error {
     BrokenInvariant {
         /// The violated invariant.
         what: String,
+    },
+    /// A subdivision scheme's counts (from the `schemes` crate): unknown name, mesh outside
+    /// the scheme's class, impossible counts.
+    #[error(transparent)]
+    Scheme(#[from] schemes::Error),
+    /// A built-in scheme that has no real subdivision here.
+    #[error("no real subdivision for scheme `{name}` (supported: {supported})")]
+    UnsupportedScheme {
+        /// The name as given.
+        name: String,
+        /// The supported names.
+        supported: String,
+    },
+    /// The mesh is in the scheme's class for counting but the subdivision itself cannot run
+    /// on it (e.g. a vertex of valence 2 for a dual scheme).
+    #[error("{scheme} cannot subdivide this mesh: {reason}")]
+    SchemeNotApplicable {
+        /// The scheme.
+        scheme: String,
+        /// What is wrong, naming the element.
+        reason: String,
+    },
+    /// The subdivision built a different number of elements than the scheme predicted (a bug).
+    #[error("internal error: {scheme} level {level}: predicted {predicted} {what}, built {actual} (please report this)")]
+    PredictionMismatch {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// Which count ("vertices", "edges", "faces", a capacity).
+        what: &'static str,
+        /// The predicted count.
+        predicted: num_bigint::BigInt,
+        /// What the subdivision built.
+        actual: u64,
+    },
+    /// The subdivision built an inconsistent mesh (a bug).
+    #[error("internal error: {scheme} level {level}: {what} (please report this)")]
+    InvalidOutput {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// What is inconsistent.
+        what: String,
+    },
+    /// A subdivision level whose mesh does not fit 32-bit handles.
+    #[error(
+        "{scheme} level {level} would have {count} {what}: more than 32-bit handles can address"
+    )]
+    TooLarge {
+        /// The scheme.
+        scheme: String,
+        /// The level.
+        level: u32,
+        /// Which elements.
+        what: &'static str,
+        /// The predicted count.
+        count: num_bigint::BigInt,
+    },
+    /// The thread pool for parallel subdivision could not be created.
+    #[error("cannot start {threads} threads for subdivision: {reason}")]
+    ThreadPool {
+        /// Threads requested.
+        threads: usize,
+        /// The reason given by rayon.
+        reason: String,
     },
 }

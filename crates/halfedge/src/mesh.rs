@@ -101,7 +101,7 @@ impl HalfEdgeMesh {
     /// # Panics
     ///
     /// In debug builds, when the arrays break an invariant (a bug in the caller).
-    #[allow(clippy::too_many_arguments, dead_code)]
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn from_raw_parts(
         positions: Vec<DVec3>,
         vertex_halfedge: Vec<u32>,
