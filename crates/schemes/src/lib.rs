@@ -47,6 +47,7 @@
 pub mod catalog;
 mod class;
 mod counts;
+pub mod custom;
 mod error;
 pub mod input;
 mod scheme;

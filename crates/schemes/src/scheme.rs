@@ -464,6 +464,18 @@ impl Scheme {
             .collect()
     }
 
+    /// The derivations of those of V, E, F that are outside the state.
+    pub fn derivations(&self) -> Vec<(Stat, &Derivation)> {
+        [Stat::V, Stat::E, Stat::F]
+            .into_iter()
+            .zip(&self.vef)
+            .filter_map(|(s, src)| match src {
+                Source::Derived(d) => Some((s, d)),
+                _ => None,
+            })
+            .collect()
+    }
+
     /// Checks that `x0` has one value per state component.
     ///
     /// # Errors
