@@ -49,6 +49,8 @@ use crate::scheme::{Component, Derivation, SchemeSpec, StepRule};
 use crate::{Error, FaceKind, MeshClass, Result, Scheme, Stat};
 
 type Rows = Vec<Spanned<Vec<i64>>>;
+/// `derive`: V, E or F -> (state name or `divide_by` -> coefficient).
+type DeriveTable = BTreeMap<Spanned<String>, BTreeMap<Spanned<String>, Spanned<i64>>>;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -59,7 +61,7 @@ struct RawScheme {
     matrix: Option<Spanned<Rows>>,
     cycle: Option<Spanned<Vec<Spanned<Rows>>>>,
     first_step: Option<Spanned<Rows>>,
-    derive: Option<BTreeMap<Spanned<String>, BTreeMap<Spanned<String>, Spanned<i64>>>>,
+    derive: Option<DeriveTable>,
     requires: Option<Vec<Spanned<String>>>,
     produces: Option<Spanned<String>>,
 }
