@@ -236,7 +236,8 @@ impl ClosedForm {
             let mut value =
                 BigRational::new(r, fast.denominator.clone()) + BigRational::from_integer(q);
             if !fast.surd.is_empty() {
-                let mut sum = QuadraticSurd::field_zero();
+                // One running sum per quadratic field: conjugate terms cancel within each.
+                let mut sums: Vec<QuadraticSurd> = Vec::new();
                 for (e, p, coeffs) in &fast.surd {
                     let c =
                         coeffs
@@ -257,10 +258,19 @@ impl ClosedForm {
                     let PowerValue::Surd(pw) = pw else { continue };
                     let sp =
                         QuadraticSurd::rational(BigRational::from_integer(Pow::pow(&s_big, *p)));
-                    sum = sum.add(&c.mul(pw).mul(&sp));
+                    let term = c.mul(pw).mul(&sp);
+                    match sums
+                        .iter_mut()
+                        .find(|q| q.is_rational() || term.is_rational() || q.d == term.d)
+                    {
+                        Some(q) => *q = q.add(&term),
+                        None => sums.push(term),
+                    }
                 }
-                debug_assert!(sum.is_rational(), "conjugate terms cancel");
-                value += sum.a;
+                for sum in sums {
+                    debug_assert!(sum.is_rational(), "conjugate terms cancel");
+                    value += sum.a;
+                }
             }
             debug_assert!(
                 value.is_integer(),

@@ -251,8 +251,10 @@ fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
     let mut c = start;
     for _ in 0..64 {
         for delta in [0, 1, -1] {
-            let cand = &c + delta;
-            if eval_int(f, &cand).is_zero() {
+            let cand: BigInt = &c + delta;
+            let near = (rational_to_f64(&BigRational::from_integer(cand.clone())) - r).abs()
+                <= 1e-6 * r.abs().max(1.0);
+            if near && eval_int(f, &cand).is_zero() {
                 return Some(cand);
             }
         }
@@ -280,6 +282,12 @@ fn divide_exact(f: &[BigInt], g: &[BigInt]) -> Option<Vec<BigInt>> {
 
 fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
     let mut numeric = numeric_roots(f);
+    // Roots closest to an integer first, so that a nearby irrational root cannot claim it.
+    numeric.sort_by(|a, b| {
+        let da = (a.re - a.re.round()).abs() + a.im.abs();
+        let db = (b.re - b.re.round()).abs() + b.im.abs();
+        da.total_cmp(&db)
+    });
     let mut rest = f.to_vec();
     let mut found = Vec::new();
     // Integer roots.
@@ -292,9 +300,11 @@ fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
         } else {
             None
         };
-        match root {
-            Some(c) => {
-                rest = divide_exact(&rest, &[-c.clone(), BigInt::one()]).unwrap_or(rest);
+        let divided =
+            root.and_then(|c| Some((divide_exact(&rest, &[-c.clone(), BigInt::one()])?, c)));
+        match divided {
+            Some((q, c)) => {
+                rest = q;
                 found.push(Eigenvalue::Rational(BigRational::from_integer(c)));
                 numeric.remove(i);
             }

@@ -62,3 +62,47 @@ pub(crate) fn matrix_and_state(
         )
     })
 }
+
+/// Integer matrices with an exact spectrum: a block upper triangular matrix (1x1 blocks with
+/// small integer eigenvalues, repeated ones giving Jordan blocks, and optionally a 2x2 block
+/// with quadratic eigenvalues) conjugated by a few unimodular elementary operations.
+pub(crate) fn exact_spectrum_matrix(
+    dims: std::ops::RangeInclusive<usize>,
+) -> impl Strategy<Value = IntMatrix> {
+    dims.prop_flat_map(|n| {
+        (
+            proptest::collection::vec(-3i64..=3, n),
+            proptest::collection::vec(-2i64..=2, n * n),
+            proptest::collection::vec((0..n, 0..n, -2i64..=2), 0..=4),
+            proptest::option::of((-2i64..=2, -2i64..=2, -2i64..=2, -2i64..=2)),
+        )
+            .prop_map(move |(diag, upper, ops, block)| {
+                let mut t = vec![vec![0i64; n]; n];
+                for i in 0..n {
+                    t[i][i] = diag[i];
+                    for j in i + 1..n {
+                        t[i][j] = upper[i * n + j];
+                    }
+                }
+                if let (Some((a, b, c, d)), true) = (block, n >= 2) {
+                    t[0][0] = a;
+                    t[0][1] = b;
+                    t[1][0] = c;
+                    t[1][1] = d;
+                }
+                for (i, j, k) in ops {
+                    if i == j {
+                        continue;
+                    }
+                    // T <- E T E^-1 with E = I + k e_i e_j^T.
+                    for col in 0..n {
+                        t[i][col] += k * t[j][col];
+                    }
+                    for row in t.iter_mut() {
+                        row[j] -= k * row[i];
+                    }
+                }
+                IntMatrix::try_from_rows(t).expect("square by construction")
+            })
+    })
+}
