@@ -527,3 +527,118 @@ impl TryFrom<PolygonMesh> for HalfEdgeMesh {
         HalfEdgeMesh::try_from_polygon_mesh(&mesh)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn points(n: usize) -> Vec<DVec3> {
+        (0..n)
+            .map(|i| DVec3::new(i as f64, (i * i) as f64, 0.0))
+            .collect()
+    }
+
+    #[test]
+    fn unreferenced_vertices_are_dropped_and_counted() {
+        // Vertices 0 and 3 are unused; 1, 2, 4 become 0, 1, 2.
+        let mesh = HalfEdgeMesh::try_from_polygons(points(6), &[[1, 2, 4]]).expect("valid");
+        assert_eq!(mesh.n_vertices(), 3);
+        assert_eq!(mesh.unreferenced_vertices(), 3);
+        assert_eq!(
+            mesh.positions(),
+            &[points(6)[1], points(6)[2], points(6)[4]]
+        );
+        let face: Vec<u32> = mesh.face_vertices(crate::FaceId(0)).map(|v| v.0).collect();
+        assert_eq!(face, [0, 1, 2]);
+        assert_eq!(mesh.counts().unreferenced_vertices, 3);
+    }
+
+    #[test]
+    fn an_empty_face_list_is_an_empty_mesh() {
+        let faces: [[u32; 3]; 0] = [];
+        let mesh = HalfEdgeMesh::try_from_polygons(points(2), &faces).expect("valid");
+        assert_eq!(
+            (
+                mesh.n_vertices(),
+                mesh.n_faces(),
+                mesh.unreferenced_vertices()
+            ),
+            (0, 0, 2)
+        );
+    }
+
+    #[test]
+    fn two_closed_fans_at_a_vertex_are_refused() {
+        // Two tetrahedra sharing vertex 0 only: every edge has two faces, vertex 0 two fans.
+        let tet = [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+        let mut faces: Vec<[u32; 3]> = tet.to_vec();
+        faces.extend(
+            tet.iter()
+                .map(|f| f.map(|v| if v == 0 { 0 } else { v + 3 })),
+        );
+        let err = HalfEdgeMesh::try_from_polygons(points(7), &faces).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "vertex 0 is non-manifold: its faces form 2 separate fans"
+        );
+    }
+
+    #[test]
+    fn face_errors_come_in_face_order() {
+        let err =
+            HalfEdgeMesh::try_from_polygons(points(4), &[vec![0, 1, 2], vec![0, 1]]).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "face 1 (vertices 0, 1) has 2 vertices, at least 3 are needed"
+        );
+        let err = HalfEdgeMesh::try_from_polygons(points(4), &[vec![0, 1, 9], vec![0, 0, 1]])
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "face 0 (vertices 0, 1, 9) refers to vertex 9, but the mesh has 4 vertices"
+        );
+        let long: Vec<u32> = (0..12).chain([3]).collect();
+        let err = HalfEdgeMesh::try_from_polygons(points(12), &[long]).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "face 0 (vertices 0, 1, 2, 3, 4, 5, 6, 7, ... (13 vertices)) repeats vertex 3"
+        );
+    }
+
+    #[test]
+    fn duplicate_faces_with_other_vertex_orders_are_found() {
+        // Pentagons 0 1 2 3 4 and 0 2 4 1 3 share no edge but have the same vertex set.
+        let err = HalfEdgeMesh::try_from_polygons(points(5), &[[0, 1, 2, 3, 4], [0, 2, 4, 1, 3]])
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "faces 0 and 1 have the same vertices (0, 1, 2, 3, 4)"
+        );
+    }
+
+    #[test]
+    fn a_flipped_face_in_a_closed_mesh_is_inconsistent_not_non_orientable() {
+        let tet = [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [3, 0, 2]];
+        let err = HalfEdgeMesh::try_from_polygons(points(4), &tet).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                Error::InconsistentOrientation {
+                    first: 0,
+                    second: 3,
+                    ..
+                }
+            ),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn round_trip_through_a_polygon_mesh() {
+        let faces = [vec![0u32, 1, 2, 3], vec![1, 4, 5, 2], vec![2, 5, 6]];
+        let mesh = HalfEdgeMesh::try_from_polygons(points(7), &faces).expect("valid");
+        let back = mesh.to_polygon_mesh();
+        assert_eq!(back, PolygonMesh::from_faces(points(7), &faces));
+        assert_eq!(HalfEdgeMesh::try_from(back).expect("valid").n_edges(), 9);
+    }
+}

@@ -533,3 +533,94 @@ impl Iterator for FaceHalfedges<'_> {
         Some(h)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    #[test]
+    fn circulators_of_a_quad_grid() {
+        // 2x1 quad grid: vertices 0 1 2 (bottom row), 3 4 5 (top row).
+        let mesh = HalfEdgeMesh::try_from(&shapes::quad_grid(2, 1).expect("grid")).expect("valid");
+        assert_eq!(
+            (
+                mesh.n_vertices(),
+                mesh.n_edges(),
+                mesh.n_halfedges(),
+                mesh.n_faces()
+            ),
+            (6, 7, 14, 2)
+        );
+        let f1: Vec<u32> = mesh.face_vertices(FaceId(1)).map(|v| v.0).collect();
+        assert_eq!(f1, [1, 2, 5, 4]);
+        assert_eq!(mesh.face_degree(FaceId(0)), 4);
+        // Vertex 1 (bottom middle) is on the boundary with valence 3; its outgoing half-edges
+        // start with the boundary one (to vertex 2: the boundary runs clockwise, 0 <- 1 <- 2
+        // seen from +z... i.e. the hole's loop goes 1 -> 0) and then turn counterclockwise.
+        let v1 = VertexId(1);
+        assert!(mesh.is_boundary_vertex(v1));
+        assert_eq!(mesh.valence(v1), 3);
+        let out: Vec<(u32, Option<u32>)> = mesh
+            .vertex_outgoing_halfedges(v1)
+            .map(|h| (mesh.to_vertex(h).0, mesh.face(h).map(|f| f.0)))
+            .collect();
+        assert_eq!(out, [(0, None), (2, Some(1)), (4, Some(0))]);
+        for h in mesh.vertex_outgoing_halfedges(v1) {
+            assert_eq!(mesh.from_vertex(h), v1);
+            assert_eq!(mesh.next(mesh.prev(h)), h);
+            assert_eq!(mesh.twin(h).twin(), h);
+            assert_eq!(h.edge(), mesh.twin(h).edge());
+            assert_eq!(h.edge().halfedge(h.0 & 1), h);
+        }
+        // Interior vertices of a closed mesh: valence 5 on the icosahedron, no boundary.
+        let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("valid");
+        assert!(ico.is_closed() && ico.is_triangle_mesh() && !ico.is_quad_mesh());
+        for v in ico.vertices() {
+            assert!(!ico.is_boundary_vertex(v));
+            assert_eq!(ico.valence(v), 5);
+            let faces: Vec<Option<FaceId>> = ico
+                .vertex_outgoing_halfedges(v)
+                .map(|h| ico.face(h))
+                .collect();
+            assert!(faces.iter().all(Option::is_some));
+        }
+        assert_eq!(ico.edges().filter(|&e| ico.is_boundary_edge(e)).count(), 0);
+        assert_eq!(ico.halfedges().filter(|&h| ico.is_boundary(h)).count(), 0);
+        // The boundary loop of the grid: 6 boundary half-edges linked by next.
+        let b = mesh.vertex_halfedge(v1);
+        let mut h = b;
+        let mut loop_len = 0;
+        loop {
+            assert!(mesh.is_boundary(h));
+            loop_len += 1;
+            h = mesh.next(h);
+            if h == b {
+                break;
+            }
+        }
+        assert_eq!(loop_len, 6);
+    }
+
+    #[test]
+    fn check_invariants_catches_broken_arrays() {
+        let good = HalfEdgeMesh::try_from(&shapes::tetrahedron()).expect("valid");
+        assert!(good.check_invariants().is_ok());
+        let mut bad = good.clone();
+        bad.halfedge_next.swap(0, 1);
+        assert!(matches!(
+            bad.check_invariants(),
+            Err(Error::BrokenInvariant { .. })
+        ));
+        let mut bad = good.clone();
+        bad.vertex_halfedge[0] = bad.vertex_halfedge[1];
+        let err = bad.check_invariants().unwrap_err().to_string();
+        assert!(err.contains("vertex 0"), "{err}");
+        let mut bad = good.clone();
+        bad.halfedge_face[3] = 7;
+        assert!(bad.check_invariants().is_err());
+        let mut bad = good;
+        bad.positions.pop();
+        assert!(bad.check_invariants().is_err());
+    }
+}

@@ -459,3 +459,174 @@ pub fn mixed() -> PolygonMesh {
     mesh.push_face(&[h(5), o(5), 12, o(0), h(0)]);
     mesh
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{stats, HalfEdgeMesh};
+
+    /// (name, V, E, F, boundary edges, boundary loops, genus, faces by degree)
+    #[allow(clippy::type_complexity)]
+    const CASES: &[(&str, u64, u64, u64, u64, u64, u64, &[(u32, u64)])] = &[
+        ("tetrahedron", 4, 6, 4, 0, 0, 0, &[(3, 4)]),
+        ("octahedron", 6, 12, 8, 0, 0, 0, &[(3, 8)]),
+        ("icosahedron", 12, 30, 20, 0, 0, 0, &[(3, 20)]),
+        ("cube", 8, 12, 6, 0, 0, 0, &[(4, 6)]),
+        ("torus:1", 48, 144, 96, 0, 0, 1, &[(3, 96)]),
+        ("torus:2", 74, 228, 152, 0, 0, 2, &[(3, 152)]),
+        ("torus:5", 152, 480, 320, 0, 0, 5, &[(3, 320)]),
+        ("icosahedron-holes:1", 12, 30, 19, 3, 1, 0, &[(3, 19)]),
+        ("icosahedron-holes:2", 12, 30, 18, 6, 2, 0, &[(3, 18)]),
+        ("icosahedron-holes:4", 12, 30, 16, 12, 4, 0, &[(3, 16)]),
+        ("grid:1x1", 4, 5, 2, 4, 1, 0, &[(3, 2)]),
+        ("grid:4x3", 20, 43, 24, 14, 1, 0, &[(3, 24)]),
+        ("quad-grid:4x3", 20, 31, 12, 14, 1, 0, &[(4, 12)]),
+        ("quad-grid:1x7", 16, 22, 7, 16, 1, 0, &[(4, 7)]),
+        (
+            "mixed",
+            13,
+            21,
+            9,
+            7,
+            1,
+            0,
+            &[(3, 4), (4, 3), (5, 1), (6, 1)],
+        ),
+    ];
+
+    #[test]
+    fn every_shape_has_its_counts_and_is_valid() {
+        for &(name, v, e, f, be, loops, genus, degrees) in CASES {
+            let polygons = from_name(name).unwrap_or_else(|err| panic!("{name}: {err}"));
+            let mesh =
+                HalfEdgeMesh::try_from(&polygons).unwrap_or_else(|err| panic!("{name}: {err}"));
+            mesh.check_invariants()
+                .unwrap_or_else(|err| panic!("{name}: {err}"));
+            let c = mesh.counts();
+            assert_eq!(
+                (
+                    c.vertices,
+                    c.edges,
+                    c.faces,
+                    c.boundary_edges,
+                    c.boundary_loops
+                ),
+                (v, e, f, be, loops),
+                "{name}"
+            );
+            assert_eq!(
+                c.euler_characteristic,
+                v as i64 - e as i64 + f as i64,
+                "{name}"
+            );
+            assert_eq!(c.components, 1, "{name}");
+            assert_eq!(mesh.genus(), genus, "{name}");
+            assert_eq!(stats::genus(&c), Some(genus), "{name}");
+            assert_eq!(
+                c.faces_by_degree.into_iter().collect::<Vec<_>>(),
+                degrees,
+                "{name}"
+            );
+            assert_eq!(stats::face_list_counts(&polygons), mesh.counts(), "{name}");
+            assert_eq!(c.unreferenced_vertices, 0, "{name}");
+        }
+    }
+
+    #[test]
+    fn torus_counts_follow_the_documented_formulas() {
+        for g in [1u64, 3, 7, 20] {
+            let mesh = HalfEdgeMesh::try_from(&torus(g as u32).expect("torus")).expect("valid");
+            let c = mesh.counts();
+            assert_eq!(
+                (c.vertices, c.edges, c.faces),
+                (26 * g + 22, 84 * g + 60, 56 * g + 40)
+            );
+            assert_eq!(c.euler_characteristic, 2 - 2 * g as i64);
+            assert!(mesh.is_closed() && mesh.is_triangle_mesh());
+        }
+    }
+
+    /// Signed volume by the divergence theorem: positive when every face points outward.
+    fn signed_volume(mesh: &PolygonMesh) -> f64 {
+        let mut volume = 0.0;
+        for face in mesh.faces() {
+            let p0 = mesh.positions[face[0] as usize];
+            for w in face[1..].windows(2) {
+                let (p1, p2) = (mesh.positions[w[0] as usize], mesh.positions[w[1] as usize]);
+                volume += p0.dot(p1.cross(p2)) / 6.0;
+            }
+        }
+        volume
+    }
+
+    #[test]
+    fn closed_shapes_point_outward_and_solids_sit_on_the_unit_sphere() {
+        let regular_tetrahedron = 8.0 / (9.0 * 3f64.sqrt());
+        for (mesh, volume) in [
+            (tetrahedron(), regular_tetrahedron),
+            (octahedron(), 4.0 / 3.0),
+            (cube(), 8.0),
+        ] {
+            assert!(
+                (signed_volume(&mesh) - volume).abs() < 1e-12,
+                "{}",
+                signed_volume(&mesh)
+            );
+        }
+        assert!(signed_volume(&icosahedron()) > 2.5);
+        for g in 1..4 {
+            // The slab: top at +0.5, bottom at -0.5, thinner towards the boundaries.
+            assert!(signed_volume(&torus(g).expect("torus")) > 0.0);
+        }
+        for mesh in [tetrahedron(), octahedron(), icosahedron()] {
+            for p in &mesh.positions {
+                assert!((p.length() - 1.0).abs() < 1e-15, "{p}");
+            }
+        }
+        for p in &cube().positions {
+            assert_eq!(p.abs(), DVec3::ONE);
+        }
+    }
+
+    #[test]
+    fn planar_shapes_face_up() {
+        for mesh in [
+            grid(3, 2).expect("grid"),
+            quad_grid(2, 2).expect("grid"),
+            mixed(),
+        ] {
+            for face in mesh.faces() {
+                let p: Vec<DVec3> = face.iter().map(|&v| mesh.positions[v as usize]).collect();
+                // Shoelace area of the polygon (positive = counterclockwise seen from +z).
+                let area: f64 = (0..p.len())
+                    .map(|i| {
+                        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+                        a.x * b.y - b.x * a.y
+                    })
+                    .sum();
+                assert!(area > 0.0, "{face:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn bad_names_and_parameters_are_refused() {
+        let cases = [
+            ("sphere", "unknown base mesh `sphere` (known: tetrahedron, octahedron, icosahedron, cube, torus:G, icosahedron-holes:K, grid:WxH, quad-grid:WxH, mixed)"),
+            ("cube:2", "base mesh `cube:2`: cube takes no parameter"),
+            ("torus", "base mesh `torus`: expected torus:G with the genus G >= 1"),
+            ("torus:x", "base mesh `torus:x`: expected torus:G with the genus G >= 1"),
+            ("torus:0", "base mesh `torus:0`: the genus must be between 1 and 1048576, not 0"),
+            ("torus:-1", "base mesh `torus:-1`: expected torus:G with the genus G >= 1"),
+            ("icosahedron-holes:0", "base mesh `icosahedron-holes:0`: the icosahedron can have 1 to 4 holes without two sharing a vertex, not 0"),
+            ("icosahedron-holes:5", "base mesh `icosahedron-holes:5`: the icosahedron can have 1 to 4 holes without two sharing a vertex, not 5"),
+            ("grid:3", "base mesh `grid:3`: expected grid:WxH with W, H >= 1 (for example grid:4x3)"),
+            ("grid:0x3", "base mesh `grid:0x3`: W and H must be at least 1"),
+            ("quad-grid:5000x5000", "base mesh `quad-grid:5000x5000`: 5000x5000 cells is more than the 16777216 allowed"),
+            ("quad-grid:axb", "base mesh `quad-grid:axb`: expected quad-grid:WxH with W, H >= 1 (for example quad-grid:4x3)"),
+        ];
+        for (name, message) in cases {
+            assert_eq!(from_name(name).unwrap_err().to_string(), message, "{name}");
+        }
+    }
+}

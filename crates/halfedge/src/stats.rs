@@ -289,3 +289,86 @@ impl HalfEdgeMesh {
         genus(&self.counts()).unwrap_or(0)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+    use glam::DVec3;
+
+    #[test]
+    fn faces_with_repeated_vertices_do_not_make_loop_edges() {
+        // Quad 0 1 0 2 runs along {0, 1} and {0, 2} twice each; the pair (1, 0)... no loops.
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 3], [[0, 1, 0, 2]]);
+        let c = face_list_counts(&mesh);
+        assert_eq!(
+            (c.vertices, c.edges, c.interior_edges, c.boundary_edges),
+            (3, 2, 2, 0)
+        );
+        assert_eq!(
+            (
+                c.corners,
+                c.components,
+                c.boundary_loops,
+                c.euler_characteristic
+            ),
+            (4, 1, 0, 2)
+        );
+        // A degenerate triangle 0 0 1 has one edge, used twice.
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 2], [[0, 0, 1]]);
+        let c = face_list_counts(&mesh);
+        assert_eq!((c.vertices, c.edges, c.interior_edges), (2, 1, 1));
+    }
+
+    #[test]
+    fn components_loops_and_unreferenced_vertices() {
+        // Two separate triangles and a bow-tie pair sharing vertex 6; vertex 9 unused.
+        let faces = [[0u32, 1, 2], [3, 4, 5], [6, 7, 8], [6, 10, 11]];
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 12], faces);
+        let c = face_list_counts(&mesh);
+        assert_eq!((c.vertices, c.unreferenced_vertices), (11, 1));
+        assert_eq!(
+            (c.components, c.boundary_loops, c.boundary_edges),
+            (3, 3, 12)
+        );
+        assert_eq!(c.euler_characteristic, 11 - 12 + 4);
+        // The formula gives (2*3 - 3 - 3)/2 = 0: counts cannot see the pinched vertex.
+        assert_eq!(genus(&c), Some(0));
+    }
+
+    #[test]
+    fn indices_without_positions_are_still_counted() {
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 2], [[0, 1, 4_000_000_000]]);
+        let c = face_list_counts(&mesh);
+        assert_eq!((c.vertices, c.edges, c.unreferenced_vertices), (3, 3, 0));
+        let mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 2], [[0, 1, 7]]);
+        assert_eq!(face_list_counts(&mesh).vertices, 3);
+    }
+
+    #[test]
+    fn genus_is_none_where_the_formula_does_not_apply() {
+        let c = face_list_counts(&shapes::torus(4).expect("torus"));
+        assert_eq!(genus(&c), Some(4));
+        let mut odd = c.clone();
+        odd.euler_characteristic += 1;
+        assert_eq!(genus(&odd), None);
+        let mut nonmanifold = c;
+        nonmanifold.nonmanifold_edges = 1;
+        assert_eq!(genus(&nonmanifold), None);
+    }
+
+    #[test]
+    fn half_edge_counts_equal_face_list_counts() {
+        for name in [
+            "icosahedron-holes:3",
+            "grid:5x2",
+            "mixed",
+            "torus:3",
+            "cube",
+        ] {
+            let polygons = shapes::from_name(name).expect("shape");
+            let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid");
+            assert_eq!(mesh.counts(), face_list_counts(&polygons), "{name}");
+        }
+    }
+}

@@ -160,3 +160,29 @@ fn parse_index(field: &str) -> std::result::Result<i64, ParseError> {
     }
     Ok(index)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn corner_forms_groups_and_ignored_statements() {
+        let text = "mtllib x.mtl\no one\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n\
+                    vt 0 0\nvn 0 0 1\nvp 0.5\ns off\ng a b\nusemtl m\n\
+                    f 1/1 2/1/1 3//1\nt crease 2 1 0 1 2\nl 1 2\ng c\nf -4 -2 \\\n -1 # tail\n\
+                    f 1 3 4\n";
+        let mesh = read_obj_from(text.as_bytes(), "x.obj").expect("valid");
+        assert_eq!(mesh.n_vertices(), 4);
+        assert_eq!(mesh.positions[3], DVec3::new(0.0, 1.0, 0.0));
+        let faces: Vec<&[u32]> = mesh.faces().collect();
+        assert_eq!(faces, [&[0, 1, 2][..], &[0, 2, 3], &[0, 2, 3]]);
+    }
+
+    #[test]
+    fn crlf_and_plus_signs() {
+        let text = "v +1 -2.5e1 .5\r\nv 0 0 0\r\nv 0 1 0\r\nf +1 2 3\r\n";
+        let mesh = read_obj_from(text.as_bytes(), "x.obj").expect("valid");
+        assert_eq!(mesh.positions[0], DVec3::new(1.0, -25.0, 0.5));
+        assert_eq!(mesh.face(0), &[0, 1, 2]);
+    }
+}

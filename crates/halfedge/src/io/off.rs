@@ -178,3 +178,68 @@ pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
     }
     Ok(mesh)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn message(text: &str) -> String {
+        match read_off_from(text.as_bytes(), "m.off") {
+            Ok(mesh) => format!("accepted with {} faces", mesh.n_faces()),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn off_errors_name_file_and_line() {
+        assert_eq!(
+            message("PLY\n"),
+            "m.off: line 1: expected the OFF header, found `PLY`"
+        );
+        assert_eq!(
+            message("OFF BINARY\n"),
+            "m.off: line 1: binary OFF is not supported"
+        );
+        assert_eq!(
+            message("OFF\n3\n"),
+            "m.off: line 2: expected the vertex, face and edge counts"
+        );
+        assert_eq!(
+            message("OFF\nx 1 0\n"),
+            "m.off: line 2: `x` is not a valid count"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0 0\n"),
+            "m.off: line 4: the file ends early: 2 of 3 vertices read"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0\n"),
+            "m.off: line 4: vertex has 2 coordinates, expected 3"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+            "m.off: line 6: face index 3 is out of range (the file has 3 vertices)"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n"),
+            "m.off: line 6: face has 2 of its 3 vertex indices"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n"),
+            "m.off: line 6: face has 2 vertices, at least 3 are needed"
+        );
+        assert_eq!(
+            message("OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n"),
+            "m.off: the file has no faces"
+        );
+        assert_eq!(message(""), "m.off: the file has no faces");
+        assert_eq!(
+            message("OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0 0.5 0.5 0.5\n3 0 1 2 255 0 0\n"),
+            "accepted with 1 faces"
+        );
+        assert_eq!(
+            message("OFF\n3 1 0\n0 0 0\n1 0 inf\n0 1 0\n3 0 1 2\n"),
+            "m.off: line 4: coordinate `inf` is not finite"
+        );
+    }
+}
