@@ -1,9 +1,328 @@
 //! The error type of the `halfedge` crate.
 
+use std::fmt;
+use std::path::PathBuf;
+
 /// A `Result` whose error defaults to this crate's [`Error`].
 pub type Result<T = (), E = Error> = std::result::Result<T, E>;
 
+/// The vertex list of a face, displayed as `4, 9, 4` (long faces are shortened).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FaceVertices(pub Vec<u32>);
+
+impl fmt::Display for FaceVertices {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        const SHOWN: usize = 8;
+        for (i, v) in self.0.iter().take(SHOWN).enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            write!(f, "{v}")?;
+        }
+        if self.0.len() > SHOWN {
+            write!(f, ", ... ({} vertices)", self.0.len())?;
+        }
+        Ok(())
+    }
+}
+
+/// What is wrong with one line of a mesh file (see [`Error::Parse`]).
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum ParseError {
+    /// A token that should be a number is not one.
+    #[error("`{token}` is not a valid {expected}")]
+    InvalidNumber {
+        /// The offending token (shortened when long).
+        token: String,
+        /// What was expected there ("coordinate", "vertex index", ...).
+        expected: &'static str,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("coordinate `{token}` is not finite")]
+    NonFiniteCoordinate {
+        /// The offending token.
+        token: String,
+    },
+    /// A vertex line with fewer than three coordinates.
+    #[error("vertex has {found} coordinates, expected 3")]
+    MissingCoordinates {
+        /// How many coordinates the line has.
+        found: usize,
+    },
+    /// An OBJ face index of 0 (OBJ indices start at 1; negative ones count back).
+    #[error("face index 0 is not valid (OBJ indices start at 1)")]
+    IndexZero,
+    /// A face index that does not fit the index type.
+    #[error("face index `{token}` is too large")]
+    IndexTooLarge {
+        /// The offending token.
+        token: String,
+    },
+    /// A face index that refers past the vertices read so far (or before the first one).
+    #[error("face index {index} is out of range (the file has {vertices} vertices)")]
+    IndexOutOfRange {
+        /// The index as written in the file.
+        index: i64,
+        /// Number of vertices defined before this line (OBJ) or in the file (OFF).
+        vertices: u64,
+    },
+    /// A face with fewer than three corners.
+    #[error("face has {corners} vertices, at least 3 are needed")]
+    FaceTooSmall {
+        /// Number of corners on the line.
+        corners: usize,
+    },
+    /// The line is not text (binary data or invalid UTF-8).
+    #[error("not a text line (binary data?)")]
+    NotText,
+    /// A malformed statement not covered by another variant (an OFF header, a short face).
+    #[error("{what}")]
+    Malformed {
+        /// What is wrong.
+        what: String,
+    },
+    /// An OFF file ended before all its vertices and faces.
+    #[error("the file ends early: {what}")]
+    UnexpectedEnd {
+        /// What was still expected.
+        what: String,
+    },
+    /// Extra tokens where none are allowed.
+    #[error("unexpected `{token}`")]
+    UnexpectedToken {
+        /// The offending token.
+        token: String,
+    },
+}
+
 /// Everything that can go wrong loading, validating or subdividing a mesh.
+///
+/// Vertex and face numbers in validation errors are 0-based indices into the face list
+/// ([`crate::PolygonMesh`]); file errors name the file and its 1-based line.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
-pub enum Error {}
+pub enum Error {
+    /// Reading or writing a file failed.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A line of a mesh file could not be read.
+    #[error("{file}: line {line}: {kind}")]
+    Parse {
+        /// The file name (as given for error messages).
+        file: String,
+        /// 1-based line number.
+        line: u64,
+        /// What is wrong.
+        kind: ParseError,
+    },
+    /// A mesh file with no faces.
+    #[error("{file}: the file has no faces")]
+    NoFaces {
+        /// The file name.
+        file: String,
+    },
+    /// A mesh file whose format cannot be told from its extension.
+    #[error("{}: unknown mesh format (expected .obj or .off)", path.display())]
+    UnknownFormat {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} (vertices {vertices}) refers to vertex {vertex}, but the mesh has {n_vertices} vertices")]
+    VertexOutOfRange {
+        /// The face.
+        face: u32,
+        /// Its vertices.
+        vertices: FaceVertices,
+        /// The missing vertex.
+        vertex: u32,
+        /// Number of vertices of the mesh.
+        n_vertices: usize,
+    },
+    /// A face with fewer than three vertices.
+    #[error("face {face} (vertices {vertices}) has {degree} vertices, at least 3 are needed")]
+    FaceTooSmall {
+        /// The face.
+        face: u32,
+        /// Its vertices.
+        vertices: FaceVertices,
+        /// Its number of vertices.
+        degree: usize,
+    },
+    /// A face that uses a vertex twice (a degenerate face).
+    #[error("face {face} (vertices {vertices}) repeats vertex {vertex}")]
+    RepeatedVertex {
+        /// The face.
+        face: u32,
+        /// Its vertices.
+        vertices: FaceVertices,
+        /// The repeated vertex.
+        vertex: u32,
+    },
+    /// Two faces on the same set of vertices (duplicate or back-to-back faces).
+    #[error("faces {first} and {second} have the same vertices ({vertices})")]
+    DuplicateFace {
+        /// The first face.
+        first: u32,
+        /// The second face.
+        second: u32,
+        /// The vertices of the first face.
+        vertices: FaceVertices,
+    },
+    /// An edge shared by more than two faces.
+    #[error("edge ({a}, {b}) is shared by {count} faces ({faces}): non-manifold edge")]
+    NonManifoldEdge {
+        /// One end of the edge.
+        a: u32,
+        /// The other end.
+        b: u32,
+        /// How many faces share it.
+        count: usize,
+        /// The faces (the first few).
+        faces: FaceVertices,
+    },
+    /// Two faces traverse an edge in the same direction: one of them is flipped.
+    #[error("faces {first} and {second} both use edge {a} -> {b} in the same direction: inconsistent orientation (flip one of them)")]
+    InconsistentOrientation {
+        /// Start of the directed edge.
+        a: u32,
+        /// End of the directed edge.
+        b: u32,
+        /// The first face.
+        first: u32,
+        /// The second face.
+        second: u32,
+    },
+    /// The faces cannot be oriented consistently at all (a Moebius strip, a Klein bottle).
+    #[error("the surface is not orientable: flipping faces cannot make the orientation consistent (the component of face {face} contains an orientation-reversing loop through edge ({a}, {b}))")]
+    NonOrientable {
+        /// A face of the non-orientable component.
+        face: u32,
+        /// One end of an edge where the orientation conflict closes.
+        a: u32,
+        /// The other end.
+        b: u32,
+    },
+    /// A vertex whose faces form several separate fans (a pinched or bow-tie vertex).
+    #[error("vertex {vertex} is non-manifold: its faces form {fans} separate fans")]
+    NonManifoldVertex {
+        /// The vertex.
+        vertex: u32,
+        /// Number of fans around it.
+        fans: usize,
+    },
+    /// A vertex position with a NaN or infinite coordinate.
+    #[error("vertex {vertex} has a non-finite coordinate ({x}, {y}, {z})")]
+    NonFiniteCoordinate {
+        /// The vertex.
+        vertex: u32,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+        /// Its z coordinate.
+        z: f64,
+    },
+    /// More elements than `u32` handles can address.
+    #[error("too many {what} ({count}): handles are 32-bit")]
+    TooManyElements {
+        /// Which elements ("vertices", "half-edges", ...).
+        what: &'static str,
+        /// How many there would be.
+        count: u64,
+    },
+    /// A base mesh name that is not known.
+    #[error("unknown base mesh `{name}` (known: tetrahedron, octahedron, icosahedron, cube, torus:G, icosahedron-holes:K, grid:WxH, quad-grid:WxH, mixed)")]
+    UnknownShape {
+        /// The name as given.
+        name: String,
+    },
+    /// A base mesh parameter that is malformed or out of range.
+    #[error("base mesh `{name}`: {what}")]
+    InvalidShapeParameter {
+        /// The name as given.
+        name: String,
+        /// What is wrong.
+        what: String,
+    },
+    /// A structural invariant of a [`crate::HalfEdgeMesh`] does not hold (a bug).
+    #[error("internal error: broken half-edge invariant: {what} (please report this)")]
+    BrokenInvariant {
+        /// The violated invariant.
+        what: String,
+    },
+    /// A subdivision scheme's counts (from the `schemes` crate): unknown name, mesh outside
+    /// the scheme's class, impossible counts.
+    #[error(transparent)]
+    Scheme(#[from] schemes::Error),
+    /// A built-in scheme that has no real subdivision here.
+    #[error("no real subdivision for scheme `{name}` (supported: {supported})")]
+    UnsupportedScheme {
+        /// The name as given.
+        name: String,
+        /// The supported names.
+        supported: String,
+    },
+    /// The mesh is in the scheme's class for counting but the subdivision itself cannot run
+    /// on it (e.g. a vertex of valence 2 for a dual scheme).
+    #[error("{scheme} cannot subdivide this mesh: {reason}")]
+    SchemeNotApplicable {
+        /// The scheme.
+        scheme: String,
+        /// What is wrong, naming the element.
+        reason: String,
+    },
+    /// The subdivision built a different number of elements than the scheme predicted (a bug).
+    #[error("internal error: {scheme} level {level}: predicted {predicted} {what}, built {actual} (please report this)")]
+    PredictionMismatch {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// Which count ("vertices", "edges", "faces", a capacity).
+        what: &'static str,
+        /// The predicted count.
+        predicted: num_bigint::BigInt,
+        /// What the subdivision built.
+        actual: u64,
+    },
+    /// The subdivision built an inconsistent mesh (a bug).
+    #[error("internal error: {scheme} level {level}: {what} (please report this)")]
+    InvalidOutput {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// What is inconsistent.
+        what: String,
+    },
+    /// A subdivision level whose mesh does not fit 32-bit handles.
+    #[error(
+        "{scheme} level {level} would have {count} {what}: more than 32-bit handles can address"
+    )]
+    TooLarge {
+        /// The scheme.
+        scheme: String,
+        /// The level.
+        level: u32,
+        /// Which elements.
+        what: &'static str,
+        /// The predicted count.
+        count: num_bigint::BigInt,
+    },
+    /// The thread pool for parallel subdivision could not be created.
+    #[error("cannot start {threads} threads for subdivision: {reason}")]
+    ThreadPool {
+        /// Threads requested.
+        threads: usize,
+        /// The reason given by rayon.
+        reason: String,
+    },
+}

@@ -21,12 +21,20 @@
 //! ```
 #![deny(missing_docs)]
 
+mod closed_form;
+mod eigen;
 mod error;
+mod field;
 mod matrix;
+mod poly;
 mod power;
 mod recurrence;
 
+pub use crate::closed_form::{ClosedForm, Coefficient, ComponentForm, EarlyLevel, Term};
+pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
 pub use crate::error::{Error, Result};
+pub use crate::field::QuadraticSurd;
 pub use crate::matrix::{IntMatrix, ParseMatrixError};
+pub use crate::poly::Polynomial;
 pub use crate::power::CheckedRing;
 pub use crate::recurrence::Recurrence;

@@ -324,10 +324,16 @@ mod tests {
         );
         let e = "[[1,x]]".parse::<IntMatrix>().unwrap_err();
         assert_eq!(e.offset, Some(4));
-        assert_eq!(e.to_string(), "expected an integer at character 4 of the matrix");
+        assert_eq!(
+            e.to_string(),
+            "expected an integer at character 4 of the matrix"
+        );
         let e = "[[99999999999999999999]]".parse::<IntMatrix>().unwrap_err();
         assert!(e.message.contains("does not fit"), "{e}");
-        assert_eq!("[]".parse::<IntMatrix>().unwrap_err().message, "the matrix is empty");
+        assert_eq!(
+            "[]".parse::<IntMatrix>().unwrap_err().message,
+            "the matrix is empty"
+        );
     }
 
     #[test]
@@ -335,6 +341,9 @@ mod tests {
         let a = IntMatrix::try_from_rows(vec![vec![i64::MAX, 0], vec![0, 1]]).unwrap();
         assert!(a.checked_mul(&a).is_none());
         let b = IntMatrix::try_from_rows(vec![vec![1, 1], vec![0, 4]]).unwrap();
-        assert_eq!(b.checked_mul(&b).unwrap().to_rows(), vec![vec![1, 5], vec![0, 16]]);
+        assert_eq!(
+            b.checked_mul(&b).unwrap().to_rows(),
+            vec![vec![1, 5], vec![0, 16]]
+        );
     }
 }

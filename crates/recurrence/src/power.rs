@@ -119,7 +119,11 @@ impl<T: CheckedRing> RingMatrix<T> {
 /// The powers of `m` commute, so the vector is multiplied by `m^(2^k)` for each set bit `k` of
 /// `s`, and the matrix is squared only while higher bits remain: about `log2 s` squarings and
 /// `popcount(s)` matrix-vector products.
-pub(crate) fn checked_power_apply<T: CheckedRing>(m: &IntMatrix, x0: &[T], mut s: u64) -> Option<Vec<T>> {
+pub(crate) fn checked_power_apply<T: CheckedRing>(
+    m: &IntMatrix,
+    x0: &[T],
+    mut s: u64,
+) -> Option<Vec<T>> {
     debug_assert_eq!(x0.len(), m.dim());
     let mut x = x0.to_vec();
     if s == 0 {

@@ -3,7 +3,7 @@
 use num_bigint::BigInt;
 
 use crate::power::{checked_power_apply, CheckedRing, RingMatrix};
-use crate::{Error, IntMatrix, Result};
+use crate::{ClosedForm, Eigenvalue, EigenvalueInfo, Error, IntMatrix, Polynomial, Result};
 
 /// A linear recurrence `x_s = M x_(s-1)` over named components.
 ///
@@ -139,6 +139,70 @@ impl Recurrence {
     pub fn checked_matrix_power<T: CheckedRing>(&self, s: u64) -> Option<Vec<Vec<T>>> {
         let p = RingMatrix::<T>::from_int(&self.matrix)?.checked_pow(s)?;
         Some(p.entries.chunks(p.dim).map(<[T]>::to_vec).collect())
+    }
+
+    /// The characteristic polynomial `det(x I - M)`, exact (Faddeev-LeVerrier over the
+    /// integers).
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::new("[[1, 1, 1], [0, 2, 4], [0, 0, 4]]".parse::<IntMatrix>()?);
+    /// assert_eq!(r.characteristic_polynomial().to_string(), "x^3 - 7*x^2 + 14*x - 8");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn characteristic_polynomial(&self) -> Polynomial {
+        crate::poly::characteristic_polynomial(&self.matrix)
+    }
+
+    /// The distinct eigenvalues with their algebraic multiplicities, largest modulus first.
+    ///
+    /// Integer eigenvalues and roots of integer quadratic factors are exact; the others are
+    /// [`Eigenvalue::Numeric`].
+    ///
+    /// ```
+    /// # use recurrence::{Eigenvalue, IntMatrix, Recurrence};
+    /// # use num_rational::BigRational;
+    /// let r = Recurrence::new("[[2, 1], [0, 2]]".parse::<IntMatrix>()?);
+    /// let e = r.eigenvalues();
+    /// assert_eq!(e.len(), 1);
+    /// assert_eq!(e[0].eigenvalue, Eigenvalue::Rational(BigRational::from_integer(2.into())));
+    /// assert_eq!(e[0].multiplicity, 2);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn eigenvalues(&self) -> Vec<EigenvalueInfo> {
+        crate::eigen::eigenvalues(&self.characteristic_polynomial())
+    }
+
+    /// The eigenvalue of largest modulus (the growth rate of the counts), or `None` when
+    /// every eigenvalue is zero (a nilpotent matrix). Among several of the same modulus, the
+    /// one with the largest real part.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::new("[[1, 1], [0, 4]]".parse::<IntMatrix>()?);
+    /// assert_eq!(r.dominant_eigenvalue().map(|e| e.to_string()), Some("4".to_string()));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn dominant_eigenvalue(&self) -> Option<Eigenvalue> {
+        self.eigenvalues()
+            .into_iter()
+            .map(|e| e.eigenvalue)
+            .find(|e| !e.is_zero())
+    }
+
+    /// The exact closed form of every component, from the spectral decomposition of the
+    /// matrix (see [`ClosedForm`]).
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::with_names("[[1, 1], [0, 4]]".parse::<IntMatrix>()?, ["V", "E"])?;
+    /// let form = r.closed_form();
+    /// assert!(form.is_exact());
+    /// assert_eq!(form.components()[1].terms.len(), 1);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn closed_form(&self) -> ClosedForm {
+        crate::closed_form::closed_form(self)
     }
 
     fn check_len(&self, got: usize) -> Result {

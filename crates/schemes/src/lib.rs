@@ -1,7 +1,61 @@
 //! Subdivision schemes declared as integer matrices.
+//!
+//! Every subdivision rule whose counts evolve linearly is a [`Scheme`]: a name, an ordered
+//! state of mesh statistics (`V`, `E`, `IE`, `BE`, `F`, `H`, ...), the matrices that advance
+//! the state by one level, the [`MeshClass`] it applies to, and how `V`, `E` and `F` follow
+//! from the state. From a mesh's [`MeshCounts`] (or counts typed in as [`CountsInput`]) a
+//! scheme gives exact counts at any level.
+//!
+//! - Built-ins: [`builtin`] by name, [`builtins`] for the list; each is derived in the
+//!   documentation of its constructor in [`catalog`].
+//! - Custom schemes from TOML text: [`Scheme::from_toml`]; export with [`Scheme::to_toml`].
+//! - Composition `A:k,B` and uniform counting: [`Plan`].
+//! - Budgets and the paper's eq. (1): [`fit`], [`parse_byte_size`], [`density`].
+//!
+//! # Example: the icosahedron under Loop
+//!
+//! ```
+//! use num_bigint::BigInt;
+//! use schemes::{builtin, CountsInput};
+//!
+//! let scheme = builtin("loop")?;
+//! let x0 = scheme.state_from_input(&"V=12,E=30,F=20".parse::<CountsInput>()?)?;
+//! let v: Vec<BigInt> = (0..4)
+//!     .map(|s| scheme.level_counts(&x0, s).map(|c| c.vertices))
+//!     .collect::<Result<_, _>>()?;
+//! assert_eq!(v, [12, 42, 162, 642].map(BigInt::from));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Example: a mesh the scheme does not apply to
+//!
+//! ```
+//! use schemes::{builtin, MeshCounts};
+//!
+//! let open_square = MeshCounts::from_polygons(&[[0, 1, 2], [0, 2, 3]])?;
+//! let err = builtin("loop")?.initial_state(&open_square).unwrap_err();
+//! assert_eq!(
+//!     err.to_string(),
+//!     "loop needs a closed mesh, but this mesh has 4 boundary edges; use loop-boundary"
+//! );
+//! let c = builtin("loop-boundary")?.counts_at(&open_square, 1)?;
+//! assert_eq!((c.vertices, c.edges, c.faces), (9.into(), 16.into(), 8.into()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 #![deny(missing_docs)]
 
+pub mod catalog;
+mod class;
 mod counts;
+pub mod custom;
+mod error;
+pub mod input;
+mod scheme;
 
-pub use crate::counts::MeshCounts;
+pub use crate::catalog::{builtin, builtins};
+pub use crate::class::{FaceKind, MeshClass};
+pub use crate::counts::{MeshCounts, Stat};
+pub use crate::error::{Error, Result};
+pub use crate::input::{parse_init, CountsInput, Facts};
+pub use crate::scheme::{Component, Derivation, LevelCounts, Phase, Scheme, SchemeSpec, StepRule};
 pub use recurrence;

@@ -1,0 +1,156 @@
+//! [`PolygonMesh`]: a raw face list, as read from a file, before any validation.
+
+use glam::DVec3;
+
+/// A polygon mesh as a plain face list: vertex positions and, per face, its vertex indices
+/// (0-based) in order.
+///
+/// Nothing is validated: faces may repeat vertices, share edges between any number of faces,
+/// refer to missing vertices or leave vertices unused. Statistics
+/// ([`crate::stats::face_list_counts`]) work on any face list; [`crate::HalfEdgeMesh`] is built
+/// from it with `HalfEdgeMesh::try_from(&polygon_mesh)`, which validates.
+///
+/// # Example
+///
+/// ```
+/// use glam::DVec3;
+/// use halfedge::{HalfEdgeMesh, PolygonMesh};
+///
+/// let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+/// let mesh = PolygonMesh::from_faces(positions, [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]);
+/// assert_eq!(mesh.n_faces(), 4);
+/// assert_eq!(mesh.face(1), &[0, 1, 3]);
+/// let tetrahedron = HalfEdgeMesh::try_from(&mesh)?;
+/// assert_eq!(tetrahedron.n_edges(), 6);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct PolygonMesh {
+    /// Vertex positions; face indices refer to this list.
+    pub positions: Vec<DVec3>,
+    /// `face_offsets[f]..face_offsets[f + 1]` is the range of face `f` in `face_indices`.
+    face_offsets: Vec<usize>,
+    face_indices: Vec<u32>,
+}
+
+impl Default for PolygonMesh {
+    fn default() -> Self {
+        PolygonMesh {
+            positions: Vec::new(),
+            face_offsets: vec![0],
+            face_indices: Vec::new(),
+        }
+    }
+}
+
+impl PolygonMesh {
+    /// A mesh with the given positions and no faces.
+    pub fn with_positions(positions: Vec<DVec3>) -> PolygonMesh {
+        PolygonMesh {
+            positions,
+            ..PolygonMesh::default()
+        }
+    }
+
+    /// A mesh from positions and faces (each face a list of 0-based vertex indices).
+    pub fn from_faces<I, F>(positions: Vec<DVec3>, faces: I) -> PolygonMesh
+    where
+        I: IntoIterator<Item = F>,
+        F: AsRef<[u32]>,
+    {
+        let mut mesh = PolygonMesh::with_positions(positions);
+        for face in faces {
+            mesh.push_face(face.as_ref());
+        }
+        mesh
+    }
+
+    /// Reserves room for `faces` more faces with `corners` more corners in total.
+    pub fn reserve_faces(&mut self, faces: usize, corners: usize) {
+        self.face_offsets.reserve(faces);
+        self.face_indices.reserve(corners);
+    }
+
+    /// Appends a face (its vertex indices in order; not validated).
+    pub fn push_face(&mut self, vertices: &[u32]) {
+        self.face_indices.extend_from_slice(vertices);
+        self.face_offsets.push(self.face_indices.len());
+    }
+
+    /// Appends a face from an iterator of vertex indices (not validated).
+    pub fn push_face_from_iter(&mut self, vertices: impl IntoIterator<Item = u32>) {
+        self.face_indices.extend(vertices);
+        self.face_offsets.push(self.face_indices.len());
+    }
+
+    /// Number of vertex positions (used or not).
+    pub fn n_vertices(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of faces.
+    pub fn n_faces(&self) -> usize {
+        self.face_offsets.len() - 1
+    }
+
+    /// Number of face corners (the sum of the face degrees).
+    pub fn n_corners(&self) -> usize {
+        self.face_indices.len()
+    }
+
+    /// The vertex indices of face `f`.
+    ///
+    /// # Panics
+    ///
+    /// When `f >= self.n_faces()`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_indices[self.face_offsets[f]..self.face_offsets[f + 1]]
+    }
+
+    /// Iterator over the faces, each as its vertex indices.
+    pub fn faces(&self) -> PolygonFaces<'_> {
+        PolygonFaces {
+            mesh: self,
+            next: 0,
+        }
+    }
+
+    /// All face corners, face after face (see [`PolygonMesh::face_offsets`]).
+    pub fn face_indices(&self) -> &[u32] {
+        &self.face_indices
+    }
+
+    /// Face boundaries in [`PolygonMesh::face_indices`]: face `f` is
+    /// `face_offsets()[f]..face_offsets()[f + 1]`; the slice has `n_faces() + 1` entries and
+    /// starts with 0.
+    pub fn face_offsets(&self) -> &[usize] {
+        &self.face_offsets
+    }
+}
+
+/// Iterator over the faces of a [`PolygonMesh`]; see [`PolygonMesh::faces`].
+#[derive(Clone, Debug)]
+pub struct PolygonFaces<'a> {
+    mesh: &'a PolygonMesh,
+    next: usize,
+}
+
+impl<'a> Iterator for PolygonFaces<'a> {
+    type Item = &'a [u32];
+
+    fn next(&mut self) -> Option<&'a [u32]> {
+        if self.next >= self.mesh.n_faces() {
+            return None;
+        }
+        let face = self.mesh.face(self.next);
+        self.next += 1;
+        Some(face)
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let left = self.mesh.n_faces() - self.next;
+        (left, Some(left))
+    }
+}
+
+impl ExactSizeIterator for PolygonFaces<'_> {}

@@ -1,0 +1,5 @@
+//! Integration tests of the `halfedge` crate (one test binary; see STYLE.md section 7).
+
+mod invalid_obj;
+mod roundtrip;
+mod shared_meshes;

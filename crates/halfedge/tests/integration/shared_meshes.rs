@@ -1,0 +1,234 @@
+//! Every mesh of the shared folder (`SUBCOUNT_MESHES`): face-list statistics against
+//! `stats.json`, the half-edge build (accepted, or refused with the right error for the
+//! meshes in `broken/`), and a cross-check of our OBJ reader against tobj.
+
+use std::path::PathBuf;
+
+use halfedge::{io, stats, Error, HalfEdgeMesh};
+use serde_json::Value;
+
+fn meshes_dir() -> Option<PathBuf> {
+    match std::env::var_os("SUBCOUNT_MESHES") {
+        Some(dir) => Some(PathBuf::from(dir)),
+        None => {
+            eprintln!("SUBCOUNT_MESHES is not set: skipping the tests over the shared meshes");
+            None
+        }
+    }
+}
+
+fn stats_json(dir: &std::path::Path) -> serde_json::Map<String, Value> {
+    let text = std::fs::read_to_string(dir.join("stats.json")).expect("stats.json is readable");
+    match serde_json::from_str(&text).expect("stats.json is JSON") {
+        Value::Object(map) => map,
+        other => panic!("stats.json is not an object: {other}"),
+    }
+}
+
+fn int(entry: &Value, key: &str) -> i64 {
+    entry[key]
+        .as_i64()
+        .unwrap_or_else(|| panic!("{key} is not an integer: {}", entry[key]))
+}
+
+/// The error kind each broken mesh must be refused with (the first check that fails in the
+/// documented order of `HalfEdgeMesh::try_from_polygons`).
+fn expected_refusal(name: &str) -> &'static str {
+    match name {
+        "broken/beetle_nonmanifold.obj" => "NonManifoldEdge",
+        "broken/cow_nonmanifold_vertex.obj" => "NonManifoldVertex",
+        "broken/teapot_nonmanifold.obj" => "NonManifoldVertex",
+        "broken/truck_nonmanifold.obj" => "NonManifoldEdge",
+        "broken/osd_catmark_nonman_edges.obj" => "RepeatedVertex",
+        "broken/osd_catmark_nonman_verts.obj" => "NonManifoldVertex",
+        "broken/osd_loop_nonman_edges.obj" => "RepeatedVertex",
+        "broken/osd_catmark_fan.obj" => "NonManifoldEdge",
+        "broken/osd_catmark_val2_back2back.obj" => "DuplicateFace",
+        "broken/osd_catmark_nonman_quadpole8.obj" => "RepeatedVertex",
+        other => panic!("no expected refusal listed for {other}"),
+    }
+}
+
+fn kind(err: &Error) -> &'static str {
+    match err {
+        Error::NonManifoldEdge { .. } => "NonManifoldEdge",
+        Error::NonManifoldVertex { .. } => "NonManifoldVertex",
+        Error::RepeatedVertex { .. } => "RepeatedVertex",
+        Error::DuplicateFace { .. } => "DuplicateFace",
+        Error::InconsistentOrientation { .. } => "InconsistentOrientation",
+        Error::NonOrientable { .. } => "NonOrientable",
+        _ => "other",
+    }
+}
+
+#[test]
+fn every_shared_mesh_matches_stats_json() {
+    let Some(dir) = meshes_dir() else { return };
+    let all = stats_json(&dir);
+    assert!(all.len() >= 58, "stats.json lists {} meshes", all.len());
+    let mut failures = Vec::new();
+    for (name, entry) in &all {
+        let path = dir.join(name);
+        let polygons = io::read_obj(&path).unwrap_or_else(|e| panic!("{e}"));
+        let c = stats::face_list_counts(&polygons);
+        let unreferenced = int(entry, "unreferenced_vertices");
+        let expected = [
+            ("V", int(entry, "V") - unreferenced, c.vertices as i64),
+            ("E", int(entry, "E"), c.edges as i64),
+            ("F", int(entry, "F"), c.faces as i64),
+            ("corners", int(entry, "corners"), c.corners as i64),
+            (
+                "boundary_edges",
+                int(entry, "boundary_edges"),
+                c.boundary_edges as i64,
+            ),
+            (
+                "nonmanifold_edges",
+                int(entry, "nonmanifold_edges"),
+                c.nonmanifold_edges as i64,
+            ),
+            (
+                "boundary_loops",
+                int(entry, "boundary_loops"),
+                c.boundary_loops as i64,
+            ),
+            ("components", int(entry, "components"), c.components as i64),
+            (
+                "chi_used_vertices",
+                int(entry, "chi_used_vertices"),
+                c.euler_characteristic,
+            ),
+            (
+                "unreferenced_vertices",
+                unreferenced,
+                c.unreferenced_vertices as i64,
+            ),
+            ("v lines", int(entry, "V"), polygons.n_vertices() as i64),
+        ];
+        for (what, want, got) in expected {
+            if want != got {
+                failures.push(format!("{name}: {what} is {got}, stats.json says {want}"));
+            }
+        }
+        let degrees: Vec<(u32, u64)> = entry["face_degrees"]
+            .as_object()
+            .expect("face_degrees is an object")
+            .iter()
+            .map(|(k, v)| (k.parse().expect("degree"), v.as_u64().expect("count")))
+            .collect();
+        let ours: Vec<(u32, u64)> = c.faces_by_degree.iter().map(|(&k, &v)| (k, v)).collect();
+        let mut sorted = degrees.clone();
+        sorted.sort_unstable();
+        if sorted != ours {
+            failures.push(format!(
+                "{name}: faces by degree {ours:?}, stats.json {sorted:?}"
+            ));
+        }
+        // Interior edges follow: E = IE + BE + NME.
+        assert_eq!(
+            c.interior_edges + c.boundary_edges + c.nonmanifold_edges,
+            c.edges,
+            "{name}"
+        );
+
+        match HalfEdgeMesh::try_from(&polygons) {
+            Ok(mesh) => {
+                if name.starts_with("broken/") {
+                    failures.push(format!("{name}: accepted, but it is broken"));
+                    continue;
+                }
+                mesh.check_invariants()
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                let counts = mesh.counts();
+                if counts != c {
+                    failures.push(format!("{name}: half-edge counts {counts:?} != {c:?}"));
+                }
+                let genus = entry["genus"].as_i64().map(|g| g as u64);
+                if Some(mesh.genus()) != genus || stats::genus(&c) != genus {
+                    failures.push(format!("{name}: genus {} != {genus:?}", mesh.genus()));
+                }
+            }
+            Err(err) => {
+                if !name.starts_with("broken/") {
+                    failures.push(format!("{name}: refused: {err}"));
+                } else if kind(&err) != expected_refusal(name) {
+                    failures.push(format!(
+                        "{name}: refused as {} ({err}), expected {}",
+                        kind(&err),
+                        expected_refusal(name)
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} mismatches:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
+
+/// tobj, asked to keep polygons and not merge anything, must see the same faces (its indices
+/// are per model, into its own position list, so compare face by face through positions).
+#[test]
+fn our_obj_reader_agrees_with_tobj() {
+    let Some(dir) = meshes_dir() else { return };
+    let all = stats_json(&dir);
+    let options = tobj::LoadOptions {
+        triangulate: false,
+        single_index: false,
+        ..Default::default()
+    };
+    for name in all.keys() {
+        let path = dir.join(name);
+        let ours = io::read_obj(&path).unwrap_or_else(|e| panic!("{e}"));
+        let (models, _) = tobj::load_obj(&path, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut faces = 0usize;
+        let mut ours_faces = ours.faces();
+        for model in &models {
+            let m = &model.mesh;
+            let mut start = 0usize;
+            let arities: Vec<u32> = if m.face_arities.is_empty() {
+                vec![3; m.indices.len() / 3]
+            } else {
+                m.face_arities.clone()
+            };
+            for arity in arities {
+                let theirs = &m.indices[start..start + arity as usize];
+                start += arity as usize;
+                let mine = ours_faces
+                    .next()
+                    .unwrap_or_else(|| panic!("{name}: tobj has more faces"));
+                assert_eq!(mine.len(), theirs.len(), "{name}: face {faces}");
+                for (&a, &b) in mine.iter().zip(theirs) {
+                    let p = ours.positions[a as usize];
+                    let q = &m.positions[3 * b as usize..3 * b as usize + 3];
+                    for (x, y) in [p.x, p.y, p.z].into_iter().zip(q) {
+                        let y = f64::from(*y);
+                        assert!(
+                            (x - y).abs() <= 1e-6 * y.abs().max(1.0),
+                            "{name}: face {faces}"
+                        );
+                    }
+                }
+                faces += 1;
+            }
+        }
+        assert_eq!(faces, ours.n_faces(), "{name}");
+    }
+}
+
+/// The big mesh builds (also a smoke test of speed: timing is measured in benchmarks).
+#[test]
+fn the_big_mesh_builds_and_writes_back() {
+    let Some(dir) = meshes_dir() else { return };
+    let polygons = io::read_obj(dir.join("buildings_400k.obj")).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = HalfEdgeMesh::try_from(&polygons).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        (mesh.n_vertices(), mesh.n_edges(), mesh.n_faces()),
+        (200_062, 600_030, 400_020)
+    );
+    assert_eq!(mesh.genus(), 0);
+    assert_eq!(mesh.counts().components, 26);
+}

@@ -1,0 +1,616 @@
+//! Exact closed forms from the spectral decomposition
+//! `M^s = sum_l sum_(k < m_l) C(s, k) l^(s-k) N_l^k P_l`.
+//!
+//! For each eigenvalue `l` of multiplicity `m`, write `p(x) = (x - l)^m h(x)`. The spectral
+//! projector is `P_l = h(M) v(M)` where `v` is the inverse of `h` modulo `(x - l)^m`, read off
+//! the Taylor series of `1/h` at `l` (so no extended Euclid is needed), and the nilpotent part
+//! is `N_l = (M - l I) P_l`. Everything runs in the field that holds `l`: the rationals,
+//! `Q(sqrt d)`, or complex `f64` for numeric eigenvalues. `C(s, k) l^(-k)` is then expanded
+//! into powers of `s`, which gives each component as `sum p_l(s) l^s`.
+//!
+//! The zero eigenvalue contributes `N_0^s P_0`, which vanishes from level `m_0` on; per
+//! component, `valid_from` is the least `k` with `e_i^T N_0^k P_0 = 0`, and the levels below
+//! it are stored as rows of `M^k`.
+
+use nalgebra::Complex;
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Pow, Signed, Zero};
+
+use crate::eigen::{power_of_two_exponent, Eigenvalue, EigenvalueInfo};
+use crate::field::{Field, FieldMatrix, QuadraticSurd};
+use crate::poly::{divide_by_root, taylor_coefficients};
+use crate::{Error, IntMatrix, Recurrence, Result};
+
+/// A coefficient of a closed-form term: exact rational, exact in `Q(sqrt d)`, or numeric.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Coefficient {
+    /// An exact rational.
+    Rational(BigRational),
+    /// An exact element `a + b*sqrt(d)` of a quadratic field.
+    Surd(QuadraticSurd),
+    /// A numeric approximation.
+    Numeric(Complex<f64>),
+}
+
+impl Coefficient {
+    /// Whether the coefficient is zero (numeric ones: negligible).
+    pub fn is_zero(&self) -> bool {
+        match self {
+            Coefficient::Rational(r) => r.is_zero(),
+            Coefficient::Surd(q) => q.a.is_zero() && q.b.is_zero(),
+            Coefficient::Numeric(z) => z.norm() < 1e-9,
+        }
+    }
+}
+
+impl std::fmt::Display for Coefficient {
+    /// `p` or `p/q`, `a+b*sqrt(d)`, or a numeric `re+imi`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Coefficient::Rational(r) => write!(f, "{r}"),
+            Coefficient::Surd(q) => write!(f, "{q}"),
+            Coefficient::Numeric(z) => f.write_str(&crate::eigen::format_complex(*z)),
+        }
+    }
+}
+
+/// One term `(sum_j coefficients[j] * x_j(0)) * s^s_power * eigenvalue^s` of a component.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Term {
+    /// The eigenvalue raised to the power `s`.
+    pub eigenvalue: Eigenvalue,
+    /// The power of `s` (from Jordan blocks).
+    pub s_power: u32,
+    /// One coefficient per component of the initial state, in state order.
+    pub coefficients: Vec<Coefficient>,
+}
+
+/// The value of a component at a level below its `valid_from`, as a combination of the
+/// initial values (a row of `M^level`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EarlyLevel {
+    /// The level.
+    pub level: u64,
+    /// One integer coefficient per initial component.
+    pub coefficients: Vec<BigInt>,
+}
+
+/// The closed form of one component of the state.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComponentForm {
+    /// The component's name.
+    pub name: String,
+    /// The least level from which the terms give the component (above `0` only when a zero
+    /// eigenvalue contributes to it).
+    pub valid_from: u64,
+    /// Whether every term is exact (no numeric eigenvalue contributes).
+    pub exact: bool,
+    /// The terms, largest eigenvalue first, then highest power of `s` first.
+    pub terms: Vec<Term>,
+    /// The levels below `valid_from`, explicitly.
+    pub early_levels: Vec<EarlyLevel>,
+}
+
+/// The closed form of every component of a [`Recurrence`].
+///
+/// Built by [`Recurrence::closed_form`]; evaluate it with [`ClosedForm::evaluate`], print it
+/// with [`ClosedForm::to_text`], [`ClosedForm::to_latex`], [`ClosedForm::to_rust`] or
+/// [`ClosedForm::to_json`].
+#[derive(Clone, Debug)]
+pub struct ClosedForm {
+    names: Vec<String>,
+    matrix: IntMatrix,
+    eigenvalues: Vec<EigenvalueInfo>,
+    components: Vec<ComponentForm>,
+    fast: Vec<Option<FastComponent>>,
+    powers: Vec<FastEigenvalue>,
+}
+
+/// Precomputed integer data for evaluating one exact component quickly.
+#[derive(Clone, Debug)]
+pub(crate) struct FastComponent {
+    /// Common denominator of the rational coefficients.
+    pub(crate) denominator: BigInt,
+    /// `(eigenvalue index, s_power, numerators)` for rational eigenvalues.
+    pub(crate) rational: Vec<(usize, u32, Vec<BigInt>)>,
+    /// `(eigenvalue index, s_power, coefficients)` for surd eigenvalues.
+    pub(crate) surd: Vec<(usize, u32, Vec<QuadraticSurd>)>,
+    /// The valid_from level and the early rows.
+    pub(crate) valid_from: u64,
+    pub(crate) early: Vec<Vec<BigInt>>,
+}
+
+/// An eigenvalue prepared for fast powering.
+#[derive(Clone, Debug)]
+pub(crate) enum FastEigenvalue {
+    /// An integer; `shift` is `k` when `|value| = 2^k`.
+    Integer { value: BigInt, shift: Option<u64> },
+    /// A quadratic surd.
+    Surd(QuadraticSurd),
+    /// Numeric; never evaluated exactly.
+    Numeric,
+}
+
+impl ClosedForm {
+    /// The component names, in state order.
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// The matrix the form was derived from.
+    pub fn matrix(&self) -> &IntMatrix {
+        &self.matrix
+    }
+
+    /// The eigenvalues with multiplicities, in the order terms use.
+    pub fn eigenvalues(&self) -> &[EigenvalueInfo] {
+        &self.eigenvalues
+    }
+
+    /// The closed form of each component, in state order.
+    pub fn components(&self) -> &[ComponentForm] {
+        &self.components
+    }
+
+    /// Whether every component's form is exact.
+    pub fn is_exact(&self) -> bool {
+        self.components.iter().all(|c| c.exact)
+    }
+
+    /// The exact state at level `s` from the closed form; agrees with
+    /// [`Recurrence::state_at`] for every `s`.
+    ///
+    /// Powers of eigenvalues `+-2^k` are shifts, and each component is summed over a common
+    /// denominator and divided once, exactly.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InitialLength`] for a wrong-length `x0`; [`Error::NotExact`] when a component's
+    /// form is numeric (compute those counts by powering, which is always exact).
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use recurrence::{IntMatrix, Recurrence};
+    ///
+    /// let r = Recurrence::with_names("[[1, 1], [0, 4]]".parse::<IntMatrix>()?, ["V", "E"])?;
+    /// let form = r.closed_form();
+    /// let x0 = [12, 30].map(BigInt::from);
+    /// assert_eq!(form.evaluate(&x0, 4)?, [2562, 7680].map(BigInt::from));
+    /// assert_eq!(form.evaluate(&x0, 300)?, r.state_at(&x0, 300)?);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn evaluate(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>> {
+        if x0.len() != self.names.len() {
+            return Err(Error::InitialLength {
+                got: x0.len(),
+                expected: self.names.len(),
+            });
+        }
+        let mut cache: Vec<Option<PowerValue>> = vec![None; self.powers.len()];
+        let s_big = BigInt::from(s);
+        let mut out = Vec::with_capacity(self.names.len());
+        for (i, fast) in self.fast.iter().enumerate() {
+            let Some(fast) = fast else {
+                return Err(Error::NotExact {
+                    component: self.names[i].clone(),
+                });
+            };
+            if s < fast.valid_from {
+                out.push(dot(&fast.early[s as usize], x0));
+                continue;
+            }
+            let mut acc = BigInt::zero();
+            for (e, p, nums) in &fast.rational {
+                let mut c = dot(nums, x0);
+                if c.is_zero() {
+                    continue;
+                }
+                if *p > 0 {
+                    c *= Pow::pow(&s_big, *p);
+                }
+                match &self.powers[*e] {
+                    FastEigenvalue::Integer {
+                        value,
+                        shift: Some(k),
+                    } => {
+                        c <<= usize::try_from(k.saturating_mul(s))
+                            .map_err(|_| too_large(s, k.saturating_mul(s)))?;
+                        if value.is_negative() && s % 2 == 1 {
+                            c = -c;
+                        }
+                    }
+                    FastEigenvalue::Integer { value, shift: None } => {
+                        let pw =
+                            cache[*e].get_or_insert_with(|| PowerValue::Int(Pow::pow(value, s)));
+                        if let PowerValue::Int(pw) = pw {
+                            c *= &*pw;
+                        }
+                    }
+                    FastEigenvalue::Surd(_) | FastEigenvalue::Numeric => {}
+                }
+                acc += c;
+            }
+            let (q, r) = acc.div_rem(&fast.denominator);
+            let mut value =
+                BigRational::new(r, fast.denominator.clone()) + BigRational::from_integer(q);
+            if !fast.surd.is_empty() {
+                // One running sum per quadratic field: conjugate terms cancel within each.
+                let mut sums: Vec<QuadraticSurd> = Vec::new();
+                for (e, p, coeffs) in &fast.surd {
+                    let c =
+                        coeffs
+                            .iter()
+                            .zip(x0)
+                            .fold(QuadraticSurd::field_zero(), |acc, (c, x)| {
+                                acc.add(&c.mul(&QuadraticSurd::rational(
+                                    BigRational::from_integer(x.clone()),
+                                )))
+                            });
+                    if c.is_field_zero() {
+                        continue;
+                    }
+                    let FastEigenvalue::Surd(lambda) = &self.powers[*e] else {
+                        continue;
+                    };
+                    let pw = cache[*e].get_or_insert_with(|| PowerValue::Surd(surd_pow(lambda, s)));
+                    let PowerValue::Surd(pw) = pw else { continue };
+                    let sp =
+                        QuadraticSurd::rational(BigRational::from_integer(Pow::pow(&s_big, *p)));
+                    let term = c.mul(pw).mul(&sp);
+                    match sums
+                        .iter_mut()
+                        .find(|q| q.is_rational() || term.is_rational() || q.d == term.d)
+                    {
+                        Some(q) => *q = q.add(&term),
+                        None => sums.push(term),
+                    }
+                }
+                for sum in sums {
+                    debug_assert!(sum.is_rational(), "conjugate terms cancel");
+                    value += sum.a;
+                }
+            }
+            debug_assert!(
+                value.is_integer(),
+                "closed forms of integer recurrences give integers"
+            );
+            out.push(value.to_integer());
+        }
+        Ok(out)
+    }
+}
+
+fn too_large(level: u64, bits: u64) -> Error {
+    Error::TooLarge { level, bits }
+}
+
+#[derive(Clone, Debug)]
+enum PowerValue {
+    Int(BigInt),
+    Surd(QuadraticSurd),
+}
+
+pub(crate) fn dot(c: &[BigInt], x: &[BigInt]) -> BigInt {
+    c.iter()
+        .zip(x)
+        .filter(|(c, _)| !c.is_zero())
+        .map(|(c, x)| c * x)
+        .sum()
+}
+
+pub(crate) fn surd_pow(base: &QuadraticSurd, mut s: u64) -> QuadraticSurd {
+    let mut result = QuadraticSurd::field_one();
+    let mut b = base.clone();
+    while s > 0 {
+        if s & 1 == 1 {
+            result = result.mul(&b);
+        }
+        s >>= 1;
+        if s > 0 {
+            b = b.mul(&b);
+        }
+    }
+    result
+}
+
+/// The matrices `N^k P` for `k < mult` of the eigenvalue `lambda` of `m`, whose
+/// characteristic polynomial is `p` (rational coefficients, lowest first).
+fn spectral_parts<F: Field>(
+    m: &IntMatrix,
+    p: &[BigRational],
+    lambda: &F,
+    mult: usize,
+) -> Vec<FieldMatrix<F>> {
+    let mut h: Vec<F> = p.iter().map(F::from_rational).collect();
+    for _ in 0..mult {
+        h = divide_by_root(&h, lambda);
+    }
+    let t = taylor_coefficients(&h, lambda, mult);
+    // Inverse power series of h at lambda, to order mult.
+    let inv0 = F::field_one().div(&t[0]);
+    let mut c: Vec<F> = vec![inv0.clone()];
+    for k in 1..mult {
+        let mut acc = F::field_zero();
+        for j in 1..=k {
+            if let Some(tj) = t.get(j) {
+                acc = acc.add(&tj.mul(&c[k - j]));
+            }
+        }
+        c.push(acc.mul(&inv0).neg());
+    }
+    let mf = FieldMatrix::<F>::from_int(m);
+    let a = mf.add_scalar(&lambda.neg());
+    let projector = mf.eval_poly(&h).mul(&a.eval_poly(&c));
+    let mut parts = vec![projector];
+    for _ in 1..mult {
+        let next = a.mul(parts.last().expect("parts is not empty"));
+        parts.push(next);
+    }
+    parts
+}
+
+/// Coefficients of `C(s, k) = s (s-1) ... (s-k+1) / k!` as a polynomial in `s`.
+fn binomial_poly(k: usize) -> Vec<BigRational> {
+    let mut poly = vec![BigRational::one()];
+    for j in 0..k {
+        // multiply by (s - j) / (j + 1)
+        let mut next = vec![BigRational::zero(); poly.len() + 1];
+        let div = BigRational::from_integer(BigInt::from(j + 1));
+        for (t, c) in poly.iter().enumerate() {
+            next[t + 1] += c / &div;
+            next[t] -= c * BigRational::from_integer(BigInt::from(j)) / &div;
+        }
+        poly = next;
+    }
+    poly
+}
+
+/// Matrices `C_t` with `M^s P_l = sum_t s^t l^s C_t` for a non-zero eigenvalue.
+fn power_coefficients<F: Field>(parts: &[FieldMatrix<F>], lambda: &F) -> Vec<FieldMatrix<F>> {
+    let mult = parts.len();
+    let dim = parts[0].dim;
+    let inv = F::field_one().div(lambda);
+    let mut out = Vec::with_capacity(mult);
+    for t in 0..mult {
+        let mut acc = FieldMatrix::scalar(dim, &F::field_zero());
+        let mut inv_k = F::field_one();
+        for (k, part) in parts.iter().enumerate() {
+            if k >= t {
+                let c = F::from_rational(&binomial_poly(k)[t]).mul(&inv_k);
+                let scaled = FieldMatrix {
+                    dim,
+                    entries: part.entries.iter().map(|e| e.mul(&c)).collect(),
+                };
+                acc = acc.add(&scaled);
+            }
+            inv_k = inv_k.mul(&inv);
+        }
+        out.push(acc);
+    }
+    out
+}
+
+pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
+    let m = rec.matrix();
+    let n = m.dim();
+    let p = rec.characteristic_polynomial().to_rational();
+    let eigenvalues = rec.eigenvalues();
+    let mut terms: Vec<Vec<Term>> = vec![Vec::new(); n];
+    let mut valid_from = vec![0u64; n];
+    let mut exact_sum = FieldMatrix::<QuadraticSurd>::scalar(n, &QuadraticSurd::field_zero());
+    let any_numeric = eigenvalues.iter().any(|e| !e.eigenvalue.is_exact());
+    let mut powers = Vec::with_capacity(eigenvalues.len());
+    for info in &eigenvalues {
+        let mult = info.multiplicity;
+        match &info.eigenvalue {
+            Eigenvalue::Rational(l) => {
+                let parts = spectral_parts::<BigRational>(m, &p, l, mult);
+                if any_numeric {
+                    let q = FieldMatrix {
+                        dim: n,
+                        entries: parts[0]
+                            .entries
+                            .iter()
+                            .map(QuadraticSurd::from_rational)
+                            .collect(),
+                    };
+                    exact_sum = exact_sum.add(&q);
+                }
+                if l.is_zero() {
+                    for (i, vf) in valid_from.iter_mut().enumerate() {
+                        let k = (0..mult)
+                            .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
+                            .unwrap_or(mult);
+                        *vf = k as u64;
+                    }
+                } else {
+                    push_terms(
+                        &mut terms,
+                        &info.eigenvalue,
+                        &power_coefficients(&parts, l),
+                        |c| Coefficient::Rational(c.clone()),
+                    );
+                }
+            }
+            Eigenvalue::QuadraticSurd { .. } => {
+                let l = info
+                    .eigenvalue
+                    .to_surd()
+                    .expect("surd eigenvalues are exact");
+                let parts = spectral_parts::<QuadraticSurd>(m, &p, &l, mult);
+                if any_numeric {
+                    exact_sum = exact_sum.add(&parts[0]);
+                }
+                push_terms(
+                    &mut terms,
+                    &info.eigenvalue,
+                    &power_coefficients(&parts, &l),
+                    |c| {
+                        if c.is_rational() {
+                            Coefficient::Rational(c.a.clone())
+                        } else {
+                            Coefficient::Surd(c.clone())
+                        }
+                    },
+                );
+            }
+            Eigenvalue::Numeric(z) => {
+                let parts = spectral_parts::<Complex<f64>>(m, &p, z, mult);
+                push_terms(
+                    &mut terms,
+                    &info.eigenvalue,
+                    &power_coefficients(&parts, z),
+                    |c| Coefficient::Numeric(*c),
+                );
+            }
+        }
+        powers.push(match &info.eigenvalue {
+            Eigenvalue::Rational(l) => FastEigenvalue::Integer {
+                value: l.to_integer(),
+                shift: power_of_two_exponent(&l.to_integer()),
+            },
+            Eigenvalue::QuadraticSurd { .. } => FastEigenvalue::Surd(
+                info.eigenvalue
+                    .to_surd()
+                    .expect("surd eigenvalues are exact"),
+            ),
+            Eigenvalue::Numeric(_) => FastEigenvalue::Numeric,
+        });
+    }
+    // Components with no numeric part: rows of I - sum of exact projectors vanish.
+    let mut exact = vec![true; n];
+    if any_numeric {
+        for (i, ex) in exact.iter_mut().enumerate() {
+            *ex = (0..n).all(|j| {
+                let target = if i == j {
+                    QuadraticSurd::field_one()
+                } else {
+                    QuadraticSurd::field_zero()
+                };
+                exact_sum.row(i)[j] == target
+            });
+        }
+    }
+    let max_valid = valid_from.iter().copied().max().unwrap_or(0);
+    let powers_of_m: Vec<Vec<Vec<BigInt>>> = (0..max_valid)
+        .map(|k| {
+            rec.checked_matrix_power::<BigInt>(k)
+                .expect("big integers do not overflow")
+        })
+        .collect();
+    let mut components = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut ts = std::mem::take(&mut terms[i]);
+        if exact[i] {
+            ts.retain(|t| t.eigenvalue.is_exact());
+        }
+        let early_levels = (0..valid_from[i])
+            .map(|k| EarlyLevel {
+                level: k,
+                coefficients: powers_of_m[k as usize][i].clone(),
+            })
+            .collect();
+        components.push(ComponentForm {
+            name: rec.names()[i].clone(),
+            valid_from: valid_from[i],
+            exact: exact[i],
+            terms: ts,
+            early_levels,
+        });
+    }
+    let fast = components
+        .iter()
+        .map(|c| build_fast(c, &eigenvalues))
+        .collect();
+    ClosedForm {
+        names: rec.names().to_vec(),
+        matrix: m.clone(),
+        eigenvalues,
+        components,
+        fast,
+        powers,
+    }
+}
+
+fn push_terms<F: Field>(
+    terms: &mut [Vec<Term>],
+    eigenvalue: &Eigenvalue,
+    coeffs: &[FieldMatrix<F>],
+    convert: impl Fn(&F) -> Coefficient,
+) {
+    for (i, comp) in terms.iter_mut().enumerate() {
+        for (t, c) in coeffs.iter().enumerate().rev() {
+            let coefficients: Vec<Coefficient> = c.row(i).iter().map(&convert).collect();
+            if coefficients.iter().all(Coefficient::is_zero) {
+                continue;
+            }
+            comp.push(Term {
+                eigenvalue: eigenvalue.clone(),
+                s_power: t as u32,
+                coefficients,
+            });
+        }
+    }
+}
+
+/// The integer data for evaluating an exact component, `None` for numeric ones.
+fn build_fast(comp: &ComponentForm, eigenvalues: &[EigenvalueInfo]) -> Option<FastComponent> {
+    if !comp.exact {
+        return None;
+    }
+    let index_of = |e: &Eigenvalue| eigenvalues.iter().position(|x| &x.eigenvalue == e);
+    let mut denominator = BigInt::one();
+    for t in &comp.terms {
+        for c in &t.coefficients {
+            if let Coefficient::Rational(r) = c {
+                if t.eigenvalue.as_rational().is_some() {
+                    denominator = denominator.lcm(r.denom());
+                }
+            }
+        }
+    }
+    let mut rational = Vec::new();
+    let mut surd = Vec::new();
+    for t in &comp.terms {
+        let e = index_of(&t.eigenvalue)?;
+        match &t.eigenvalue {
+            Eigenvalue::Rational(_) => {
+                let nums = t
+                    .coefficients
+                    .iter()
+                    .map(|c| match c {
+                        Coefficient::Rational(r) => Some((r * &denominator).to_integer()),
+                        _ => None,
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                rational.push((e, t.s_power, nums));
+            }
+            Eigenvalue::QuadraticSurd { .. } => {
+                let cs = t
+                    .coefficients
+                    .iter()
+                    .map(|c| match c {
+                        Coefficient::Rational(r) => Some(QuadraticSurd::rational(r.clone())),
+                        Coefficient::Surd(q) => Some(q.clone()),
+                        Coefficient::Numeric(_) => None,
+                    })
+                    .collect::<Option<Vec<_>>>()?;
+                surd.push((e, t.s_power, cs));
+            }
+            Eigenvalue::Numeric(_) => return None,
+        }
+    }
+    Some(FastComponent {
+        denominator,
+        rational,
+        surd,
+        valid_from: comp.valid_from,
+        early: comp
+            .early_levels
+            .iter()
+            .map(|l| l.coefficients.clone())
+            .collect(),
+    })
+}

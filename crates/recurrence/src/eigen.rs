@@ -1,0 +1,480 @@
+//! Eigenvalues with multiplicities: exact integers and quadratic surds where they exist,
+//! numeric (labelled so) otherwise.
+//!
+//! The characteristic polynomial is split exactly into square-free, pairwise coprime factors
+//! (Yun). The roots of each factor are located numerically (eigenvalues of its companion
+//! matrix with nalgebra), and then confirmed exactly: a near-real root is rounded to an
+//! integer candidate (refined by exact Newton steps) and kept when polynomial division leaves
+//! no remainder; the remaining roots are paired and kept as a quadratic surd when the integer
+//! quadratic `x^2 - (r1 + r2) x + r1 r2` divides exactly. Divisors of the constant term are
+//! never enumerated. Whatever is left stays numeric.
+
+use std::cmp::Ordering;
+use std::fmt;
+
+use nalgebra::{Complex, DMatrix};
+use num_bigint::BigInt;
+use num_rational::BigRational;
+use num_traits::{FromPrimitive, One, Signed, Zero};
+
+use crate::field::{rational_to_f64, QuadraticSurd};
+use crate::poly::{div_rem, square_free_factors, Polynomial};
+
+/// An eigenvalue of a recurrence matrix, exact when possible.
+///
+/// Eigenvalues of integer matrices that are rational are integers; they are
+/// [`Eigenvalue::Rational`]. Roots of an integer quadratic factor are
+/// [`Eigenvalue::QuadraticSurd`], exact in `Q(sqrt d)` (negative `d` for complex pairs).
+/// Anything else is [`Eigenvalue::Numeric`]: an `f64` approximation, never shown as exact.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Eigenvalue {
+    /// An exact rational (in fact integer) eigenvalue.
+    Rational(BigRational),
+    /// The exact quadratic irrational `a + b*sqrt(d)` (`b != 0`, `d` not a square).
+    QuadraticSurd {
+        /// The rational part.
+        a: BigRational,
+        /// The coefficient of `sqrt(d)`.
+        b: BigRational,
+        /// The radicand, square-free where small factors could be found.
+        d: BigInt,
+    },
+    /// A numeric approximation (complex in general), for roots of higher-degree factors.
+    Numeric(Complex<f64>),
+}
+
+impl Eigenvalue {
+    /// Whether the value is exact (rational or quadratic surd).
+    pub fn is_exact(&self) -> bool {
+        !matches!(self, Eigenvalue::Numeric(_))
+    }
+
+    /// The rational value, if the eigenvalue is rational.
+    pub fn as_rational(&self) -> Option<&BigRational> {
+        match self {
+            Eigenvalue::Rational(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// The exact value as an element of `Q(sqrt d)` (rationals have `b = 0`), if exact.
+    pub fn to_surd(&self) -> Option<QuadraticSurd> {
+        match self {
+            Eigenvalue::Rational(r) => Some(QuadraticSurd::rational(r.clone())),
+            Eigenvalue::QuadraticSurd { a, b, d } => {
+                Some(QuadraticSurd::new(a.clone(), b.clone(), d.clone()))
+            }
+            Eigenvalue::Numeric(_) => None,
+        }
+    }
+
+    /// The value as a complex `f64`.
+    pub fn to_complex(&self) -> Complex<f64> {
+        match self {
+            Eigenvalue::Rational(r) => Complex::new(rational_to_f64(r), 0.0),
+            Eigenvalue::QuadraticSurd { a, b, d } => {
+                QuadraticSurd::new(a.clone(), b.clone(), d.clone()).to_f64()
+            }
+            Eigenvalue::Numeric(z) => *z,
+        }
+    }
+
+    /// The modulus `|lambda|` as an `f64` (the growth rate of its terms).
+    pub fn modulus(&self) -> f64 {
+        self.to_complex().norm()
+    }
+
+    /// Whether this is the exact integer zero.
+    pub fn is_zero(&self) -> bool {
+        matches!(self, Eigenvalue::Rational(r) if r.is_zero())
+    }
+
+    /// Total order used for listing: larger modulus first, then larger real part, then
+    /// larger imaginary part.
+    pub(crate) fn listing_order(&self, other: &Self) -> Ordering {
+        let (a, b) = (self.to_complex(), other.to_complex());
+        b.norm()
+            .total_cmp(&a.norm())
+            .then(b.re.total_cmp(&a.re))
+            .then(b.im.total_cmp(&a.im))
+    }
+}
+
+impl fmt::Display for Eigenvalue {
+    /// Rationals as `p` or `p/q`, surds as `a+b*sqrt(d)`, numeric values as `re+imi` with 12
+    /// significant digits.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Eigenvalue::Rational(r) => write!(f, "{r}"),
+            Eigenvalue::QuadraticSurd { a, b, d } => {
+                write!(f, "{}", QuadraticSurd::new(a.clone(), b.clone(), d.clone()))
+            }
+            Eigenvalue::Numeric(z) => f.write_str(&format_complex(*z)),
+        }
+    }
+}
+
+/// `re`, or `re+imi`, with 12 significant digits.
+pub(crate) fn format_complex(z: Complex<f64>) -> String {
+    let re = format_float(z.re);
+    if z.im.abs() <= 1e-12 * z.norm().max(1e-300) {
+        re
+    } else if z.im < 0.0 {
+        format!("{re}-{}i", format_float(-z.im))
+    } else {
+        format!("{re}+{}i", format_float(z.im))
+    }
+}
+
+fn format_float(x: f64) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    let s = format!("{:.11e}", x);
+    // Prefer plain notation for moderate magnitudes.
+    if (1e-4..1e12).contains(&x.abs()) {
+        let digits = 11 - x.abs().log10().floor() as i32;
+        let t = format!("{:.*}", digits.max(0) as usize, x);
+        let t = if t.contains('.') {
+            t.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            t
+        };
+        return t;
+    }
+    s
+}
+
+/// An eigenvalue with its algebraic multiplicity.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EigenvalueInfo {
+    /// The eigenvalue.
+    pub eigenvalue: Eigenvalue,
+    /// How often it is a root of the characteristic polynomial.
+    pub multiplicity: usize,
+}
+
+/// The eigenvalues of the matrix whose characteristic polynomial is `p`, in listing order.
+pub(crate) fn eigenvalues(p: &Polynomial) -> Vec<EigenvalueInfo> {
+    let mut out = Vec::new();
+    for (factor, multiplicity) in square_free_factors(&p.to_rational()) {
+        // Monic factors of monic integer polynomials have integer coefficients (Gauss).
+        let factor: Vec<BigInt> = factor.iter().map(|c| c.to_integer()).collect();
+        for eigenvalue in roots_of_square_free(&factor) {
+            out.push(EigenvalueInfo {
+                eigenvalue,
+                multiplicity,
+            });
+        }
+    }
+    out.sort_by(|a, b| a.eigenvalue.listing_order(&b.eigenvalue));
+    out
+}
+
+/// Numeric roots of a monic polynomial given by its coefficients (lowest first).
+pub(crate) fn numeric_roots(f: &[BigInt]) -> Vec<Complex<f64>> {
+    let n = f.len() - 1;
+    if n == 0 {
+        return Vec::new();
+    }
+    let coeffs: Vec<f64> = f
+        .iter()
+        .map(|c| rational_to_f64(&BigRational::from_integer(c.clone())))
+        .collect();
+    if n == 1 {
+        return vec![Complex::new(-coeffs[0], 0.0)];
+    }
+    let mut companion = DMatrix::<f64>::zeros(n, n);
+    for i in 1..n {
+        companion[(i, i - 1)] = 1.0;
+    }
+    for i in 0..n {
+        companion[(i, n - 1)] = -coeffs[i];
+    }
+    match nalgebra::linalg::Schur::try_new(companion, f64::EPSILON, 100_000) {
+        Some(schur) => schur.complex_eigenvalues().iter().copied().collect(),
+        None => durand_kerner(&coeffs),
+    }
+}
+
+/// Durand-Kerner iteration, the fallback when the Schur decomposition does not converge.
+fn durand_kerner(coeffs: &[f64]) -> Vec<Complex<f64>> {
+    let n = coeffs.len() - 1;
+    let eval = |z: Complex<f64>| {
+        coeffs
+            .iter()
+            .rev()
+            .fold(Complex::new(0.0, 0.0), |acc, &c| acc * z + c)
+    };
+    let radius = 1.0 + coeffs[..n].iter().fold(0.0f64, |m, c| m.max(c.abs()));
+    let mut z: Vec<Complex<f64>> = (0..n)
+        .map(|k| {
+            Complex::from_polar(
+                radius,
+                0.4 + 2.0 * std::f64::consts::PI * k as f64 / n as f64,
+            )
+        })
+        .collect();
+    for _ in 0..2000 {
+        let mut delta = 0.0f64;
+        for i in 0..n {
+            let mut denom = Complex::new(1.0, 0.0);
+            for j in 0..n {
+                if i != j {
+                    denom *= z[i] - z[j];
+                }
+            }
+            let step = eval(z[i]) / denom;
+            z[i] -= step;
+            delta = delta.max(step.norm());
+        }
+        if delta < 1e-15 {
+            break;
+        }
+    }
+    z
+}
+
+fn eval_int(f: &[BigInt], x: &BigInt) -> BigInt {
+    f.iter().rev().fold(BigInt::zero(), |acc, c| acc * x + c)
+}
+
+/// An integer root of `f` near the numeric root `r`, confirmed exactly.
+fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
+    let start = BigInt::from_f64(r.round())?;
+    let df: Vec<BigInt> = f
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, c)| c * BigInt::from(k))
+        .collect();
+    let mut c = start;
+    for _ in 0..64 {
+        for delta in [0, 1, -1] {
+            let cand: BigInt = &c + delta;
+            let near = (rational_to_f64(&BigRational::from_integer(cand.clone())) - r).abs()
+                <= 1e-6 * r.abs().max(1.0);
+            if near && eval_int(f, &cand).is_zero() {
+                return Some(cand);
+            }
+        }
+        let d = eval_int(&df, &c);
+        if d.is_zero() {
+            return None;
+        }
+        let step = BigRational::new(eval_int(f, &c), d).round().to_integer();
+        if step.is_zero() {
+            return None;
+        }
+        c -= step;
+    }
+    None
+}
+
+/// Divides `f` by the monic integer polynomial `g` if the division is exact.
+fn divide_exact(f: &[BigInt], g: &[BigInt]) -> Option<Vec<BigInt>> {
+    let fr: Vec<BigRational> = f.iter().cloned().map(BigRational::from_integer).collect();
+    let gr: Vec<BigRational> = g.iter().cloned().map(BigRational::from_integer).collect();
+    let (q, r) = div_rem(&fr, &gr);
+    r.is_empty()
+        .then(|| q.iter().map(|c| c.to_integer()).collect())
+}
+
+fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
+    let mut numeric = numeric_roots(f);
+    // Roots closest to an integer first, so that a nearby irrational root cannot claim it.
+    numeric.sort_by(|a, b| {
+        let da = (a.re - a.re.round()).abs() + a.im.abs();
+        let db = (b.re - b.re.round()).abs() + b.im.abs();
+        da.total_cmp(&db)
+    });
+    let mut rest = f.to_vec();
+    let mut found = Vec::new();
+    // Integer roots.
+    let mut i = 0;
+    while i < numeric.len() {
+        let z = numeric[i];
+        let near_real = z.im.abs() <= 1e-6 * z.norm().max(1.0);
+        let root = if near_real {
+            confirm_integer_root(&rest, z.re)
+        } else {
+            None
+        };
+        let divided =
+            root.and_then(|c| Some((divide_exact(&rest, &[-c.clone(), BigInt::one()])?, c)));
+        match divided {
+            Some((q, c)) => {
+                rest = q;
+                found.push(Eigenvalue::Rational(BigRational::from_integer(c)));
+                numeric.remove(i);
+            }
+            None => i += 1,
+        }
+    }
+    // Quadratic factors, from pairs of the remaining roots (conjugates first).
+    let mut i = 0;
+    'outer: while i < numeric.len() {
+        let mut partners: Vec<usize> = (i + 1..numeric.len()).collect();
+        let zi = numeric[i];
+        partners.sort_by(|&a, &b| {
+            (numeric[a] - zi.conj())
+                .norm()
+                .total_cmp(&(numeric[b] - zi.conj()).norm())
+        });
+        for j in partners {
+            let (sum, prod) = (zi + numeric[j], zi * numeric[j]);
+            let tol = 1e-6 * (1.0 + sum.norm().max(prod.norm()));
+            if sum.im.abs() > tol || prod.im.abs() > tol {
+                continue;
+            }
+            let (Some(s), Some(p)) = (
+                BigInt::from_f64(sum.re.round()),
+                BigInt::from_f64(prod.re.round()),
+            ) else {
+                continue;
+            };
+            let quad = [p.clone(), -s.clone(), BigInt::one()];
+            if let Some(q) = divide_exact(&rest, &quad) {
+                rest = q;
+                found.extend(quadratic_roots(&s, &p));
+                numeric.remove(j);
+                numeric.remove(i);
+                continue 'outer;
+            }
+        }
+        i += 1;
+    }
+    found.extend(numeric.into_iter().map(Eigenvalue::Numeric));
+    found
+}
+
+/// The two roots of `x^2 - s x + p`.
+fn quadratic_roots(s: &BigInt, p: &BigInt) -> Vec<Eigenvalue> {
+    let disc: BigInt = s * s - p * 4;
+    let two = BigInt::from(2);
+    if !disc.is_negative() {
+        let r = disc.sqrt();
+        if &r * &r == disc {
+            return [s + &r, s - &r]
+                .into_iter()
+                .map(|x| Eigenvalue::Rational(BigRational::new(x, two.clone())))
+                .collect();
+        }
+    }
+    let (k, d) = split_square(&disc);
+    let a = BigRational::new(s.clone(), two.clone());
+    let b = BigRational::new(k, two);
+    vec![
+        Eigenvalue::QuadraticSurd {
+            a: a.clone(),
+            b: b.clone(),
+            d: d.clone(),
+        },
+        Eigenvalue::QuadraticSurd { a, b: -b, d },
+    ]
+}
+
+/// Writes `n = k^2 d` pulling out the square factors of the primes below 1000 (enough to make
+/// `d` square-free for every radicand that small matrices produce).
+fn split_square(n: &BigInt) -> (BigInt, BigInt) {
+    let mut k = BigInt::one();
+    let mut d = n.clone();
+    let mut p = 2u32;
+    while p < 1000 {
+        let pp = BigInt::from(p * p);
+        if pp > d.abs() {
+            break;
+        }
+        while (&d % &pp).is_zero() {
+            d /= &pp;
+            k *= p;
+        }
+        p += 1;
+    }
+    (k, d)
+}
+
+/// `|lambda| = 2^k` for an integer eigenvalue: returns `k`.
+pub(crate) fn power_of_two_exponent(lambda: &BigInt) -> Option<u64> {
+    let m = lambda.magnitude();
+    if m.is_zero() {
+        return None;
+    }
+    let tz = m.trailing_zeros()?;
+    (m >> tz).is_one().then_some(tz)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::poly::characteristic_polynomial;
+    use crate::IntMatrix;
+
+    fn eig(m: &str) -> Vec<(String, usize)> {
+        let m: IntMatrix = m.parse().unwrap();
+        eigenvalues(&characteristic_polynomial(&m))
+            .into_iter()
+            .map(|e| (e.eigenvalue.to_string(), e.multiplicity))
+            .collect()
+    }
+
+    fn owned(v: &[(&str, usize)]) -> Vec<(String, usize)> {
+        v.iter().map(|(s, m)| (s.to_string(), *m)).collect()
+    }
+
+    #[test]
+    fn exact_eigenvalues() {
+        assert_eq!(eig("[[1, 1], [0, 4]]"), owned(&[("4", 1), ("1", 1)]));
+        assert_eq!(
+            eig("[[1, 1, 1], [0, 4, 1], [0, 0, 2]]"),
+            owned(&[("4", 1), ("2", 1), ("1", 1)])
+        );
+        assert_eq!(eig("[[2, 1], [0, 2]]"), owned(&[("2", 2)]));
+        assert_eq!(eig("[[0, 1], [0, 0]]"), owned(&[("0", 2)]));
+        assert_eq!(
+            eig("[[1, 1], [1, 0]]"),
+            owned(&[("1/2+1/2*sqrt(5)", 1), ("1/2-1/2*sqrt(5)", 1)])
+        );
+        assert_eq!(
+            eig("[[0, 8], [1, 0]]"),
+            owned(&[("2*sqrt(2)", 1), ("-2*sqrt(2)", 1)])
+        );
+        assert_eq!(eig("[[-3, 0], [5, 1]]"), owned(&[("-3", 1), ("1", 1)]));
+        assert_eq!(
+            eig("[[0, 0, 1], [1, 0, 0], [0, 1, 0]]"),
+            owned(&[("1", 1), ("-1/2+1/2*sqrt(-3)", 1), ("-1/2-1/2*sqrt(-3)", 1)])
+        );
+    }
+
+    #[test]
+    fn large_integer_roots_need_no_divisor_enumeration() {
+        // Eigenvalues 999999937 * 1000003 and -(2^40 + 15): divisor enumeration is hopeless.
+        let a = 999_999_937i64 * 1_000_003;
+        let b = -(1i64 << 40) - 15;
+        let m = format!("[[{a}, 1], [0, {b}]]");
+        let e = eig(&m);
+        assert_eq!(e, owned(&[(&a.to_string(), 1), (&b.to_string(), 1)]));
+    }
+
+    #[test]
+    fn five_cycle_is_partly_numeric() {
+        let e = eigenvalues(&characteristic_polynomial(
+            &"[[0,0,0,0,1],[1,0,0,0,0],[0,1,0,0,0],[0,0,1,0,0],[0,0,0,1,0]]"
+                .parse()
+                .unwrap(),
+        ));
+        assert_eq!(e.len(), 5);
+        assert_eq!(e.iter().filter(|e| e.eigenvalue.is_exact()).count(), 1);
+        for info in &e {
+            assert!((info.eigenvalue.modulus() - 1.0).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn split_square_pulls_out_squares() {
+        assert_eq!(split_square(&BigInt::from(20)), (2.into(), 5.into()));
+        assert_eq!(split_square(&BigInt::from(-12)), (2.into(), (-3).into()));
+        assert_eq!(power_of_two_exponent(&BigInt::from(-8)), Some(3));
+        assert_eq!(power_of_two_exponent(&BigInt::from(6)), None);
+    }
+}

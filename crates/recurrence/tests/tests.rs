@@ -1,0 +1,5 @@
+//! Integration tests of the `recurrence` crate, one module per topic.
+
+mod closed_form;
+mod props;
+mod util;

@@ -1,0 +1,628 @@
+//! The built-in schemes, each derived from what its rule inserts.
+//!
+//! Notation: `V` vertices, `E` edges, `IE` interior edges (two faces), `BE` boundary edges
+//! (one face), `NME` non-manifold edges (three or more faces), `F` faces, `H` the sum of face
+//! degrees. A primed count is the count one level later. Every identity a matrix relies on is
+//! named in its constructor's documentation, with the level from which each component's
+//! closed form holds (`valid_from`, later than 0 only where the matrix has the eigenvalue 0).
+//!
+//! Use [`builtin`] to look a scheme up by name (aliases included) and [`builtins`] for the
+//! list of canonical schemes.
+
+use recurrence::IntMatrix;
+
+use crate::class::Hints;
+use crate::scheme::{Component, Derivation, SchemeSpec, StepRule};
+use crate::{Error, FaceKind, MeshClass, Result, Scheme, Stat};
+
+/// Aliases of `loop`: the same topology (4:1 split), different geometry in `halfedge`.
+pub const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
+
+/// The canonical built-in names (with `tri-split-N` written for the family).
+pub const BUILTIN_NAMES: [&str; 11] = [
+    "loop",
+    "loop-boundary",
+    "loop-general",
+    "catmull-clark-quad",
+    "catmull-clark",
+    "catmull-clark-general",
+    "sqrt3",
+    "sqrt3-boundary",
+    "doo-sabin",
+    "mid-edge",
+    "tri-split-N",
+];
+
+/// Looks a built-in scheme up by name.
+///
+/// Accepts the canonical names, `tri-split-N` for any `N >= 2`, and the aliases `midpoint`,
+/// `butterfly`, `icosphere` (Loop topology; [`Scheme::name`] keeps the alias and
+/// [`Scheme::canonical_name`] says `loop`) and `ternary` (`tri-split-3`).
+///
+/// # Errors
+///
+/// [`Error::UnknownScheme`] listing the built-ins, [`Error::InvalidSplitFactor`] for
+/// `tri-split-N` with `N` below 2, not a number or too large.
+///
+/// ```
+/// let s = schemes::builtin("ternary")?;
+/// assert_eq!(s.canonical_name(), "tri-split-3");
+/// assert!(schemes::builtin("lop").unwrap_err().to_string().contains("loop-boundary"));
+/// # Ok::<(), schemes::Error>(())
+/// ```
+pub fn builtin(name: &str) -> Result<Scheme> {
+    let scheme = match name {
+        "loop" => loop_scheme(),
+        n if LOOP_ALIASES.contains(&n) => loop_scheme(),
+        "loop-boundary" => loop_boundary(),
+        "loop-general" => loop_general(),
+        "catmull-clark-quad" => catmull_clark_quad(),
+        "catmull-clark" => catmull_clark(),
+        "catmull-clark-general" => catmull_clark_general(),
+        "sqrt3" => sqrt3(),
+        "sqrt3-boundary" => sqrt3_boundary(),
+        "doo-sabin" => doo_sabin(),
+        "mid-edge" => mid_edge(),
+        "ternary" => tri_split(3)?,
+        n => match n.strip_prefix("tri-split-") {
+            Some(factor) => {
+                let invalid = |reason: String| Error::InvalidSplitFactor {
+                    name: n.to_string(),
+                    reason,
+                };
+                if factor.is_empty() || !factor.bytes().all(|b| b.is_ascii_digit()) {
+                    return Err(invalid(format!(
+                        "`{factor}` is not a split factor (use tri-split-N with an integer N >= 2)"
+                    )));
+                }
+                let n_split: u64 = factor
+                    .parse()
+                    .map_err(|_| invalid(format!("split factor {factor} is too large")))?;
+                tri_split(n_split).map_err(|e| match e {
+                    Error::InvalidSplitFactor { reason, .. } => invalid(reason),
+                    other => other,
+                })?
+            }
+            None => {
+                return Err(Error::UnknownScheme {
+                    name: name.to_string(),
+                    known: known_names(),
+                })
+            }
+        },
+    };
+    Ok(scheme.renamed(name))
+}
+
+fn known_names() -> String {
+    format!(
+        "{} (N >= 2); aliases: {}, ternary",
+        BUILTIN_NAMES.join(", "),
+        LOOP_ALIASES.join(", ")
+    )
+}
+
+/// One scheme per canonical name, with `tri-split-2` and `tri-split-3` for the family.
+pub fn builtins() -> Vec<Scheme> {
+    let mut out = vec![
+        loop_scheme(),
+        loop_boundary(),
+        loop_general(),
+        catmull_clark_quad(),
+        catmull_clark(),
+        catmull_clark_general(),
+        sqrt3(),
+        sqrt3_boundary(),
+        doo_sabin(),
+        mid_edge(),
+    ];
+    out.extend([2, 3].into_iter().filter_map(|n| tri_split(n).ok()));
+    out
+}
+
+struct Def<'a> {
+    name: &'a str,
+    description: &'a str,
+    state: &'a [Stat],
+    rule: StepRule,
+    requires: MeshClass,
+    produces: FaceKind,
+    derive: Vec<(Stat, Derivation)>,
+    hints: Hints,
+}
+
+fn matrix(rows: &[&[i64]]) -> IntMatrix {
+    // Built-in matrices are constants of this file, square by construction.
+    IntMatrix::try_from_rows(rows.iter().map(|r| r.to_vec()).collect())
+        .unwrap_or_else(|e| unreachable!("built-in matrix: {e}"))
+}
+
+fn build(def: Def<'_>) -> Scheme {
+    let spec = SchemeSpec {
+        name: def.name.to_string(),
+        description: def.description.to_string(),
+        state: def
+            .state
+            .iter()
+            .map(|s| Component {
+                name: s.short_name().to_string(),
+                meaning: s.meaning().to_string(),
+            })
+            .collect(),
+        rule: def.rule,
+        requires: def.requires,
+        produces: Some(def.produces),
+        derive: def.derive,
+    };
+    Scheme::try_from_spec(spec)
+        .unwrap_or_else(|e| unreachable!("built-in scheme {}: {e}", def.name))
+        .with_hints(def.hints)
+}
+
+fn hints(faces: &str, boundary: Option<&str>, nonmanifold: Option<&str>) -> Hints {
+    Hints {
+        faces: Some(faces.to_string()),
+        faces_nonmanifold: Some("catmull-clark-general".into()),
+        boundary: boundary.map(String::from),
+        nonmanifold: nonmanifold.map(String::from),
+    }
+}
+
+const CLOSED_TRI: MeshClass = MeshClass {
+    faces: FaceKind::Triangles,
+    closed: true,
+    manifold: true,
+};
+
+/// `loop`: the 4:1 triangle split (Loop topology) on closed triangle meshes, in the paper's
+/// Theorem 5.1 state `(V, E)`.
+///
+/// **Rule.** One new vertex per edge; each edge splits into two; each triangle gets three new
+/// edges joining its edge points and becomes four triangles.
+///
+/// **Counts.** `V' = V + E`, `E' = 2E + 3F`, `F' = 4F`. On a closed triangle mesh every edge
+/// has two faces and every face three edges, so `2E = 3F`, hence `3F = 2E` and
+/// `E' = 2E + 2E = 4E`:
+///
+/// ```text
+/// [V']   [1 1] [V]
+/// [E'] = [0 4] [E]        F = 2E/3 (derived)
+/// ```
+///
+/// `valid_from`: 0 for every component (eigenvalues 1 and 4). The identity `2E = 3F` is kept
+/// by the step (`2E' = 8E = 3(4F) = 3F'`), so `F = 2E/3` stays an integer.
+pub fn loop_scheme() -> Scheme {
+    build(Def {
+        name: "loop",
+        description:
+            "4:1 triangle split (Loop topology) on closed triangle meshes, paper Theorem 5.1",
+        state: &[Stat::V, Stat::E],
+        rule: StepRule::single(matrix(&[&[1, 1], &[0, 4]])),
+        requires: CLOSED_TRI,
+        produces: FaceKind::Triangles,
+        derive: vec![(Stat::F, Derivation::new(vec![0, 2], 3))],
+        hints: hints("catmull-clark", Some("loop-boundary"), Some("loop-general")),
+    })
+}
+
+/// `loop-boundary`: the 4:1 triangle split on triangle meshes whose edges have one or two
+/// faces (boundary allowed), in the paper's Theorem 5.2 state `(V, IE, BE)`.
+///
+/// **Rule.** As [`loop_scheme`]: one vertex per edge, three new edges inside each face.
+///
+/// **Counts.** `V' = V + IE + BE`. A boundary edge splits into two boundary edges:
+/// `BE' = 2BE`. An interior edge splits into two interior edges, and the three edges added
+/// inside each face are interior: `IE' = 2IE + 3F`. Counting face sides,
+/// `3F = 2IE + BE`, so `IE' = 4IE + BE`:
+///
+/// ```text
+/// [V' ]   [1 1 1] [V ]
+/// [IE'] = [0 4 1] [IE]    E = IE + BE,  F = (2IE + BE)/3 (derived)
+/// [BE']   [0 0 2] [BE]
+/// ```
+///
+/// `valid_from`: 0 for every component (eigenvalues 1, 4, 2). The step keeps
+/// `3F = 2IE + BE`: `2IE' + BE' = 8IE + 4BE = 4(2IE + BE) = 3F'`.
+pub fn loop_boundary() -> Scheme {
+    build(Def {
+        name: "loop-boundary",
+        description: "4:1 triangle split on triangle meshes with boundary (edges of one or two faces), paper Theorem 5.2",
+        state: &[Stat::V, Stat::IE, Stat::BE],
+        rule: StepRule::single(matrix(&[&[1, 1, 1], &[0, 4, 1], &[0, 0, 2]])),
+        requires: MeshClass {
+            faces: FaceKind::Triangles,
+            closed: false,
+            manifold: true,
+        },
+        produces: FaceKind::Triangles,
+        derive: vec![
+            (Stat::E, Derivation::new(vec![0, 1, 1], 1)),
+            (Stat::F, Derivation::new(vec![0, 2, 1], 3)),
+        ],
+        hints: hints("catmull-clark", None, Some("loop-general")),
+    })
+}
+
+/// `loop-general`: the 4:1 triangle split on any triangle mesh (boundary, non-manifold
+/// edges, any genus), state `(V, E, F)`.
+///
+/// **Rule.** As [`loop_scheme`]; a non-manifold edge still gets one vertex and splits into two
+/// (non-manifold) edges, and each face is split on its own.
+///
+/// **Counts.** `V' = V + E`, `E' = 2E + 3F`, `F' = 4F`, with no identity needed:
+///
+/// ```text
+/// [V']   [1 1 0] [V]
+/// [E'] = [0 2 3] [E]
+/// [F']   [0 0 4] [F]
+/// ```
+///
+/// `valid_from`: 0 for every component (eigenvalues 1, 2, 4).
+pub fn loop_general() -> Scheme {
+    build(Def {
+        name: "loop-general",
+        description: "4:1 triangle split on any triangle mesh, non-manifold edges included",
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(&[&[1, 1, 0], &[0, 2, 3], &[0, 0, 4]])),
+        requires: MeshClass {
+            faces: FaceKind::Triangles,
+            closed: false,
+            manifold: false,
+        },
+        produces: FaceKind::Triangles,
+        derive: vec![],
+        hints: hints("catmull-clark-general", None, None),
+    })
+}
+
+/// `catmull-clark-quad`: Catmull-Clark on pure quad meshes, boundary allowed (the paper's
+/// Theorem 5.3), state `(V, E, F)`.
+///
+/// **Rule.** One new vertex per edge and per face; each edge splits into two; each quad gets
+/// four edges from its face point to its edge points and becomes four quads.
+///
+/// **Counts.** `V' = V + E + F`, `E' = 2E + 4F`, `F' = 4F`. These hold on boundary edges too
+/// (a boundary edge also gets one edge point and splits in two), and on non-manifold edges,
+/// so no identity beyond "every face is a quad" (`H = 4F`) is used:
+///
+/// ```text
+/// [V']   [1 1 1] [V]
+/// [E'] = [0 2 4] [E]
+/// [F']   [0 0 4] [F]
+/// ```
+///
+/// `valid_from`: 0 for every component (eigenvalues 1, 2, 4).
+pub fn catmull_clark_quad() -> Scheme {
+    build(Def {
+        name: "catmull-clark-quad",
+        description: "Catmull-Clark on pure quad meshes, boundary allowed, paper Theorem 5.3",
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(&[&[1, 1, 1], &[0, 2, 4], &[0, 0, 4]])),
+        requires: MeshClass {
+            faces: FaceKind::Quads,
+            closed: false,
+            manifold: false,
+        },
+        produces: FaceKind::Quads,
+        derive: vec![],
+        hints: Hints {
+            faces: Some("catmull-clark".into()),
+            faces_nonmanifold: Some("catmull-clark-general".into()),
+            boundary: None,
+            nonmanifold: None,
+        },
+    })
+}
+
+/// `catmull-clark`: Catmull-Clark on any polygon mesh (triangles, quads, n-gons, mixed)
+/// whose edges have one or two faces, state `(V, IE, BE, F, H)` with `H` the sum of face
+/// degrees.
+///
+/// **Rule.** One new vertex per edge and per face; each edge splits into two; a face of
+/// degree `n` gets `n` edges from its face point to its edge points and becomes `n` quads.
+///
+/// **Counts.** `V' = V + IE + BE + F`. Split edges keep their kind: `BE' = 2BE`; the `H` new
+/// edges inside faces are interior (each separates two new quads of the same face):
+/// `IE' = 2IE + H`. Every corner of every face becomes one quad: `F' = H`, and all faces are
+/// quads afterwards: `H' = 4F' = 4H`. This makes the first step (n-gons to quads) linear in
+/// this state, so one matrix serves every step:
+///
+/// ```text
+/// [V' ]   [1 1 1 1 0] [V ]
+/// [IE']   [0 2 0 0 1] [IE]
+/// [BE'] = [0 0 2 0 0] [BE]     E = IE + BE (derived)
+/// [F' ]   [0 0 0 0 1] [F ]
+/// [H' ]   [0 0 0 0 4] [H ]
+/// ```
+///
+/// The state is redundant on purpose: `H = 2IE + BE` on these meshes, and the step keeps it
+/// (`2IE' + BE' = 2(2IE + BE) + 2H = 4H`).
+///
+/// `valid_from`: 1 for `V` and `F`, 0 for `IE`, `BE`, `H`. The eigenvalue 0 has the
+/// eigenvector `(1, 0, 0, -1, 0)`: `F` forgets its initial value (`F(s) = 4^(s-1) H0` for
+/// `s >= 1`) and `F0` enters `V` only once, at step 1. The other eigenvalues are 1, 2, 2, 4.
+pub fn catmull_clark() -> Scheme {
+    build(Def {
+        name: "catmull-clark",
+        description: "Catmull-Clark on any polygon mesh whose edges have one or two faces",
+        state: &[Stat::V, Stat::IE, Stat::BE, Stat::F, Stat::H],
+        rule: StepRule::single(matrix(&[
+            &[1, 1, 1, 1, 0],
+            &[0, 2, 0, 0, 1],
+            &[0, 0, 2, 0, 0],
+            &[0, 0, 0, 0, 1],
+            &[0, 0, 0, 0, 4],
+        ])),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: false,
+            manifold: true,
+        },
+        produces: FaceKind::Quads,
+        derive: vec![(Stat::E, Derivation::new(vec![0, 1, 1, 0, 0], 1))],
+        hints: hints("catmull-clark", None, Some("catmull-clark-general")),
+    })
+}
+
+/// `catmull-clark-general`: Catmull-Clark on any polygon mesh, non-manifold edges included,
+/// state `(V, E, F, H)`.
+///
+/// **Counts.** As [`catmull_clark`] without telling edge kinds apart: `V' = V + E + F`,
+/// `E' = 2E + H`, `F' = H`, `H' = 4H`:
+///
+/// ```text
+/// [V']   [1 1 1 0] [V]
+/// [E'] = [0 2 0 1] [E]
+/// [F']   [0 0 0 1] [F]
+/// [H']   [0 0 0 4] [H]
+/// ```
+///
+/// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1, 0)`), 0 for `E`
+/// and `H`.
+pub fn catmull_clark_general() -> Scheme {
+    build(Def {
+        name: "catmull-clark-general",
+        description: "Catmull-Clark on any polygon mesh, non-manifold edges included",
+        state: &[Stat::V, Stat::E, Stat::F, Stat::H],
+        rule: StepRule::single(matrix(&[
+            &[1, 1, 1, 0],
+            &[0, 2, 0, 1],
+            &[0, 0, 0, 1],
+            &[0, 0, 0, 4],
+        ])),
+        requires: MeshClass::ANY,
+        produces: FaceKind::Quads,
+        derive: vec![],
+        hints: Hints::default(),
+    })
+}
+
+/// `sqrt3`: Kobbelt's sqrt(3) subdivision on closed triangle meshes, state `(V, E, F)`.
+///
+/// **Rule.** One new vertex per face, joined to the three corners (three new edges, three
+/// triangles per face); then every old edge is flipped.
+///
+/// **Counts.** Flips change no count: `V' = V + F`, `E' = E + 3F`, `F' = 3F`:
+///
+/// ```text
+/// [V']   [1 0 1] [V]
+/// [E'] = [0 1 3] [E]
+/// [F']   [0 0 3] [F]
+/// ```
+///
+/// No identity is used (on a closed mesh `2E = 3F` gives `E' = 3E`). The flips need every
+/// old edge to have two faces, hence closed meshes; see [`sqrt3_boundary`].
+///
+/// `valid_from`: 0 for every component (eigenvalues 1, 1, 3; diagonalizable).
+pub fn sqrt3() -> Scheme {
+    build(Def {
+        name: "sqrt3",
+        description: "Kobbelt's sqrt(3) subdivision on closed triangle meshes",
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(&[&[1, 0, 1], &[0, 1, 3], &[0, 0, 3]])),
+        requires: CLOSED_TRI,
+        produces: FaceKind::Triangles,
+        derive: vec![],
+        hints: hints("catmull-clark", Some("sqrt3-boundary"), None),
+    })
+}
+
+/// `sqrt3-boundary`: sqrt(3) with Kobbelt's boundary rule (boundary edges trisected every
+/// second step), a periodic scheme of two matrices over `(V, IE, BE, F)`, on triangle meshes
+/// whose edges have one or two faces.
+///
+/// **Rule** (Kobbelt 2000, section 4; the variant of OpenMesh's `Sqrt3T`). Steps alternate,
+/// starting with step A at step 1:
+///
+/// - *Step A* (steps 1, 3, 5, ...): every face, boundary or not, gets a centre vertex joined
+///   to its three corners; then every old interior edge is flipped; boundary edges are kept.
+///   Afterwards each boundary edge lies in exactly one triangle `(a, b, c)` whose other two
+///   edges are spokes (interior), so **every face has at most one boundary edge**, even when
+///   the input had faces with two or three boundary edges.
+/// - *Step B* (steps 2, 4, ...): each boundary edge is trisected (two new vertices) and its
+///   triangle is split into three by joining the opposite vertex to the two new vertices;
+///   every other face gets a centre vertex as in step A; then every old interior edge is
+///   flipped. After A then B, each boundary edge is split in three (a triadic 1:9 split
+///   along the boundary).
+///
+/// The `halfedge` implementation must alternate the same way, counting steps from the input
+/// mesh (step B at even step numbers), and treat as "boundary faces" in step B the faces with
+/// a boundary edge (one each, by the property above).
+///
+/// **Counts, step A.** `V' = V + F`, `IE' = IE + 3F` (old interior edges flipped, three
+/// interior spokes per face), `BE' = BE`, `F' = 3F`.
+///
+/// **Counts, step B.** There are `BE` boundary faces (one per boundary edge) and `F - BE`
+/// others: `V' = V + 2BE + (F - BE) = V + BE + F`; `BE' = 3BE`; new interior edges are three
+/// spokes per interior face and two per boundary face: `IE' = IE + 3(F - BE) + 2BE =
+/// IE - BE + 3F`; `F' = 3F`.
+///
+/// ```text
+///        A = [1 0 0 1]        B = [1 0  1 1]
+///            [0 1 0 3]            [0 1 -1 3]
+///            [0 0 1 0]            [0 0  3 0]
+///            [0 0 0 3]            [0 0  0 3]
+/// ```
+///
+/// Both keep `3F = 2IE + BE` (step B: `2IE' + BE' = 2IE + BE + 6F = 9F`). On a closed mesh
+/// (`BE = 0`) both reduce to [`sqrt3`]. `E = IE + BE` is derived. Over one period the matrix
+/// is `BA` (levels `2t`) or `AB` (levels `2t + 1`); [`Scheme::phases`] gives both.
+///
+/// `valid_from`: 0 for every component (no eigenvalue 0).
+pub fn sqrt3_boundary() -> Scheme {
+    let a = matrix(&[&[1, 0, 0, 1], &[0, 1, 0, 3], &[0, 0, 1, 0], &[0, 0, 0, 3]]);
+    let b = matrix(&[&[1, 0, 1, 1], &[0, 1, -1, 3], &[0, 0, 3, 0], &[0, 0, 0, 3]]);
+    build(Def {
+        name: "sqrt3-boundary",
+        description: "Kobbelt's sqrt(3) with boundary edges trisected every second step (periodic: steps A, B)",
+        state: &[Stat::V, Stat::IE, Stat::BE, Stat::F],
+        rule: StepRule::try_new(None, vec![a, b])
+            .unwrap_or_else(|e| unreachable!("built-in cycle: {e}")),
+        requires: MeshClass {
+            faces: FaceKind::Triangles,
+            closed: false,
+            manifold: true,
+        },
+        produces: FaceKind::Triangles,
+        derive: vec![(Stat::E, Derivation::new(vec![0, 1, 1, 0], 1))],
+        hints: hints("catmull-clark", None, None),
+    })
+}
+
+/// `doo-sabin`: Doo-Sabin subdivision on closed polygon meshes, state `(V, E, F)`.
+///
+/// **Rule.** Every corner of every face becomes a new vertex (`H` of them). New faces: one per
+/// old face (same degree), one quad per old edge, one per old vertex (of its valence).
+///
+/// **Counts.** `V' = H`, `F' = F + E + V`; each new vertex has degree 4, so `E' = 2V' = 2H`.
+/// On a closed mesh `H = 2E` (each edge has two face sides), so `V' = 2E`, `E' = 4E`:
+///
+/// ```text
+/// [V']   [0 2 0] [V]
+/// [E'] = [0 4 0] [E]
+/// [F']   [1 1 1] [F]
+/// ```
+///
+/// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`: `V(s) =
+/// 2 * 4^(s-1) E0` only from `s = 1`), 0 for `E` (`E(s) = 4^s E0`).
+pub fn doo_sabin() -> Scheme {
+    build(Def {
+        name: "doo-sabin",
+        description: "Doo-Sabin subdivision on closed polygon meshes",
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(&[&[0, 2, 0], &[0, 4, 0], &[1, 1, 1]])),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: true,
+            manifold: true,
+        },
+        produces: FaceKind::Polygons,
+        derive: vec![],
+        hints: Hints {
+            boundary: Some("catmull-clark".into()),
+            nonmanifold: Some("catmull-clark-general".into()),
+            ..Hints::default()
+        },
+    })
+}
+
+/// `mid-edge`: Peters and Reif's mid-edge subdivision on closed polygon meshes, state
+/// `(V, E, F)`.
+///
+/// **Rule.** One new vertex at the midpoint of each edge. New faces: one per old face
+/// (joining its edge midpoints, same degree) and one per old vertex (of its valence); each new
+/// edge joins two midpoints of consecutive edges of a face.
+///
+/// **Counts.** `V' = E`, `F' = F + V`, `E' = H = 2E` (one new edge per face corner; on a
+/// closed mesh `H = 2E`):
+///
+/// ```text
+/// [V']   [0 1 0] [V]
+/// [E'] = [0 2 0] [E]
+/// [F']   [1 0 1] [F]
+/// ```
+///
+/// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`), 0 for `E`.
+pub fn mid_edge() -> Scheme {
+    build(Def {
+        name: "mid-edge",
+        description: "Peters-Reif mid-edge subdivision on closed polygon meshes",
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(&[&[0, 1, 0], &[0, 2, 0], &[1, 0, 1]])),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: true,
+            manifold: true,
+        },
+        produces: FaceKind::Polygons,
+        derive: vec![],
+        hints: Hints {
+            boundary: Some("catmull-clark".into()),
+            nonmanifold: Some("catmull-clark-general".into()),
+            ..Hints::default()
+        },
+    })
+}
+
+/// `tri-split-N`: the 1:N^2 triangle split on any triangle mesh, state `(V, E, F)`
+/// (`tri-split-2` is the Loop topology, `tri-split-3` is `ternary`).
+///
+/// **Rule.** Each edge gets `N - 1` new vertices and splits into `N` edges; each triangle gets
+/// `(N - 1)(N - 2)/2` interior vertices and `3N(N - 1)/2` interior edges (a triangle cut into
+/// `N^2` has `3N(N + 1)/2` edges, `3N` of them on its sides) and becomes `N^2` triangles.
+///
+/// **Counts.**
+///
+/// ```text
+/// [V']   [1  N-1  (N-1)(N-2)/2] [V]
+/// [E'] = [0  N    3N(N-1)/2   ] [E]
+/// [F']   [0  0    N^2         ] [F]
+/// ```
+///
+/// No identity is used. Check (paper ref. \[12\]): the icosahedron (12, 30, 20) gets
+/// `12 + 30(N - 1) + 10(N - 1)(N - 2) = 10N^2 + 2` vertices after one step.
+///
+/// `valid_from`: 0 for every component (eigenvalues 1, N, N^2).
+///
+/// # Errors
+///
+/// [`Error::InvalidSplitFactor`] when `n < 2` or an entry would overflow `i64`.
+pub fn tri_split(n: u64) -> Result<Scheme> {
+    let name = format!("tri-split-{n}");
+    let invalid = |reason: &str| Error::InvalidSplitFactor {
+        name: name.clone(),
+        reason: reason.to_string(),
+    };
+    if n < 2 {
+        return Err(invalid("the split factor N must be at least 2"));
+    }
+    let n = i64::try_from(n).map_err(|_| invalid("the split factor is too large"))?;
+    let big = || invalid("the split factor is too large (matrix entries beyond i64)");
+    let nn = n.checked_mul(n).ok_or_else(big)?;
+    let interior_vertices = (n - 1).checked_mul(n - 2).ok_or_else(big)? / 2;
+    let interior_edges = (n - 1)
+        .checked_mul(n)
+        .and_then(|x| x.checked_mul(3))
+        .ok_or_else(big)?
+        / 2;
+    let m = matrix(&[
+        &[1, n - 1, interior_vertices],
+        &[0, n, interior_edges],
+        &[0, 0, nn],
+    ]);
+    let description = format!("1:{nn} triangle split ({n} segments per edge) on any triangle mesh");
+    Ok(build(Def {
+        name: &name,
+        description: &description,
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(m),
+        requires: MeshClass {
+            faces: FaceKind::Triangles,
+            closed: false,
+            manifold: false,
+        },
+        produces: FaceKind::Triangles,
+        derive: vec![],
+        hints: hints("catmull-clark", None, None),
+    }))
+}
