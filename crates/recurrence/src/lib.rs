@@ -29,6 +29,7 @@ mod matrix;
 mod poly;
 mod power;
 mod recurrence;
+mod render;
 
 pub use crate::closed_form::{ClosedForm, Coefficient, ComponentForm, EarlyLevel, Term};
 pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
