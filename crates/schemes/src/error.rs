@@ -207,6 +207,11 @@ pub enum Error {
         /// The value at `next`.
         to: String,
     },
+    /// A `fit` was asked without any limit.
+    #[error(
+        "no limit given: set a maximum number of vertices, edges or faces, or a memory budget"
+    )]
+    NoLimit,
     /// A byte size such as `2GiB` could not be parsed.
     #[error("byte size `{text}`: {reason}")]
     ByteSize {

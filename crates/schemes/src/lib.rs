@@ -49,13 +49,19 @@ mod class;
 mod counts;
 pub mod custom;
 mod error;
+mod fit;
 pub mod input;
+mod plan;
 mod scheme;
 
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};
 pub use crate::counts::{MeshCounts, Stat};
 pub use crate::error::{Error, Result};
+pub use crate::fit::{
+    density, fit, level_for_area, parse_byte_size, Budget, Density, Fit, MemoryBudget,
+};
 pub use crate::input::{parse_init, CountsInput, Facts};
+pub use crate::plan::{Plan, Stage};
 pub use crate::scheme::{Component, Derivation, LevelCounts, Phase, Scheme, SchemeSpec, StepRule};
 pub use recurrence;

@@ -2,4 +2,8 @@
 
 mod builtins;
 mod custom;
+mod fit;
+mod input;
 mod meshes;
+mod plan;
+mod props;
