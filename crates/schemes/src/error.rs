@@ -165,6 +165,16 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A scheme specification is inconsistent (built with
+    /// [`Scheme::try_from_spec`](crate::Scheme::try_from_spec) or
+    /// [`StepRule::try_new`](crate::StepRule::try_new)).
+    #[error("scheme {scheme}: {reason}")]
+    InvalidSpec {
+        /// The scheme's name (empty when not known yet).
+        scheme: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A matrix product (one period of a cycle) overflows `i64`.
     #[error("the product of the matrices of {scheme} over one period overflows i64")]
     PeriodOverflow {

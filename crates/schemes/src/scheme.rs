@@ -4,7 +4,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::Zero;
-use recurrence::{IntMatrix, Recurrence};
+use recurrence::{ClosedForm, IntMatrix, Recurrence};
 
 use crate::class::{check_counts, Hints};
 use crate::input::{linear_text, solve, Facts};
@@ -43,19 +43,21 @@ impl StepRule {
     ///
     /// # Errors
     ///
-    /// [`Error::Recurrence`] with `NamesMismatch` when the matrices differ in size, or
-    /// `EmptyMatrix` when `cycle` is empty.
+    /// [`Error::InvalidSpec`] when `cycle` is empty or the matrices differ in size.
     pub fn try_new(first_step: Option<IntMatrix>, cycle: Vec<IntMatrix>) -> Result<StepRule> {
+        let invalid = |reason: String| Error::InvalidSpec {
+            scheme: String::new(),
+            reason,
+        };
         let Some(dim) = cycle.first().map(IntMatrix::dim) else {
-            return Err(recurrence::Error::EmptyMatrix.into());
+            return Err(invalid("the cycle has no matrix".into()));
         };
         for m in cycle.iter().chain(first_step.iter()) {
             if m.dim() != dim {
-                return Err(recurrence::Error::NamesMismatch {
-                    names: dim,
-                    dim: m.dim(),
-                }
-                .into());
+                return Err(invalid(format!(
+                    "the step matrices differ in size ({dim}x{dim} and {0}x{0})",
+                    m.dim()
+                )));
             }
         }
         Ok(StepRule { first_step, cycle })
@@ -278,6 +280,14 @@ pub struct Phase {
     pub stage: usize,
 }
 
+impl Phase {
+    /// The exact closed form of this phase's recurrence, in the phase variable `t`
+    /// (`s = first_level + period * t`), with the state at `first_level` as initial values.
+    pub fn closed_form(&self) -> ClosedForm {
+        self.recurrence.closed_form()
+    }
+}
+
 pub(crate) fn apply(m: &IntMatrix, x: &[BigInt]) -> Vec<BigInt> {
     m.rows()
         .map(|row| {
@@ -296,11 +306,21 @@ impl Scheme {
     /// # Errors
     ///
     /// [`Error::Recurrence`] for unusable names (invalid, duplicate, wrong count),
-    /// [`Error::NoMeshCounts`] style problems as [`Error::InconsistentCounts`] when a derivation
-    /// has the wrong length or derives a quantity that is already in the state, and
-    /// [`Error::PeriodOverflow`] when the product over one period overflows `i64`.
+    /// [`Error::InvalidSpec`] when a derivation has the wrong length, derives something other
+    /// than V, E, F or a quantity that is already in the state, and [`Error::PeriodOverflow`]
+    /// when a product over one period overflows `i64`.
     pub fn try_from_spec(spec: SchemeSpec) -> Result<Scheme> {
         let names: Vec<String> = spec.state.iter().map(|c| c.name.clone()).collect();
+        if spec.rule.dim() != names.len() {
+            return Err(Error::InvalidSpec {
+                scheme: spec.name.clone(),
+                reason: format!(
+                    "{} state components for {1}x{1} matrices",
+                    names.len(),
+                    spec.rule.dim()
+                ),
+            });
+        }
         let period_matrix = spec.rule.rotated_product(0).ok_or(Error::PeriodOverflow {
             scheme: spec.name.clone(),
         })?;
@@ -322,14 +342,16 @@ impl Scheme {
                 Stat::E => 1,
                 Stat::F => 2,
                 other => {
-                    return Err(Error::InconsistentCounts {
-                        detail: format!("{other} cannot be derived; only V, E and F"),
+                    return Err(Error::InvalidSpec {
+                        scheme: spec.name.clone(),
+                        reason: format!("{other} cannot be derived; only V, E and F"),
                     })
                 }
             };
             if d.coefficients.len() != names.len() {
-                return Err(Error::InconsistentCounts {
-                    detail: format!(
+                return Err(Error::InvalidSpec {
+                    scheme: spec.name.clone(),
+                    reason: format!(
                         "the derivation of {stat} has {} coefficients for {} state components",
                         d.coefficients.len(),
                         names.len()
@@ -337,8 +359,9 @@ impl Scheme {
                 });
             }
             if matches!(vef[k], Source::State(_)) {
-                return Err(Error::InconsistentCounts {
-                    detail: format!("{stat} is a state component and cannot also be derived"),
+                return Err(Error::InvalidSpec {
+                    scheme: spec.name.clone(),
+                    reason: format!("{stat} is a state component and cannot also be derived"),
                 });
             }
             vef[k] = Source::Derived(d);
@@ -434,6 +457,23 @@ impl Scheme {
     /// The recurrence of [`matrix`](Self::matrix) with the state names.
     pub fn recurrence(&self) -> &Recurrence {
         &self.recurrence
+    }
+
+    /// The exact closed form of [`recurrence`](Self::recurrence): the state at level
+    /// `s = cycle_start + period * t` as a function of `t` and the state at `cycle_start`
+    /// (for a scheme without first step or cycle: `s = t` and the initial state). Periodic
+    /// schemes have one form per residue class: see [`phases`](Self::phases) and
+    /// [`Phase::closed_form`].
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// let form = schemes::builtin("loop")?.closed_form();
+    /// let x0 = [12, 30].map(BigInt::from);
+    /// assert_eq!(form.evaluate(&x0, 5)?, [10242, 30720].map(BigInt::from));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn closed_form(&self) -> ClosedForm {
+        self.recurrence.closed_form()
     }
 
     /// The meshes this scheme applies to.
