@@ -516,6 +516,41 @@ impl Scheme {
             .collect()
     }
 
+    /// A JSON description: `name`, `canonical_name`, `description`, `state` (objects with
+    /// `name` and `meaning`), `mesh_class` (text), `requires` (keywords), `produces`,
+    /// `matrix` (the steady matrix), `first_step` and `cycle` (`null` / omitted when not
+    /// used), `period`, and `derive` (formulas of V, E, F outside the state).
+    ///
+    /// ```
+    /// let j = schemes::builtin("loop")?.to_json();
+    /// assert_eq!(j["matrix"], serde_json::json!([[1, 1], [0, 4]]));
+    /// assert_eq!(j["derive"]["F"], "2E/3");
+    /// assert_eq!(j["requires"], serde_json::json!(["triangles", "closed"]));
+    /// # Ok::<(), schemes::Error>(())
+    /// ```
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let derive: serde_json::Map<String, serde_json::Value> = self
+            .derived()
+            .into_iter()
+            .map(|(k, f)| (k.to_string(), json!(f)))
+            .collect();
+        json!({
+            "name": self.name,
+            "canonical_name": self.canonical,
+            "description": self.description,
+            "state": self.components.iter().map(|c| json!({"name": c.name, "meaning": c.meaning})).collect::<Vec<_>>(),
+            "mesh_class": self.class.to_string(),
+            "requires": self.class.keywords(),
+            "produces": self.produces.map(FaceKind::keyword),
+            "matrix": self.period_matrix.to_rows(),
+            "first_step": self.rule.first_step().map(IntMatrix::to_rows),
+            "cycle": (self.period() > 1).then(|| self.rule.cycle().iter().map(IntMatrix::to_rows).collect::<Vec<_>>()),
+            "period": self.period(),
+            "derive": derive,
+        })
+    }
+
     /// Checks that `x0` has one value per state component.
     ///
     /// # Errors

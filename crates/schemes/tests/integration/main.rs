@@ -7,3 +7,4 @@ mod input;
 mod meshes;
 mod plan;
 mod props;
+mod real_meshes;
