@@ -428,3 +428,136 @@ fn face_lists_refuse_degenerate_faces() {
         Err(Error::VertexOutOfRange { .. })
     ));
 }
+
+/// Splits every quad of a face list into two triangles (other faces are kept).
+fn triangulate_quads(mesh: &PolygonMesh) -> PolygonMesh {
+    let mut out = PolygonMesh::with_positions(mesh.positions.clone());
+    for face in mesh.faces() {
+        if let [a, b, c, d] = *face {
+            out.push_face(&[a, b, c]);
+            out.push_face(&[a, c, d]);
+        } else {
+            out.push_face(face);
+        }
+    }
+    out
+}
+
+/// The paper's Theorem 5.2 experiment: the icosahedron with two holes under the boundary-aware
+/// 4:1 scheme (`BE` doubles, `V' = V + E`, `E' = 2E + 3F`, `F' = 4F`).
+#[test]
+fn paper_icosahedron_with_two_holes_under_loop_boundary() {
+    let mesh = base("icosahedron-holes:2");
+    let c = mesh.counts();
+    assert_eq!(
+        (
+            c.vertices,
+            c.edges,
+            c.faces,
+            c.boundary_edges,
+            c.boundary_loops
+        ),
+        (12, 30, 18, 6, 2)
+    );
+    let reports = verify(&mesh, "loop-boundary", 4, &opts()).expect("loop-boundary");
+    assert_reports("loop-boundary", &reports);
+    let (mut v, mut e, mut f, mut be) = (12u64, 30u64, 18u64, 6u64);
+    for level in 0..=4u32 {
+        let m = subdivide(&mesh, "loop-boundary", level, &opts()).expect("loop-boundary");
+        let c = m.counts();
+        assert_eq!(
+            (c.vertices, c.edges, c.faces, c.boundary_edges),
+            (v, e, f, be),
+            "level {level}"
+        );
+        assert_eq!(c.boundary_loops, 2, "level {level}");
+        (v, e, f, be) = (v + e, 2 * e + 3 * f, 4 * f, 2 * be);
+    }
+    // Level 5 as predicted by the recurrence: F = 18 * 4^5.
+    assert_eq!(f, 18 * 1024);
+}
+
+/// The paper's Corollary 5.1 experiment: closed triangle meshes of genus G under Loop keep
+/// `V - E + F = 2 - 2G`, with `F(s) = 4^s F0`, `E(s) = 3/2 F(s)`, `V(s) = 2 - 2G + F(s)/2`.
+#[test]
+fn paper_tori_of_higher_genus_under_loop() {
+    for genus in 1..=4u32 {
+        let polygons = triangulate_quads(&shapes::torus(genus).expect("torus"));
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("triangulated torus");
+        let f0 = mesh.n_faces() as i64;
+        assert_eq!(mesh.counts().euler_characteristic, 2 - 2 * i64::from(genus));
+        let reports = verify(&mesh, "loop", 3, &opts()).expect("loop");
+        assert_reports(&format!("torus:{genus}"), &reports);
+        for level in 0..=3u32 {
+            let m = subdivide(&mesh, "loop", level, &opts()).expect("loop");
+            let c = m.counts();
+            let f = f0 * 4i64.pow(level);
+            assert_eq!(c.faces as i64, f, "genus {genus} level {level}");
+            assert_eq!(c.edges as i64, 3 * f / 2, "genus {genus} level {level}");
+            assert_eq!(
+                c.vertices as i64,
+                2 - 2 * i64::from(genus) + f / 2,
+                "genus {genus} level {level}"
+            );
+        }
+        // The quad torus under Catmull-Clark keeps its genus too.
+        let quads = HalfEdgeMesh::try_from(&shapes::torus(genus).expect("torus")).expect("torus");
+        assert_reports(
+            "catmull-clark torus",
+            &verify(&quads, "catmull-clark", 3, &opts()).expect("cc"),
+        );
+        let out = subdivide(&quads, "catmull-clark", 3, &opts()).expect("cc");
+        assert_eq!(out.counts().euler_characteristic, 2 - 2 * i64::from(genus));
+    }
+}
+
+fn meshes_dir() -> Option<std::path::PathBuf> {
+    match std::env::var_os("SUBCOUNT_MESHES") {
+        Some(dir) => Some(std::path::PathBuf::from(dir)),
+        None => {
+            eprintln!("SUBCOUNT_MESHES is not set: skipping the tests over the shared meshes");
+            None
+        }
+    }
+}
+
+/// The paper's 3Holes mesh (genus 3): 3596 vertices, 10800 edges, 7200 faces, then Loop.
+#[test]
+fn paper_three_holes_counts() {
+    let Some(dir) = meshes_dir() else { return };
+    let polygons = halfedge::io::read_mesh(dir.join("3holes.obj")).expect("3holes.obj");
+    let mesh = HalfEdgeMesh::try_from(&polygons).expect("3holes is a valid mesh");
+    let c = mesh.counts();
+    assert_eq!((c.vertices, c.edges, c.faces), (3596, 10800, 7200));
+    assert_eq!(c.euler_characteristic, -4);
+    let reports = verify(&mesh, "loop", 2, &opts()).expect("loop");
+    assert_reports("3holes", &reports);
+    let last = &reports[2];
+    let get = |name: &str| {
+        last.measured
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.clone())
+    };
+    // V2 = V0 + E0 + E1 = 3596 + 10800 + (2 * 10800 + 3 * 7200) = 57596.
+    assert_eq!(get("V"), Some(57596.into()));
+    assert_eq!(get("F"), Some((7200 * 16).into()));
+    // Real meshes through the other families too.
+    for (file, scheme) in [
+        ("3holes.obj", "sqrt3"),
+        ("3holes.obj", "butterfly"),
+        ("planexy.obj", "sqrt3-boundary"),
+        ("face.obj", "loop-boundary"),
+        ("halftunnel.obj", "catmull-clark"),
+        ("fandisk_quads.obj", "doo-sabin"),
+        ("osd_catmark_nonquads.obj", "catmull-clark"),
+        ("eight.obj", "mid-edge"),
+    ] {
+        let polygons = halfedge::io::read_mesh(dir.join(file)).expect(file);
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect(file);
+        assert_reports(
+            &format!("{scheme} on {file}"),
+            &verify(&mesh, scheme, 2, &opts()).expect(scheme),
+        );
+    }
+}
