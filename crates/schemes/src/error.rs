@@ -236,6 +236,15 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
+    /// A search would need states too large to compute (a quantity grows slowly while
+    /// another component of the state explodes).
+    #[error("the search reached level {level}, where the state has {bits} bits, without crossing the limit; refusing to go further")]
+    SearchTooLarge {
+        /// The level reached.
+        level: u64,
+        /// Total bits of the state there.
+        bits: u64,
+    },
     /// The target of a search is never reached (the counts stop growing).
     #[error("{what} never reaches {target}: it is {value} from level {level} on and stays there")]
     NeverReached {

@@ -22,7 +22,10 @@
 //!   "never" ([`Error::NeverReached`]).
 //!
 //! Otherwise `q`, an integer that never decreases and is not eventually constant, grows
-//! without bound, so some probe crosses the bound: the search ends.
+//! without bound, so some probe crosses the bound: the search ends. (Levels are `u64`; and
+//! as a resource guard, a probe whose state would exceed 2^26 bits is refused with
+//! [`Error::SearchTooLarge`]: that happens only when the limited quantity grows
+//! polynomially while another state component grows exponentially.)
 
 use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};
@@ -66,6 +69,9 @@ pub enum Fit {
         counts: LevelCounts,
     },
 }
+
+/// The largest state (in total bits) a search computes: 2^26 bits, 8 MiB.
+const MAX_STATE_BITS: u64 = 1 << 26;
 
 struct Quantity {
     name: String,
@@ -142,6 +148,10 @@ impl Probe<'_> {
     fn window(&self, h: u64, w: u64) -> Result<Vec<Vec<BigInt>>> {
         let (scheme, start, _) = self.plan.tail();
         let mut state = self.plan.tail_state(self.x0, h)?;
+        let bits: u64 = state.iter().map(BigInt::bits).sum();
+        if bits > MAX_STATE_BITS {
+            return Err(Error::SearchTooLarge { level: h, bits });
+        }
         let mut out = vec![self.values_of(&scheme.vef(&state)?)];
         for level in h + 1..=h.saturating_add(w) {
             state = crate::scheme::apply(scheme.rule().matrix_of_step(level - start), &state);

@@ -121,6 +121,19 @@ fn fit_edge_cases() {
         panic!("grows")
     };
     assert_eq!(c.level, 1_000_000_000);
+    // V grows linearly while a hidden component explodes: the search stops before the
+    // state becomes too large to compute.
+    let explodes = Scheme::from_toml(
+        "name = \"explodes\"\nstate = [\"V\", \"E\", \"F\", \"x\"]\nmatrix = [[1, 1, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 4]]\n",
+    )
+    .unwrap();
+    let err = fit(
+        &Plan::from(explodes),
+        &[0, 1, 0, 1].map(BigInt::from),
+        &vertices(u64::MAX),
+    )
+    .unwrap_err();
+    assert!(matches!(err, Error::SearchTooLarge { .. }), "{err}");
     // A scheme whose vertex count decreases is refused.
     let shrinks = Scheme::from_toml(
         "name = \"shrinks\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, -1, 0], [0, 2, 0], [0, 0, 1]]\n",
