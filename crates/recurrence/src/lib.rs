@@ -28,6 +28,7 @@ mod field;
 mod matrix;
 mod poly;
 mod power;
+mod query;
 mod recurrence;
 mod render;
 
@@ -38,4 +39,5 @@ pub use crate::field::QuadraticSurd;
 pub use crate::matrix::{IntMatrix, ParseMatrixError};
 pub use crate::poly::Polynomial;
 pub use crate::power::CheckedRing;
+pub use crate::query::LevelBound;
 pub use crate::recurrence::Recurrence;

@@ -4,5 +4,6 @@ mod closed_form;
 mod generated_rust;
 mod paper;
 mod props;
+mod queries;
 mod render;
 mod util;
