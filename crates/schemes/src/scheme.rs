@@ -609,6 +609,7 @@ impl Scheme {
                 ),
             });
         }
+        self.check_derived(&out)?;
         Ok(out)
     }
 
@@ -717,7 +718,16 @@ impl Scheme {
                 )),
             });
         }
+        self.check_derived(&out)?;
         Ok(out)
+    }
+
+    /// Derived V, E, F must be integers for an initial state that describes a mesh.
+    fn check_derived(&self, state: &[BigInt]) -> Result {
+        if self.vef.iter().any(|s| matches!(s, Source::Derived(_))) && self.has_mesh_counts() {
+            self.vef(state)?;
+        }
+        Ok(())
     }
 
     /// The exact state at `level`, applying the first step and the cycle in order.
