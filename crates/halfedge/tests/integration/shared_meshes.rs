@@ -124,6 +124,31 @@ fn every_shared_mesh_matches_stats_json() {
                 "{name}: faces by degree {ours:?}, stats.json {sorted:?}"
             ));
         }
+        let problems = stats::face_list_problems(&polygons);
+        let found = [
+            ("degenerate_faces", problems.faces_with_repeated_vertex),
+            ("duplicate_faces", problems.duplicate_faces),
+            ("nonmanifold_edges", problems.nonmanifold_edges),
+            ("nonmanifold_vertices", problems.nonmanifold_vertices),
+            (
+                "inconsistently_oriented_edges",
+                problems.inconsistently_oriented_edges,
+            ),
+        ];
+        for (what, got) in found {
+            if int(entry, what) != got as i64 {
+                failures.push(format!(
+                    "{name}: {what} is {got}, stats.json says {}",
+                    entry[what]
+                ));
+            }
+        }
+        if entry["manifold"].as_bool() != Some(problems.is_manifold()) {
+            failures.push(format!("{name}: manifold is {}", problems.is_manifold()));
+        }
+        if problems.is_empty() == name.starts_with("broken/") {
+            failures.push(format!("{name}: problems {problems:?}"));
+        }
         // Interior edges follow: E = IE + BE + NME.
         assert_eq!(
             c.interior_edges + c.boundary_edges + c.nonmanifold_edges,
