@@ -269,7 +269,7 @@ pub(crate) fn build(
 
 /// A well-mixed 64-bit value of a vertex index (splitmix64), summed over a face to get a
 /// hash of its vertex set that does not depend on the order.
-fn mix(v: u32) -> u64 {
+pub(crate) fn mix(v: u32) -> u64 {
     let mut z = u64::from(v).wrapping_add(0x9e37_79b9_7f4a_7c15);
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);

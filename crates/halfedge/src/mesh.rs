@@ -72,7 +72,25 @@ impl EdgeId {
 ///
 /// Every `HalfEdgeMesh` satisfies, by construction: every face has at least 3 distinct
 /// vertices, every edge has one or two faces, and the faces around each vertex form one fan,
-/// consistently oriented; every `next` cycle closes within the half-edge count.
+/// consistently oriented; every `next` cycle closes within the half-edge count. Build one
+/// with [`HalfEdgeMesh::try_from_polygons`] or `HalfEdgeMesh::try_from(&PolygonMesh)`.
+///
+/// # Example
+///
+/// ```
+/// use halfedge::{shapes, HalfEdgeMesh};
+///
+/// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+/// assert_eq!((cube.n_vertices(), cube.n_edges(), cube.n_halfedges(), cube.n_faces()), (8, 12, 24, 6));
+/// for h in cube.halfedges() {
+///     assert_eq!(cube.from_vertex(cube.next(h)), cube.to_vertex(h));
+///     assert_eq!(cube.to_vertex(h.twin()), cube.from_vertex(h));
+///     assert!(cube.face(h).is_some());
+/// }
+/// assert!(cube.vertices().all(|v| cube.valence(v) == 3));
+/// cube.check_invariants()?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct HalfEdgeMesh {
     /// Vertex positions, indexed by [`VertexId`].

@@ -190,6 +190,198 @@ pub fn face_list_counts(mesh: &PolygonMesh) -> MeshCounts {
     }
 }
 
+/// The defects of a face list that make [`HalfEdgeMesh`] refuse it (or would, for some of
+/// them), counted — the "collect every problem" view of validation; see
+/// [`face_list_problems`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct MeshProblems {
+    /// Faces that use some vertex more than once (degenerate faces).
+    pub faces_with_repeated_vertex: u64,
+    /// Faces whose vertex set equals that of an earlier face (duplicate or back-to-back).
+    pub duplicate_faces: u64,
+    /// Edges with three or more face sides.
+    pub nonmanifold_edges: u64,
+    /// Vertices whose link (the graph of the edges opposite them in their faces) is not
+    /// connected: their faces form several fans (pinched or bow-tie vertices).
+    pub nonmanifold_vertices: u64,
+    /// Edges with exactly two face sides that run in the same direction (a flipped face).
+    pub inconsistently_oriented_edges: u64,
+}
+
+impl MeshProblems {
+    /// No non-manifold edge or vertex and no face with a repeated vertex (duplicate faces and
+    /// orientation are not part of manifoldness).
+    pub fn is_manifold(&self) -> bool {
+        self.nonmanifold_edges == 0
+            && self.nonmanifold_vertices == 0
+            && self.faces_with_repeated_vertex == 0
+    }
+
+    /// No problem at all (a manifold, consistently oriented face list without duplicates).
+    pub fn is_empty(&self) -> bool {
+        *self == MeshProblems::default()
+    }
+}
+
+/// Counts every defect of a face list at once (where [`HalfEdgeMesh::try_from_polygons`]
+/// stops at the first): faces with a repeated vertex, duplicate faces, non-manifold edges and
+/// vertices, inconsistently oriented edges. Works on any face list, in `O(H log H)`.
+///
+/// # Example
+///
+/// ```
+/// use glam::DVec3;
+/// use halfedge::{stats, PolygonMesh};
+///
+/// // Two triangles touching at vertex 0 (a bow-tie) and a flipped neighbour of the first.
+/// let p = vec![DVec3::ZERO; 6];
+/// let mesh = PolygonMesh::from_faces(p, [[0, 1, 2], [0, 3, 4], [1, 2, 5]]);
+/// let problems = stats::face_list_problems(&mesh);
+/// assert_eq!(problems.nonmanifold_vertices, 1);
+/// assert_eq!(problems.inconsistently_oriented_edges, 1);
+/// assert!(!problems.is_manifold());
+/// ```
+pub fn face_list_problems(mesh: &PolygonMesh) -> MeshProblems {
+    let indices = mesh.face_indices();
+    let offsets = mesh.face_offsets();
+    let n_faces = mesh.n_faces();
+    let face = |f: usize| &indices[offsets[f]..offsets[f + 1]];
+    let next_corner = |f: usize, c: usize| {
+        if c + 1 == offsets[f + 1] {
+            offsets[f]
+        } else {
+            c + 1
+        }
+    };
+    let prev_corner = |f: usize, c: usize| {
+        if c == offsets[f] {
+            offsets[f + 1] - 1
+        } else {
+            c - 1
+        }
+    };
+
+    // Faces with a repeated vertex, and duplicate vertex sets (a set hash, then exact).
+    let mut repeated = 0u64;
+    let mut sets: Vec<(u64, u32)> = Vec::with_capacity(n_faces);
+    let mut scratch: Vec<u32> = Vec::new();
+    for f in 0..n_faces {
+        scratch.clear();
+        scratch.extend_from_slice(face(f));
+        scratch.sort_unstable();
+        let len = scratch.len();
+        scratch.dedup();
+        if scratch.len() < len {
+            repeated += 1;
+        }
+        let hash = scratch.iter().fold(scratch.len() as u64, |h, &v| {
+            h.wrapping_mul(0x100_0000_01b3)
+                .wrapping_add(crate::build::mix(v))
+        });
+        sets.push((hash, f as u32));
+    }
+    sets.sort_unstable();
+    let mut duplicates = 0u64;
+    let distinct_set = |f: u32| {
+        let mut s = face(f as usize).to_vec();
+        s.sort_unstable();
+        s.dedup();
+        s
+    };
+    let mut i = 0;
+    while i < sets.len() {
+        let mut j = i + 1;
+        while j < sets.len() && sets[j].0 == sets[i].0 {
+            j += 1;
+        }
+        if j - i > 1 {
+            let mut group: Vec<Vec<u32>> =
+                sets[i..j].iter().map(|&(_, f)| distinct_set(f)).collect();
+            group.sort_unstable();
+            group.dedup();
+            duplicates += (j - i - group.len()) as u64;
+        }
+        i = j;
+    }
+
+    // Edges: undirected key with direction bit.
+    let mut edges: Vec<(u64, bool)> = Vec::with_capacity(indices.len());
+    for f in 0..n_faces {
+        for c in offsets[f]..offsets[f + 1] {
+            let (a, b) = (indices[c], indices[next_corner(f, c)]);
+            if a != b {
+                edges.push(((u64::from(a.min(b)) << 32) | u64::from(a.max(b)), a < b));
+            }
+        }
+    }
+    edges.sort_unstable();
+    let (mut nonmanifold, mut inconsistent) = (0u64, 0u64);
+    let mut i = 0;
+    while i < edges.len() {
+        let mut j = i + 1;
+        while j < edges.len() && edges[j].0 == edges[i].0 {
+            j += 1;
+        }
+        match j - i {
+            2 if edges[i].1 == edges[i + 1].1 => inconsistent += 1,
+            n if n > 2 => nonmanifold += 1,
+            _ => {}
+        }
+        i = j;
+    }
+    drop(edges);
+
+    // Vertex links: nodes are (vertex, neighbour) pairs, each corner joins (v, prev) and
+    // (v, next); a vertex is non-manifold when its nodes form several components.
+    let key = |v: u32, w: u32| (u64::from(v) << 32) | u64::from(w);
+    let mut nodes: Vec<u64> = Vec::with_capacity(2 * indices.len());
+    for f in 0..n_faces {
+        for c in offsets[f]..offsets[f + 1] {
+            let v = indices[c];
+            nodes.push(key(v, indices[prev_corner(f, c)]));
+            nodes.push(key(v, indices[next_corner(f, c)]));
+        }
+    }
+    nodes.sort_unstable();
+    nodes.dedup();
+    let id = |k: u64| nodes.partition_point(|&x| x < k) as u32;
+    let mut sets = DisjointSets::new(nodes.len());
+    for f in 0..n_faces {
+        for c in offsets[f]..offsets[f + 1] {
+            let v = indices[c];
+            let p = id(key(v, indices[prev_corner(f, c)]));
+            let n = id(key(v, indices[next_corner(f, c)]));
+            sets.union(p, n);
+        }
+    }
+    let mut nonmanifold_vertices = 0u64;
+    let mut roots: Vec<u32> = Vec::new();
+    let mut i = 0;
+    while i < nodes.len() {
+        let v = nodes[i] >> 32;
+        let mut j = i;
+        roots.clear();
+        while j < nodes.len() && nodes[j] >> 32 == v {
+            roots.push(sets.find(j as u32));
+            j += 1;
+        }
+        roots.sort_unstable();
+        roots.dedup();
+        if roots.len() > 1 {
+            nonmanifold_vertices += 1;
+        }
+        i = j;
+    }
+    MeshProblems {
+        faces_with_repeated_vertex: repeated,
+        duplicate_faces: duplicates,
+        nonmanifold_edges: nonmanifold,
+        nonmanifold_vertices,
+        inconsistently_oriented_edges: inconsistent,
+    }
+}
+
 /// The genus of a manifold, orientable surface with these counts: `(2C - chi - b) / 2` (the
 /// sum over components), with `C` components, `chi` the Euler characteristic over used
 /// vertices and `b` boundary loops.

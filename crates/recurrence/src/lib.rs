@@ -28,7 +28,9 @@ mod field;
 mod matrix;
 mod poly;
 mod power;
+mod query;
 mod recurrence;
+mod render;
 
 pub use crate::closed_form::{ClosedForm, Coefficient, ComponentForm, EarlyLevel, Term};
 pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
@@ -37,4 +39,5 @@ pub use crate::field::QuadraticSurd;
 pub use crate::matrix::{IntMatrix, ParseMatrixError};
 pub use crate::poly::Polynomial;
 pub use crate::power::CheckedRing;
+pub use crate::query::LevelBound;
 pub use crate::recurrence::Recurrence;

@@ -201,7 +201,8 @@ impl Scheme {
             .as_ref()
             .map(|m| at.matrix(m, "first_step", dim))
             .transpose()?;
-        let rule = StepRule::try_new(first_step, cycle)?;
+        let rule = StepRule::try_new(first_step, cycle)
+            .map_err(|e| at.error(raw.name.span(), e.to_string()))?;
         let mut class = MeshClass::ANY;
         let mut requires_given = false;
         for r in raw.requires.iter().flatten() {

@@ -165,6 +165,16 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A scheme specification is inconsistent (built with
+    /// [`Scheme::try_from_spec`](crate::Scheme::try_from_spec) or
+    /// [`StepRule::try_new`](crate::StepRule::try_new)).
+    #[error("scheme {scheme}: {reason}")]
+    InvalidSpec {
+        /// The scheme's name (empty when not known yet).
+        scheme: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// A matrix product (one period of a cycle) overflows `i64`.
     #[error("the product of the matrices of {scheme} over one period overflows i64")]
     PeriodOverflow {
@@ -207,6 +217,11 @@ pub enum Error {
         /// The value at `next`.
         to: String,
     },
+    /// A `fit` was asked without any limit.
+    #[error(
+        "no limit given: set a maximum number of vertices, edges or faces, or a memory budget"
+    )]
+    NoLimit,
     /// A byte size such as `2GiB` could not be parsed.
     #[error("byte size `{text}`: {reason}")]
     ByteSize {
@@ -220,6 +235,15 @@ pub enum Error {
     Density {
         /// What is wrong.
         reason: String,
+    },
+    /// A search would need states too large to compute (a quantity grows slowly while
+    /// another component of the state explodes).
+    #[error("the search reached level {level}, where the state has {bits} bits, without crossing the limit; refusing to go further")]
+    SearchTooLarge {
+        /// The level reached.
+        level: u64,
+        /// Total bits of the state there.
+        bits: u64,
     },
     /// The target of a search is never reached (the counts stop growing).
     #[error("{what} never reaches {target}: it is {value} from level {level} on and stays there")]

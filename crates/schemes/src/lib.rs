@@ -12,6 +12,22 @@
 //! - Composition `A:k,B` and uniform counting: [`Plan`].
 //! - Budgets and the paper's eq. (1): [`fit`], [`parse_byte_size`], [`density`].
 //!
+//! # Built-in schemes
+//!
+//! | name | state | matrix (rows) | mesh class |
+//! |---|---|---|---|
+//! | `loop` (`midpoint`, `butterfly`, `icosphere`) | V, E | `[1 1] [0 4]`; F = 2E/3 | closed triangles |
+//! | `loop-boundary` | V, IE, BE | `[1 1 1] [0 4 1] [0 0 2]` | triangles, edges of one or two faces |
+//! | `loop-general` | V, E, F | `[1 1 0] [0 2 3] [0 0 4]` | any triangle mesh |
+//! | `catmull-clark-quad` | V, E, F | `[1 1 1] [0 2 4] [0 0 4]` | any quad mesh |
+//! | `catmull-clark` | V, IE, BE, F, H | see [`catalog::catmull_clark`] | polygons, edges of one or two faces |
+//! | `catmull-clark-general` | V, E, F, H | `[1 1 1 0] [0 2 0 1] [0 0 0 1] [0 0 0 4]` | any polygon mesh |
+//! | `sqrt3` | V, E, F | `[1 0 1] [0 1 3] [0 0 3]` | closed triangles |
+//! | `sqrt3-boundary` | V, IE, BE, F | a cycle of two, see [`catalog::sqrt3_boundary`] | triangles, edges of one or two faces |
+//! | `doo-sabin` | V, E, F | `[0 2 0] [0 4 0] [1 1 1]` | closed polygons |
+//! | `mid-edge` | V, E, F | `[0 1 0] [0 2 0] [1 0 1]` | closed polygons |
+//! | `tri-split-N` (`ternary` = 3) | V, E, F | see [`catalog::tri_split`] | any triangle mesh |
+//!
 //! # Example: the icosahedron under Loop
 //!
 //! ```
@@ -49,13 +65,19 @@ mod class;
 mod counts;
 pub mod custom;
 mod error;
+mod fit;
 pub mod input;
+mod plan;
 mod scheme;
 
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};
 pub use crate::counts::{MeshCounts, Stat};
 pub use crate::error::{Error, Result};
+pub use crate::fit::{
+    density, fit, level_for_area, parse_byte_size, Budget, Density, Fit, MemoryBudget,
+};
 pub use crate::input::{parse_init, CountsInput, Facts};
+pub use crate::plan::{Plan, Stage};
 pub use crate::scheme::{Component, Derivation, LevelCounts, Phase, Scheme, SchemeSpec, StepRule};
 pub use recurrence;

@@ -4,7 +4,7 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::Zero;
-use recurrence::{IntMatrix, Recurrence};
+use recurrence::{ClosedForm, IntMatrix, Recurrence};
 
 use crate::class::{check_counts, Hints};
 use crate::input::{linear_text, solve, Facts};
@@ -43,19 +43,21 @@ impl StepRule {
     ///
     /// # Errors
     ///
-    /// [`Error::Recurrence`] with `NamesMismatch` when the matrices differ in size, or
-    /// `EmptyMatrix` when `cycle` is empty.
+    /// [`Error::InvalidSpec`] when `cycle` is empty or the matrices differ in size.
     pub fn try_new(first_step: Option<IntMatrix>, cycle: Vec<IntMatrix>) -> Result<StepRule> {
+        let invalid = |reason: String| Error::InvalidSpec {
+            scheme: String::new(),
+            reason,
+        };
         let Some(dim) = cycle.first().map(IntMatrix::dim) else {
-            return Err(recurrence::Error::EmptyMatrix.into());
+            return Err(invalid("the cycle has no matrix".into()));
         };
         for m in cycle.iter().chain(first_step.iter()) {
             if m.dim() != dim {
-                return Err(recurrence::Error::NamesMismatch {
-                    names: dim,
-                    dim: m.dim(),
-                }
-                .into());
+                return Err(invalid(format!(
+                    "the step matrices differ in size ({dim}x{dim} and {0}x{0})",
+                    m.dim()
+                )));
             }
         }
         Ok(StepRule { first_step, cycle })
@@ -278,6 +280,14 @@ pub struct Phase {
     pub stage: usize,
 }
 
+impl Phase {
+    /// The exact closed form of this phase's recurrence, in the phase variable `t`
+    /// (`s = first_level + period * t`), with the state at `first_level` as initial values.
+    pub fn closed_form(&self) -> ClosedForm {
+        self.recurrence.closed_form()
+    }
+}
+
 pub(crate) fn apply(m: &IntMatrix, x: &[BigInt]) -> Vec<BigInt> {
     m.rows()
         .map(|row| {
@@ -296,11 +306,21 @@ impl Scheme {
     /// # Errors
     ///
     /// [`Error::Recurrence`] for unusable names (invalid, duplicate, wrong count),
-    /// [`Error::NoMeshCounts`] style problems as [`Error::InconsistentCounts`] when a derivation
-    /// has the wrong length or derives a quantity that is already in the state, and
-    /// [`Error::PeriodOverflow`] when the product over one period overflows `i64`.
+    /// [`Error::InvalidSpec`] when a derivation has the wrong length, derives something other
+    /// than V, E, F or a quantity that is already in the state, and [`Error::PeriodOverflow`]
+    /// when a product over one period overflows `i64`.
     pub fn try_from_spec(spec: SchemeSpec) -> Result<Scheme> {
         let names: Vec<String> = spec.state.iter().map(|c| c.name.clone()).collect();
+        if spec.rule.dim() != names.len() {
+            return Err(Error::InvalidSpec {
+                scheme: spec.name.clone(),
+                reason: format!(
+                    "{} state components for {1}x{1} matrices",
+                    names.len(),
+                    spec.rule.dim()
+                ),
+            });
+        }
         let period_matrix = spec.rule.rotated_product(0).ok_or(Error::PeriodOverflow {
             scheme: spec.name.clone(),
         })?;
@@ -322,14 +342,16 @@ impl Scheme {
                 Stat::E => 1,
                 Stat::F => 2,
                 other => {
-                    return Err(Error::InconsistentCounts {
-                        detail: format!("{other} cannot be derived; only V, E and F"),
+                    return Err(Error::InvalidSpec {
+                        scheme: spec.name.clone(),
+                        reason: format!("{other} cannot be derived; only V, E and F"),
                     })
                 }
             };
             if d.coefficients.len() != names.len() {
-                return Err(Error::InconsistentCounts {
-                    detail: format!(
+                return Err(Error::InvalidSpec {
+                    scheme: spec.name.clone(),
+                    reason: format!(
                         "the derivation of {stat} has {} coefficients for {} state components",
                         d.coefficients.len(),
                         names.len()
@@ -337,8 +359,9 @@ impl Scheme {
                 });
             }
             if matches!(vef[k], Source::State(_)) {
-                return Err(Error::InconsistentCounts {
-                    detail: format!("{stat} is a state component and cannot also be derived"),
+                return Err(Error::InvalidSpec {
+                    scheme: spec.name.clone(),
+                    reason: format!("{stat} is a state component and cannot also be derived"),
                 });
             }
             vef[k] = Source::Derived(d);
@@ -436,6 +459,23 @@ impl Scheme {
         &self.recurrence
     }
 
+    /// The exact closed form of [`recurrence`](Self::recurrence): the state at level
+    /// `s = cycle_start + period * t` as a function of `t` and the state at `cycle_start`
+    /// (for a scheme without first step or cycle: `s = t` and the initial state). Periodic
+    /// schemes have one form per residue class: see [`phases`](Self::phases) and
+    /// [`Phase::closed_form`].
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// let form = schemes::builtin("loop")?.closed_form();
+    /// let x0 = [12, 30].map(BigInt::from);
+    /// assert_eq!(form.evaluate(&x0, 5)?, [10242, 30720].map(BigInt::from));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn closed_form(&self) -> ClosedForm {
+        self.recurrence.closed_form()
+    }
+
     /// The meshes this scheme applies to.
     pub fn mesh_class(&self) -> &MeshClass {
         &self.class
@@ -474,6 +514,41 @@ impl Scheme {
                 _ => None,
             })
             .collect()
+    }
+
+    /// A JSON description: `name`, `canonical_name`, `description`, `state` (objects with
+    /// `name` and `meaning`), `mesh_class` (text), `requires` (keywords), `produces`,
+    /// `matrix` (the steady matrix), `first_step` and `cycle` (`null` / omitted when not
+    /// used), `period`, and `derive` (formulas of V, E, F outside the state).
+    ///
+    /// ```
+    /// let j = schemes::builtin("loop")?.to_json();
+    /// assert_eq!(j["matrix"], serde_json::json!([[1, 1], [0, 4]]));
+    /// assert_eq!(j["derive"]["F"], "2E/3");
+    /// assert_eq!(j["requires"], serde_json::json!(["triangles", "closed"]));
+    /// # Ok::<(), schemes::Error>(())
+    /// ```
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let derive: serde_json::Map<String, serde_json::Value> = self
+            .derived()
+            .into_iter()
+            .map(|(k, f)| (k.to_string(), json!(f)))
+            .collect();
+        json!({
+            "name": self.name,
+            "canonical_name": self.canonical,
+            "description": self.description,
+            "state": self.components.iter().map(|c| json!({"name": c.name, "meaning": c.meaning})).collect::<Vec<_>>(),
+            "mesh_class": self.class.to_string(),
+            "requires": self.class.keywords(),
+            "produces": self.produces.map(FaceKind::keyword),
+            "matrix": self.period_matrix.to_rows(),
+            "first_step": self.rule.first_step().map(IntMatrix::to_rows),
+            "cycle": (self.period() > 1).then(|| self.rule.cycle().iter().map(IntMatrix::to_rows).collect::<Vec<_>>()),
+            "period": self.period(),
+            "derive": derive,
+        })
     }
 
     /// Checks that `x0` has one value per state component.
@@ -534,6 +609,7 @@ impl Scheme {
                 ),
             });
         }
+        self.check_derived(&out)?;
         Ok(out)
     }
 
@@ -642,7 +718,16 @@ impl Scheme {
                 )),
             });
         }
+        self.check_derived(&out)?;
         Ok(out)
+    }
+
+    /// Derived V, E, F must be integers for an initial state that describes a mesh.
+    fn check_derived(&self, state: &[BigInt]) -> Result {
+        if self.vef.iter().any(|s| matches!(s, Source::Derived(_))) && self.has_mesh_counts() {
+            self.vef(state)?;
+        }
+        Ok(())
     }
 
     /// The exact state at `level`, applying the first step and the cycle in order.

@@ -95,8 +95,9 @@ pub(crate) fn exact_spectrum_matrix(
                         continue;
                     }
                     // T <- E T E^-1 with E = I + k e_i e_j^T.
-                    for col in 0..n {
-                        t[i][col] += k * t[j][col];
+                    let source = t[j].clone();
+                    for (dst, src) in t[i].iter_mut().zip(&source) {
+                        *dst += k * src;
                     }
                     for row in t.iter_mut() {
                         row[j] -= k * row[i];

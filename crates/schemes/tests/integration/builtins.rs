@@ -589,3 +589,44 @@ fn valid_from_as_documented() {
         }
     }
 }
+
+/// The exact closed forms (from the `recurrence` crate) agree with powering for every phase
+/// of every built-in, and their `valid_from` levels are the documented ones.
+#[test]
+fn closed_forms_agree_and_valid_from_is_as_documented() {
+    let documented: [(&str, &[u64]); 12] = [
+        ("loop", &[0, 0]),
+        ("loop-boundary", &[0, 0, 0]),
+        ("loop-general", &[0, 0, 0]),
+        ("catmull-clark-quad", &[0, 0, 0]),
+        ("catmull-clark", &[1, 0, 0, 1, 0]),
+        ("catmull-clark-general", &[1, 0, 1, 0]),
+        ("sqrt3", &[0, 0, 0]),
+        ("sqrt3-boundary", &[0, 0, 0, 0]),
+        ("doo-sabin", &[1, 0, 1]),
+        ("mid-edge", &[1, 0, 1]),
+        ("tri-split-2", &[0, 0, 0]),
+        ("tri-split-3", &[0, 0, 0]),
+    ];
+    for (scheme, (name, valid_from)) in builtins().iter().zip(documented) {
+        assert_eq!(scheme.name(), name);
+        // A state with no special relation between components, to expose every term.
+        let x0: Vec<BigInt> = (0..scheme.dim())
+            .map(|i| BigInt::from(7 + 5 * i * i))
+            .collect();
+        for phase in scheme.phases() {
+            let form = phase.closed_form();
+            let got: Vec<u64> = form.components().iter().map(|c| c.valid_from).collect();
+            assert_eq!(got, valid_from, "{name} {}", phase.description);
+            let start = scheme.state_at(&x0, phase.first_level).unwrap();
+            for t in 0..30u64 {
+                let s = phase.first_level + phase.period * t;
+                assert_eq!(
+                    form.evaluate(&start, t).unwrap(),
+                    scheme.state_at(&x0, s).unwrap(),
+                    "{name} at level {s}"
+                );
+            }
+        }
+    }
+}

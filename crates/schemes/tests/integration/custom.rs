@@ -59,6 +59,24 @@ fn example_loop_boundary_matches_the_builtin() {
 }
 
 #[test]
+fn derived_counts_must_be_integers_for_an_initial_state() {
+    let text = "name = \"x\"\nstate = [\"V\", \"E\"]\nmatrix = [[1, 1], [0, 4]]\n[derive]\nF = { E = 1, divide_by = 2 }\n";
+    let s = Scheme::from_toml(text).unwrap();
+    let err = s
+        .state_from_input(&"V=3,E=3".parse::<CountsInput>().unwrap())
+        .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "F = E/2 = 3/2 is not an integer for this state of x"
+    );
+    assert_eq!(
+        s.state_from_input(&"V=3,E=4".parse::<CountsInput>().unwrap())
+            .unwrap(),
+        big(&[3, 4])
+    );
+}
+
+#[test]
 fn example_periodic_sqrt3_boundary_matches_the_builtin() {
     let mine = example("sqrt3-boundary.toml");
     let builtin = builtin("sqrt3-boundary").unwrap();
@@ -186,4 +204,43 @@ fn broken_files() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn first_step_then_cycle() {
+    let text = "name = \"mixed\"\nstate = [\"a\", \"b\"]\n\
+                first_step = [[2, 0], [1, 1]]\n\
+                cycle = [[[1, 1], [0, 1]], [[1, 0], [2, 3]], [[3, 0], [0, 1]]]\n";
+    let s = Scheme::from_toml(text).unwrap();
+    assert_eq!(s.period(), 3);
+    let x0 = big(&[1, 2]);
+    // Step 1: first_step: (2, 3). Step 2: cycle[0]: (5, 3). Step 3: cycle[1]: (5, 19).
+    // Step 4: cycle[2]: (15, 19). Step 5: cycle[0] again: (34, 19).
+    let seq = s.states_up_to(&x0, 12).unwrap();
+    assert_eq!(
+        seq[1..=5],
+        [
+            big(&[2, 3]),
+            big(&[5, 3]),
+            big(&[5, 19]),
+            big(&[15, 19]),
+            big(&[34, 19])
+        ]
+    );
+    for (level, x) in seq.iter().enumerate() {
+        assert_eq!(&s.state_at(&x0, level as u64).unwrap(), x, "level {level}");
+    }
+    let phases = s.phases();
+    let d: Vec<&str> = phases.iter().map(|p| p.description.as_str()).collect();
+    assert_eq!(d, ["s = 3t + 1", "s = 3t + 2", "s = 3t + 3"]);
+    for p in &phases {
+        let init = s.state_at(&x0, p.first_level).unwrap();
+        for t in 0..4u64 {
+            let level = p.first_level + 3 * t;
+            assert_eq!(
+                p.recurrence.state_at(&init, t).unwrap(),
+                seq[level as usize]
+            );
+        }
+    }
 }

@@ -2,4 +2,9 @@
 
 mod builtins;
 mod custom;
+mod fit;
+mod input;
 mod meshes;
+mod plan;
+mod props;
+mod real_meshes;

@@ -1,0 +1,222 @@
+//! The output side of one subdivision step: half-edge arrays written by index.
+//!
+//! Every scheme computes the id of each new vertex, half-edge and face by arithmetic on the ids
+//! of the old mesh (see the module docs of each scheme), so the output needs no hash map: a face
+//! is emitted as its corners `(start vertex, half-edge id)` and the builder writes `vertex`,
+//! `face`, `next` and `prev` of each half-edge directly. Faces are numbered in emission order.
+//! Boundary half-edges (the twins nobody emitted) are linked into loops at the end.
+//!
+//! With `GROW == false` the arrays are allocated once with exactly the predicted lengths and a
+//! write past them is recorded (not performed) and reported as a
+//! [`Error::PredictionMismatch`](crate::Error::PredictionMismatch). With `GROW == true` the
+//! arrays start empty and grow on demand (the "growing buffers" baseline for benchmarks).
+
+use glam::DVec3;
+
+use crate::mesh::{HalfEdgeMesh, INVALID};
+use crate::{Error, Result};
+
+/// The sizes of a mesh (or a predicted mesh) as array lengths.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Sizes {
+    pub(crate) vertices: usize,
+    pub(crate) halfedges: usize,
+    pub(crate) faces: usize,
+}
+
+/// Where a subdivision step is, for error messages.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StepContext<'a> {
+    pub(crate) scheme: &'a str,
+    pub(crate) level: u32,
+}
+
+impl StepContext<'_> {
+    pub(crate) fn mismatch(&self, what: &'static str, predicted: usize, actual: usize) -> Error {
+        Error::PredictionMismatch {
+            scheme: self.scheme.to_owned(),
+            level: self.level,
+            what,
+            predicted: predicted.into(),
+            actual: actual as u64,
+        }
+    }
+
+    pub(crate) fn invalid(&self, what: String) -> Error {
+        Error::InvalidOutput {
+            scheme: self.scheme.to_owned(),
+            level: self.level,
+            what,
+        }
+    }
+}
+
+/// Half-edge arrays under construction.
+pub(crate) struct Builder<const GROW: bool> {
+    expected: Sizes,
+    vertex_halfedge: Vec<u32>,
+    halfedge_vertex: Vec<u32>,
+    halfedge_face: Vec<u32>,
+    halfedge_next: Vec<u32>,
+    halfedge_prev: Vec<u32>,
+    face_halfedge: Vec<u32>,
+    /// One past the largest vertex id written (to report a mismatch).
+    max_vertex: usize,
+    /// One past the largest half-edge id written (to report a mismatch).
+    max_halfedge: usize,
+}
+
+impl<const GROW: bool> Builder<GROW> {
+    /// Allocates the arrays: exactly `expected` when preallocating, empty when growing.
+    pub(crate) fn new(expected: Sizes) -> Self {
+        let (nv, nh, nf) = if GROW {
+            (0, 0, 0)
+        } else {
+            (expected.vertices, expected.halfedges, expected.faces)
+        };
+        Builder {
+            expected,
+            vertex_halfedge: vec![INVALID; nv],
+            halfedge_vertex: vec![INVALID; nh],
+            halfedge_face: vec![INVALID; nh],
+            halfedge_next: vec![INVALID; nh],
+            halfedge_prev: vec![INVALID; nh],
+            face_halfedge: Vec::with_capacity(nf),
+            max_vertex: 0,
+            max_halfedge: 0,
+        }
+    }
+
+    #[inline]
+    fn grow_halfedges(&mut self, h: usize) {
+        if h >= self.halfedge_vertex.len() {
+            let n = (h | 1) + 1;
+            self.halfedge_vertex.resize(n, INVALID);
+            self.halfedge_face.resize(n, INVALID);
+            self.halfedge_next.resize(n, INVALID);
+            self.halfedge_prev.resize(n, INVALID);
+        }
+    }
+
+    /// Emits the next face. `corners[i] = (v, h)`: half-edge `h` runs from vertex `v` to the
+    /// vertex of `corners[i + 1]`.
+    #[inline]
+    pub(crate) fn face(&mut self, corners: &[(u32, u32)]) {
+        let f = self.face_halfedge.len() as u32;
+        let n = corners.len();
+        self.face_halfedge.push(corners[0].1);
+        for i in 0..n {
+            let (v, h) = corners[i];
+            let (w, hn) = corners[if i + 1 == n { 0 } else { i + 1 }];
+            let (vi, hi, hni) = (v as usize, h as usize, hn as usize);
+            self.max_vertex = self.max_vertex.max(vi + 1);
+            self.max_halfedge = self.max_halfedge.max((hi | 1) + 1);
+            if GROW {
+                if vi >= self.vertex_halfedge.len() {
+                    self.vertex_halfedge.resize(vi + 1, INVALID);
+                }
+                self.grow_halfedges(hi | 1);
+                self.grow_halfedges(hni);
+            }
+            // Out-of-range ids are a prediction mismatch, reported by `finish`.
+            if let (Some(vh), true) = (
+                self.vertex_halfedge.get_mut(vi),
+                (hi | 1) < self.halfedge_vertex.len() && hni < self.halfedge_vertex.len(),
+            ) {
+                *vh = h;
+                self.halfedge_vertex[hi] = w;
+                self.halfedge_vertex[hi ^ 1] = v;
+                self.halfedge_face[hi] = f;
+                self.halfedge_next[hi] = hn;
+                self.halfedge_prev[hni] = h;
+            }
+        }
+    }
+
+    /// Links the boundary loops, checks the sizes against the prediction and assembles the mesh.
+    pub(crate) fn finish(
+        mut self,
+        positions: Vec<DVec3>,
+        ctx: &StepContext<'_>,
+    ) -> Result<HalfEdgeMesh> {
+        let e = self.expected;
+        let check = |what, predicted: usize, actual: usize| {
+            if predicted == actual {
+                Ok(())
+            } else {
+                debug_assert!(
+                    false,
+                    "{} level {}: predicted {what} {predicted}, built {actual}",
+                    ctx.scheme, ctx.level
+                );
+                Err(ctx.mismatch(what, predicted, actual))
+            }
+        };
+        check(
+            "vertices",
+            e.vertices,
+            self.max_vertex.max(self.vertex_halfedge.len()),
+        )?;
+        check("vertex positions", e.vertices, positions.len())?;
+        check(
+            "edges",
+            e.halfedges / 2,
+            self.max_halfedge.max(self.halfedge_vertex.len()) / 2,
+        )?;
+        check("faces", e.faces, self.face_halfedge.len())?;
+        if !GROW {
+            check("face capacity", e.faces, self.face_halfedge.capacity())?;
+            check("position capacity", e.vertices, positions.capacity())?;
+        }
+        if let Some(v) = self.vertex_halfedge.iter().position(|&h| h == INVALID) {
+            // Fewer vertices were used than predicted.
+            let used = self
+                .vertex_halfedge
+                .iter()
+                .filter(|&&h| h != INVALID)
+                .count();
+            let _ = v;
+            return Err(ctx.mismatch("vertices", e.vertices, used));
+        }
+        // Boundary half-edges: the ones no face claimed. First make each boundary vertex point
+        // at its outgoing boundary half-edge, then link each boundary half-edge to the one
+        // leaving its target.
+        let nh = self.halfedge_vertex.len();
+        for h in 0..nh {
+            if self.halfedge_face[h] == INVALID {
+                if self.halfedge_vertex[h] == INVALID {
+                    let used = self
+                        .halfedge_vertex
+                        .iter()
+                        .filter(|&&v| v != INVALID)
+                        .count();
+                    return Err(ctx.mismatch("edges", e.halfedges / 2, used / 2));
+                }
+                let source = self.halfedge_vertex[h ^ 1] as usize;
+                self.vertex_halfedge[source] = h as u32;
+            }
+        }
+        for h in 0..nh {
+            if self.halfedge_face[h] == INVALID {
+                let target = self.halfedge_vertex[h] as usize;
+                let n = self.vertex_halfedge[target];
+                if self.halfedge_face[n as usize] != INVALID {
+                    return Err(ctx.invalid(format!(
+                        "boundary half-edge {h} ends at vertex {target}, which has no outgoing boundary half-edge"
+                    )));
+                }
+                self.halfedge_next[h] = n;
+                self.halfedge_prev[n as usize] = h as u32;
+            }
+        }
+        Ok(HalfEdgeMesh::from_raw_parts(
+            positions,
+            self.vertex_halfedge,
+            self.halfedge_vertex,
+            self.halfedge_face,
+            self.halfedge_next,
+            self.halfedge_prev,
+            self.face_halfedge,
+        ))
+    }
+}

@@ -1,0 +1,134 @@
+//! The dual-type schemes on closed polygon meshes: Doo-Sabin and mid-edge (Peters-Reif).
+//!
+//! # Doo-Sabin numbering (input `V`, `E`, `F`; closed, so every half-edge has a face)
+//!
+//! - Vertices: the corner at the source of half-edge `h` inside its face is vertex `h`:
+//!   `V' = 2E`.
+//! - Edges: `h` (joining corners `h` and `next(h)`: the side of the shrunken face) and `2E + h`
+//!   (joining corner `h` and corner `next(twin(h))`, the other corner at the same old vertex
+//!   across the old edge): `E' = 4E`.
+//! - Faces: the shrunken old faces `0..F`, one quad per old edge `F + e`, one face per old
+//!   vertex `F + E + v` (its degree is the valence): `F' = F + E + V`.
+//!
+//! Geometry: the standard Doo-Sabin weights; the corner at `p_0` of an `n`-gon
+//! `p_0, ..., p_{n-1}` is `Σ w_j p_j` with `w_0 = (n + 5) / (4n)` and
+//! `w_j = (3 + 2 cos(2πj/n)) / (4n)`.
+//!
+//! # Mid-edge numbering
+//!
+//! - Vertices: the midpoint of edge `e` is vertex `e`: `V' = E`.
+//! - Edges: half-edge `h` gives edge `h`, joining the midpoints of `h` and `next(h)`: `E' = 2E`.
+//! - Faces: the old faces (on the midpoints of their edges) `0..F`, then one face per old vertex
+//!   `F + v` on the midpoints of its edges: `F' = F + V`.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::build::{Builder, Sizes, StepContext};
+use super::par;
+use super::topo::Topo;
+use crate::{HalfEdgeMesh, Result};
+
+/// One Doo-Sabin step (closed mesh, every valence >= 3: checked by the caller).
+pub(crate) fn doo_sabin<const GROW: bool>(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let mut b = Builder::<GROW>::new(expected);
+    let mut corners: Vec<(u32, u32)> = Vec::new();
+    for f in 0..nf {
+        corners.clear();
+        t.for_face(f, |h| corners.push((h, 2 * h)));
+        b.face(&corners);
+    }
+    for e in 0..ne {
+        let (h, tw) = (2 * e, 2 * e + 1);
+        b.face(&[
+            (t.next(h), 2 * h + 1),
+            (h, 2 * (2 * ne + h)),
+            (t.next(tw), 2 * tw + 1),
+            (tw, 2 * (2 * ne + tw)),
+        ]);
+    }
+    let mut ring: Vec<u32> = Vec::new();
+    for v in 0..nv {
+        ring.clear();
+        t.for_outgoing(v, |h| ring.push(h));
+        corners.clear();
+        let n = ring.len();
+        for k in (0..n).rev() {
+            let next = ring[(k + 1) % n];
+            corners.push((next, 2 * (2 * ne + ring[k]) + 1));
+        }
+        b.face(&corners);
+    }
+
+    let mut positions = if GROW {
+        Vec::new()
+    } else {
+        Vec::with_capacity(expected.vertices)
+    };
+    par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
+        let h = h as u32;
+        let n = t.face_degree(t.face(h));
+        let nf = n as f64;
+        let mut sum = DVec3::ZERO;
+        let mut g = h;
+        for j in 0..n {
+            let w = if j == 0 {
+                (nf + 5.0) / (4.0 * nf)
+            } else {
+                (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
+            };
+            sum += t.pos(t.source(g)) * w;
+            g = t.next(g);
+        }
+        sum
+    });
+    b.finish(positions, ctx)
+}
+
+/// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).
+pub(crate) fn mid_edge<const GROW: bool>(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let mut b = Builder::<GROW>::new(expected);
+    let mut corners: Vec<(u32, u32)> = Vec::new();
+    for f in 0..nf {
+        corners.clear();
+        t.for_face(f, |h| corners.push((h >> 1, 2 * h)));
+        b.face(&corners);
+    }
+    let mut ring: Vec<u32> = Vec::new();
+    for v in 0..nv {
+        ring.clear();
+        t.for_outgoing(v, |h| ring.push(h));
+        corners.clear();
+        let n = ring.len();
+        for k in (0..n).rev() {
+            let next = ring[(k + 1) % n];
+            corners.push((next >> 1, 2 * (ring[k] ^ 1) + 1));
+        }
+        b.face(&corners);
+    }
+    let mut positions = if GROW {
+        Vec::new()
+    } else {
+        Vec::with_capacity(expected.vertices)
+    };
+    par::extend(&mut positions, ne as usize, parallel, |e| {
+        let h = 2 * e as u32;
+        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
+    });
+    b.finish(positions, ctx)
+}

@@ -1,0 +1,336 @@
+//! Topology-only subdivision of raw face lists (non-manifold edges and vertices allowed): the
+//! per-face refinements 1:N² (4:1 for `N = 2`) and Catmull-Clark.
+//!
+//! Edges are found by sorting the face sides by their (unordered) vertex pair, so an edge with
+//! any number of faces gets one id and its new points are shared by all of them.
+//!
+//! # Numbering (used vertices `V`, renumbered in order of first use; `E` edges, numbered in
+//! the order of their sorted vertex pairs; `F` faces)
+//!
+//! - 1:N²: old vertices, then `N - 1` points per edge (from its smaller vertex id), then the
+//!   interior points of each face; faces `N² f + t`.
+//! - Catmull-Clark: old vertices, then one point per edge, then one per face; the corner `k` of
+//!   face `f` becomes the quad (corner, point of side `k`, face point, point of side `k - 1`).
+
+use glam::DVec3;
+
+use super::build::StepContext;
+use super::trisplit::PointRef;
+use super::{sizes, LevelDone, Plan, Rule, SubdivideOptions, Template};
+use crate::error::FaceVertices;
+use crate::mesh::INVALID;
+use crate::{Error, PolygonMesh, Result};
+
+/// A face list with dense vertex ids and its edges.
+struct Indexed<'a> {
+    mesh: &'a PolygonMesh,
+    /// Dense id of every corner's vertex.
+    corner_vertex: Vec<u32>,
+    /// Edge of the side from corner `c` to the next corner of its face.
+    corner_edge: Vec<u32>,
+    /// The smaller dense vertex id of each edge.
+    edge_low: Vec<u32>,
+    /// Old positions by dense id.
+    positions: Vec<DVec3>,
+}
+
+impl<'a> Indexed<'a> {
+    fn new(mesh: &'a PolygonMesh) -> Result<Indexed<'a>> {
+        let nv = mesh.positions.len();
+        let mut dense = vec![INVALID; nv];
+        let mut positions = Vec::new();
+        let mut corner_vertex = Vec::with_capacity(mesh.n_corners());
+        for (f, face) in mesh.faces().enumerate() {
+            let face_id = u32::try_from(f).unwrap_or(u32::MAX);
+            if face.len() < 3 {
+                return Err(Error::FaceTooSmall {
+                    face: face_id,
+                    vertices: FaceVertices(face.to_vec()),
+                    degree: face.len(),
+                });
+            }
+            for (i, &v) in face.iter().enumerate() {
+                if v as usize >= nv {
+                    return Err(Error::VertexOutOfRange {
+                        face: face_id,
+                        vertices: FaceVertices(face.to_vec()),
+                        vertex: v,
+                        n_vertices: nv,
+                    });
+                }
+                if face[..i].contains(&v) {
+                    return Err(Error::RepeatedVertex {
+                        face: face_id,
+                        vertices: FaceVertices(face.to_vec()),
+                        vertex: v,
+                    });
+                }
+                let slot = &mut dense[v as usize];
+                if *slot == INVALID {
+                    *slot = positions.len() as u32;
+                    positions.push(mesh.positions[v as usize]);
+                }
+                corner_vertex.push(*slot);
+            }
+        }
+        // Sides sorted by their unordered vertex pair.
+        let offsets = mesh.face_offsets();
+        let mut keys: Vec<(u64, u32)> = Vec::with_capacity(corner_vertex.len());
+        for f in 0..mesh.n_faces() {
+            let (start, end) = (offsets[f], offsets[f + 1]);
+            for c in start..end {
+                let a = corner_vertex[c];
+                let b = corner_vertex[if c + 1 == end { start } else { c + 1 }];
+                let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                keys.push((key, c as u32));
+            }
+        }
+        keys.sort_unstable();
+        let mut corner_edge = vec![0u32; corner_vertex.len()];
+        let mut edge_low = Vec::new();
+        let mut last = u64::MAX;
+        for &(key, c) in &keys {
+            if key != last {
+                edge_low.push((key >> 32) as u32);
+                last = key;
+            }
+            corner_edge[c as usize] = edge_low.len() as u32 - 1;
+        }
+        Ok(Indexed {
+            mesh,
+            corner_vertex,
+            corner_edge,
+            edge_low,
+            positions,
+        })
+    }
+}
+
+/// One 1:N² step on a triangle face list.
+fn tri_split(
+    ix: &Indexed<'_>,
+    template: &Template,
+    expected_vertices: usize,
+    expected_faces: usize,
+) -> PolygonMesh {
+    let n = template.n;
+    let nv = ix.positions.len() as u32;
+    let ne = ix.edge_low.len() as u32;
+    let per_face = template.interior_points.len() as u32;
+    let interior_base = nv + (n - 1) * ne;
+
+    let mut positions = Vec::with_capacity(expected_vertices);
+    positions.extend_from_slice(&ix.positions);
+    let nf = n as f64;
+    // Endpoints of each edge (the first side found).
+    let mut edge_high = vec![INVALID; ne as usize];
+    let offsets = ix.mesh.face_offsets();
+    for f in 0..ix.mesh.n_faces() {
+        let (start, end) = (offsets[f], offsets[f + 1]);
+        for c in start..end {
+            let a = ix.corner_vertex[c];
+            let b = ix.corner_vertex[if c + 1 == end { start } else { c + 1 }];
+            edge_high[ix.corner_edge[c] as usize] = a.max(b);
+        }
+    }
+    for (&low, &high) in ix.edge_low.iter().zip(&edge_high) {
+        let a = ix.positions[low as usize];
+        let b = ix.positions[high as usize];
+        for k in 1..n {
+            positions.push(a + (b - a) * (f64::from(k) / nf));
+        }
+    }
+    let mut out = PolygonMesh::with_positions(Vec::new());
+    out.reserve_faces(expected_faces, 3 * expected_faces);
+    for (f, &start) in offsets[..ix.mesh.n_faces()].iter().enumerate() {
+        let vs = [
+            ix.corner_vertex[start],
+            ix.corner_vertex[start + 1],
+            ix.corner_vertex[start + 2],
+        ];
+        let es = [
+            ix.corner_edge[start],
+            ix.corner_edge[start + 1],
+            ix.corner_edge[start + 2],
+        ];
+        let p = [0, 1, 2].map(|i| ix.positions[vs[i] as usize]);
+        for &(a, b) in &template.interior_points {
+            positions.push(
+                p[0] + (p[1] - p[0]) * (f64::from(a) / nf) + (p[2] - p[0]) * (f64::from(b) / nf),
+            );
+        }
+        let point = |r: PointRef| -> u32 {
+            match r {
+                PointRef::Corner(k) => vs[k as usize],
+                PointRef::Side(s, j) => {
+                    let s = s as usize;
+                    let e = es[s];
+                    let k = if vs[s] == ix.edge_low[e as usize] {
+                        j - 1
+                    } else {
+                        n - 1 - j
+                    };
+                    nv + e * (n - 1) + k
+                }
+                PointRef::Interior(i) => interior_base + f as u32 * per_face + i,
+            }
+        };
+        for tri in template.triangle_points() {
+            out.push_face(&tri.map(point));
+        }
+    }
+    out.positions = positions;
+    out
+}
+
+/// One Catmull-Clark step (topology, linear points) on any face list.
+fn catmull_clark(ix: &Indexed<'_>, expected_vertices: usize, expected_faces: usize) -> PolygonMesh {
+    let nv = ix.positions.len() as u32;
+    let ne = ix.edge_low.len() as u32;
+    let offsets = ix.mesh.face_offsets();
+    let mut positions = Vec::with_capacity(expected_vertices);
+    positions.extend_from_slice(&ix.positions);
+    let mut edge_mid = vec![DVec3::ZERO; ne as usize];
+    for f in 0..ix.mesh.n_faces() {
+        let (start, end) = (offsets[f], offsets[f + 1]);
+        for c in start..end {
+            let a = ix.positions[ix.corner_vertex[c] as usize];
+            let b =
+                ix.positions[ix.corner_vertex[if c + 1 == end { start } else { c + 1 }] as usize];
+            edge_mid[ix.corner_edge[c] as usize] = (a + b) * 0.5;
+        }
+    }
+    positions.extend_from_slice(&edge_mid);
+    let mut out = PolygonMesh::with_positions(Vec::new());
+    out.reserve_faces(expected_faces, 4 * expected_faces);
+    for f in 0..ix.mesh.n_faces() {
+        let (start, end) = (offsets[f], offsets[f + 1]);
+        let fp = nv + ne + f as u32;
+        let mut centroid = DVec3::ZERO;
+        for c in start..end {
+            centroid += ix.positions[ix.corner_vertex[c] as usize];
+            let prev = if c == start { end - 1 } else { c - 1 };
+            out.push_face(&[
+                ix.corner_vertex[c],
+                nv + ix.corner_edge[c],
+                fp,
+                nv + ix.corner_edge[prev],
+            ]);
+        }
+        positions.push(centroid / (end - start) as f64);
+    }
+    out.positions = positions;
+    out
+}
+
+/// Two triangles on the same three vertices would give the same interior edges under a
+/// triangle split, which the counts (new edges per face) do not allow for: refused.
+fn check_no_duplicate_triangles(mesh: &PolygonMesh) -> Result<()> {
+    let mut keys: Vec<([u32; 3], u32)> = mesh
+        .faces()
+        .enumerate()
+        .map(|(f, face)| {
+            let mut k = [face[0], face[1], face[2]];
+            k.sort_unstable();
+            (k, u32::try_from(f).unwrap_or(u32::MAX))
+        })
+        .collect();
+    keys.sort_unstable();
+    match keys.windows(2).find(|w| w[0].0 == w[1].0) {
+        Some(w) => Err(Error::DuplicateFace {
+            first: w[0].1,
+            second: w[1].1,
+            vertices: FaceVertices(mesh.face(w[0].1 as usize).to_vec()),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The level loop for face lists; `visit(level, mesh)` sees every level built.
+pub(super) fn run_levels(
+    plan: &Plan,
+    mesh: &PolygonMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+    mut visit: impl FnMut(u32, &PolygonMesh) -> Result<()>,
+) -> Result<PolygonMesh> {
+    let name = plan.name.as_str();
+    let template = match plan.rule {
+        Rule::Tri(_, n) => Some(n),
+        Rule::CatmullClark => None,
+        _ => {
+            return Err(Error::UnsupportedScheme {
+                name: name.to_owned(),
+                supported: "the 4:1 (loop, loop-general, ...), tri-split-N and catmull-clark schemes on face lists".into(),
+            })
+        }
+    };
+    // Validates the corners before counting.
+    let first = Indexed::new(mesh)?;
+    let counts = crate::stats::face_list_counts(mesh);
+    plan.scheme.initial_state(&counts)?;
+    if template.is_some() {
+        let offsets = mesh.face_offsets();
+        if let Some(f) = (0..mesh.n_faces()).find(|&f| offsets[f + 1] - offsets[f] != 3) {
+            return Err(Error::SchemeNotApplicable {
+                scheme: name.to_owned(),
+                reason: format!(
+                    "face {f} has {} vertices, the scheme needs triangles",
+                    offsets[f + 1] - offsets[f]
+                ),
+            });
+        }
+        check_no_duplicate_triangles(mesh)?;
+    }
+    let mut expected = Vec::with_capacity(levels as usize);
+    for s in 1..=levels {
+        let c = plan.scheme.counts_at(&counts, u64::from(s))?;
+        expected.push(sizes(&c, name, s)?);
+    }
+    let template = match template {
+        Some(n) if levels > 0 => Some(Template::new(n)),
+        _ => None,
+    };
+    let mut current: Option<PolygonMesh> = None;
+    let mut indexed = Some(first);
+    for (s, e) in (1..=levels).zip(&expected) {
+        let ix = match indexed.take() {
+            Some(ix) => ix,
+            None => Indexed::new(current.as_ref().unwrap_or(mesh))?,
+        };
+        let next = match &template {
+            Some(t) => tri_split(&ix, t, e.vertices, e.faces),
+            None => catmull_clark(&ix, e.vertices, e.faces),
+        };
+        let ctx = StepContext {
+            scheme: name,
+            level: s,
+        };
+        for (what, predicted, actual) in [
+            ("vertices", e.vertices, next.positions.len()),
+            ("faces", e.faces, next.n_faces()),
+            ("position capacity", e.vertices, next.positions.capacity()),
+        ] {
+            if predicted != actual {
+                debug_assert!(
+                    false,
+                    "{name} level {s}: predicted {what} {predicted}, built {actual}"
+                );
+                return Err(ctx.mismatch(what, predicted, actual));
+            }
+        }
+        drop(ix);
+        visit(s, &next)?;
+        if let Some(progress) = opts.progress {
+            progress(&LevelDone {
+                level: s,
+                levels,
+                vertices: next.n_vertices(),
+                edges: e.halfedges / 2,
+                faces: next.n_faces(),
+            });
+        }
+        current = Some(next);
+    }
+    Ok(current.unwrap_or_else(|| mesh.clone()))
+}

@@ -1,0 +1,210 @@
+//! Kobbelt's √3 subdivision, with his boundary rule (the variant of the `schemes` crate's
+//! `sqrt3-boundary`: steps A and B alternate, step B at even step numbers).
+//!
+//! A plain step (`sqrt3`, and step A of `sqrt3-boundary`) inserts the centroid of every
+//! triangle, connects it to the three corners and flips every old interior edge (it then joins
+//! the centroids of its two old faces); boundary edges stay. Step B trisects every boundary edge
+//! `a -> b` of a boundary triangle `(a, b, c)` (after step A every face has at most one
+//! boundary edge), joins `c` to the two new points `p1`, `p2` instead of inserting a centroid,
+//! and flips the old interior edges as well: edge `c a` then joins `p1` to the centroid across
+//! it, edge `b c` joins `p2` to the centroid across it.
+//!
+//! Each old face half-edge `g` gives exactly one new triangle: for an interior edge the
+//! triangle (target of `g`, `rep(g)`, `rep(twin g)`), where `rep(g)` is the centroid of the
+//! face of `g` (or `p1`/`p2` on a step-B boundary face, the point the flipped edge reaches);
+//! for a boundary edge the old edge with the centroid (step A) or the middle triangle
+//! `(p1, p2, c)` (step B).
+//!
+//! # Numbering (input `V`, `E`, `F` triangles, `IE`/`BE` interior/boundary edges)
+//!
+//! - Vertices: old vertices; then `V + f`: the centroid of face `f`, or `p1` of a step-B
+//!   boundary face; then `V + F + i`: `p2` of the `i`-th step-B boundary face (in face order).
+//! - Edges: old interior edge `e` keeps its id (flipped); the spoke from corner `c = 3f + k`
+//!   (the source of the `k`-th half-edge of face `f`) to the centroid of `f` is `E + c`; on a
+//!   step-B boundary face `(a, b, c)` (boundary half-edge `g: a -> b`) the ids of `g`'s edge and
+//!   of its three corners, plus `E + 3F + i`, give `p1 p2`, `a p1`, `p2 b`, `c p1` and `c p2`.
+//! - Faces: the triangle of face half-edge `g` at corner `c` is face `c`.
+//!
+//! So step A (and `sqrt3`) gives `V' = V + F`, `E' = E + 3F`, `F' = 3F`, `BE' = BE`, and
+//! step B gives `V' = V + F + BE`, `E' = E + 3F + BE`, `F' = 3F`, `BE' = 3 BE`.
+//!
+//! Geometry: centroids; interior vertices `(1 - α) v + α/n Σ neighbours` with
+//! `α = (4 - 2 cos(2π/n)) / 9`; boundary vertices stay in step A, and in step B the boundary
+//! polygon is refined by Kobbelt's ternary cubic B-spline rule: old vertices
+//! `(4 l + 19 v + 4 r) / 27`, new points `(l + 16 a + 10 b) / 27` and `(10 a + 16 b + r) / 27`.
+
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::build::{Builder, Sizes, StepContext};
+use super::par;
+use super::topo::Topo;
+use crate::mesh::INVALID;
+use crate::{HalfEdgeMesh, Result};
+
+/// One √3 step on a triangle mesh; `step_b` selects Kobbelt's boundary trisection.
+pub(crate) fn sqrt3<const GROW: bool>(
+    mesh: &HalfEdgeMesh,
+    step_b: bool,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    // corner[g] = 3f + k for face half-edges.
+    let mut corner = vec![INVALID; 2 * ne as usize];
+    for f in 0..nf {
+        let mut k = 0;
+        t.for_face(f, |g| {
+            corner[g as usize] = 3 * f + k;
+            k += 1;
+        });
+    }
+    // Step B: per face, its boundary half-edge and its number among the boundary faces.
+    let mut boundary_of = Vec::new();
+    let mut number_of = Vec::new();
+    let mut boundary_faces = Vec::new();
+    if step_b {
+        boundary_of = vec![INVALID; nf as usize];
+        number_of = vec![INVALID; nf as usize];
+        for f in 0..nf {
+            let mut found = INVALID;
+            let mut count = 0;
+            t.for_face(f, |g| {
+                if t.is_boundary(g ^ 1) {
+                    found = g;
+                    count += 1;
+                }
+            });
+            if count > 1 {
+                return Err(ctx.invalid(format!(
+                    "face {f} has {count} boundary edges in a trisecting step (step A leaves at most one)"
+                )));
+            }
+            if count == 1 {
+                boundary_of[f as usize] = found;
+                number_of[f as usize] = boundary_faces.len() as u32;
+                boundary_faces.push(found);
+            }
+        }
+    }
+    let spoke = |k: u32| ne + corner[k as usize];
+    // The role of half-edge g in a step-B boundary face: 0 = the boundary half-edge,
+    // 1 = next of it (b -> c), 2 = prev of it (c -> a); None on an ordinary face.
+    let role = |g: u32| -> Option<(u32, u32)> {
+        if !step_b {
+            return None;
+        }
+        let f = t.face(g);
+        let gb = boundary_of[f as usize];
+        if gb == INVALID {
+            None
+        } else if g == gb {
+            Some((0, gb))
+        } else if g == t.next(gb) {
+            Some((1, gb))
+        } else {
+            Some((2, gb))
+        }
+    };
+    let p2_of = |gb: u32| nv + nf + number_of[t.face(gb) as usize];
+    let c2_of = |gb: u32| ne + 3 * nf + number_of[t.face(gb) as usize];
+    // The point the new edge through old edge g reaches on g's side.
+    let rep = |g: u32| match role(g) {
+        Some((1, gb)) => p2_of(gb),
+        _ => nv + t.face(g),
+    };
+    // Half-edge from target(g) to rep(g) inside face(g).
+    let out = |g: u32| match role(g) {
+        Some((1, gb)) => 2 * c2_of(gb), // c -> p2
+        Some((2, gb)) => 2 * spoke(gb), // a -> p1
+        _ => 2 * spoke(t.next(g)),
+    };
+    // Half-edge from rep(k) to source(k) inside face(k).
+    let into = |k: u32| match role(k) {
+        Some((1, _)) => 2 * spoke(k),     // p2 -> b
+        Some((2, _)) => 2 * spoke(k) + 1, // p1 -> c
+        _ => 2 * spoke(k) + 1,
+    };
+
+    let mut b = Builder::<GROW>::new(expected);
+    for f in 0..nf {
+        let g0 = t.face_halfedge(f);
+        for g in [g0, t.next(g0), t.prev(g0)] {
+            if !t.is_boundary(g ^ 1) {
+                b.face(&[
+                    (t.target(g), out(g)),
+                    (rep(g), g),
+                    (rep(g ^ 1), into(g ^ 1)),
+                ]);
+            } else if !step_b {
+                b.face(&[
+                    (t.source(g), g),
+                    (t.target(g), 2 * spoke(t.next(g))),
+                    (nv + f, 2 * spoke(g) + 1),
+                ]);
+            } else {
+                // Middle triangle (p1, p2, c): p1 p2 is g's edge, c p1 is the spoke slot of
+                // prev(g), c p2 the extra edge.
+                let c = t.target(t.next(g));
+                b.face(&[
+                    (nv + f, g),
+                    (p2_of(g), 2 * c2_of(g) + 1),
+                    (c, 2 * spoke(t.prev(g))),
+                ]);
+            }
+        }
+    }
+
+    let mut positions = if GROW {
+        Vec::new()
+    } else {
+        Vec::with_capacity(expected.vertices)
+    };
+    par::extend(&mut positions, nv as usize, parallel, |v| {
+        let v = v as u32;
+        let p = t.pos(v);
+        if t.is_boundary_vertex(v) {
+            if !step_b {
+                return p;
+            }
+            let h = t.vertex_halfedge(v);
+            let right = t.pos(t.target(h));
+            let left = t.pos(t.source(t.prev(h)));
+            return (left * 4.0 + p * 19.0 + right * 4.0) / 27.0;
+        }
+        let mut sum = DVec3::ZERO;
+        let mut n = 0u32;
+        t.for_outgoing(v, |h| {
+            sum += t.pos(t.target(h));
+            n += 1;
+        });
+        let nf = n as f64;
+        let alpha = (4.0 - 2.0 * (2.0 * PI / nf).cos()) / 9.0;
+        p * (1.0 - alpha) + sum * (alpha / nf)
+    });
+    // Boundary points: g runs a -> b inside the mesh, its twin b -> a on the boundary.
+    let p1 = |g: u32| {
+        let before = t.pos(t.target(t.next(g ^ 1)));
+        (before + t.pos(t.source(g)) * 16.0 + t.pos(t.target(g)) * 10.0) / 27.0
+    };
+    let p2 = |g: u32| {
+        let after = t.pos(t.source(t.prev(g ^ 1)));
+        (t.pos(t.source(g)) * 10.0 + t.pos(t.target(g)) * 16.0 + after) / 27.0
+    };
+    par::extend(&mut positions, nf as usize, parallel, |f| {
+        let g = t.face_halfedge(f as u32);
+        if step_b && boundary_of[f] != INVALID {
+            return p1(boundary_of[f]);
+        }
+        (t.pos(t.source(g)) + t.pos(t.target(g)) + t.pos(t.target(t.next(g)))) / 3.0
+    });
+    if step_b {
+        par::extend(&mut positions, boundary_faces.len(), parallel, |i| {
+            p2(boundary_faces[i])
+        });
+    }
+    b.finish(positions, ctx)
+}

@@ -1,0 +1,380 @@
+//! Triangle splits: the 4:1 family (Loop, midpoint, icosphere, modified butterfly) and the
+//! general 1:N² split (`tri-split-N`, `ternary`).
+//!
+//! # Numbering (input `V`, `E`, `F`; split factor `N`)
+//!
+//! - Vertices: the old vertices keep their ids; edge `e` gets the `N - 1` points
+//!   `V + e (N - 1) + k`, `k = 0..N-1`, ordered from the source of half-edge `2e`; face `f`
+//!   gets its `(N - 1)(N - 2) / 2` interior grid points after all edge points.
+//! - Edges: edge `e` is cut into the `N` pieces `N e + k` (ordered the same way; half-edge
+//!   `2 (N e + k)` runs in the direction of `2e`); face `f` gets its `3 N (N - 1) / 2` interior
+//!   edges after all pieces.
+//! - Faces: face `f` becomes the faces `N² f + t`, `t` in the order of the split template.
+//!
+//! So `V' = V + (N-1) E + F (N-1)(N-2)/2`, `E' = N E + 3 N (N-1)/2 F`, `F' = N² F`: for
+//! `N = 2`, `V + E`, `2E + 3F`, `4F`.
+
+use std::collections::HashMap;
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
+use super::build::{Builder, Sizes, StepContext};
+use super::par;
+use super::topo::Topo;
+use crate::{HalfEdgeMesh, Result};
+
+/// Where a new edge point goes (the 4:1 schemes differ only in geometry).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TriRule {
+    /// Loop's weights; boundary curves are cubic B-splines.
+    Loop,
+    /// Plain midpoints, old vertices kept.
+    Midpoint,
+    /// Midpoints projected onto the unit sphere.
+    Icosphere,
+    /// Zorin, Schröder and Sweldens' modified butterfly (interpolating).
+    Butterfly,
+    /// Linear 1:N² split (points on the flat triangles).
+    Linear,
+}
+
+/// A point of the split template of one triangle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum PointRef {
+    /// Corner `k` (the source of the face's half-edge `k`).
+    Corner(u8),
+    /// Point `j` (`1..N`) along side `s`, counted from the side's source corner.
+    Side(u8, u32),
+    /// Interior point number `i` of the face.
+    Interior(u32),
+}
+
+/// A directed side of a template triangle.
+#[derive(Clone, Copy, Debug)]
+enum SideRef {
+    /// Piece `j` of side `s` (from point `j` to `j + 1`), forward or backward.
+    Piece { side: u8, j: u32, forward: bool },
+    /// Interior edge `edge` of the face, half `half`.
+    Interior { edge: u32, half: u32 },
+}
+
+/// A point `(a, b)` of the barycentric grid of the split.
+type GridPoint = (u32, u32);
+
+/// The split of one triangle into `N²`, as references to be mapped per face.
+pub(crate) struct Template {
+    pub(crate) n: u32,
+    /// Barycentric grid coordinates `(a, b)` of each interior point (for the linear geometry).
+    pub(crate) interior_points: Vec<(u32, u32)>,
+    interior_edges: u32,
+    triangles: Vec<[(PointRef, SideRef); 3]>,
+}
+
+impl Template {
+    /// The corner points of each small triangle, in order.
+    pub(crate) fn triangle_points(&self) -> impl Iterator<Item = [PointRef; 3]> + '_ {
+        self.triangles.iter().map(|t| [t[0].0, t[1].0, t[2].0])
+    }
+
+    /// Builds the template of the 1:N² split.
+    ///
+    /// # Panics
+    ///
+    /// If `n < 2` (the callers check).
+    pub(crate) fn new(n: u32) -> Template {
+        assert!(n >= 2, "split factor must be at least 2");
+        // Grid point (a, b) = v0 + a/N (v1 - v0) + b/N (v2 - v0), a + b <= N.
+        let mut interior_index = HashMap::new();
+        let mut interior_points = Vec::new();
+        for b in 1..n {
+            for a in 1..n - b {
+                interior_index.insert((a, b), interior_points.len() as u32);
+                interior_points.push((a, b));
+            }
+        }
+        let classify = |a: u32, b: u32| -> PointRef {
+            match (a, b) {
+                (0, 0) => PointRef::Corner(0),
+                _ if a == n && b == 0 => PointRef::Corner(1),
+                _ if a == 0 && b == n => PointRef::Corner(2),
+                _ if b == 0 => PointRef::Side(0, a),
+                _ if a + b == n => PointRef::Side(1, b),
+                _ if a == 0 => PointRef::Side(2, n - b),
+                _ => PointRef::Interior(interior_index[&(a, b)]),
+            }
+        };
+        // Position of a grid point along side s (None when not on that side).
+        let on_side = |s: u8, a: u32, b: u32| -> Option<u32> {
+            match s {
+                0 => (b == 0).then_some(a),
+                1 => (a + b == n).then_some(b),
+                _ => (a == 0).then_some(n - b),
+            }
+        };
+        let mut interior_edges: HashMap<(GridPoint, GridPoint), u32> = HashMap::new();
+        let mut side_ref = |p: (u32, u32), q: (u32, u32)| -> SideRef {
+            for s in 0..3u8 {
+                if let (Some(jp), Some(jq)) = (on_side(s, p.0, p.1), on_side(s, q.0, q.1)) {
+                    if jp.abs_diff(jq) == 1 {
+                        return SideRef::Piece {
+                            side: s,
+                            j: jp.min(jq),
+                            forward: jq > jp,
+                        };
+                    }
+                }
+            }
+            if let Some(&edge) = interior_edges.get(&(q, p)) {
+                return SideRef::Interior { edge, half: 1 };
+            }
+            let edge = interior_edges.len() as u32;
+            interior_edges.insert((p, q), edge);
+            SideRef::Interior { edge, half: 0 }
+        };
+        let mut triangles = Vec::with_capacity((n * n) as usize);
+        let mut push = |pts: [(u32, u32); 3]| {
+            let mut tri = [(PointRef::Corner(0), SideRef::Interior { edge: 0, half: 0 }); 3];
+            for i in 0..3 {
+                let (p, q) = (pts[i], pts[(i + 1) % 3]);
+                tri[i] = (classify(p.0, p.1), side_ref(p, q));
+            }
+            triangles.push(tri);
+        };
+        for b in 0..n {
+            for a in 0..n - b {
+                push([(a, b), (a + 1, b), (a, b + 1)]);
+                if a + b + 2 <= n {
+                    push([(a + 1, b), (a + 1, b + 1), (a, b + 1)]);
+                }
+            }
+        }
+        let interior_edges = interior_edges.len() as u32;
+        debug_assert_eq!(interior_edges, 3 * n * (n - 1) / 2);
+        debug_assert_eq!(triangles.len() as u32, n * n);
+        Template {
+            n,
+            interior_points,
+            interior_edges,
+            triangles,
+        }
+    }
+}
+
+/// One 1:N² step on a triangle mesh (checked by the caller).
+pub(crate) fn tri_split<const GROW: bool>(
+    mesh: &HalfEdgeMesh,
+    template: &Template,
+    rule: TriRule,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let n = template.n;
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let points_per_face = template.interior_points.len() as u32;
+    let interior_base = nv + (n - 1) * ne;
+    let edge_base = n * ne;
+
+    let mut b = Builder::<GROW>::new(expected);
+    let mut corners = [(0u32, 0u32); 3];
+    for f in 0..nf {
+        let h0 = t.face_halfedge(f);
+        let h1 = t.next(h0);
+        let h2 = t.next(h1);
+        let hs = [h0, h1, h2];
+        let vs = [t.source(h0), t.source(h1), t.source(h2)];
+        let point = |p: PointRef| -> u32 {
+            match p {
+                PointRef::Corner(k) => vs[k as usize],
+                PointRef::Side(s, j) => {
+                    let h = hs[s as usize];
+                    let k = if h & 1 == 0 { j - 1 } else { n - 1 - j };
+                    nv + (h >> 1) * (n - 1) + k
+                }
+                PointRef::Interior(i) => interior_base + f * points_per_face + i,
+            }
+        };
+        let side = |s: SideRef| -> u32 {
+            match s {
+                SideRef::Piece { side, j, forward } => {
+                    let h = hs[side as usize];
+                    let parity = h & 1;
+                    let k = if parity == 0 { j } else { n - 1 - j };
+                    2 * (n * (h >> 1) + k) + if forward { parity } else { parity ^ 1 }
+                }
+                SideRef::Interior { edge, half } => {
+                    2 * (edge_base + f * template.interior_edges + edge) + half
+                }
+            }
+        };
+        for tri in &template.triangles {
+            for (c, &(p, s)) in corners.iter_mut().zip(tri) {
+                *c = (point(p), side(s));
+            }
+            b.face(&corners);
+        }
+    }
+
+    let mut positions = if GROW {
+        Vec::new()
+    } else {
+        Vec::with_capacity(expected.vertices)
+    };
+    // Old vertices.
+    if rule == TriRule::Loop {
+        par::extend(&mut positions, nv as usize, parallel, |v| {
+            loop_vertex(&t, v as u32)
+        });
+    } else {
+        positions.extend_from_slice(&mesh.positions);
+    }
+    // Edge points.
+    let per_edge = (n - 1) as usize;
+    par::extend(&mut positions, ne as usize * per_edge, parallel, |i| {
+        let e = (i / per_edge) as u32;
+        match rule {
+            TriRule::Loop => loop_edge(&t, e),
+            TriRule::Midpoint => midpoint(&t, e),
+            TriRule::Icosphere => midpoint(&t, e).normalize(),
+            TriRule::Butterfly => butterfly_edge(&t, e),
+            TriRule::Linear => {
+                let k = (i % per_edge) as f64 + 1.0;
+                let a = t.pos(t.source(2 * e));
+                let z = t.pos(t.target(2 * e));
+                a + (z - a) * (k / n as f64)
+            }
+        }
+    });
+    // Interior face points (only for N >= 3: linear).
+    let ppf = points_per_face as usize;
+    if ppf > 0 {
+        par::extend(&mut positions, nf as usize * ppf, parallel, |i| {
+            let f = (i / ppf) as u32;
+            let (a, bb) = template.interior_points[i % ppf];
+            let h0 = t.face_halfedge(f);
+            let h1 = t.next(h0);
+            let p0 = t.pos(t.source(h0));
+            let p1 = t.pos(t.target(h0));
+            let p2 = t.pos(t.target(h1));
+            let nn = n as f64;
+            p0 + (p1 - p0) * (a as f64 / nn) + (p2 - p0) * (bb as f64 / nn)
+        });
+    }
+    b.finish(positions, ctx)
+}
+
+fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {
+    (t.pos(t.source(2 * e)) + t.pos(t.target(2 * e))) * 0.5
+}
+
+/// Loop's vertex rule: `(1 - n β) v + β Σ neighbours` with Loop's original
+/// `β = (5/8 - (3/8 + 1/4 cos(2π/n))²) / n`; on the boundary `3/4 v + 1/8 (left + right)`.
+pub(crate) fn loop_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
+    let p = t.pos(v);
+    if t.is_boundary_vertex(v) {
+        let h = t.vertex_halfedge(v);
+        let right = t.pos(t.target(h));
+        let left = t.pos(t.source(t.prev(h)));
+        return p * 0.75 + (left + right) * 0.125;
+    }
+    let mut sum = DVec3::ZERO;
+    let mut n = 0usize;
+    t.for_outgoing(v, |h| {
+        sum += t.pos(t.target(h));
+        n += 1;
+    });
+    let nf = n as f64;
+    let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / nf).cos();
+    let beta = (5.0 / 8.0 - c * c) / nf;
+    p * (1.0 - nf * beta) + sum * beta
+}
+
+/// Loop's edge rule: `3/8 (a + b) + 1/8 (c + d)`; boundary edges: midpoints.
+pub(crate) fn loop_edge(t: &Topo<'_>, e: u32) -> DVec3 {
+    let h = 2 * e;
+    let (a, b) = (t.pos(t.source(h)), t.pos(t.target(h)));
+    if t.is_boundary_edge(e) {
+        return (a + b) * 0.5;
+    }
+    let c = t.pos(t.target(t.next(h)));
+    let d = t.pos(t.target(t.next(h ^ 1)));
+    (a + b) * 0.375 + (c + d) * 0.125
+}
+
+/// The modified butterfly edge rule (Zorin, Schröder, Sweldens 1996).
+///
+/// - Interior edge, both ends interior of valence 6: the 8-point stencil
+///   `1/2 (a + b) + 1/8 (c + d) - 1/16 (w1 + w2 + w3 + w4)`.
+/// - Interior edge with one interior end of valence `k != 6` (the other regular): Zorin's
+///   one-ring stencil of the extraordinary end; both extraordinary: the average of the two.
+/// - Boundary edge: the 4-point rule `9/16 (a + b) - 1/16 (a' + b')` along the boundary.
+/// - Simplifications (documented): an interior edge with exactly one boundary end uses the
+///   one-ring stencil of its interior end (regular or not); an interior edge whose two ends
+///   are both on the boundary takes the midpoint.
+pub(crate) fn butterfly_edge(t: &Topo<'_>, e: u32) -> DVec3 {
+    let h = 2 * e;
+    let (va, vb) = (t.source(h), t.target(h));
+    let (a, b) = (t.pos(va), t.pos(vb));
+    if t.is_boundary_edge(e) {
+        // Orient along the boundary loop: g is the boundary half-edge of e.
+        let g = if t.is_boundary(h) { h } else { h ^ 1 };
+        let before = t.pos(t.source(t.prev(g)));
+        let after = t.pos(t.target(t.next(g)));
+        return (a + b) * (9.0 / 16.0) - (before + after) * (1.0 / 16.0);
+    }
+    let a_in = !t.is_boundary_vertex(va);
+    let b_in = !t.is_boundary_vertex(vb);
+    match (a_in, b_in) {
+        (true, true) => {
+            let ka = t.valence(va);
+            let kb = t.valence(vb);
+            match (ka == 6, kb == 6) {
+                (true, true) => {
+                    let c = t.pos(t.target(t.next(h)));
+                    let d = t.pos(t.target(t.next(h ^ 1)));
+                    let wing = |g: u32| t.pos(t.target(t.next(g ^ 1)));
+                    let w = wing(t.next(h))
+                        + wing(t.prev(h))
+                        + wing(t.next(h ^ 1))
+                        + wing(t.prev(h ^ 1));
+                    (a + b) * 0.5 + (c + d) * 0.125 - w * (1.0 / 16.0)
+                }
+                (false, true) => one_ring_stencil(t, h),
+                (true, false) => one_ring_stencil(t, h ^ 1),
+                (false, false) => (one_ring_stencil(t, h) + one_ring_stencil(t, h ^ 1)) * 0.5,
+            }
+        }
+        (true, false) => one_ring_stencil(t, h),
+        (false, true) => one_ring_stencil(t, h ^ 1),
+        (false, false) => (a + b) * 0.5,
+    }
+}
+
+/// Zorin's stencil around the (interior) source `x` of `g`, valence `k`: `3/4 x + Σ s_j p_j`,
+/// `p_0` the target of `g`; `k = 3`: `5/12, -1/12, -1/12`; `k = 4`: `3/8, 0, -1/8, 0`;
+/// `k >= 5`: `s_j = (1/4 + cos(2πj/k) + 1/2 cos(4πj/k)) / k`.
+fn one_ring_stencil(t: &Topo<'_>, g: u32) -> DVec3 {
+    let x = t.pos(t.source(g));
+    let k = t.valence(t.source(g));
+    let mut sum = DVec3::ZERO;
+    let mut h = g;
+    for j in 0..k {
+        let s = match (k, j) {
+            (3, 0) => 5.0 / 12.0,
+            (3, _) => -1.0 / 12.0,
+            (4, 0) => 3.0 / 8.0,
+            (4, 2) => -1.0 / 8.0,
+            (4, _) => 0.0,
+            _ => {
+                let kf = k as f64;
+                let th = 2.0 * PI * j as f64 / kf;
+                (0.25 + th.cos() + 0.5 * (2.0 * th).cos()) / kf
+            }
+        };
+        sum += t.pos(t.target(h)) * s;
+        h = t.next(h ^ 1);
+    }
+    x * 0.75 + sum
+}

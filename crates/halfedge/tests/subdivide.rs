@@ -1,0 +1,563 @@
+//! Real subdivision against the schemes' predictions, and the standard geometry.
+
+use glam::DVec3;
+use halfedge::subdivide::{
+    subdivide, subdivide_polygons, supports, verify, verify_polygons, LevelReport, SubdivideOptions,
+};
+use halfedge::{shapes, Error, HalfEdgeMesh, PolygonMesh};
+
+/// Every scheme name with a real subdivision (aliases included).
+const SCHEMES: [&str; 17] = [
+    "loop",
+    "loop-boundary",
+    "loop-general",
+    "midpoint",
+    "icosphere",
+    "butterfly",
+    "tri-split-2",
+    "ternary",
+    "tri-split-4",
+    "catmull-clark",
+    "catmull-clark-quad",
+    "catmull-clark-general",
+    "sqrt3",
+    "sqrt3-boundary",
+    "doo-sabin",
+    "mid-edge",
+    "tri-split-5",
+];
+
+const BASES: [&str; 13] = [
+    "tetrahedron",
+    "octahedron",
+    "icosahedron",
+    "cube",
+    "torus:1",
+    "torus:2",
+    "icosahedron-holes:1",
+    "icosahedron-holes:2",
+    "grid:3x2",
+    "grid:1x1",
+    "quad-grid:3x3",
+    "quad-grid:1x2",
+    "mixed",
+];
+
+fn base(name: &str) -> HalfEdgeMesh {
+    let polygons = shapes::from_name(name).unwrap_or_else(|e| panic!("{name}: {e}"));
+    HalfEdgeMesh::try_from(&polygons).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn opts() -> SubdivideOptions<'static> {
+    SubdivideOptions::default()
+}
+
+/// The number of levels to run so the last level stays small in debug builds.
+fn levels_for(mesh_faces: usize, scheme: &str, max_levels: u32) -> u32 {
+    let growth: usize = match scheme {
+        "ternary" => 9,
+        "tri-split-4" => 16,
+        "tri-split-5" => 25,
+        "doo-sabin" | "mid-edge" => 4,
+        _ => 4,
+    };
+    let mut faces = mesh_faces.max(1) * 4;
+    let mut levels = 0;
+    while levels < max_levels && faces * growth <= 400_000 {
+        faces *= growth;
+        levels += 1;
+    }
+    levels.max(1)
+}
+
+fn assert_reports(what: &str, reports: &[LevelReport]) {
+    for r in reports {
+        assert!(
+            r.is_match(),
+            "{what}: level {}: predicted {:?}, measured {:?}",
+            r.level,
+            r.predicted,
+            r.measured
+        );
+    }
+}
+
+/// Whether the scheme's class admits the mesh (what `subdivide` must accept).
+fn admits(scheme: &str, mesh: &HalfEdgeMesh) -> bool {
+    let counted_as = match scheme {
+        "midpoint" | "icosphere" | "butterfly" if mesh.counts().boundary_edges > 0 => {
+            "loop-boundary"
+        }
+        _ => scheme,
+    };
+    schemes::builtin(counted_as)
+        .and_then(|s| s.initial_state(&mesh.counts()))
+        .is_ok()
+}
+
+#[test]
+fn every_scheme_on_every_base_mesh_matches_its_prediction() {
+    let mut ran = 0;
+    for b in BASES {
+        let mesh = base(b);
+        for scheme in SCHEMES {
+            let levels = levels_for(mesh.n_faces(), scheme, 4);
+            let result = verify(&mesh, scheme, levels, &opts());
+            if admits(scheme, &mesh) {
+                let reports = result.unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                assert_eq!(reports.len(), levels as usize + 1);
+                assert_reports(&format!("{scheme} on {b}"), &reports);
+                let out = subdivide(&mesh, scheme, levels, &opts())
+                    .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                out.check_invariants()
+                    .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                assert!(
+                    out.positions().iter().all(|p| p.is_finite()),
+                    "{scheme} on {b}"
+                );
+                ran += 1;
+            } else {
+                let err = result
+                    .err()
+                    .unwrap_or_else(|| panic!("{scheme} on {b} should be refused"));
+                assert!(matches!(err, Error::Scheme(_)), "{scheme} on {b}: {err}");
+            }
+        }
+    }
+    assert!(ran > 100, "only {ran} (scheme, mesh) pairs ran");
+}
+
+#[test]
+fn growing_buffers_and_threads_give_the_same_mesh() {
+    for (b, scheme) in [
+        ("icosahedron", "loop"),
+        ("cube", "catmull-clark"),
+        ("icosahedron-holes:2", "sqrt3-boundary"),
+        ("mixed", "catmull-clark"),
+        ("torus:1", "doo-sabin"),
+        ("octahedron", "butterfly"),
+    ] {
+        let mesh = base(b);
+        let reference = subdivide(&mesh, scheme, 3, &opts()).expect("preallocated");
+        let grown = subdivide(&mesh, scheme, 3, &opts().with_preallocate(false)).expect("growing");
+        let threaded = subdivide(&mesh, scheme, 3, &opts().with_threads(2)).expect("threads");
+        for other in [&grown, &threaded] {
+            assert_eq!(
+                other.n_vertices(),
+                reference.n_vertices(),
+                "{scheme} on {b}"
+            );
+            assert_eq!(other.n_edges(), reference.n_edges(), "{scheme} on {b}");
+            assert_eq!(other.n_faces(), reference.n_faces(), "{scheme} on {b}");
+            assert_eq!(other.positions(), reference.positions(), "{scheme} on {b}");
+        }
+    }
+}
+
+#[test]
+fn icosphere_stays_on_the_unit_sphere() {
+    let ico = base("icosahedron");
+    assert!(ico
+        .positions()
+        .iter()
+        .all(|p| (p.length() - 1.0).abs() < 1e-12));
+    for level in 1..=4 {
+        let sphere = subdivide(&ico, "icosphere", level, &opts()).expect("icosphere");
+        let worst = sphere
+            .positions()
+            .iter()
+            .map(|p| (p.length() - 1.0).abs())
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-12, "level {level}: |v| off by {worst}");
+        assert_eq!(sphere.n_faces(), 20 * 4usize.pow(level));
+    }
+}
+
+#[test]
+fn catmull_clark_of_the_cube_tightens_inside_the_cube() {
+    let cube = base("cube");
+    assert!(cube
+        .positions()
+        .iter()
+        .all(|p| p.abs().max_element() == 1.0));
+    for level in 1..=5 {
+        let m = subdivide(&cube, "catmull-clark", level, &opts()).expect("catmull-clark");
+        for p in m.positions() {
+            assert!(
+                p.abs().max_element() <= 1.0 + 1e-12,
+                "level {level}: {p} outside the cube"
+            );
+            if level >= 4 {
+                let r = p.length();
+                assert!((0.83..=0.87).contains(&r), "level {level}: |{p}| = {r}");
+            }
+        }
+    }
+}
+
+#[test]
+fn loop_uses_loops_weights() {
+    // Tetrahedron: valence 3, beta = (5/8 - (3/8 + 1/4 cos(2pi/3))^2) / 3 = 3/16.
+    let tet = base("tetrahedron");
+    let out = subdivide(&tet, "loop", 1, &opts()).expect("loop");
+    for v in 0..4 {
+        let p = tet.positions()[v];
+        let sum: DVec3 = tet.positions().iter().sum::<DVec3>() - p;
+        let expected = p * (1.0 - 3.0 * 3.0 / 16.0) + sum * (3.0 / 16.0);
+        assert!(
+            (out.positions()[v] - expected).length() < 1e-12,
+            "vertex {v}"
+        );
+    }
+    // A flat grid stays flat, and its boundary stays on the boundary lines.
+    let grid = base("grid:3x2");
+    let z0 = grid.positions()[0].z;
+    let out = subdivide(&grid, "loop-boundary", 3, &opts()).expect("loop-boundary");
+    assert!(out.positions().iter().all(|p| (p.z - z0).abs() < 1e-12));
+}
+
+#[test]
+fn interpolating_schemes_keep_the_old_vertices() {
+    for (b, scheme) in [
+        ("icosahedron", "butterfly"),
+        ("icosahedron-holes:2", "butterfly"),
+        ("grid:3x2", "butterfly"),
+        ("torus:1", "midpoint"),
+        ("octahedron", "ternary"),
+        ("icosahedron", "icosphere"),
+    ] {
+        let mesh = base(b);
+        let out = subdivide(&mesh, scheme, 1, &opts()).expect(scheme);
+        assert_eq!(
+            &out.positions()[..mesh.n_vertices()],
+            mesh.positions(),
+            "{scheme} on {b}"
+        );
+    }
+}
+
+#[test]
+fn mid_edge_of_a_tetrahedron_is_an_octahedron() {
+    let out = subdivide(&base("tetrahedron"), "mid-edge", 1, &opts()).expect("mid-edge");
+    assert_eq!((out.n_vertices(), out.n_edges(), out.n_faces()), (6, 12, 8));
+    assert!(out.vertices().all(|v| out.valence(v) == 4));
+}
+
+#[test]
+fn doo_sabin_of_the_cube_stays_inside_and_keeps_face_kinds() {
+    let out = subdivide(&base("cube"), "doo-sabin", 1, &opts()).expect("doo-sabin");
+    // 6 shrunken quads, 12 edge quads, 8 corner triangles.
+    assert_eq!(
+        (out.n_vertices(), out.n_edges(), out.n_faces()),
+        (24, 48, 26)
+    );
+    let triangles = out.faces().filter(|&f| out.face_degree(f) == 3).count();
+    assert_eq!(triangles, 8);
+    // Corner of a square face: (n + 5)/(4n) = 9/16 on its own corner, 3/16 on each side
+    // neighbour and 1/16 on the opposite one: (9 - 3 + 3 - 1)/16 = 1/2 along each of the
+    // face's axes.
+    for p in out.positions() {
+        let a = p.abs();
+        let mut c = [a.x, a.y, a.z];
+        c.sort_by(f64::total_cmp);
+        assert!(
+            (c[0] - 0.5).abs() < 1e-12 && (c[1] - 0.5).abs() < 1e-12 && (c[2] - 1.0).abs() < 1e-12,
+            "{p}"
+        );
+    }
+}
+
+#[test]
+fn sqrt3_boundary_alternates_and_trisects_the_boundary() {
+    let grid = base("grid:2x2");
+    let be0 = grid.counts().boundary_edges;
+    let mut be = Vec::new();
+    for level in 0..=4 {
+        let m = subdivide(&grid, "sqrt3-boundary", level, &opts()).expect("sqrt3-boundary");
+        be.push(m.counts().boundary_edges);
+        // The boundary polygon of a flat grid stays on the square's sides.
+        assert!(m.positions().iter().all(|p| p.z.abs() < 1e-12));
+    }
+    assert_eq!(be, [be0, be0, 3 * be0, 3 * be0, 9 * be0]);
+}
+
+#[test]
+fn refusals_are_typed() {
+    let cube = base("cube");
+    assert!(matches!(
+        subdivide(&cube, "loop", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    let grid = base("grid:2x2");
+    assert!(matches!(
+        subdivide(&grid, "sqrt3", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    assert!(matches!(
+        subdivide(&grid, "doo-sabin", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    assert!(matches!(
+        subdivide(&grid, "no-such", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    assert!(matches!(
+        subdivide(&grid, "tri-split-1", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    assert!(!supports("tri-split-1"));
+    let err = subdivide(&base("icosahedron"), "loop", 40, &opts()).unwrap_err();
+    assert!(matches!(err, Error::TooLarge { .. }), "{err}");
+    assert!(err.to_string().contains("loop level"), "{err}");
+}
+
+#[test]
+fn zero_levels_return_the_input() {
+    let ico = base("icosahedron");
+    let out = subdivide(&ico, "loop", 0, &opts()).expect("loop");
+    assert_eq!(out.positions(), ico.positions());
+    assert_eq!(out.n_faces(), 20);
+}
+
+#[test]
+fn progress_reports_every_level() {
+    let seen = std::sync::Mutex::new(Vec::new());
+    let cb = |d: &halfedge::subdivide::LevelDone| {
+        seen.lock()
+            .expect("lock")
+            .push((d.level, d.levels, d.faces));
+    };
+    subdivide(
+        &base("cube"),
+        "catmull-clark",
+        3,
+        &opts().with_progress(&cb),
+    )
+    .expect("cc");
+    assert_eq!(
+        seen.into_inner().expect("lock"),
+        [(1, 3, 24), (2, 3, 96), (3, 3, 384)]
+    );
+}
+
+/// Three triangles on one edge plus a quad fan: non-manifold edges.
+fn book() -> PolygonMesh {
+    let p = vec![
+        DVec3::ZERO,
+        DVec3::X,
+        DVec3::Y,
+        DVec3::Z,
+        DVec3::NEG_Y,
+        DVec3::new(1.0, 1.0, 0.0),
+    ];
+    PolygonMesh::from_faces(p, [[0, 1, 2], [1, 0, 3], [0, 1, 4], [1, 5, 2]])
+}
+
+#[test]
+fn face_lists_subdivide_non_manifold_meshes() {
+    let book = book();
+    for scheme in [
+        "loop-general",
+        "tri-split-3",
+        "tri-split-2",
+        "catmull-clark-general",
+    ] {
+        let reports = verify_polygons(&book, scheme, 3, &opts()).expect(scheme);
+        assert_eq!(reports.len(), 4);
+        assert_reports(scheme, &reports);
+    }
+    // A mixed non-manifold polygon mesh under catmull-clark-general.
+    let mut mixed = book.clone();
+    mixed.positions.push(DVec3::new(2.0, 0.0, 0.0));
+    mixed.push_face(&[1, 6, 5, 2, 0]);
+    assert_reports(
+        "cc-general mixed",
+        &verify_polygons(&mixed, "catmull-clark-general", 3, &opts()).expect("cc"),
+    );
+    // Schemes that need a manifold mesh refuse, and others are not supported on face lists.
+    assert!(matches!(
+        verify_polygons(&book, "loop", 1, &opts()),
+        Err(Error::Scheme(_))
+    ));
+    assert!(matches!(
+        subdivide_polygons(&book, "sqrt3", 1, &opts()),
+        Err(Error::UnsupportedScheme { .. })
+    ));
+}
+
+#[test]
+fn face_lists_agree_with_half_edge_subdivision_on_manifold_meshes() {
+    for (b, scheme) in [
+        ("icosahedron-holes:2", "loop-general"),
+        ("torus:2", "ternary"),
+        ("mixed", "catmull-clark"),
+        ("quad-grid:3x3", "catmull-clark-quad"),
+    ] {
+        let polygons = shapes::from_name(b).expect(b);
+        let he = subdivide(
+            &HalfEdgeMesh::try_from(&polygons).expect(b),
+            scheme,
+            2,
+            &opts(),
+        )
+        .expect(scheme);
+        let fl = subdivide_polygons(&polygons, scheme, 2, &opts()).expect(scheme);
+        assert_eq!(
+            halfedge::stats::face_list_counts(&fl),
+            he.counts(),
+            "{scheme} on {b}"
+        );
+        assert_reports(
+            scheme,
+            &verify_polygons(&polygons, scheme, 2, &opts()).expect(scheme),
+        );
+    }
+}
+
+#[test]
+fn face_lists_refuse_degenerate_faces() {
+    let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y];
+    let bad = PolygonMesh::from_faces(p.clone(), [[0, 1, 0]]);
+    assert!(matches!(
+        subdivide_polygons(&bad, "loop-general", 1, &opts()),
+        Err(Error::RepeatedVertex { .. })
+    ));
+    let out = PolygonMesh::from_faces(p, [[0, 1, 7]]);
+    assert!(matches!(
+        subdivide_polygons(&out, "loop-general", 1, &opts()),
+        Err(Error::VertexOutOfRange { .. })
+    ));
+}
+
+/// Splits every quad of a face list into two triangles (other faces are kept).
+fn triangulate_quads(mesh: &PolygonMesh) -> PolygonMesh {
+    let mut out = PolygonMesh::with_positions(mesh.positions.clone());
+    for face in mesh.faces() {
+        if let [a, b, c, d] = *face {
+            out.push_face(&[a, b, c]);
+            out.push_face(&[a, c, d]);
+        } else {
+            out.push_face(face);
+        }
+    }
+    out
+}
+
+/// The paper's Theorem 5.2 experiment: the icosahedron with two holes under the boundary-aware
+/// 4:1 scheme (`BE` doubles, `V' = V + E`, `E' = 2E + 3F`, `F' = 4F`).
+#[test]
+fn paper_icosahedron_with_two_holes_under_loop_boundary() {
+    let mesh = base("icosahedron-holes:2");
+    let c = mesh.counts();
+    assert_eq!(
+        (
+            c.vertices,
+            c.edges,
+            c.faces,
+            c.boundary_edges,
+            c.boundary_loops
+        ),
+        (12, 30, 18, 6, 2)
+    );
+    let reports = verify(&mesh, "loop-boundary", 4, &opts()).expect("loop-boundary");
+    assert_reports("loop-boundary", &reports);
+    let (mut v, mut e, mut f, mut be) = (12u64, 30u64, 18u64, 6u64);
+    for level in 0..=4u32 {
+        let m = subdivide(&mesh, "loop-boundary", level, &opts()).expect("loop-boundary");
+        let c = m.counts();
+        assert_eq!(
+            (c.vertices, c.edges, c.faces, c.boundary_edges),
+            (v, e, f, be),
+            "level {level}"
+        );
+        assert_eq!(c.boundary_loops, 2, "level {level}");
+        (v, e, f, be) = (v + e, 2 * e + 3 * f, 4 * f, 2 * be);
+    }
+    // Level 5 as predicted by the recurrence: F = 18 * 4^5.
+    assert_eq!(f, 18 * 1024);
+}
+
+/// The paper's Corollary 5.1 experiment: closed triangle meshes of genus G under Loop keep
+/// `V - E + F = 2 - 2G`, with `F(s) = 4^s F0`, `E(s) = 3/2 F(s)`, `V(s) = 2 - 2G + F(s)/2`.
+#[test]
+fn paper_tori_of_higher_genus_under_loop() {
+    for genus in 1..=4u32 {
+        let polygons = triangulate_quads(&shapes::torus(genus).expect("torus"));
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("triangulated torus");
+        let f0 = mesh.n_faces() as i64;
+        assert_eq!(mesh.counts().euler_characteristic, 2 - 2 * i64::from(genus));
+        let reports = verify(&mesh, "loop", 3, &opts()).expect("loop");
+        assert_reports(&format!("torus:{genus}"), &reports);
+        for level in 0..=3u32 {
+            let m = subdivide(&mesh, "loop", level, &opts()).expect("loop");
+            let c = m.counts();
+            let f = f0 * 4i64.pow(level);
+            assert_eq!(c.faces as i64, f, "genus {genus} level {level}");
+            assert_eq!(c.edges as i64, 3 * f / 2, "genus {genus} level {level}");
+            assert_eq!(
+                c.vertices as i64,
+                2 - 2 * i64::from(genus) + f / 2,
+                "genus {genus} level {level}"
+            );
+        }
+        // The quad torus under Catmull-Clark keeps its genus too.
+        let quads = HalfEdgeMesh::try_from(&shapes::torus(genus).expect("torus")).expect("torus");
+        assert_reports(
+            "catmull-clark torus",
+            &verify(&quads, "catmull-clark", 3, &opts()).expect("cc"),
+        );
+        let out = subdivide(&quads, "catmull-clark", 3, &opts()).expect("cc");
+        assert_eq!(out.counts().euler_characteristic, 2 - 2 * i64::from(genus));
+    }
+}
+
+fn meshes_dir() -> Option<std::path::PathBuf> {
+    match std::env::var_os("SUBCOUNT_MESHES") {
+        Some(dir) => Some(std::path::PathBuf::from(dir)),
+        None => {
+            eprintln!("SUBCOUNT_MESHES is not set: skipping the tests over the shared meshes");
+            None
+        }
+    }
+}
+
+/// The paper's 3Holes mesh (genus 3): 3596 vertices, 10800 edges, 7200 faces, then Loop.
+#[test]
+fn paper_three_holes_counts() {
+    let Some(dir) = meshes_dir() else { return };
+    let polygons = halfedge::io::read_mesh(dir.join("3holes.obj")).expect("3holes.obj");
+    let mesh = HalfEdgeMesh::try_from(&polygons).expect("3holes is a valid mesh");
+    let c = mesh.counts();
+    assert_eq!((c.vertices, c.edges, c.faces), (3596, 10800, 7200));
+    assert_eq!(c.euler_characteristic, -4);
+    let reports = verify(&mesh, "loop", 2, &opts()).expect("loop");
+    assert_reports("3holes", &reports);
+    let last = &reports[2];
+    let get = |name: &str| {
+        last.measured
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.clone())
+    };
+    // V2 = V0 + E0 + E1 = 3596 + 10800 + (2 * 10800 + 3 * 7200) = 57596.
+    assert_eq!(get("V"), Some(57596.into()));
+    assert_eq!(get("F"), Some((7200 * 16).into()));
+    // Real meshes through the other families too.
+    for (file, scheme) in [
+        ("3holes.obj", "sqrt3"),
+        ("3holes.obj", "butterfly"),
+        ("planexy.obj", "sqrt3-boundary"),
+        ("face.obj", "loop-boundary"),
+        ("halftunnel.obj", "catmull-clark"),
+        ("fandisk_quads.obj", "doo-sabin"),
+        ("osd_catmark_nonquads.obj", "catmull-clark"),
+        ("eight.obj", "mid-edge"),
+    ] {
+        let polygons = halfedge::io::read_mesh(dir.join(file)).expect(file);
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect(file);
+        assert_reports(
+            &format!("{scheme} on {file}"),
+            &verify(&mesh, scheme, 2, &opts()).expect(scheme),
+        );
+    }
+}

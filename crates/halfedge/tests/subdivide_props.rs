@@ -1,0 +1,281 @@
+//! Property tests: on random small meshes, every applicable scheme's real subdivision matches
+//! the predicted counts (every state component) for 3 levels.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use halfedge::subdivide::{subdivide, verify, verify_polygons, SubdivideOptions};
+use halfedge::{shapes, HalfEdgeMesh, PolygonMesh};
+use proptest::prelude::*;
+
+const HALF_EDGE_SCHEMES: [&str; 11] = [
+    "loop",
+    "loop-boundary",
+    "butterfly",
+    "ternary",
+    "catmull-clark",
+    "catmull-clark-quad",
+    "sqrt3",
+    "sqrt3-boundary",
+    "doo-sabin",
+    "mid-edge",
+    "tri-split-2",
+];
+
+fn opts() -> SubdivideOptions<'static> {
+    SubdivideOptions::default()
+}
+
+/// Mirrors what `subdivide` accepts: the scheme's class (the 4:1 aliases count as
+/// `loop-boundary` on a boundary).
+fn admits(scheme: &str, mesh: &HalfEdgeMesh) -> bool {
+    let counts = mesh.counts();
+    let counted_as = match scheme {
+        "butterfly" if counts.boundary_edges > 0 => "loop-boundary",
+        _ => scheme,
+    };
+    let class_ok = schemes::builtin(counted_as)
+        .and_then(|s| s.initial_state(&counts))
+        .is_ok();
+    let valence_ok = !matches!(scheme, "doo-sabin" | "mid-edge")
+        || mesh.vertices().all(|v| mesh.valence(v) >= 3);
+    class_ok && valence_ok
+}
+
+/// Runs every applicable scheme for 3 levels and checks every component at every level.
+fn check_all(mesh: &HalfEdgeMesh) -> Result<usize, TestCaseError> {
+    let mut ran = 0;
+    for scheme in HALF_EDGE_SCHEMES {
+        if !admits(scheme, mesh) {
+            prop_assert!(
+                subdivide(mesh, scheme, 1, &opts()).is_err(),
+                "{scheme} should refuse"
+            );
+            continue;
+        }
+        let reports = verify(mesh, scheme, 3, &opts())
+            .map_err(|e| TestCaseError::fail(format!("{scheme}: {e}")))?;
+        prop_assert_eq!(reports.len(), 4);
+        for r in &reports {
+            prop_assert!(
+                r.is_match(),
+                "{} level {}: predicted {:?}, measured {:?}",
+                scheme,
+                r.level,
+                r.predicted,
+                r.measured
+            );
+        }
+        ran += 1;
+    }
+    Ok(ran)
+}
+
+/// Faces of a triangle grid with a random subset removed (at least one face kept).
+fn mesh_with_boundary() -> impl Strategy<Value = PolygonMesh> {
+    (1u32..=4, 1u32..=4)
+        .prop_flat_map(|(w, h)| {
+            let n = (2 * w * h) as usize;
+            (Just((w, h)), proptest::collection::vec(any::<bool>(), n))
+        })
+        .prop_map(|((w, h), keep)| {
+            let grid = shapes::grid(w, h).expect("grid");
+            let mut out = PolygonMesh::with_positions(grid.positions.clone());
+            for (face, &k) in grid.faces().zip(&keep) {
+                if k {
+                    out.push_face(face);
+                }
+            }
+            if out.n_faces() == 0 {
+                out.push_face(grid.face(0));
+            }
+            out
+        })
+}
+
+/// For each edge with two faces, the pair (face, face), first face containing `a -> b`.
+fn face_pairs(mesh: &PolygonMesh) -> Vec<(usize, usize, u32, u32)> {
+    let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
+    for (f, face) in mesh.faces().enumerate() {
+        for i in 0..face.len() {
+            directed.insert((face[i], face[(i + 1) % face.len()]), f);
+        }
+    }
+    let mut pairs: Vec<_> = directed
+        .iter()
+        .filter(|(&(a, b), _)| a < b)
+        .filter_map(|(&(a, b), &f)| directed.get(&(b, a)).map(|&g| (f, g, a, b)))
+        .collect();
+    pairs.sort_unstable();
+    pairs
+}
+
+/// Merges the triangles `f` (with `a -> b`) and `g` (with `b -> a`) into a quad.
+fn merge(mesh: &PolygonMesh, f: usize, g: usize, a: u32, b: u32) -> Vec<u32> {
+    let rot = |face: &[u32], start: u32| -> Vec<u32> {
+        let i = face
+            .iter()
+            .position(|&v| v == start)
+            .expect("vertex in face");
+        (0..face.len())
+            .map(|k| face[(i + k) % face.len()])
+            .collect()
+    };
+    let t1 = rot(mesh.face(f), a); // a, b, c
+    let t2 = rot(mesh.face(g), b); // b, a, d
+    vec![a, t2[2], b, t1[2]]
+}
+
+/// A triangle mesh (grid with boundary, or a closed triangulated torus) with random pairs of
+/// triangles merged into quads.
+fn mixed_polygon_mesh() -> impl Strategy<Value = PolygonMesh> {
+    (
+        prop_oneof![
+            (1u32..=3, 1u32..=3).prop_map(|(w, h)| shapes::grid(w, h).expect("grid")),
+            (1u32..=2).prop_map(|g| triangulate(&shapes::torus(g).expect("torus"))),
+            Just(shapes::icosahedron()),
+        ],
+        proptest::collection::vec(any::<bool>(), 64),
+    )
+        .prop_map(|(mesh, picks)| {
+            let mut used = vec![false; mesh.n_faces()];
+            let mut faces: Vec<Vec<u32>> = Vec::new();
+            for (k, (f, g, a, b)) in face_pairs(&mesh).into_iter().enumerate() {
+                if picks[k % picks.len()]
+                    && !used[f]
+                    && !used[g]
+                    && mesh.face(f).len() == 3
+                    && mesh.face(g).len() == 3
+                {
+                    used[f] = true;
+                    used[g] = true;
+                    faces.push(merge(&mesh, f, g, a, b));
+                }
+            }
+            for (f, face) in mesh.faces().enumerate() {
+                if !used[f] {
+                    faces.push(face.to_vec());
+                }
+            }
+            PolygonMesh::from_faces(mesh.positions.clone(), faces)
+        })
+}
+
+/// Splits every quad into two triangles.
+fn triangulate(mesh: &PolygonMesh) -> PolygonMesh {
+    let mut out = PolygonMesh::with_positions(mesh.positions.clone());
+    for face in mesh.faces() {
+        if let [a, b, c, d] = *face {
+            out.push_face(&[a, b, c]);
+            out.push_face(&[a, c, d]);
+        } else {
+            out.push_face(face);
+        }
+    }
+    out
+}
+
+/// Closed triangle meshes of genus 0..=3 with random edge flips (flips that would break the
+/// mesh are skipped by the validation).
+fn closed_mesh() -> impl Strategy<Value = PolygonMesh> {
+    (
+        prop_oneof![
+            Just(shapes::octahedron()),
+            Just(shapes::icosahedron()),
+            (1u32..=3).prop_map(|g| triangulate(&shapes::torus(g).expect("torus"))),
+        ],
+        proptest::collection::vec(any::<proptest::sample::Index>(), 0..6),
+    )
+        .prop_map(|(mut mesh, flips)| {
+            for pick in flips {
+                let pairs = face_pairs(&mesh);
+                let (f, g, a, b) = pairs[pick.index(pairs.len())];
+                let quad = merge(&mesh, f, g, a, b); // a, d, b, c
+                let (d, c) = (quad[1], quad[3]);
+                let mut faces: Vec<Vec<u32>> = mesh
+                    .faces()
+                    .enumerate()
+                    .filter(|&(k, _)| k != f && k != g)
+                    .map(|(_, face)| face.to_vec())
+                    .collect();
+                faces.push(vec![c, a, d]);
+                faces.push(vec![d, b, c]);
+                let flipped = PolygonMesh::from_faces(mesh.positions.clone(), faces);
+                if HalfEdgeMesh::try_from(&flipped).is_ok() {
+                    mesh = flipped;
+                }
+            }
+            mesh
+        })
+}
+
+/// Random triangles on 8 vertices: non-manifold edges and vertices welcome.
+fn triangle_soup() -> impl Strategy<Value = PolygonMesh> {
+    proptest::collection::vec((0u32..8, 0u32..8, 0u32..8), 1..10).prop_map(|tris| {
+        let positions = (0..8)
+            .map(|i| DVec3::new(f64::from(i), f64::from(i * i % 5), f64::from(i % 3)))
+            .collect();
+        let faces: Vec<[u32; 3]> = tris
+            .into_iter()
+            .filter(|&(a, b, c)| a != b && b != c && a != c)
+            .map(|(a, b, c)| [a, b, c])
+            .collect();
+        let faces = if faces.is_empty() {
+            vec![[0, 1, 2]]
+        } else {
+            faces
+        };
+        PolygonMesh::from_faces(positions, faces)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    #[test]
+    fn boundary_meshes_match_predictions(polygons in mesh_with_boundary()) {
+        let mesh = HalfEdgeMesh::try_from(&polygons);
+        prop_assume!(mesh.is_ok(), "removing faces pinched a vertex");
+        let mesh = mesh.expect("checked");
+        let ran = check_all(&mesh)?;
+        prop_assert!(ran >= 4, "only {ran} schemes ran");
+    }
+
+    #[test]
+    fn mixed_polygon_meshes_match_predictions(polygons in mixed_polygon_mesh()) {
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("merging keeps the mesh valid");
+        let ran = check_all(&mesh)?;
+        prop_assert!(ran >= 1);
+    }
+
+    #[test]
+    fn closed_meshes_match_predictions(polygons in closed_mesh()) {
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("flips are validated");
+        prop_assert!(mesh.is_closed());
+        let ran = check_all(&mesh)?;
+        prop_assert!(ran >= 8, "only {ran} schemes ran");
+    }
+
+    #[test]
+    fn face_lists_match_predictions(polygons in triangle_soup()) {
+        let mut sets: Vec<[u32; 3]> = polygons.faces().map(|f| {
+            let mut k = [f[0], f[1], f[2]];
+            k.sort_unstable();
+            k
+        }).collect();
+        sets.sort_unstable();
+        let duplicates = sets.windows(2).any(|w| w[0] == w[1]);
+        for scheme in ["loop-general", "tri-split-2", "ternary", "catmull-clark-general"] {
+            if duplicates && scheme != "catmull-clark-general" {
+                let refused = verify_polygons(&polygons, scheme, 1, &opts());
+                prop_assert!(matches!(refused, Err(halfedge::Error::DuplicateFace { .. })), "{scheme}");
+                continue;
+            }
+            let reports = verify_polygons(&polygons, scheme, 3, &opts())
+                .map_err(|e| TestCaseError::fail(format!("{scheme}: {e}")))?;
+            for r in &reports {
+                prop_assert!(r.is_match(), "{} level {}: {:?} vs {:?}", scheme, r.level, r.predicted, r.measured);
+            }
+        }
+    }
+}

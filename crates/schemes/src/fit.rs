@@ -1,0 +1,478 @@
+//! Budgets and densities: the highest level that fits ([`fit`]), byte sizes
+//! ([`parse_byte_size`]), and the paper's eq. (1) ([`density`], [`level_for_area`]).
+//!
+//! # The search, and why it ends
+//!
+//! [`fit`] and [`level_for_area`] look for the first level at which a quantity `q` (V, E, F
+//! or bytes, each a linear function of the state) crosses a bound. They rely on one
+//! assumption, which holds for every built-in scheme and is **checked numerically** along the
+//! search for any plan (an [`Error::NotMonotone`] refusal otherwise): `q` never decreases
+//! from level 1 on.
+//!
+//! The search probes windows of `W + 1` consecutive levels `h, h + 1, ..., h + W` at
+//! doubling `h`, with `W = n * p` for the last stage (`n` state components, period `p`):
+//!
+//! - if a window crosses the bound, a binary search between the last level known below and
+//!   the first known above finds the answer;
+//! - if `q` is constant across a window, it is constant forever: the differences
+//!   `q(s + 1) - q(s)` restricted to one residue class mod `p` have the form `c^T M^t v`
+//!   for the `n x n` period matrix `M`, so by Cayley-Hamilton they satisfy a linear
+//!   recurrence of order `n` with leading coefficient 1, and `n` consecutive zeros force
+//!   all later ones to vanish. The answer is then "every level" ([`Fit::Unbounded`]) or
+//!   "never" ([`Error::NeverReached`]).
+//!
+//! Otherwise `q`, an integer that never decreases and is not eventually constant, grows
+//! without bound, so some probe crosses the bound: the search ends. (Levels are `u64`; and
+//! as a resource guard, a probe whose state would exceed 2^26 bits is refused with
+//! [`Error::SearchTooLarge`]: that happens only when the limited quantity grows
+//! polynomially while another state component grows exponentially.)
+
+use num_bigint::BigInt;
+use num_traits::{ToPrimitive, Zero};
+
+use crate::{Error, LevelCounts, Plan, Result};
+
+/// Limits for [`fit`]; every limit that is set must hold.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Budget {
+    /// At most this many vertices.
+    pub max_vertices: Option<BigInt>,
+    /// At most this many edges.
+    pub max_edges: Option<BigInt>,
+    /// At most this many faces.
+    pub max_faces: Option<BigInt>,
+    /// At most this many bytes for a mesh layout.
+    pub memory: Option<MemoryBudget>,
+}
+
+/// A byte budget `bytes_per_vertex * V + bytes_per_edge * E + bytes_per_face * F <= bytes`.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct MemoryBudget {
+    /// The budget in bytes.
+    pub bytes: BigInt,
+    /// Bytes per vertex (e.g. 12 for three `f32`).
+    pub bytes_per_vertex: u64,
+    /// Bytes per edge (0 for a face-vertex layout).
+    pub bytes_per_edge: u64,
+    /// Bytes per face (e.g. 12 for three `u32` indices).
+    pub bytes_per_face: u64,
+}
+
+/// The answer of [`fit`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Fit {
+    /// The highest level within the budget, with its counts.
+    Level(LevelCounts),
+    /// Every level fits: the counts stop growing at `counts.level` and stay there.
+    Unbounded {
+        /// The counts from which nothing changes any more.
+        counts: LevelCounts,
+    },
+}
+
+/// The largest state (in total bits) a search computes: 2^26 bits, 8 MiB.
+const MAX_STATE_BITS: u64 = 1 << 26;
+
+struct Quantity {
+    name: String,
+    bound: BigInt,
+    weights: [BigInt; 3],
+}
+
+impl Quantity {
+    fn value(&self, vef: &[BigInt; 3]) -> BigInt {
+        self.weights.iter().zip(vef).map(|(w, x)| w * x).sum()
+    }
+}
+
+fn quantities(budget: &Budget) -> Vec<Quantity> {
+    let one = |k: usize| {
+        let mut w: [BigInt; 3] = Default::default();
+        w[k] = BigInt::from(1);
+        w
+    };
+    let mut out = Vec::new();
+    for (name, bound, k) in [
+        ("V", &budget.max_vertices, 0),
+        ("E", &budget.max_edges, 1),
+        ("F", &budget.max_faces, 2),
+    ] {
+        if let Some(b) = bound {
+            out.push(Quantity {
+                name: name.into(),
+                bound: b.clone(),
+                weights: one(k),
+            });
+        }
+    }
+    if let Some(m) = &budget.memory {
+        out.push(Quantity {
+            name: "bytes".into(),
+            bound: m.bytes.clone(),
+            weights: [m.bytes_per_vertex, m.bytes_per_edge, m.bytes_per_face].map(BigInt::from),
+        });
+    }
+    out
+}
+
+/// The outcome of the generic search.
+enum Crossing {
+    /// The first level at which the predicate holds.
+    At(u64),
+    /// The predicate never holds; the values are constant from this level on.
+    Never(u64),
+}
+
+/// Values of the quantities at each level, with a cache-free evaluation through the plan.
+struct Probe<'a> {
+    plan: &'a Plan,
+    x0: &'a [BigInt],
+    weights: Vec<[BigInt; 3]>,
+    names: Vec<String>,
+}
+
+impl Probe<'_> {
+    fn values_of(&self, vef: &[BigInt; 3]) -> Vec<BigInt> {
+        self.weights
+            .iter()
+            .map(|w| w.iter().zip(vef).map(|(a, b)| a * b).sum())
+            .collect()
+    }
+
+    fn at(&self, level: u64) -> Result<Vec<BigInt>> {
+        let state = self.plan.state_at(self.x0, level)?;
+        Ok(self.values_of(&self.plan.vef(level, &state)?))
+    }
+
+    /// Values at `h..=h + w`, stepping within the last stage.
+    fn window(&self, h: u64, w: u64) -> Result<Vec<Vec<BigInt>>> {
+        let (scheme, start, _) = self.plan.tail();
+        let mut state = self.plan.tail_state(self.x0, h)?;
+        let bits: u64 = state.iter().map(BigInt::bits).sum();
+        if bits > MAX_STATE_BITS {
+            return Err(Error::SearchTooLarge { level: h, bits });
+        }
+        let mut out = vec![self.values_of(&scheme.vef(&state)?)];
+        for level in h + 1..=h.saturating_add(w) {
+            state = crate::scheme::apply(scheme.rule().matrix_of_step(level - start), &state);
+            out.push(self.values_of(&scheme.vef(&state)?));
+        }
+        Ok(out)
+    }
+
+    fn check_order(&self, a: (u64, &[BigInt]), b: (u64, &[BigInt])) -> Result {
+        if a.0 == 0 {
+            return Ok(());
+        }
+        for (k, (x, y)) in a.1.iter().zip(b.1).enumerate() {
+            if y < x {
+                return Err(Error::NotMonotone {
+                    what: self.names[k].clone(),
+                    level: a.0,
+                    next: b.0,
+                    from: x.to_string(),
+                    to: y.to_string(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The first level where `hit` holds (`hit` must be monotone: once true, true after).
+    fn first(&self, hit: &dyn Fn(&[BigInt]) -> bool) -> Result<Crossing> {
+        let v0 = self.at(0)?;
+        if hit(&v0) {
+            return Ok(Crossing::At(0));
+        }
+        if let Some(last) = self.plan.last_level() {
+            return self.bounded(hit, last, v0);
+        }
+        let (scheme, start, tail_start) = self.plan.tail();
+        let w = (scheme.dim() as u64).saturating_mul(scheme.period());
+        let mut lo = (0u64, v0);
+        // Strictly after the start of the last stage, where the plan reports its own state.
+        let mut h = tail_start.max(start.saturating_add(1));
+        loop {
+            let values = self.window(h, w)?;
+            self.check_order((lo.0, &lo.1), (h, &values[0]))?;
+            for (j, pair) in values.windows(2).enumerate() {
+                self.check_order((h + j as u64, &pair[0]), (h + j as u64 + 1, &pair[1]))?;
+            }
+            if let Some(j) = values.iter().position(|v| hit(v)) {
+                let hi = h + j as u64;
+                if j > 0 {
+                    return Ok(Crossing::At(hi));
+                }
+                return self.bisect(hit, lo, (hi, values[0].clone()));
+            }
+            if values.windows(2).all(|p| p[0] == p[1]) {
+                return Ok(Crossing::Never(h));
+            }
+            let end = h.saturating_add(w);
+            lo = (end, values[values.len() - 1].clone());
+            let next = h.saturating_mul(2).max(end.saturating_add(1));
+            if next == h || end == u64::MAX {
+                return Ok(Crossing::Never(h));
+            }
+            h = next;
+        }
+    }
+
+    fn bounded(
+        &self,
+        hit: &dyn Fn(&[BigInt]) -> bool,
+        last: u64,
+        v0: Vec<BigInt>,
+    ) -> Result<Crossing> {
+        let v_last = self.at(last)?;
+        if !hit(&v_last) {
+            return Ok(Crossing::Never(last));
+        }
+        self.bisect(hit, (0, v0), (last, v_last))
+    }
+
+    /// `lo` misses, `hi` hits: the first hit in `(lo, hi]`.
+    fn bisect(
+        &self,
+        hit: &dyn Fn(&[BigInt]) -> bool,
+        mut lo: (u64, Vec<BigInt>),
+        mut hi: (u64, Vec<BigInt>),
+    ) -> Result<Crossing> {
+        while hi.0 - lo.0 > 1 {
+            let mid = lo.0 + (hi.0 - lo.0) / 2;
+            let v = self.at(mid)?;
+            self.check_order((lo.0, &lo.1), (mid, &v))?;
+            self.check_order((mid, &v), (hi.0, &hi.1))?;
+            if hit(&v) {
+                hi = (mid, v);
+            } else {
+                lo = (mid, v);
+            }
+        }
+        Ok(Crossing::At(hi.0))
+    }
+}
+
+/// The highest level whose counts stay within every limit of `budget`.
+///
+/// # Errors
+///
+/// [`Error::NoLimit`] when `budget` sets nothing, [`Error::NothingFits`] when level 0 already
+/// exceeds a limit, [`Error::NotMonotone`] when a limited quantity decreases from level 1 on
+/// (see the module documentation), and the errors of [`Plan::state_at`] and [`Plan::vef`].
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use schemes::{fit, Budget, CountsInput, Fit, Plan};
+///
+/// let plan = Plan::parse("loop")?;
+/// let x0 = plan.state_from_input(&"V=12,E=30,F=20".parse::<CountsInput>()?)?;
+/// let budget = Budget { max_vertices: Some(BigInt::from(u32::MAX)), ..Budget::default() };
+/// let Fit::Level(c) = fit(&plan, &x0, &budget)? else { panic!("loop grows") };
+/// // V(s) = 12 + 10 (4^s - 1): level 15 has 10737418242 > 2^32 - 1 vertices.
+/// assert_eq!(c.level, 14);
+/// assert_eq!(c.vertices, BigInt::from(2684354562u64));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fit(plan: &Plan, x0: &[BigInt], budget: &Budget) -> Result<Fit> {
+    let qs = quantities(budget);
+    if qs.is_empty() {
+        return Err(Error::NoLimit);
+    }
+    let probe = Probe {
+        plan,
+        x0,
+        weights: qs.iter().map(|q| q.weights.clone()).collect(),
+        names: qs.iter().map(|q| q.name.clone()).collect(),
+    };
+    let bounds: Vec<BigInt> = qs.iter().map(|q| q.bound.clone()).collect();
+    let exceeds = |v: &[BigInt]| v.iter().zip(&bounds).any(|(x, b)| x > b);
+    match probe.first(&exceeds)? {
+        Crossing::At(0) => {
+            let c = plan.level_counts(x0, 0)?;
+            let vef = [c.vertices.clone(), c.edges.clone(), c.faces.clone()];
+            let detail: Vec<String> = qs
+                .iter()
+                .filter(|q| q.value(&vef) > q.bound)
+                .map(|q| format!("{} = {} > {}", q.name, q.value(&vef), q.bound))
+                .collect();
+            Err(Error::NothingFits {
+                detail: detail.join(", "),
+            })
+        }
+        Crossing::At(s) => Ok(Fit::Level(plan.level_counts(x0, s - 1)?)),
+        Crossing::Never(s) => Ok(match plan.last_level() {
+            Some(last) => Fit::Level(plan.level_counts(x0, last)?),
+            None => Fit::Unbounded {
+                counts: plan.level_counts(x0, s)?,
+            },
+        }),
+    }
+}
+
+/// Parses a byte size: plain bytes (`1048576`), SI units (`kB`, `MB`, `GB`, `TB`, `PB`, `EB`:
+/// powers of 1000) or binary units (`KiB`, `MiB`, `GiB`, `TiB`, `PiB`, `EiB`: powers of 1024),
+/// with an optional `B` suffix, a decimal fraction if the result is a whole number of bytes
+/// (`1.5GiB`), and optional spaces. Unit letters are case-insensitive.
+///
+/// # Errors
+///
+/// [`Error::ByteSize`] naming the problem.
+///
+/// ```
+/// assert_eq!(schemes::parse_byte_size("2GiB")?, 2 << 30);
+/// assert_eq!(schemes::parse_byte_size("2 GB")?, 2_000_000_000);
+/// assert_eq!(schemes::parse_byte_size("1.5KiB")?, 1536);
+/// assert_eq!(schemes::parse_byte_size("4096")?, 4096);
+/// assert!(schemes::parse_byte_size("2 GiX").is_err());
+/// # Ok::<(), schemes::Error>(())
+/// ```
+pub fn parse_byte_size(text: &str) -> Result<u128> {
+    let bad = |reason: &str| Error::ByteSize {
+        text: text.to_string(),
+        reason: reason.to_string(),
+    };
+    let t = text.trim();
+    let split = t
+        .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .unwrap_or(t.len());
+    let (number, unit) = (t[..split].trim(), t[split..].trim());
+    if number.is_empty() {
+        return Err(bad("expected a number, e.g. 2GiB"));
+    }
+    let multiplier: u128 = match unit.to_ascii_lowercase().as_str() {
+        "" | "b" => 1,
+        "k" | "kb" => 1000,
+        "m" | "mb" => 1000u128.pow(2),
+        "g" | "gb" => 1000u128.pow(3),
+        "t" | "tb" => 1000u128.pow(4),
+        "p" | "pb" => 1000u128.pow(5),
+        "e" | "eb" => 1000u128.pow(6),
+        "ki" | "kib" => 1 << 10,
+        "mi" | "mib" => 1 << 20,
+        "gi" | "gib" => 1 << 30,
+        "ti" | "tib" => 1 << 40,
+        "pi" | "pib" => 1 << 50,
+        "ei" | "eib" => 1 << 60,
+        _ => {
+            return Err(bad(
+                "unknown unit (use B, kB, MB, GB, TB, PB, EB, KiB, MiB, GiB, TiB, PiB or EiB)",
+            ))
+        }
+    };
+    let (int, frac) = number.split_once('.').unwrap_or((number, ""));
+    if frac.contains('.') || (int.is_empty() && frac.is_empty()) {
+        return Err(bad("not a number"));
+    }
+    let digits = format!("{int}{frac}");
+    let scaled: u128 = digits.parse().map_err(|_| bad("too large"))?;
+    let den = 10u128
+        .checked_pow(u32::try_from(frac.len()).map_err(|_| bad("too many decimals"))?)
+        .ok_or_else(|| bad("too many decimals"))?;
+    let total = scaled
+        .checked_mul(multiplier)
+        .ok_or_else(|| bad("too large"))?;
+    if total % den != 0 {
+        return Err(bad("not a whole number of bytes"));
+    }
+    Ok(total / den)
+}
+
+/// The paper's eq. (1) at one level: mean co-volume area and scale factor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Density {
+    /// `mu = 4 pi r^2 / N_V` (floating point: it involves pi).
+    pub mean_area: f64,
+    /// `phi = sqrt(tau / mu)`.
+    pub phi: f64,
+}
+
+/// Eq. (1) of the paper: `mu = 4 pi r^2 / n_v` and `phi = sqrt(tau / mu)`.
+///
+/// # Errors
+///
+/// [`Error::Density`] when `n_v` is zero, `radius` is not positive and finite, or `tau` is
+/// negative or not finite.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// let d = schemes::density(&BigInt::from(642), 1.0, 0.5)?;
+/// assert!((d.mean_area - 4.0 * std::f64::consts::PI / 642.0).abs() < 1e-15);
+/// assert!((d.phi - (0.5 / d.mean_area).sqrt()).abs() < 1e-12);
+/// # Ok::<(), schemes::Error>(())
+/// ```
+pub fn density(n_v: &BigInt, radius: f64, tau: f64) -> Result<Density> {
+    let bad = |reason: String| Error::Density { reason };
+    if n_v.is_zero() || n_v < &BigInt::zero() {
+        return Err(bad(format!("the vertex count must be positive, got {n_v}")));
+    }
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(bad(format!("the radius must be positive, got {radius}")));
+    }
+    if !(tau.is_finite() && tau >= 0.0) {
+        return Err(bad(format!("tau must be non-negative, got {tau}")));
+    }
+    let n = n_v.to_f64().unwrap_or(f64::INFINITY);
+    let mean_area = 4.0 * std::f64::consts::PI * radius * radius / n;
+    Ok(Density {
+        mean_area,
+        phi: (tau / mean_area).sqrt(),
+    })
+}
+
+/// The smallest level whose mean co-volume area `4 pi r^2 / V` is at most `target_area`,
+/// with its counts.
+///
+/// # Errors
+///
+/// [`Error::Density`] for a radius or target area that is not positive and finite,
+/// [`Error::NeverReached`] when `V` stops growing below the needed count, and the errors of
+/// the search (see the module documentation).
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use schemes::{level_for_area, CountsInput, Plan};
+/// let plan = Plan::parse("icosphere")?;
+/// let x0 = plan.state_from_input(&"V=12,E=30,F=20".parse::<CountsInput>()?)?;
+/// // 4 pi / 0.01 = 1256.6 vertices needed: level 3 has 642, level 4 has 2562.
+/// let c = level_for_area(&plan, &x0, 1.0, 0.01)?;
+/// assert_eq!((c.level, c.vertices), (4, BigInt::from(2562)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn level_for_area(
+    plan: &Plan,
+    x0: &[BigInt],
+    radius: f64,
+    target_area: f64,
+) -> Result<LevelCounts> {
+    if !(radius.is_finite() && radius > 0.0) {
+        return Err(Error::Density {
+            reason: format!("the radius must be positive, got {radius}"),
+        });
+    }
+    if !(target_area.is_finite() && target_area > 0.0) {
+        return Err(Error::Density {
+            reason: format!("the target area must be positive, got {target_area}"),
+        });
+    }
+    let needed = 4.0 * std::f64::consts::PI * radius * radius / target_area;
+    let probe = Probe {
+        plan,
+        x0,
+        weights: vec![[1, 0, 0].map(BigInt::from)],
+        names: vec!["V".into()],
+    };
+    let reached = |v: &[BigInt]| v[0].to_f64().unwrap_or(f64::INFINITY) >= needed;
+    match probe.first(&reached)? {
+        Crossing::At(s) => plan.level_counts(x0, s),
+        Crossing::Never(s) => {
+            let c = plan.level_counts(x0, s)?;
+            Err(Error::NeverReached {
+                what: "V".into(),
+                target: format!("{needed:.6e} (for a mean area of {target_area})"),
+                value: c.vertices.to_string(),
+                level: s,
+            })
+        }
+    }
+}
