@@ -133,8 +133,16 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     Ok(0)
 }
 
-fn formula(args: FormulaArgs, _out: &mut impl Write) -> Result<u8, Failure> {
-    let _dynamics = Dynamics::from_source(&args.source)?;
-    let _ = FormulaFormat::Text;
-    Err(usage!("formula is not available yet"))
+fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let dynamics = Dynamics::from_source(&args.source)?;
+    let form = dynamics.recurrence.closed_form();
+    let text = match args.format {
+        FormulaFormat::Text => form.to_text(),
+        FormulaFormat::Latex => form.to_latex(),
+        FormulaFormat::Rust => form.to_rust("counts"),
+        FormulaFormat::Json => serde_json::to_string_pretty(&form.to_json())
+            .map_err(|e| Failure::new(Kind::Input, e))?,
+    };
+    writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
+    Ok(0)
 }
