@@ -1,5 +1,7 @@
 //! Command-line flags (clap). The names here are a public contract: extend, never rename.
 
+use std::path::PathBuf;
+
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
 /// How big will a subdivision surface be? Exact counts, closed forms and real subdivision.
@@ -32,6 +34,29 @@ pub(crate) struct Source {
     /// Initial values in state order, e.g. 12,30,20.
     #[arg(long, value_name = "VALUES", allow_hyphen_values = true)]
     pub(crate) init: Option<String>,
+    /// A built-in scheme (`subcount schemes` lists them), or a composition `A:k,B`.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) scheme: Option<String>,
+    /// A custom scheme from a TOML file (usable by name inside --scheme compositions).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) scheme_file: Option<PathBuf>,
+    /// Initial mesh counts, e.g. V=12,E=30,F=20 (keys: V, E, IE, BE, NME, F, H or state names).
+    #[arg(long, value_name = "KEY=VALUE,...", allow_hyphen_values = true)]
+    pub(crate) counts: Option<String>,
+    #[command(flatten)]
+    pub(crate) mesh: MeshSource,
+}
+
+/// A mesh to read statistics from: a file or a generated base mesh.
+#[derive(Args, Debug, Clone, Default)]
+pub(crate) struct MeshSource {
+    /// A mesh file (OBJ or OFF).
+    #[arg(long, value_name = "FILE")]
+    pub(crate) mesh: Option<PathBuf>,
+    /// A generated base mesh: tetrahedron, octahedron, icosahedron, cube, torus:G,
+    /// icosahedron-holes:K, grid:WxH, quad-grid:WxH, mixed.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) base: Option<String>,
 }
 
 /// Output formats of `table`.

@@ -5,8 +5,8 @@ use std::io::Write;
 use crate::args::{AtArgs, AtFormat, Command, FormulaArgs, FormulaFormat, TableArgs, TableFormat};
 use crate::failure::{usage, Failure, Kind};
 use crate::levels::parse_levels;
-use crate::model::{estimate_log10, Dynamics};
-use crate::output::{self, DigitSummary, Row};
+use crate::model::Dynamics;
+use crate::output::{self, DigitSummary};
 
 /// Most decimal digits `at` materializes per count without `--allow-large`.
 const MAX_DIGITS: f64 = 1e7;
@@ -29,7 +29,7 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
     guard_digits(&dynamics, &x0, *levels.end(), false)?;
-    let rows = dynamics.rows(&x0, levels);
+    let rows = dynamics.rows(&x0, levels)?;
     let columns = dynamics.columns();
     match args.format {
         TableFormat::Text => output::write_table_text(out, &columns, &rows),
@@ -56,8 +56,7 @@ fn guard_digits(dynamics: &Dynamics, x0: &[num_bigint::BigInt], s: u64, allow_la
     if allow_large {
         return Ok(());
     }
-    let est = estimate_log10(&dynamics.recurrence, x0, s);
-    let worst = est.iter().cloned().fold(0.0f64, f64::max);
+    let worst = dynamics.estimate_log10_max(x0, s)?;
     if worst > MAX_DIGITS {
         let bytes = worst * std::f64::consts::LOG2_10 / 8.0;
         return Err(Failure::new(
@@ -96,22 +95,25 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let x0 = dynamics.initial_state(&args.source)?;
     let columns = dynamics.columns();
     guard_digits(&dynamics, &x0, s, args.allow_large)?;
-    let state = dynamics.state_at(&x0, s);
-    let row = Row { level: s, values: state };
+    let row = dynamics.row_at(&x0, s)?;
     let result = if args.summary {
-        let sums: Vec<DigitSummary> = row.values.iter().map(|v| DigitSummary::of(v, 20)).collect();
+        let sums: Vec<Option<DigitSummary>> =
+            row.values.iter().map(|v| v.as_ref().map(|v| DigitSummary::of(v, 20))).collect();
         match args.format {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");
                 for (name, d) in columns.iter().zip(&sums) {
-                    r = r.and_then(|_| writeln!(out, "{name}: {}", d.text()));
+                    if let Some(d) = d {
+                        r = r.and_then(|_| writeln!(out, "{name}: {}", d.text()));
+                    }
                 }
                 r
             }
             AtFormat::Json => {
                 let mut text = format!("{{\"level\": {s}");
                 for (name, d) in columns.iter().zip(&sums) {
-                    text.push_str(&format!(", {}: {}", output::json_string(name), d.json()));
+                    let d = d.as_ref().map_or_else(|| "null".to_string(), DigitSummary::json);
+                    text.push_str(&format!(", {}: {}", output::json_string(name), d));
                 }
                 text.push('}');
                 writeln!(out, "{text}")
@@ -122,7 +124,9 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");
                 for (name, v) in columns.iter().zip(&row.values) {
-                    r = r.and_then(|_| writeln!(out, "{name} = {v}"));
+                    if let Some(v) = v {
+                        r = r.and_then(|_| writeln!(out, "{name} = {v}"));
+                    }
                 }
                 r
             }
@@ -135,14 +139,81 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
 
 fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let dynamics = Dynamics::from_source(&args.source)?;
-    let form = dynamics.recurrence.closed_form();
-    let text = match args.format {
-        FormulaFormat::Text => form.to_text(),
-        FormulaFormat::Latex => form.to_latex(),
-        FormulaFormat::Rust => form.to_rust("counts"),
-        FormulaFormat::Json => serde_json::to_string_pretty(&form.to_json())
-            .map_err(|e| Failure::new(Kind::Input, e))?,
+    let text = match &dynamics {
+        Dynamics::Matrix(r) => render_form(&r.closed_form(), args.format, "counts")?,
+        Dynamics::Plan(plan) => {
+            let phases = plan.phases();
+            let fn_base = plan.name().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+            if phases.len() == 1 && phases[0].first_level == 0 && phases[0].period == 1 {
+                render_form(&phases[0].recurrence.closed_form(), args.format, &format!("{fn_base}_counts"))?
+            } else {
+                render_phases(&phases, args.format, &fn_base)?
+            }
+        }
     };
     writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
     Ok(0)
+}
+
+fn render_form(form: &recurrence::ClosedForm, format: FormulaFormat, fn_name: &str) -> Result<String, Failure> {
+    Ok(match format {
+        FormulaFormat::Text => form.to_text(),
+        FormulaFormat::Latex => form.to_latex(),
+        FormulaFormat::Rust => form.to_rust(fn_name),
+        FormulaFormat::Json => {
+            serde_json::to_string_pretty(&form.to_json()).map_err(|e| Failure::new(Kind::Input, e))?
+        }
+    })
+}
+
+/// One closed form per phase (residue class of a periodic scheme, or stage of a composition).
+/// Within a phase, `t` counts periods from the phase's first level, and the subscript-0 values
+/// are the counts at that first level.
+fn render_phases(phases: &[schemes::Phase], format: FormulaFormat, fn_base: &str) -> Result<String, Failure> {
+    let mut text = String::new();
+    let mut json = Vec::new();
+    for (i, phase) in phases.iter().enumerate() {
+        let form = phase.recurrence.closed_form();
+        let heading = phase_heading(phase);
+        match format {
+            FormulaFormat::Json => {
+                let body = form.to_json();
+                json.push(serde_json::json!({
+                    "phase": phase.description,
+                    "first_level": phase.first_level,
+                    "period": phase.period,
+                    "last_level": phase.last_level,
+                    "stage": phase.stage,
+                    "forms": body,
+                }));
+            }
+            FormulaFormat::Text => {
+                text.push_str(&format!("# {heading}
+{}
+", form.to_text().replace("(s)", "(t)").replace("^s", "^t")));
+            }
+            FormulaFormat::Latex => {
+                text.push_str(&format!("% {heading}
+{}
+", form.to_latex()));
+            }
+            FormulaFormat::Rust => {
+                text.push_str(&format!("// {heading}
+{}
+", form.to_rust(&format!("{fn_base}_phase{i}"))));
+            }
+        }
+    }
+    if format == FormulaFormat::Json {
+        text = serde_json::to_string_pretty(&json).map_err(|e| Failure::new(Kind::Input, e))?;
+    }
+    Ok(text)
+}
+
+fn phase_heading(phase: &schemes::Phase) -> String {
+    let until = phase.last_level.map(|l| format!(" up to level {l}")).unwrap_or_default();
+    format!(
+        "{}: level s = {} + {}t{until}; X0 below means the count X at level {}",
+        phase.description, phase.first_level, phase.period, phase.first_level
+    )
 }

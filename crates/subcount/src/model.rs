@@ -1,92 +1,307 @@
-//! What a command counts: a recurrence (from `--matrix` or a scheme) and an initial state.
+//! What a command counts: a recurrence (from `--matrix`) or a scheme plan (from `--scheme`,
+//! `--scheme-file`), and its initial state (from `--init`, `--counts`, `--mesh` or `--base`).
 
 use std::ops::RangeInclusive;
 
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
+use schemes::{CountsInput, MeshCounts, Plan, Scheme};
 
-use crate::args::Source;
-use crate::failure::{usage, Failure};
+use crate::args::{MeshSource, Source};
+use crate::failure::{input, usage, Failure, Kind};
 use crate::output::Row;
 
-/// The default recurrence: 4:1 triangle subdivision in the (V, E, F) form.
-pub(crate) const DEFAULT_MATRIX: &str = "[[1,1,0],[0,2,3],[0,0,4]]";
-/// The default initial state: the icosahedron.
-pub(crate) const DEFAULT_INIT: [i64; 3] = [12, 30, 20];
+/// The default scheme and counts: the icosahedron under 4:1 (Loop) subdivision.
+pub(crate) const DEFAULT_SCHEME: &str = "loop";
+/// The icosahedron's counts.
+pub(crate) const DEFAULT_COUNTS: &str = "V=12,E=30,F=20";
 
-/// A recurrence with named components, ready to count.
-pub(crate) struct Dynamics {
-    pub(crate) recurrence: Recurrence,
+/// The rule that advances the state one level.
+pub(crate) enum Dynamics {
+    /// A bare matrix from `--matrix`.
+    Matrix(Recurrence),
+    /// A scheme, a custom scheme or a composition.
+    Plan(Plan),
+}
+
+/// Maps a `schemes` error to an exit code: problems with the typed command line are usage
+/// errors (2); a scheme that does not apply or a bad scheme file is exit 3.
+pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
+    use schemes::Error as E;
+    let kind = match &e {
+        E::NotApplicable { .. } | E::SchemeFile { .. } | E::NoMeshCounts { .. } | E::BadFace { .. } => Kind::Input,
+        E::NothingFits { .. } => Kind::Input,
+        E::SearchTooLarge { .. } => Kind::Guard,
+        _ => Kind::Usage,
+    };
+    Failure::new(kind, e)
+}
+
+/// Reads the mesh named by `--mesh` or `--base`, if any.
+pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMesh>, Failure> {
+    match (&mesh.mesh, &mesh.base) {
+        (Some(_), Some(_)) => Err(usage!("--mesh and --base cannot be used together")),
+        (Some(path), None) => halfedge::io::read_mesh(path).map(Some).map_err(|e| Failure::new(Kind::Input, e)),
+        (None, Some(name)) => halfedge::shapes::from_name(name)
+            .map(Some)
+            .map_err(|e| Failure::new(Kind::Usage, e)),
+        (None, None) => Ok(None),
+    }
+}
+
+/// The statistics of the mesh named by `--mesh` or `--base`, if any.
+pub(crate) fn mesh_counts(mesh: &MeshSource) -> Result<Option<MeshCounts>, Failure> {
+    Ok(load_mesh(mesh)?.map(|m| halfedge::stats::face_list_counts(&m)))
 }
 
 impl Dynamics {
-    /// Builds the recurrence named by the flags, or the default one.
+    /// Builds the rule named by the flags, or the default (`loop`).
     pub(crate) fn from_source(source: &Source) -> Result<Dynamics, Failure> {
-        let matrix_text = source.matrix.as_deref();
-        if matrix_text.is_none() && source.names.is_some() {
-            return Err(usage!("--names needs --matrix"));
+        if let Some(text) = source.matrix.as_deref() {
+            if source.scheme.is_some() || source.scheme_file.is_some() {
+                return Err(usage!("--matrix cannot be combined with --scheme or --scheme-file"));
+            }
+            let matrix: IntMatrix = text.parse().map_err(|e| usage!("invalid --matrix: {e}"))?;
+            let recurrence = match &source.names {
+                Some(names) => Recurrence::with_names(matrix, names.iter().map(|n| n.trim()))
+                    .map_err(|e| usage!("invalid --names: {e}"))?,
+                None => Recurrence::new(matrix),
+            };
+            return Ok(Dynamics::Matrix(recurrence));
         }
-        let matrix: IntMatrix = matrix_text
-            .unwrap_or(DEFAULT_MATRIX)
-            .parse()
-            .map_err(|e| usage!("invalid --matrix: {e}"))?;
-        let recurrence = match (&source.names, matrix_text) {
-            (Some(names), _) => Recurrence::with_names(matrix, names.iter().map(|n| n.trim()))
-                .map_err(|e| usage!("invalid --names: {e}"))?,
-            (None, None) => Recurrence::with_names(matrix, ["V", "E", "F"])
-                .map_err(|e| usage!("{e}"))?,
-            (None, Some(_)) => Recurrence::new(matrix),
-        };
-        Ok(Dynamics { recurrence })
-    }
-
-    /// The component names, in state order.
-    pub(crate) fn columns(&self) -> Vec<String> {
-        self.recurrence.names().to_vec()
-    }
-
-    /// The initial state named by the flags (or the default icosahedron).
-    pub(crate) fn initial_state(&self, source: &Source) -> Result<Vec<BigInt>, Failure> {
-        let values = match (&source.init, &source.matrix) {
-            (Some(text), _) => parse_init(text)?,
-            (None, None) => DEFAULT_INIT.iter().map(|&x| BigInt::from(x)).collect(),
-            (None, Some(_)) => return Err(usage!("--matrix needs --init with one value per component")),
-        };
-        if values.len() != self.recurrence.dim() {
-            return Err(usage!(
-                "--init has {} values but the state has {} components ({})",
-                values.len(),
-                self.recurrence.dim(),
-                self.recurrence.names().join(", ")
-            ));
+        if source.names.is_some() {
+            return Err(usage!("--names needs --matrix (a scheme names its own state)"));
         }
-        Ok(values)
-    }
-
-    /// The rows for a range of levels: powering to the first, then one step per level.
-    pub(crate) fn rows(&self, x0: &[BigInt], levels: RangeInclusive<u64>) -> Vec<Row> {
-        let (start, end) = (*levels.start(), *levels.end());
-        let first = self.state_at(x0, start);
-        let states = self
-            .recurrence
-            .states_up_to(&first, end - start)
-            .expect("the state has the recurrence's dimension");
-        states
-            .into_iter()
-            .enumerate()
-            .map(|(i, values)| Row {
-                level: start + i as u64,
-                values,
+        let custom = match &source.scheme_file {
+            Some(path) => Some(load_scheme_file(path)?),
+            None => None,
+        };
+        let plan = match (&source.scheme, custom) {
+            (Some(text), custom) => Plan::parse_with(text, |name| match &custom {
+                Some(c) if c.name() == name => Ok(c.clone()),
+                _ => schemes::builtin(name),
             })
-            .collect()
+            .map_err(scheme_failure)?,
+            (None, Some(custom)) => Plan::single(custom),
+            (None, None) => Plan::parse(DEFAULT_SCHEME).map_err(scheme_failure)?,
+        };
+        Ok(Dynamics::Plan(plan))
     }
 
-    /// The exact state at level `s`.
-    pub(crate) fn state_at(&self, x0: &[BigInt], s: u64) -> Vec<BigInt> {
-        self.recurrence
-            .state_at(x0, s)
-            .expect("the state has the recurrence's dimension")
+    /// Whether neither a matrix nor a scheme was named (the built-in default).
+    pub(crate) fn is_default(source: &Source) -> bool {
+        source.matrix.is_none() && source.scheme.is_none() && source.scheme_file.is_none()
     }
+
+    /// A short name for headings and generated code.
+    pub(crate) fn name(&self) -> String {
+        match self {
+            Dynamics::Matrix(_) => "counts".to_string(),
+            Dynamics::Plan(plan) => plan.name(),
+        }
+    }
+
+    /// The output columns after `level`: the state in order, then whichever of V, E, F the
+    /// state lacks (for a composition, every stage's state in order of appearance).
+    pub(crate) fn columns(&self) -> Vec<String> {
+        match self {
+            Dynamics::Matrix(r) => r.names().to_vec(),
+            Dynamics::Plan(plan) => {
+                let mut cols: Vec<String> = Vec::new();
+                for stage in plan.stages() {
+                    for name in stage.scheme().state_names() {
+                        if !cols.contains(name) {
+                            cols.push(name.clone());
+                        }
+                    }
+                }
+                if plan.has_mesh_counts() {
+                    for vef in ["V", "E", "F"] {
+                        if !cols.iter().any(|c| c == vef) {
+                            cols.push(vef.to_string());
+                        }
+                    }
+                }
+                cols
+            }
+        }
+    }
+
+    /// The number of state components at level 0.
+    fn dim(&self) -> usize {
+        match self {
+            Dynamics::Matrix(r) => r.dim(),
+            Dynamics::Plan(plan) => plan.state_names().len(),
+        }
+    }
+
+    fn state_names(&self) -> Vec<String> {
+        match self {
+            Dynamics::Matrix(r) => r.names().to_vec(),
+            Dynamics::Plan(plan) => plan.state_names().to_vec(),
+        }
+    }
+
+    /// The initial state named by the flags (for the default, the icosahedron).
+    pub(crate) fn initial_state(&self, source: &Source) -> Result<Vec<BigInt>, Failure> {
+        let given = [
+            source.init.is_some(),
+            source.counts.is_some(),
+            source.mesh.mesh.is_some() || source.mesh.base.is_some(),
+        ]
+        .iter()
+        .filter(|&&b| b)
+        .count();
+        if given > 1 {
+            return Err(usage!("give the initial state once: --init, --counts, or --mesh/--base"));
+        }
+        let x0 = if let Some(text) = &source.init {
+            let values = parse_init(text)?;
+            if values.len() != self.dim() {
+                return Err(usage!(
+                    "--init has {} values but the state has {} components ({})",
+                    values.len(),
+                    self.dim(),
+                    self.state_names().join(", ")
+                ));
+            }
+            if let Dynamics::Plan(plan) = self {
+                plan.first().check_state(&values).map_err(scheme_failure)?;
+            }
+            values
+        } else {
+            match self {
+                Dynamics::Matrix(_) => {
+                    return Err(usage!("--matrix needs --init with one value per component"));
+                }
+                Dynamics::Plan(plan) => {
+                    if let Some(counts) = mesh_counts(&source.mesh)? {
+                        plan.initial_state(&counts)
+                            .map_err(|e| Failure::new(Kind::Input, e))?
+                    } else {
+                        let text = match (&source.counts, Dynamics::is_default(source)) {
+                            (Some(text), _) => text.as_str(),
+                            (None, true) => DEFAULT_COUNTS,
+                            (None, false) => {
+                                return Err(usage!(
+                                    "{} needs an initial state: --counts (e.g. {DEFAULT_COUNTS}), --init, --mesh or --base",
+                                    plan.name()
+                                ))
+                            }
+                        };
+                        let input = CountsInput::parse(text).map_err(scheme_failure)?;
+                        plan.state_from_input(&input).map_err(scheme_failure)?
+                    }
+                }
+            }
+        };
+        Ok(x0)
+    }
+
+    /// The state at level `s`, by the fastest exact path.
+    pub(crate) fn state_at(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>, Failure> {
+        match self {
+            Dynamics::Matrix(r) => r.state_at(x0, s).map_err(|e| usage!("{e}")),
+            Dynamics::Plan(plan) => plan.state_at(x0, s).map_err(scheme_failure),
+        }
+    }
+
+    /// The row of `columns()` at level `s` given the state there.
+    fn row(&self, level: u64, state: Vec<BigInt>) -> Result<Row, Failure> {
+        match self {
+            Dynamics::Matrix(_) => Ok(Row {
+                level,
+                values: state.into_iter().map(Some).collect(),
+            }),
+            Dynamics::Plan(plan) => {
+                let names = plan.state_names_at(level).map_err(scheme_failure)?;
+                let vef = if plan.has_mesh_counts() {
+                    Some(plan.vef(level, &state).map_err(scheme_failure)?)
+                } else {
+                    None
+                };
+                let values = self
+                    .columns()
+                    .iter()
+                    .map(|col| {
+                        if let Some(i) = names.iter().position(|n| n == col) {
+                            return Some(state[i].clone());
+                        }
+                        let k = ["V", "E", "F"].iter().position(|v| v == col)?;
+                        vef.as_ref().map(|v| v[k].clone())
+                    })
+                    .collect();
+                Ok(Row { level, values })
+            }
+        }
+    }
+
+    /// The row at one level.
+    pub(crate) fn row_at(&self, x0: &[BigInt], s: u64) -> Result<Row, Failure> {
+        let state = self.state_at(x0, s)?;
+        self.row(s, state)
+    }
+
+    /// The rows for a range of levels.
+    pub(crate) fn rows(&self, x0: &[BigInt], levels: RangeInclusive<u64>) -> Result<Vec<Row>, Failure> {
+        let (start, end) = (*levels.start(), *levels.end());
+        let states: Vec<(u64, Vec<BigInt>)> = match self {
+            Dynamics::Matrix(r) => {
+                let first = r.state_at(x0, start).map_err(|e| usage!("{e}"))?;
+                let states = r.states_up_to(&first, end - start).map_err(|e| usage!("{e}"))?;
+                (start..=end).zip(states).collect()
+            }
+            Dynamics::Plan(plan) if start <= 64 => {
+                let states = plan.states_up_to(x0, end).map_err(scheme_failure)?;
+                (0..=end).zip(states).skip(start as usize).collect()
+            }
+            Dynamics::Plan(plan) => (start..=end)
+                .map(|s| plan.state_at(x0, s).map(|x| (s, x)).map_err(scheme_failure))
+                .collect::<Result<_, _>>()?,
+        };
+        states.into_iter().map(|(s, x)| self.row(s, x)).collect()
+    }
+
+    /// An estimate of log10 of the largest count at level `s`, for resource guards.
+    pub(crate) fn estimate_log10_max(&self, x0: &[BigInt], s: u64) -> Result<f64, Failure> {
+        match self {
+            Dynamics::Matrix(r) => Ok(estimate_log10(r, x0, s).into_iter().fold(0.0, f64::max)),
+            Dynamics::Plan(plan) => {
+                // Exact up to a small level past every stage boundary, then the last stage's
+                // steady matrix bounds the growth.
+                let last = plan.stages().last().expect("a plan has a stage");
+                let base_level = plan.last_level().unwrap_or(0) + last.scheme().period() + 1;
+                if s <= base_level + 64 {
+                    let state = plan.state_at(x0, s).map_err(scheme_failure)?;
+                    return Ok(state.iter().map(log10_big).fold(0.0, f64::max));
+                }
+                let state = plan.state_at(x0, base_level).map_err(scheme_failure)?;
+                let period = last.scheme().period().max(1);
+                let steps = (s - base_level).div_ceil(period);
+                let cycle = cycle_recurrence(last.scheme());
+                Ok(estimate_log10(&cycle, &state, steps).into_iter().fold(0.0, f64::max))
+            }
+        }
+    }
+}
+
+/// The matrix of one full cycle of a scheme (its steady matrix when it is not periodic).
+fn cycle_recurrence(scheme: &Scheme) -> Recurrence {
+    let mut product = scheme.cycle()[0].clone();
+    for m in &scheme.cycle()[1..] {
+        // Only used for size estimates: on overflow, fall back to the steady matrix.
+        match m.checked_mul(&product) {
+            Some(p) => product = p,
+            None => return scheme.recurrence().clone(),
+        }
+    }
+    Recurrence::new(product)
+}
+
+/// Reads and validates a custom scheme file.
+pub(crate) fn load_scheme_file(path: &std::path::Path) -> Result<Scheme, Failure> {
+    let text = std::fs::read_to_string(path).map_err(|e| input!("cannot read {}: {e}", path.display()))?;
+    Scheme::from_toml(&text).map_err(|e| input!("{}: {e}", path.display()))
 }
 
 /// Parses `12,30,20` (negative values allowed: a recurrence is any integer sequence).
@@ -100,17 +315,20 @@ fn parse_init(text: &str) -> Result<Vec<BigInt>, Failure> {
         .collect()
 }
 
-/// An upper estimate of log10 |x_s| for each component, in floating point: powering with
-/// renormalization so that no level overflows `f64`. Used only by resource guards.
+/// An upper estimate of log10 |x_s| for each component, in floating point: powering of the
+/// entrywise absolute matrix with renormalization, so that no level overflows `f64`. Used only
+/// by resource guards.
 pub(crate) fn estimate_log10(recurrence: &Recurrence, x0: &[BigInt], s: u64) -> Vec<f64> {
     let n = recurrence.dim();
     let m = recurrence.matrix();
     // |M| entrywise bounds |M^s| entrywise, so this is an upper bound up to rounding.
     let abs: Vec<f64> = m.rows().flatten().map(|&x| (x as f64).abs()).collect();
-    let x: Vec<f64> = x0.iter().map(|v| log10_big(v)).collect();
+    let x: Vec<f64> = x0.iter().map(log10_big).collect();
     let max_x = x.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-    // Work with x scaled by 10^-max_x.
-    let mut vec: Vec<f64> = x.iter().map(|&l| if l.is_finite() { 10f64.powf(l - max_x) } else { 0.0 }).collect();
+    let mut vec: Vec<f64> = x
+        .iter()
+        .map(|&l| if l.is_finite() && max_x.is_finite() { 10f64.powf(l - max_x) } else { 0.0 })
+        .collect();
     let mut log_scale = if max_x.is_finite() { max_x } else { 0.0 };
     let mut base = abs;
     let mut base_log = 0.0f64;
@@ -161,7 +379,8 @@ pub(crate) fn estimate_log10(recurrence: &Recurrence, x0: &[BigInt], s: u64) -> 
         .collect()
 }
 
-fn log10_big(v: &BigInt) -> f64 {
+/// log10 |v| (negative infinity for zero), from the top 60 bits.
+pub(crate) fn log10_big(v: &BigInt) -> f64 {
     let bits = v.bits();
     if bits == 0 {
         return f64::NEG_INFINITY;

@@ -10,7 +10,7 @@ use num_bigint::BigInt;
 /// One row of a table: a level and one value per column.
 pub(crate) struct Row {
     pub(crate) level: u64,
-    pub(crate) values: Vec<BigInt>,
+    pub(crate) values: Vec<Option<BigInt>>,
 }
 
 /// Writes a JSON string literal (component names are plain identifiers, but escape anyway).
@@ -32,7 +32,10 @@ pub(crate) fn write_table_json(out: &mut impl Write, columns: &[String], rows: &
 pub(crate) fn write_row_json(out: &mut impl Write, columns: &[String], row: &Row) -> io::Result<()> {
     write!(out, "{{\"level\": {}", row.level)?;
     for (name, value) in columns.iter().zip(&row.values) {
-        write!(out, ", {}: {}", json_string(name), value)?;
+        match value {
+            Some(v) => write!(out, ", {}: {}", json_string(name), v)?,
+            None => write!(out, ", {}: null", json_string(name))?,
+        }
     }
     write!(out, "}}")
 }
@@ -47,7 +50,10 @@ pub(crate) fn write_table_csv(out: &mut impl Write, columns: &[String], rows: &[
     for row in rows {
         write!(out, "{}", row.level)?;
         for v in &row.values {
-            write!(out, ",{v}")?;
+            match v {
+                Some(v) => write!(out, ",{v}")?,
+                None => write!(out, ",")?,
+            }
         }
         writeln!(out)?;
     }
@@ -60,7 +66,7 @@ pub(crate) fn write_table_text(out: &mut impl Write, columns: &[String], rows: &
         .iter()
         .map(|r| {
             std::iter::once(r.level.to_string())
-                .chain(r.values.iter().map(ToString::to_string))
+                .chain(r.values.iter().map(|v| v.as_ref().map_or_else(|| "-".to_string(), ToString::to_string)))
                 .collect()
         })
         .collect();
@@ -141,8 +147,8 @@ mod tests {
 
     fn rows() -> Vec<Row> {
         vec![
-            Row { level: 0, values: vec![12.into(), 30.into()] },
-            Row { level: 1, values: vec![42.into(), 120.into()] },
+            Row { level: 0, values: vec![Some(12.into()), Some(30.into())] },
+            Row { level: 1, values: vec![Some(42.into()), Some(120.into())] },
         ]
     }
 
