@@ -20,6 +20,96 @@ pub(crate) enum Command {
     At(AtArgs),
     /// Closed forms of the recurrence, from its exact eigen-decomposition.
     Formula(FormulaArgs),
+    /// The highest level within a vertex, edge, face or memory budget.
+    Fit(FitArgs),
+    /// The paper's eq. (1): mean co-volume area and scale factor at a level, or the level for
+    /// a target area.
+    Density(DensityArgs),
+    /// The built-in schemes (or one of them as a TOML template).
+    Schemes(SchemesArgs),
+}
+
+/// Output formats of `fit` and `density`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub(crate) enum ReportFormat {
+    /// Plain text.
+    #[default]
+    Text,
+    /// One JSON object.
+    Json,
+}
+
+/// Output formats of `schemes`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub(crate) enum SchemesFormat {
+    /// A readable list.
+    #[default]
+    Text,
+    /// An array of objects.
+    Json,
+    /// The custom-scheme file format (one scheme: give its name).
+    Toml,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct FitArgs {
+    #[command(flatten)]
+    pub(crate) source: Source,
+    /// At most this many vertices (e.g. 4294967295 for u32 indices).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) max_vertices: Option<String>,
+    /// At most this many edges.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) max_edges: Option<String>,
+    /// At most this many faces.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) max_faces: Option<String>,
+    /// A memory budget, e.g. 2GiB (GiB = 2^30 bytes, GB = 10^9 bytes).
+    #[arg(long, value_name = "SIZE", allow_hyphen_values = true)]
+    pub(crate) memory: Option<String>,
+    /// Bytes per vertex for --memory (default 12: three f32).
+    #[arg(long, value_name = "N", default_value_t = 12)]
+    pub(crate) bytes_per_vertex: u64,
+    /// Bytes per edge for --memory (default 0).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(crate) bytes_per_edge: u64,
+    /// Bytes per face for --memory (default 12: three u32 indices).
+    #[arg(long, value_name = "N", default_value_t = 12)]
+    pub(crate) bytes_per_face: u64,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) format: ReportFormat,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct DensityArgs {
+    #[command(flatten)]
+    pub(crate) source: Source,
+    /// The subdivision level s.
+    #[arg(long, value_name = "S", allow_hyphen_values = true, conflicts_with = "target_area", required_unless_present = "target_area")]
+    pub(crate) level: Option<String>,
+    /// Find the smallest level whose mean co-volume area is at most this.
+    #[arg(long, value_name = "AREA", allow_hyphen_values = true)]
+    pub(crate) target_area: Option<f64>,
+    /// The sphere radius r.
+    #[arg(long, value_name = "R", default_value_t = 1.0, allow_hyphen_values = true)]
+    pub(crate) radius: f64,
+    /// The time step tau (for the scale factor phi).
+    #[arg(long, value_name = "TAU", allow_hyphen_values = true)]
+    pub(crate) tau: Option<f64>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) format: ReportFormat,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct SchemesArgs {
+    /// Show only this scheme (required with --format toml).
+    #[arg(value_name = "NAME")]
+    pub(crate) name: Option<String>,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) format: SchemesFormat,
 }
 
 /// Where the recurrence and its initial state come from.

@@ -17,10 +17,13 @@ pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure>
         Command::Table(args) => table(args, out),
         Command::At(args) => at(args, out),
         Command::Formula(args) => formula(args, out),
+        Command::Fit(args) => crate::report::fit(args, out),
+        Command::Density(args) => crate::report::density(args, out),
+        Command::Schemes(args) => crate::report::list_schemes(args, out),
     }
 }
 
-fn write_failure(e: std::io::Error) -> Failure {
+pub(crate) fn write_failure(e: std::io::Error) -> Failure {
     Failure::new(Kind::Input, anyhow::Error::new(e).context("cannot write the output"))
 }
 
@@ -40,7 +43,7 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     Ok(0)
 }
 
-fn parse_level(text: &str) -> Result<u64, Failure> {
+pub(crate) fn parse_level(text: &str) -> Result<u64, Failure> {
     let t = text.trim();
     t.parse::<u64>().map_err(|_| {
         if t.starts_with('-') {
@@ -52,7 +55,7 @@ fn parse_level(text: &str) -> Result<u64, Failure> {
 }
 
 /// Refuses, with exit 4, to materialize counts of more than [`MAX_DIGITS`] decimal digits.
-fn guard_digits(dynamics: &Dynamics, x0: &[num_bigint::BigInt], s: u64, allow_large: bool) -> Result<(), Failure> {
+pub(crate) fn guard_digits(dynamics: &Dynamics, x0: &[num_bigint::BigInt], s: u64, allow_large: bool) -> Result<(), Failure> {
     if allow_large {
         return Ok(());
     }

@@ -10,6 +10,7 @@ mod failure;
 mod levels;
 mod model;
 mod output;
+mod report;
 
 use std::io::{self, Write};
 use std::process::ExitCode;

@@ -207,7 +207,7 @@ impl Dynamics {
     }
 
     /// The row of `columns()` at level `s` given the state there.
-    fn row(&self, level: u64, state: Vec<BigInt>) -> Result<Row, Failure> {
+    pub(crate) fn row_from_state(&self, level: u64, state: Vec<BigInt>) -> Result<Row, Failure> {
         match self {
             Dynamics::Matrix(_) => Ok(Row {
                 level,
@@ -239,7 +239,7 @@ impl Dynamics {
     /// The row at one level.
     pub(crate) fn row_at(&self, x0: &[BigInt], s: u64) -> Result<Row, Failure> {
         let state = self.state_at(x0, s)?;
-        self.row(s, state)
+        self.row_from_state(s, state)
     }
 
     /// The rows for a range of levels.
@@ -259,7 +259,7 @@ impl Dynamics {
                 .map(|s| plan.state_at(x0, s).map(|x| (s, x)).map_err(scheme_failure))
                 .collect::<Result<_, _>>()?,
         };
-        states.into_iter().map(|(s, x)| self.row(s, x)).collect()
+        states.into_iter().map(|(s, x)| self.row_from_state(s, x)).collect()
     }
 
     /// An estimate of log10 of the largest count at level `s`, for resource guards.
