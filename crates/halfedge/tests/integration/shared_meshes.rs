@@ -174,6 +174,7 @@ fn every_shared_mesh_matches_stats_json() {
                 }
             }
             Err(err) => {
+                eprintln!("{name}: refused: {err}");
                 if !name.starts_with("broken/") {
                     failures.push(format!("{name}: refused: {err}"));
                 } else if kind(&err) != expected_refusal(name) {
