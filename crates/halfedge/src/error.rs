@@ -6,7 +6,8 @@ use std::path::PathBuf;
 /// A `Result` whose error defaults to this crate's [`Error`].
 pub type Result<T = (), E = Error> = std::result::Result<T, E>;
 
-/// The vertex list of a face, displayed as `4, 9, 4` (long faces are shortened).
+/// A list of indices (the vertices of a face, or the faces on an edge), displayed as
+/// `4, 9, 4`; lists longer than 8 are shortened.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FaceVertices(pub Vec<u32>);
 

@@ -149,6 +149,20 @@ fn every_shared_mesh_matches_stats_json() {
         if problems.is_empty() == name.starts_with("broken/") {
             failures.push(format!("{name}: problems {problems:?}"));
         }
+        // The schemes crate counts valid face lists its own way: both must agree.
+        if problems.faces_with_repeated_vertex == 0 && polygons.n_faces() < 100_000 {
+            let faces: Vec<&[u32]> = polygons.faces().collect();
+            let theirs = schemes::MeshCounts::from_polygons(&faces).expect("no repeated vertex");
+            let ours = schemes::MeshCounts {
+                unreferenced_vertices: 0,
+                ..c.clone()
+            };
+            if theirs != ours {
+                failures.push(format!(
+                    "{name}: schemes::MeshCounts::from_polygons {theirs:?}"
+                ));
+            }
+        }
         // Interior edges follow: E = IE + BE + NME.
         assert_eq!(
             c.interior_edges + c.boundary_edges + c.nonmanifold_edges,
@@ -174,6 +188,7 @@ fn every_shared_mesh_matches_stats_json() {
                 }
             }
             Err(err) => {
+                eprintln!("{name}: refused: {err}");
                 if !name.starts_with("broken/") {
                     failures.push(format!("{name}: refused: {err}"));
                 } else if kind(&err) != expected_refusal(name) {

@@ -35,6 +35,13 @@ fn catmull_clark_then_quad_rule_on_a_triangle() {
     assert_eq!(plan.state_names_at(2).unwrap(), ["V", "IE", "BE", "F", "H"]);
     assert_eq!(plan.state_at(&x0, 3).unwrap(), big(&[61, 108, 48]));
     assert_eq!(plan.state_names_at(3).unwrap(), ["V", "E", "F"]);
+    assert_eq!(
+        plan.column_names_at(2).unwrap(),
+        ["V", "IE", "BE", "F", "H", "E"]
+    );
+    assert_eq!(plan.column_names_at(3).unwrap(), ["V", "E", "F"]);
+    let row = plan.table_row(&plan.level_counts(&x0, 2).unwrap()).unwrap();
+    assert_eq!(row, big(&[19, 18, 12, 12, 48, 30]));
     // The composition gives the same V, E, F as catmull-clark alone, at every level.
     let cc = builtin("catmull-clark").unwrap();
     let seq = plan.states_up_to(&x0, 7).unwrap();

@@ -1,0 +1,146 @@
+//! Property tests: validation agrees with the defect counts on random face lists, nothing
+//! panics, and every accepted mesh is consistent with its face list.
+
+use glam::DVec3;
+use halfedge::{shapes, stats, Error, HalfEdgeMesh, PolygonMesh};
+use proptest::prelude::*;
+
+/// Random face soups over a few vertices: faces of degree 3 to 5, sometimes with a
+/// repeated vertex.
+fn face_soup() -> impl Strategy<Value = PolygonMesh> {
+    (4u32..9).prop_flat_map(|n| {
+        prop::collection::vec(prop::collection::vec(0..n, 3..6), 1..9).prop_map(move |faces| {
+            let positions = (0..n).map(|i| DVec3::new(f64::from(i), 0.0, 0.0)).collect();
+            PolygonMesh::from_faces(positions, faces)
+        })
+    })
+}
+
+/// A valid base mesh, damaged a little: faces removed, flipped, duplicated or rewired.
+fn damaged_shape() -> impl Strategy<Value = PolygonMesh> {
+    let names = prop::sample::select(vec![
+        "tetrahedron",
+        "octahedron",
+        "icosahedron",
+        "cube",
+        "torus:1",
+        "grid:3x2",
+        "quad-grid:2x2",
+        "mixed",
+    ]);
+    (
+        names,
+        prop::collection::vec(
+            (
+                0u8..5,
+                any::<prop::sample::Index>(),
+                any::<prop::sample::Index>(),
+            ),
+            0..4,
+        ),
+    )
+        .prop_map(|(name, edits)| {
+            let base = shapes::from_name(name).expect("shape");
+            let mut faces: Vec<Vec<u32>> = base.faces().map(<[u32]>::to_vec).collect();
+            let n = base.n_vertices();
+            for (kind, a, b) in edits {
+                if faces.len() < 2 {
+                    break;
+                }
+                let f = a.index(faces.len());
+                match kind {
+                    0 => {
+                        faces.remove(f);
+                    }
+                    1 => faces[f].reverse(),
+                    2 => {
+                        let copy = faces[f].clone();
+                        faces.push(copy);
+                    }
+                    3 => {
+                        let k = faces[f].len();
+                        faces[f][b.index(k)] = b.index(n) as u32;
+                    }
+                    _ => {
+                        let g = b.index(faces.len());
+                        faces.swap(f, g);
+                    }
+                }
+            }
+            PolygonMesh::from_faces(base.positions, faces)
+        })
+}
+
+fn check_agreement(mesh: &PolygonMesh) -> Result<(), TestCaseError> {
+    let problems = stats::face_list_problems(mesh);
+    let counts = stats::face_list_counts(mesh);
+    match HalfEdgeMesh::try_from(mesh) {
+        Ok(built) => {
+            prop_assert!(problems.is_empty(), "accepted with {problems:?}");
+            prop_assert!(built.check_invariants().is_ok());
+            prop_assert_eq!(built.counts(), counts.clone());
+            prop_assert_eq!(stats::genus(&counts), Some(built.genus()));
+        }
+        Err(err) => {
+            // The first failing check, in the documented order, is the one reported.
+            let expected = if problems.faces_with_repeated_vertex > 0 {
+                "repeated"
+            } else if problems.duplicate_faces > 0 {
+                "duplicate"
+            } else if problems.nonmanifold_edges > 0 {
+                "edge"
+            } else if problems.inconsistently_oriented_edges > 0 {
+                "orientation"
+            } else {
+                "vertex"
+            };
+            let kind = match err {
+                Error::RepeatedVertex { .. } => "repeated",
+                Error::DuplicateFace { .. } => "duplicate",
+                Error::NonManifoldEdge { .. } => "edge",
+                Error::InconsistentOrientation { .. } | Error::NonOrientable { .. } => {
+                    "orientation"
+                }
+                Error::NonManifoldVertex { .. } => "vertex",
+                ref other => return Err(TestCaseError::fail(format!("unexpected error {other}"))),
+            };
+            prop_assert_eq!(kind, expected, "{} with {:?}", err, problems);
+            prop_assert!(!problems.is_empty());
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #[test]
+    fn validation_agrees_with_defect_counts_on_face_soups(mesh in face_soup()) {
+        check_agreement(&mesh)?;
+    }
+
+    #[test]
+    fn validation_agrees_with_defect_counts_on_damaged_shapes(mesh in damaged_shape()) {
+        check_agreement(&mesh)?;
+    }
+
+    #[test]
+    fn the_obj_reader_never_panics(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+        let _ = halfedge::io::read_obj_from(bytes.as_slice(), "fuzz.obj");
+        let _ = halfedge::io::read_off_from(bytes.as_slice(), "fuzz.off");
+    }
+
+    #[test]
+    fn obj_like_text_never_panics(lines in prop::collection::vec(
+        prop::sample::select(vec![
+            "v 0 0 0", "v 1 2 3", "v nan 0 0", "v 1", "f 1 2 3", "f -1 -2 -3", "f 1/2/3 2//4 3/1",
+            "f 0 1 2", "f 1 2", "f 4294967295 1 2", "f 99999999999999999999 1 2", "g x", "# c",
+            "f 1 2 3 \\", "", "vt 0 0", "OFF", "3 1 0", "3 0 1 2",
+        ]), 0..12)) {
+        let text = lines.join("\n");
+        if let Ok(mesh) = halfedge::io::read_obj_from(text.as_bytes(), "fuzz.obj") {
+            let _ = stats::face_list_counts(&mesh);
+            let _ = stats::face_list_problems(&mesh);
+            let _ = HalfEdgeMesh::try_from(&mesh);
+        }
+        let _ = halfedge::io::read_off_from(text.as_bytes(), "fuzz.off");
+    }
+}
