@@ -64,11 +64,14 @@
 mod build;
 mod error;
 pub mod io;
+mod memory;
 mod mesh;
 mod polygon;
 pub mod shapes;
 pub mod stats;
 pub mod subdivide;
+
+pub use crate::memory::{BYTES_PER_EDGE, BYTES_PER_FACE, BYTES_PER_VERTEX};
 
 pub use crate::error::{Error, FaceVertices, ParseError, Result};
 pub use crate::mesh::{

@@ -27,6 +27,73 @@ pub(crate) enum Command {
     Density(DensityArgs),
     /// The built-in schemes (or one of them as a TOML template).
     Schemes(SchemesArgs),
+    /// A mesh's statistics and the schemes that apply to it.
+    Stats(StatsArgs),
+    /// Really subdivide a mesh and compare every count with the prediction (exit 1 on a
+    /// mismatch).
+    Verify(VerifyArgs),
+    /// Subdivide a mesh and write it as OBJ.
+    Subdivide(SubdivideArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct StatsArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshSource,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) format: ReportFormat,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct VerifyArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshSource,
+    /// A built-in scheme (aliases and tri-split-N included).
+    #[arg(long, value_name = "NAME")]
+    pub(crate) scheme: String,
+    /// The last level to build (default: the highest whose face count stays within --max-faces).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) levels: Option<String>,
+    /// The size cap used when --levels is not given.
+    #[arg(long, value_name = "N", default_value_t = 2_000_000)]
+    pub(crate) max_faces: u64,
+    /// Threads for the geometry passes (0: all cores).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(crate) threads: usize,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) format: ReportFormat,
+    /// Lift the memory guard.
+    #[arg(long)]
+    pub(crate) allow_large: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct SubdivideArgs {
+    #[command(flatten)]
+    pub(crate) mesh: MeshSource,
+    /// A built-in scheme (aliases and tri-split-N included).
+    #[arg(long, value_name = "NAME")]
+    pub(crate) scheme: String,
+    /// The final level N.
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) levels: String,
+    /// Write the result to this OBJ file (atomically); without it nothing is written.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub(crate) output: Option<PathBuf>,
+    /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(crate) threads: usize,
+    /// Print one line `timings: {...}` on stderr.
+    #[arg(long)]
+    pub(crate) timings: bool,
+    /// Grow the output buffers instead of preallocating them (for comparisons).
+    #[arg(long)]
+    pub(crate) no_preallocate: bool,
+    /// Lift the memory guard (default limit: half the available memory).
+    #[arg(long)]
+    pub(crate) allow_large: bool,
 }
 
 /// Output formats of `fit` and `density`.
@@ -86,13 +153,24 @@ pub(crate) struct DensityArgs {
     #[command(flatten)]
     pub(crate) source: Source,
     /// The subdivision level s.
-    #[arg(long, value_name = "S", allow_hyphen_values = true, conflicts_with = "target_area", required_unless_present = "target_area")]
+    #[arg(
+        long,
+        value_name = "S",
+        allow_hyphen_values = true,
+        conflicts_with = "target_area",
+        required_unless_present = "target_area"
+    )]
     pub(crate) level: Option<String>,
     /// Find the smallest level whose mean co-volume area is at most this.
     #[arg(long, value_name = "AREA", allow_hyphen_values = true)]
     pub(crate) target_area: Option<f64>,
     /// The sphere radius r.
-    #[arg(long, value_name = "R", default_value_t = 1.0, allow_hyphen_values = true)]
+    #[arg(
+        long,
+        value_name = "R",
+        default_value_t = 1.0,
+        allow_hyphen_values = true
+    )]
     pub(crate) radius: f64,
     /// The time step tau (for the scale factor phi).
     #[arg(long, value_name = "TAU", allow_hyphen_values = true)]
@@ -190,7 +268,12 @@ pub(crate) struct TableArgs {
     #[command(flatten)]
     pub(crate) source: Source,
     /// Levels: N (meaning 0..=N), A..=B or A..B.
-    #[arg(long, default_value = "8", value_name = "RANGE", allow_hyphen_values = true)]
+    #[arg(
+        long,
+        default_value = "8",
+        value_name = "RANGE",
+        allow_hyphen_values = true
+    )]
     pub(crate) levels: String,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]

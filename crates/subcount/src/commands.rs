@@ -20,11 +20,17 @@ pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure>
         Command::Fit(args) => crate::report::fit(args, out),
         Command::Density(args) => crate::report::density(args, out),
         Command::Schemes(args) => crate::report::list_schemes(args, out),
+        Command::Stats(args) => crate::mesh::stats(args, out),
+        Command::Verify(args) => crate::mesh::verify(args, out),
+        Command::Subdivide(args) => crate::mesh::subdivide(args, out),
     }
 }
 
 pub(crate) fn write_failure(e: std::io::Error) -> Failure {
-    Failure::new(Kind::Input, anyhow::Error::new(e).context("cannot write the output"))
+    Failure::new(
+        Kind::Input,
+        anyhow::Error::new(e).context("cannot write the output"),
+    )
 }
 
 fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
@@ -49,13 +55,21 @@ pub(crate) fn parse_level(text: &str) -> Result<u64, Failure> {
         if t.starts_with('-') {
             usage!("invalid --level: `{t}` is negative; levels start at 0")
         } else {
-            usage!("invalid --level: `{t}` is not a whole number from 0 to {}", u64::MAX)
+            usage!(
+                "invalid --level: `{t}` is not a whole number from 0 to {}",
+                u64::MAX
+            )
         }
     })
 }
 
 /// Refuses, with exit 4, to materialize counts of more than [`MAX_DIGITS`] decimal digits.
-pub(crate) fn guard_digits(dynamics: &Dynamics, x0: &[num_bigint::BigInt], s: u64, allow_large: bool) -> Result<(), Failure> {
+pub(crate) fn guard_digits(
+    dynamics: &Dynamics,
+    x0: &[num_bigint::BigInt],
+    s: u64,
+    allow_large: bool,
+) -> Result<(), Failure> {
     if allow_large {
         return Ok(());
     }
@@ -100,8 +114,11 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     guard_digits(&dynamics, &x0, s, args.allow_large)?;
     let row = dynamics.row_at(&x0, s)?;
     let result = if args.summary {
-        let sums: Vec<Option<DigitSummary>> =
-            row.values.iter().map(|v| v.as_ref().map(|v| DigitSummary::of(v, 20))).collect();
+        let sums: Vec<Option<DigitSummary>> = row
+            .values
+            .iter()
+            .map(|v| v.as_ref().map(|v| DigitSummary::of(v, 20)))
+            .collect();
         match args.format {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");
@@ -115,7 +132,9 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
             AtFormat::Json => {
                 let mut text = format!("{{\"level\": {s}");
                 for (name, d) in columns.iter().zip(&sums) {
-                    let d = d.as_ref().map_or_else(|| "null".to_string(), DigitSummary::json);
+                    let d = d
+                        .as_ref()
+                        .map_or_else(|| "null".to_string(), DigitSummary::json);
                     text.push_str(&format!(", {}: {}", output::json_string(name), d));
                 }
                 text.push('}');
@@ -133,7 +152,9 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
                 }
                 r
             }
-            AtFormat::Json => output::write_row_json(out, &columns, &row).and_then(|_| writeln!(out)),
+            AtFormat::Json => {
+                output::write_row_json(out, &columns, &row).and_then(|_| writeln!(out))
+            }
         }
     };
     result.map_err(write_failure)?;
@@ -146,9 +167,15 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
         Dynamics::Matrix(r) => render_form(&r.closed_form(), args.format, "counts")?,
         Dynamics::Plan(plan) => {
             let phases = plan.phases();
-            let fn_base = plan.name().replace(|c: char| !c.is_ascii_alphanumeric(), "_");
+            let fn_base = plan
+                .name()
+                .replace(|c: char| !c.is_ascii_alphanumeric(), "_");
             if phases.len() == 1 && phases[0].first_level == 0 && phases[0].period == 1 {
-                render_form(&phases[0].recurrence.closed_form(), args.format, &format!("{fn_base}_counts"))?
+                render_form(
+                    &phases[0].recurrence.closed_form(),
+                    args.format,
+                    &format!("{fn_base}_counts"),
+                )?
             } else {
                 render_phases(&phases, args.format, &fn_base)?
             }
@@ -158,21 +185,28 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
     Ok(0)
 }
 
-fn render_form(form: &recurrence::ClosedForm, format: FormulaFormat, fn_name: &str) -> Result<String, Failure> {
+fn render_form(
+    form: &recurrence::ClosedForm,
+    format: FormulaFormat,
+    fn_name: &str,
+) -> Result<String, Failure> {
     Ok(match format {
         FormulaFormat::Text => form.to_text(),
         FormulaFormat::Latex => form.to_latex(),
         FormulaFormat::Rust => form.to_rust(fn_name),
-        FormulaFormat::Json => {
-            serde_json::to_string_pretty(&form.to_json()).map_err(|e| Failure::new(Kind::Input, e))?
-        }
+        FormulaFormat::Json => serde_json::to_string_pretty(&form.to_json())
+            .map_err(|e| Failure::new(Kind::Input, e))?,
     })
 }
 
 /// One closed form per phase (residue class of a periodic scheme, or stage of a composition).
 /// Within a phase, `t` counts periods from the phase's first level, and the subscript-0 values
 /// are the counts at that first level.
-fn render_phases(phases: &[schemes::Phase], format: FormulaFormat, fn_base: &str) -> Result<String, Failure> {
+fn render_phases(
+    phases: &[schemes::Phase],
+    format: FormulaFormat,
+    fn_base: &str,
+) -> Result<String, Failure> {
     let mut text = String::new();
     let mut json = Vec::new();
     for (i, phase) in phases.iter().enumerate() {
@@ -191,19 +225,28 @@ fn render_phases(phases: &[schemes::Phase], format: FormulaFormat, fn_base: &str
                 }));
             }
             FormulaFormat::Text => {
-                text.push_str(&format!("# {heading}
+                text.push_str(&format!(
+                    "# {heading}
 {}
-", form.to_text().replace("(s)", "(t)").replace("^s", "^t")));
+",
+                    form.to_text().replace("(s)", "(t)").replace("^s", "^t")
+                ));
             }
             FormulaFormat::Latex => {
-                text.push_str(&format!("% {heading}
+                text.push_str(&format!(
+                    "% {heading}
 {}
-", form.to_latex()));
+",
+                    form.to_latex()
+                ));
             }
             FormulaFormat::Rust => {
-                text.push_str(&format!("// {heading}
+                text.push_str(&format!(
+                    "// {heading}
 {}
-", form.to_rust(&format!("{fn_base}_phase{i}"))));
+",
+                    form.to_rust(&format!("{fn_base}_phase{i}"))
+                ));
             }
         }
     }
@@ -214,7 +257,10 @@ fn render_phases(phases: &[schemes::Phase], format: FormulaFormat, fn_base: &str
 }
 
 fn phase_heading(phase: &schemes::Phase) -> String {
-    let until = phase.last_level.map(|l| format!(" up to level {l}")).unwrap_or_default();
+    let until = phase
+        .last_level
+        .map(|l| format!(" up to level {l}"))
+        .unwrap_or_default();
     format!(
         "{}: level s = {} + {}t{until}; X0 below means the count X at level {}",
         phase.description, phase.first_level, phase.period, phase.first_level

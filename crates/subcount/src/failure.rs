@@ -65,14 +65,3 @@ macro_rules! input {
 }
 
 pub(crate) use {input, usage};
-
-/// Converts a library error into a failure of the given kind.
-pub(crate) trait WithKind<T> {
-    fn kind(self, kind: Kind) -> Result<T, Failure>;
-}
-
-impl<T, E: Into<anyhow::Error>> WithKind<T> for Result<T, E> {
-    fn kind(self, kind: Kind) -> Result<T, Failure> {
-        self.map_err(|e| Failure::new(kind, e))
-    }
-}

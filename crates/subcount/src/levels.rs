@@ -11,7 +11,10 @@ pub(crate) fn parse_levels(text: &str) -> Result<RangeInclusive<u64>, String> {
             if t.starts_with('-') {
                 format!("level `{t}` is negative; levels start at 0")
             } else {
-                format!("`{t}` is not a level (a whole number from 0 to {})", u64::MAX)
+                format!(
+                    "`{t}` is not a level (a whole number from 0 to {})",
+                    u64::MAX
+                )
             }
         })
     };
@@ -52,11 +55,16 @@ mod tests {
             parse_levels("5..=2").unwrap_err(),
             "the level range `5..=2` is inverted (it starts at 5 but ends at 2)"
         );
-        assert_eq!(parse_levels("3..3").unwrap_err(), "the level range `3..3` is empty");
+        assert_eq!(
+            parse_levels("3..3").unwrap_err(),
+            "the level range `3..3` is empty"
+        );
         assert_eq!(
             parse_levels("-1").unwrap_err(),
             "level `-1` is negative; levels start at 0"
         );
-        assert!(parse_levels("x..=3").unwrap_err().contains("`x` is not a level"));
+        assert!(parse_levels("x..=3")
+            .unwrap_err()
+            .contains("`x` is not a level"));
     }
 }

@@ -8,6 +8,7 @@ mod args;
 mod commands;
 mod failure;
 mod levels;
+mod mesh;
 mod model;
 mod output;
 mod report;
@@ -27,8 +28,12 @@ fn main() -> ExitCode {
     let stdout = io::stdout();
     let mut out = io::BufWriter::new(stdout.lock());
     let result = commands::run(cli.command, &mut out).and_then(|code| {
-        out.flush()
-            .map_err(|e| Failure::new(Kind::Input, anyhow::Error::new(e).context("cannot write the output")))?;
+        out.flush().map_err(|e| {
+            Failure::new(
+                Kind::Input,
+                anyhow::Error::new(e).context("cannot write the output"),
+            )
+        })?;
         Ok(code)
     });
     match result {
@@ -48,7 +53,9 @@ fn main() -> ExitCode {
 fn clap_error(e: &clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     match e.kind() {
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             let _ = e.print();
             if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
                 ExitCode::from(2)
@@ -67,7 +74,11 @@ fn clap_error(e: &clap::Error) -> ExitCode {
                 .collect();
             let message = paragraph.join(" ");
             let message = message.strip_prefix("error: ").unwrap_or(&message);
-            let message = if message.is_empty() { "invalid arguments" } else { message };
+            let message = if message.is_empty() {
+                "invalid arguments"
+            } else {
+                message
+            };
             let _ = writeln!(io::stderr(), "error: {message}");
             ExitCode::from(2)
         }

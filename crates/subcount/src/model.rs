@@ -29,7 +29,10 @@ pub(crate) enum Dynamics {
 pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
     use schemes::Error as E;
     let kind = match &e {
-        E::NotApplicable { .. } | E::SchemeFile { .. } | E::NoMeshCounts { .. } | E::BadFace { .. } => Kind::Input,
+        E::NotApplicable { .. }
+        | E::SchemeFile { .. }
+        | E::NoMeshCounts { .. }
+        | E::BadFace { .. } => Kind::Input,
         E::NothingFits { .. } => Kind::Input,
         E::SearchTooLarge { .. } => Kind::Guard,
         _ => Kind::Usage,
@@ -41,7 +44,9 @@ pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
 pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMesh>, Failure> {
     match (&mesh.mesh, &mesh.base) {
         (Some(_), Some(_)) => Err(usage!("--mesh and --base cannot be used together")),
-        (Some(path), None) => halfedge::io::read_mesh(path).map(Some).map_err(|e| Failure::new(Kind::Input, e)),
+        (Some(path), None) => halfedge::io::read_mesh(path)
+            .map(Some)
+            .map_err(|e| Failure::new(Kind::Input, e)),
         (None, Some(name)) => halfedge::shapes::from_name(name)
             .map(Some)
             .map_err(|e| Failure::new(Kind::Usage, e)),
@@ -59,7 +64,9 @@ impl Dynamics {
     pub(crate) fn from_source(source: &Source) -> Result<Dynamics, Failure> {
         if let Some(text) = source.matrix.as_deref() {
             if source.scheme.is_some() || source.scheme_file.is_some() {
-                return Err(usage!("--matrix cannot be combined with --scheme or --scheme-file"));
+                return Err(usage!(
+                    "--matrix cannot be combined with --scheme or --scheme-file"
+                ));
             }
             let matrix: IntMatrix = text.parse().map_err(|e| usage!("invalid --matrix: {e}"))?;
             let recurrence = match &source.names {
@@ -70,7 +77,9 @@ impl Dynamics {
             return Ok(Dynamics::Matrix(recurrence));
         }
         if source.names.is_some() {
-            return Err(usage!("--names needs --matrix (a scheme names its own state)"));
+            return Err(usage!(
+                "--names needs --matrix (a scheme names its own state)"
+            ));
         }
         let custom = match &source.scheme_file {
             Some(path) => Some(load_scheme_file(path)?),
@@ -91,14 +100,6 @@ impl Dynamics {
     /// Whether neither a matrix nor a scheme was named (the built-in default).
     pub(crate) fn is_default(source: &Source) -> bool {
         source.matrix.is_none() && source.scheme.is_none() && source.scheme_file.is_none()
-    }
-
-    /// A short name for headings and generated code.
-    pub(crate) fn name(&self) -> String {
-        match self {
-            Dynamics::Matrix(_) => "counts".to_string(),
-            Dynamics::Plan(plan) => plan.name(),
-        }
     }
 
     /// The output columns after `level`: the state in order, then whichever of V, E, F the
@@ -153,7 +154,9 @@ impl Dynamics {
         .filter(|&&b| b)
         .count();
         if given > 1 {
-            return Err(usage!("give the initial state once: --init, --counts, or --mesh/--base"));
+            return Err(usage!(
+                "give the initial state once: --init, --counts, or --mesh/--base"
+            ));
         }
         let x0 = if let Some(text) = &source.init {
             let values = parse_init(text)?;
@@ -243,12 +246,18 @@ impl Dynamics {
     }
 
     /// The rows for a range of levels.
-    pub(crate) fn rows(&self, x0: &[BigInt], levels: RangeInclusive<u64>) -> Result<Vec<Row>, Failure> {
+    pub(crate) fn rows(
+        &self,
+        x0: &[BigInt],
+        levels: RangeInclusive<u64>,
+    ) -> Result<Vec<Row>, Failure> {
         let (start, end) = (*levels.start(), *levels.end());
         let states: Vec<(u64, Vec<BigInt>)> = match self {
             Dynamics::Matrix(r) => {
                 let first = r.state_at(x0, start).map_err(|e| usage!("{e}"))?;
-                let states = r.states_up_to(&first, end - start).map_err(|e| usage!("{e}"))?;
+                let states = r
+                    .states_up_to(&first, end - start)
+                    .map_err(|e| usage!("{e}"))?;
                 (start..=end).zip(states).collect()
             }
             Dynamics::Plan(plan) if start <= 64 => {
@@ -259,7 +268,10 @@ impl Dynamics {
                 .map(|s| plan.state_at(x0, s).map(|x| (s, x)).map_err(scheme_failure))
                 .collect::<Result<_, _>>()?,
         };
-        states.into_iter().map(|(s, x)| self.row_from_state(s, x)).collect()
+        states
+            .into_iter()
+            .map(|(s, x)| self.row_from_state(s, x))
+            .collect()
     }
 
     /// An estimate of log10 of the largest count at level `s`, for resource guards.
@@ -279,7 +291,9 @@ impl Dynamics {
                 let period = last.scheme().period().max(1);
                 let steps = (s - base_level).div_ceil(period);
                 let cycle = cycle_recurrence(last.scheme());
-                Ok(estimate_log10(&cycle, &state, steps).into_iter().fold(0.0, f64::max))
+                Ok(estimate_log10(&cycle, &state, steps)
+                    .into_iter()
+                    .fold(0.0, f64::max))
             }
         }
     }
@@ -300,7 +314,8 @@ fn cycle_recurrence(scheme: &Scheme) -> Recurrence {
 
 /// Reads and validates a custom scheme file.
 pub(crate) fn load_scheme_file(path: &std::path::Path) -> Result<Scheme, Failure> {
-    let text = std::fs::read_to_string(path).map_err(|e| input!("cannot read {}: {e}", path.display()))?;
+    let text =
+        std::fs::read_to_string(path).map_err(|e| input!("cannot read {}: {e}", path.display()))?;
     Scheme::from_toml(&text).map_err(|e| input!("{}: {e}", path.display()))
 }
 
@@ -327,7 +342,13 @@ pub(crate) fn estimate_log10(recurrence: &Recurrence, x0: &[BigInt], s: u64) -> 
     let max_x = x.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     let mut vec: Vec<f64> = x
         .iter()
-        .map(|&l| if l.is_finite() && max_x.is_finite() { 10f64.powf(l - max_x) } else { 0.0 })
+        .map(|&l| {
+            if l.is_finite() && max_x.is_finite() {
+                10f64.powf(l - max_x)
+            } else {
+                0.0
+            }
+        })
         .collect();
     let mut log_scale = if max_x.is_finite() { max_x } else { 0.0 };
     let mut base = abs;
@@ -375,7 +396,13 @@ pub(crate) fn estimate_log10(recurrence: &Recurrence, x0: &[BigInt], s: u64) -> 
         }
     }
     vec.iter()
-        .map(|&v| if v > 0.0 { v.log10() + log_scale } else { f64::NEG_INFINITY })
+        .map(|&v| {
+            if v > 0.0 {
+                v.log10() + log_scale
+            } else {
+                f64::NEG_INFINITY
+            }
+        })
         .collect()
 }
 
@@ -386,7 +413,10 @@ pub(crate) fn log10_big(v: &BigInt) -> f64 {
         return f64::NEG_INFINITY;
     }
     let shift = bits.saturating_sub(60);
-    let top = (v.magnitude() >> shift).to_string().parse::<f64>().unwrap_or(1.0);
+    let top = (v.magnitude() >> shift)
+        .to_string()
+        .parse::<f64>()
+        .unwrap_or(1.0);
     top.log10() + shift as f64 * std::f64::consts::LOG10_2
 }
 
@@ -403,8 +433,14 @@ mod tests {
             let est = estimate_log10(&r, &x0, s);
             for (e, x) in est.iter().zip(&exact) {
                 let digits = x.to_string().len() as f64;
-                assert!(*e + 1.0 >= digits - 1e-9, "s={s}: estimate {e} below {digits} digits");
-                assert!(*e <= digits + 1.0, "s={s}: estimate {e} far above {digits} digits");
+                assert!(
+                    *e + 1.0 >= digits - 1e-9,
+                    "s={s}: estimate {e} below {digits} digits"
+                );
+                assert!(
+                    *e <= digits + 1.0,
+                    "s={s}: estimate {e} far above {digits} digits"
+                );
             }
         }
         let big = estimate_log10(&r, &x0, 1_000_000_000_000);

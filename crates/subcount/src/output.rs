@@ -19,7 +19,11 @@ pub(crate) fn json_string(s: &str) -> String {
 }
 
 /// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
-pub(crate) fn write_table_json(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+pub(crate) fn write_table_json(
+    out: &mut impl Write,
+    columns: &[String],
+    rows: &[Row],
+) -> io::Result<()> {
     writeln!(out, "[")?;
     for (i, row) in rows.iter().enumerate() {
         write_row_json(out, columns, row)?;
@@ -29,7 +33,11 @@ pub(crate) fn write_table_json(out: &mut impl Write, columns: &[String], rows: &
 }
 
 /// One bare object `{"level": s, "V": .., ...}` without a trailing newline.
-pub(crate) fn write_row_json(out: &mut impl Write, columns: &[String], row: &Row) -> io::Result<()> {
+pub(crate) fn write_row_json(
+    out: &mut impl Write,
+    columns: &[String],
+    row: &Row,
+) -> io::Result<()> {
     write!(out, "{{\"level\": {}", row.level)?;
     for (name, value) in columns.iter().zip(&row.values) {
         match value {
@@ -41,7 +49,11 @@ pub(crate) fn write_row_json(out: &mut impl Write, columns: &[String], row: &Row
 }
 
 /// `level,V,E,F` then one line per level.
-pub(crate) fn write_table_csv(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+pub(crate) fn write_table_csv(
+    out: &mut impl Write,
+    columns: &[String],
+    rows: &[Row],
+) -> io::Result<()> {
     write!(out, "level")?;
     for c in columns {
         write!(out, ",{c}")?;
@@ -61,16 +73,25 @@ pub(crate) fn write_table_csv(out: &mut impl Write, columns: &[String], rows: &[
 }
 
 /// A right-aligned plain-text table with a header line.
-pub(crate) fn write_table_text(out: &mut impl Write, columns: &[String], rows: &[Row]) -> io::Result<()> {
+pub(crate) fn write_table_text(
+    out: &mut impl Write,
+    columns: &[String],
+    rows: &[Row],
+) -> io::Result<()> {
     let cells: Vec<Vec<String>> = rows
         .iter()
         .map(|r| {
             std::iter::once(r.level.to_string())
-                .chain(r.values.iter().map(|v| v.as_ref().map_or_else(|| "-".to_string(), ToString::to_string)))
+                .chain(r.values.iter().map(|v| {
+                    v.as_ref()
+                        .map_or_else(|| "-".to_string(), ToString::to_string)
+                }))
                 .collect()
         })
         .collect();
-    let header: Vec<&str> = std::iter::once("level").chain(columns.iter().map(String::as_str)).collect();
+    let header: Vec<&str> = std::iter::once("level")
+        .chain(columns.iter().map(String::as_str))
+        .collect();
     let widths: Vec<usize> = (0..header.len())
         .map(|j| {
             cells
@@ -124,7 +145,11 @@ impl DigitSummary {
             self.digits,
             json_string(&self.leading),
             json_string(&self.trailing),
-            if self.negative { ", \"negative\": true" } else { "" }
+            if self.negative {
+                ", \"negative\": true"
+            } else {
+                ""
+            }
         )
     }
 
@@ -147,8 +172,14 @@ mod tests {
 
     fn rows() -> Vec<Row> {
         vec![
-            Row { level: 0, values: vec![Some(12.into()), Some(30.into())] },
-            Row { level: 1, values: vec![Some(42.into()), Some(120.into())] },
+            Row {
+                level: 0,
+                values: vec![Some(12.into()), Some(30.into())],
+            },
+            Row {
+                level: 1,
+                values: vec![Some(42.into()), Some(120.into())],
+            },
         ]
     }
 
@@ -163,10 +194,16 @@ mod tests {
         );
         let mut out = Vec::new();
         write_table_csv(&mut out, &cols, &rows()).unwrap();
-        assert_eq!(String::from_utf8(out).unwrap(), "level,V,E\n0,12,30\n1,42,120\n");
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "level,V,E\n0,12,30\n1,42,120\n"
+        );
         let mut out = Vec::new();
         write_table_text(&mut out, &cols, &rows()).unwrap();
-        assert_eq!(String::from_utf8(out).unwrap(), "level   V    E\n    0  12   30\n    1  42  120\n");
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "level   V    E\n    0  12   30\n    1  42  120\n"
+        );
     }
 
     #[test]
@@ -175,7 +212,13 @@ mod tests {
         let d = DigitSummary::of(&n, 5);
         assert_eq!(d.digits, 30);
         assert_eq!(d.text(), "30 digits: 12345...67890");
-        assert_eq!(d.json(), "{\"digits\": 30, \"leading\": \"12345\", \"trailing\": \"67890\"}");
-        assert_eq!(DigitSummary::of(&BigInt::from(42), 20).text(), "2 digits: 42");
+        assert_eq!(
+            d.json(),
+            "{\"digits\": 30, \"leading\": \"12345\", \"trailing\": \"67890\"}"
+        );
+        assert_eq!(
+            DigitSummary::of(&BigInt::from(42), 20).text(),
+            "2 digits: 42"
+        );
     }
 }

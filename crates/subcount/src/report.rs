@@ -14,7 +14,9 @@ use crate::output::{self, Row};
 fn plan_of(dynamics: &Dynamics, command: &str) -> Result<schemes::Plan, Failure> {
     match dynamics {
         Dynamics::Plan(plan) => Ok(plan.clone()),
-        Dynamics::Matrix(_) => Err(usage!("{command} needs a scheme (--scheme or --scheme-file), not --matrix")),
+        Dynamics::Matrix(_) => Err(usage!(
+            "{command} needs a scheme (--scheme or --scheme-file), not --matrix"
+        )),
     }
 }
 
@@ -39,7 +41,9 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let plan = plan_of(&dynamics, "fit")?;
     let memory = match &args.memory {
         Some(text) => Some(MemoryBudget {
-            bytes: BigInt::from(schemes::parse_byte_size(text).map_err(|e| usage!("invalid --memory: {e}"))?),
+            bytes: BigInt::from(
+                schemes::parse_byte_size(text).map_err(|e| usage!("invalid --memory: {e}"))?,
+            ),
             bytes_per_vertex: args.bytes_per_vertex,
             bytes_per_edge: args.bytes_per_edge,
             bytes_per_face: args.bytes_per_face,
@@ -53,7 +57,9 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
         memory,
     };
     if budget == Budget::default() {
-        return Err(usage!("fit needs a limit: --max-vertices, --max-edges, --max-faces or --memory"));
+        return Err(usage!(
+            "fit needs a limit: --max-vertices, --max-edges, --max-faces or --memory"
+        ));
     }
     let x0 = dynamics.initial_state(&args.source)?;
     let fit = schemes::fit(&plan, &x0, &budget).map_err(scheme_failure)?;
@@ -61,19 +67,27 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let text = match (&fit, args.format) {
         (Fit::Level(counts), ReportFormat::Json) => {
             let mut buf = Vec::new();
-            output::write_row_json(&mut buf, &columns, &level_row(&dynamics, counts)?).map_err(write_failure)?;
+            output::write_row_json(&mut buf, &columns, &level_row(&dynamics, counts)?)
+                .map_err(write_failure)?;
             String::from_utf8_lossy(&buf).into_owned()
         }
         (Fit::Level(counts), ReportFormat::Text) => {
             let row = level_row(&dynamics, counts)?;
-            format!("highest level within the budget: {}\n{}", counts.level, row_text(&columns, &row))
+            format!(
+                "highest level within the budget: {}\n{}",
+                counts.level,
+                row_text(&columns, &row)
+            )
         }
         (Fit::Unbounded { counts }, ReportFormat::Json) => {
             let row = level_row(&dynamics, counts)?;
             let mut buf = Vec::new();
             output::write_row_json(&mut buf, &columns, &row).map_err(write_failure)?;
             let body = String::from_utf8_lossy(&buf).into_owned();
-            let rest = body.split_once(", ").map(|(_, r)| r.trim_end_matches('}')).unwrap_or("");
+            let rest = body
+                .split_once(", ")
+                .map(|(_, r)| r.trim_end_matches('}'))
+                .unwrap_or("");
             format!(
                 "{{\"level\": null, \"note\": {}, \"from_level\": {}, {rest}}}",
                 output::json_string(&unbounded_note(counts.level)),
@@ -82,7 +96,11 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
         }
         (Fit::Unbounded { counts }, ReportFormat::Text) => {
             let row = level_row(&dynamics, counts)?;
-            format!("{}\n{}", unbounded_note(counts.level), row_text(&columns, &row))
+            format!(
+                "{}\n{}",
+                unbounded_note(counts.level),
+                row_text(&columns, &row)
+            )
         }
     };
     writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
@@ -112,16 +130,24 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
             crate::commands::guard_digits(&dynamics, &x0, s, false)?;
             plan.level_counts(&x0, s).map_err(scheme_failure)?
         }
-        (None, Some(area)) => schemes::level_for_area(&plan, &x0, args.radius, area).map_err(scheme_failure)?,
+        (None, Some(area)) => {
+            schemes::level_for_area(&plan, &x0, args.radius, area).map_err(scheme_failure)?
+        }
         (None, None) => return Err(usage!("density needs --level or --target-area")),
     };
     let tau = args.tau.unwrap_or(0.0);
-    let d = schemes::density(&counts.vertices, args.radius, tau).map_err(|e| Failure::new(Kind::Usage, e))?;
+    let d = schemes::density(&counts.vertices, args.radius, tau)
+        .map_err(|e| Failure::new(Kind::Usage, e))?;
     let phi = args.tau.map(|_| d.phi);
     let text = match args.format {
         ReportFormat::Json => {
             let num = |x: f64| serde_json::to_string(&x).unwrap_or_else(|_| "null".into());
-            let mut t = format!("{{\"level\": {}, \"V\": {}, \"radius\": {}", counts.level, counts.vertices, num(args.radius));
+            let mut t = format!(
+                "{{\"level\": {}, \"V\": {}, \"radius\": {}",
+                counts.level,
+                counts.vertices,
+                num(args.radius)
+            );
             if let Some(a) = args.target_area {
                 t.push_str(&format!(", \"target_area\": {}", num(a)));
             }

@@ -2,7 +2,14 @@
 
 use crate::util::{fails, ok};
 
-const VEF: &[&str] = &["--matrix", "[[1,1,0],[0,2,3],[0,0,4]]", "--names", "V,E,F", "--init", "12,30,20"];
+const VEF: &[&str] = &[
+    "--matrix",
+    "[[1,1,0],[0,2,3],[0,0,4]]",
+    "--names",
+    "V,E,F",
+    "--init",
+    "12,30,20",
+];
 
 fn with(extra: &[&'static str]) -> Vec<&'static str> {
     let mut v: Vec<&str> = VEF.to_vec();
@@ -13,8 +20,15 @@ fn with(extra: &[&'static str]) -> Vec<&'static str> {
 #[test]
 fn table_default_is_the_icosahedron() {
     let out = ok(&["table"]);
-    let v: Vec<&str> = out.lines().skip(1).map(|l| l.split_whitespace().nth(1).unwrap()).collect();
-    assert_eq!(v, ["12", "42", "162", "642", "2562", "10242", "40962", "163842", "655362"]);
+    let v: Vec<&str> = out
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().nth(1).unwrap())
+        .collect();
+    assert_eq!(
+        v,
+        ["12", "42", "162", "642", "2562", "10242", "40962", "163842", "655362"]
+    );
     assert!(out.starts_with("level"));
 }
 
@@ -40,7 +54,17 @@ fn table_csv_and_level_forms() {
 
 #[test]
 fn table_without_names_uses_x0_x1() {
-    let out = ok(&["table", "--matrix", "[[1,1],[1,0]]", "--init", "1,0", "--levels", "10", "--format", "csv"]);
+    let out = ok(&[
+        "table",
+        "--matrix",
+        "[[1,1],[1,0]]",
+        "--init",
+        "1,0",
+        "--levels",
+        "10",
+        "--format",
+        "csv",
+    ]);
     assert!(out.starts_with("level,x0,x1\n"));
     assert!(out.ends_with("10,89,55\n"), "{out}");
 }
@@ -49,7 +73,11 @@ fn table_without_names_uses_x0_x1() {
 fn json_integers_of_any_size() {
     let out = ok(&["table", "--levels", "200..=200", "--format", "json"]);
     // F = 20 * 4^200: 122 digits, written as a bare JSON integer.
-    let f = out.split("\"F\": ").nth(1).unwrap().trim_end_matches(|c: char| !c.is_ascii_digit());
+    let f = out
+        .split("\"F\": ")
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(|c: char| !c.is_ascii_digit());
     assert_eq!(f.len(), 122);
     assert!(f.chars().all(|c| c.is_ascii_digit()));
 }
@@ -61,12 +89,24 @@ fn at_text_json_summary() {
     assert_eq!(ok(&args), "level 3\nV = 642\nE = 1920\nF = 1280\n");
     let mut args = vec!["at"];
     args.extend(with(&["--level", "3", "--format", "json"]));
-    assert_eq!(ok(&args), "{\"level\": 3, \"V\": 642, \"E\": 1920, \"F\": 1280}\n");
+    assert_eq!(
+        ok(&args),
+        "{\"level\": 3, \"V\": 642, \"E\": 1920, \"F\": 1280}\n"
+    );
     let mut args = vec!["at"];
-    args.extend(with(&["--level", "1000000", "--summary", "--format", "json"]));
+    args.extend(with(&[
+        "--level",
+        "1000000",
+        "--summary",
+        "--format",
+        "json",
+    ]));
     let out = ok(&args);
     // F = 20 * 4^1000000 has floor(log10(20) + 10^6 log10(4)) + 1 = 602062 digits.
-    assert!(out.starts_with("{\"level\": 1000000, \"V\": {\"digits\": 602061, "), "{out}");
+    assert!(
+        out.starts_with("{\"level\": 1000000, \"V\": {\"digits\": 602061, "),
+        "{out}"
+    );
     assert!(out.contains("\"F\": {\"digits\": 602062, \"leading\": \"19604598754139134831\", \"trailing\": \"31093324874142187520\"}"), "{out}");
 }
 
@@ -74,11 +114,35 @@ fn at_text_json_summary() {
 fn usage_errors_exit_2() {
     fails(&["table", "--levels", "5..=2"], 2, "inverted");
     fails(&["table", "--levels", "-3"], 2, "negative");
-    fails(&["table", "--matrix", "[[1,2],[3]]", "--init", "1,2"], 2, "row 1 of the matrix has 1 entries, expected 2");
+    fails(
+        &["table", "--matrix", "[[1,2],[3]]", "--init", "1,2"],
+        2,
+        "row 1 of the matrix has 1 entries, expected 2",
+    );
     fails(&["table", "--matrix", "[[1,2],[3,4]]"], 2, "--init");
-    fails(&["table", "--matrix", "[[1,2],[3,4]]", "--init", "1,2,3"], 2, "--init has 3 values but the state has 2 components");
-    fails(&["table", "--matrix", "[[1,2],[3,4]]", "--init", "1,x"], 2, "`x` is not an integer");
-    fails(&["table", "--matrix", "[[1,2],[3,4]]", "--names", "A,A", "--init", "1,2"], 2, "used twice");
+    fails(
+        &["table", "--matrix", "[[1,2],[3,4]]", "--init", "1,2,3"],
+        2,
+        "--init has 3 values but the state has 2 components",
+    );
+    fails(
+        &["table", "--matrix", "[[1,2],[3,4]]", "--init", "1,x"],
+        2,
+        "`x` is not an integer",
+    );
+    fails(
+        &[
+            "table",
+            "--matrix",
+            "[[1,2],[3,4]]",
+            "--names",
+            "A,A",
+            "--init",
+            "1,2",
+        ],
+        2,
+        "used twice",
+    );
     fails(&["table", "--no-such-flag"], 2, "--no-such-flag");
     fails(&["at"], 2, "--level");
     fails(&["at", "--level", "ten"], 2, "not a whole number");

@@ -35,10 +35,27 @@ pub fn ok(args: &[&str]) -> String {
 /// Runs and asserts the exit code and a one-line `error: ...` containing `needle`.
 pub fn fails(args: &[&str], code: i32, needle: &str) -> String {
     let run = subcount(args);
-    assert_eq!(run.code, code, "subcount {args:?}: stdout {:?} stderr {:?}", run.stdout, run.stderr);
-    assert!(run.stderr.starts_with("error: "), "stderr: {:?}", run.stderr);
-    assert_eq!(run.stderr.lines().count(), 1, "one line of stderr: {:?}", run.stderr);
-    assert!(run.stderr.contains(needle), "stderr {:?} lacks {needle:?}", run.stderr);
+    assert_eq!(
+        run.code, code,
+        "subcount {args:?}: stdout {:?} stderr {:?}",
+        run.stdout, run.stderr
+    );
+    assert!(
+        run.stderr.starts_with("error: "),
+        "stderr: {:?}",
+        run.stderr
+    );
+    assert_eq!(
+        run.stderr.lines().count(),
+        1,
+        "one line of stderr: {:?}",
+        run.stderr
+    );
+    assert!(
+        run.stderr.contains(needle),
+        "stderr {:?} lacks {needle:?}",
+        run.stderr
+    );
     assert!(!run.stderr.contains("panicked"), "panic: {}", run.stderr);
     run.stderr
 }

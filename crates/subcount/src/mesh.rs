@@ -1,0 +1,426 @@
+//! `stats`, `verify` and `subdivide`: real meshes and real subdivision.
+
+use std::io::Write;
+use std::time::Instant;
+
+use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
+use halfedge::{HalfEdgeMesh, PolygonMesh};
+use num_bigint::BigInt;
+use num_traits::ToPrimitive;
+use schemes::{MeshCounts, Scheme};
+
+use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
+use crate::commands::{human_bytes, write_failure};
+use crate::failure::{usage, Failure, Kind};
+use crate::model::{load_mesh, scheme_failure};
+use crate::output::json_string;
+
+fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
+    load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
+}
+
+/// Maps a `halfedge` error to an exit code.
+fn halfedge_failure(e: halfedge::Error) -> Failure {
+    use halfedge::Error as E;
+    let kind = match &e {
+        E::Scheme(inner) => return scheme_failure(inner.clone()),
+        E::UnsupportedScheme { .. } => Kind::Usage,
+        E::TooLarge { .. } | E::TooManyElements { .. } => Kind::Guard,
+        E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
+            Kind::Mismatch
+        }
+        _ => Kind::Input,
+    };
+    Failure::new(kind, e)
+}
+
+/// The schemes whose counts apply to the mesh and whose subdivision can run on it.
+fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<String> {
+    schemes::builtins()
+        .into_iter()
+        .filter(|s| {
+            s.initial_state(counts).is_ok() && (manifold || !s.mesh_class().needs_manifold())
+        })
+        .map(|s| s.name().to_string())
+        .collect()
+}
+
+pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let poly = required_mesh(&args.mesh)?;
+    let counts = halfedge::stats::face_list_counts(&poly);
+    let problems = halfedge::stats::face_list_problems(&poly);
+    let validation = HalfEdgeMesh::try_from(&poly).err();
+    let applicable = applicable_schemes(&counts, validation.is_none());
+    let genus = if validation.is_none() {
+        halfedge::stats::genus(&counts)
+    } else {
+        None
+    };
+    let c = &counts;
+    let text = match args.format {
+        ReportFormat::Json => {
+            let degrees: Vec<String> = c
+                .faces_by_degree
+                .iter()
+                .map(|(d, n)| format!("\"{d}\": {n}"))
+                .collect();
+            let schemes: Vec<String> = applicable.iter().map(|s| json_string(s)).collect();
+            format!(
+                "{{\"V\": {}, \"E\": {}, \"IE\": {}, \"BE\": {}, \"NME\": {}, \"F\": {}, \"H\": {}, \"faces_by_degree\": {{{}}}, \"boundary_loops\": {}, \"components\": {}, \"euler_characteristic\": {}, \"genus\": {}, \"unreferenced_vertices\": {}, \"manifold\": {}, \"problems\": {{\"faces_with_repeated_vertex\": {}, \"duplicate_faces\": {}, \"nonmanifold_edges\": {}, \"nonmanifold_vertices\": {}, \"inconsistently_oriented_edges\": {}}}, \"applicable_schemes\": [{}]}}",
+                c.vertices,
+                c.edges,
+                c.interior_edges,
+                c.boundary_edges,
+                c.nonmanifold_edges,
+                c.faces,
+                c.corners,
+                degrees.join(", "),
+                c.boundary_loops,
+                c.components,
+                c.euler_characteristic,
+                genus.map_or_else(|| "null".to_string(), |g| g.to_string()),
+                c.unreferenced_vertices,
+                validation.is_none(),
+                problems.faces_with_repeated_vertex,
+                problems.duplicate_faces,
+                problems.nonmanifold_edges,
+                problems.nonmanifold_vertices,
+                problems.inconsistently_oriented_edges,
+                schemes.join(", ")
+            )
+        }
+        ReportFormat::Text => {
+            let degrees: Vec<String> = c
+                .faces_by_degree
+                .iter()
+                .map(|(d, n)| format!("{n} of degree {d}"))
+                .collect();
+            let mut t = format!(
+                "V = {} (vertices used by faces; {} unreferenced)\nE = {} (IE = {} interior, BE = {} boundary, NME = {} non-manifold)\nF = {} ({})\nH = {} (sum of face degrees)\nboundary loops = {}\ncomponents = {}\nEuler characteristic = {}\n",
+                c.vertices,
+                c.unreferenced_vertices,
+                c.edges,
+                c.interior_edges,
+                c.boundary_edges,
+                c.nonmanifold_edges,
+                c.faces,
+                degrees.join(", "),
+                c.corners,
+                c.boundary_loops,
+                c.components,
+                c.euler_characteristic,
+            );
+            if let Some(g) = genus {
+                t.push_str(&format!("genus = {g}\n"));
+            }
+            match &validation {
+                None => t.push_str("manifold, consistently oriented\n"),
+                Some(e) => t.push_str(&format!("not a valid half-edge mesh: {e}\n")),
+            }
+            t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
+            t
+        }
+    };
+    writeln!(out, "{text}").map_err(write_failure)?;
+    Ok(0)
+}
+
+/// The scheme whose counts `halfedge` will check for this mesh: the 4:1 geometry aliases
+/// count as `loop`, or as `loop-boundary` on a mesh with boundary.
+fn counting_scheme(name: &str, counts: &MeshCounts) -> Result<Scheme, Failure> {
+    let scheme = schemes::builtin(name).map_err(scheme_failure)?;
+    if scheme.canonical_name() == "loop" && scheme.name() != "loop" && counts.boundary_edges > 0 {
+        return schemes::builtin("loop-boundary").map_err(scheme_failure);
+    }
+    Ok(scheme)
+}
+
+/// Whether to run on the raw face list (the schemes that allow non-manifold input).
+fn on_face_list(scheme: &Scheme) -> bool {
+    !scheme.mesh_class().needs_manifold() && sub::supports_polygons(scheme.name())
+}
+
+fn parse_levels_count(text: &str) -> Result<u32, Failure> {
+    let t = text.trim();
+    t.parse::<u32>().map_err(|_| {
+        if t.starts_with('-') {
+            usage!("invalid --levels: `{t}` is negative")
+        } else {
+            usage!("invalid --levels: `{t}` is not a whole number of levels")
+        }
+    })
+}
+
+/// Bytes available to this process: half of MemAvailable from /proc/meminfo (or 4 GiB when
+/// that cannot be read).
+fn memory_limit() -> u128 {
+    let available = std::fs::read_to_string("/proc/meminfo")
+        .ok()
+        .and_then(|text| {
+            text.lines()
+                .find(|l| l.starts_with("MemAvailable:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<u128>().ok())
+                .map(|kb| kb * 1024)
+        });
+    available.unwrap_or(8 << 30) / 2
+}
+
+/// The predicted bytes of the largest two consecutive levels up to `levels`, plus the input.
+fn predicted_peak_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+) -> Result<BigInt, Failure> {
+    let bytes = |s: u64| -> Result<BigInt, Failure> {
+        let c = scheme.counts_at(counts, s).map_err(scheme_failure)?;
+        Ok(BigInt::from(halfedge::BYTES_PER_VERTEX) * &c.vertices
+            + BigInt::from(halfedge::BYTES_PER_EDGE) * &c.edges
+            + BigInt::from(halfedge::BYTES_PER_FACE) * &c.faces)
+    };
+    let input = bytes(0)?;
+    if levels == 0 {
+        return Ok(input);
+    }
+    let last = bytes(u64::from(levels))?;
+    let before = bytes(u64::from(levels) - 1)?;
+    Ok(if levels == 1 {
+        input + last
+    } else {
+        input + before + last
+    })
+}
+
+fn guard_memory(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+    allow_large: bool,
+) -> Result<BigInt, Failure> {
+    let need = predicted_peak_bytes(scheme, counts, levels)?;
+    let limit = memory_limit();
+    if !allow_large && need > BigInt::from(limit) {
+        let need_f = need.to_f64().unwrap_or(f64::INFINITY);
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "{} to level {levels} needs about {} of memory (levels {} and {levels} with the input), more than the limit of {} (half the available memory); use fewer levels, or --allow-large to try anyway",
+                scheme.name(),
+                human_bytes(need_f),
+                levels.saturating_sub(1),
+                human_bytes(limit as f64)
+            ),
+        ));
+    }
+    Ok(need)
+}
+
+pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let poly = required_mesh(&args.mesh)?;
+    let counts = halfedge::stats::face_list_counts(&poly);
+    let scheme = counting_scheme(&args.scheme, &counts)?;
+    scheme
+        .initial_state(&counts)
+        .map_err(|e| Failure::new(Kind::Input, e))?;
+    let levels = match &args.levels {
+        Some(t) => parse_levels_count(t)?,
+        None => {
+            // The highest level whose predicted face count stays within the cap.
+            let mut s = 0u32;
+            while s < 64 {
+                let next = scheme
+                    .counts_at(&counts, u64::from(s) + 1)
+                    .map_err(scheme_failure)?;
+                if next.faces > BigInt::from(args.max_faces) {
+                    break;
+                }
+                s += 1;
+            }
+            s
+        }
+    };
+    guard_memory(&scheme, &counts, levels, args.allow_large)?;
+    let opts = SubdivideOptions::default().with_threads(args.threads);
+    let reports = if on_face_list(&scheme) {
+        sub::verify_polygons(&poly, &args.scheme, levels, &opts)
+    } else {
+        let mesh = HalfEdgeMesh::try_from(&poly).map_err(halfedge_failure)?;
+        sub::verify(&mesh, &args.scheme, levels, &opts)
+    }
+    .map_err(halfedge_failure)?;
+    let all_match = reports.iter().all(|r| r.is_match());
+    let text = match args.format {
+        ReportFormat::Json => {
+            let rows: Vec<String> = reports
+                .iter()
+                .map(|r| {
+                    let obj = |pairs: &[(String, BigInt)]| {
+                        let items: Vec<String> = pairs
+                            .iter()
+                            .map(|(k, v)| format!("{}: {v}", json_string(k)))
+                            .collect();
+                        format!("{{{}}}", items.join(", "))
+                    };
+                    format!(
+                        "{{\"level\": {}, \"match\": {}, \"predicted\": {}, \"measured\": {}}}",
+                        r.level,
+                        r.is_match(),
+                        obj(&r.predicted),
+                        obj(&r.measured)
+                    )
+                })
+                .collect();
+            format!("[\n{}\n]", rows.join(",\n"))
+        }
+        ReportFormat::Text => {
+            let mut t = format!(
+                "{} on {} levels 0..={levels}\n",
+                args.scheme,
+                mesh_label(&args.mesh)
+            );
+            t.push_str("level  component  predicted  measured\n");
+            for r in &reports {
+                for ((name, p), (_, m)) in r.predicted.iter().zip(&r.measured) {
+                    let flag = if p == m { "" } else { "  MISMATCH" };
+                    t.push_str(&format!(
+                        "{:>5}  {name:>9}  {p:>9}  {m:>8}{flag}\n",
+                        r.level
+                    ));
+                }
+            }
+            t.push_str(if all_match {
+                "all counts match the prediction"
+            } else {
+                "MISMATCH: the prediction is wrong"
+            });
+            t
+        }
+    };
+    writeln!(out, "{text}").map_err(write_failure)?;
+    if all_match {
+        Ok(0)
+    } else {
+        Err(Failure::new(
+            Kind::Mismatch,
+            anyhow::anyhow!(
+                "{}: real subdivision disagrees with the prediction",
+                args.scheme
+            ),
+        ))
+    }
+}
+
+fn mesh_label(mesh: &MeshSource) -> String {
+    match (&mesh.mesh, &mesh.base) {
+        (Some(p), _) => p.display().to_string(),
+        (None, Some(b)) => b.clone(),
+        _ => String::new(),
+    }
+}
+
+/// The peak resident set size of this process (VmHWM), when /proc tells it.
+fn peak_rss_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let kb: u64 = status
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))?
+        .split_whitespace()
+        .nth(1)?
+        .parse()
+        .ok()?;
+    Some(kb * 1024)
+}
+
+pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let levels = parse_levels_count(&args.levels)?;
+    let start = Instant::now();
+    let poly = required_mesh(&args.mesh)?;
+    let counts = halfedge::stats::face_list_counts(&poly);
+    let scheme = counting_scheme(&args.scheme, &counts)?;
+    scheme
+        .initial_state(&counts)
+        .map_err(|e| Failure::new(Kind::Input, e))?;
+    let predicted = guard_memory(&scheme, &counts, levels, args.allow_large)?;
+    let face_list = on_face_list(&scheme);
+    let mesh = if face_list {
+        None
+    } else {
+        Some(HalfEdgeMesh::try_from(&poly).map_err(halfedge_failure)?)
+    };
+    let load_s = start.elapsed().as_secs_f64();
+
+    let final_faces = scheme
+        .counts_at(&counts, u64::from(levels))
+        .map_err(scheme_failure)?
+        .faces
+        .to_u64()
+        .unwrap_or(u64::MAX);
+    let bar = (final_faces >= 1_000_000).then(|| {
+        let bar = indicatif::ProgressBar::new(u64::from(levels));
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{msg} [{bar:30}] level {pos}/{len} ({elapsed})",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar.set_message(format!("subdividing with {}", args.scheme));
+        bar
+    });
+    let progress = |done: &LevelDone| {
+        if let Some(bar) = &bar {
+            bar.set_position(u64::from(done.level));
+        }
+    };
+    let opts = SubdivideOptions::default()
+        .with_threads(args.threads)
+        .with_preallocate(!args.no_preallocate)
+        .with_progress(&progress);
+    let t1 = Instant::now();
+    let result = match &mesh {
+        Some(mesh) => sub::subdivide(mesh, &args.scheme, levels, &opts).map(Output::Mesh),
+        None => sub::subdivide_polygons(&poly, &args.scheme, levels, &opts).map(Output::Polygons),
+    }
+    .map_err(halfedge_failure)?;
+    let subdivide_s = t1.elapsed().as_secs_f64();
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    drop(mesh);
+
+    let t2 = Instant::now();
+    if let Some(path) = &args.output {
+        match &result {
+            Output::Mesh(m) => halfedge::io::write_obj_file(m, path),
+            Output::Polygons(p) => halfedge::io::write_polygon_obj_file(p, path),
+        }
+        .map_err(|e| Failure::new(Kind::Input, e))?;
+    }
+    let write_s = t2.elapsed().as_secs_f64();
+    let (v, e, f) = match &result {
+        Output::Mesh(m) => (m.n_vertices(), m.n_edges(), m.n_faces()),
+        Output::Polygons(p) => {
+            let c = halfedge::stats::face_list_counts(p);
+            (c.vertices as usize, c.edges as usize, c.faces as usize)
+        }
+    };
+    let message = match &args.output {
+        Some(path) => format!(
+            "level {levels}: V = {v}, E = {e}, F = {f}; wrote {}",
+            path.display()
+        ),
+        None => format!("level {levels}: V = {v}, E = {e}, F = {f} (no -o: nothing written)"),
+    };
+    writeln!(out, "{message}").map_err(write_failure)?;
+    if args.timings {
+        let peak = peak_rss_bytes().map_or_else(|| "null".to_string(), |b| b.to_string());
+        eprintln!(
+            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}}}"
+        );
+    }
+    Ok(0)
+}
+
+enum Output {
+    Mesh(HalfEdgeMesh),
+    Polygons(PolygonMesh),
+}
