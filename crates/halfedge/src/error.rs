@@ -327,3 +327,21 @@ pub enum Error {
         reason: String,
     },
 }
+
+impl Error {
+    /// The face a validation error is about (for two faces, the later one), as an index into
+    /// the face list; map it to a file line with [`crate::PolygonMesh::face_line`].
+    pub fn face(&self) -> Option<u32> {
+        match self {
+            Error::VertexOutOfRange { face, .. }
+            | Error::FaceTooSmall { face, .. }
+            | Error::RepeatedVertex { face, .. }
+            | Error::NonOrientable { face, .. } => Some(*face),
+            Error::DuplicateFace { second, .. } | Error::InconsistentOrientation { second, .. } => {
+                Some(*second)
+            }
+            Error::NonManifoldEdge { faces, .. } => faces.0.last().copied(),
+            _ => None,
+        }
+    }
+}

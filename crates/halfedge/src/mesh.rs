@@ -75,6 +75,11 @@ impl EdgeId {
 /// consistently oriented; every `next` cycle closes within the half-edge count. Build one
 /// with [`HalfEdgeMesh::try_from_polygons`] or `HalfEdgeMesh::try_from(&PolygonMesh)`.
 ///
+/// # Panics
+///
+/// Accessors and circulators panic when given a handle that does not belong to this mesh
+/// (index out of range): that is a bug in the caller, never a property of the input.
+///
 /// # Example
 ///
 /// ```

@@ -24,13 +24,15 @@ use glam::DVec3;
 /// assert_eq!(tetrahedron.n_edges(), 6);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct PolygonMesh {
     /// Vertex positions; face indices refer to this list.
     pub positions: Vec<DVec3>,
     /// `face_offsets[f]..face_offsets[f + 1]` is the range of face `f` in `face_indices`.
     face_offsets: Vec<usize>,
     face_indices: Vec<u32>,
+    /// The file line of each face, for meshes read from a file (else empty).
+    face_lines: Vec<u64>,
 }
 
 impl Default for PolygonMesh {
@@ -39,7 +41,17 @@ impl Default for PolygonMesh {
             positions: Vec::new(),
             face_offsets: vec![0],
             face_indices: Vec::new(),
+            face_lines: Vec::new(),
         }
+    }
+}
+
+/// Equal positions and faces (where the faces were read from does not matter).
+impl PartialEq for PolygonMesh {
+    fn eq(&self, other: &PolygonMesh) -> bool {
+        self.positions == other.positions
+            && self.face_offsets == other.face_offsets
+            && self.face_indices == other.face_indices
     }
 }
 
@@ -81,6 +93,31 @@ impl PolygonMesh {
     pub fn push_face_from_iter(&mut self, vertices: impl IntoIterator<Item = u32>) {
         self.face_indices.extend(vertices);
         self.face_offsets.push(self.face_indices.len());
+    }
+
+    /// Appends a face read from line `line` of a file (see [`PolygonMesh::face_line`]).
+    pub(crate) fn push_face_from_line(&mut self, vertices: &[u32], line: u64) {
+        self.face_lines.resize(self.n_faces(), 0);
+        self.face_lines.push(line);
+        self.push_face(vertices);
+    }
+
+    /// The 1-based line of the file face `f` was read from, for meshes read by [`crate::io`]
+    /// (`None` otherwise). Validation errors name faces by index (see [`crate::Error::face`]);
+    /// this maps them back to the file.
+    ///
+    /// # Example
+    ///
+    /// ```
+    /// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 3\nf 1 3 2\n";
+    /// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "twice.obj")?;
+    /// let err = halfedge::HalfEdgeMesh::try_from(&mesh).unwrap_err();
+    /// assert_eq!(err.face(), Some(1));
+    /// assert_eq!(mesh.face_line(1), Some(6));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn face_line(&self, f: usize) -> Option<u64> {
+        self.face_lines.get(f).copied().filter(|&line| line > 0)
     }
 
     /// Number of vertex positions (used or not).

@@ -127,6 +127,27 @@ fn every_scheme_on_every_base_mesh_matches_its_prediction() {
     assert!(ran > 100, "only {ran} (scheme, mesh) pairs ran");
 }
 
+/// Every face as its vertex cycle rotated to start at its smallest vertex, sorted: equal for
+/// two meshes with the same faces in any numbering of faces and half-edges.
+fn face_sets(mesh: &HalfEdgeMesh) -> Vec<Vec<u32>> {
+    let mut faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| {
+            let vs: Vec<u32> = mesh.face_vertices(f).map(|v| v.0).collect();
+            let i = vs
+                .iter()
+                .enumerate()
+                .min_by_key(|(_, v)| **v)
+                .map_or(0, |(i, _)| i);
+            (0..vs.len()).map(|k| vs[(i + k) % vs.len()]).collect()
+        })
+        .collect();
+    faces.sort();
+    faces
+}
+
+/// The preallocated path (index formulas written front to back for the 4:1 family and
+/// Catmull-Clark) and the growing-buffer path (faces emitted one by one) build the same mesh.
 #[test]
 fn growing_buffers_and_threads_give_the_same_mesh() {
     for (b, scheme) in [
@@ -136,21 +157,28 @@ fn growing_buffers_and_threads_give_the_same_mesh() {
         ("mixed", "catmull-clark"),
         ("torus:1", "doo-sabin"),
         ("octahedron", "butterfly"),
+        ("icosahedron-holes:2", "loop-boundary"),
+        ("grid:3x2", "midpoint"),
+        ("quad-grid:3x3", "catmull-clark"),
+        ("icosahedron", "ternary"),
+        ("torus:1", "mid-edge"),
     ] {
         let mesh = base(b);
-        let reference = subdivide(&mesh, scheme, 3, &opts()).expect("preallocated");
+        // One level: both paths number the new vertices the same way (old vertices, then one
+        // per old edge by edge id, ...), so the faces and positions must agree exactly. From
+        // level 2 on, the paths number the new edges differently, hence the vertices too.
+        let reference = subdivide(&mesh, scheme, 1, &opts()).expect("preallocated");
+        let grown = subdivide(&mesh, scheme, 1, &opts().with_preallocate(false)).expect("growing");
+        grown.check_invariants().expect("valid");
+        assert_eq!(face_sets(&grown), face_sets(&reference), "{scheme} on {b}");
+        assert_eq!(grown.positions(), reference.positions(), "{scheme} on {b}");
+        assert_eq!(grown.n_edges(), reference.n_edges(), "{scheme} on {b}");
+        let three = subdivide(&mesh, scheme, 3, &opts()).expect("preallocated");
         let grown = subdivide(&mesh, scheme, 3, &opts().with_preallocate(false)).expect("growing");
+        assert_eq!(grown.counts(), three.counts(), "{scheme} on {b}");
         let threaded = subdivide(&mesh, scheme, 3, &opts().with_threads(2)).expect("threads");
-        for other in [&grown, &threaded] {
-            assert_eq!(
-                other.n_vertices(),
-                reference.n_vertices(),
-                "{scheme} on {b}"
-            );
-            assert_eq!(other.n_edges(), reference.n_edges(), "{scheme} on {b}");
-            assert_eq!(other.n_faces(), reference.n_faces(), "{scheme} on {b}");
-            assert_eq!(other.positions(), reference.positions(), "{scheme} on {b}");
-        }
+        assert_eq!(face_sets(&threaded), face_sets(&three), "{scheme} on {b}");
+        assert_eq!(threaded.positions(), three.positions(), "{scheme} on {b}");
     }
 }
 
@@ -559,5 +587,83 @@ fn paper_three_holes_counts() {
             &format!("{scheme} on {file}"),
             &verify(&mesh, scheme, 2, &opts()).expect(scheme),
         );
+    }
+}
+
+#[test]
+fn named_functions_pick_the_boundary_variant() {
+    use halfedge::subdivide::{
+        butterfly_subdivide, catmull_clark_subdivide, doo_sabin_subdivide, icosphere_subdivide,
+        loop_subdivide, mid_edge_subdivide, midpoint_subdivide, sqrt3_subdivide,
+        tri_split_subdivide,
+    };
+    let grid = base("grid:2x2");
+    let ico = base("icosahedron");
+    let o = opts();
+    assert_eq!(loop_subdivide(&grid, 1, &o).expect("loop").n_faces(), 32);
+    assert_eq!(loop_subdivide(&ico, 1, &o).expect("loop").n_faces(), 80);
+    assert_eq!(sqrt3_subdivide(&grid, 2, &o).expect("sqrt3").n_faces(), 72);
+    assert_eq!(sqrt3_subdivide(&ico, 1, &o).expect("sqrt3").n_faces(), 60);
+    assert_eq!(
+        midpoint_subdivide(&grid, 1, &o)
+            .expect("midpoint")
+            .n_faces(),
+        32
+    );
+    assert_eq!(
+        icosphere_subdivide(&ico, 1, &o)
+            .expect("icosphere")
+            .n_faces(),
+        80
+    );
+    assert_eq!(
+        butterfly_subdivide(&grid, 1, &o)
+            .expect("butterfly")
+            .n_faces(),
+        32
+    );
+    assert_eq!(
+        tri_split_subdivide(&ico, 3, 1, &o)
+            .expect("tri-split")
+            .n_faces(),
+        180
+    );
+    assert!(tri_split_subdivide(&ico, 1, 1, &o).is_err());
+    assert_eq!(
+        catmull_clark_subdivide(&grid, 1, &o).expect("cc").n_faces(),
+        24
+    );
+    assert_eq!(
+        doo_sabin_subdivide(&ico, 1, &o).expect("ds").n_faces(),
+        20 + 30 + 12
+    );
+    assert_eq!(
+        mid_edge_subdivide(&ico, 1, &o).expect("me").n_faces(),
+        20 + 12
+    );
+    assert!(doo_sabin_subdivide(&grid, 1, &o).is_err());
+}
+
+/// Big enough for the parallel passes (more than 2^14 elements per array).
+#[test]
+fn parallel_passes_match_the_single_thread_path() {
+    let ico = base("icosahedron");
+    for scheme in ["loop", "catmull-clark", "sqrt3", "doo-sabin"] {
+        let levels = if scheme == "sqrt3" { 6 } else { 5 };
+        let one = subdivide(&ico, scheme, levels, &opts()).expect("single");
+        let two = subdivide(&ico, scheme, levels, &opts().with_threads(2)).expect("two threads");
+        let pool = subdivide(&ico, scheme, levels, &opts().with_threads(0)).expect("global pool");
+        assert!(
+            one.n_halfedges() > 1 << 15,
+            "{scheme}: too small to go parallel"
+        );
+        for other in [&two, &pool] {
+            assert_eq!(other.positions(), one.positions(), "{scheme}");
+            for h in one.halfedges() {
+                assert_eq!(other.to_vertex(h), one.to_vertex(h), "{scheme}");
+                assert_eq!(other.next(h), one.next(h), "{scheme}");
+                assert_eq!(other.face(h), one.face(h), "{scheme}");
+            }
+        }
     }
 }

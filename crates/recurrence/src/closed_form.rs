@@ -159,6 +159,14 @@ impl ClosedForm {
         self.components.iter().all(|c| c.exact)
     }
 
+    pub(crate) fn fast(&self) -> &[Option<FastComponent>] {
+        &self.fast
+    }
+
+    pub(crate) fn powers(&self) -> &[FastEigenvalue] {
+        &self.powers
+    }
+
     /// The exact state at level `s` from the closed form; agrees with
     /// [`Recurrence::state_at`] for every `s`.
     ///

@@ -31,6 +31,7 @@ mod power;
 mod query;
 mod recurrence;
 mod render;
+mod summary;
 
 pub use crate::closed_form::{ClosedForm, Coefficient, ComponentForm, EarlyLevel, Term};
 pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
@@ -41,3 +42,4 @@ pub use crate::poly::Polynomial;
 pub use crate::power::CheckedRing;
 pub use crate::query::LevelBound;
 pub use crate::recurrence::Recurrence;
+pub use crate::summary::{digit_summary, DigitSummary};

@@ -443,7 +443,9 @@ pub fn sqrt3() -> Scheme {
 ///   triangle is split into three by joining the opposite vertex to the two new vertices;
 ///   every other face gets a centre vertex as in step A; then every old interior edge is
 ///   flipped. After A then B, each boundary edge is split in three (a triadic 1:9 split
-///   along the boundary).
+///   along the boundary). The flips of step B can leave triangles with two boundary edges
+///   (where two fans meet at a boundary vertex); the next step A splits them like any face,
+///   which restores the one-boundary-edge property before the next step B.
 ///
 /// The `halfedge` implementation must alternate the same way, counting steps from the input
 /// mesh (step B at even step numbers), and treat as "boundary faces" in step B the faces with

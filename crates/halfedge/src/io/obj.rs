@@ -115,7 +115,7 @@ pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
                     };
                     return Err(lines.error(kind));
                 }
-                mesh.push_face(&corners);
+                mesh.push_face_from_line(&corners, lines.line);
             }
             _ => {}
         }

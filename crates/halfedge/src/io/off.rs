@@ -169,7 +169,7 @@ pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
             }
             corners.push(index as u32);
         }
-        mesh.push_face(&corners);
+        mesh.push_face_from_line(&corners, lines.line);
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {

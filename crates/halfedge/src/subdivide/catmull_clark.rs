@@ -54,11 +54,16 @@ pub(crate) fn catmull_clark<const GROW: bool>(
         }
     }
 
-    let mut positions = if GROW {
-        Vec::new()
-    } else {
-        Vec::with_capacity(expected.vertices)
-    };
+    let positions = cc_positions(&t, (!GROW).then_some(expected.vertices), parallel);
+    b.finish(positions, ctx)
+}
+
+/// The positions of a Catmull-Clark step: moved old vertices, edge points, face points.
+/// `capacity`: allocate exactly this many up front (else grow).
+pub(crate) fn cc_positions(t: &Topo<'_>, capacity: Option<usize>, parallel: bool) -> Vec<DVec3> {
+    let t = *t;
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
     let face_point = |f: u32| {
         let mut sum = DVec3::ZERO;
         let mut n = 0u32;
@@ -98,5 +103,5 @@ pub(crate) fn catmull_clark<const GROW: bool>(
     par::extend(&mut positions, nf as usize, parallel, |f| {
         face_point(f as u32)
     });
-    b.finish(positions, ctx)
+    positions
 }

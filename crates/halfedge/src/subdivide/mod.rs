@@ -48,6 +48,7 @@ mod build;
 mod catmull_clark;
 mod dual;
 mod faces;
+mod gather;
 mod par;
 mod sqrt3;
 mod topo;
@@ -354,10 +355,15 @@ fn step(
             }
         };
     }
-    if opts.preallocate {
-        run!(false)
-    } else {
-        run!(true)
+    if !opts.preallocate {
+        return run!(true);
+    }
+    match (plan.rule, template) {
+        (Rule::Tri(rule, 2), Some(t)) => {
+            gather::four_to_one(mesh, t, rule, expected, parallel, &ctx)
+        }
+        (Rule::CatmullClark, _) => gather::catmull_clark(mesh, expected, parallel, &ctx),
+        _ => run!(false),
     }
 }
 
@@ -414,6 +420,153 @@ pub fn subdivide(
     let counts = mesh.counts();
     let plan = plan(scheme)?.for_mesh(&counts)?;
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
+}
+
+/// Loop subdivision (`loop`, or `loop-boundary` when the mesh has a boundary): Loop's
+/// weights, boundary curves as cubic B-splines.
+///
+/// # Errors
+///
+/// As [`subdivide`] (e.g. a face that is not a triangle).
+///
+/// ```
+/// use halfedge::subdivide::{loop_subdivide, SubdivideOptions};
+/// let grid = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::grid(2, 2)?)?;
+/// let out = loop_subdivide(&grid, 2, &SubdivideOptions::default())?;
+/// assert_eq!(out.n_faces(), 8 * 16);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn loop_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    let name = if mesh.is_closed() {
+        "loop"
+    } else {
+        "loop-boundary"
+    };
+    subdivide(mesh, name, levels, opts)
+}
+
+/// Plain 4:1 split with edge midpoints (`midpoint`), old vertices kept.
+///
+/// # Errors
+///
+/// As [`subdivide`].
+pub fn midpoint_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "midpoint", levels, opts)
+}
+
+/// 4:1 split with the edge midpoints projected onto the unit sphere (`icosphere`).
+///
+/// # Errors
+///
+/// As [`subdivide`].
+pub fn icosphere_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "icosphere", levels, opts)
+}
+
+/// The modified butterfly scheme (`butterfly`, interpolating; boundary rules in the module
+/// docs of the implementation).
+///
+/// # Errors
+///
+/// As [`subdivide`].
+pub fn butterfly_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "butterfly", levels, opts)
+}
+
+/// The 1:N² triangle split (`tri-split-N`) with points on the flat triangles.
+///
+/// # Errors
+///
+/// As [`subdivide`]; `n < 2` is refused by the scheme lookup.
+pub fn tri_split_subdivide(
+    mesh: &HalfEdgeMesh,
+    n: u32,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, &format!("tri-split-{n}"), levels, opts)
+}
+
+/// Catmull-Clark subdivision on any polygon mesh, with boundary rules (`catmull-clark`).
+///
+/// # Errors
+///
+/// As [`subdivide`].
+///
+/// ```
+/// use halfedge::subdivide::{catmull_clark_subdivide, SubdivideOptions};
+/// let mixed = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::mixed())?;
+/// let out = catmull_clark_subdivide(&mixed, 1, &SubdivideOptions::default())?;
+/// assert!(out.is_quad_mesh());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn catmull_clark_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "catmull-clark", levels, opts)
+}
+
+/// Kobbelt's √3 subdivision (`sqrt3`, or `sqrt3-boundary` with Kobbelt's boundary rule when
+/// the mesh has a boundary).
+///
+/// # Errors
+///
+/// As [`subdivide`].
+pub fn sqrt3_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    let name = if mesh.is_closed() {
+        "sqrt3"
+    } else {
+        "sqrt3-boundary"
+    };
+    subdivide(mesh, name, levels, opts)
+}
+
+/// Doo-Sabin subdivision on closed polygon meshes (`doo-sabin`).
+///
+/// # Errors
+///
+/// As [`subdivide`] (a boundary, or a vertex of valence below 3).
+pub fn doo_sabin_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "doo-sabin", levels, opts)
+}
+
+/// Peters-Reif mid-edge subdivision on closed polygon meshes (`mid-edge`).
+///
+/// # Errors
+///
+/// As [`subdivide`] (a boundary, or a vertex of valence below 3).
+pub fn mid_edge_subdivide(
+    mesh: &HalfEdgeMesh,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<HalfEdgeMesh> {
+    subdivide(mesh, "mid-edge", levels, opts)
 }
 
 /// The level loop shared by [`subdivide`] and [`verify`]; `visit(level, mesh)` sees every

@@ -1,24 +1,74 @@
-//! Filling position arrays, sequentially or with rayon.
+//! Filling output arrays, sequentially or with rayon.
 
-use glam::DVec3;
 use rayon::prelude::*;
 
-/// Below this many points a pass runs sequentially even when parallelism is on.
+/// Below this many elements a pass runs sequentially even when parallelism is on.
 const PARALLEL_MIN: usize = 1 << 14;
+
+/// Elements per parallel task when filling half-edge arrays.
+const CHUNK: usize = 1 << 13;
 
 /// Appends `f(0), ..., f(n - 1)` to `out`, in parallel when `parallel` and `n` is large.
 ///
 /// With enough capacity in `out` neither path reallocates (rayon's indexed `par_extend` writes
 /// in place after reserving exactly `n`).
-pub(crate) fn extend(
-    out: &mut Vec<DVec3>,
+pub(crate) fn extend<T: Send>(
+    out: &mut Vec<T>,
     n: usize,
     parallel: bool,
-    f: impl Fn(usize) -> DVec3 + Sync + Send,
+    f: impl Fn(usize) -> T + Sync + Send,
 ) {
     if parallel && n >= PARALLEL_MIN {
         out.par_extend((0..n).into_par_iter().map(f));
     } else {
         out.extend((0..n).map(f));
     }
+}
+
+/// One chunk of each of the four half-edge arrays, as zipped by rayon.
+type Chunks<'a> = (
+    ((&'a mut [u32], &'a mut [u32]), &'a mut [u32]),
+    &'a mut [u32],
+);
+
+/// The four half-edge arrays (`vertex`, `face`, `next`, `prev`), each of length `n`, with
+/// entry `q` of each array from `f(q)`. The arrays are allocated zeroed (no memset: the pages
+/// come zeroed from the allocator) and written front to back, in chunks in parallel.
+pub(crate) fn halfedge_arrays(
+    n: usize,
+    parallel: bool,
+    f: impl Fn(u32) -> [u32; 4] + Sync + Send,
+) -> [Vec<u32>; 4] {
+    let mut vertex = vec![0u32; n];
+    let mut face = vec![0u32; n];
+    let mut next = vec![0u32; n];
+    let mut prev = vec![0u32; n];
+    let fill = |(chunk, (((v, fa), ne), pr)): (usize, Chunks<'_>)| {
+        let base = chunk * CHUNK;
+        for i in 0..v.len() {
+            let [a, b, c, d] = f((base + i) as u32);
+            v[i] = a;
+            fa[i] = b;
+            ne[i] = c;
+            pr[i] = d;
+        }
+    };
+    if parallel && n >= PARALLEL_MIN {
+        vertex
+            .par_chunks_mut(CHUNK)
+            .zip(face.par_chunks_mut(CHUNK))
+            .zip(next.par_chunks_mut(CHUNK))
+            .zip(prev.par_chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(fill);
+    } else {
+        vertex
+            .chunks_mut(CHUNK)
+            .zip(face.chunks_mut(CHUNK))
+            .zip(next.chunks_mut(CHUNK))
+            .zip(prev.chunks_mut(CHUNK))
+            .enumerate()
+            .for_each(fill);
+    }
+    [vertex, face, next, prev]
 }

@@ -217,18 +217,37 @@ pub(crate) fn tri_split<const GROW: bool>(
         }
     }
 
-    let mut positions = if GROW {
-        Vec::new()
-    } else {
-        Vec::with_capacity(expected.vertices)
-    };
+    let positions = tri_positions(
+        &t,
+        template,
+        rule,
+        (!GROW).then_some(expected.vertices),
+        parallel,
+    );
+    b.finish(positions, ctx)
+}
+
+/// The positions of a 1:N² step: old vertices (moved by Loop's rule or kept), edge points,
+/// interior face points. `capacity`: allocate exactly this many up front (else grow).
+pub(crate) fn tri_positions(
+    t: &Topo<'_>,
+    template: &Template,
+    rule: TriRule,
+    capacity: Option<usize>,
+    parallel: bool,
+) -> Vec<DVec3> {
+    let n = template.n;
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let points_per_face = template.interior_points.len() as u32;
+    let t = *t;
+    let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
     // Old vertices.
     if rule == TriRule::Loop {
         par::extend(&mut positions, nv as usize, parallel, |v| {
             loop_vertex(&t, v as u32)
         });
     } else {
-        positions.extend_from_slice(&mesh.positions);
+        positions.extend_from_slice(&t.m.positions);
     }
     // Edge points.
     let per_edge = (n - 1) as usize;
@@ -262,7 +281,7 @@ pub(crate) fn tri_split<const GROW: bool>(
             p0 + (p1 - p0) * (a as f64 / nn) + (p2 - p0) * (bb as f64 / nn)
         });
     }
-    b.finish(positions, ctx)
+    positions
 }
 
 fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {

@@ -189,6 +189,13 @@ fn every_shared_mesh_matches_stats_json() {
             }
             Err(err) => {
                 eprintln!("{name}: refused: {err}");
+                // The face named by the error maps back to an `f` line of the file.
+                if let Some(face) = err.face() {
+                    let line = polygons.face_line(face as usize).expect("read from a file");
+                    let text = std::fs::read_to_string(&path).expect("readable");
+                    let at = text.lines().nth(line as usize - 1).unwrap_or_default();
+                    assert!(at.starts_with("f "), "{name}: line {line} is `{at}`");
+                }
                 if !name.starts_with("broken/") {
                     failures.push(format!("{name}: refused: {err}"));
                 } else if kind(&err) != expected_refusal(name) {

@@ -1,0 +1,358 @@
+//! The fast path for the benchmark schemes (the 4:1 family and Catmull-Clark): every entry of
+//! every output array is a pure function of its index, so the arrays are allocated once at
+//! their predicted lengths and written front to back (in parallel chunks with rayon).
+//!
+//! The numbering is the one documented in `trisplit` (for `N = 2`) and `catmull_clark`, with
+//! these details:
+//!
+//! - Output edge `j < 2E` is the piece of old edge `j >> 1` at the source of old half-edge `j`;
+//!   its half-edge `2j + (j & 1)` runs from that source to the midpoint (the "source piece" of
+//!   old half-edge `j`), the other half is the "target piece" of old half-edge `j ^ 1`.
+//! - 4:1: inner edge `2E + 3f + c` joins the midpoints of the face's half-edges `c` and
+//!   `c + 1`; face `4f` is the inner triangle and face `4f + 1 + c` the corner triangle at the
+//!   target of half-edge `c`.
+//! - Catmull-Clark: edge `2E + k` joins the midpoint of the half-edge of corner `k` to the face
+//!   point; face `k` is the quad at the source of the half-edge of corner `k`.
+//!
+//! Before writing anything, the counts these formulas produce are compared with the scheme's
+//! prediction ([`Error::PredictionMismatch`](crate::Error::PredictionMismatch) on a
+//! difference: a bug); the arrays then have exactly the predicted lengths by construction.
+
+use super::build::{Sizes, StepContext};
+use super::catmull_clark::cc_positions;
+use super::par;
+use super::topo::Topo;
+use super::trisplit::{tri_positions, Template, TriRule};
+use crate::mesh::INVALID;
+use crate::{HalfEdgeMesh, Result};
+
+/// Checks the structural counts of a step against the prediction.
+fn check(ctx: &StepContext<'_>, expected: Sizes, built: Sizes) -> Result<()> {
+    for (what, p, b) in [
+        ("vertices", expected.vertices, built.vertices),
+        ("edges", expected.halfedges / 2, built.halfedges / 2),
+        ("faces", expected.faces, built.faces),
+    ] {
+        if p != b {
+            debug_assert!(
+                false,
+                "{} level {}: predicted {what} {p}, built {b}",
+                ctx.scheme, ctx.level
+            );
+            return Err(ctx.mismatch(what, p, b));
+        }
+    }
+    Ok(())
+}
+
+/// The source piece of old half-edge `h`: from its source to its midpoint.
+#[inline]
+fn source_piece(h: u32) -> u32 {
+    2 * h + (h & 1)
+}
+
+/// The target piece of old half-edge `h`: from its midpoint to its target.
+#[inline]
+fn target_piece(h: u32) -> u32 {
+    2 * (h ^ 1) + (h & 1)
+}
+
+/// Decodes an output half-edge `q < 4E` into (old half-edge, is the source piece).
+#[inline]
+fn piece(q: u32) -> (u32, bool) {
+    let j = q >> 1;
+    if q & 1 == j & 1 {
+        (j, true)
+    } else {
+        (j ^ 1, false)
+    }
+}
+
+/// `[vertex, face, next, prev]` of a piece of a boundary old half-edge (the boundary loops
+/// of the output follow the old ones).
+#[inline]
+fn boundary_piece(t: &Topo<'_>, nv: u32, h: u32, source: bool) -> [u32; 4] {
+    if source {
+        [
+            nv + (h >> 1),
+            INVALID,
+            target_piece(h),
+            target_piece(t.prev(h)),
+        ]
+    } else {
+        [
+            t.target(h),
+            INVALID,
+            source_piece(t.next(h)),
+            source_piece(h),
+        ]
+    }
+}
+
+/// The outgoing half-edge of the midpoint of old edge `e` (the boundary one on the boundary).
+#[inline]
+fn midpoint_halfedge(t: &Topo<'_>, e: u32) -> u32 {
+    let h = 2 * e;
+    if t.is_boundary(h) {
+        target_piece(h)
+    } else if t.is_boundary(h ^ 1) {
+        target_piece(h ^ 1)
+    } else {
+        target_piece(h)
+    }
+}
+
+/// One 4:1 step on a triangle mesh.
+pub(crate) fn four_to_one(
+    mesh: &HalfEdgeMesh,
+    template: &Template,
+    rule: TriRule,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let built = Sizes {
+        vertices: (nv + ne) as usize,
+        halfedges: 2 * (2 * ne as usize + 3 * nf as usize),
+        faces: 4 * nf as usize,
+    };
+    check(ctx, expected, built)?;
+    let inner = 4 * ne; // first inner half-edge
+    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+        if q < inner {
+            let (h, source) = piece(q);
+            let f = t.face(h);
+            if f == INVALID {
+                return boundary_piece(&t, nv, h, source);
+            }
+            let h0 = t.face_halfedge(f);
+            let i = if h == h0 {
+                0
+            } else if h == t.next(h0) {
+                1
+            } else {
+                2
+            };
+            if source {
+                // Corner triangle c = i - 1 (at the source of h).
+                let c = (i + 2) % 3;
+                [
+                    nv + (h >> 1),
+                    4 * f + 1 + c,
+                    inner + 2 * (3 * f + c) + 1,
+                    target_piece(t.prev(h)),
+                ]
+            } else {
+                [
+                    t.target(h),
+                    4 * f + 1 + i,
+                    source_piece(t.next(h)),
+                    inner + 2 * (3 * f + i) + 1,
+                ]
+            }
+        } else {
+            let r = q - inner;
+            let k = r >> 1;
+            let (f, c) = (k / 3, k % 3);
+            let h0 = t.face_halfedge(f);
+            let hs = [h0, t.next(h0), t.prev(h0)];
+            let (hc, hc1) = (hs[c as usize], hs[((c + 1) % 3) as usize]);
+            if r & 1 == 0 {
+                // Inner triangle: m_c -> m_{c+1}.
+                [
+                    nv + (hc1 >> 1),
+                    4 * f,
+                    inner + 2 * (3 * f + (c + 1) % 3),
+                    inner + 2 * (3 * f + (c + 2) % 3),
+                ]
+            } else {
+                // Corner triangle c: m_{c+1} -> m_c.
+                [
+                    nv + (hc >> 1),
+                    4 * f + 1 + c,
+                    target_piece(hc),
+                    source_piece(hc1),
+                ]
+            }
+        }
+    });
+    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
+        let v = v as u32;
+        if v < nv {
+            source_piece(t.vertex_halfedge(v))
+        } else {
+            midpoint_halfedge(&t, v - nv)
+        }
+    });
+    let mut face_halfedge = Vec::with_capacity(built.faces);
+    par::extend(&mut face_halfedge, built.faces, parallel, |g| {
+        let (f, k) = (g as u32 / 4, g as u32 % 4);
+        if k == 0 {
+            inner + 2 * (3 * f)
+        } else {
+            inner + 2 * (3 * f + k - 1) + 1
+        }
+    });
+    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel);
+    finish(
+        ctx,
+        expected,
+        positions,
+        vertex_halfedge,
+        [hv, hf, hn, hp],
+        face_halfedge,
+    )
+}
+
+/// One Catmull-Clark step.
+pub(crate) fn catmull_clark(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse.
+    let offsets = t.corner_offsets();
+    let n_corners = offsets[nf as usize];
+    let mut corner_of = vec![INVALID; 2 * ne as usize];
+    let mut corner_halfedge = Vec::with_capacity(n_corners as usize);
+    for f in 0..nf {
+        t.for_face(f, |h| {
+            corner_of[h as usize] = corner_halfedge.len() as u32;
+            corner_halfedge.push(h);
+        });
+    }
+    let built = Sizes {
+        vertices: (nv + ne + nf) as usize,
+        halfedges: 2 * (2 * ne as usize + n_corners as usize),
+        faces: n_corners as usize,
+    };
+    check(ctx, expected, built)?;
+    let inner = 4 * ne;
+    let corner = |h: u32| corner_of[h as usize];
+    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+        if q < inner {
+            let (h, source) = piece(q);
+            if t.is_boundary(h) {
+                return boundary_piece(&t, nv, h, source);
+            }
+            if source {
+                [
+                    nv + (h >> 1),
+                    corner(h),
+                    inner + 2 * corner(h),
+                    target_piece(t.prev(h)),
+                ]
+            } else {
+                [
+                    t.target(h),
+                    corner(t.next(h)),
+                    source_piece(t.next(h)),
+                    inner + 2 * corner(h) + 1,
+                ]
+            }
+        } else {
+            let r = q - inner;
+            let k = r >> 1;
+            let h = corner_halfedge[k as usize];
+            if r & 1 == 0 {
+                // Midpoint of h -> face point, in quad k.
+                [
+                    nv + ne + t.face(h),
+                    k,
+                    inner + 2 * corner(t.prev(h)) + 1,
+                    source_piece(h),
+                ]
+            } else {
+                // Face point -> midpoint of h, in the quad of next(h).
+                let n = t.next(h);
+                [
+                    nv + (h >> 1),
+                    corner(n),
+                    target_piece(h),
+                    inner + 2 * corner(n),
+                ]
+            }
+        }
+    });
+    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
+        let v = v as u32;
+        if v < nv {
+            source_piece(t.vertex_halfedge(v))
+        } else if v < nv + ne {
+            midpoint_halfedge(&t, v - nv)
+        } else {
+            inner + 2 * offsets[(v - nv - ne) as usize] + 1
+        }
+    });
+    let mut face_halfedge = Vec::with_capacity(built.faces);
+    par::extend(&mut face_halfedge, built.faces, parallel, |k| {
+        source_piece(corner_halfedge[k])
+    });
+    let positions = cc_positions(&t, Some(expected.vertices), parallel);
+    finish(
+        ctx,
+        expected,
+        positions,
+        vertex_halfedge,
+        [hv, hf, hn, hp],
+        face_halfedge,
+    )
+}
+
+/// Checks the final lengths and capacities against the prediction and assembles the mesh.
+fn finish(
+    ctx: &StepContext<'_>,
+    expected: Sizes,
+    positions: Vec<glam::DVec3>,
+    vertex_halfedge: Vec<u32>,
+    halfedges: [Vec<u32>; 4],
+    face_halfedge: Vec<u32>,
+) -> Result<HalfEdgeMesh> {
+    let [hv, hf, hn, hp] = halfedges;
+    for (what, predicted, len, cap) in [
+        (
+            "vertex positions",
+            expected.vertices,
+            positions.len(),
+            positions.capacity(),
+        ),
+        (
+            "vertices",
+            expected.vertices,
+            vertex_halfedge.len(),
+            vertex_halfedge.capacity(),
+        ),
+        ("half-edges", expected.halfedges, hv.len(), hv.capacity()),
+        (
+            "faces",
+            expected.faces,
+            face_halfedge.len(),
+            face_halfedge.capacity(),
+        ),
+    ] {
+        if len != predicted || cap != predicted {
+            debug_assert!(
+                false,
+                "{} level {}: predicted {what} {predicted}, built {len} (capacity {cap})",
+                ctx.scheme, ctx.level
+            );
+            return Err(ctx.mismatch(what, predicted, len.max(cap)));
+        }
+    }
+    Ok(HalfEdgeMesh::from_raw_parts(
+        positions,
+        vertex_halfedge,
+        hv,
+        hf,
+        hn,
+        hp,
+        face_halfedge,
+    ))
+}
