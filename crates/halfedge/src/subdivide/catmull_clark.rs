@@ -64,15 +64,18 @@ pub(crate) fn cc_positions(t: &Topo<'_>, capacity: Option<usize>, parallel: bool
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
-    let face_point = |f: u32| {
+    // Face points first: the vertex and edge rules use them.
+    let mut face_points = Vec::with_capacity(nf as usize);
+    par::extend(&mut face_points, nf as usize, parallel, |f| {
         let mut sum = DVec3::ZERO;
         let mut n = 0u32;
-        t.for_face(f, |h| {
+        t.for_face(f as u32, |h| {
             sum += t.pos(t.source(h));
             n += 1;
         });
-        sum / n as f64
-    };
+        sum / f64::from(n)
+    });
+    let face_point = |f: u32| face_points[f as usize];
     par::extend(&mut positions, nv as usize, parallel, |v| {
         let v = v as u32;
         let p = t.pos(v);
@@ -100,8 +103,6 @@ pub(crate) fn cc_positions(t: &Topo<'_>, capacity: Option<usize>, parallel: bool
             (mid + face_point(t.face(h)) + face_point(t.face(h ^ 1))) * 0.25
         }
     });
-    par::extend(&mut positions, nf as usize, parallel, |f| {
-        face_point(f as u32)
-    });
+    positions.extend_from_slice(&face_points);
     positions
 }

@@ -217,16 +217,19 @@ pub(crate) fn catmull_clark(
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse.
-    let offsets = t.corner_offsets();
-    let n_corners = offsets[nf as usize];
+    let mut offsets = Vec::with_capacity(nf as usize + 1);
     let mut corner_of = vec![INVALID; 2 * ne as usize];
-    let mut corner_halfedge = Vec::with_capacity(n_corners as usize);
+    // At most 2E corners (every half-edge in at most one face).
+    let mut corner_halfedge = Vec::with_capacity(2 * ne as usize - t.boundary_edges());
     for f in 0..nf {
+        offsets.push(corner_halfedge.len() as u32);
         t.for_face(f, |h| {
             corner_of[h as usize] = corner_halfedge.len() as u32;
             corner_halfedge.push(h);
         });
     }
+    let n_corners = corner_halfedge.len() as u32;
+    offsets.push(n_corners);
     let built = Sizes {
         vertices: (nv + ne + nf) as usize,
         halfedges: 2 * (2 * ne as usize + n_corners as usize),
