@@ -162,6 +162,10 @@ fn growing_buffers_and_threads_give_the_same_mesh() {
         ("quad-grid:3x3", "catmull-clark"),
         ("icosahedron", "ternary"),
         ("torus:1", "mid-edge"),
+        ("icosahedron", "sqrt3"),
+        ("torus:2", "sqrt3-boundary"),
+        ("mixed", "catmull-clark-general"),
+        ("cube", "doo-sabin"),
     ] {
         let mesh = base(b);
         // One level: both paths number the new vertices the same way (old vertices, then one

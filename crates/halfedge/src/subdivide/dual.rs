@@ -74,23 +74,27 @@ pub(crate) fn doo_sabin<const GROW: bool>(
         Vec::with_capacity(expected.vertices)
     };
     par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
-        let h = h as u32;
-        let n = t.face_degree(t.face(h));
-        let nf = n as f64;
-        let mut sum = DVec3::ZERO;
-        let mut g = h;
-        for j in 0..n {
-            let w = if j == 0 {
-                (nf + 5.0) / (4.0 * nf)
-            } else {
-                (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
-            };
-            sum += t.pos(t.source(g)) * w;
-            g = t.next(g);
-        }
-        sum
+        doo_sabin_point(&t, h as u32)
     });
     b.finish(positions, ctx)
+}
+
+/// The Doo-Sabin point of the corner at the source of `h` in its face.
+pub(crate) fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
+    let n = t.face_degree(t.face(h));
+    let nf = n as f64;
+    let mut sum = DVec3::ZERO;
+    let mut g = h;
+    for j in 0..n {
+        let w = if j == 0 {
+            (nf + 5.0) / (4.0 * nf)
+        } else {
+            (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
+        };
+        sum += t.pos(t.source(g)) * w;
+        g = t.next(g);
+    }
+    sum
 }
 
 /// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).

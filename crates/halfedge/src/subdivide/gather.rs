@@ -1,4 +1,5 @@
-//! The fast path for the benchmark schemes (the 4:1 family and Catmull-Clark): every entry of
+//! The fast path for the benchmark schemes (the 4:1 family, Catmull-Clark, √3 on closed
+//! meshes, Doo-Sabin): every entry of
 //! every output array is a pure function of its index, so the arrays are allocated once at
 //! their predicted lengths and written front to back (in parallel chunks with rayon).
 //!
@@ -13,6 +14,7 @@
 //!   target of half-edge `c`.
 //! - Catmull-Clark: edge `2E + k` joins the midpoint of the half-edge of corner `k` to the face
 //!   point; face `k` is the quad at the source of the half-edge of corner `k`.
+//! - √3 on closed meshes and Doo-Sabin: the numbering documented in `sqrt3` and `dual`.
 //!
 //! Before writing anything, the counts these formulas produce are compared with the scheme's
 //! prediction ([`Error::PredictionMismatch`](crate::Error::PredictionMismatch) on a
@@ -20,7 +22,9 @@
 
 use super::build::{Sizes, StepContext};
 use super::catmull_clark::cc_positions;
+use super::dual::doo_sabin_point;
 use super::par;
+use super::sqrt3::{centroid, interior_vertex};
 use super::topo::Topo;
 use super::trisplit::{tri_positions, Template, TriRule};
 use crate::mesh::INVALID;
@@ -299,6 +303,177 @@ pub(crate) fn catmull_clark(
         source_piece(corner_halfedge[k])
     });
     let positions = cc_positions(&t, Some(expected.vertices), parallel);
+    finish(
+        ctx,
+        expected,
+        positions,
+        vertex_halfedge,
+        [hv, hf, hn, hp],
+        face_halfedge,
+    )
+}
+
+/// One √3 step on a closed triangle mesh. Half-edge `g` of the old mesh keeps its id (the
+/// flipped edge, from the centroid of `g`'s face to the centroid across); the spoke of corner
+/// `c = 3f + k` is edge `E + c`, half 0 from the corner to the centroid; the triangle of face
+/// half-edge `g` is face `corner(g)`.
+pub(crate) fn sqrt3_closed(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let built = Sizes {
+        vertices: (nv + nf) as usize,
+        halfedges: 2 * (ne as usize + 3 * nf as usize),
+        faces: 3 * nf as usize,
+    };
+    check(ctx, expected, built)?;
+    let corner = |g: u32| {
+        let f = t.face(g);
+        let h0 = t.face_halfedge(f);
+        3 * f
+            + if g == h0 {
+                0
+            } else if g == t.next(h0) {
+                1
+            } else {
+                2
+            }
+    };
+    let spoke = |g: u32| 2 * (ne + corner(g));
+    let first_spoke = 2 * ne;
+    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+        if q < first_spoke {
+            // The flipped edge: centroid of face(g) -> centroid of face(g ^ 1), in T(g).
+            let g = q;
+            [
+                nv + t.face(g ^ 1),
+                corner(g),
+                spoke(g ^ 1) + 1,
+                spoke(t.next(g)),
+            ]
+        } else {
+            let c = (q - first_spoke) >> 1;
+            let (f, k) = (c / 3, c % 3);
+            let h0 = t.face_halfedge(f);
+            let g = match k {
+                0 => h0,
+                1 => t.next(h0),
+                _ => t.prev(h0),
+            };
+            if q & 1 == 0 {
+                // Corner -> centroid, in T(prev g).
+                let p = t.prev(g);
+                [nv + f, corner(p), p, spoke(p ^ 1) + 1]
+            } else {
+                // Centroid -> corner, in T(g ^ 1).
+                [t.source(g), corner(g ^ 1), spoke(t.next(g ^ 1)), g ^ 1]
+            }
+        }
+    });
+    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
+        let v = v as u32;
+        if v < nv {
+            spoke(t.vertex_halfedge(v))
+        } else {
+            spoke(t.face_halfedge(v - nv)) + 1
+        }
+    });
+    let mut face_halfedge = Vec::with_capacity(built.faces);
+    par::extend(&mut face_halfedge, built.faces, parallel, |c| {
+        let (f, k) = (c as u32 / 3, c as u32 % 3);
+        let h0 = t.face_halfedge(f);
+        match k {
+            0 => h0,
+            1 => t.next(h0),
+            _ => t.prev(h0),
+        }
+    });
+    let mut positions = Vec::with_capacity(expected.vertices);
+    par::extend(&mut positions, nv as usize, parallel, |v| {
+        interior_vertex(&t, v as u32)
+    });
+    par::extend(&mut positions, nf as usize, parallel, |f| {
+        centroid(&t, f as u32)
+    });
+    finish(
+        ctx,
+        expected,
+        positions,
+        vertex_halfedge,
+        [hv, hf, hn, hp],
+        face_halfedge,
+    )
+}
+
+/// One Doo-Sabin step on a closed mesh (vertex `h` is the corner at the source of old
+/// half-edge `h`; edge `h` is the side of the shrunken face, edge `2E + h` joins corner `h`
+/// to corner `next(twin(h))`).
+pub(crate) fn doo_sabin(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let built = Sizes {
+        vertices: 2 * ne as usize,
+        halfedges: 8 * ne as usize,
+        faces: (nf + ne + nv) as usize,
+    };
+    check(ctx, expected, built)?;
+    let b0 = 4 * ne;
+    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+        if q < b0 {
+            let g = q >> 1;
+            if q & 1 == 0 {
+                // Side of the shrunken face: corner g -> corner next(g).
+                [t.next(g), t.face(g), 2 * t.next(g), 2 * t.prev(g)]
+            } else {
+                // The same side in the edge quad: corner next(g) -> corner g.
+                [g, nf + (g >> 1), b0 + 2 * g, b0 + 2 * (g ^ 1)]
+            }
+        } else {
+            let g = (q - b0) >> 1;
+            let across = t.next(g ^ 1);
+            if q & 1 == 0 {
+                // In the edge quad: corner g -> corner next(twin g).
+                [across, nf + (g >> 1), 2 * (g ^ 1) + 1, 2 * g + 1]
+            } else {
+                // In the vertex face of source(g): corner next(twin g) -> corner g.
+                [
+                    g,
+                    nf + ne + t.source(g),
+                    b0 + 2 * (t.prev(g) ^ 1) + 1,
+                    b0 + 2 * across + 1,
+                ]
+            }
+        }
+    });
+    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    par::extend(&mut vertex_halfedge, built.vertices, parallel, |h| {
+        2 * h as u32
+    });
+    let mut face_halfedge = Vec::with_capacity(built.faces);
+    par::extend(&mut face_halfedge, built.faces, parallel, |f| {
+        let f = f as u32;
+        if f < nf {
+            2 * t.face_halfedge(f)
+        } else if f < nf + ne {
+            2 * (2 * (f - nf)) + 1
+        } else {
+            b0 + 2 * t.vertex_halfedge(f - nf - ne) + 1
+        }
+    });
+    let mut positions = Vec::with_capacity(expected.vertices);
+    par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
+        doo_sabin_point(&t, h as u32)
+    });
     finish(
         ctx,
         expected,

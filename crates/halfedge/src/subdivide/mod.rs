@@ -363,6 +363,10 @@ fn step(
             gather::four_to_one(mesh, t, rule, expected, parallel, &ctx)
         }
         (Rule::CatmullClark, _) => gather::catmull_clark(mesh, expected, parallel, &ctx),
+        (Rule::Sqrt3 { .. }, _) if mesh.is_closed() => {
+            gather::sqrt3_closed(mesh, expected, parallel, &ctx)
+        }
+        (Rule::DooSabin, _) => gather::doo_sabin(mesh, expected, parallel, &ctx),
         _ => run!(false),
     }
 }

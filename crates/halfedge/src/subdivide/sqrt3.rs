@@ -175,15 +175,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
             let left = t.pos(t.source(t.prev(h)));
             return (left * 4.0 + p * 19.0 + right * 4.0) / 27.0;
         }
-        let mut sum = DVec3::ZERO;
-        let mut n = 0u32;
-        t.for_outgoing(v, |h| {
-            sum += t.pos(t.target(h));
-            n += 1;
-        });
-        let nf = n as f64;
-        let alpha = (4.0 - 2.0 * (2.0 * PI / nf).cos()) / 9.0;
-        p * (1.0 - alpha) + sum * (alpha / nf)
+        interior_vertex(&t, v)
     });
     // Boundary points: g runs a -> b inside the mesh, its twin b -> a on the boundary.
     let p1 = |g: u32| {
@@ -195,11 +187,10 @@ pub(crate) fn sqrt3<const GROW: bool>(
         (t.pos(t.source(g)) * 10.0 + t.pos(t.target(g)) * 16.0 + after) / 27.0
     };
     par::extend(&mut positions, nf as usize, parallel, |f| {
-        let g = t.face_halfedge(f as u32);
         if step_b && boundary_of[f] != INVALID {
             return p1(boundary_of[f]);
         }
-        (t.pos(t.source(g)) + t.pos(t.target(g)) + t.pos(t.target(t.next(g)))) / 3.0
+        centroid(&t, f as u32)
     });
     if step_b {
         par::extend(&mut positions, boundary_faces.len(), parallel, |i| {
@@ -207,4 +198,25 @@ pub(crate) fn sqrt3<const GROW: bool>(
         });
     }
     b.finish(positions, ctx)
+}
+
+/// Kobbelt's smoothing of an interior vertex: `(1 - α) v + α/n Σ neighbours`,
+/// `α = (4 - 2 cos(2π/n)) / 9`.
+pub(crate) fn interior_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
+    let p = t.pos(v);
+    let mut sum = DVec3::ZERO;
+    let mut n = 0u32;
+    t.for_outgoing(v, |h| {
+        sum += t.pos(t.target(h));
+        n += 1;
+    });
+    let nf = f64::from(n);
+    let alpha = (4.0 - 2.0 * (2.0 * PI / nf).cos()) / 9.0;
+    p * (1.0 - alpha) + sum * (alpha / nf)
+}
+
+/// The centroid of triangle `f`.
+pub(crate) fn centroid(t: &Topo<'_>, f: u32) -> DVec3 {
+    let g = t.face_halfedge(f);
+    (t.pos(t.source(g)) + t.pos(t.target(g)) + t.pos(t.target(t.next(g)))) / 3.0
 }
