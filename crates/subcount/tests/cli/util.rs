@@ -4,14 +4,14 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 /// The outcome of one run: exit code, stdout and stderr as text.
-pub struct Run {
-    pub code: i32,
-    pub stdout: String,
-    pub stderr: String,
+pub(crate) struct Run {
+    pub(crate) code: i32,
+    pub(crate) stdout: String,
+    pub(crate) stderr: String,
 }
 
 /// Runs `subcount` with the given arguments and no standard input.
-pub fn subcount(args: &[&str]) -> Run {
+pub(crate) fn subcount(args: &[&str]) -> Run {
     let output: Output = Command::new(env!("CARGO_BIN_EXE_subcount"))
         .args(args)
         .stdin(std::process::Stdio::null())
@@ -25,7 +25,7 @@ pub fn subcount(args: &[&str]) -> Run {
 }
 
 /// Runs and asserts success with an empty stderr; returns stdout.
-pub fn ok(args: &[&str]) -> String {
+pub(crate) fn ok(args: &[&str]) -> String {
     let run = subcount(args);
     assert_eq!(run.code, 0, "subcount {args:?} failed: {}", run.stderr);
     assert_eq!(run.stderr, "", "subcount {args:?} wrote to stderr");
@@ -33,7 +33,7 @@ pub fn ok(args: &[&str]) -> String {
 }
 
 /// Runs and asserts the exit code and a one-line `error: ...` containing `needle`.
-pub fn fails(args: &[&str], code: i32, needle: &str) -> String {
+pub(crate) fn fails(args: &[&str], code: i32, needle: &str) -> String {
     let run = subcount(args);
     assert_eq!(
         run.code, code,
@@ -62,7 +62,7 @@ pub fn fails(args: &[&str], code: i32, needle: &str) -> String {
 
 /// The test meshes folder, if `SUBCOUNT_MESHES` is set.
 #[allow(dead_code)]
-pub fn meshes() -> Option<PathBuf> {
+pub(crate) fn meshes() -> Option<PathBuf> {
     match std::env::var_os("SUBCOUNT_MESHES") {
         Some(dir) => Some(PathBuf::from(dir)),
         None => {
