@@ -27,6 +27,31 @@
 //! | `doo-sabin` | dual | Doo-Sabin weights |
 //! | `mid-edge` | dual | edge midpoints (Peters-Reif) |
 //!
+//! # Geometry and scheme notes
+//!
+//! - Loop: Loop's original `β = (5/8 - (3/8 + 1/4 cos(2π/n))²) / n`; interior edge points
+//!   `3/8, 3/8, 1/8, 1/8`; boundary edges take the midpoint and boundary vertices
+//!   `3/4, 1/8, 1/8` (the cubic B-spline of the boundary polygon).
+//! - Modified butterfly: the 8-point stencil between regular interior vertices, Zorin's
+//!   one-ring stencils at extraordinary interior vertices (averaged when both ends are
+//!   extraordinary), the 4-point rule `-1/16, 9/16, 9/16, -1/16` on boundary edges.
+//!   Simplifications: an interior edge with one boundary end uses the one-ring stencil of its
+//!   interior end; an interior edge with both ends on the boundary takes the midpoint.
+//! - `midpoint`, `icosphere` and `butterfly` are `loop` (closed meshes) in the `schemes`
+//!   crate; their geometry also handles boundaries, so on a mesh with boundary edges they are
+//!   counted (and checked) as `loop-boundary`, the same 4:1 topology.
+//! - `sqrt3-boundary` alternates Kobbelt's steps as the `schemes` crate defines them: step A
+//!   at odd step numbers (boundary edges kept, boundary vertices fixed), step B at even ones
+//!   (boundary edges trisected with the ternary cubic B-spline rule `1, 16, 10 / 27` and
+//!   `4, 19, 4 / 27`; the boundary triangle is split from its opposite vertex).
+//! - Catmull-Clark: boundary edges take the midpoint, boundary vertices `3/4, 1/8, 1/8`.
+//! - Doo-Sabin and mid-edge need closed meshes whose vertices all have valence >= 3.
+//!
+//! The 4:1 family, Catmull-Clark, √3 on closed meshes and Doo-Sabin write every output array
+//! front to back from index formulas (in parallel chunks when `threads != 1`); the other
+//! schemes, and every scheme with [`SubdivideOptions::preallocate`] off, emit faces one by one
+//! into index-addressed arrays. Both paths check every length against the prediction.
+//!
 //! # Example
 //!
 //! ```
