@@ -671,3 +671,16 @@ fn parallel_passes_match_the_single_thread_path() {
         }
     }
 }
+
+#[test]
+fn face_lists_drop_unused_vertices() {
+    let mut mesh = book();
+    mesh.positions.push(DVec3::splat(9.0)); // used by no face
+    let reports = verify_polygons(&mesh, "loop-general", 2, &opts()).expect("loop-general");
+    assert_reports("unused vertex", &reports);
+    let out = subdivide_polygons(&mesh, "catmull-clark-general", 1, &opts()).expect("cc");
+    let c = halfedge::stats::face_list_counts(&out);
+    assert_eq!(c.unreferenced_vertices, 0);
+    assert_eq!(out.n_vertices() as u64, c.vertices);
+    assert!(out.positions.iter().all(|p| p.max_element() < 9.0));
+}

@@ -729,7 +729,7 @@ pub fn verify(
 /// new points are placed linearly (edge points at the midpoint or on the edge, face points at
 /// the centroid or on the flat triangle), old vertices stay.
 ///
-/// Vertices no face uses are dropped from the output.
+/// From level 1 on, vertices no face uses are dropped (level 0 is a copy of the input).
 ///
 /// # Errors
 ///
