@@ -684,3 +684,41 @@ fn face_lists_drop_unused_vertices() {
     assert_eq!(out.n_vertices() as u64, c.vertices);
     assert!(out.positions.iter().all(|p| p.max_element() < 9.0));
 }
+
+/// A cube whose top front edge carries an extra vertex: two pentagons share the edges at a
+/// vertex of valence 2. Catmull-Clark runs; the dual schemes refuse (the vertex face would be
+/// a 2-gon) with the vertex named.
+#[test]
+fn dual_schemes_refuse_a_valence_two_vertex() {
+    let cube = shapes::cube();
+    let mut faces: Vec<Vec<u32>> = cube.faces().map(<[u32]>::to_vec).collect();
+    // Find two faces sharing an edge (a, b) and insert vertex 8 between a and b in both.
+    let (a, b) = (faces[0][0], faces[0][1]);
+    let mut positions = cube.positions.clone();
+    positions.push((positions[a as usize] + positions[b as usize]) * 0.5);
+    for face in &mut faces {
+        let n = face.len();
+        if let Some(i) = (0..n).find(|&i| {
+            let (x, y) = (face[i], face[(i + 1) % n]);
+            (x, y) == (a, b) || (x, y) == (b, a)
+        }) {
+            face.insert(i + 1, 8);
+        }
+    }
+    let polygons = PolygonMesh::from_faces(positions, faces);
+    let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid polygon mesh");
+    assert_eq!(mesh.valence(halfedge::VertexId(8)), 2);
+    assert_reports(
+        "cc",
+        &verify(&mesh, "catmull-clark", 3, &opts()).expect("cc"),
+    );
+    for scheme in ["doo-sabin", "mid-edge"] {
+        match subdivide(&mesh, scheme, 1, &opts()) {
+            Err(Error::SchemeNotApplicable { scheme: s, reason }) => {
+                assert_eq!(s, scheme);
+                assert!(reason.contains("vertex 8 has valence 2"), "{reason}");
+            }
+            other => panic!("{scheme}: expected a refusal, got {other:?}"),
+        }
+    }
+}
