@@ -1,5 +1,4 @@
-//! The fast path for the benchmark schemes (the 4:1 family, Catmull-Clark, √3 on closed
-//! meshes, Doo-Sabin): every entry of
+//! The fast path (the 4:1 family, Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge): every entry of
 //! every output array is a pure function of its index, so the arrays are allocated once at
 //! their predicted lengths and written front to back (in parallel chunks with rayon).
 //!
@@ -14,7 +13,8 @@
 //!   target of half-edge `c`.
 //! - Catmull-Clark: edge `2E + k` joins the midpoint of the half-edge of corner `k` to the face
 //!   point; face `k` is the quad at the source of the half-edge of corner `k`.
-//! - √3 on closed meshes and Doo-Sabin: the numbering documented in `sqrt3` and `dual`.
+//! - √3 on closed meshes, Doo-Sabin and mid-edge: the numbering documented in `sqrt3` and
+//!   `dual`.
 //!
 //! Before writing anything, the counts these formulas produce are compared with the scheme's
 //! prediction ([`Error::PredictionMismatch`](crate::Error::PredictionMismatch) on a
@@ -473,6 +473,64 @@ pub(crate) fn doo_sabin(
     let mut positions = Vec::with_capacity(expected.vertices);
     par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
         doo_sabin_point(&t, h as u32)
+    });
+    finish(
+        ctx,
+        expected,
+        positions,
+        vertex_halfedge,
+        [hv, hf, hn, hp],
+        face_halfedge,
+    )
+}
+
+/// One mid-edge step on a closed mesh (vertex `e` is the midpoint of old edge `e`; edge `h`
+/// joins the midpoints of `h` and `next(h)`, half 0 in the shrunken old face, half 1 in the
+/// face of the old vertex `target(h)`).
+pub(crate) fn mid_edge(
+    mesh: &HalfEdgeMesh,
+    expected: Sizes,
+    parallel: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let built = Sizes {
+        vertices: ne as usize,
+        halfedges: 4 * ne as usize,
+        faces: (nf + nv) as usize,
+    };
+    check(ctx, expected, built)?;
+    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+        let h = q >> 1;
+        if q & 1 == 0 {
+            [t.next(h) >> 1, t.face(h), 2 * t.next(h), 2 * t.prev(h)]
+        } else {
+            [
+                h >> 1,
+                nf + t.target(h),
+                2 * t.prev(h ^ 1) + 1,
+                2 * (t.next(h) ^ 1) + 1,
+            ]
+        }
+    });
+    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    par::extend(&mut vertex_halfedge, built.vertices, parallel, |e| {
+        4 * e as u32
+    });
+    let mut face_halfedge = Vec::with_capacity(built.faces);
+    par::extend(&mut face_halfedge, built.faces, parallel, |f| {
+        let f = f as u32;
+        if f < nf {
+            2 * t.face_halfedge(f)
+        } else {
+            2 * (t.vertex_halfedge(f - nf) ^ 1) + 1
+        }
+    });
+    let mut positions = Vec::with_capacity(expected.vertices);
+    par::extend(&mut positions, ne as usize, parallel, |e| {
+        let h = 2 * e as u32;
+        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
     });
     finish(
         ctx,

@@ -47,10 +47,10 @@
 //! - Catmull-Clark: boundary edges take the midpoint, boundary vertices `3/4, 1/8, 1/8`.
 //! - Doo-Sabin and mid-edge need closed meshes whose vertices all have valence >= 3.
 //!
-//! The 4:1 family, Catmull-Clark, √3 on closed meshes and Doo-Sabin write every output array
-//! front to back from index formulas (in parallel chunks when `threads != 1`); the other
-//! schemes, and every scheme with [`SubdivideOptions::preallocate`] off, emit faces one by one
-//! into index-addressed arrays. Both paths check every length against the prediction.
+//! The 4:1 family, Catmull-Clark, √3 on closed meshes, Doo-Sabin and mid-edge write every
+//! output array front to back from index formulas (in parallel chunks when `threads != 1`);
+//! the other steps (1:N² for N >= 3, √3 on a boundary) and every scheme with
+//! [`SubdivideOptions::preallocate`] off emit faces one by one into index-addressed arrays. Both paths check every length against the prediction.
 //!
 //! # Example
 //!
@@ -180,6 +180,27 @@ impl LevelReport {
     /// Whether every measured component equals its prediction.
     pub fn is_match(&self) -> bool {
         self.predicted == self.measured
+    }
+
+    /// The components whose measured value differs from the prediction (or was not measured),
+    /// by name.
+    ///
+    /// ```
+    /// use halfedge::subdivide::LevelReport;
+    /// let r = LevelReport {
+    ///     level: 1,
+    ///     predicted: vec![("V".into(), 42.into()), ("F".into(), 80.into())],
+    ///     measured: vec![("V".into(), 42.into()), ("F".into(), 81.into())],
+    /// };
+    /// assert_eq!(r.mismatches(), ["F"]);
+    /// assert!(!r.is_match());
+    /// ```
+    pub fn mismatches(&self) -> Vec<&str> {
+        self.predicted
+            .iter()
+            .filter(|(name, value)| !self.measured.iter().any(|(n, v)| n == name && v == value))
+            .map(|(name, _)| name.as_str())
+            .collect()
     }
 }
 
@@ -392,6 +413,7 @@ fn step(
             gather::sqrt3_closed(mesh, expected, parallel, &ctx)
         }
         (Rule::DooSabin, _) => gather::doo_sabin(mesh, expected, parallel, &ctx),
+        (Rule::MidEdge, _) => gather::mid_edge(mesh, expected, parallel, &ctx),
         _ => run!(false),
     }
 }
