@@ -1,2 +1,55 @@
-//! Project chores for subcount.
-fn main() {}
+//! Project chores for subcount, run as `cargo xtask <task>` (the
+//! [cargo-xtask](https://github.com/matklad/cargo-xtask) pattern, as in rust-analyzer).
+//!
+//! - `cargo xtask formulas [--check]` regenerates `docs/formulas.md` from the `schemes` and
+//!   `recurrence` crates; `--check` fails when the file is stale (also a `#[test]`, so
+//!   `cargo test --workspace` catches it).
+//! - `cargo xtask verify DIR [--max-faces N] [--schemes a,b]` really subdivides every mesh of
+//!   `DIR` (and of `DIR/broken`) with every applicable built-in scheme, level by level up to a
+//!   face cap, and prints a pass/fail table; it exits non-zero on any failure. It re-runs
+//!   itself in release mode when built in debug.
+
+mod formulas;
+mod paper;
+mod verify;
+
+use std::path::{Path, PathBuf};
+
+const USAGE: &str = "\
+usage: cargo xtask <task>
+
+tasks:
+  formulas [--check]                          regenerate docs/formulas.md (--check: fail when stale)
+  verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts";
+
+fn main() -> anyhow::Result<()> {
+    let mut args = std::env::args().skip(1);
+    let task = args.next();
+    let rest: Vec<String> = args.collect();
+    match task.as_deref() {
+        Some("formulas") => {
+            let check = match rest.as_slice() {
+                [] => false,
+                [flag] if flag == "--check" => true,
+                _ => anyhow::bail!("unexpected arguments {rest:?} for `formulas`\n{USAGE}"),
+            };
+            formulas::generate(check)
+        }
+        Some("verify") => verify::run(&rest),
+        Some("help" | "--help" | "-h") => {
+            println!("{USAGE}");
+            Ok(())
+        }
+        Some(other) => anyhow::bail!("unknown task `{other}`\n{USAGE}"),
+        None => anyhow::bail!("no task given\n{USAGE}"),
+    }
+}
+
+/// The workspace root (the parent of this crate's manifest directory), so tasks run from
+/// anywhere.
+fn project_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| PathBuf::from("."))
+}
