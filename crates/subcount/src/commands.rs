@@ -117,14 +117,14 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
         let sums: Vec<Option<DigitSummary>> = row
             .values
             .iter()
-            .map(|v| v.as_ref().map(|v| DigitSummary::of(v, 20)))
+            .map(|v| v.as_ref().map(|v| recurrence::digit_summary(v, 20)))
             .collect();
         match args.format {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");
                 for (name, d) in columns.iter().zip(&sums) {
                     if let Some(d) = d {
-                        r = r.and_then(|_| writeln!(out, "{name}: {}", d.text()));
+                        r = r.and_then(|_| writeln!(out, "{name}: {}", output::summary_text(d)));
                     }
                 }
                 r
@@ -134,7 +134,7 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
                 for (name, d) in columns.iter().zip(&sums) {
                     let d = d
                         .as_ref()
-                        .map_or_else(|| "null".to_string(), DigitSummary::json);
+                        .map_or_else(|| "null".to_string(), output::summary_json);
                     text.push_str(&format!(", {}: {}", output::json_string(name), d));
                 }
                 text.push('}');

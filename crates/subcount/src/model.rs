@@ -201,8 +201,33 @@ impl Dynamics {
         Ok(x0)
     }
 
-    /// The state at level `s`, by the fastest exact path.
+    /// The closed form that gives the state at every level directly, when there is one: a
+    /// bare matrix, or a single scheme without a first step or a cycle.
+    pub(crate) fn direct_form(&self) -> Option<recurrence::ClosedForm> {
+        match self {
+            Dynamics::Matrix(r) => Some(r.closed_form()),
+            Dynamics::Plan(plan) => {
+                let phases = plan.phases();
+                match phases.as_slice() {
+                    [only] if only.first_level == 0 && only.period == 1 && only.last_level.is_none() => {
+                        Some(only.recurrence.closed_form())
+                    }
+                    _ => None,
+                }
+            }
+        }
+    }
+
+    /// The state at level `s`, by the fastest exact path: the closed form when it is exact
+    /// (powers of two become shifts), matrix powering otherwise.
     pub(crate) fn state_at(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>, Failure> {
+        if s > 64 {
+            if let Some(form) = self.direct_form().filter(|f| f.is_exact()) {
+                if let Ok(state) = form.evaluate(x0, s) {
+                    return Ok(state);
+                }
+            }
+        }
         match self {
             Dynamics::Matrix(r) => r.state_at(x0, s).map_err(|e| usage!("{e}")),
             Dynamics::Plan(plan) => plan.state_at(x0, s).map_err(scheme_failure),

@@ -119,50 +119,28 @@ pub(crate) fn write_table_text(
     Ok(())
 }
 
-/// The number of decimal digits of `n` (without sign), its first and last `k` digits.
-pub(crate) struct DigitSummary {
-    pub(crate) digits: u64,
-    pub(crate) leading: String,
-    pub(crate) trailing: String,
-    pub(crate) negative: bool,
+/// A summary of a big count: its number of decimal digits, first and last digits.
+pub(crate) use recurrence::DigitSummary;
+
+/// `{"digits": n, "leading": "...", "trailing": "..."}` (plus `"negative": true` if so).
+pub(crate) fn summary_json(d: &DigitSummary) -> String {
+    format!(
+        "{{\"digits\": {}, \"leading\": {}, \"trailing\": {}{}}}",
+        d.digits,
+        json_string(&d.leading),
+        json_string(&d.trailing),
+        if d.negative { ", \"negative\": true" } else { "" }
+    )
 }
 
-impl DigitSummary {
-    pub(crate) fn of(n: &BigInt, k: usize) -> DigitSummary {
-        let s = n.magnitude().to_string();
-        let digits = s.len() as u64;
-        DigitSummary {
-            digits,
-            leading: s[..k.min(s.len())].to_string(),
-            trailing: s[s.len() - k.min(s.len())..].to_string(),
-            negative: n.sign() == num_bigint::Sign::Minus,
-        }
-    }
-
-    pub(crate) fn json(&self) -> String {
-        format!(
-            "{{\"digits\": {}, \"leading\": {}, \"trailing\": {}{}}}",
-            self.digits,
-            json_string(&self.leading),
-            json_string(&self.trailing),
-            if self.negative {
-                ", \"negative\": true"
-            } else {
-                ""
-            }
-        )
-    }
-
-    pub(crate) fn text(&self) -> String {
-        let sign = if self.negative { "-" } else { "" };
-        if (self.leading.len() as u64) >= self.digits {
-            format!("{} digits: {sign}{}", self.digits, self.leading)
-        } else {
-            format!(
-                "{} digits: {sign}{}...{}",
-                self.digits, self.leading, self.trailing
-            )
-        }
+/// `602062 digits: 19604598754139134831...31093324874142187520`, or the whole number when
+/// it is short.
+pub(crate) fn summary_text(d: &DigitSummary) -> String {
+    let sign = if d.negative { "-" } else { "" };
+    if (d.leading.len() as u64) >= d.digits {
+        format!("{} digits: {sign}{}", d.digits, d.leading)
+    } else {
+        format!("{} digits: {sign}{}...{}", d.digits, d.leading, d.trailing)
     }
 }
 
