@@ -209,7 +209,11 @@ impl Dynamics {
             Dynamics::Plan(plan) => {
                 let phases = plan.phases();
                 match phases.as_slice() {
-                    [only] if only.first_level == 0 && only.period == 1 && only.last_level.is_none() => {
+                    [only]
+                        if only.first_level == 0
+                            && only.period == 1
+                            && only.last_level.is_none() =>
+                    {
                         Some(only.recurrence.closed_form())
                     }
                     _ => None,

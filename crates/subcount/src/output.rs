@@ -129,7 +129,11 @@ pub(crate) fn summary_json(d: &DigitSummary) -> String {
         d.digits,
         json_string(&d.leading),
         json_string(&d.trailing),
-        if d.negative { ", \"negative\": true" } else { "" }
+        if d.negative {
+            ", \"negative\": true"
+        } else {
+            ""
+        }
     )
 }
 
@@ -187,16 +191,14 @@ mod tests {
     #[test]
     fn digit_summary() {
         let n: BigInt = "123456789012345678901234567890".parse().unwrap();
-        let d = DigitSummary::of(&n, 5);
+        let d = recurrence::digit_summary(&n, 5);
         assert_eq!(d.digits, 30);
-        assert_eq!(d.text(), "30 digits: 12345...67890");
+        assert_eq!(summary_text(&d), "30 digits: 12345...67890");
         assert_eq!(
-            d.json(),
+            summary_json(&d),
             "{\"digits\": 30, \"leading\": \"12345\", \"trailing\": \"67890\"}"
         );
-        assert_eq!(
-            DigitSummary::of(&BigInt::from(42), 20).text(),
-            "2 digits: 42"
-        );
+        let small = recurrence::digit_summary(&BigInt::from(42), 20);
+        assert_eq!(summary_text(&small), "2 digits: 42");
     }
 }
