@@ -37,7 +37,7 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = parse_levels(&args.levels).map_err(|e| usage!("invalid --levels: {e}"))?;
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
-    guard_digits(&dynamics, &x0, *levels.end(), false)?;
+    guard_digits(&dynamics, &x0, *levels.end(), false, false)?;
     let rows = dynamics.rows(&x0, levels)?;
     let columns = dynamics.columns();
     match args.format {
@@ -69,6 +69,7 @@ pub(crate) fn guard_digits(
     x0: &[num_bigint::BigInt],
     s: u64,
     allow_large: bool,
+    summary: bool,
 ) -> Result<(), Failure> {
     if allow_large {
         return Ok(());
@@ -76,10 +77,15 @@ pub(crate) fn guard_digits(
     let worst = dynamics.estimate_log10_max(x0, s)?;
     if worst > MAX_DIGITS {
         let bytes = worst * std::f64::consts::LOG2_10 / 8.0;
+        let hint = if summary {
+            "--summary works without materializing the counts only with an exact closed form from level 0 (not for periodic or composed schemes, nor irrational eigenvalues at such levels); use --allow-large to try anyway"
+        } else {
+            "use --summary, or --allow-large to try anyway"
+        };
         return Err(Failure::new(
             Kind::Guard,
             anyhow::anyhow!(
-                "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: use --summary, or --allow-large to try anyway",
+                "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: {hint}",
                 worst.ceil(),
                 human_bytes(bytes)
             ),
@@ -111,14 +117,36 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
     let columns = dynamics.columns();
-    guard_digits(&dynamics, &x0, s, args.allow_large)?;
-    let row = dynamics.row_at(&x0, s)?;
+    // With --summary, an exact closed form summarizes every count without materializing it
+    // (any level); otherwise the counts are computed under the digit guard.
+    let cheap = if args.summary {
+        dynamics
+            .direct_form()
+            .filter(|f| f.is_exact())
+            .and_then(|form| crate::huge::summaries(&dynamics, &form, &x0, s))
+    } else {
+        None
+    };
+    let row = match cheap {
+        Some(_) => None,
+        None => {
+            guard_digits(&dynamics, &x0, s, args.allow_large, args.summary)?;
+            Some(dynamics.row_at(&x0, s)?)
+        }
+    };
     let result = if args.summary {
-        let sums: Vec<Option<DigitSummary>> = row
-            .values
-            .iter()
-            .map(|v| v.as_ref().map(|v| recurrence::digit_summary(v, 20)))
-            .collect();
+        let sums: Vec<Option<DigitSummary>> = match (cheap, &row) {
+            (Some(sums), _) => sums,
+            (None, Some(row)) => row
+                .values
+                .iter()
+                .map(|v| {
+                    v.as_ref()
+                        .map(|v| recurrence::digit_summary(v, crate::huge::DIGITS))
+                })
+                .collect(),
+            (None, None) => unreachable!("a row is computed whenever there is no summary"),
+        };
         match args.format {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");
@@ -142,6 +170,7 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
             }
         }
     } else {
+        let row = row.expect("a row is computed without --summary");
         match args.format {
             AtFormat::Text => {
                 let mut r = writeln!(out, "level {s}");

@@ -7,6 +7,7 @@
 mod args;
 mod commands;
 mod failure;
+mod huge;
 mod levels;
 mod mesh;
 mod model;

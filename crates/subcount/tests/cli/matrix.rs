@@ -154,3 +154,79 @@ fn guard_refuses_huge_levels_with_exit_4() {
     let err = fails(&["at", "--level", "1000000000000"], 4, "decimal digits");
     assert!(err.contains("--summary"), "{err}");
 }
+
+/// The summary of a level far beyond memory comes from the closed form, derived columns
+/// (loop's F = 2E/3) included; at a level that can also be materialized, both paths agree.
+#[test]
+fn summary_without_materializing_agrees_with_the_full_counts() {
+    for scheme_args in [
+        &["--scheme", "loop", "--counts", "V=12,E=30,F=20"][..],
+        &["--scheme", "loop-boundary", "--base", "icosahedron-holes:2"][..],
+        &["--scheme", "catmull-clark", "--base", "mixed"][..],
+    ] {
+        let mut summary = vec!["at", "--level", "3000", "--summary", "--format", "json"];
+        summary.extend_from_slice(scheme_args);
+        let mut full = vec!["at", "--level", "3000", "--format", "json"];
+        full.extend_from_slice(scheme_args);
+        let summary: serde_json::Value = serde_json::from_str(&ok(&summary)).unwrap();
+        let full = ok(&full);
+        // Parse the full counts as strings of digits.
+        let body = full.trim().trim_start_matches('{').trim_end_matches('}');
+        for pair in body.split(", ").skip(1) {
+            let (key, value) = pair.split_once(": ").unwrap();
+            let key = key.trim_matches('"');
+            let s = &summary[key];
+            assert_eq!(
+                s["digits"].as_u64().unwrap() as usize,
+                value.len(),
+                "{scheme_args:?} {key}"
+            );
+            assert_eq!(s["leading"], value[..20], "{scheme_args:?} {key}");
+            assert_eq!(
+                s["trailing"],
+                value[value.len() - 20..],
+                "{scheme_args:?} {key}"
+            );
+        }
+    }
+}
+
+#[test]
+fn summary_at_a_trillion_levels() {
+    let out = ok(&[
+        "at",
+        "--scheme",
+        "loop",
+        "--counts",
+        "V=12,E=30,F=20",
+        "--level",
+        "1000000000000",
+        "--summary",
+    ]);
+    // E = 30 * 4^(10^12): floor(log10 30 + 2 10^12 log10 2) + 1 digits; F = 2E/3 = 20 * 4^(10^12).
+    assert!(
+        out.contains("E: 602059991330 digits: 27511336074359412431..."),
+        "{out}"
+    );
+    assert!(
+        out.contains("F: 602059991330 digits: 18340890716239608287..."),
+        "{out}"
+    );
+    // 4^(10^12) mod 10^20 times 20, and V = 12 + 30 (4^s - 1)/3 = 2 + 10 4^s ends in ...62.
+    assert!(out.contains("V: 602059991329 digits: "), "{out}");
+    let err = crate::util::fails(
+        &[
+            "at",
+            "--scheme",
+            "sqrt3-boundary",
+            "--base",
+            "grid:3x3",
+            "--level",
+            "1000000000000",
+            "--summary",
+        ],
+        4,
+        "exact closed form",
+    );
+    assert!(err.contains("--allow-large"));
+}
