@@ -1,4 +1,5 @@
 //! End-to-end tests of the `subcount` binary.
 
 mod matrix;
+mod schemes;
 mod util;
