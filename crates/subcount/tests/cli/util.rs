@@ -74,7 +74,7 @@ pub(crate) fn meshes() -> Option<PathBuf> {
 
 /// A fixture in `crates/subcount/tests/data/`, as an absolute path string.
 #[allow(dead_code)]
-pub fn data(name: &str) -> String {
+pub(crate) fn data(name: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("tests")
         .join("data")
@@ -85,7 +85,7 @@ pub fn data(name: &str) -> String {
 
 /// An example scheme in the repository's `examples/schemes/`, as an absolute path string.
 #[allow(dead_code)]
-pub fn example_scheme(name: &str) -> String {
+pub(crate) fn example_scheme(name: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples/schemes")
         .join(name);
@@ -95,7 +95,7 @@ pub fn example_scheme(name: &str) -> String {
 
 /// The file names in a directory, sorted (to check that nothing else was left there).
 #[allow(dead_code)]
-pub fn file_names(dir: &std::path::Path) -> Vec<String> {
+pub(crate) fn file_names(dir: &std::path::Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .expect("the directory is readable")
         .map(|e| {
