@@ -167,6 +167,37 @@ impl ClosedForm {
         &self.powers
     }
 
+    /// The exact state at level `s` by the fastest exact path: [`evaluate`](Self::evaluate)
+    /// when every component's form is exact, powering of the matrix otherwise.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InitialLength`] for a wrong-length `x0`.
+    ///
+    /// ```
+    /// # use num_bigint::BigInt;
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// // A 5-cycle has a numeric closed form, but its counts stay exact.
+    /// let r = Recurrence::new("[[0,0,0,0,1],[1,0,0,0,0],[0,1,0,0,0],[0,0,1,0,0],[0,0,0,1,0]]".parse::<IntMatrix>()?);
+    /// let x0 = [1, 2, 3, 4, 5].map(BigInt::from);
+    /// assert_eq!(r.closed_form().state_at(&x0, 7)?, [4, 5, 1, 2, 3].map(BigInt::from));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn state_at(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>> {
+        if self.is_exact() {
+            self.evaluate(x0, s)
+        } else {
+            if x0.len() != self.names.len() {
+                return Err(Error::InitialLength {
+                    got: x0.len(),
+                    expected: self.names.len(),
+                });
+            }
+            Ok(crate::power::checked_power_apply(&self.matrix, x0, s)
+                .expect("big integers do not overflow"))
+        }
+    }
+
     /// The exact state at level `s` from the closed form; agrees with
     /// [`Recurrence::state_at`] for every `s`.
     ///
@@ -238,12 +269,24 @@ impl ClosedForm {
                     }
                     FastEigenvalue::Surd(_) | FastEigenvalue::Numeric => {}
                 }
-                acc += c;
+                // Moves rather than copies the (possibly huge) term into the sum.
+                acc = if acc.is_zero() { c } else { acc + c };
+            }
+            if fast.surd.is_empty() {
+                // The common denominator divides the sum exactly: one division, no rationals.
+                let value = if fast.denominator.is_one() {
+                    acc
+                } else {
+                    debug_assert!((&acc % &fast.denominator).is_zero(), "exact division");
+                    acc / &fast.denominator
+                };
+                out.push(value);
+                continue;
             }
             let (q, r) = acc.div_rem(&fast.denominator);
             let mut value =
                 BigRational::new(r, fast.denominator.clone()) + BigRational::from_integer(q);
-            if !fast.surd.is_empty() {
+            {
                 // One running sum per quadratic field: conjugate terms cancel within each.
                 let mut sums: Vec<QuadraticSurd> = Vec::new();
                 for (e, p, coeffs) in &fast.surd {
@@ -350,7 +393,7 @@ fn spectral_parts<F: Field>(
     }
     let mf = FieldMatrix::<F>::from_int(m);
     let a = mf.add_scalar(&lambda.neg());
-    let projector = mf.eval_poly(&h).mul(&a.eval_poly(&c));
+    let projector = F::eval_poly_at_int(m, &h).mul(&a.eval_poly(&c));
     let mut parts = vec![projector];
     for _ in 1..mult {
         let next = a.mul(parts.last().expect("parts is not empty"));

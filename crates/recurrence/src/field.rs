@@ -24,6 +24,13 @@ pub(crate) trait Field: Clone + fmt::Debug {
     fn div(&self, rhs: &Self) -> Self;
     fn neg(&self) -> Self;
     fn from_rational(r: &BigRational) -> Self;
+
+    /// `q(M)` for an integer matrix `M`. The default runs Horner's rule in the field;
+    /// the rationals override it with integer arithmetic when `q` has integer coefficients
+    /// (as every cofactor of an integer eigenvalue does), which avoids a gcd per operation.
+    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
+        FieldMatrix::<Self>::from_int(m).eval_poly(coeffs)
+    }
 }
 
 impl Field for BigRational {
@@ -53,6 +60,40 @@ impl Field for BigRational {
     }
     fn from_rational(r: &BigRational) -> Self {
         r.clone()
+    }
+
+    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
+        if !coeffs.iter().all(|c| c.is_integer()) {
+            return FieldMatrix::<Self>::from_int(m).eval_poly(coeffs);
+        }
+        let n = m.dim();
+        let a: Vec<BigInt> = m.rows().flatten().map(|&x| BigInt::from(x)).collect();
+        let mut acc = vec![BigInt::zero(); n * n];
+        for c in coeffs.iter().rev() {
+            let mut next = vec![BigInt::zero(); n * n];
+            for i in 0..n {
+                for k in 0..n {
+                    let x = &acc[i * n + k];
+                    if x.is_zero() {
+                        continue;
+                    }
+                    for j in 0..n {
+                        let y = &a[k * n + j];
+                        if !y.is_zero() {
+                            next[i * n + j] += x * y;
+                        }
+                    }
+                }
+            }
+            for i in 0..n {
+                next[i * n + i] += c.to_integer();
+            }
+            acc = next;
+        }
+        FieldMatrix {
+            dim: n,
+            entries: acc.into_iter().map(BigRational::from_integer).collect(),
+        }
     }
 }
 

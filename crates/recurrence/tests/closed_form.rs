@@ -178,3 +178,27 @@ fn huge_levels_with_power_of_two_eigenvalues() {
     let v: BigInt = form.evaluate(&x0, s).unwrap()[0].clone();
     assert!(v.bits() > 39_000);
 }
+
+#[test]
+fn twelve_by_twelve() {
+    // Block upper triangular: Jordan blocks for 3 and -2, a zero eigenvalue, sqrt(2) and
+    // a 5-cycle-free mix, all within 12 components.
+    let m = "[[3,1,0,0,0,0,0,0,0,0,0,1],\
+              [0,3,1,0,0,0,0,0,0,0,1,0],\
+              [0,0,3,0,0,0,0,0,0,1,0,0],\
+              [0,0,0,-2,1,0,0,0,1,0,0,0],\
+              [0,0,0,0,-2,0,0,1,0,0,0,0],\
+              [0,0,0,0,0,0,1,0,0,0,0,0],\
+              [0,0,0,0,0,0,0,0,0,0,0,0],\
+              [0,0,0,0,0,0,0,1,2,0,0,0],\
+              [0,0,0,0,0,0,0,1,1,0,0,0],\
+              [0,0,0,0,0,0,0,0,0,4,1,0],\
+              [0,0,0,0,0,0,0,0,0,0,1,0],\
+              [0,0,0,0,0,0,0,0,0,0,0,5]]";
+    let r = rec(m, "");
+    let form = r.closed_form();
+    assert!(form.is_exact());
+    let mult: usize = form.eigenvalues().iter().map(|e| e.multiplicity).sum();
+    assert_eq!(mult, 12);
+    assert_form_matches_powering(&r, &big(&[1, -2, 3, -4, 5, -6, 7, -8, 9, -10, 11, -12]), 40);
+}

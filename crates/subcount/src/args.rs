@@ -34,6 +34,25 @@ pub(crate) enum Command {
     Verify(VerifyArgs),
     /// Subdivide a mesh and write it as OBJ.
     Subdivide(SubdivideArgs),
+    /// Draw V, E, F and the state components versus level on a log scale (SVG or PNG).
+    Plot(PlotArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct PlotArgs {
+    #[command(flatten)]
+    pub(crate) source: Source,
+    /// Levels: N (meaning 0..=N), A..=B or A..B.
+    #[arg(
+        long,
+        default_value = "0..=12",
+        value_name = "RANGE",
+        allow_hyphen_values = true
+    )]
+    pub(crate) levels: String,
+    /// The image to write (atomically): `.svg` or `.png`, chosen by the extension.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub(crate) output: PathBuf,
 }
 
 #[derive(Args, Debug)]

@@ -23,6 +23,7 @@ pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure>
         Command::Stats(args) => crate::mesh::stats(args, out),
         Command::Verify(args) => crate::mesh::verify(args, out),
         Command::Subdivide(args) => crate::mesh::subdivide(args, out),
+        Command::Plot(args) => crate::plot::plot(args, out),
     }
 }
 

@@ -12,6 +12,7 @@ mod levels;
 mod mesh;
 mod model;
 mod output;
+mod plot;
 mod report;
 
 use std::io::{self, Write};

@@ -1,4 +1,6 @@
 //! End-to-end tests of the `subcount` binary.
 
+mod budget;
 mod matrix;
+mod schemes;
 mod util;

@@ -71,3 +71,40 @@ pub(crate) fn meshes() -> Option<PathBuf> {
         }
     }
 }
+
+/// A fixture in `crates/subcount/tests/data/`, as an absolute path string.
+#[allow(dead_code)]
+pub(crate) fn data(name: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests")
+        .join("data")
+        .join(name);
+    assert!(path.exists(), "missing fixture {}", path.display());
+    path.to_string_lossy().into_owned()
+}
+
+/// An example scheme in the repository's `examples/schemes/`, as an absolute path string.
+#[allow(dead_code)]
+pub(crate) fn example_scheme(name: &str) -> String {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/schemes")
+        .join(name);
+    assert!(path.exists(), "missing example {}", path.display());
+    path.to_string_lossy().into_owned()
+}
+
+/// The file names in a directory, sorted (to check that nothing else was left there).
+#[allow(dead_code)]
+pub(crate) fn file_names(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("the directory is readable")
+        .map(|e| {
+            e.expect("a directory entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    names.sort();
+    names
+}

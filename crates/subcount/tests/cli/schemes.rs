@@ -1,0 +1,620 @@
+//! `schemes`, `--scheme-file` (examples, round trips, broken files) and `table --scheme`.
+
+use crate::util::{data, example_scheme, fails, ok};
+
+const BUILTINS: [&str; 12] = [
+    "loop",
+    "loop-boundary",
+    "loop-general",
+    "catmull-clark-quad",
+    "catmull-clark",
+    "catmull-clark-general",
+    "sqrt3",
+    "sqrt3-boundary",
+    "doo-sabin",
+    "mid-edge",
+    "tri-split-2",
+    "tri-split-3",
+];
+
+/// A base mesh each built-in applies to.
+fn base_for(scheme: &str) -> &'static str {
+    match scheme {
+        "loop" | "sqrt3" | "tri-split-2" => "icosahedron",
+        "catmull-clark-quad" => "quad-grid:2x2",
+        "catmull-clark" | "catmull-clark-general" => "mixed",
+        "doo-sabin" | "mid-edge" => "cube",
+        _ => "grid:2x2",
+    }
+}
+
+#[test]
+fn schemes_text_lists_every_builtin_with_state_class_and_matrix() {
+    let out = ok(&["schemes"]);
+    let names: Vec<&str> = out.lines().filter(|l| !l.starts_with(' ')).collect();
+    assert_eq!(names, BUILTINS);
+    assert!(out.starts_with(
+        "loop\n  4:1 triangle split (Loop topology) on closed triangle meshes, paper Theorem 5.1\n  state (V, E), for closed triangle mesh\n  matrix [[1, 1], [0, 4]]\n  F = 2E/3\nloop-boundary\n"
+    ), "{out}");
+    assert!(out.contains(
+        "sqrt3-boundary\n  Kobbelt's sqrt(3) with boundary edges trisected every second step (periodic: steps A, B)\n  state (V, IE, BE, F), for triangle mesh with edges of one or two faces (boundary allowed)\n  step 1 of each cycle [[1, 0, 0, 1], [0, 1, 0, 3], [0, 0, 1, 0], [0, 0, 0, 3]]\n  step 2 of each cycle [[1, 0, 1, 1], [0, 1, -1, 3], [0, 0, 3, 0], [0, 0, 0, 3]]\n  E = IE + BE\n"
+    ), "{out}");
+    assert!(out.contains("tri-split-3\n  1:9 triangle split (3 segments per edge) on any triangle mesh\n  state (V, E, F), for any triangle mesh (boundary and non-manifold edges allowed)\n  matrix [[1, 2, 1], [0, 3, 9], [0, 0, 9]]\n"), "{out}");
+    // One scheme by name, aliases resolved to their own entry.
+    let one = ok(&["schemes", "catmull-clark"]);
+    assert_eq!(
+        one,
+        "catmull-clark\n  Catmull-Clark on any polygon mesh whose edges have one or two faces\n  state (V, IE, BE, F, H), for polygon mesh with edges of one or two faces (boundary allowed)\n  matrix [[1, 1, 1, 1, 0], [0, 2, 0, 0, 1], [0, 0, 2, 0, 0], [0, 0, 0, 0, 1], [0, 0, 0, 0, 4]]\n  E = IE + BE\n"
+    );
+}
+
+#[test]
+fn schemes_json_is_an_array_of_objects_in_the_same_order() {
+    let out = ok(&["schemes", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_str(&out).expect("valid JSON");
+    let arr = v.as_array().expect("an array");
+    let names: Vec<&str> = arr.iter().map(|s| s["name"].as_str().unwrap()).collect();
+    assert_eq!(names, BUILTINS);
+    let lp = &arr[0];
+    assert_eq!(
+        lp["state"],
+        serde_json::json!([{"name": "V", "meaning": "vertices"}, {"name": "E", "meaning": "edges"}])
+    );
+    assert_eq!(lp["matrix"], serde_json::json!([[1, 1], [0, 4]]));
+    assert_eq!(lp["mesh_class"], "closed triangle mesh");
+    assert_eq!(lp["requires"], serde_json::json!(["triangles", "closed"]));
+    assert_eq!(lp["period"], 1);
+    assert_eq!(lp["derive"], serde_json::json!({"F": "2E/3"}));
+    let sqrt3b = &arr[7];
+    assert_eq!(sqrt3b["name"], "sqrt3-boundary");
+    assert_eq!(sqrt3b["period"], 2);
+    assert_eq!(
+        sqrt3b["cycle"],
+        serde_json::json!([
+            [[1, 0, 0, 1], [0, 1, 0, 3], [0, 0, 1, 0], [0, 0, 0, 3]],
+            [[1, 0, 1, 1], [0, 1, -1, 3], [0, 0, 3, 0], [0, 0, 0, 3]]
+        ])
+    );
+}
+
+#[test]
+fn schemes_toml_exports_a_template() {
+    assert_eq!(
+        ok(&["schemes", "--format", "toml", "loop"]),
+        "# subdivision scheme `loop`\nname = \"loop\"\ndescription = \"4:1 triangle split (Loop topology) on closed triangle meshes, paper Theorem 5.1\"\nstate = [\"V\", \"E\"]\nrequires = [\"triangles\", \"closed\"]\nproduces = \"triangles\"\nmatrix = [\n  [1, 1],\n  [0, 4],\n]\n\n[derive]\nF = { E = 2, divide_by = 3 }\n"
+    );
+    fails(&["schemes", "--format", "toml"], 2, "name it");
+    fails(
+        &["schemes", "no-such-scheme"],
+        2,
+        "unknown scheme `no-such-scheme`",
+    );
+}
+
+/// Every built-in exported as TOML and read back with --scheme-file counts exactly the same.
+#[test]
+fn toml_round_trip_through_scheme_file() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in BUILTINS {
+        let toml = ok(&["schemes", "--format", "toml", name]);
+        let path = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&path, toml).unwrap();
+        let path = path.to_str().unwrap();
+        let base = base_for(name);
+        let builtin = ok(&[
+            "table", "--scheme", name, "--base", base, "--levels", "5", "--format", "csv",
+        ]);
+        let custom = ok(&[
+            "table",
+            "--scheme-file",
+            path,
+            "--base",
+            base,
+            "--levels",
+            "5",
+            "--format",
+            "csv",
+        ]);
+        assert_eq!(builtin, custom, "{name} on {base}");
+        assert_eq!(builtin.lines().count(), 7, "{name}: header and 6 levels");
+        let builtin = ok(&["formula", "--scheme", name]);
+        let custom = ok(&["formula", "--scheme-file", path]);
+        assert_eq!(builtin, custom, "{name}: closed forms");
+    }
+}
+
+#[test]
+fn example_schemes_count_as_documented() {
+    // Fibonacci: no mesh, the state given in order.
+    let fib = example_scheme("fibonacci.toml");
+    assert_eq!(
+        ok(&["table", "--scheme-file", &fib, "--init", "1,0", "--levels", "10", "--format", "csv"]),
+        "level,a,b\n0,1,0\n1,1,1\n2,2,1\n3,3,2\n4,5,3\n5,8,5\n6,13,8\n7,21,13\n8,34,21\n9,55,34\n10,89,55\n"
+    );
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme-file",
+            &fib,
+            "--init",
+            "1,0",
+            "--level",
+            "100",
+            "--format",
+            "json"
+        ]),
+        "{\"level\": 100, \"a\": 573147844013817084101, \"b\": 354224848179261915075}\n"
+    );
+    let forms = ok(&["formula", "--scheme-file", &fib]);
+    assert!(
+        forms.starts_with("a(s) = ((1/2+1/10*sqrt(5))*(1/2+1/2*sqrt(5))^s"),
+        "{forms}"
+    );
+    // Its state is not a mesh statistic: a mesh cannot supply it.
+    fails(
+        &["table", "--scheme-file", &fib, "--base", "cube"],
+        3,
+        "a, b",
+    );
+
+    // Catmull-Clark on triangles through a first step: the built-in's V, E, F.
+    let cct = example_scheme("catmull-clark-triangles.toml");
+    assert_eq!(
+        ok(&["table", "--scheme-file", &cct, "--base", "icosahedron", "--levels", "3", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 12, \"E\": 30, \"F\": 20},\n{\"level\": 1, \"V\": 62, \"E\": 120, \"F\": 60},\n{\"level\": 2, \"V\": 242, \"E\": 480, \"F\": 240},\n{\"level\": 3, \"V\": 962, \"E\": 1920, \"F\": 960}\n]\n"
+    );
+    let builtin = ok(&[
+        "table",
+        "--scheme",
+        "catmull-clark",
+        "--base",
+        "icosahedron",
+        "--levels",
+        "3",
+        "--format",
+        "csv",
+    ]);
+    assert!(
+        builtin.ends_with("3,962,1920,0,960,3840,1920\n"),
+        "{builtin}"
+    );
+
+    // The hand-written loop-boundary equals the built-in, and composes with it by name.
+    let lb = example_scheme("loop-boundary.toml");
+    let custom = ok(&[
+        "table",
+        "--scheme-file",
+        &lb,
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "4",
+        "--format",
+        "csv",
+    ]);
+    let builtin = ok(&[
+        "table",
+        "--scheme",
+        "loop-boundary",
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "4",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(custom, builtin);
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme-file",
+            &lb,
+            "--scheme",
+            "my-loop-boundary:1,loop-boundary",
+            "--base",
+            "grid:2x2",
+            "--levels",
+            "2",
+            "--format",
+            "csv"
+        ]),
+        "level,V,IE,BE,E,F\n0,9,8,8,16,8\n1,25,40,16,56,32\n2,81,176,32,208,128\n"
+    );
+
+    // The periodic example equals the built-in sqrt3-boundary.
+    let s3 = example_scheme("sqrt3-boundary.toml");
+    let custom = ok(&[
+        "table",
+        "--scheme-file",
+        &s3,
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "6",
+        "--format",
+        "csv",
+    ]);
+    let builtin = ok(&[
+        "table",
+        "--scheme",
+        "sqrt3-boundary",
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "6",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(custom, builtin);
+}
+
+/// Broken scheme files: exit 3, one line naming the file, the line (and column) and the fault.
+#[test]
+fn broken_scheme_files_name_file_and_line() {
+    let cases = [
+        ("bad_row_length.toml", "bad_row_length.toml: line 5, column 3: row 2 has 3 entries, but the matrix has 2 rows (it must be square)"),
+        ("bad_unknown_field.toml", "bad_unknown_field.toml: line 4, column 1: unknown field `requirez`, expected one of"),
+        ("bad_syntax.toml", "bad_syntax.toml: line 3, column 1: invalid array"),
+        ("bad_duplicate_state.toml", "bad_duplicate_state.toml: line 2, column 15: state name `V` is used twice"),
+        ("bad_names_size.toml", "bad_names_size.toml: line 3, column 10: the matrix is 2x2, but the state has 3 components"),
+        ("bad_big_entry.toml", "bad_big_entry.toml: line 3, column 15: "),
+        ("bad_empty_matrix.toml", "bad_empty_matrix.toml: line 2, column 9: the state is empty"),
+    ];
+    for (file, needle) in cases {
+        let path = data(file);
+        fails(
+            &["table", "--scheme-file", &path, "--init", "1,2"],
+            3,
+            needle,
+        );
+        fails(&["formula", "--scheme-file", &path], 3, needle);
+    }
+    fails(
+        &[
+            "table",
+            "--scheme-file",
+            "/no/such/scheme.toml",
+            "--init",
+            "1",
+        ],
+        3,
+        "cannot read /no/such/scheme.toml",
+    );
+}
+
+#[test]
+fn table_scheme_json_keeps_state_order_then_missing_vef() {
+    // loop: state (V, E), then F.
+    assert_eq!(
+        ok(&["table", "--scheme", "loop", "--counts", "V=12,E=30,F=20", "--levels", "2", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 12, \"E\": 30, \"F\": 20},\n{\"level\": 1, \"V\": 42, \"E\": 120, \"F\": 80},\n{\"level\": 2, \"V\": 162, \"E\": 480, \"F\": 320}\n]\n"
+    );
+    // loop-boundary: state (V, IE, BE), then E and F.
+    assert_eq!(
+        ok(&["table", "--scheme", "loop-boundary", "--base", "grid:2x2", "--levels", "2", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 9, \"IE\": 8, \"BE\": 8, \"E\": 16, \"F\": 8},\n{\"level\": 1, \"V\": 25, \"IE\": 40, \"BE\": 16, \"E\": 56, \"F\": 32},\n{\"level\": 2, \"V\": 81, \"IE\": 176, \"BE\": 32, \"E\": 208, \"F\": 128}\n]\n"
+    );
+    // catmull-clark: state (V, IE, BE, F, H), then E.
+    assert_eq!(
+        ok(&["table", "--scheme", "catmull-clark", "--base", "cube", "--levels", "2", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 8, \"IE\": 12, \"BE\": 0, \"F\": 6, \"H\": 24, \"E\": 12},\n{\"level\": 1, \"V\": 26, \"IE\": 48, \"BE\": 0, \"F\": 24, \"H\": 96, \"E\": 48},\n{\"level\": 2, \"V\": 98, \"IE\": 192, \"BE\": 0, \"F\": 96, \"H\": 384, \"E\": 192}\n]\n"
+    );
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "catmull-clark",
+            "--base",
+            "cube",
+            "--levels",
+            "2",
+            "--format",
+            "csv"
+        ]),
+        "level,V,IE,BE,F,H,E\n0,8,12,0,6,24,12\n1,26,48,0,24,96,48\n2,98,192,0,96,384,192\n"
+    );
+    // sqrt3-boundary: periodic, boundary edges tripled every second step.
+    assert_eq!(
+        ok(&["table", "--scheme", "sqrt3-boundary", "--base", "grid:2x2", "--levels", "3", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 9, \"IE\": 8, \"BE\": 8, \"F\": 8, \"E\": 16},\n{\"level\": 1, \"V\": 17, \"IE\": 32, \"BE\": 8, \"F\": 24, \"E\": 40},\n{\"level\": 2, \"V\": 49, \"IE\": 96, \"BE\": 24, \"F\": 72, \"E\": 120},\n{\"level\": 3, \"V\": 121, \"IE\": 312, \"BE\": 24, \"F\": 216, \"E\": 336}\n]\n"
+    );
+    // tri-split-3 on the icosahedron: 10 N^2 + 2 = 92 vertices after one step.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "ternary",
+            "--counts",
+            "V=12,E=30,F=20",
+            "--levels",
+            "1",
+            "--format",
+            "csv"
+        ]),
+        "level,V,E,F\n0,12,30,20\n1,92,270,180\n"
+    );
+    // Doo-Sabin and mid-edge on the cube.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "doo-sabin",
+            "--base",
+            "cube",
+            "--levels",
+            "3",
+            "--format",
+            "csv"
+        ]),
+        "level,V,E,F\n0,8,12,6\n1,24,48,26\n2,96,192,98\n3,384,768,386\n"
+    );
+    assert_eq!(
+        ok(&[
+            "table", "--scheme", "mid-edge", "--base", "cube", "--levels", "2", "--format", "csv"
+        ]),
+        "level,V,E,F\n0,8,12,6\n1,12,24,14\n2,24,48,26\n"
+    );
+    // Counts of any size are bare JSON integers: F = 20 * 4^300 has 182 digits.
+    let out = ok(&[
+        "table",
+        "--scheme",
+        "loop",
+        "--counts",
+        "V=12,E=30,F=20",
+        "--levels",
+        "300..=300",
+        "--format",
+        "json",
+    ]);
+    let f = out
+        .rsplit("\"F\": ")
+        .next()
+        .unwrap()
+        .trim_end_matches(|c: char| !c.is_ascii_digit());
+    assert_eq!(f.len(), 182);
+    assert!(f.chars().all(|c| c.is_ascii_digit()), "{f}");
+}
+
+#[test]
+fn init_is_accepted_with_a_scheme() {
+    assert_eq!(
+        ok(&["table", "--scheme", "loop", "--init", "12,30", "--levels", "1", "--format", "csv"]),
+        "level,V,E,F\n0,12,30,20\n1,42,120,80\n"
+    );
+    fails(
+        &["table", "--scheme", "loop", "--init", "12,30,20"],
+        2,
+        "--init has 3 values but the state has 2 components (V, E)",
+    );
+}
+
+#[test]
+fn composition_maps_the_state_between_stages() {
+    assert_eq!(
+        ok(&["table", "--scheme", "loop-boundary:2,sqrt3-boundary", "--base", "grid:2x2", "--levels", "4", "--format", "json"]),
+        "[\n{\"level\": 0, \"V\": 9, \"IE\": 8, \"BE\": 8, \"F\": 8, \"E\": 16},\n{\"level\": 1, \"V\": 25, \"IE\": 40, \"BE\": 16, \"F\": 32, \"E\": 56},\n{\"level\": 2, \"V\": 81, \"IE\": 176, \"BE\": 32, \"F\": 128, \"E\": 208},\n{\"level\": 3, \"V\": 209, \"IE\": 560, \"BE\": 32, \"F\": 384, \"E\": 592},\n{\"level\": 4, \"V\": 625, \"IE\": 1680, \"BE\": 96, \"F\": 1152, \"E\": 1776}\n]\n"
+    );
+    // A mesh class that does not follow: Catmull-Clark makes quads, Loop needs triangles.
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "catmull-clark:1,loop",
+            "--base",
+            "cube",
+        ],
+        3,
+        "loop needs a triangle mesh, but catmull-clark produces quads; use catmull-clark",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "catmull-clark:1,loop",
+            "--counts",
+            "V=8,IE=12,BE=0,F=6,H=24",
+        ],
+        3,
+        "catmull-clark produces quads",
+    );
+}
+
+#[test]
+fn formula_text_for_schemes_and_phases() {
+    assert_eq!(
+        ok(&["formula", "--scheme", "loop"]),
+        "V(s) = V0 + (4^s - 1)/3 * E0\nE(s) = 4^s * E0\n"
+    );
+    assert_eq!(
+        ok(&["formula", "--scheme", "catmull-clark"]),
+        "V(s) = V0 + (2^s - 1) * IE0 + (2^s - 1) * BE0 + F0 + (4^s - 2*2^s)/4 * H0 for s >= 1; V(0) = V0\nIE(s) = 2^s * IE0 + (4^s - 2^s)/2 * H0\nBE(s) = 2^s * BE0\nF(s) = 4^s/4 * H0 for s >= 1; F(0) = F0\nH(s) = 4^s * H0\n"
+    );
+    // Periodic: one form per residue class of the level.
+    assert_eq!(
+        ok(&["formula", "--scheme", "sqrt3-boundary"]),
+        "# s = 2t: level s = 0 + 2t; X0 below means the count X at level 0\n\
+V(t) = V0 + (3^t - 1)/2 * BE0 + (9^t - 1)/2 * F0\n\
+IE(t) = IE0 + (-3^t + 1)/2 * BE0 + (3*9^t - 3)/2 * F0\n\
+BE(t) = 3^t * BE0\n\
+F(t) = 9^t * F0\n\
+# s = 2t + 1: level s = 1 + 2t; X0 below means the count X at level 1\n\
+V(t) = V0 + (3^t - 1)/2 * BE0 + (9^t - 1)/2 * F0\n\
+IE(t) = IE0 + (-3^t + 1)/2 * BE0 + (3*9^t - 3)/2 * F0\n\
+BE(t) = 3^t * BE0\n\
+F(t) = 9^t * F0\n"
+    );
+    // Composition: one phase per stage (and per residue class of the periodic stage).
+    let out = ok(&["formula", "--scheme", "loop-boundary:2,sqrt3-boundary"]);
+    let headings: Vec<&str> = out.lines().filter(|l| l.starts_with('#')).collect();
+    assert_eq!(
+        headings,
+        [
+            "# s = t, s <= 2: level s = 0 + 1t up to level 2; X0 below means the count X at level 0",
+            "# s = 2t + 2: level s = 2 + 2t; X0 below means the count X at level 2",
+            "# s = 2t + 3: level s = 3 + 2t; X0 below means the count X at level 3",
+        ]
+    );
+    // JSON of a phase list: one object per phase with its forms.
+    let json: serde_json::Value = serde_json::from_str(&ok(&[
+        "formula",
+        "--scheme",
+        "sqrt3-boundary",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let phases = json.as_array().unwrap();
+    assert_eq!(phases.len(), 2);
+    assert_eq!(phases[1]["first_level"], 1);
+    assert_eq!(phases[1]["period"], 2);
+    assert_eq!(phases[1]["forms"][3]["component"], "F");
+    assert_eq!(phases[1]["forms"][3]["terms"][0]["eigenvalue"], "9");
+}
+
+/// The periodic closed forms agree with the table: at s = 2t + 1 (t = 2, s = 5) from level 1.
+#[test]
+fn phase_forms_agree_with_the_table() {
+    let csv = ok(&[
+        "table",
+        "--scheme",
+        "sqrt3-boundary",
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "5",
+        "--format",
+        "csv",
+    ]);
+    let rows: Vec<Vec<i64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let (v0, ie0, be0, f0) = (rows[1][1], rows[1][2], rows[1][3], rows[1][4]);
+    let t = 2u32;
+    let (p3, p9) = (3i64.pow(t), 9i64.pow(t));
+    assert_eq!(rows[5][1], v0 + (p3 - 1) / 2 * be0 + (p9 - 1) / 2 * f0);
+    assert_eq!(rows[5][2], ie0 + (1 - p3) / 2 * be0 + (3 * p9 - 3) / 2 * f0);
+    assert_eq!(rows[5][3], p3 * be0);
+    assert_eq!(rows[5][4], p9 * f0);
+}
+
+#[test]
+fn counts_errors_are_usage_errors() {
+    // Missing: exit 2, listing what is needed.
+    fails(
+        &["table", "--scheme", "loop", "--counts", "V=12"],
+        2,
+        "loop needs E in its initial state, which the given counts do not determine",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "catmull-clark",
+            "--counts",
+            "V=8,E=12,F=6",
+        ],
+        2,
+        "catmull-clark needs IE, BE, H in its initial state",
+    );
+    // Contradiction: exit 2 naming both values.
+    fails(
+        &["table", "--scheme", "loop", "--counts", "V=12,E=30,F=21"],
+        2,
+        "the counts contradict each other: 2E = 60 but 3F = 63",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "loop-boundary",
+            "--counts",
+            "V=9,E=16,F=8,IE=9",
+        ],
+        2,
+        "E + IE = 25 but 3F = 24",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "loop",
+            "--counts",
+            "V=12,E=30,F=20,Q=3",
+        ],
+        2,
+        "unknown count `Q` for loop; use V, E, IE, BE, NME, F, H",
+    );
+    fails(
+        &["table", "--scheme", "loop", "--counts", "V=12,V=13,E=30"],
+        2,
+        "count V is given twice",
+    );
+    fails(
+        &["table", "--scheme", "loop"],
+        2,
+        "loop needs an initial state",
+    );
+    fails(
+        &["table", "--scheme", "nope", "--counts", "V=1"],
+        2,
+        "unknown scheme `nope`",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "loop",
+            "--counts",
+            "V=12,E=30",
+            "--init",
+            "12,30",
+        ],
+        2,
+        "give the initial state once",
+    );
+    fails(
+        &[
+            "table", "--matrix", "[[1]]", "--init", "1", "--scheme", "loop",
+        ],
+        2,
+        "--matrix cannot be combined with --scheme",
+    );
+    // Identities fill what is missing: IE = 3F - E and BE = 2E - 3F for triangles.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "loop-boundary",
+            "--counts",
+            "F=8,V=9,E=16",
+            "--levels",
+            "1",
+            "--format",
+            "csv"
+        ]),
+        "level,V,IE,BE,E,F\n0,9,8,8,16,8\n1,25,40,16,56,32\n"
+    );
+    // Pure quads: H = 4F.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "catmull-clark-quad",
+            "--counts",
+            "V=8,E=12,F=6",
+            "--levels",
+            "1",
+            "--format",
+            "csv"
+        ]),
+        "level,V,E,F\n0,8,12,6\n1,26,48,24\n"
+    );
+    // A closed-mesh scheme on counts with boundary does not apply: exit 3, with the fix.
+    fails(
+        &["table", "--scheme", "loop", "--counts", "V=9,E=16,F=8,BE=8"],
+        3,
+        "loop needs a closed mesh, but BE=8; use loop-boundary",
+    );
+}
