@@ -42,7 +42,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     }
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
-    guard_digits(&dynamics, &x0, *levels.end(), false)?;
+    guard_digits(&dynamics, &x0, *levels.end(), false, false)?;
     let rows = dynamics.rows(&x0, levels.clone())?;
     let columns = dynamics.columns();
     let series = series_of(&columns, &rows);
