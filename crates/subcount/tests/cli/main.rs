@@ -2,5 +2,6 @@
 
 mod budget;
 mod matrix;
+mod meshes;
 mod schemes;
 mod util;

@@ -1,0 +1,786 @@
+//! `stats`, `verify` and `subdivide` on generated meshes, small fixture files, the shared test
+//! meshes (when `SUBCOUNT_MESHES` is set) and invalid meshes; the memory guard and `--timings`.
+
+use std::path::Path;
+
+use crate::util::{data, fails, file_names, meshes, ok, subcount, subcount_in};
+
+#[test]
+fn stats_base_json_has_the_issue_keys() {
+    assert_eq!(
+        ok(&["stats", "--base", "cube", "--format", "json"]),
+        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 0, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"mid-edge\"]}\n"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--base", "torus:2", "--format", "json"])).unwrap();
+    let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+    for key in [
+        "V",
+        "E",
+        "IE",
+        "BE",
+        "NME",
+        "F",
+        "H",
+        "faces_by_degree",
+        "boundary_loops",
+        "components",
+        "euler_characteristic",
+        "genus",
+        "unreferenced_vertices",
+        "applicable_schemes",
+    ] {
+        assert!(keys.iter().any(|k| *k == key), "missing key {key} in {v}");
+    }
+    assert_eq!(v["genus"], 2);
+    assert_eq!(v["euler_characteristic"], -2);
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--base", "grid:2x3", "--format", "json"])).unwrap();
+    assert_eq!(
+        (v["V"].as_u64(), v["IE"].as_u64(), v["BE"].as_u64()),
+        (Some(12), Some(13), Some(10))
+    );
+    assert_eq!(v["boundary_loops"], 1);
+    assert_eq!(
+        v["applicable_schemes"],
+        serde_json::json!([
+            "loop-boundary",
+            "loop-general",
+            "catmull-clark",
+            "catmull-clark-general",
+            "sqrt3-boundary",
+            "tri-split-2",
+            "tri-split-3"
+        ])
+    );
+}
+
+#[test]
+fn stats_of_small_obj_and_off_files() {
+    assert_eq!(
+        ok(&["stats", "--mesh", &data("tetra.obj")]),
+        "V = 4 (vertices used by faces; 0 unreferenced)\nE = 6 (IE = 6 interior, BE = 0 boundary, NME = 0 non-manifold)\nF = 4 (4 of degree 3)\nH = 12 (sum of face degrees)\nboundary loops = 0\ncomponents = 1\nEuler characteristic = 2\ngenus = 0\nmanifold, consistently oriented\napplicable schemes: loop, loop-boundary, loop-general, catmull-clark, catmull-clark-general, sqrt3, sqrt3-boundary, doo-sabin, mid-edge, tri-split-2, tri-split-3\n"
+    );
+    let v: serde_json::Value = serde_json::from_str(&ok(&[
+        "stats",
+        "--mesh",
+        &data("quad.off"),
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(v["F"], 1);
+    assert_eq!(v["BE"], 4);
+    assert_eq!(v["faces_by_degree"], serde_json::json!({"4": 1}));
+    assert_eq!(
+        v["applicable_schemes"],
+        serde_json::json!([
+            "catmull-clark-quad",
+            "catmull-clark",
+            "catmull-clark-general"
+        ])
+    );
+    // The mesh's statistics are the initial state of table and friends.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "loop",
+            "--mesh",
+            &data("tetra.obj"),
+            "--levels",
+            "2",
+            "--format",
+            "csv"
+        ]),
+        "level,V,E,F\n0,4,6,4\n1,10,24,16\n2,34,96,64\n"
+    );
+}
+
+#[test]
+fn mesh_source_usage_errors() {
+    fails(&["stats"], 2, "give a mesh: --mesh FILE or --base NAME");
+    fails(
+        &["stats", "--base", "cube", "--mesh", &data("tetra.obj")],
+        2,
+        "--mesh and --base cannot be used together",
+    );
+    fails(
+        &["stats", "--base", "dodecahedron"],
+        2,
+        "unknown base mesh `dodecahedron`",
+    );
+    fails(
+        &["stats", "--mesh", "/no/such/mesh.obj"],
+        3,
+        "/no/such/mesh.obj",
+    );
+}
+
+/// Every invalid mesh: exit 3 and a message naming what is wrong, where. The reader's errors
+/// also name the file and line; see `validation_errors_name_the_file_and_line` for the others.
+#[test]
+fn invalid_meshes_are_refused_with_exit_3() {
+    let cases: &[(&str, &[&str], &str)] = &[
+        (
+            "bad_index_range.obj",
+            &["stats"],
+            "bad_index_range.obj: line 7: face index 5 is out of range (the file has 4 vertices)",
+        ),
+        (
+            "bad_index_zero.obj",
+            &["stats"],
+            "bad_index_zero.obj: line 4: face index 0 is not valid (OBJ indices start at 1)",
+        ),
+        (
+            "bad_two_vertices.obj",
+            &["stats"],
+            "bad_two_vertices.obj: line 5: face has 2 vertices, at least 3 are needed",
+        ),
+        ("bad_nan.obj", &["stats"], "bad_nan.obj: line 2: coordinate `nan` is not finite"),
+        ("bad_empty.obj", &["stats"], "bad_empty.obj: the file has no faces"),
+        ("bad_binary.obj", &["stats"], "bad_binary.obj: line 1: not a text line (binary data?)"),
+        (
+            "bad_repeated_vertex.obj",
+            &["verify", "--scheme", "catmull-clark", "--levels", "1"],
+            "(vertices 1, 3, 1) repeats vertex 1",
+        ),
+        (
+            "bad_repeated_vertex.obj",
+            &["subdivide", "--scheme", "loop-general", "--levels", "1"],
+            "(vertices 1, 3, 1) repeats vertex 1",
+        ),
+        (
+            "bad_nonmanifold_edge.obj",
+            &["verify", "--scheme", "loop-boundary", "--levels", "1"],
+            "loop-boundary needs every edge to have one or two faces, but this mesh has 1 non-manifold edge (three or more faces); use loop-general",
+        ),
+        (
+            "bad_nonmanifold_vertex.obj",
+            &["verify", "--scheme", "loop-boundary", "--levels", "1"],
+            "is non-manifold: its faces form 2 separate fans",
+        ),
+        (
+            "bad_orientation.obj",
+            &["verify", "--scheme", "loop-boundary", "--levels", "1"],
+            "in the same direction: inconsistent orientation (flip one of them)",
+        ),
+        (
+            "bad_orientation.obj",
+            &["subdivide", "--scheme", "catmull-clark", "--levels", "1"],
+            "inconsistent orientation",
+        ),
+        (
+            "bad_duplicate_faces.obj",
+            &["verify", "--scheme", "loop", "--levels", "1"],
+            "have the same vertices",
+        ),
+    ];
+    for (file, command, needle) in cases {
+        let path = data(file);
+        let mut args: Vec<&str> = command.to_vec();
+        args.extend(["--mesh", &path]);
+        fails(&args, 3, needle);
+    }
+    // Errors of the reader refuse every command that reads the mesh.
+    for file in ["bad_index_range.obj", "bad_nan.obj", "bad_binary.obj"] {
+        let path = data(file);
+        for command in [
+            &["verify", "--scheme", "loop-general", "--levels", "1"][..],
+            &["subdivide", "--scheme", "loop-general", "--levels", "1"],
+            &["table", "--scheme", "loop-general"],
+        ] {
+            let mut args: Vec<&str> = command.to_vec();
+            args.extend(["--mesh", &path]);
+            fails(&args, 3, file);
+        }
+    }
+}
+
+/// Face-list statistics still work where the half-edge structure refuses the mesh.
+#[test]
+fn stats_work_on_meshes_the_half_edge_structure_refuses() {
+    let cases = [
+        ("bad_repeated_vertex.obj", "faces_with_repeated_vertex"),
+        ("bad_nonmanifold_edge.obj", "nonmanifold_edges"),
+        ("bad_nonmanifold_vertex.obj", "nonmanifold_vertices"),
+        ("bad_duplicate_faces.obj", "duplicate_faces"),
+    ];
+    for (file, problem) in cases {
+        let v: serde_json::Value =
+            serde_json::from_str(&ok(&["stats", "--mesh", &data(file), "--format", "json"]))
+                .unwrap();
+        assert_eq!(v["manifold"], false, "{file}: {v}");
+        assert_eq!(v["problems"][problem], 1, "{file}: {v}");
+        assert!(v["genus"].is_null(), "{file}: {v}");
+    }
+    let v: serde_json::Value = serde_json::from_str(&ok(&[
+        "stats",
+        "--mesh",
+        &data("bad_orientation.obj"),
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(v["problems"]["inconsistently_oriented_edges"], 1, "{v}");
+    // loop-general runs on the face list and accepts a non-manifold edge.
+    let out = ok(&[
+        "verify",
+        "--mesh",
+        &data("bad_nonmanifold_edge.obj"),
+        "--scheme",
+        "loop-general",
+        "--levels",
+        "2",
+    ]);
+    assert!(out.ends_with("all counts match the prediction\n"), "{out}");
+}
+
+/// Errors found while validating a mesh file name the file, and the line of the face where
+/// there is one (as the reader's errors do).
+#[test]
+fn validation_errors_name_the_file_and_line() {
+    let cases: &[(&str, &str, &str)] = &[
+        // (file, scheme, the line of the offending face)
+        ("bad_repeated_vertex.obj", "catmull-clark", "line 6"),
+        ("bad_orientation.obj", "loop-boundary", "line 7"),
+        ("bad_duplicate_faces.obj", "loop", "line 6"),
+    ];
+    for (file, scheme, line) in cases {
+        let path = data(file);
+        let err = fails(
+            &[
+                "verify", "--mesh", &path, "--scheme", scheme, "--levels", "1",
+            ],
+            3,
+            file,
+        );
+        assert!(err.contains(line), "{err} lacks {line}");
+    }
+    // A refused vertex or a scheme that does not apply still names the file.
+    for (file, scheme) in [
+        ("bad_nonmanifold_vertex.obj", "loop-boundary"),
+        ("bad_nonmanifold_edge.obj", "loop-boundary"),
+    ] {
+        fails(
+            &[
+                "verify",
+                "--mesh",
+                &data(file),
+                "--scheme",
+                scheme,
+                "--levels",
+                "1",
+            ],
+            3,
+            file,
+        );
+    }
+}
+
+/// Parses `verify`'s text table: (level, component, predicted, measured) rows.
+fn verify_rows(out: &str) -> Vec<(u32, String, String, String)> {
+    out.lines()
+        .skip(2)
+        .take_while(|l| !l.starts_with("all counts") && !l.starts_with("MISMATCH"))
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            assert_eq!(f.len(), 4, "row {l:?}");
+            (
+                f[0].parse().unwrap(),
+                f[1].to_string(),
+                f[2].to_string(),
+                f[3].to_string(),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn verify_cube_catmull_clark_every_row_matches() {
+    let out = ok(&[
+        "verify",
+        "--base",
+        "cube",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "3",
+    ]);
+    assert!(
+        out.starts_with(
+            "catmull-clark on cube levels 0..=3\nlevel  component  predicted  measured\n"
+        ),
+        "{out}"
+    );
+    assert!(out.ends_with("all counts match the prediction\n"), "{out}");
+    assert!(!out.contains("MISMATCH"), "{out}");
+    let rows = verify_rows(&out);
+    assert_eq!(rows.len(), 4 * 6, "levels 0..=3, components V IE BE F H E");
+    for (level, name, predicted, measured) in &rows {
+        assert_eq!(predicted, measured, "level {level} {name}");
+    }
+    let level3: Vec<(&str, &str)> = rows
+        .iter()
+        .filter(|r| r.0 == 3)
+        .map(|r| (r.1.as_str(), r.3.as_str()))
+        .collect();
+    assert_eq!(
+        level3,
+        [
+            ("V", "386"),
+            ("IE", "768"),
+            ("BE", "0"),
+            ("F", "384"),
+            ("H", "1536"),
+            ("E", "768")
+        ]
+    );
+}
+
+#[test]
+fn verify_json_and_default_levels() {
+    assert_eq!(
+        ok(&["verify", "--base", "icosahedron", "--scheme", "loop", "--levels", "1", "--format", "json"]),
+        "[\n{\"level\": 0, \"match\": true, \"predicted\": {\"V\": 12, \"E\": 30, \"F\": 20}, \"measured\": {\"V\": 12, \"E\": 30, \"F\": 20}},\n{\"level\": 1, \"match\": true, \"predicted\": {\"V\": 42, \"E\": 120, \"F\": 80}, \"measured\": {\"V\": 42, \"E\": 120, \"F\": 80}}\n]\n"
+    );
+    // Without --levels: the last level whose face count stays within the cap (F(2) = 320).
+    let out = ok(&[
+        "verify",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--max-faces",
+        "1000",
+    ]);
+    assert!(
+        out.starts_with("loop on icosahedron levels 0..=2\n"),
+        "{out}"
+    );
+    let out = ok(&[
+        "verify",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--max-faces",
+        "1280",
+    ]);
+    assert!(
+        out.starts_with("loop on icosahedron levels 0..=3\n"),
+        "{out}"
+    );
+    fails(
+        &[
+            "verify",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "-1",
+        ],
+        2,
+        "negative",
+    );
+    fails(
+        &["verify", "--base", "icosahedron", "--scheme", "nope"],
+        2,
+        "unknown scheme `nope`",
+    );
+    // A scheme that does not apply: exit 3 with the scheme to use instead.
+    fails(
+        &[
+            "verify", "--base", "cube", "--scheme", "loop", "--levels", "1",
+        ],
+        3,
+        "use catmull-clark",
+    );
+}
+
+#[test]
+fn verify_every_scheme_on_a_generated_mesh() {
+    let cases = [
+        ("loop", "icosahedron", "3"),
+        ("loop-boundary", "icosahedron-holes:2", "2"),
+        ("loop-general", "grid:3x2", "3"),
+        ("catmull-clark-quad", "quad-grid:3x2", "3"),
+        ("catmull-clark", "mixed", "3"),
+        ("catmull-clark-general", "mixed", "2"),
+        ("sqrt3", "octahedron", "3"),
+        ("sqrt3-boundary", "grid:2x2", "4"),
+        ("doo-sabin", "cube", "3"),
+        ("mid-edge", "torus:1", "2"),
+        ("tri-split-3", "tetrahedron", "2"),
+        ("butterfly", "icosahedron", "2"),
+    ];
+    for (scheme, base, levels) in cases {
+        let out = ok(&[
+            "verify", "--base", base, "--scheme", scheme, "--levels", levels,
+        ]);
+        assert!(
+            out.ends_with("all counts match the prediction\n"),
+            "{scheme} on {base}: {out}"
+        );
+        for (level, name, predicted, measured) in verify_rows(&out) {
+            assert_eq!(
+                predicted, measured,
+                "{scheme} on {base}, level {level} {name}"
+            );
+        }
+    }
+}
+
+/// `subdivide -o` writes an OBJ whose statistics are the predicted counts, and nothing else.
+#[test]
+fn subdivide_writes_the_predicted_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("loop", "icosahedron", "3"),
+        ("loop-boundary", "grid:3x3", "2"),
+        ("catmull-clark", "mixed", "2"),
+        ("sqrt3-boundary", "grid:2x2", "3"),
+        ("doo-sabin", "cube", "2"),
+    ];
+    for (scheme, base, levels) in cases {
+        let out = dir.path().join(format!("{scheme}.obj"));
+        let out = out.to_str().unwrap();
+        let msg = ok(&[
+            "subdivide",
+            "--base",
+            base,
+            "--scheme",
+            scheme,
+            "--levels",
+            levels,
+            "-o",
+            out,
+        ]);
+        assert!(msg.ends_with(&format!("; wrote {out}\n")), "{msg}");
+        let stats: serde_json::Value =
+            serde_json::from_str(&ok(&["stats", "--mesh", out, "--format", "json"])).unwrap();
+        let level = format!("{levels}..={levels}");
+        let table: serde_json::Value = serde_json::from_str(&ok(&[
+            "table", "--scheme", scheme, "--base", base, "--levels", &level, "--format", "json",
+        ]))
+        .unwrap();
+        for key in ["V", "E", "F"] {
+            assert_eq!(stats[key], table[0][key], "{scheme} on {base}: {key}");
+        }
+        assert_eq!(stats["manifold"], true, "{scheme} on {base}");
+        assert_eq!(
+            msg,
+            format!(
+                "level {levels}: V = {}, E = {}, F = {}; wrote {out}\n",
+                table[0]["V"], table[0]["E"], table[0]["F"]
+            )
+        );
+    }
+    let mut expected: Vec<String> = cases.iter().map(|c| format!("{}.obj", c.0)).collect();
+    expected.sort();
+    assert_eq!(
+        file_names(dir.path()),
+        expected,
+        "no temporary files are left"
+    );
+}
+
+#[test]
+fn subdivide_without_output_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = subcount_in(
+        dir.path(),
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "2",
+        ],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout,
+        "level 2: V = 162, E = 480, F = 320 (no -o: nothing written)\n"
+    );
+    assert_eq!(run.stderr, "");
+    assert!(file_names(dir.path()).is_empty());
+}
+
+#[test]
+fn memory_guard_refuses_huge_levels_with_exit_4() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("huge.obj");
+    let err = fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "20",
+            "-o",
+            out.to_str().unwrap(),
+        ],
+        4,
+        "loop to level 20 needs about 1.6 PiB of memory",
+    );
+    assert!(err.contains("--allow-large"), "{err}");
+    assert!(file_names(dir.path()).is_empty(), "nothing is written");
+    fails(
+        &[
+            "verify",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "20",
+        ],
+        4,
+        "needs about 1.6 PiB of memory",
+    );
+}
+
+#[test]
+fn output_errors_name_the_file_and_cause_once() {
+    let err = fails(
+        &[
+            "subdivide",
+            "--base",
+            "cube",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "-o",
+            "/no/such/dir/out.obj",
+        ],
+        3,
+        "/no/such/dir/out.obj",
+    );
+    assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
+}
+
+#[test]
+fn timings_print_one_line_with_five_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.obj");
+    let run = subcount(&[
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+        "--timings",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1, "{:?}", run.stderr);
+    let json = run
+        .stderr
+        .strip_prefix("timings: ")
+        .expect("a timings line")
+        .trim_end();
+    let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+    let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+    assert_eq!(
+        keys,
+        [
+            "load_s",
+            "subdivide_s",
+            "write_s",
+            "peak_bytes",
+            "predicted_peak_bytes"
+        ]
+    );
+    for key in ["load_s", "subdivide_s", "write_s"] {
+        let s = v[key].as_f64().unwrap();
+        assert!((0.0..60.0).contains(&s), "{key} = {s}");
+    }
+    assert!(v["peak_bytes"].as_u64().unwrap() > 0);
+    assert!(v["predicted_peak_bytes"].as_u64().unwrap() > 0);
+    // Without --timings, stderr stays empty.
+    let run = subcount(&[
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "1",
+    ]);
+    assert_eq!(run.stderr, "");
+}
+
+// ---- the shared test meshes ($SUBCOUNT_MESHES) ----
+
+/// The entries of `stats.json` whose file is at most `max_bytes` long.
+fn small_meshes(dir: &Path, max_bytes: u64) -> Vec<(String, serde_json::Value)> {
+    let text = std::fs::read_to_string(dir.join("stats.json")).expect("stats.json is readable");
+    let all: serde_json::Value = serde_json::from_str(&text).expect("stats.json is JSON");
+    all.as_object()
+        .expect("stats.json is an object")
+        .iter()
+        .filter(|(_, e)| e["bytes"].as_u64().unwrap_or(u64::MAX) <= max_bytes)
+        .map(|(k, e)| (k.clone(), e.clone()))
+        .collect()
+}
+
+#[test]
+fn stats_agree_with_stats_json_on_the_shared_meshes() {
+    let Some(dir) = meshes() else { return };
+    let list = small_meshes(&dir, 250_000);
+    assert!(list.len() >= 30, "only {} meshes", list.len());
+    for (name, e) in list {
+        let path = dir.join(&name);
+        let out = ok(&[
+            "stats",
+            "--mesh",
+            path.to_str().unwrap(),
+            "--format",
+            "json",
+        ]);
+        let s: serde_json::Value = serde_json::from_str(&out).unwrap();
+        let unreferenced = e["unreferenced_vertices"].as_u64().unwrap();
+        let expect = [
+            ("V", e["V"].as_u64().unwrap() - unreferenced),
+            ("E", e["E"].as_u64().unwrap()),
+            ("F", e["F"].as_u64().unwrap()),
+            ("H", e["corners"].as_u64().unwrap()),
+            ("BE", e["boundary_edges"].as_u64().unwrap()),
+            ("boundary_loops", e["boundary_loops"].as_u64().unwrap()),
+            ("components", e["components"].as_u64().unwrap()),
+            ("unreferenced_vertices", unreferenced),
+        ];
+        for (key, value) in expect {
+            assert_eq!(s[key].as_u64(), Some(value), "{name}: {key}");
+        }
+        assert_eq!(s["euler_characteristic"], e["chi_used_vertices"], "{name}");
+        assert_eq!(s["faces_by_degree"], e["face_degrees"], "{name}");
+        let problems = [
+            ("faces_with_repeated_vertex", "degenerate_faces"),
+            ("duplicate_faces", "duplicate_faces"),
+            ("nonmanifold_edges", "nonmanifold_edges"),
+            ("nonmanifold_vertices", "nonmanifold_vertices"),
+            (
+                "inconsistently_oriented_edges",
+                "inconsistently_oriented_edges",
+            ),
+        ];
+        for (ours, theirs) in problems {
+            assert_eq!(s["problems"][ours], e[theirs], "{name}: {ours}");
+        }
+        if s["manifold"] == true {
+            assert_eq!(s["genus"], e["genus"], "{name}");
+        }
+        if e["manifold"] == false {
+            assert_eq!(s["manifold"], false, "{name}");
+        }
+    }
+}
+
+#[test]
+fn verify_shared_meshes() {
+    let Some(dir) = meshes() else { return };
+    let cases = [
+        ("osd_loop_icosahedron.obj", "loop", "3"),
+        ("planexy.obj", "loop-boundary", "3"),
+        ("osd_loop_toroidal_tet.obj", "loop", "2"),
+        ("osd_catmark_nonquads.obj", "catmull-clark", "3"),
+        ("spot_control_mesh_negidx.obj", "catmull-clark", "2"),
+        (
+            "osd_catmark_nonman_bareverts.obj",
+            "catmull-clark-quad",
+            "2",
+        ),
+        ("osd_catmark_chaikin2.obj", "catmull-clark-quad", "3"),
+        ("chamfer_cube.obj", "doo-sabin", "2"),
+        ("broken/beetle_nonmanifold.obj", "loop-general", "1"),
+        ("broken/osd_catmark_fan.obj", "catmull-clark-general", "2"),
+    ];
+    for (file, scheme, levels) in cases {
+        let path = dir.join(file);
+        let out = ok(&[
+            "verify",
+            "--mesh",
+            path.to_str().unwrap(),
+            "--scheme",
+            scheme,
+            "--levels",
+            levels,
+        ]);
+        assert!(
+            out.ends_with("all counts match the prediction\n"),
+            "{file} {scheme}: {out}"
+        );
+        for (level, name, predicted, measured) in verify_rows(&out) {
+            assert_eq!(predicted, measured, "{file} {scheme}: level {level} {name}");
+        }
+    }
+}
+
+#[test]
+fn verify_refuses_broken_shared_meshes() {
+    let Some(dir) = meshes() else { return };
+    let cases = [
+        (
+            "broken/cow_nonmanifold_vertex.obj",
+            "loop",
+            "is non-manifold: its faces form 2 separate fans",
+        ),
+        (
+            "broken/beetle_nonmanifold.obj",
+            "loop",
+            "this mesh has 47 non-manifold edges (three or more faces); use loop-general",
+        ),
+        (
+            "broken/truck_nonmanifold.obj",
+            "loop-boundary",
+            "54 non-manifold edges",
+        ),
+        ("broken/teapot_nonmanifold.obj", "loop", "use loop-boundary"),
+        (
+            "broken/teapot_nonmanifold.obj",
+            "loop-boundary",
+            "is non-manifold",
+        ),
+        (
+            "broken/osd_catmark_nonman_quadpole8.obj",
+            "catmull-clark",
+            "(vertices 3, 2, 4, 4) repeats vertex 4",
+        ),
+        (
+            "broken/osd_catmark_fan.obj",
+            "loop",
+            "use catmull-clark-general",
+        ),
+        (
+            "broken/osd_catmark_val2_back2back.obj",
+            "catmull-clark",
+            "have the same vertices",
+        ),
+    ];
+    for (file, scheme, needle) in cases {
+        let path = dir.join(file);
+        let path = path.to_str().unwrap();
+        fails(
+            &[
+                "verify", "--mesh", path, "--scheme", scheme, "--levels", "1",
+            ],
+            3,
+            needle,
+        );
+        // Face-list statistics still work.
+        let s: serde_json::Value =
+            serde_json::from_str(&ok(&["stats", "--mesh", path, "--format", "json"])).unwrap();
+        assert_eq!(s["manifold"], false, "{file}");
+    }
+}
