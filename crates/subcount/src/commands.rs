@@ -193,7 +193,18 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
 
 fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let dynamics = Dynamics::from_source(&args.source)?;
-    let text = match &dynamics {
+    // With an initial state (--init, --counts, --mesh, --base), the text form also shows the
+    // numbers substituted.
+    let given = args.source.init.is_some()
+        || args.source.counts.is_some()
+        || args.source.mesh.mesh.is_some()
+        || args.source.mesh.base.is_some();
+    let x0 = if given {
+        Some(dynamics.initial_state(&args.source)?)
+    } else {
+        None
+    };
+    let mut text = match &dynamics {
         Dynamics::Matrix(r) => render_form(&r.closed_form(), args.format, "counts")?,
         Dynamics::Plan(plan) => {
             let phases = plan.phases();
@@ -211,8 +222,57 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
             }
         }
     };
+    if let (Some(x0), FormulaFormat::Text) = (&x0, args.format) {
+        text = format!("{}\n\n{}", text.trim_end(), specialized_text(&dynamics, x0));
+    }
     writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
     Ok(0)
+}
+
+/// The closed forms with the initial values substituted (one block per phase).
+fn specialized_text(dynamics: &Dynamics, x0: &[num_bigint::BigInt]) -> String {
+    let names = match dynamics {
+        Dynamics::Matrix(r) => r.names().to_vec(),
+        Dynamics::Plan(plan) => plan.state_names().to_vec(),
+    };
+    let given: Vec<String> = names
+        .iter()
+        .zip(x0)
+        .map(|(n, v)| format!("{n}(0) = {v}"))
+        .collect();
+    let mut text = format!("# with {}\n", given.join(", "));
+    let symbolic = "(not rational: see the symbolic form above)".to_string();
+    match dynamics {
+        Dynamics::Matrix(r) => {
+            let lines = crate::specialize::specialized_lines(&r.closed_form(), x0, "s");
+            text.push_str(&lines.map_or(symbolic, |l| l.join("\n")));
+        }
+        Dynamics::Plan(plan) => {
+            let phases = plan.phases();
+            let single = phases.len() == 1 && phases[0].first_level == 0 && phases[0].period == 1;
+            for phase in &phases {
+                let var = if single { "s" } else { "t" };
+                let start = match plan.phase_initial(phase, x0) {
+                    Ok(start) => start,
+                    Err(e) => {
+                        text.push_str(&format!("{}: {e}\n", phase.description));
+                        continue;
+                    }
+                };
+                if !single {
+                    text.push_str(&format!("{}:\n", phase.description));
+                }
+                let lines = crate::specialize::specialized_lines(
+                    &phase.recurrence.closed_form(),
+                    &start,
+                    var,
+                );
+                text.push_str(&lines.map_or(symbolic.clone(), |l| l.join("\n")));
+                text.push('\n');
+            }
+        }
+    }
+    text
 }
 
 fn render_form(

@@ -14,6 +14,7 @@ mod model;
 mod output;
 mod plot;
 mod report;
+mod specialize;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
