@@ -45,7 +45,7 @@ fn main() -> ExitCode {
             if is_broken_pipe(&failure.error) {
                 return ExitCode::SUCCESS;
             }
-            let message = format!("{:#}", failure.error).replace('\n', " ");
+            let message = one_line(&failure.error);
             let _ = writeln!(io::stderr(), "error: {message}");
             ExitCode::from(failure.kind.exit_code())
         }
@@ -86,6 +86,23 @@ fn clap_error(e: &clap::Error) -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The error and its causes on one line, `outer: inner`, skipping a cause whose text the
+/// message already contains (library errors often embed their source).
+fn one_line(error: &anyhow::Error) -> String {
+    let mut message = String::new();
+    for cause in error.chain() {
+        let text = cause.to_string();
+        if message.contains(&text) {
+            continue;
+        }
+        if !message.is_empty() {
+            message.push_str(": ");
+        }
+        message.push_str(&text);
+    }
+    message.replace('\n', " ")
 }
 
 fn is_broken_pipe(e: &anyhow::Error) -> bool {

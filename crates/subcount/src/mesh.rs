@@ -12,7 +12,7 @@ use schemes::{MeshCounts, Scheme};
 use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
 use crate::commands::{human_bytes, write_failure};
 use crate::failure::{usage, Failure, Kind};
-use crate::model::{load_mesh, scheme_failure};
+use crate::model::{load_mesh, not_applicable, scheme_failure, validate};
 use crate::output::json_string;
 
 fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
@@ -49,7 +49,7 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let poly = required_mesh(&args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
     let problems = halfedge::stats::face_list_problems(&poly);
-    let validation = HalfEdgeMesh::try_from(&poly).err();
+    let validation = validate(&poly, &args.mesh).err();
     let applicable = applicable_schemes(&counts, validation.is_none());
     let genus = if validation.is_none() {
         halfedge::stats::genus(&counts)
@@ -115,7 +115,7 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
             }
             match &validation {
                 None => t.push_str("manifold, consistently oriented\n"),
-                Some(e) => t.push_str(&format!("not a valid half-edge mesh: {e}\n")),
+                Some(e) => t.push_str(&format!("not a valid half-edge mesh: {:#}\n", e.error)),
             }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t
@@ -221,7 +221,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let scheme = counting_scheme(&args.scheme, &counts)?;
     scheme
         .initial_state(&counts)
-        .map_err(|e| Failure::new(Kind::Input, e))?;
+        .map_err(|e| not_applicable(&args.mesh, e))?;
     let levels = match &args.levels {
         Some(t) => parse_levels_count(t)?,
         None => {
@@ -244,7 +244,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let reports = if on_face_list(&scheme) {
         sub::verify_polygons(&poly, &args.scheme, levels, &opts)
     } else {
-        let mesh = HalfEdgeMesh::try_from(&poly).map_err(halfedge_failure)?;
+        let mesh = validate(&poly, &args.mesh)?;
         sub::verify(&mesh, &args.scheme, levels, &opts)
     }
     .map_err(halfedge_failure)?;
@@ -276,7 +276,10 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             let mut t = format!(
                 "{} on {} levels 0..={levels}\n",
                 args.scheme,
-                mesh_label(&args.mesh)
+                args.mesh.mesh.as_ref().map_or_else(
+                    || args.mesh.base.clone().unwrap_or_default(),
+                    |p| p.display().to_string()
+                )
             );
             t.push_str("level  component  predicted  measured\n");
             for r in &reports {
@@ -310,14 +313,6 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     }
 }
 
-fn mesh_label(mesh: &MeshSource) -> String {
-    match (&mesh.mesh, &mesh.base) {
-        (Some(p), _) => p.display().to_string(),
-        (None, Some(b)) => b.clone(),
-        _ => String::new(),
-    }
-}
-
 /// The peak resident set size of this process (VmHWM), when /proc tells it.
 fn peak_rss_bytes() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
@@ -339,13 +334,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let scheme = counting_scheme(&args.scheme, &counts)?;
     scheme
         .initial_state(&counts)
-        .map_err(|e| Failure::new(Kind::Input, e))?;
+        .map_err(|e| not_applicable(&args.mesh, e))?;
     let predicted = guard_memory(&scheme, &counts, levels, args.allow_large)?;
     let face_list = on_face_list(&scheme);
     let mesh = if face_list {
         None
     } else {
-        Some(HalfEdgeMesh::try_from(&poly).map_err(halfedge_failure)?)
+        Some(validate(&poly, &args.mesh)?)
     };
     let load_s = start.elapsed().as_secs_f64();
 

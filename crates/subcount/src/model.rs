@@ -54,6 +54,35 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMes
     }
 }
 
+/// How errors name the mesh: its path, or `base mesh NAME`.
+pub(crate) fn mesh_label(mesh: &MeshSource) -> String {
+    match (&mesh.mesh, &mesh.base) {
+        (Some(path), _) => path.display().to_string(),
+        (None, Some(name)) => format!("base mesh {name}"),
+        (None, None) => "the mesh".to_string(),
+    }
+}
+
+/// Builds the validated half-edge mesh, naming the file and the line of the offending face.
+pub(crate) fn validate(
+    poly: &halfedge::PolygonMesh,
+    mesh: &MeshSource,
+) -> Result<halfedge::HalfEdgeMesh, Failure> {
+    halfedge::HalfEdgeMesh::try_from(poly).map_err(|e| {
+        let label = mesh_label(mesh);
+        let line = e.face().and_then(|f| poly.face_line(f as usize));
+        match line {
+            Some(line) => input!("{label}: line {line}: {e}"),
+            None => input!("{label}: {e}"),
+        }
+    })
+}
+
+/// A scheme that does not apply to the mesh: exit 3, naming the mesh.
+pub(crate) fn not_applicable(mesh: &MeshSource, e: schemes::Error) -> Failure {
+    input!("{}: {e}", mesh_label(mesh))
+}
+
 /// The statistics of the mesh named by `--mesh` or `--base`, if any.
 pub(crate) fn mesh_counts(mesh: &MeshSource) -> Result<Option<MeshCounts>, Failure> {
     Ok(load_mesh(mesh)?.map(|m| halfedge::stats::face_list_counts(&m)))
@@ -180,7 +209,7 @@ impl Dynamics {
                 Dynamics::Plan(plan) => {
                     if let Some(counts) = mesh_counts(&source.mesh)? {
                         plan.initial_state(&counts)
-                            .map_err(|e| Failure::new(Kind::Input, e))?
+                            .map_err(|e| not_applicable(&source.mesh, e))?
                     } else {
                         let text = match (&source.counts, Dynamics::is_default(source)) {
                             (Some(text), _) => text.as_str(),
