@@ -213,6 +213,11 @@ fn stats_work_on_meshes_the_half_edge_structure_refuses() {
         assert_eq!(v["manifold"], false, "{file}: {v}");
         assert_eq!(v["problems"][problem], 1, "{file}: {v}");
         assert!(v["genus"].is_null(), "{file}: {v}");
+        let text = ok(&["stats", "--mesh", &data(file)]);
+        assert!(
+            text.contains("\nnot a valid half-edge mesh: "),
+            "{file}: {text}"
+        );
     }
     let v: serde_json::Value = serde_json::from_str(&ok(&[
         "stats",
@@ -274,6 +279,27 @@ fn validation_errors_name_the_file_and_line() {
             ],
             3,
             file,
+        );
+    }
+}
+
+/// A face with a repeated vertex is refused on every path, before its counts are used: the
+/// error names the face, whatever the scheme.
+#[test]
+fn repeated_vertex_is_refused_before_counting() {
+    let path = data("bad_repeated_vertex.obj");
+    for scheme in [
+        "loop-boundary",
+        "loop-general",
+        "catmull-clark",
+        "tri-split-2",
+    ] {
+        fails(
+            &[
+                "verify", "--mesh", &path, "--scheme", scheme, "--levels", "1",
+            ],
+            3,
+            "(vertices 1, 3, 1) repeats vertex 1",
         );
     }
 }

@@ -618,3 +618,37 @@ fn counts_errors_are_usage_errors() {
         "loop needs a closed mesh, but BE=8; use loop-boundary",
     );
 }
+
+#[test]
+fn at_with_a_scheme_and_a_mesh() {
+    // V(s) = 10 * 4^s + 2, E(s) = 30 * 4^s, F(s) = 20 * 4^s on the icosahedron.
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme",
+            "loop",
+            "--base",
+            "icosahedron",
+            "--level",
+            "20",
+            "--format",
+            "json"
+        ]),
+        "{\"level\": 20, \"V\": 10995116277762, \"E\": 32985348833280, \"F\": 21990232555520}\n"
+    );
+    // Digit summaries at level 1000 of loop-boundary on the 2x2 grid (checked by iterating
+    // V' = V + IE + BE, IE' = 4IE + BE, BE' = 2BE); BE(1000) = 2^1003.
+    let out = ok(&[
+        "at",
+        "--scheme",
+        "loop-boundary",
+        "--base",
+        "grid:2x2",
+        "--level",
+        "1000",
+        "--summary",
+        "--format",
+        "json",
+    ]);
+    assert!(out.starts_with("{\"level\": 1000, \"V\": {\"digits\": 603, \"leading\": \"45925227810970180969\", \"trailing\": \"12596088227268395009\"}, \"IE\": {\"digits\": 604, \"leading\": \"13777568343291054290\", \"trailing\": \"47598869391116075008\"}, \"BE\": {\"digits\": 302, \"leading\": \"85720688574901385675\", \"trailing\": \"95094697645344555008\"}, \"E\": "), "{out}");
+}
