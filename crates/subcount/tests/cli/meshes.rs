@@ -512,6 +512,67 @@ fn subdivide_writes_the_predicted_mesh() {
     );
 }
 
+/// The single-thread and the parallel path write the same file; the growing (not
+/// preallocated) path builds the same mesh, possibly numbered in another order.
+#[test]
+fn subdivide_paths_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let positions = |obj: &str| -> Vec<[f64; 3]> {
+        obj.lines()
+            .filter(|l| l.starts_with("v "))
+            .map(|l| {
+                let c: Vec<f64> = l
+                    .split_whitespace()
+                    .skip(1)
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                [c[0], c[1], c[2]]
+            })
+            .collect()
+    };
+    for (scheme, base) in [
+        ("loop", "icosahedron"),
+        ("catmull-clark", "mixed"),
+        ("sqrt3", "octahedron"),
+    ] {
+        let run = |name: &str, extra: &[&str]| -> (String, String) {
+            let path = dir.path().join(format!("{scheme}-{name}.obj"));
+            let path = path.to_str().unwrap().to_string();
+            let mut args = vec![
+                "subdivide",
+                "--base",
+                base,
+                "--scheme",
+                scheme,
+                "--levels",
+                "3",
+                "-o",
+                &path,
+            ];
+            args.extend_from_slice(extra);
+            ok(&args);
+            let stats = ok(&["stats", "--mesh", &path, "--format", "json"]);
+            (std::fs::read_to_string(&path).unwrap(), stats)
+        };
+        let (one, one_stats) = run("one", &["--threads", "1"]);
+        let (two, _) = run("two", &["--threads", "2"]);
+        let (grown, grown_stats) = run("grown", &["--no-preallocate"]);
+        assert_eq!(one, two, "{scheme}: --threads 1 and 2 write the same file");
+        assert_eq!(one_stats, grown_stats, "{scheme}: the same statistics");
+        let (a, b) = (positions(&one), positions(&grown));
+        assert_eq!(a.len(), b.len(), "{scheme}");
+        for p in &a {
+            let near = b
+                .iter()
+                .any(|q| p.iter().zip(q).all(|(x, y)| (x - y).abs() < 1e-9));
+            assert!(
+                near,
+                "{scheme}: position {p:?} of the preallocated mesh is missing"
+            );
+        }
+    }
+}
+
 #[test]
 fn subdivide_without_output_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
