@@ -317,3 +317,29 @@ fn plot_errors() {
     assert!(svg.starts_with("<?xml") && svg.ends_with("</svg>\n"));
     assert_eq!(file_names(dir.path()), ["again.svg"]);
 }
+
+/// Text from the command line (here a mesh file name) is escaped in the SVG.
+#[test]
+fn svg_escapes_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("a&b<c>'\".obj");
+    std::fs::copy(data("tetra.obj"), &mesh).unwrap();
+    let path = dir.path().join("escaped.svg");
+    ok(&[
+        "plot",
+        "--scheme",
+        "loop",
+        "--mesh",
+        mesh.to_str().unwrap(),
+        "--levels",
+        "3",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let texts = all_texts(&doc);
+    assert_eq!(texts[0], "loop on a&b<c>'\".obj");
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap();
+    assert_eq!(title.text(), Some("loop on a&b<c>'\".obj"));
+}
