@@ -688,6 +688,12 @@ fn output_errors_name_the_file_and_cause_once() {
         "/no/such/dir/out.obj",
     );
     assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
+    let err = fails(
+        &["stats", "--mesh", "/no/such/mesh.obj"],
+        3,
+        "/no/such/mesh.obj",
+    );
+    assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
 }
 
 #[test]
