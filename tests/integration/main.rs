@@ -1,1 +1,6 @@
-//! Cross-crate integration tests.
+//! Cross-crate integration tests: the closed forms of the `schemes` and `recurrence` crates
+//! against the real subdivision of the `halfedge` crate.
+
+mod forms;
+mod real_meshes;
+mod subdivision;

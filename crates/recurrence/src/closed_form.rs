@@ -167,6 +167,32 @@ impl ClosedForm {
         &self.powers
     }
 
+    /// An estimate of the size in bits of the largest count at level `s`: `s log2 |l|` for the
+    /// largest eigenvalue `l` that appears in a term (coefficients and powers of `s` add only
+    /// a few bits). Use it to refuse levels whose counts cannot fit in memory before
+    /// computing them; [`summary_at`](Self::summary_at) needs no such guard.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let form = Recurrence::new("[[1, 1], [0, 4]]".parse::<IntMatrix>()?).closed_form();
+    /// assert_eq!(form.estimated_bits(1_000_000), 2_000_000);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn estimated_bits(&self, s: u64) -> u64 {
+        let rho = self
+            .components
+            .iter()
+            .flat_map(|c| &c.terms)
+            .map(|t| t.eigenvalue.modulus())
+            .fold(1.0f64, f64::max);
+        let bits = s as f64 * rho.log2();
+        if bits >= u64::MAX as f64 {
+            u64::MAX
+        } else {
+            bits.ceil() as u64
+        }
+    }
+
     /// The exact state at level `s` by the fastest exact path: [`evaluate`](Self::evaluate)
     /// when every component's form is exact, powering of the matrix otherwise.
     ///
@@ -207,7 +233,9 @@ impl ClosedForm {
     /// # Errors
     ///
     /// [`Error::InitialLength`] for a wrong-length `x0`; [`Error::NotExact`] when a component's
-    /// form is numeric (compute those counts by powering, which is always exact).
+    /// form is numeric (compute those counts by powering, which is always exact, or call
+    /// [`state_at`](Self::state_at)); [`Error::TooLarge`] when a count would need more than
+    /// 2^37 bits (16 GiB), see [`estimated_bits`](Self::estimated_bits).
     ///
     /// ```
     /// use num_bigint::BigInt;
@@ -226,6 +254,10 @@ impl ClosedForm {
                 got: x0.len(),
                 expected: self.names.len(),
             });
+        }
+        let bits = self.estimated_bits(s);
+        if bits > MAX_EVALUATION_BITS {
+            return Err(Error::TooLarge { level: s, bits });
         }
         let mut cache: Vec<Option<PowerValue>> = vec![None; self.powers.len()];
         let s_big = BigInt::from(s);
@@ -332,6 +364,9 @@ impl ClosedForm {
         Ok(out)
     }
 }
+
+/// Counts beyond this many bits (16 GiB each) are refused rather than attempted.
+const MAX_EVALUATION_BITS: u64 = 1 << 37;
 
 fn too_large(level: u64, bits: u64) -> Error {
     Error::TooLarge { level, bits }

@@ -202,3 +202,23 @@ fn twelve_by_twelve() {
     assert_eq!(mult, 12);
     assert_form_matches_powering(&r, &big(&[1, -2, 3, -4, 5, -6, 7, -8, 9, -10, 11, -12]), 40);
 }
+
+#[test]
+fn levels_beyond_memory_are_refused_not_attempted() {
+    let form = rec("[[1,1],[0,4]]", "V,E").closed_form();
+    assert_eq!(form.estimated_bits(1_000_000_000_000), 2_000_000_000_000);
+    assert_eq!(
+        form.evaluate(&big(&[12, 30]), 1_000_000_000_000),
+        Err(Error::TooLarge {
+            level: 1_000_000_000_000,
+            bits: 2_000_000_000_000
+        })
+    );
+    // A form whose eigenvalues are all 1 grows only polynomially: fine at any level.
+    let linear = rec("[[1,1],[0,1]]", "n,c").closed_form();
+    let s = u64::MAX;
+    assert_eq!(
+        linear.evaluate(&big(&[0, 3]), s).unwrap(),
+        vec![BigInt::from(s) * 3, BigInt::from(3)]
+    );
+}

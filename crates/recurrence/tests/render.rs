@@ -161,3 +161,60 @@ fn json() {
     .to_json();
     assert_eq!(cycle[0]["exact"], false);
 }
+
+/// The JSON contract: component(s) = sum over terms of (sum of coefficient * x(0)) *
+/// s^s_power * eigenvalue^s for s >= valid_from, and the early levels below.
+#[test]
+fn json_terms_reproduce_powering() {
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::Pow;
+
+    for (m, names, x0) in [
+        ("[[1,1,1],[0,4,1],[0,0,2]]", "V,IE,BE", vec![9, 10, 6]),
+        ("[[0,2,0],[0,4,0],[1,1,1]]", "V,E,F", vec![8, 12, 6]),
+        ("[[2,1],[0,2]]", "a,b", vec![3, -5]),
+        ("[[-2,1],[0,3]]", "a,b", vec![1, 1]),
+    ] {
+        let r = rec(m, names);
+        let json = r.closed_form().to_json();
+        let names: Vec<&str> = names.split(',').collect();
+        let x0 = crate::util::big(&x0);
+        for s in 0..25u64 {
+            let state = r.state_at(&x0, s).unwrap();
+            for (i, comp) in json.as_array().unwrap().iter().enumerate() {
+                let lin = |coeffs: &serde_json::Value| -> BigRational {
+                    names
+                        .iter()
+                        .zip(&x0)
+                        .map(|(n, x)| {
+                            coeffs[n].as_str().unwrap().parse::<BigRational>().unwrap()
+                                * BigRational::from_integer(x.clone())
+                        })
+                        .sum()
+                };
+                let value: BigRational = if s < comp["valid_from"].as_u64().unwrap() {
+                    lin(&comp["early_levels"][s as usize]["coefficients"])
+                } else {
+                    comp["terms"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|t| {
+                            let l: BigRational = t["eigenvalue"].as_str().unwrap().parse().unwrap();
+                            let p = t["s_power"].as_u64().unwrap();
+                            lin(&t["coefficients"])
+                                * BigRational::from_integer(Pow::pow(BigInt::from(s), p))
+                                * Pow::pow(l, s)
+                        })
+                        .sum()
+                };
+                assert_eq!(
+                    value,
+                    BigRational::from_integer(state[i].clone()),
+                    "{m} component {i} level {s}"
+                );
+            }
+        }
+    }
+}

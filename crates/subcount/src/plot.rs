@@ -242,9 +242,9 @@ impl LogTicks {
             .collect()
     }
 
-    /// log10 of 2..=9 times each decade, when ticks are one decade apart and few.
+    /// log10 of 2..=9 times each decade, when ticks are one decade apart and at most four.
     fn minors(&self) -> Vec<f64> {
-        if self.step != 1 || self.hi - self.lo > 6 {
+        if self.step != 1 || self.hi - self.lo > 4 {
             return Vec::new();
         }
         (self.lo..self.hi)
@@ -703,18 +703,22 @@ impl Chart {
         let style = |i: usize| (PALETTE[i % PALETTE.len()], MARKERS[i % MARKERS.len()]);
         for (i, s) in self.series.iter().enumerate() {
             let (color, kind) = style(i);
+            // One line per run of consecutive levels: a level without a positive count (zero
+            // or negative, off a log scale) leaves a gap rather than a misleading segment.
+            for run in s.points.chunk_by(|a, b| b.0 == a.0 + 1) {
+                if run.len() > 1 {
+                    shapes.push(Shape::Polyline {
+                        points: run.iter().map(|&(l, y)| (px(l as f64), py(y))).collect(),
+                        color,
+                        width: 2.0,
+                    });
+                }
+            }
             let points: Vec<(f64, f64)> = s
                 .points
                 .iter()
                 .map(|&(l, y)| (px(l as f64), py(y)))
                 .collect();
-            if points.len() > 1 {
-                shapes.push(Shape::Polyline {
-                    points: points.clone(),
-                    color,
-                    width: 2.0,
-                });
-            }
             // Markers only while they stay apart.
             if self.last_level - self.first_level <= 40 {
                 for at in points {
@@ -1306,9 +1310,7 @@ mod tests {
             }
         );
         assert_eq!(t.majors().collect::<Vec<_>>(), [1, 2, 3, 4, 5, 6, 7]);
-        assert_eq!(t.minors().len(), 6 * 8);
-        let t = LogTicks::covering(1.08, 7.3);
-        assert_eq!(t.minors().len(), 0, "more than 6 decades: no minor ticks");
+        assert_eq!(t.minors().len(), 0, "more than 4 decades: no minor ticks");
         let t = LogTicks::covering(1.08, 4.2);
         assert_eq!(t.minors().len(), 4 * 8);
         assert_eq!(t.minor_labels(), []);
@@ -1402,6 +1404,56 @@ mod tests {
         assert_eq!(e.kind, crate::failure::Kind::Usage);
         assert!(format!("{:#}", e.error).contains("`.jpg`"));
         assert!(ImageFormat::from_path(Path::new("counts")).is_err());
+    }
+
+    fn chart(series: Vec<Series>) -> Chart {
+        Chart {
+            title: "t".into(),
+            subtitle: "s".into(),
+            first_level: 0,
+            last_level: 5,
+            series,
+            hidden: vec!["BE".into()],
+        }
+    }
+
+    #[test]
+    fn layout_breaks_lines_at_gaps_and_notes_hidden_columns() {
+        let font = Font::embedded().unwrap();
+        let gap = Series {
+            name: "x0".into(),
+            points: vec![(0, 0.0), (1, 1.0), (3, 3.0), (4, 4.0), (5, 5.0)],
+        };
+        let scene = chart(vec![gap]).layout(&font);
+        let lines: Vec<usize> = scene
+            .shapes
+            .iter()
+            .filter_map(|s| match s {
+                Shape::Polyline { points, .. } => Some(points.len()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(lines, [2, 3]);
+        let markers = scene
+            .shapes
+            .iter()
+            .filter(|s| matches!(s, Shape::Marker { .. }))
+            .count();
+        assert_eq!(markers, 5 + 1, "one per point, and the legend's");
+        let svg = scene.to_svg();
+        assert!(svg.contains(">BE: no positive count</text>"), "{svg}");
+        assert!(svg.contains("<title>t</title>"));
+        // Higher counts are drawn higher (smaller y).
+        let Some(Shape::Polyline { points, .. }) = scene
+            .shapes
+            .iter()
+            .find(|s| matches!(s, Shape::Polyline { .. }))
+        else {
+            unreachable!("a polyline was counted above")
+        };
+        assert!(points[1].1 < points[0].1);
+        let png = raster::to_png(&scene, &font).unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     }
 
     #[test]

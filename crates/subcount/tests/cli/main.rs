@@ -3,5 +3,6 @@
 mod budget;
 mod matrix;
 mod meshes;
+mod plot;
 mod schemes;
 mod util;

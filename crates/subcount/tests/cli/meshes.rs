@@ -97,6 +97,43 @@ fn stats_of_small_obj_and_off_files() {
     );
 }
 
+/// v/vt, v/vt/vn, v//vn and negative indices, groups sharing vertices, unknown lines ignored,
+/// and a vertex no face uses: counted apart, and left out of the subdivided mesh.
+#[test]
+fn obj_face_forms_groups_and_unreferenced_vertices() {
+    let path = data("features.obj");
+    assert_eq!(
+        ok(&["stats", "--mesh", &path, "--format", "json"]),
+        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 1, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"mid-edge\"]}\n"
+    );
+    let text = ok(&["stats", "--mesh", &path]);
+    assert!(
+        text.starts_with("V = 8 (vertices used by faces; 1 unreferenced)\n"),
+        "{text}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("cube1.obj");
+    let out = out.to_str().unwrap();
+    ok(&[
+        "subdivide",
+        "--mesh",
+        &path,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+        "-o",
+        out,
+    ]);
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", out, "--format", "json"])).unwrap();
+    assert_eq!(
+        (v["V"].as_u64(), v["E"].as_u64(), v["F"].as_u64()),
+        (Some(26), Some(48), Some(24))
+    );
+    assert_eq!(v["unreferenced_vertices"], 0);
+}
+
 #[test]
 fn mesh_source_usage_errors() {
     fails(&["stats"], 2, "give a mesh: --mesh FILE or --base NAME");
@@ -213,6 +250,11 @@ fn stats_work_on_meshes_the_half_edge_structure_refuses() {
         assert_eq!(v["manifold"], false, "{file}: {v}");
         assert_eq!(v["problems"][problem], 1, "{file}: {v}");
         assert!(v["genus"].is_null(), "{file}: {v}");
+        let text = ok(&["stats", "--mesh", &data(file)]);
+        assert!(
+            text.contains("\nnot a valid half-edge mesh: "),
+            "{file}: {text}"
+        );
     }
     let v: serde_json::Value = serde_json::from_str(&ok(&[
         "stats",
@@ -274,6 +316,27 @@ fn validation_errors_name_the_file_and_line() {
             ],
             3,
             file,
+        );
+    }
+}
+
+/// A face with a repeated vertex is refused on every path, before its counts are used: the
+/// error names the face, whatever the scheme.
+#[test]
+fn repeated_vertex_is_refused_before_counting() {
+    let path = data("bad_repeated_vertex.obj");
+    for scheme in [
+        "loop-boundary",
+        "loop-general",
+        "catmull-clark",
+        "tri-split-2",
+    ] {
+        fails(
+            &[
+                "verify", "--mesh", &path, "--scheme", scheme, "--levels", "1",
+            ],
+            3,
+            "(vertices 1, 3, 1) repeats vertex 1",
         );
     }
 }
@@ -486,6 +549,67 @@ fn subdivide_writes_the_predicted_mesh() {
     );
 }
 
+/// The single-thread and the parallel path write the same file; the growing (not
+/// preallocated) path builds the same mesh, possibly numbered in another order.
+#[test]
+fn subdivide_paths_agree() {
+    let dir = tempfile::tempdir().unwrap();
+    let positions = |obj: &str| -> Vec<[f64; 3]> {
+        obj.lines()
+            .filter(|l| l.starts_with("v "))
+            .map(|l| {
+                let c: Vec<f64> = l
+                    .split_whitespace()
+                    .skip(1)
+                    .map(|x| x.parse().unwrap())
+                    .collect();
+                [c[0], c[1], c[2]]
+            })
+            .collect()
+    };
+    for (scheme, base) in [
+        ("loop", "icosahedron"),
+        ("catmull-clark", "mixed"),
+        ("sqrt3", "octahedron"),
+    ] {
+        let run = |name: &str, extra: &[&str]| -> (String, String) {
+            let path = dir.path().join(format!("{scheme}-{name}.obj"));
+            let path = path.to_str().unwrap().to_string();
+            let mut args = vec![
+                "subdivide",
+                "--base",
+                base,
+                "--scheme",
+                scheme,
+                "--levels",
+                "3",
+                "-o",
+                &path,
+            ];
+            args.extend_from_slice(extra);
+            ok(&args);
+            let stats = ok(&["stats", "--mesh", &path, "--format", "json"]);
+            (std::fs::read_to_string(&path).unwrap(), stats)
+        };
+        let (one, one_stats) = run("one", &["--threads", "1"]);
+        let (two, _) = run("two", &["--threads", "2"]);
+        let (grown, grown_stats) = run("grown", &["--no-preallocate"]);
+        assert_eq!(one, two, "{scheme}: --threads 1 and 2 write the same file");
+        assert_eq!(one_stats, grown_stats, "{scheme}: the same statistics");
+        let (a, b) = (positions(&one), positions(&grown));
+        assert_eq!(a.len(), b.len(), "{scheme}");
+        for p in &a {
+            let near = b
+                .iter()
+                .any(|q| p.iter().zip(q).all(|(x, y)| (x - y).abs() < 1e-9));
+            assert!(
+                near,
+                "{scheme}: position {p:?} of the preallocated mesh is missing"
+            );
+        }
+    }
+}
+
 #[test]
 fn subdivide_without_output_writes_nothing() {
     let dir = tempfile::tempdir().unwrap();
@@ -562,6 +686,12 @@ fn output_errors_name_the_file_and_cause_once() {
         ],
         3,
         "/no/such/dir/out.obj",
+    );
+    assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
+    let err = fails(
+        &["stats", "--mesh", "/no/such/mesh.obj"],
+        3,
+        "/no/such/mesh.obj",
     );
     assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
 }

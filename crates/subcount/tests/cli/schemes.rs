@@ -618,3 +618,137 @@ fn counts_errors_are_usage_errors() {
         "loop needs a closed mesh, but BE=8; use loop-boundary",
     );
 }
+
+#[test]
+fn at_with_a_scheme_and_a_mesh() {
+    // V(s) = 10 * 4^s + 2, E(s) = 30 * 4^s, F(s) = 20 * 4^s on the icosahedron.
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme",
+            "loop",
+            "--base",
+            "icosahedron",
+            "--level",
+            "20",
+            "--format",
+            "json"
+        ]),
+        "{\"level\": 20, \"V\": 10995116277762, \"E\": 32985348833280, \"F\": 21990232555520}\n"
+    );
+    // Digit summaries at level 1000 of loop-boundary on the 2x2 grid (checked by iterating
+    // V' = V + IE + BE, IE' = 4IE + BE, BE' = 2BE); BE(1000) = 2^1003.
+    let out = ok(&[
+        "at",
+        "--scheme",
+        "loop-boundary",
+        "--base",
+        "grid:2x2",
+        "--level",
+        "1000",
+        "--summary",
+        "--format",
+        "json",
+    ]);
+    assert!(out.starts_with("{\"level\": 1000, \"V\": {\"digits\": 603, \"leading\": \"45925227810970180969\", \"trailing\": \"12596088227268395009\"}, \"IE\": {\"digits\": 604, \"leading\": \"13777568343291054290\", \"trailing\": \"47598869391116075008\"}, \"BE\": {\"digits\": 302, \"leading\": \"85720688574901385675\", \"trailing\": \"95094697645344555008\"}, \"E\": "), "{out}");
+}
+
+/// `p/q` or `p` as an exact fraction.
+fn fraction(text: &str) -> (i128, i128) {
+    match text.split_once('/') {
+        Some((p, q)) => (p.parse().unwrap(), q.parse().unwrap()),
+        None => (text.parse().unwrap(), 1),
+    }
+}
+
+/// The JSON closed forms of a scheme, evaluated exactly, equal the table (keys in state order).
+#[test]
+fn formula_json_evaluates_to_the_table() {
+    let forms: serde_json::Value = serde_json::from_str(&ok(&[
+        "formula",
+        "--scheme",
+        "loop-boundary",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let forms = forms.as_array().unwrap();
+    let names: Vec<&str> = forms
+        .iter()
+        .map(|f| f["component"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["V", "IE", "BE"]);
+    let csv = ok(&[
+        "table",
+        "--scheme",
+        "loop-boundary",
+        "--base",
+        "grid:2x2",
+        "--levels",
+        "12",
+        "--format",
+        "csv",
+    ]);
+    let rows: Vec<Vec<i128>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let x0 = [rows[0][1], rows[0][2], rows[0][3]];
+    for (i, form) in forms.iter().enumerate() {
+        assert_eq!(form["exact"], true);
+        assert_eq!(form["valid_from"], 0);
+        for (s, row) in rows.iter().enumerate() {
+            // Sum over terms of (sum of coefficient * x0) * s^s_power * eigenvalue^s, exactly.
+            let (mut num, mut den) = (0i128, 1i128);
+            for term in form["terms"].as_array().unwrap() {
+                let keys: Vec<&String> = term["coefficients"].as_object().unwrap().keys().collect();
+                assert_eq!(keys, ["V", "IE", "BE"], "coefficients in state order");
+                let lambda: i128 = term["eigenvalue"].as_str().unwrap().parse().unwrap();
+                let power = term["s_power"].as_u64().unwrap() as u32;
+                let scale = (s as i128).pow(power) * lambda.pow(s as u32);
+                for (k, name) in ["V", "IE", "BE"].iter().enumerate() {
+                    let (p, q) = fraction(term["coefficients"][name].as_str().unwrap());
+                    num = num * q + p * x0[k] * scale * den;
+                    den *= q;
+                }
+            }
+            assert_eq!(num % den, 0, "{}: level {s}", names[i]);
+            assert_eq!(num / den, row[i + 1], "{}: level {s}", names[i]);
+        }
+    }
+    // Catmull-Clark: V and F take their closed forms from level 1 on; level 0 is explicit.
+    let forms: serde_json::Value = serde_json::from_str(&ok(&[
+        "formula",
+        "--scheme",
+        "catmull-clark",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let valid: Vec<(&str, u64)> = forms
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| {
+            (
+                f["component"].as_str().unwrap(),
+                f["valid_from"].as_u64().unwrap(),
+            )
+        })
+        .collect();
+    assert_eq!(valid, [("V", 1), ("IE", 0), ("BE", 0), ("F", 1), ("H", 0)]);
+    assert_eq!(
+        forms[0]["early_levels"],
+        serde_json::json!([{"level": 0, "coefficients": {"V": "1", "IE": "0", "BE": "0", "F": "0", "H": "0"}}])
+    );
+    assert_eq!(
+        ok(&["formula", "--scheme", "loop", "--format", "latex"]),
+        "V(s) = V_0 + \\frac{4^{s} - 1}{3} E_0\nE(s) = 4^{s} E_0\n"
+    );
+    let rust = ok(&["formula", "--scheme", "loop", "--format", "rust"]);
+    assert!(
+        rust.contains("pub fn loop_counts(x0: [i128; 2], s: u64) -> Option<[i128; 2]>"),
+        "{rust}"
+    );
+}

@@ -1,0 +1,345 @@
+//! `plot`: a well-formed SVG with the expected labels, a PNG of the expected size, atomic
+//! output, and the errors.
+
+use crate::util::{data, fails, file_names, ok, subcount};
+
+const LOOP_ICO: [&str; 5] = ["plot", "--scheme", "loop", "--counts", "V=12,E=30,F=20"];
+
+fn plot_args<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut v: Vec<&str> = LOOP_ICO.to_vec();
+    v.extend_from_slice(extra);
+    v
+}
+
+/// Every text element's full text (tspans included), in document order.
+fn all_texts(doc: &roxmltree::Document<'_>) -> Vec<String> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("text"))
+        .map(|n| {
+            n.descendants()
+                .filter(|d| d.is_text())
+                .filter_map(|d| d.text())
+                .collect::<String>()
+        })
+        .collect()
+}
+
+/// The points of every polyline.
+fn polylines(doc: &roxmltree::Document<'_>) -> Vec<Vec<(f64, f64)>> {
+    doc.descendants()
+        .filter(|n| n.has_tag_name("polyline"))
+        .map(|n| {
+            n.attribute("points")
+                .expect("a polyline has points")
+                .split_whitespace()
+                .map(|p| {
+                    let (x, y) = p.split_once(',').expect("x,y");
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn svg_is_well_formed_with_labels_legend_and_title() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("counts.svg");
+    let path = path.to_str().unwrap();
+    let out = ok(&plot_args(&["--levels", "0..=12", "-o", path]));
+    assert_eq!(out, format!("wrote {path} (3 series, levels 0..=12)\n"));
+    assert_eq!(
+        file_names(dir.path()),
+        ["counts.svg"],
+        "no temporary file is left"
+    );
+
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let root = doc.root_element();
+    assert!(root.has_tag_name(("http://www.w3.org/2000/svg", "svg")));
+    assert_eq!(root.attribute("width"), Some("960"));
+    assert_eq!(root.attribute("height"), Some("600"));
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap();
+    assert_eq!(title.text(), Some("loop on V=12,E=30,F=20"));
+
+    let texts = all_texts(&doc);
+    for label in [
+        "loop on V=12,E=30,F=20",
+        "level",
+        "count (log scale)",
+        "V (vertices)",
+        "E (edges)",
+        "F (faces)",
+        "exact counts at levels 0..=12, log scale",
+    ] {
+        assert!(
+            texts.iter().any(|t| t == label),
+            "no text {label:?} in {texts:?}"
+        );
+    }
+    // Level ticks 0..=12 and decade ticks 10^1 .. 10^9 (written as 10 with a raised exponent).
+    for level in 0..=12 {
+        assert!(texts.contains(&level.to_string()), "no tick {level}");
+    }
+    for k in 2..=9 {
+        assert!(
+            texts.contains(&format!("10{k}")),
+            "no tick 10^{k} in {texts:?}"
+        );
+    }
+    // The y label is turned a quarter.
+    let ylabel = doc
+        .descendants()
+        .find(|n| n.has_tag_name("text") && n.text() == Some("count (log scale)"))
+        .unwrap();
+    assert!(ylabel
+        .attribute("transform")
+        .unwrap()
+        .starts_with("rotate(-90"));
+
+    // One line per series, one point per level, rising (y down) at log10(4) per level for F.
+    let lines = polylines(&doc);
+    assert_eq!(lines.len(), 3);
+    for line in &lines {
+        assert_eq!(line.len(), 13);
+        assert!(
+            line.windows(2).all(|w| w[1].0 > w[0].0 && w[1].1 < w[0].1),
+            "{line:?}"
+        );
+    }
+    let f = &lines[2];
+    let step = f[0].1 - f[1].1;
+    for w in f.windows(2) {
+        assert!(
+            (w[0].1 - w[1].1 - step).abs() < 0.02,
+            "F is 20 * 4^s: equal steps, {f:?}"
+        );
+    }
+    // V: log10 162 - log10 42 over log10 4 of F's step, from the exact counts.
+    let v = &lines[0];
+    let expected = (162f64.log10() - 42f64.log10()) / 4f64.log10() * step;
+    assert!((v[1].1 - v[2].1 - expected).abs() < 0.02, "{v:?}");
+}
+
+#[test]
+fn png_has_the_signature_size_and_colors() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("counts.png");
+    let path = path.to_str().unwrap();
+    let out = ok(&plot_args(&["--levels", "0..=12", "-o", path]));
+    assert_eq!(out, format!("wrote {path} (3 series, levels 0..=12)\n"));
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!(&bytes[12..16], b"IHDR");
+    assert_eq!(u32::from_be_bytes(bytes[16..20].try_into().unwrap()), 960);
+    assert_eq!(u32::from_be_bytes(bytes[20..24].try_into().unwrap()), 600);
+
+    let decoder = png::Decoder::new(std::io::Cursor::new(&bytes));
+    let mut reader = decoder.read_info().expect("a readable PNG");
+    let mut pixels = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut pixels).expect("one frame");
+    assert_eq!((info.width, info.height), (960, 600));
+    assert_eq!(info.color_type, png::ColorType::Rgb);
+    let rgb: Vec<[u8; 3]> = pixels[..info.buffer_size()]
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
+    assert_eq!(rgb[0], [255, 255, 255], "white background");
+    // The three series colors and dark text are drawn.
+    for color in [[0x1f, 0x77, 0xb4], [0xff, 0x7f, 0x0e], [0x2c, 0xa0, 0x2c]] {
+        let n = rgb.iter().filter(|p| **p == color).count();
+        assert!(n > 200, "{n} pixels of {color:?}");
+    }
+    let dark = rgb.iter().filter(|p| p.iter().all(|&c| c < 0x60)).count();
+    assert!(dark > 1000, "{dark} dark (text and axis) pixels");
+    // The title is drawn near the top center: dark pixels in rows 15..40 around x = 480.
+    let title_ink = (15..40)
+        .flat_map(|y| (380..580).map(move |x| (x, y)))
+        .filter(|&(x, y)| rgb[y * 960 + x].iter().all(|&c| c < 0x80))
+        .count();
+    assert!(title_ink > 100, "{title_ink} title pixels");
+}
+
+#[test]
+fn huge_counts_and_wide_level_ranges() {
+    // Counts of 243 digits at level 400: positions from the exact counts, never infinite.
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("wide.svg");
+    let path = path.to_str().unwrap();
+    ok(&plot_args(&["--levels", "0..=400", "-o", path]));
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let lines = polylines(&doc);
+    assert_eq!(lines.len(), 3);
+    for line in &lines {
+        assert_eq!(line.len(), 401);
+        for &(x, y) in line {
+            assert!(
+                (0.0..=960.0).contains(&x) && (0.0..=600.0).contains(&y),
+                "({x}, {y})"
+            );
+        }
+    }
+    let texts = all_texts(&doc);
+    // F(400) = 20 * 4^400 ~ 10^242.1: the axis reaches 10^250 in steps of 50 decades.
+    for label in ["1050", "10100", "10250", "400", "200"] {
+        assert!(
+            texts.iter().any(|t| t == label),
+            "no {label:?} in {texts:?}"
+        );
+    }
+    // No markers at this density, but still the legend's.
+    let markers = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("circle"))
+        .count();
+    assert_eq!(markers, 1, "only the legend's V marker");
+}
+
+#[test]
+fn plot_meshes_schemes_and_zero_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("cc.svg");
+    let path = path.to_str().unwrap();
+    let out = ok(&[
+        "plot",
+        "--scheme",
+        "catmull-clark",
+        "--base",
+        "cube",
+        "--levels",
+        "6",
+        "-o",
+        path,
+    ]);
+    assert_eq!(out, format!("wrote {path} (5 series, levels 0..=6)\n"));
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let texts = all_texts(&doc);
+    assert!(
+        texts.contains(&"catmull-clark on cube".to_string()),
+        "{texts:?}"
+    );
+    // BE is 0 on a closed mesh: not drawable on a log scale, and the legend says so.
+    assert!(
+        texts.contains(&"BE: no positive count".to_string()),
+        "{texts:?}"
+    );
+    // E equals IE on a closed mesh: the legend says which line hides which.
+    assert!(texts.contains(&"E (edges) = IE".to_string()), "{texts:?}");
+
+    let path = dir.path().join("tetra.png");
+    let path = path.to_str().unwrap();
+    let mesh = data("tetra.obj");
+    ok(&[
+        "plot", "--scheme", "loop", "--mesh", &mesh, "--levels", "3..=5", "-o", path,
+    ]);
+    let bytes = std::fs::read(path).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+
+    let path = dir.path().join("fib.svg");
+    let path = path.to_str().unwrap();
+    ok(&[
+        "plot",
+        "--matrix",
+        "[[1,1],[1,0]]",
+        "--init",
+        "1,0",
+        "--levels",
+        "1..=20",
+        "-o",
+        path,
+    ]);
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let texts = all_texts(&doc);
+    assert!(
+        texts.contains(&"matrix [[1,1],[1,0]] on initial state 1,0".to_string()),
+        "{texts:?}"
+    );
+    // x1 is 0 at level 0 only, which the range leaves out: both lines have 20 points.
+    assert!(polylines(&doc).iter().all(|l| l.len() == 20));
+}
+
+#[test]
+fn plot_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["counts.jpg", "counts"] {
+        let path = dir.path().join(name);
+        let err = fails(
+            &plot_args(&["-o", path.to_str().unwrap()]),
+            2,
+            ".svg or .png",
+        );
+        assert!(err.contains(name), "{err}");
+    }
+    let path = dir.path().join("x.svg");
+    let path = path.to_str().unwrap();
+    fails(
+        &plot_args(&["--levels", "0..=5000", "-o", path]),
+        2,
+        "a plot shows at most 1000",
+    );
+    fails(
+        &plot_args(&["--levels", "7..=3", "-o", path]),
+        2,
+        "inverted",
+    );
+    fails(&plot_args(&[]), 2, "--output");
+    // The resource guard: counts of ~6 * 10^8 digits.
+    fails(
+        &plot_args(&["--levels", "1000000000..=1000000002", "-o", path]),
+        4,
+        "decimal digits",
+    );
+    fails(
+        &["plot", "--scheme", "loop", "--counts", "V=12", "-o", path],
+        2,
+        "needs E",
+    );
+    assert!(
+        file_names(dir.path()).is_empty(),
+        "nothing written on errors"
+    );
+    // A folder that does not exist: exit 3 naming the file, and no partial output anywhere.
+    fails(
+        &plot_args(&["-o", "/no/such/folder/counts.svg"]),
+        3,
+        "cannot write /no/such/folder/counts.svg",
+    );
+    // Overwriting an existing file replaces it whole.
+    let path = dir.path().join("again.svg");
+    std::fs::write(&path, "old").unwrap();
+    let run = subcount(&plot_args(&["--levels", "2", "-o", path.to_str().unwrap()]));
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(svg.starts_with("<?xml") && svg.ends_with("</svg>\n"));
+    assert_eq!(file_names(dir.path()), ["again.svg"]);
+}
+
+/// Text from the command line (here a mesh file name) is escaped in the SVG.
+#[test]
+fn svg_escapes_names() {
+    let dir = tempfile::tempdir().unwrap();
+    let mesh = dir.path().join("a&b<c>'\".obj");
+    std::fs::copy(data("tetra.obj"), &mesh).unwrap();
+    let path = dir.path().join("escaped.svg");
+    ok(&[
+        "plot",
+        "--scheme",
+        "loop",
+        "--mesh",
+        mesh.to_str().unwrap(),
+        "--levels",
+        "3",
+        "-o",
+        path.to_str().unwrap(),
+    ]);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).expect("well-formed XML");
+    let texts = all_texts(&doc);
+    assert_eq!(texts[0], "loop on a&b<c>'\".obj");
+    let title = doc.descendants().find(|n| n.has_tag_name("title")).unwrap();
+    assert_eq!(title.text(), Some("loop on a&b<c>'\".obj"));
+}
