@@ -12,7 +12,7 @@ use schemes::{MeshCounts, Scheme};
 use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
 use crate::commands::{human_bytes, write_failure};
 use crate::failure::{usage, Failure, Kind};
-use crate::model::{load_mesh, not_applicable, scheme_failure, validate};
+use crate::model::{load_mesh, not_applicable, refuse_degenerate_faces, scheme_failure, validate};
 use crate::output::json_string;
 
 fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
@@ -217,6 +217,7 @@ fn guard_memory(
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let poly = required_mesh(&args.mesh)?;
+    refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
     let scheme = counting_scheme(&args.scheme, &counts)?;
     scheme
@@ -330,6 +331,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let levels = parse_levels_count(&args.levels)?;
     let start = Instant::now();
     let poly = required_mesh(&args.mesh)?;
+    refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
     let scheme = counting_scheme(&args.scheme, &counts)?;
     scheme

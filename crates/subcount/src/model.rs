@@ -78,6 +78,31 @@ pub(crate) fn validate(
     })
 }
 
+/// Refuses a face that uses a vertex twice (on every path, before any counting: such a face
+/// makes the counts meaningless), naming the file, the line and the face.
+pub(crate) fn refuse_degenerate_faces(
+    poly: &halfedge::PolygonMesh,
+    mesh: &MeshSource,
+) -> Result<(), Failure> {
+    for (f, face) in poly.faces().enumerate() {
+        for (i, v) in face.iter().enumerate() {
+            if face[..i].contains(v) {
+                let vertices: Vec<String> = face.iter().map(ToString::to_string).collect();
+                let label = mesh_label(mesh);
+                let place = poly
+                    .face_line(f)
+                    .map(|l| format!("line {l}: "))
+                    .unwrap_or_default();
+                return Err(input!(
+                    "{label}: {place}face {f} (vertices {}) repeats vertex {v}",
+                    vertices.join(", ")
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// A scheme that does not apply to the mesh: exit 3, naming the mesh.
 pub(crate) fn not_applicable(mesh: &MeshSource, e: schemes::Error) -> Failure {
     input!("{}: {e}", mesh_label(mesh))
@@ -85,7 +110,13 @@ pub(crate) fn not_applicable(mesh: &MeshSource, e: schemes::Error) -> Failure {
 
 /// The statistics of the mesh named by `--mesh` or `--base`, if any.
 pub(crate) fn mesh_counts(mesh: &MeshSource) -> Result<Option<MeshCounts>, Failure> {
-    Ok(load_mesh(mesh)?.map(|m| halfedge::stats::face_list_counts(&m)))
+    match load_mesh(mesh)? {
+        Some(poly) => {
+            refuse_degenerate_faces(&poly, mesh)?;
+            Ok(Some(halfedge::stats::face_list_counts(&poly)))
+        }
+        None => Ok(None),
+    }
 }
 
 impl Dynamics {
