@@ -310,7 +310,16 @@ impl ClosedForm {
                     acc
                 } else {
                     debug_assert!((&acc % &fast.denominator).is_zero(), "exact division");
-                    acc / &fast.denominator
+                    // Powers of two in the denominator are a shift (exact, so the rounding
+                    // of `>>` on negative numbers never applies); only the odd part divides.
+                    let tz = fast.denominator.trailing_zeros().unwrap_or(0);
+                    let acc = if tz > 0 { acc >> tz } else { acc };
+                    let odd = &fast.denominator >> tz;
+                    if odd.is_one() {
+                        acc
+                    } else {
+                        acc / odd
+                    }
                 };
                 out.push(value);
                 continue;

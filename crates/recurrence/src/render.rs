@@ -172,6 +172,13 @@ impl ClosedForm {
     }
 }
 
+impl std::fmt::Display for ClosedForm {
+    /// The same text as [`ClosedForm::to_text`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.to_text())
+    }
+}
+
 fn variable(name: &str, style: Style) -> String {
     match style {
         Style::Text if name.ends_with(|c: char| c.is_ascii_digit()) => format!("{name}_0"),
