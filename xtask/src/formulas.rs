@@ -70,6 +70,17 @@ pub(crate) fn render() -> anyhow::Result<String> {
          the phase's first level). The family `tri-split-N` is shown for N = 2 and 3; every \
          `N >= 2` works the same way.\n\n",
     );
+    let ternary = schemes::builtin("ternary")?;
+    let _ = writeln!(
+        out,
+        "Aliases: {} count as `loop` (same topology, other geometry); `ternary` is `{}`.\n",
+        schemes::catalog::LOOP_ALIASES
+            .iter()
+            .map(|a| format!("`{a}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        ternary.canonical_name()
+    );
     let schemes = schemes::builtins();
     out.push_str("| scheme | state | mesh class |\n|---|---|---|\n");
     for s in &schemes {
