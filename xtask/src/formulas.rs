@@ -318,7 +318,7 @@ fn validity(out: &mut String, form: &ClosedForm, variable: &str) {
         .map(|c| format!("`{}`", c.name))
         .collect();
     if !exact.is_empty() {
-        let _ = writeln!(out, "`valid_from = 0` for {}.", exact.join(", "));
+        let _ = writeln!(out, "- `valid_from = 0` for {}.", exact.join(", "));
     }
     for c in late {
         let early: Vec<String> = c
@@ -335,7 +335,7 @@ fn validity(out: &mut String, form: &ClosedForm, variable: &str) {
             .collect();
         let _ = writeln!(
             out,
-            "`{}`: `valid_from = {}` (zero eigenvalue); below it {}.",
+            "- `{}`: `valid_from = {}` (zero eigenvalue); below it {}.",
             c.name,
             c.valid_from,
             early.join(", ")
