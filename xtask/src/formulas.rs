@@ -70,6 +70,17 @@ pub(crate) fn render() -> anyhow::Result<String> {
          the phase's first level). The family `tri-split-N` is shown for N = 2 and 3; every \
          `N >= 2` works the same way.\n\n",
     );
+    let ternary = schemes::builtin("ternary")?;
+    let _ = writeln!(
+        out,
+        "Aliases: {} count as `loop` (same topology, other geometry); `ternary` is `{}`.\n",
+        schemes::catalog::LOOP_ALIASES
+            .iter()
+            .map(|a| format!("`{a}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        ternary.canonical_name()
+    );
     let schemes = schemes::builtins();
     out.push_str("| scheme | state | mesh class |\n|---|---|---|\n");
     for s in &schemes {
@@ -307,7 +318,7 @@ fn validity(out: &mut String, form: &ClosedForm, variable: &str) {
         .map(|c| format!("`{}`", c.name))
         .collect();
     if !exact.is_empty() {
-        let _ = writeln!(out, "`valid_from = 0` for {}.", exact.join(", "));
+        let _ = writeln!(out, "- `valid_from = 0` for {}.", exact.join(", "));
     }
     for c in late {
         let early: Vec<String> = c
@@ -324,7 +335,7 @@ fn validity(out: &mut String, form: &ClosedForm, variable: &str) {
             .collect();
         let _ = writeln!(
             out,
-            "`{}`: `valid_from = {}` (zero eigenvalue); below it {}.",
+            "- `{}`: `valid_from = {}` (zero eigenvalue); below it {}.",
             c.name,
             c.valid_from,
             early.join(", ")

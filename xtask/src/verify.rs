@@ -7,7 +7,12 @@
 //! mesh (`halfedge::subdivide::verify`). Files in `DIR/broken` must be refused by the
 //! validating loader (`HalfEdgeMesh::try_from`): the refusal is a pass, and the schemes that
 //! need no manifold edges (`loop-general`, `catmull-clark-general`, `tri-split-N` on
-//! triangles) are then verified on the raw face list (`halfedge::subdivide::verify_polygons`).
+//! triangles) are then verified on the raw face list (`halfedge::subdivide::verify_polygons`);
+//! where the face list has faces with a repeated vertex or duplicate faces, the face-list
+//! subdivider's typed refusal of them is the expected result.
+//!
+//! Meshes are checked in parallel (rayon, one mesh per task); each subdivision runs on one
+//! thread.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -17,6 +22,7 @@ use anyhow::Context as _;
 use halfedge::subdivide::{self, LevelReport, SubdivideOptions};
 use halfedge::{io, stats, HalfEdgeMesh, PolygonMesh};
 use num_bigint::BigInt;
+use rayon::prelude::*;
 use schemes::{MeshCounts, Scheme};
 
 /// The default cap on the faces of the last level built, per (mesh, scheme).
@@ -161,14 +167,16 @@ fn verify_dir(options: &Options) -> anyhow::Result<Vec<Row>> {
         "no .obj or .off file in {}",
         options.dir.display()
     );
-    let mut rows = Vec::new();
-    for path in &valid {
-        rows.extend(verify_file(path, false, options));
-    }
-    for path in &broken {
-        rows.extend(verify_file(path, true, options));
-    }
-    Ok(rows)
+    let jobs: Vec<(&PathBuf, bool)> = valid
+        .iter()
+        .map(|p| (p, false))
+        .chain(broken.iter().map(|p| (p, true)))
+        .collect();
+    let rows: Vec<Vec<Row>> = jobs
+        .par_iter()
+        .map(|(path, broken)| verify_file(path, *broken, options))
+        .collect();
+    Ok(rows.into_iter().flatten().collect())
 }
 
 /// The schemes to try, as named by the user or all built-ins.
@@ -221,6 +229,8 @@ fn verify_file(path: &Path, broken: bool, options: &Options) -> Vec<Row> {
         }
     };
     let counts = stats::face_list_counts(&polygons);
+    let problems = stats::face_list_problems(&polygons);
+    let degenerate = problems.faces_with_repeated_vertex > 0 || problems.duplicate_faces > 0;
     let validated = HalfEdgeMesh::try_from(&polygons);
     let mut rows = Vec::new();
     let mesh = match (validated, broken) {
@@ -256,7 +266,16 @@ fn verify_file(path: &Path, broken: bool, options: &Options) -> Vec<Row> {
             continue;
         }
         let started = Instant::now();
-        let outcome = check_scheme(&scheme, mesh.as_ref(), &polygons, &counts, options);
+        let outcome = match check_scheme(&scheme, mesh.as_ref(), &polygons, &counts, options) {
+            Ok(outcome) => outcome,
+            Err(e @ halfedge::Error::SchemeNotApplicable { .. }) => Outcome::Skipped(e.to_string()),
+            // The face-list subdivider refuses degenerate faces on every path, with a type.
+            Err(
+                e
+                @ (halfedge::Error::RepeatedVertex { .. } | halfedge::Error::DuplicateFace { .. }),
+            ) if mesh.is_none() && degenerate => Outcome::Refused(e.to_string()),
+            Err(e) => Outcome::Fail(e.to_string()),
+        };
         rows.push(row(&name, outcome, started.elapsed()));
     }
     rows
@@ -268,10 +287,10 @@ fn check_scheme(
     polygons: &PolygonMesh,
     counts: &MeshCounts,
     options: &Options,
-) -> Outcome {
+) -> Result<Outcome, halfedge::Error> {
     let levels = match levels_within(scheme, counts, options.max_faces) {
         Ok(l) => l,
-        Err(e) => return Outcome::Fail(format!("prediction failed: {e:#}")),
+        Err(e) => return Ok(Outcome::Fail(format!("prediction failed: {e:#}"))),
     };
     let opts = SubdivideOptions::default();
     let name = scheme.name();
@@ -279,11 +298,7 @@ fn check_scheme(
         Some(m) => subdivide::verify(m, name, levels, &opts),
         None => subdivide::verify_polygons(polygons, name, levels, &opts),
     };
-    match result {
-        Ok(reports) => judge(&reports, levels),
-        Err(e @ halfedge::Error::SchemeNotApplicable { .. }) => Outcome::Skipped(e.to_string()),
-        Err(e) => Outcome::Fail(e.to_string()),
-    }
+    Ok(judge(&result?, levels))
 }
 
 fn judge(reports: &[LevelReport], levels: u32) -> Outcome {
@@ -400,6 +415,9 @@ mod tests {
         // Three triangles on the edge 1-2: a non-manifold "book".
         let book = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0 -1 0\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
         std::fs::write(dir.join("broken").join("book.obj"), book)?;
+        // A face that repeats a vertex: refused by the loader and by the face-list path.
+        let degenerate = format!("{tetra}f 1 1 2\n");
+        std::fs::write(dir.join("broken").join("degenerate.obj"), degenerate)?;
         let options = Options {
             dir: dir.clone(),
             max_faces: 1000,
@@ -434,6 +452,17 @@ mod tests {
             Some(Outcome::Refused(_))
         ));
         assert!(schemes_of("tetra.obj").contains(&"loop"));
+        let degenerate: Vec<_> = rows
+            .iter()
+            .filter(|r| r.mesh == "broken/degenerate.obj")
+            .collect();
+        assert!(degenerate.len() >= 2, "{degenerate:?}");
+        for r in degenerate {
+            assert!(
+                matches!(&r.outcome, Outcome::Refused(e) if e.contains("repeats vertex")),
+                "{r:?}"
+            );
+        }
         let loop_row = rows
             .iter()
             .find(|r| r.mesh == "tetra.obj" && r.scheme == "loop");

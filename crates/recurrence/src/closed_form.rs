@@ -179,10 +179,16 @@ impl ClosedForm {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn estimated_bits(&self, s: u64) -> u64 {
-        let rho = self
-            .components
+        (0..self.components.len())
+            .map(|i| self.component_bits(i, s))
+            .max()
+            .unwrap_or(0)
+    }
+
+    fn component_bits(&self, i: usize, s: u64) -> u64 {
+        let rho = self.components[i]
+            .terms
             .iter()
-            .flat_map(|c| &c.terms)
             .map(|t| t.eigenvalue.modulus())
             .fold(1.0f64, f64::max);
         let bits = s as f64 * rho.log2();
@@ -249,13 +255,26 @@ impl ClosedForm {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn evaluate(&self, x0: &[BigInt], s: u64) -> Result<Vec<BigInt>> {
+        self.evaluate_selected(x0, s, None)
+    }
+
+    /// The value of component `i` alone at level `s` (see [`evaluate`](Self::evaluate)).
+    pub(crate) fn evaluate_component(&self, x0: &[BigInt], s: u64, i: usize) -> Result<BigInt> {
+        let mut v = self.evaluate_selected(x0, s, Some(i))?;
+        Ok(v.pop().expect("one component was evaluated"))
+    }
+
+    fn evaluate_selected(&self, x0: &[BigInt], s: u64, only: Option<usize>) -> Result<Vec<BigInt>> {
         if x0.len() != self.names.len() {
             return Err(Error::InitialLength {
                 got: x0.len(),
                 expected: self.names.len(),
             });
         }
-        let bits = self.estimated_bits(s);
+        let bits = match only {
+            Some(i) => self.component_bits(i, s),
+            None => self.estimated_bits(s),
+        };
         if bits > MAX_EVALUATION_BITS {
             return Err(Error::TooLarge { level: s, bits });
         }
@@ -263,6 +282,9 @@ impl ClosedForm {
         let s_big = BigInt::from(s);
         let mut out = Vec::with_capacity(self.names.len());
         for (i, fast) in self.fast.iter().enumerate() {
+            if only.is_some_and(|o| o != i) {
+                continue;
+            }
             let Some(fast) = fast else {
                 return Err(Error::NotExact {
                     component: self.names[i].clone(),
@@ -310,7 +332,16 @@ impl ClosedForm {
                     acc
                 } else {
                     debug_assert!((&acc % &fast.denominator).is_zero(), "exact division");
-                    acc / &fast.denominator
+                    // Powers of two in the denominator are a shift (exact, so the rounding
+                    // of `>>` on negative numbers never applies); only the odd part divides.
+                    let tz = fast.denominator.trailing_zeros().unwrap_or(0);
+                    let acc = if tz > 0 { acc >> tz } else { acc };
+                    let odd = &fast.denominator >> tz;
+                    if odd.is_one() {
+                        acc
+                    } else {
+                        acc / odd
+                    }
                 };
                 out.push(value);
                 continue;

@@ -172,6 +172,13 @@ impl ClosedForm {
     }
 }
 
+impl std::fmt::Display for ClosedForm {
+    /// The same text as [`ClosedForm::to_text`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.to_text())
+    }
+}
+
 fn variable(name: &str, style: Style) -> String {
     match style {
         Style::Text if name.ends_with(|c: char| c.is_ascii_digit()) => format!("{name}_0"),
@@ -516,14 +523,29 @@ fn snake(name: &str) -> String {
         format!("c_{s}")
     };
     match ident.as_str() {
-        "s" | "x0" | "as" | "fn" | "if" | "in" | "let" | "use" | "mod" | "ref" | "mut" | "pub"
-        | "for" | "dyn" | "box" | "try" | "type" | "loop" | "self" | "impl" | "move" | "true"
-        | "enum" | "else" | "false" | "match" | "const" | "crate" | "super" | "trait" | "where"
-        | "while" | "async" | "await" | "break" | "struct" | "static" | "return" | "extern"
-        | "unsafe" | "continue" | "gen" | "become" | "do" | "final" | "macro" | "override"
-        | "priv" | "typeof" | "unsized" | "virtual" | "yield" | "abstract" => format!("{ident}_"),
+        "s" | "x0" | "si" | "dot" | "pow" | "as" | "fn" | "if" | "in" | "let" | "use" | "mod"
+        | "ref" | "mut" | "pub" | "for" | "dyn" | "box" | "try" | "type" | "loop" | "self"
+        | "impl" | "move" | "true" | "enum" | "else" | "false" | "match" | "const" | "crate"
+        | "super" | "trait" | "where" | "while" | "async" | "await" | "break" | "struct"
+        | "static" | "return" | "extern" | "unsafe" | "continue" | "gen" | "become" | "do"
+        | "final" | "macro" | "override" | "priv" | "typeof" | "unsized" | "virtual" | "yield"
+        | "abstract" => format!("{ident}_"),
         _ => ident,
     }
+}
+
+/// Distinct local variable names for the components (names differing only in case, such
+/// as `V` and `v`, would otherwise collide).
+fn rust_variables(form: &ClosedForm) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for (i, c) in form.components().iter().enumerate() {
+        let mut v = snake(&c.name);
+        if out.contains(&v) {
+            v = format!("{v}_{i}");
+        }
+        out.push(v);
+    }
+    out
 }
 
 fn rust_header(form: &ClosedForm, fn_name: &str, how: &str) -> String {
@@ -566,8 +588,8 @@ fn rust_closed_form(form: &ClosedForm, fn_name: &str) -> String {
     }
     let mut uses_s = false;
     let mut bodies = Vec::new();
-    for c in form.components() {
-        let var = snake(&c.name);
+    let vars = rust_variables(form);
+    for (c, var) in form.components().iter().zip(&vars) {
         let mut denominator = BigInt::one();
         for t in &c.terms {
             for coef in &t.coefficients {
@@ -636,7 +658,6 @@ fn rust_closed_form(form: &ClosedForm, fn_name: &str) -> String {
     for b in bodies {
         out.push_str(&b);
     }
-    let vars: Vec<String> = form.components().iter().map(|c| snake(&c.name)).collect();
     let _ = writeln!(out, "    Some([{}])", vars.join(", "));
     out.push_str("}\n");
     debug_assert_eq!(vars.len(), n);

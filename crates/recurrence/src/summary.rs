@@ -366,7 +366,6 @@ impl ClosedForm {
         }
         const SMALL_BITS: f64 = 200_000.0;
         let mut out = Vec::with_capacity(x0.len());
-        let mut exact_values: Option<Vec<BigInt>> = None;
         for (i, fast) in self.fast().iter().enumerate() {
             let Some(fast) = fast else {
                 return Err(Error::NotExact {
@@ -391,11 +390,7 @@ impl ClosedForm {
                 }
             }
             if bits <= SMALL_BITS {
-                if exact_values.is_none() {
-                    exact_values = Some(self.evaluate(x0, s)?);
-                }
-                let v = &exact_values.as_ref().expect("computed above")[i];
-                out.push(digit_summary(v, k));
+                out.push(digit_summary(&self.evaluate_component(x0, s, i)?, k));
                 continue;
             }
             if !fast.surd.is_empty() {
@@ -484,13 +479,12 @@ impl ClosedForm {
                 // small compared to its terms, so compute it exactly if that is affordable.
                 let est = self.evaluate_bits_estimate(&parts, s);
                 if est <= 4_000_000 {
-                    let v = self.evaluate(x0, s)?;
                     let i = self
                         .fast()
                         .iter()
                         .position(|f| f.as_ref().is_some_and(|f| std::ptr::eq(f, fast)))
                         .unwrap_or(0);
-                    return Ok(digit_summary(&v[i], k));
+                    return Ok(digit_summary(&self.evaluate_component(x0, s, i)?, k));
                 }
                 return Err(Error::TooLarge {
                     level: s,
@@ -545,6 +539,25 @@ mod tests {
         assert_eq!(at[0].digits, log_v.floor() as u64 + 1);
         let tv = (BigInt::from(4).modpow(&BigInt::from(s), &m) * 10 + 2) % &m;
         assert_eq!(at[0].trailing, format!("{tv:0>20}"));
+    }
+
+    #[test]
+    fn small_components_beside_huge_ones() {
+        // V - E/3 stays constant while E explodes: V0 + (4^s - 1)/3 E0 and a constant.
+        let r = Recurrence::new("[[1,1,0],[0,4,0],[0,0,1]]".parse::<IntMatrix>().unwrap());
+        let form = r.closed_form();
+        let x0 = [BigInt::from(12), BigInt::from(30), BigInt::from(-7)];
+        let at = form.summary_at(&x0, 1_000_000_000_000, 20).unwrap();
+        assert_eq!(
+            at[2],
+            DigitSummary {
+                negative: true,
+                digits: 1,
+                leading: "7".into(),
+                trailing: "7".into()
+            }
+        );
+        assert_eq!(at[1].digits, 602_059_991_330);
     }
 
     #[test]

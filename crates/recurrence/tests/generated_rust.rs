@@ -21,6 +21,7 @@ const CASES: &[(&str, &str, &str)] = &[
     ("nilpotent", "[[0,1],[0,0]]", "a,b"),
     ("negative", "[[-2,1],[0,3]]", "a,b"),
     ("fibonacci", "[[1,1],[1,0]]", "F,G"),
+    ("clashing_names", "[[1,1,0],[0,2,1],[0,0,3]]", "V,v,dot"),
     (
         "five_cycle",
         "[[0,0,0,0,1],[1,0,0,0,0],[0,1,0,0,0],[0,0,1,0,0],[0,0,0,1,0]]",
@@ -84,5 +85,6 @@ fn generated_functions_match_powering() {
     check(generated::nilpotent, 5, [7, 11]);
     check(generated::negative, 6, [1, 1]);
     check(generated::fibonacci, 7, [1, 0]);
-    check(generated::five_cycle, 8, [1, 2, 3, 4, 5]);
+    check(generated::clashing_names, 8, [1, 2, 3]);
+    check(generated::five_cycle, 9, [1, 2, 3, 4, 5]);
 }
