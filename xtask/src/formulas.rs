@@ -419,6 +419,26 @@ mod tests {
         }
     }
 
+    /// `--check` names the file and the command on a stale file, ignores CRLF, and the
+    /// generating mode writes the file.
+    #[test]
+    fn check_mode_reports_stale_files() -> anyhow::Result<()> {
+        let file = std::env::temp_dir().join(format!("xtask-formulas-{}.md", std::process::id()));
+        std::fs::write(&file, "old\n")?;
+        let err = ensure_file_contents(&file, "new\n", true).map_err(|e| e.to_string());
+        let message = err.clone().err().unwrap_or_default();
+        assert!(message.contains("xtask-formulas-"), "{message}");
+        assert!(message.contains("run `cargo xtask formulas`"), "{message}");
+        assert_eq!(std::fs::read_to_string(&file)?, "old\n");
+        ensure_file_contents(&file, "new\nline\n", false)?;
+        assert_eq!(std::fs::read_to_string(&file)?, "new\nline\n");
+        std::fs::write(&file, "new\r\nline\r\n")?;
+        let crlf = ensure_file_contents(&file, "new\nline\n", true);
+        std::fs::remove_file(&file)?;
+        assert!(err.is_err() && crlf.is_ok(), "{crlf:?}");
+        Ok(())
+    }
+
     #[test]
     fn polynomial_and_combination_render_as_latex() {
         let p = Polynomial::from_coefficients([4, -5, 1].map(BigInt::from).to_vec());
