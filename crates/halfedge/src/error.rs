@@ -77,6 +77,12 @@ pub enum ParseError {
     /// The line is not text (binary data or invalid UTF-8).
     #[error("not a text line (binary data?)")]
     NotText,
+    /// A line longer than [`crate::io::MAX_LINE_BYTES`] (continuations included).
+    #[error("line is longer than {limit} bytes")]
+    LineTooLong {
+        /// The limit in bytes.
+        limit: usize,
+    },
     /// A malformed statement not covered by another variant (an OFF header, a short face).
     #[error("{what}")]
     Malformed {

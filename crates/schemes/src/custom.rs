@@ -69,6 +69,13 @@ struct RawScheme {
 /// The reserved key of a `derive` entry that divides the combination.
 pub const DIVIDE_BY: &str = "divide_by";
 
+/// The most state components a scheme file may declare.
+///
+/// Real schemes track a handful of counts; the cap keeps a hostile file (a 300 KB matrix)
+/// from starting exact eigen-decompositions and matrix powers whose cost grows steeply with
+/// the dimension.
+pub const MAX_STATE_COMPONENTS: usize = 32;
+
 struct Located<'a> {
     text: &'a str,
 }
@@ -125,7 +132,8 @@ impl Scheme {
     /// [`Error::SchemeFile`] with the line and column of the first mistake: TOML syntax, an
     /// unknown or missing field, a non-square matrix or a row of the wrong length, a matrix
     /// whose size differs from the number of state names, duplicate or invalid names, an
-    /// empty state or matrix, an entry beyond `i64`, both `matrix` and `cycle`, a `derive`
+    /// empty state or matrix, a state of more than [`MAX_STATE_COMPONENTS`] components, an
+    /// entry beyond `i64`, both `matrix` and `cycle`, a `derive`
     /// naming an unknown component, an unknown requirement, or a state the mesh cannot supply
     /// (a non-statistic component in a scheme that declares `requires`).
     pub fn from_toml(text: &str) -> Result<Scheme> {
@@ -155,6 +163,15 @@ impl Scheme {
         let state = raw.state.get_ref();
         if state.is_empty() {
             return Err(at.error(raw.state.span(), "the state is empty"));
+        }
+        if state.len() > MAX_STATE_COMPONENTS {
+            return Err(at.error(
+                raw.state.span(),
+                format!(
+                    "the state has {} components; a scheme file may have at most {MAX_STATE_COMPONENTS}",
+                    state.len()
+                ),
+            ));
         }
         let mut names: Vec<String> = Vec::new();
         for n in state {
@@ -403,5 +420,40 @@ impl Scheme {
             }
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_huge_state_is_refused_before_the_matrix_is_read() {
+        let n = MAX_STATE_COMPONENTS + 1;
+        let names: Vec<String> = (0..n).map(|i| format!("\"S{i}\"")).collect();
+        let row = format!("[{}]", vec!["1"; n].join(", "));
+        let text = format!(
+            "name = \"big\"\nstate = [{}]\nmatrix = [{}]\n",
+            names.join(", "),
+            vec![row; n].join(", ")
+        );
+        let err = Scheme::from_toml(&text).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("line 2, column 9: the state has {n} components; a scheme file may have at most {MAX_STATE_COMPONENTS}")
+        );
+        let names: Vec<String> = (0..MAX_STATE_COMPONENTS)
+            .map(|i| format!("\"S{i}\""))
+            .collect();
+        let row = format!("[{}]", vec!["0"; MAX_STATE_COMPONENTS].join(", "));
+        let text = format!(
+            "name = \"edge\"\nstate = [{}]\nmatrix = [{}]\n",
+            names.join(", "),
+            vec![row; MAX_STATE_COMPONENTS].join(", ")
+        );
+        assert_eq!(
+            Scheme::from_toml(&text).map(|s| s.dim()).ok(),
+            Some(MAX_STATE_COMPONENTS)
+        );
     }
 }

@@ -48,7 +48,7 @@ pub use self::obj::{read_obj, read_obj_from};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{write_obj, write_obj_file, write_polygon_obj, write_polygon_obj_file};
 
-use std::io::BufRead;
+use std::io::{BufRead, Read};
 use std::path::Path;
 
 use crate::error::{Error, ParseError, Result};
@@ -81,6 +81,14 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<PolygonMesh> {
         }),
     }
 }
+
+/// The longest line (after joining backslash continuations) the readers accept, in bytes.
+///
+/// Lines are read with a bounded buffer, so a file with a longer line (a 200 MB single-line
+/// file, binary data without newlines) is refused with [`ParseError::LineTooLong`] after
+/// reading at most this many bytes of it. 16 MiB holds an OBJ polygon of about 500 000
+/// corners written as `v/vt/vn`.
+pub const MAX_LINE_BYTES: usize = 16 << 20;
 
 /// Opens a file for buffered reading, with the path in the error.
 fn open(path: &Path) -> Result<std::io::BufReader<std::fs::File>> {
@@ -127,8 +135,11 @@ impl<R: BufRead> Lines<R> {
         let mut first = true;
         loop {
             self.buf.clear();
-            let n = self
-                .reader
+            // Read at most one byte past the limit, so a huge line (or a binary file without
+            // newlines) is refused after a bounded read instead of being buffered whole.
+            let room = MAX_LINE_BYTES.saturating_sub(self.text.len()) + 1;
+            let n = (&mut self.reader)
+                .take(room as u64)
                 .read_until(b'\n', &mut self.buf)
                 .map_err(|source| Error::Io {
                     path: self.name.clone().into(),
@@ -142,6 +153,11 @@ impl<R: BufRead> Lines<R> {
             }
             if first {
                 self.line += 1;
+            }
+            if self.text.len() + self.buf.len() > MAX_LINE_BYTES {
+                return Err(self.error(ParseError::LineTooLong {
+                    limit: MAX_LINE_BYTES,
+                }));
             }
             if self.buf.contains(&0) {
                 return Err(self.error(ParseError::NotText));
@@ -189,5 +205,39 @@ fn parse_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
             token: shorten(token),
             expected: "coordinate",
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::io::BufReader;
+
+    #[test]
+    fn an_overlong_line_is_refused_after_a_bounded_read() {
+        // An endless line: the reader must stop at the limit instead of buffering it all.
+        let endless = BufReader::new(std::io::repeat(b'1'));
+        let data = b"v 0 0 0\nf 1 ".chain(endless);
+        let err = read_obj_from(BufReader::new(data), "long.obj").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("long.obj: line 2: line is longer than {MAX_LINE_BYTES} bytes")
+        );
+    }
+
+    #[test]
+    fn continuations_count_towards_the_line_limit() {
+        let piece = format!("{}\\\n", "1 ".repeat(1 << 19));
+        let reader =
+            std::io::Cursor::new(format!("f {}", piece.repeat(20))).chain(b"1 2 3\n".as_slice());
+        let err = read_obj_from(BufReader::new(reader), "cont.obj").unwrap_err();
+        assert!(matches!(
+            err,
+            Error::Parse {
+                line: 1,
+                kind: ParseError::LineTooLong { .. },
+                ..
+            }
+        ));
     }
 }

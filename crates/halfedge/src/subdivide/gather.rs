@@ -131,28 +131,40 @@ pub(crate) fn four_to_one(
             if f == INVALID {
                 return boundary_piece(&t, nv, h, source);
             }
+            // The position `i` of h in its face comes from the neighbour the piece needs
+            // anyway (prev for a source piece, next for a target piece), which sits next to
+            // h in memory: no second random load through the face's first half-edge.
             let h0 = t.face_halfedge(f);
-            let i = if h == h0 {
-                0
-            } else if h == t.next(h0) {
-                1
-            } else {
-                2
-            };
             if source {
+                let p = t.prev(h);
+                let i = if h == h0 {
+                    0
+                } else if p == h0 {
+                    1
+                } else {
+                    2
+                };
                 // Corner triangle c = i - 1 (at the source of h).
                 let c = (i + 2) % 3;
                 [
                     nv + (h >> 1),
                     4 * f + 1 + c,
                     inner + 2 * (3 * f + c) + 1,
-                    target_piece(t.prev(h)),
+                    target_piece(p),
                 ]
             } else {
+                let n = t.next(h);
+                let i = if h == h0 {
+                    0
+                } else if n == h0 {
+                    2
+                } else {
+                    1
+                };
                 [
                     t.target(h),
                     4 * f + 1 + i,
-                    source_piece(t.next(h)),
+                    source_piece(n),
                     inner + 2 * (3 * f + i) + 1,
                 ]
             }
@@ -220,26 +232,34 @@ pub(crate) fn catmull_clark(
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse.
-    let mut offsets = Vec::with_capacity(nf as usize + 1);
-    let mut corner_of = vec![INVALID; 2 * ne as usize];
-    // At most 2E corners (every half-edge in at most one face).
-    let mut corner_halfedge = Vec::with_capacity(2 * ne as usize - t.boundary_edges());
-    for f in 0..nf {
-        offsets.push(corner_halfedge.len() as u32);
-        t.for_face(f, |h| {
-            corner_of[h as usize] = corner_halfedge.len() as u32;
-            corner_halfedge.push(h);
-        });
-    }
-    let n_corners = corner_halfedge.len() as u32;
-    offsets.push(n_corners);
+    // Every half-edge that is not on the boundary is one face corner.
+    let n_corners = 2 * ne - t.boundary_edges() as u32;
     let built = Sizes {
         vertices: (nv + ne + nf) as usize,
         halfedges: 2 * (2 * ne as usize + n_corners as usize),
         faces: n_corners as usize,
     };
     check(ctx, expected, built)?;
+    // Positions first, so that their temporary face points are freed before the corner tables
+    // and the half-edge arrays are allocated (a lower peak).
+    let positions = cc_positions(&t, Some(expected.vertices), parallel);
+    // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse.
+    let mut corner_of = vec![INVALID; 2 * ne as usize];
+    let mut corner_halfedge = Vec::with_capacity(n_corners as usize);
+    for f in 0..nf {
+        t.for_face(f, |h| {
+            corner_of[h as usize] = corner_halfedge.len() as u32;
+            corner_halfedge.push(h);
+        });
+    }
+    check(
+        ctx,
+        expected,
+        Sizes {
+            faces: corner_halfedge.len(),
+            ..built
+        },
+    )?;
     let inner = 4 * ne;
     let corner = |h: u32| corner_of[h as usize];
     let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
@@ -295,14 +315,14 @@ pub(crate) fn catmull_clark(
         } else if v < nv + ne {
             midpoint_halfedge(&t, v - nv)
         } else {
-            inner + 2 * offsets[(v - nv - ne) as usize] + 1
+            // The first corner of the face is the one of its first half-edge.
+            inner + 2 * corner(t.face_halfedge(v - nv - ne)) + 1
         }
     });
     let mut face_halfedge = Vec::with_capacity(built.faces);
     par::extend(&mut face_halfedge, built.faces, parallel, |k| {
         source_piece(corner_halfedge[k])
     });
-    let positions = cc_positions(&t, Some(expected.vertices), parallel);
     finish(
         ctx,
         expected,
@@ -331,13 +351,15 @@ pub(crate) fn sqrt3_closed(
         faces: 3 * nf as usize,
     };
     check(ctx, expected, built)?;
+    // The position of g in its face from prev(g), next to g in memory (no second random load
+    // through the face's first half-edge).
     let corner = |g: u32| {
         let f = t.face(g);
         let h0 = t.face_halfedge(f);
         3 * f
             + if g == h0 {
                 0
-            } else if g == t.next(h0) {
+            } else if t.prev(g) == h0 {
                 1
             } else {
                 2

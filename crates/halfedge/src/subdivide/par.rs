@@ -44,13 +44,15 @@ pub(crate) fn halfedge_arrays(
     let mut next = vec![0u32; n];
     let mut prev = vec![0u32; n];
     let fill = |(chunk, (((v, fa), ne), pr)): (usize, Chunks<'_>)| {
-        let base = chunk * CHUNK;
-        for i in 0..v.len() {
-            let [a, b, c, d] = f((base + i) as u32);
-            v[i] = a;
-            fa[i] = b;
-            ne[i] = c;
-            pr[i] = d;
+        let base = (chunk * CHUNK) as u32;
+        // Zipped iterators: no bounds checks on the four slices.
+        let slots = v
+            .iter_mut()
+            .zip(fa.iter_mut())
+            .zip(ne.iter_mut())
+            .zip(pr.iter_mut());
+        for (q, (((v, fa), ne), pr)) in (base..).zip(slots) {
+            [*v, *fa, *ne, *pr] = f(q);
         }
     };
     if parallel && n >= PARALLEL_MIN {

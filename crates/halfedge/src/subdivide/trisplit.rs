@@ -304,6 +304,10 @@ pub(crate) fn loop_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
         sum += t.pos(t.target(h));
         n += 1;
     });
+    // Valence 6 (almost every vertex after a few levels): β = 1/16 exactly, no cosine.
+    if n == 6 {
+        return p * 0.625 + sum * 0.0625;
+    }
     let nf = n as f64;
     let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / nf).cos();
     let beta = (5.0 / 8.0 - c * c) / nf;

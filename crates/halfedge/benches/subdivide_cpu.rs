@@ -1,0 +1,118 @@
+//! CPU time of subdivision jobs, for a shared machine where wall time is noise.
+//!
+//! For each job this runs the subdivision `REPS` times (default 5, `SUBCOUNT_BENCH_REPS`) on
+//! the calling thread and prints the median on-CPU time of the thread (from
+//! `/proc/thread-self/schedstat`, nanoseconds; it excludes time spent waiting for a CPU) and
+//! the user/system split of the process (from `/proc/self/stat`, clock ticks), with output
+//! faces per CPU-second. The first argument that is not a flag filters the job names
+//! (`loop-L3/icosphere/prealloc-1t` style, as in the criterion bench `subdivide`):
+//!
+//! ```text
+//! cargo bench -p halfedge --bench subdivide_cpu -- loop-L3
+//! ```
+//!
+//! Linux only (it prints a notice and exits elsewhere).
+
+use std::time::Instant;
+
+use halfedge::subdivide::{subdivide, SubdivideOptions};
+use halfedge::{shapes, HalfEdgeMesh};
+
+/// On-CPU nanoseconds of the calling thread.
+fn thread_cpu_ns() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    text.split_whitespace().next()?.parse().ok()
+}
+
+/// (user, system) clock ticks of the process.
+fn process_ticks() -> Option<(u64, u64)> {
+    let text = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name in parentheses; utime and stime are fields 14 and 15.
+    let rest = text.rsplit_once(')')?.1;
+    let mut fields = rest.split_whitespace().skip(11);
+    Some((fields.next()?.parse().ok()?, fields.next()?.parse().ok()?))
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        (v[n / 2 - 1] + v[n / 2]) / 2.0
+    }
+}
+
+fn main() {
+    if thread_cpu_ns().is_none() || process_ticks().is_none() {
+        eprintln!("no /proc/thread-self/schedstat or /proc/self/stat: nothing to measure here");
+        return;
+    }
+    let filter = std::env::args()
+        .skip(1)
+        .find(|a| !a.starts_with('-'))
+        .unwrap_or_default();
+    let reps: usize = std::env::var("SUBCOUNT_BENCH_REPS")
+        .ok()
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(5);
+    let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("the icosahedron is valid");
+    let sphere = subdivide(&ico, "icosphere", 6, &SubdivideOptions::default())
+        .expect("the icosahedron subdivides");
+    let mut inputs = vec![("icosphere".to_owned(), sphere)];
+    match std::env::var_os("SUBCOUNT_MESHES") {
+        Some(dir) => {
+            let path = std::path::Path::new(&dir).join("armadillo.obj");
+            let poly = halfedge::io::read_mesh(&path).expect("armadillo.obj loads");
+            inputs.push((
+                "armadillo".to_owned(),
+                HalfEdgeMesh::try_from(&poly).expect("armadillo is a half-edge mesh"),
+            ));
+        }
+        None => eprintln!("SUBCOUNT_MESHES is unset: the generated icosphere only"),
+    }
+    let jobs = [
+        ("loop", 3),
+        ("catmull-clark", 3),
+        ("loop", 2),
+        ("catmull-clark", 2),
+        ("sqrt3", 2),
+        ("doo-sabin", 2),
+    ];
+    let variants = [("prealloc-1t", true), ("grow-1t", false)];
+    let ticks_per_s = 100.0; // USER_HZ on Linux
+    println!("job | median thread CPU s | median wall s | process user/sys s per run | M output faces per CPU-s");
+    for (name, mesh) in &inputs {
+        for (scheme, level) in jobs {
+            for (variant, preallocate) in variants {
+                let id = format!("{scheme}-L{level}/{name}/{variant}");
+                if !id.contains(&filter) {
+                    continue;
+                }
+                let opts = SubdivideOptions::default().with_preallocate(preallocate);
+                let (mut cpu, mut wall) = (Vec::new(), Vec::new());
+                let (u0, s0) = process_ticks().unwrap_or_default();
+                let mut faces = 0;
+                for _ in 0..reps {
+                    let c0 = thread_cpu_ns().unwrap_or_default();
+                    let t0 = Instant::now();
+                    let out = subdivide(mesh, scheme, level, &opts).expect("the job applies");
+                    wall.push(t0.elapsed().as_secs_f64());
+                    cpu.push((thread_cpu_ns().unwrap_or_default() - c0) as f64 * 1e-9);
+                    faces = out.n_faces();
+                    drop(out);
+                }
+                let (u1, s1) = process_ticks().unwrap_or_default();
+                let per_run = |a: u64, b: u64| (b - a) as f64 / ticks_per_s / reps as f64;
+                let cpu_med = median(cpu);
+                println!(
+                    "{id} | {cpu_med:.4} | {:.4} | {:.3}/{:.3} | {:.2}",
+                    median(wall),
+                    per_run(u0, u1),
+                    per_run(s0, s1),
+                    faces as f64 / cpu_med / 1e6
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,134 @@
+//! The code paths the fuzz targets drive, one function per target.
+//!
+//! The same file is compiled into the stable regression test
+//! `tests/integration/corpus.rs` (through `#[path]`), which feeds every input of
+//! `tests/corpus/<target>/` to the function of that name, so a crash found by the fuzzer and
+//! committed to the corpus is replayed in CI without nightly.
+//!
+//! Each function returns the number of "work units" it spent (elements built, digits
+//! produced), so the regression tests can assert that work stays proportional to the input
+//! instead of asserting wall-clock time. Every function must return normally for every input:
+//! a panic is a bug in the library under test.
+
+use halfedge::{io, stats, HalfEdgeMesh, PolygonMesh};
+use num_bigint::BigInt;
+use recurrence::{IntMatrix, Recurrence};
+use schemes::{CountsInput, Plan, Scheme};
+
+/// Largest matrix dimension the `matrix` and `scheme_toml` targets hand to the closed-form
+/// solver (the CLI's own cap is the caller's business; the fuzzer looks for panics and hangs).
+pub const MAX_DIM: usize = 6;
+
+/// Levels at which states are evaluated.
+pub const LEVELS: [u64; 4] = [0, 1, 5, 40];
+
+/// Loads OBJ bytes, then runs the half-edge construction and both face-list statistics.
+pub fn obj(data: &[u8]) -> u64 {
+    mesh_work(io::read_obj_from(data, "fuzz.obj"))
+}
+
+/// Loads OFF bytes, then as [`obj`].
+pub fn off(data: &[u8]) -> u64 {
+    mesh_work(io::read_off_from(data, "fuzz.off"))
+}
+
+fn mesh_work(loaded: halfedge::Result<PolygonMesh>) -> u64 {
+    let Ok(mesh) = loaded else { return 1 };
+    let counts = stats::face_list_counts(&mesh);
+    let problems = stats::face_list_problems(&mesh);
+    let _ = problems.is_manifold();
+    let mut work = mesh.n_vertices() as u64 + mesh.n_corners() as u64 + counts.edges;
+    if let Ok(he) = HalfEdgeMesh::try_from(&mesh) {
+        work += he.n_halfedges() as u64;
+        let _ = he.to_polygon_mesh();
+    }
+    work
+}
+
+/// Parses bytes (as UTF-8) as a scheme TOML file; when that succeeds, evaluates the scheme at
+/// a few levels from an all-ones state and computes the closed form of a small recurrence.
+pub fn scheme_toml(data: &[u8]) -> u64 {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return 1;
+    };
+    let Ok(scheme) = Scheme::from_toml(text) else {
+        return 1;
+    };
+    let mut work = scheme.dim() as u64;
+    let x0 = vec![BigInt::from(1); scheme.dim()];
+    for level in LEVELS {
+        if let Ok(state) = scheme.state_at(&x0, level) {
+            work += digits(&state);
+            let _ = scheme.vef(&state);
+        }
+    }
+    if scheme.dim() <= MAX_DIM {
+        let form = scheme.closed_form();
+        let _ = (form.to_text(), form.to_latex(), form.to_rust("f"));
+        work += closed_form_work(&form, &x0);
+    }
+    let _ = scheme.to_json();
+    work
+}
+
+/// Parses text as an `--matrix` argument; when that succeeds and the matrix is at most
+/// [`MAX_DIM`] square, builds its recurrence, its closed form, and evaluates both ways.
+pub fn matrix(data: &[u8]) -> u64 {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return 1;
+    };
+    let Ok(m) = IntMatrix::parse(text) else {
+        return 1;
+    };
+    if m.dim() > MAX_DIM {
+        return m.dim() as u64;
+    }
+    let r = Recurrence::new(m);
+    let x0 = vec![BigInt::from(1); r.dim()];
+    let mut work = r.dim() as u64;
+    for level in LEVELS {
+        if let Ok(state) = r.state_at(&x0, level) {
+            work += digits(&state);
+        }
+    }
+    let form = r.closed_form();
+    let _ = (form.to_text(), form.to_latex(), form.to_rust("f"));
+    work + closed_form_work(&form, &x0)
+}
+
+/// Parses text as a `--counts` argument and as a `--scheme` plan (`loop:2,catmull-clark`).
+pub fn counts(data: &[u8]) -> u64 {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return 1;
+    };
+    let mut work = 1;
+    if let Ok(input) = CountsInput::parse(text) {
+        work += input.iter().count() as u64;
+        let _ = input.to_string();
+    }
+    if let Ok(plan) = Plan::parse(text) {
+        work += plan.stages().len() as u64;
+        let _ = plan.name();
+        if let Some(last) = plan.last_level() {
+            let _ = plan.scheme_at(last.min(1 << 20));
+        }
+    }
+    work
+}
+
+fn closed_form_work(form: &recurrence::ClosedForm, x0: &[BigInt]) -> u64 {
+    let mut work = 0;
+    for level in LEVELS {
+        if let Ok(state) = form.state_at(x0, level) {
+            work += digits(&state);
+        }
+        if let Ok(state) = form.evaluate(x0, level) {
+            work += digits(&state);
+        }
+    }
+    work
+}
+
+fn digits(state: &[BigInt]) -> u64 {
+    state.iter().map(|x| x.bits() / 3 + 1).sum()
+}
