@@ -605,3 +605,42 @@ fn a_refused_subdivision_writes_nothing() {
         0
     );
 }
+
+/// Counts that grow like s^2 never reach a budget of 10^39 at a level a `u64` can name: the
+/// search refuses (exit 4) instead of overflowing (it used to panic) or claiming every level
+/// fits.
+#[test]
+fn fit_with_polynomial_growth_and_a_huge_budget() {
+    let files = Files::new();
+    let path = files.write(
+        "slow.toml",
+        b"name = \"slow\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 1, 0], [0, 1, 1], [0, 0, 1]]\n",
+    );
+    let budget = format!("1{}", "0".repeat(39));
+    fails(
+        &[
+            "fit",
+            "--scheme-file",
+            &path,
+            "--counts",
+            "V=2,E=3,F=4",
+            "--max-vertices",
+            &budget,
+        ],
+        4,
+        "the search reached level 18446744073709551615",
+    );
+    let out = ok(&[
+        "fit",
+        "--scheme-file",
+        &path,
+        "--counts",
+        "V=2,E=3,F=4",
+        "--max-vertices",
+        "1000000000000",
+    ]);
+    assert!(
+        out.contains("highest level within the budget: 707106"),
+        "{out}"
+    );
+}
