@@ -13,7 +13,7 @@
 use halfedge::{io, stats, HalfEdgeMesh, PolygonMesh};
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
-use schemes::{CountsInput, Plan, Scheme};
+use schemes::{Budget, CountsInput, Plan, Scheme};
 
 /// Largest matrix dimension the `matrix` and `scheme_toml` targets hand to the closed-form
 /// solver (the CLI's own cap is the caller's business; the fuzzer looks for panics and hangs).
@@ -46,7 +46,8 @@ fn mesh_work(loaded: halfedge::Result<PolygonMesh>) -> u64 {
 }
 
 /// Parses bytes (as UTF-8) as a scheme TOML file; when that succeeds, evaluates the scheme at
-/// a few levels from an all-ones state and computes the closed form of a small recurrence.
+/// a few levels from an all-ones state, runs `fit` against a few budgets, and computes the
+/// closed form of a small recurrence.
 pub fn scheme_toml(data: &[u8]) -> u64 {
     let Ok(text) = std::str::from_utf8(data) else {
         return 1;
@@ -60,6 +61,18 @@ pub fn scheme_toml(data: &[u8]) -> u64 {
         if let Ok(state) = scheme.state_at(&x0, level) {
             work += digits(&state);
             let _ = scheme.vef(&state);
+        }
+    }
+    // The budget searches of `fit` (exponential, polynomial, constant or shrinking counts).
+    let plan = Plan::single(scheme.clone());
+    for exponent in [0u32, 3, 40] {
+        let budget = Budget {
+            max_vertices: Some(BigInt::from(10).pow(exponent)),
+            max_faces: Some(BigInt::from(7).pow(exponent)),
+            ..Budget::default()
+        };
+        if let Ok(schemes::Fit::Level(counts)) = schemes::fit(&plan, &x0, &budget) {
+            work += digits(&counts.state);
         }
     }
     if scheme.dim() <= MAX_DIM {

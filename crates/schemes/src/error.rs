@@ -237,7 +237,8 @@ pub enum Error {
         reason: String,
     },
     /// A search would need states too large to compute (a quantity grows slowly while
-    /// another component of the state explodes).
+    /// another component of the state explodes), or reached the last level a `u64` can name
+    /// while the counts still grow (polynomial growth against a huge budget).
     #[error("the search reached level {level}, where the state has {bits} bits, without crossing the limit; refusing to go further")]
     SearchTooLarge {
         /// The level reached.

@@ -153,7 +153,8 @@ impl Probe<'_> {
             return Err(Error::SearchTooLarge { level: h, bits });
         }
         let mut out = vec![self.values_of(&scheme.vef(&state)?)];
-        for level in h + 1..=h.saturating_add(w) {
+        // `h..end` shifted by one: no overflow when the search reaches `u64::MAX`.
+        for level in (h..h.saturating_add(w)).map(|l| l + 1) {
             state = crate::scheme::apply(scheme.rule().matrix_of_step(level - start), &state);
             out.push(self.values_of(&scheme.vef(&state)?));
         }
@@ -205,14 +206,19 @@ impl Probe<'_> {
                 }
                 return self.bisect(hit, lo, (hi, values[0].clone()));
             }
-            if values.windows(2).all(|p| p[0] == p[1]) {
+            if values.len() > 1 && values.windows(2).all(|p| p[0] == p[1]) {
                 return Ok(Crossing::Never(h));
             }
             let end = h.saturating_add(w);
             lo = (end, values[values.len() - 1].clone());
             let next = h.saturating_mul(2).max(end.saturating_add(1));
             if next == h || end == u64::MAX {
-                return Ok(Crossing::Never(h));
+                // The counts still change but no level a `u64` can name crosses the limit
+                // (polynomial growth against a huge budget): refuse rather than claim that
+                // every level fits.
+                let state = self.plan.tail_state(self.x0, end)?;
+                let bits = state.iter().map(BigInt::bits).sum();
+                return Err(Error::SearchTooLarge { level: end, bits });
             }
             h = next;
         }
@@ -474,5 +480,46 @@ pub fn level_for_area(
                 level: s,
             })
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scheme;
+
+    /// V grows like s^2: a budget beyond (2^64)^2 is never crossed at a level a `u64` can name.
+    /// The search used to overflow `u64` (a panic); it must refuse with a typed error.
+    #[test]
+    fn polynomial_growth_against_a_huge_budget_is_refused_not_overflowed() {
+        let text = "name = \"slow\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 1, 0], [0, 1, 1], [0, 0, 1]]\n";
+        let plan = Plan::single(Scheme::from_toml(text).expect("valid scheme"));
+        let x0 = [2, 3, 4].map(BigInt::from);
+        let budget = Budget {
+            max_vertices: Some(BigInt::from(10).pow(39)),
+            ..Budget::default()
+        };
+        match fit(&plan, &x0, &budget) {
+            Err(Error::SearchTooLarge { level, .. }) => assert_eq!(level, u64::MAX),
+            other => panic!("expected SearchTooLarge, got {other:?}"),
+        }
+        // A budget the quadratic does cross is still found exactly: V(s) = 2 + 3s + 2s(s-1).
+        let budget = Budget {
+            max_vertices: Some(BigInt::from(10).pow(12)),
+            ..Budget::default()
+        };
+        let Ok(Fit::Level(counts)) = fit(&plan, &x0, &budget) else {
+            panic!("a level fits")
+        };
+        let v = |s: u64| {
+            BigInt::from(2) + 3 * BigInt::from(s) + BigInt::from(s) * BigInt::from(s) * 2
+                - 2 * BigInt::from(s)
+        };
+        let budget_v = BigInt::from(10).pow(12);
+        assert!(
+            v(counts.level) <= budget_v && v(counts.level + 1) > budget_v,
+            "level {}",
+            counts.level
+        );
     }
 }

@@ -1,0 +1,646 @@
+//! Hostile input end to end (SPEC section 9): every bad file or argument gets the exit code
+//! of the CLI contract and a one-line `error: ...` that names what is wrong and where.
+//!
+//! Exit codes: 2 usage, 3 bad input or a scheme that does not apply, 4 resource guard.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use crate::util::{fails, ok, subcount};
+
+/// A temporary folder holding the files of one test.
+struct Files {
+    dir: tempfile::TempDir,
+}
+
+impl Files {
+    fn new() -> Files {
+        Files {
+            dir: tempfile::tempdir().expect("a temporary folder"),
+        }
+    }
+
+    /// Writes `bytes` to `name` in the folder and returns its path as text.
+    fn write(&self, name: &str, bytes: &[u8]) -> String {
+        let path = self.dir.path().join(name);
+        std::fs::write(&path, bytes).expect("the test file is written");
+        path.display().to_string()
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+}
+
+const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+/// `stats --mesh FILE` on a malformed OBJ: exit 3, the file, the line and the problem.
+#[test]
+fn malformed_obj_files_name_file_line_and_problem() {
+    let files = Files::new();
+    let cases: &[(&str, String, &str)] = &[
+        (
+            "truncated.obj",
+            format!("{TRIANGLE}f 1 2"),
+            "truncated.obj: line 4: face has 2 vertices, at least 3 are needed",
+        ),
+        (
+            "out-of-range.obj",
+            format!("{TRIANGLE}f 1 2 4\n"),
+            "out-of-range.obj: line 4: face index 4 is out of range (the file has 3 vertices)",
+        ),
+        (
+            "negative-out-of-range.obj",
+            format!("{TRIANGLE}f 1 2 -4\n"),
+            "negative-out-of-range.obj: line 4: face index -4 is out of range (the file has 3 vertices)",
+        ),
+        (
+            "zero.obj",
+            format!("{TRIANGLE}f 0 1 2\n"),
+            "zero.obj: line 4: face index 0 is not valid (OBJ indices start at 1)",
+        ),
+        (
+            "beyond-u64.obj",
+            format!("{TRIANGLE}f 1 2 18446744073709551616\n"),
+            "beyond-u64.obj: line 4: face index `18446744073709551616` is too large",
+        ),
+        (
+            "beyond-u64-corner.obj",
+            format!("{TRIANGLE}f 1/1 2/1 99999999999999999999999999/1\n"),
+            "beyond-u64-corner.obj: line 4: face index `99999999999999999999999999` is too large",
+        ),
+        (
+            "one-vertex.obj",
+            format!("{TRIANGLE}f 1\n"),
+            "one-vertex.obj: line 4: face has 1 vertices, at least 3 are needed",
+        ),
+        (
+            "two-vertices.obj",
+            format!("{TRIANGLE}f 1 2\n"),
+            "two-vertices.obj: line 4: face has 2 vertices, at least 3 are needed",
+        ),
+        (
+            "nan.obj",
+            "v 0 0 0\nv NaN 0 0\nv 0 1 0\nf 1 2 3\n".to_string(),
+            "nan.obj: line 2: coordinate `NaN` is not finite",
+        ),
+        (
+            "inf.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 -inf 0\nf 1 2 3\n".to_string(),
+            "inf.obj: line 3: coordinate `-inf` is not finite",
+        ),
+        (
+            "overflow.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n".to_string(),
+            "overflow.obj: line 3: coordinate `1e999` is not finite",
+        ),
+        (
+            "short-vertex.obj",
+            "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_string(),
+            "short-vertex.obj: line 1: vertex has 2 coordinates, expected 3",
+        ),
+        ("empty.obj", String::new(), "empty.obj: the file has no faces"),
+        (
+            "comments-only.obj",
+            "# nothing\n\n".to_string(),
+            "comments-only.obj: the file has no faces",
+        ),
+    ];
+    for (name, text, message) in cases {
+        let path = files.write(name, text.as_bytes());
+        let stderr = fails(&["stats", "--mesh", &path], 3, message);
+        assert!(stderr.contains(&path), "{stderr:?} names the file");
+    }
+}
+
+/// Binary garbage (deterministic bytes, no newline before the first invalid UTF-8).
+#[test]
+fn binary_garbage_is_not_a_mesh() {
+    let files = Files::new();
+    let mut state: u32 = 0x2545_f491;
+    let mut bytes = vec![0xff_u8];
+    bytes.extend((0..4096).map(|_| {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        (state >> 24) as u8
+    }));
+    let obj = files.write("garbage.obj", &bytes);
+    fails(
+        &["stats", "--mesh", &obj],
+        3,
+        "garbage.obj: line 1: not a text line (binary data?)",
+    );
+    let off = files.write("garbage.off", &bytes);
+    fails(
+        &["stats", "--mesh", &off],
+        3,
+        "garbage.off: line 1: not a text line (binary data?)",
+    );
+    let unknown = files.write("garbage.ply", &bytes);
+    fails(&["stats", "--mesh", &unknown], 3, "garbage.ply");
+}
+
+#[test]
+fn malformed_off_files_name_file_line_and_problem() {
+    let files = Files::new();
+    let cases: &[(&str, &str, &str)] = &[
+        ("empty.off", "", "empty.off: the file has no faces"),
+        (
+            "truncated.off",
+            "OFF\n3 1 0\n0 0 0\n1 0 0\n",
+            "truncated.off: line 4: the file ends early: 2 of 3 vertices read",
+        ),
+        (
+            "out-of-range.off",
+            "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n",
+            "out-of-range.off: line 6: face index 3 is out of range (the file has 3 vertices)",
+        ),
+        (
+            "beyond-u64.off",
+            "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 18446744073709551616\n",
+            "beyond-u64.off: line 6: face index `18446744073709551616` is too large",
+        ),
+        (
+            "two-vertices.off",
+            "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+            "two-vertices.off: line 6: face has 2 vertices, at least 3 are needed",
+        ),
+        (
+            "nan.off",
+            "OFF\n3 1 0\n0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n",
+            "nan.off: line 4: coordinate `nan` is not finite",
+        ),
+        (
+            "huge-counts.off",
+            "OFF\n4294967295 4294967295 0\n",
+            "huge-counts.off: line 2: the file ends early: 0 of 4294967295 vertices read",
+        ),
+    ];
+    for (name, text, message) in cases {
+        let path = files.write(name, text.as_bytes());
+        fails(&["stats", "--mesh", &path], 3, message);
+    }
+}
+
+/// A 200 MB file on one line: the reader stops at its line limit (16 MiB) instead of
+/// buffering the whole line, and refuses the file with the line number.
+#[test]
+fn a_200_mb_single_line_is_refused_after_a_bounded_read() {
+    let files = Files::new();
+    let path = files.path("huge-line.obj");
+    {
+        let mut out = std::io::BufWriter::new(std::fs::File::create(&path).expect("created"));
+        out.write_all(TRIANGLE.as_bytes()).expect("written");
+        out.write_all(b"f").expect("written");
+        let chunk = " 1 2 3".repeat(1 << 14);
+        let mut written = 0usize;
+        while written < 200 << 20 {
+            out.write_all(chunk.as_bytes()).expect("written");
+            written += chunk.len();
+        }
+        out.write_all(b"\n").expect("written");
+        out.flush().expect("flushed");
+    }
+    assert!(std::fs::metadata(&path).expect("exists").len() > 200 << 20);
+    let path = path.display().to_string();
+    fails(
+        &["stats", "--mesh", &path],
+        3,
+        "huge-line.obj: line 4: line is longer than 16777216 bytes",
+    );
+    fails(
+        &["verify", "--mesh", &path, "--scheme", "loop"],
+        3,
+        "line 4: line is longer than 16777216 bytes",
+    );
+}
+
+/// Topology the half-edge structure refuses: each error names the element and the file line.
+#[test]
+fn invalid_topology_names_the_element() {
+    let files = Files::new();
+    let cases: &[(&str, &str, &str, &str)] = &[
+        (
+            "non-manifold-edge.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+            "loop-boundary",
+            "loop-boundary needs every edge to have one or two faces, but this mesh has 1 non-manifold edge",
+        ),
+        (
+            "non-manifold-vertex.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n",
+            "loop-boundary",
+            "non-manifold-vertex.obj: vertex 0 is non-manifold: its faces form 2 separate fans",
+        ),
+        (
+            "duplicate-face.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 2 3 1\n",
+            "loop",
+            "duplicate-face.obj: line 5: faces 0 and 1 have the same vertices (0, 1, 2)",
+        ),
+        (
+            "inconsistent.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n",
+            "loop-boundary",
+            "inconsistent.obj: line 6: faces 0 and 1 both use edge 1 -> 2 in the same direction: inconsistent orientation",
+        ),
+    ];
+    for (name, text, scheme, message) in cases {
+        let path = files.write(name, text.as_bytes());
+        fails(&["verify", "--mesh", &path, "--scheme", scheme], 3, message);
+        fails(
+            &[
+                "subdivide",
+                "--mesh",
+                &path,
+                "--scheme",
+                scheme,
+                "--levels",
+                "1",
+            ],
+            3,
+            message,
+        );
+    }
+    // The face-list statistics still work on the non-manifold meshes and say why the
+    // half-edge structure refuses them.
+    let path = files.path("non-manifold-edge.obj").display().to_string();
+    let out = ok(&["stats", "--mesh", &path]);
+    assert!(
+        out.contains("edge (0, 1) is shared by 3 faces (0, 1, 2): non-manifold edge"),
+        "{out}"
+    );
+}
+
+/// A Möbius strip of six quads: the half-edge build finds the orientation-reversing loop.
+#[test]
+fn a_moebius_strip_is_not_orientable() {
+    let files = Files::new();
+    let mut text = String::new();
+    let n = 6;
+    for i in 0..n {
+        let t = std::f64::consts::TAU * f64::from(i) / f64::from(n);
+        for w in [-0.3, 0.3] {
+            let r = 1.0 + w * (t / 2.0).cos();
+            text += &format!(
+                "v {} {} {}\n",
+                r * t.cos(),
+                r * t.sin(),
+                w * (t / 2.0).sin()
+            );
+        }
+    }
+    for i in 0..n {
+        let (a, b) = (2 * i + 1, 2 * i + 2);
+        // The last quad joins the strip with a half twist.
+        let (c, d) = if i + 1 < n {
+            (2 * i + 3, 2 * i + 4)
+        } else {
+            (2, 1)
+        };
+        text += &format!("f {a} {b} {d} {c}\n");
+    }
+    let path = files.write("moebius.obj", text.as_bytes());
+    let message = "moebius.obj: line 13: the surface is not orientable: flipping faces cannot make the orientation consistent";
+    fails(
+        &["verify", "--mesh", &path, "--scheme", "catmull-clark"],
+        3,
+        message,
+    );
+    fails(
+        &[
+            "subdivide",
+            "--mesh",
+            &path,
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+        ],
+        3,
+        message,
+    );
+}
+
+/// A scheme file with each kind of mistake: exit 3, the file, line and column.
+#[test]
+fn scheme_file_mistakes_name_line_and_column() {
+    let files = Files::new();
+    let cases: &[(&str, &str)] = &[
+        (
+            "name = \"x\"\nstate = [\"V\"\nmatrix = [[1]]\n",
+            "line 3, column 1: invalid array; expected `]`",
+        ),
+        (
+            "name = \"x\"\nstate = [\"V\"]\nmatrix = [[1]]\ncolour = \"red\"\n",
+            "line 4, column 1: unknown field `colour`",
+        ),
+        ("name = \"x\"\nstate = [\"V\"]\n", "line 3, column 1: missing `matrix` (or `cycle` for a periodic scheme)"),
+        ("name = \"x y\"\nstate = [\"V\"]\nmatrix = [[1]]\n", "line 1, column 8: scheme name `x y` may only use letters, digits, `-` and `_`"),
+        ("name = \"x\"\nstate = []\nmatrix = []\n", "line 2, column 9: the state is empty"),
+        ("name = \"x\"\nstate = [\"1V\"]\nmatrix = [[1]]\n", "line 2, column 10: state name `1V` is not valid"),
+        ("name = \"x\"\nstate = [\"V\", \"V\"]\nmatrix = [[1, 0], [0, 1]]\n", "line 2, column 15: state name `V` is used twice"),
+        ("name = \"x\"\nstate = [\"V\", \"E\"]\nmatrix = [[1, 0], [0]]\n", "line 3, column 19: row 2 has 1 entry, but the matrix has 2 rows (it must be square)"),
+        ("name = \"x\"\nstate = [\"V\", \"E\"]\nmatrix = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n", "line 3, column 10: the matrix is 3x3, but the state has 2 components"),
+        ("name = \"x\"\nstate = [\"V\"]\nmatrix = [[99999999999999999999]]\n", "line 3, column 12: number too large to fit in target type"),
+        ("name = \"x\"\nstate = [\"V\"]\nmatrix = [[1]]\ncycle = [[[1]]]\n", "line 4, column 9: give either `matrix` or `cycle`, not both"),
+        ("name = \"x\"\nstate = [\"V\"]\ncycle = []\n", "line 3, column 9: the cycle is empty"),
+        ("name = \"x\"\nstate = [\"V\"]\nmatrix = [[1]]\n[derive]\nF = { Q = 1 }\n", "line 5, column 7: `derive.F` names `Q`, which is not a state component (V)"),
+        ("name = \"x\"\nstate = [\"V\"]\nmatrix = [[1]]\n[derive]\nF = { V = 1, divide_by = 0 }\n", "line 5, column 26: `divide_by` must be positive"),
+        ("name = \"x\"\nstate = [\"V\"]\nmatrix = [[1]]\nrequires = [\"wings\"]\n", "line 4, column 13: unknown requirement `wings`; use triangles, quads, closed, manifold"),
+    ];
+    for (i, (text, message)) in cases.iter().enumerate() {
+        let name = format!("mistake-{i}.toml");
+        let path = files.write(&name, text.as_bytes());
+        let stderr = fails(&["formula", "--scheme-file", &path], 3, message);
+        assert!(stderr.contains(&name), "{stderr:?} names the file");
+    }
+    let path = files.write("binary.toml", &[0xff, 0xfe, 0x00, b'\n']);
+    fails(&["formula", "--scheme-file", &path], 3, "binary.toml");
+    let missing = files.path("missing.toml").display().to_string();
+    fails(&["formula", "--scheme-file", &missing], 3, "missing.toml");
+}
+
+/// A 300 KB matrix (250 state components) is refused at once, not solved for hours.
+#[test]
+fn a_300_kb_scheme_matrix_is_refused_quickly() {
+    let files = Files::new();
+    let n = 250;
+    let names: Vec<String> = (0..n).map(|i| format!("\"S{i}\"")).collect();
+    let rows: Vec<String> = (0..n)
+        .map(|i| {
+            let row: Vec<String> = (0..n).map(|j| (1000 + i * j).to_string()).collect();
+            format!("[{}]", row.join(","))
+        })
+        .collect();
+    let text = format!(
+        "name = \"big\"\nstate = [{}]\nmatrix = [\n{}\n]\n",
+        names.join(", "),
+        rows.join(",\n")
+    );
+    assert!(text.len() > 300_000, "{} bytes", text.len());
+    let path = files.write("big.toml", text.as_bytes());
+    let message = "big.toml: line 2, column 9: the state has 250 components; a scheme file may have at most 32";
+    for command in ["formula", "table", "at"] {
+        let mut args = vec![command, "--scheme-file", path.as_str()];
+        if command == "at" {
+            args.extend(["--level", "3"]);
+        }
+        fails(&args, 3, message);
+    }
+}
+
+#[test]
+fn schemes_and_counts_beyond_the_integer_types() {
+    fails(
+        &[
+            "at",
+            "--scheme",
+            "tri-split-10000000000",
+            "--counts",
+            "V=12,E=30,F=20",
+            "--level",
+            "1",
+        ],
+        2,
+        "`tri-split-10000000000`: the split factor is too large (matrix entries beyond i64)",
+    );
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "tri-split-18446744073709551616",
+            "--base",
+            "icosahedron",
+        ],
+        2,
+        "tri-split-18446744073709551616",
+    );
+    fails(
+        &["at", "--counts", "V=-1", "--level", "2"],
+        2,
+        "count V=-1 is negative; counts are non-negative integers",
+    );
+    fails(
+        &["table", "--counts", "V=12,E=-30,F=20"],
+        2,
+        "count E=-30 is negative",
+    );
+    fails(
+        &["fit", "--max-vertices", "-5"],
+        2,
+        "invalid --max-vertices: `-5` is negative",
+    );
+    fails(
+        &["fit", "--max-faces", "-1"],
+        2,
+        "invalid --max-faces: `-1` is negative",
+    );
+}
+
+/// Budgets of zero are valid input that nothing fits: exit 3, naming the count that overflows.
+#[test]
+fn budgets_of_zero() {
+    fails(
+        &["fit", "--max-vertices", "0"],
+        3,
+        "level 0 does not fit: V = 12 > 0",
+    );
+    fails(
+        &["fit", "--max-faces", "0"],
+        3,
+        "level 0 does not fit: F = 20 > 0",
+    );
+}
+
+#[test]
+fn inverted_and_negative_level_ranges() {
+    fails(
+        &["table", "--levels", "5..2"],
+        2,
+        "invalid --levels: the level range `5..2` is empty",
+    );
+    fails(
+        &["table", "--levels", "5..=4"],
+        2,
+        "invalid --levels: the level range `5..=4` is inverted",
+    );
+    fails(
+        &["plot", "--levels", "9..3", "-o", "never.svg"],
+        2,
+        "invalid --levels: the level range `9..3`",
+    );
+    fails(
+        &[
+            "verify",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "-1",
+        ],
+        2,
+        "invalid --levels: `-1` is negative",
+    );
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "-1",
+        ],
+        2,
+        "invalid --levels: `-1` is negative",
+    );
+    assert!(!Path::new("never.svg").exists());
+}
+
+/// Every command that allocates in proportion to a count checks the guard first (exit 4).
+#[test]
+fn the_resource_guard_holds_for_every_command() {
+    let digits = "would have about 6.021e11 decimal digits";
+    fails(&["at", "--level", "1000000000000"], 4, digits);
+    fails(&["table", "--levels", "1000000000000"], 4, digits);
+    fails(
+        &["table", "--levels", "999999999999..=1000000000000"],
+        4,
+        "decimal digits",
+    );
+    fails(&["density", "--level", "1000000000000"], 4, digits);
+    fails(
+        &[
+            "verify",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "1000",
+        ],
+        4,
+        "loop to level 1000 needs about",
+    );
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "1000",
+        ],
+        4,
+        "loop to level 1000 needs about",
+    );
+    fails(
+        &[
+            "verify",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "tri-split-1000000000",
+            "--levels",
+            "1",
+        ],
+        4,
+        "tri-split-1000000000 to level 1 needs about",
+    );
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "tri-split-1000000000",
+            "--levels",
+            "1",
+        ],
+        4,
+        "tri-split-1000000000 to level 1 needs about",
+    );
+    fails(
+        &[
+            "at",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "tri-split-1000000000",
+            "--level",
+            "1000000",
+        ],
+        4,
+        "the counts at level 1000000 would have about 1.800e7 decimal digits",
+    );
+    // `--summary` is exempt: digit counts and leading/trailing digits only.
+    let out = ok(&["at", "--level", "1000000000000", "--summary"]);
+    assert!(out.contains("602059991329 digits"), "{out}");
+}
+
+/// The refusal of `subdivide` leaves no output file behind.
+#[test]
+fn a_refused_subdivision_writes_nothing() {
+    let files = Files::new();
+    let out = files.path("out.obj").display().to_string();
+    let run = subcount(&[
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "1000",
+        "-o",
+        &out,
+    ]);
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(!files.path("out.obj").exists());
+    assert_eq!(
+        std::fs::read_dir(files.dir.path()).expect("listed").count(),
+        0
+    );
+}
+
+/// Counts that grow like s^2 never reach a budget of 10^39 at a level a `u64` can name: the
+/// search refuses (exit 4) instead of overflowing (it used to panic) or claiming every level
+/// fits.
+#[test]
+fn fit_with_polynomial_growth_and_a_huge_budget() {
+    let files = Files::new();
+    let path = files.write(
+        "slow.toml",
+        b"name = \"slow\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 1, 0], [0, 1, 1], [0, 0, 1]]\n",
+    );
+    let budget = format!("1{}", "0".repeat(39));
+    fails(
+        &[
+            "fit",
+            "--scheme-file",
+            &path,
+            "--counts",
+            "V=2,E=3,F=4",
+            "--max-vertices",
+            &budget,
+        ],
+        4,
+        "the search reached level 18446744073709551615",
+    );
+    let out = ok(&[
+        "fit",
+        "--scheme-file",
+        &path,
+        "--counts",
+        "V=2,E=3,F=4",
+        "--max-vertices",
+        "1000000000000",
+    ]);
+    assert!(
+        out.contains("highest level within the budget: 707106"),
+        "{out}"
+    );
+}
