@@ -452,6 +452,16 @@ fn budgets_of_zero() {
         3,
         "level 0 does not fit: F = 20 > 0",
     );
+    fails(
+        &["fit", "--memory", "0"],
+        3,
+        "level 0 does not fit: bytes = 384 > 0",
+    );
+    fails(
+        &["table", "--levels", "0..0"],
+        2,
+        "invalid --levels: the level range `0..0` is empty",
+    );
 }
 
 #[test]
@@ -576,6 +586,35 @@ fn the_resource_guard_holds_for_every_command() {
         ],
         4,
         "the counts at level 1000000 would have about 1.800e7 decimal digits",
+    );
+    fails(
+        &[
+            "plot",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "tri-split-1000000000",
+            "--levels",
+            "999000..=999999",
+            "-o",
+            "never.svg",
+        ],
+        4,
+        "the counts at level 999999 would have about 1.800e7 decimal digits",
+    );
+    assert!(!Path::new("never.svg").exists());
+    // `fit` searches levels: V doubles while the limited E grows linearly, so the search
+    // stops at its state-size limit instead of computing ever larger states.
+    let files = Files::new();
+    let lopsided = files.write(
+        "lopsided.toml",
+        b"name = \"lopsided\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[2, 0, 0], [0, 1, 1], [0, 0, 1]]\n",
+    );
+    let budget = format!("1{}", "0".repeat(30));
+    fails(
+        &["fit", "--scheme-file", &lopsided, "--counts", "V=1,E=1,F=1", "--max-edges", &budget],
+        4,
+        "the search reached level 83886080, where the state has 83886109 bits, without crossing the limit",
     );
     // `--summary` is exempt: digit counts and leading/trailing digits only.
     let out = ok(&["at", "--level", "1000000000000", "--summary"]);
