@@ -1,7 +1,8 @@
 //! CPU time of subdivision jobs, for a shared machine where wall time is noise.
 //!
 //! For each job this runs the subdivision `REPS` times (default 5, `SUBCOUNT_BENCH_REPS`) on
-//! the calling thread and prints the median on-CPU time of the thread (from
+//! the calling thread (and once more with 2 threads) and prints the median wall time, the median
+//! on-CPU time of the thread (from
 //! `/proc/thread-self/schedstat`, nanoseconds; it excludes time spent waiting for a CPU) and
 //! the user/system split of the process (from `/proc/self/stat`, clock ticks), with output
 //! faces per CPU-second. The first argument that is not a flag filters the job names
@@ -79,17 +80,27 @@ fn main() {
         ("sqrt3", 2),
         ("doo-sabin", 2),
     ];
-    let variants = [("prealloc-1t", true), ("grow-1t", false)];
+    // (name, threads, preallocate); with 2 threads the thread CPU column is the calling
+    // thread only, the process user/sys columns count both workers.
+    let variants = [
+        ("prealloc-1t", 1, true),
+        ("grow-1t", 1, false),
+        ("prealloc-2t", 2, true),
+    ];
     let ticks_per_s = 100.0; // USER_HZ on Linux
-    println!("job | median thread CPU s | median wall s | process user/sys s per run | M output faces per CPU-s");
+    println!(
+        "job | median wall s | median thread CPU s | process user/sys s per run | M faces per thread-CPU-s | M faces per process-CPU-s"
+    );
     for (name, mesh) in &inputs {
         for (scheme, level) in jobs {
-            for (variant, preallocate) in variants {
+            for (variant, threads, preallocate) in variants {
                 let id = format!("{scheme}-L{level}/{name}/{variant}");
                 if !id.contains(&filter) {
                     continue;
                 }
-                let opts = SubdivideOptions::default().with_preallocate(preallocate);
+                let opts = SubdivideOptions::default()
+                    .with_threads(threads)
+                    .with_preallocate(preallocate);
                 let (mut cpu, mut wall) = (Vec::new(), Vec::new());
                 let (u0, s0) = process_ticks().unwrap_or_default();
                 let mut faces = 0;
@@ -105,12 +116,17 @@ fn main() {
                 let (u1, s1) = process_ticks().unwrap_or_default();
                 let per_run = |a: u64, b: u64| (b - a) as f64 / ticks_per_s / reps as f64;
                 let cpu_med = median(cpu);
+                let (user, sys) = (per_run(u0, u1), per_run(s0, s1));
+                // With a pool the calling thread only waits: no per-thread rate.
+                let thread_rate = if threads == 1 {
+                    format!("{:.2}", faces as f64 / cpu_med / 1e6)
+                } else {
+                    "-".to_owned()
+                };
                 println!(
-                    "{id} | {cpu_med:.4} | {:.4} | {:.3}/{:.3} | {:.2}",
+                    "{id} | {:.4} | {cpu_med:.4} | {user:.3}/{sys:.3} | {thread_rate} | {:.2}",
                     median(wall),
-                    per_run(u0, u1),
-                    per_run(s0, s1),
-                    faces as f64 / cpu_med / 1e6
+                    faces as f64 / (user + sys) / 1e6
                 );
             }
         }

@@ -1,0 +1,353 @@
+#!/usr/bin/env python3
+"""Times subcount's subdivision and exact counts against peers (not part of CI).
+
+Usage:
+    python3 bench/peers/compare.py [--subcount PATH] [--openmesh PATH] [--meshes DIR]
+                                   [--venv DIR] [--reps N] [--json FILE]
+
+What it does:
+  1. creates a virtualenv (default /tmp/subcount-peers-venv) and pip-installs libigl,
+     pymeshlab, trimesh, python-flint and numpy into it (skipped when they import already);
+  2. writes the 81,920-face icosphere with
+     `subcount subdivide --base icosahedron --scheme icosphere --levels 6 -o FILE`;
+  3. for every job (scheme, levels, input) runs each tool in its own process, REPS times
+     (once when a run takes more than 10 s): subcount through `subcount subdivide --timings`
+     (the median of "subdivide_s", peak_bytes and predicted_peak_bytes), OpenMesh through the
+     driver built by bench/peers/openmesh/build.sh (skipped when it is missing), and the Python
+     peers in-process in the virtualenv (wall time of the call only, loading excluded; peak RSS
+     of the worker process, Python and numpy included);
+  4. times python-flint's fmpz_mat power of the Catmull-Clark quad matrix at s = 10^6 and
+     str() of the resulting count (~602,062 digits), next to the whole `subcount at` process;
+  5. prints one table: median seconds, output faces per second, peak memory, and the ratio of
+     each peer's median to subcount's median on the same job, all measured in the same run.
+
+The load average at the start and the end is printed with the table: on a shared machine wall
+times are only comparable within one run.
+"""
+
+import argparse
+import json
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+PACKAGES = ["numpy", "libigl", "pymeshlab", "trimesh", "python-flint"]
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# (label, subcount scheme, levels, input, peers). Input "icosphere" is the generated OBJ,
+# other names are files of --meshes. trimesh's subdivide is the plain 4:1 midpoint split, so
+# it is compared with subcount's `midpoint` on the same input.
+JOBS = [
+    ("loop L3 icosphere", "loop", 3, "icosphere", ["subcount-thp", "openmesh", "igl", "pymeshlab"]),
+    ("midpoint L3 icosphere", "midpoint", 3, "icosphere", ["trimesh"]),
+    ("catmull-clark L3 icosphere", "catmull-clark", 3, "icosphere", ["subcount-thp", "openmesh", "pymeshlab"]),
+    ("sqrt3 L2 icosphere", "sqrt3", 2, "icosphere", ["openmesh"]),
+    ("loop L2 armadillo", "loop", 2, "armadillo", ["openmesh", "igl", "pymeshlab"]),
+    ("catmull-clark L2 armadillo", "catmull-clark", 2, "armadillo", ["openmesh", "pymeshlab"]),
+    ("sqrt3 L2 armadillo", "sqrt3", 2, "armadillo", ["openmesh"]),
+]
+
+# The Catmull-Clark quad recurrence, state (V, E, F) on a closed quad mesh: each level
+# V' = V + E + F, E' = 2E + 4F, F' = 4F.
+CC_QUAD_MATRIX = [[1, 1, 1], [0, 2, 4], [0, 0, 4]]
+# The cube: V = 8, E = 12, F = 6.
+CC_QUAD_X0 = [8, 12, 6]
+CC_LEVEL = 10**6
+
+
+def load_average():
+    return "%.2f %.2f %.2f" % os.getloadavg()
+
+
+# --------------------------------------------------------------------------------------------
+# Worker side: runs inside the virtualenv, one job per process.
+
+
+def worker(tool, scheme, levels, path, reps):
+    import numpy as np  # noqa: F401  (imported before timing, as every tool needs it)
+
+    times = []
+    faces = None
+    if tool == "igl":
+        import igl
+
+        v, f = igl.read_triangle_mesh(path)
+        for _ in range(reps):
+            t0 = time.perf_counter()
+            nv, nf = igl.loop(v, f, levels)
+            times.append(time.perf_counter() - t0)
+            faces = int(nf.shape[0])
+            del nv, nf
+            if times[-1] > 10:
+                break
+    elif tool == "trimesh":
+        import trimesh
+        from trimesh import remesh
+
+        m = trimesh.load(path, process=False)
+        v0, f0 = np.asarray(m.vertices), np.asarray(m.faces)
+        for _ in range(reps):
+            t0 = time.perf_counter()
+            v, f = v0, f0
+            for _ in range(levels):
+                v, f = remesh.subdivide(v, f)
+            times.append(time.perf_counter() - t0)
+            faces = int(f.shape[0])
+            del v, f
+            if times[-1] > 10:
+                break
+    elif tool == "pymeshlab":
+        import pymeshlab
+
+        for _ in range(reps):
+            ms = pymeshlab.MeshSet()
+            ms.load_new_mesh(path)
+            t0 = time.perf_counter()
+            if scheme == "loop":
+                # threshold 0: split every edge (the default only splits long edges).
+                ms.meshing_surface_subdivision_loop(
+                    iterations=levels, threshold=pymeshlab.PercentageValue(0.0)
+                )
+            else:
+                for _ in range(levels):
+                    ms.meshing_surface_subdivision_catmull_clark()
+            times.append(time.perf_counter() - t0)
+            faces = int(ms.current_mesh().face_number())
+            del ms
+            if times[-1] > 10:
+                break
+    else:
+        raise SystemExit("unknown tool %s" % tool)
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    print(json.dumps({"times": times, "faces": faces, "peak_bytes": peak}))
+
+
+def worker_flint(reps):
+    import flint
+
+    m = flint.fmpz_mat(CC_QUAD_MATRIX)
+    x0 = flint.fmpz_mat([[x] for x in CC_QUAD_X0])
+    power, render = [], []
+    digits = None
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        x = (m**CC_LEVEL) * x0
+        power.append(time.perf_counter() - t0)
+        count = x[1, 0]  # E(s): 602,062 digits for the cube
+        t0 = time.perf_counter()
+        text = str(count)
+        render.append(time.perf_counter() - t0)
+        digits = len(text)
+    print(json.dumps({"power": power, "render": render, "digits": digits}))
+
+
+# --------------------------------------------------------------------------------------------
+# Driver side.
+
+
+def ensure_venv(venv):
+    python = os.path.join(venv, "bin", "python")
+    if not os.path.exists(python):
+        subprocess.run([sys.executable, "-m", "venv", venv], check=True)
+    probe = "import numpy, igl, pymeshlab, trimesh, flint"
+    if subprocess.run([python, "-c", probe], capture_output=True).returncode != 0:
+        subprocess.run([python, "-m", "pip", "install", "-q"] + PACKAGES, check=True)
+    versions = subprocess.run(
+        [python, "-m", "pip", "list", "--format=json"], capture_output=True, text=True, check=True
+    )
+    wanted = {p.lower() for p in PACKAGES}
+    found = {
+        p["name"].lower(): p["version"]
+        for p in json.loads(versions.stdout)
+        if p["name"].lower() in wanted
+    }
+    return python, found
+
+
+def run_subcount(subcount, args, reps, env=None):
+    """Median subdivide_s, peak_bytes and predicted_peak_bytes of `subcount subdivide`."""
+    times, peak, predicted, faces = [], None, None, None
+    for _ in range(reps):
+        p = subprocess.run(
+            [subcount, "subdivide", "--timings"] + args, capture_output=True, text=True,
+            env=None if env is None else {**os.environ, **env},
+        )
+        if p.returncode != 0:
+            raise SystemExit("subcount failed: %s" % p.stderr.strip())
+        line = next(l for l in p.stderr.splitlines() if l.startswith("timings: "))
+        t = json.loads(line[len("timings: "):])
+        times.append(t["subdivide_s"])
+        peak = max(peak or 0, t["peak_bytes"] or 0)
+        predicted = t["predicted_peak_bytes"]
+        # "level 3: V = .., E = .., F = N ..."
+        faces = int(p.stdout.split("F = ")[1].split()[0].rstrip(";"))
+        if t["subdivide_s"] > 10:
+            break
+    return {"times": times, "faces": faces, "peak_bytes": peak, "predicted": predicted}
+
+
+# Peers run with an address-space cap and a time limit: pymeshlab's Catmull-Clark filter on
+# the 81,920-triangle icosphere grew past 14 GB in two minutes on the first run of this script.
+WORKER_MEMORY = 6 << 30
+WORKER_TIMEOUT_S = 300
+
+
+def limit_memory():
+    resource.setrlimit(resource.RLIMIT_AS, (WORKER_MEMORY, WORKER_MEMORY))
+
+
+def run_worker(python, tool, scheme, levels, path, reps):
+    try:
+        p = subprocess.run(
+            [python, os.path.abspath(__file__), "--worker", tool, scheme, str(levels), path, str(reps)],
+            capture_output=True,
+            text=True,
+            preexec_fn=limit_memory,
+            timeout=WORKER_TIMEOUT_S,
+        )
+    except subprocess.TimeoutExpired:
+        return {"error": "no result within %d s" % WORKER_TIMEOUT_S}
+    if p.returncode != 0:
+        return {"error": (p.stderr.strip().splitlines() or ["failed"])[-1]}
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def run_openmesh(binary, scheme, levels, path, reps):
+    p = subprocess.run([binary, scheme, str(levels), path, str(reps)], capture_output=True, text=True)
+    if p.returncode != 0:
+        return {"error": p.stderr.strip()}
+    r = json.loads(p.stdout)
+    return {"times": r["wall_s"], "faces": r["faces"], "peak_bytes": r["peak_rss_bytes"]}
+
+
+def mib(b):
+    return "-" if not b else "%.0f MiB" % (b / 2**20)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(REPO, "target"))
+    ap.add_argument("--subcount", default=os.path.join(target, "release", "subcount"))
+    ap.add_argument("--openmesh", default="/tmp/subcount-openmesh/subdivide_openmesh")
+    ap.add_argument("--meshes", default=os.environ.get("SUBCOUNT_MESHES", os.path.join(REPO, "..", "shared", "meshes")))
+    ap.add_argument("--venv", default=os.environ.get("SUBCOUNT_PEERS_VENV", "/tmp/subcount-peers-venv"))
+    ap.add_argument("--reps", type=int, default=3)
+    ap.add_argument("--only", default="", help="run only the jobs whose label contains this")
+    ap.add_argument("--json", help="also write every raw figure to this file")
+    ap.add_argument("--worker", nargs="+", help=argparse.SUPPRESS)
+    a = ap.parse_args()
+    if a.worker:
+        if a.worker[0] == "flint":
+            return worker_flint(int(a.worker[1]))
+        tool, scheme, levels, path, reps = a.worker
+        return worker(tool, scheme, int(levels), path, int(reps))
+
+    if not os.path.exists(a.subcount):
+        raise SystemExit(
+            "no subcount binary at %s: cargo build --release -p subcount (or --subcount PATH)" % a.subcount
+        )
+    python, versions = ensure_venv(a.venv)
+    have_openmesh = os.path.exists(a.openmesh)
+    start_load = load_average()
+    started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    tmp = tempfile.mkdtemp(prefix="subcount-peers-")
+    ico = os.path.join(tmp, "icosphere.obj")
+    subprocess.run(
+        [a.subcount, "subdivide", "--base", "icosahedron", "--scheme", "icosphere", "--levels", "6", "-o", ico],
+        check=True,
+        capture_output=True,
+    )
+    rows, raw = [], []
+    for label, scheme, levels, inp, peers in JOBS:
+        if a.only and a.only not in label:
+            continue
+        path = ico if inp == "icosphere" else os.path.join(a.meshes, inp + ".obj")
+        if not os.path.exists(path):
+            print("skipping %s: %s is missing" % (label, path), file=sys.stderr)
+            continue
+        print("running %s ..." % label, file=sys.stderr)
+        ours = run_subcount(a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels)], a.reps)
+        ours_med = statistics.median(ours["times"])
+        results = [("subcount", ours)]
+        for tool in peers:
+            if tool == "subcount-thp":
+                # The same binary with glibc's malloc asking for transparent huge pages
+                # (fewer, larger page faults on the fresh output arrays).
+                r = run_subcount(a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels)],
+                                 a.reps, env={"GLIBC_TUNABLES": "glibc.malloc.hugetlb=1"})
+            elif tool == "openmesh":
+                if not have_openmesh:
+                    continue
+                r = run_openmesh(a.openmesh, scheme, levels, path, a.reps)
+            else:
+                r = run_worker(python, tool, scheme, levels, path, a.reps)
+            results.append((tool, r))
+        for tool, r in results:
+            raw.append({"job": label, "tool": tool, **r})
+            if "error" in r:
+                rows.append((label, tool, "error: " + r["error"][:60], "", "", "", ""))
+                continue
+            med = statistics.median(r["times"])
+            spread = "%.3f-%.3f" % (min(r["times"]), max(r["times"]))
+            rate = "%.1f M/s" % (r["faces"] / med / 1e6)
+            peak = mib(r["peak_bytes"])
+            if tool.startswith("subcount"):
+                peak += " (pred. %s)" % mib(r["predicted"])
+            ratio = "1" if tool == "subcount" else "%.2fx" % (med / ours_med)
+            rows.append((label, tool, "%.3f" % med, spread, "%d / %s" % (r["faces"], rate), peak, ratio))
+
+    if not a.only or a.only in "cc-quad counts flint":
+        print("running exact counts ...", file=sys.stderr)
+        p = subprocess.run([python, os.path.abspath(__file__), "--worker", "flint", str(max(a.reps, 5))],
+                           capture_output=True, text=True)
+        def time_at(extra):
+            ts = []
+            for _ in range(max(a.reps, 5)):
+                t0 = time.perf_counter()
+                subprocess.run(
+                    [a.subcount, "at", "--scheme", "catmull-clark-quad", "--counts", "V=8,E=12,F=6",
+                     "--level", str(CC_LEVEL)] + extra,
+                    check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                ts.append(time.perf_counter() - t0)
+            return ts
+
+        summary_times = time_at(["--summary"])
+        at_times = time_at([])  # every digit of V, E and F, written to /dev/null
+        at_med = statistics.median(at_times)
+        rows.append(("cc-quad counts s=10^6", "subcount at --summary (process)",
+                     "%.4f" % statistics.median(summary_times),
+                     "%.4f-%.4f" % (min(summary_times), max(summary_times)), "", "",
+                     "%.2fx" % (statistics.median(summary_times) / at_med)))
+        rows.append(("cc-quad counts s=10^6", "subcount at, all digits of V, E, F (process)",
+                     "%.4f" % at_med, "%.4f-%.4f" % (min(at_times), max(at_times)), "", "", "1"))
+        if p.returncode == 0:
+            fl = json.loads(p.stdout.strip().splitlines()[-1])
+            raw.append({"job": "flint", **fl, "subcount_at": at_times, "subcount_at_summary": summary_times})
+            for what, ts in (("flint fmpz_mat power", fl["power"]),
+                             ("flint str() %d digits" % fl["digits"], fl["render"])):
+                med = statistics.median(ts)
+                rows.append(("cc-quad counts s=10^6", what, "%.4f" % med,
+                             "%.4f-%.4f" % (min(ts), max(ts)), "", "", "%.2fx" % (med / at_med)))
+        else:
+            rows.append(("cc-quad counts s=10^6", "flint", "error: " + p.stderr.strip()[-60:], "", "", "", ""))
+
+    head = ("job", "tool", "median s", "min-max s", "faces / rate", "peak memory", "vs subcount")
+    widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
+    print("started %s; load average at start %s, at end %s; reps %d" % (started, start_load, load_average(), a.reps))
+    print("peers: " + ", ".join("%s %s" % kv for kv in sorted(versions.items()))
+          + (", OpenMesh (sdist) C++ driver" if have_openmesh else ", OpenMesh driver missing"))
+    print("| " + " | ".join(h.ljust(w) for h, w in zip(head, widths)) + " |")
+    print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
+    for r in rows:
+        print("| " + " | ".join(str(c).ljust(w) for c, w in zip(r, widths)) + " |")
+    if a.json:
+        with open(a.json, "w") as fh:
+            json.dump(raw, fh, indent=1)
+
+
+if __name__ == "__main__":
+    main()
