@@ -6,53 +6,25 @@
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
 use num_bigint::BigInt;
-use schemes::{MeshCounts, Scheme};
+use schemes::{CountsInput, Scheme};
 
-/// A mesh each scheme applies to, as counts (icosahedron, icosahedron with two holes, cube,
-/// an open mixed mesh), so every initial state is a real one.
+/// The counts of a mesh each scheme applies to (icosahedron, cube, an open triangle strip,
+/// an open mixed mesh), typed in, so every initial state is a real one.
 fn counts_for(scheme: &Scheme) -> Vec<BigInt> {
-    let ico = MeshCounts::from_polygons(&ICOSAHEDRON).expect("icosahedron");
-    let cube = MeshCounts::from_polygons(&CUBE).expect("cube");
-    let strip = MeshCounts::from_polygons(&[vec![0, 1, 2], vec![0, 2, 3], vec![2, 4, 5, 3]])
-        .expect("strip");
-    for counts in [&ico, &cube, &strip] {
-        if let Ok(x0) = scheme.initial_state(counts) {
-            return x0;
-        }
-    }
-    panic!("no bench mesh for {}", scheme.name())
+    const MESHES: [&str; 4] = [
+        "V=12,E=30,IE=30,BE=0,F=20,H=60",
+        "V=8,E=12,IE=12,BE=0,F=6,H=24",
+        "V=4,E=5,IE=1,BE=4,F=2,H=6",
+        "V=6,E=8,IE=2,BE=6,F=3,H=10",
+    ];
+    MESHES
+        .iter()
+        .find_map(|text| {
+            let input = CountsInput::parse(text).expect("bench counts parse");
+            scheme.state_from_input(&input).ok()
+        })
+        .unwrap_or_else(|| panic!("no bench mesh for {}", scheme.name()))
 }
-
-const ICOSAHEDRON: [[u32; 3]; 20] = [
-    [0, 11, 5],
-    [0, 5, 1],
-    [0, 1, 7],
-    [0, 7, 10],
-    [0, 10, 11],
-    [1, 5, 9],
-    [5, 11, 4],
-    [11, 10, 2],
-    [10, 7, 6],
-    [7, 1, 8],
-    [3, 9, 4],
-    [3, 4, 2],
-    [3, 2, 6],
-    [3, 6, 8],
-    [3, 8, 9],
-    [4, 9, 5],
-    [2, 4, 11],
-    [6, 2, 10],
-    [8, 6, 7],
-    [9, 8, 1],
-];
-const CUBE: [[u32; 4]; 6] = [
-    [0, 1, 2, 3],
-    [4, 7, 6, 5],
-    [0, 4, 5, 1],
-    [1, 5, 6, 2],
-    [2, 6, 7, 3],
-    [3, 7, 4, 0],
-];
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("scheme-counts");
