@@ -38,7 +38,7 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = parse_levels(&args.levels).map_err(|e| usage!("invalid --levels: {e}"))?;
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
-    guard_digits(&dynamics, &x0, *levels.end(), false, false)?;
+    guard_table(&dynamics, &x0, &levels)?;
     let rows = dynamics.rows(&x0, levels)?;
     let columns = dynamics.columns();
     match args.format {
@@ -72,16 +72,42 @@ pub(crate) fn guard_digits(
     allow_large: bool,
     summary: bool,
 ) -> Result<(), Failure> {
+    guard_digits_for(
+        dynamics,
+        x0,
+        s,
+        allow_large,
+        if summary { Hint::AtSummary } else { Hint::At },
+    )
+}
+
+/// What the digit guard suggests: `at` has `--summary` and `--allow-large`; the commands
+/// that print every level (`table`, `plot`, `density`) can only ask for fewer levels.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Hint {
+    At,
+    AtSummary,
+    Levels,
+}
+
+/// Refuses, with exit 4, counts of more than [`MAX_DIGITS`] decimal digits.
+pub(crate) fn guard_digits_for(
+    dynamics: &Dynamics,
+    x0: &[num_bigint::BigInt],
+    s: u64,
+    allow_large: bool,
+    hint: Hint,
+) -> Result<(), Failure> {
     if allow_large {
         return Ok(());
     }
     let worst = dynamics.estimate_log10_max(x0, s)?;
     if worst > MAX_DIGITS {
         let bytes = worst * std::f64::consts::LOG2_10 / 8.0;
-        let hint = if summary {
-            "--summary works without materializing the counts only with an exact closed form from level 0 (not for periodic or composed schemes, nor irrational eigenvalues at such levels); use --allow-large to try anyway"
-        } else {
-            "use --summary, or --allow-large to try anyway"
+        let hint = match hint {
+            Hint::AtSummary => "--summary works without materializing the counts only with an exact closed form from level 0 (not for periodic or composed schemes, nor irrational eigenvalues at such levels); use --allow-large to try anyway",
+            Hint::At => "use --summary, or --allow-large to try anyway",
+            Hint::Levels => "ask for lower levels (or use `at --summary` for one huge level)",
         };
         return Err(Failure::new(
             Kind::Guard,
@@ -95,8 +121,41 @@ pub(crate) fn guard_digits(
     Ok(())
 }
 
+/// Most decimal digits a table (all rows and columns together) may hold.
+const MAX_TABLE_DIGITS: f64 = 1e8;
+/// Most cells a table may hold.
+const MAX_TABLE_CELLS: f64 = 1e7;
+
+/// The guard of the commands that hold every level of a range (`table`, `plot`): the largest
+/// count, then the whole table (rows times columns times digits), before anything is computed.
+pub(crate) fn guard_table(
+    dynamics: &Dynamics,
+    x0: &[num_bigint::BigInt],
+    levels: &std::ops::RangeInclusive<u64>,
+) -> Result<(), Failure> {
+    guard_digits_for(dynamics, x0, *levels.end(), false, Hint::Levels)?;
+    let rows = (*levels.end() - *levels.start()) as f64 + 1.0;
+    let cells = rows * dynamics.columns().len() as f64;
+    let digits = dynamics.estimate_log10_max(x0, *levels.end())?.max(0.0) + 1.0;
+    if cells > MAX_TABLE_CELLS || cells * digits > MAX_TABLE_DIGITS {
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "levels {}..={} would make a table of {rows:.0} rows and about {:.3e} decimal digits; the limits are 10^7 cells and 10^8 digits: ask for fewer levels",
+                levels.start(),
+                levels.end(),
+                (cells * digits).ceil()
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// `1.5 GiB`-style rendering of a byte count.
 pub(crate) fn human_bytes(bytes: f64) -> String {
+    if !bytes.is_finite() || bytes > 1e30 {
+        return "10^30+ bytes".to_string();
+    }
     const UNITS: [&str; 7] = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
     let mut v = bytes;
     let mut unit = 0;

@@ -34,6 +34,20 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
     Failure::new(kind, e)
 }
 
+/// As [`halfedge_failure`], and an error about a face of the input (a face-list subdivider's
+/// refusal) names the mesh file and the face's line.
+fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) -> Failure {
+    if let Some(f) = e.face() {
+        let label = crate::model::mesh_label(mesh);
+        let place = poly
+            .face_line(f as usize)
+            .map(|l| format!("line {l}: "))
+            .unwrap_or_default();
+        return Failure::new(Kind::Input, anyhow::anyhow!("{label}: {place}{e}"));
+    }
+    halfedge_failure(e)
+}
+
 /// The schemes whose counts apply to the mesh and whose subdivision can run on it.
 fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<String> {
     schemes::builtins()
@@ -50,7 +64,12 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let counts = halfedge::stats::face_list_counts(&poly);
     let problems = halfedge::stats::face_list_problems(&poly);
     let validation = validate(&poly, &args.mesh).err();
-    let applicable = applicable_schemes(&counts, validation.is_none());
+    // A face that repeats a vertex is refused on every path, so no scheme applies.
+    let applicable = if problems.faces_with_repeated_vertex > 0 {
+        Vec::new()
+    } else {
+        applicable_schemes(&counts, validation.is_none())
+    };
     let genus = if validation.is_none() {
         halfedge::stats::genus(&counts)
     } else {
@@ -248,7 +267,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         let mesh = validate(&poly, &args.mesh)?;
         sub::verify(&mesh, &args.scheme, levels, &opts)
     }
-    .map_err(halfedge_failure)?;
+    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
@@ -377,7 +396,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         Some(mesh) => sub::subdivide(mesh, &args.scheme, levels, &opts).map(Output::Mesh),
         None => sub::subdivide_polygons(&poly, &args.scheme, levels, &opts).map(Output::Polygons),
     }
-    .map_err(halfedge_failure)?;
+    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
     let subdivide_s = t1.elapsed().as_secs_f64();
     if let Some(bar) = &bar {
         bar.finish_and_clear();

@@ -17,7 +17,7 @@ use num_bigint::{BigInt, Sign};
 use num_traits::ToPrimitive;
 
 use crate::args::{PlotArgs, Source};
-use crate::commands::{guard_digits, write_failure};
+use crate::commands::write_failure;
 use crate::failure::{input, usage, Failure};
 use crate::levels::parse_levels;
 use crate::model::{Dynamics, DEFAULT_COUNTS};
@@ -42,7 +42,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     }
     let dynamics = Dynamics::from_source(&args.source)?;
     let x0 = dynamics.initial_state(&args.source)?;
-    guard_digits(&dynamics, &x0, *levels.end(), false, false)?;
+    crate::commands::guard_table(&dynamics, &x0, &levels)?;
     let rows = dynamics.rows(&x0, levels.clone())?;
     let columns = dynamics.columns();
     let series = series_of(&columns, &rows);

@@ -127,7 +127,13 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
     let counts = match (&args.level, args.target_area) {
         (Some(level), _) => {
             let s = parse_level(level)?;
-            crate::commands::guard_digits(&dynamics, &x0, s, false, false)?;
+            crate::commands::guard_digits_for(
+                &dynamics,
+                &x0,
+                s,
+                false,
+                crate::commands::Hint::Levels,
+            )?;
             plan.level_counts(&x0, s).map_err(scheme_failure)?
         }
         (None, Some(area)) => {

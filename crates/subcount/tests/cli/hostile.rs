@@ -683,3 +683,50 @@ fn fit_with_polynomial_growth_and_a_huge_budget() {
         "{out}"
     );
 }
+
+/// A table or plot of very many levels is refused before any row is computed: the guard
+/// counts rows times columns times digits, not only the largest count.
+#[test]
+fn whole_tables_are_guarded() {
+    crate::util::fails(
+        &[
+            "table",
+            "--matrix",
+            "[[1]]",
+            "--init",
+            "1",
+            "--levels",
+            "0..=100000000000",
+        ],
+        4,
+        "would make a table of 100000000001 rows",
+    );
+    crate::util::fails(
+        &[
+            "table",
+            "--scheme",
+            "tri-split-1000000000",
+            "--base",
+            "icosahedron",
+            "--levels",
+            "0..=500000",
+        ],
+        4,
+        "the limits are 10^7 cells and 10^8 digits",
+    );
+}
+
+/// A face-list subdivider's refusal names the file and the line of the face.
+#[test]
+fn face_list_refusals_name_file_and_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("dup.obj");
+    std::fs::write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3\n").unwrap();
+    let path = path.to_str().unwrap();
+    let err = crate::util::fails(
+        &["verify", "--mesh", path, "--scheme", "loop-general"],
+        3,
+        "dup.obj: line 5: ",
+    );
+    assert!(err.contains("have the same vertices"), "{err}");
+}
