@@ -13,7 +13,7 @@ use recurrence::IntMatrix;
 
 use crate::class::Hints;
 use crate::scheme::{Component, Derivation, SchemeSpec, StepRule};
-use crate::{Error, FaceKind, MeshClass, Result, Scheme, Stat};
+use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Scheme, Stat};
 
 /// Aliases of `loop`: the same topology (4:1 split), different geometry in `halfedge`.
 pub const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
@@ -92,6 +92,95 @@ pub fn builtin(name: &str) -> Result<Scheme> {
         },
     };
     Ok(scheme.renamed(name))
+}
+
+/// # Aliases on meshes with boundary
+///
+/// The 4:1 aliases `midpoint`, `butterfly` and `icosphere` count as `loop` on closed meshes.
+/// Their geometry (in `halfedge`) also handles boundaries, so on a mesh with boundary edges
+/// and no non-manifold edge they count as `loop-boundary`, the same 4:1 topology: these
+/// methods pick the scheme that counts them for the mesh at hand, as `halfedge`'s subdivision
+/// does. `loop` itself, like every other scheme, is returned unchanged: it refuses a boundary
+/// ([`Scheme::initial_state`] says to use `loop-boundary`).
+impl Scheme {
+    /// Whether [`for_mesh`](Self::for_mesh) and [`for_counts`](Self::for_counts) may return
+    /// another scheme: true for the 4:1 aliases `midpoint`, `butterfly` and `icosphere`.
+    ///
+    /// ```
+    /// assert!(schemes::builtin("butterfly")?.has_boundary_variant());
+    /// assert!(!schemes::builtin("loop")?.has_boundary_variant());
+    /// # Ok::<(), schemes::Error>(())
+    /// ```
+    pub fn has_boundary_variant(&self) -> bool {
+        self.canonical_name() == "loop" && LOOP_ALIASES.contains(&self.name())
+    }
+
+    /// The scheme that counts this one on a mesh with `counts`: for a 4:1 alias on a mesh
+    /// with boundary edges and no non-manifold edge, `loop-boundary` under the alias's name
+    /// ([`canonical_name`](Self::canonical_name) says `loop-boundary`); otherwise a copy of
+    /// this scheme.
+    ///
+    /// ```
+    /// use schemes::{builtin, MeshCounts};
+    ///
+    /// let open_square = MeshCounts::from_polygons(&[[0, 1, 2], [0, 2, 3]])?;
+    /// let butterfly = builtin("butterfly")?.for_mesh(&open_square);
+    /// assert_eq!((butterfly.name(), butterfly.canonical_name()), ("butterfly", "loop-boundary"));
+    /// let c = butterfly.counts_at(&open_square, 1)?;
+    /// assert_eq!((c.vertices, c.edges, c.faces), (9.into(), 16.into(), 8.into()));
+    ///
+    /// // On a closed mesh it stays `loop`; `loop` itself still refuses the boundary.
+    /// let tetra = MeshCounts::from_polygons(&[[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]])?;
+    /// assert_eq!(builtin("butterfly")?.for_mesh(&tetra).canonical_name(), "loop");
+    /// let lp = builtin("loop")?.for_mesh(&open_square);
+    /// assert!(lp.initial_state(&open_square).unwrap_err().to_string().ends_with("use loop-boundary"));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn for_mesh(&self, counts: &MeshCounts) -> Scheme {
+        if self.has_boundary_variant() && counts.boundary_edges > 0 && counts.nonmanifold_edges == 0
+        {
+            return loop_boundary().renamed(self.name());
+        }
+        self.clone()
+    }
+
+    /// As [`for_mesh`](Self::for_mesh) for counts typed in: a 4:1 alias counts as
+    /// `loop-boundary` when the counts make a valid `loop-boundary` state (by its documented
+    /// identities, e.g. `BE = 2E - 3F`) with `BE > 0` and give no non-manifold edge.
+    ///
+    /// ```
+    /// use schemes::{builtin, CountsInput};
+    ///
+    /// let icosphere = builtin("icosphere")?;
+    /// // A 3x3 triangle grid: BE = 2E - 3F = 12.
+    /// let grid: CountsInput = "V=16,E=33,F=18".parse()?;
+    /// assert_eq!(icosphere.for_counts(&grid).canonical_name(), "loop-boundary");
+    /// // The icosahedron is closed (BE = 0), and V, E alone say nothing about a boundary.
+    /// for closed in ["V=12,E=30,F=20", "V=12,E=30"] {
+    ///     assert_eq!(icosphere.for_counts(&closed.parse()?).canonical_name(), "loop");
+    /// }
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn for_counts(&self, input: &CountsInput) -> Scheme {
+        if !self.has_boundary_variant()
+            || input
+                .get(Stat::NME.short_name())
+                .is_some_and(|n| n.sign() != num_bigint::Sign::NoSign)
+        {
+            return self.clone();
+        }
+        let boundary = loop_boundary();
+        let be = boundary
+            .state_names()
+            .iter()
+            .position(|n| n == Stat::BE.short_name());
+        match (boundary.state_from_input(input), be) {
+            (Ok(state), Some(i)) if state[i].sign() == num_bigint::Sign::Plus => {
+                boundary.renamed(self.name())
+            }
+            _ => self.clone(),
+        }
+    }
 }
 
 fn known_names() -> String {
@@ -627,4 +716,77 @@ pub fn tri_split(n: u64) -> Result<Scheme> {
         derive: vec![],
         hints: hints("catmull-clark", None, None),
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn counts(faces: &[&[u32]]) -> MeshCounts {
+        MeshCounts::from_polygons(faces).expect("valid faces")
+    }
+
+    /// The rule of `halfedge`'s subdivision: an alias counts as `loop-boundary` exactly when
+    /// the mesh has boundary edges and no non-manifold edge; the refusals keep the alias's
+    /// name and say what to use.
+    #[test]
+    fn aliases_follow_the_mesh() {
+        let open = counts(&[&[0, 1, 2], &[0, 2, 3]]);
+        let closed = counts(&[&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[2, 0, 3]]);
+        // Three triangles on one edge (NME = 1) and boundary edges.
+        let fin = counts(&[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
+        let open_quads = counts(&[&[0, 1, 2, 3]]);
+        for alias in LOOP_ALIASES {
+            let s = builtin(alias).expect("built-in");
+            assert_eq!(s.for_mesh(&open).canonical_name(), "loop-boundary");
+            assert_eq!(s.for_mesh(&open).name(), alias);
+            assert_eq!(s.for_mesh(&closed).canonical_name(), "loop");
+            let err = s.for_mesh(&fin).initial_state(&fin).unwrap_err();
+            assert_eq!(s.for_mesh(&fin).canonical_name(), "loop");
+            assert!(
+                err.to_string().starts_with(&format!("{alias} needs ")),
+                "{err}"
+            );
+            let err = s
+                .for_mesh(&open_quads)
+                .initial_state(&open_quads)
+                .unwrap_err();
+            assert_eq!(
+                err.to_string(),
+                format!("{alias} needs a triangle mesh, but this mesh has 1 face of degree 4; use catmull-clark")
+            );
+        }
+        for name in [
+            "loop",
+            "loop-boundary",
+            "loop-general",
+            "tri-split-2",
+            "ternary",
+        ] {
+            let s = builtin(name).expect("built-in");
+            assert!(!s.has_boundary_variant(), "{name}");
+            assert_eq!(s.for_mesh(&open), s, "{name}");
+        }
+    }
+
+    #[test]
+    fn aliases_follow_typed_counts() {
+        let s = builtin("midpoint").expect("built-in");
+        let resolve = |text: &str| {
+            let input: CountsInput = text.parse().expect("valid counts");
+            s.for_counts(&input).canonical_name().to_string()
+        };
+        assert_eq!(resolve("V=16,E=33,F=18"), "loop-boundary");
+        assert_eq!(resolve("V=16,IE=21,BE=12"), "loop-boundary");
+        assert_eq!(resolve("V=16,E=33,F=18,NME=0"), "loop-boundary");
+        // Closed, unknown boundary, a non-manifold edge, or counts that contradict.
+        for text in [
+            "V=12,E=30,F=20",
+            "V=12,E=30",
+            "V=16,E=33,F=18,NME=1",
+            "V=16,E=33,F=18,BE=5",
+        ] {
+            assert_eq!(resolve(text), "loop", "{text}");
+        }
+    }
 }

@@ -19,7 +19,10 @@
 //!   for the `n x n` period matrix `M`, so by Cayley-Hamilton they satisfy a linear
 //!   recurrence of order `n` with leading coefficient 1, and `n` consecutive zeros force
 //!   all later ones to vanish. The answer is then "every level" ([`Fit::Unbounded`]) or
-//!   "never" ([`Error::NeverReached`]).
+//!   "never" ([`Error::NeverReached`]), stated from the least level at which `q` settles:
+//!   since `q` never decreases from level 1 on, the levels in `1..=h` where `q` already has
+//!   its final value form an interval ending at `h`, found by bisection, and level 0 counts
+//!   when level 1 does. A constant scheme settles at level 0.
 //!
 //! Otherwise `q`, an integer that never decreases and is not eventually constant, grows
 //! without bound, so some probe crosses the bound: the search ends. (Levels are `u64`; and
@@ -59,13 +62,39 @@ pub struct MemoryBudget {
 }
 
 /// The answer of [`fit`].
+///
+/// # Example: counts that settle
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use schemes::{fit, Budget, Fit, Plan, Scheme};
+///
+/// let budget = Budget { max_vertices: Some(BigInt::from(100)), ..Budget::default() };
+/// let x0 = [10, 5, 3].map(BigInt::from);
+/// // The identity never changes the counts: every level fits, from level 0 on.
+/// let constant = Scheme::from_toml(
+///     "name = \"constant\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n",
+/// )?;
+/// let Fit::Unbounded { counts } = fit(&Plan::from(constant), &x0, &budget)? else { panic!() };
+/// assert_eq!((counts.level, counts.vertices), (0, BigInt::from(10)));
+/// // V' = V + E, E' = F, F' = 0: V is 10, 15, 18, 18, ...: it settles at level 2.
+/// let settles = Scheme::from_toml(
+///     "name = \"settles\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 1, 0], [0, 0, 1], [0, 0, 0]]\n",
+/// )?;
+/// let Fit::Unbounded { counts } = fit(&Plan::from(settles), &x0, &budget)? else { panic!() };
+/// assert_eq!((counts.level, counts.vertices), (2, BigInt::from(18)));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Fit {
     /// The highest level within the budget, with its counts.
     Level(LevelCounts),
-    /// Every level fits: the counts stop growing at `counts.level` and stay there.
+    /// Every level fits: the limited counts (those `budget` bounds) are the same at
+    /// `counts.level` and at every later level, and `counts.level` is the least such level.
+    /// It is 0 when the limited counts never change (a constant scheme, an empty mesh, or a
+    /// state that is a fixed point), and `k` when they last change from level `k - 1` to `k`.
     Unbounded {
-        /// The counts from which nothing changes any more.
+        /// The counts at the least level from which the limited counts never change.
         counts: LevelCounts,
     },
 }
@@ -207,7 +236,7 @@ impl Probe<'_> {
                 return self.bisect(hit, lo, (hi, values[0].clone()));
             }
             if values.len() > 1 && values.windows(2).all(|p| p[0] == p[1]) {
-                return Ok(Crossing::Never(h));
+                return Ok(Crossing::Never(self.settled_from(h, &values[0])?));
             }
             let end = h.saturating_add(w);
             lo = (end, values[values.len() - 1].clone());
@@ -222,6 +251,37 @@ impl Probe<'_> {
             }
             h = next;
         }
+    }
+
+    /// The least level from which the values are `settled`, given that they equal `settled`
+    /// at `h` and at every later level: 0 when they never change.
+    ///
+    /// From level 1 on the values never decrease (checked here as everywhere in the search),
+    /// so the levels in `1..=h` whose values equal those at `h` form an interval ending at `h`,
+    /// found by bisection; level 0 (before the monotone part) counts only when level 1 does.
+    fn settled_from(&self, h: u64, settled: &[BigInt]) -> Result<u64> {
+        if h == 0 {
+            return Ok(0);
+        }
+        let v1 = self.at(1)?;
+        self.check_order((1, &v1), (h, settled))?;
+        if v1 == settled {
+            return Ok(if self.at(0)? == settled { 0 } else { 1 });
+        }
+        // `lo` differs from `settled`, `hi` equals it.
+        let (mut lo, mut hi) = ((1u64, v1), h);
+        while hi - lo.0 > 1 {
+            let mid = lo.0 + (hi - lo.0) / 2;
+            let v = self.at(mid)?;
+            self.check_order((lo.0, &lo.1), (mid, &v))?;
+            self.check_order((mid, &v), (hi, settled))?;
+            if v == settled {
+                hi = mid;
+            } else {
+                lo = (mid, v);
+            }
+        }
+        Ok(hi)
     }
 
     fn bounded(
@@ -486,7 +546,141 @@ pub fn level_for_area(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Scheme;
+    use crate::{builtin, Scheme};
+
+    fn custom(name: &str, state: &str, matrix: &str) -> Plan {
+        let text = format!("name = \"{name}\"\nstate = {state}\nmatrix = {matrix}\n");
+        Plan::single(Scheme::from_toml(&text).expect("valid scheme"))
+    }
+
+    fn state(values: &[i64]) -> Vec<BigInt> {
+        values.iter().map(|&v| BigInt::from(v)).collect()
+    }
+
+    fn max_vertices(n: u64) -> Budget {
+        Budget {
+            max_vertices: Some(BigInt::from(n)),
+            ..Budget::default()
+        }
+    }
+
+    /// `(level, V)` of an unbounded answer.
+    fn settled(answer: Result<Fit>) -> (u64, BigInt) {
+        match answer {
+            Ok(Fit::Unbounded { counts }) => (counts.level, counts.vertices),
+            other => panic!("expected every level to fit, got {other:?}"),
+        }
+    }
+
+    /// Counts that never change settle at level 0, not 1 (the search's first window starts
+    /// at level 1, which used to be reported).
+    #[test]
+    fn constant_counts_settle_at_level_0() {
+        let identity = custom(
+            "constant",
+            "[\"V\", \"E\", \"F\"]",
+            "[[1, 0, 0], [0, 1, 0], [0, 0, 1]]",
+        );
+        let x0 = state(&[12, 30, 20]);
+        assert_eq!(
+            settled(fit(&identity, &x0, &max_vertices(100))),
+            (0, BigInt::from(12))
+        );
+        let every = Budget {
+            max_edges: Some(BigInt::from(30)),
+            max_faces: Some(BigInt::from(20)),
+            memory: Some(MemoryBudget {
+                bytes: BigInt::from(12 * 12 + 12 * 20),
+                bytes_per_vertex: 12,
+                bytes_per_edge: 0,
+                bytes_per_face: 12,
+            }),
+            ..max_vertices(12)
+        };
+        assert_eq!(settled(fit(&identity, &x0, &every)), (0, BigInt::from(12)));
+        // A growing scheme from a fixed point: Loop on counts with no edges (V' = V + E,
+        // E' = 4E), and on an empty mesh.
+        let plan = Plan::from(builtin("loop").expect("built-in"));
+        assert_eq!(
+            settled(fit(&plan, &state(&[5, 0]), &max_vertices(5))),
+            (0, BigInt::from(5))
+        );
+        assert_eq!(
+            settled(fit(&plan, &state(&[0, 0]), &max_vertices(0))),
+            (0, BigInt::from(0))
+        );
+        // The same for the area search: V never reaches the target, from level 0 on.
+        match level_for_area(&identity, &x0, 1.0, 1e-3) {
+            Err(Error::NeverReached { level, value, .. }) => {
+                assert_eq!((level, value.as_str()), (0, "12"));
+            }
+            other => panic!("expected NeverReached, got {other:?}"),
+        }
+    }
+
+    /// Counts that really change before they settle report the level where they last
+    /// change, before, inside and beyond the search's first window.
+    #[test]
+    fn settling_counts_report_their_last_change() {
+        let vef = "[\"V\", \"E\", \"F\"]";
+        // V' = V + E, E' = 0: V is 10, 15, 15, ...
+        let one = custom("one", vef, "[[1, 1, 0], [0, 0, 0], [0, 0, 1]]");
+        let x0 = state(&[10, 5, 3]);
+        assert_eq!(
+            settled(fit(&one, &x0, &max_vertices(100))),
+            (1, BigInt::from(15))
+        );
+        // V' = V + E, E' = F, F' = 0: V is 10, 15, 18, 18, ...
+        let two = custom("two", vef, "[[1, 1, 0], [0, 0, 1], [0, 0, 0]]");
+        assert_eq!(
+            settled(fit(&two, &x0, &max_vertices(100))),
+            (2, BigInt::from(18))
+        );
+        match level_for_area(&two, &x0, 1.0, 1e-3) {
+            Err(Error::NeverReached { level, value, .. }) => {
+                assert_eq!((level, value.as_str()), (2, "18"));
+            }
+            other => panic!("expected NeverReached, got {other:?}"),
+        }
+        // A chain of seven: V settles at level 6, past the first window (levels 1..=8 are
+        // not constant, the next window starts at 9), found by bisection.
+        let chain = custom(
+            "chain",
+            "[\"V\", \"E\", \"F\", \"a\", \"b\", \"c\", \"d\"]",
+            "[[1, 1, 0, 0, 0, 0, 0], [0, 0, 1, 0, 0, 0, 0], [0, 0, 0, 1, 0, 0, 0], \
+             [0, 0, 0, 0, 1, 0, 0], [0, 0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, 0, 1], \
+             [0, 0, 0, 0, 0, 0, 0]]",
+        );
+        let x0 = state(&[1, 1, 1, 1, 1, 1, 1]);
+        assert_eq!(
+            settled(fit(&chain, &x0, &max_vertices(1000))),
+            (6, BigInt::from(7))
+        );
+        // V drops at the first step (allowed before level 1), then stays: 100, 7, 7, ...
+        let drops = custom("drops", vef, "[[0, 1, 0], [0, 1, 0], [0, 0, 1]]");
+        assert_eq!(
+            settled(fit(&drops, &state(&[100, 7, 0]), &max_vertices(100))),
+            (1, BigInt::from(7))
+        );
+        // Two levels of Loop, then the identity: V is 12, 42, 162, 162, ...
+        let identity = Scheme::from_toml(
+            "name = \"constant\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n",
+        )
+        .expect("valid scheme");
+        let plan = Plan::from(builtin("loop").expect("built-in"))
+            .then(2, identity)
+            .expect("any mesh suits the identity");
+        assert_eq!(
+            settled(fit(&plan, &state(&[12, 30]), &max_vertices(1000))),
+            (2, BigInt::from(162))
+        );
+        // Growing counts are unchanged: the highest level within the budget.
+        let plan = Plan::from(builtin("loop").expect("built-in"));
+        match fit(&plan, &state(&[12, 30]), &max_vertices(641)) {
+            Ok(Fit::Level(c)) => assert_eq!((c.level, c.vertices), (2, BigInt::from(162))),
+            other => panic!("expected level 2, got {other:?}"),
+        }
+    }
 
     /// V grows like s^2: a budget beyond (2^64)^2 is never crossed at a level a `u64` can name.
     /// The search used to overflow `u64` (a panic); it must refuse with a typed error.

@@ -177,6 +177,53 @@ impl Plan {
         Ok(self)
     }
 
+    /// Whether a stage is a 4:1 alias that counts as `loop-boundary` on a mesh with boundary
+    /// ([`Scheme::has_boundary_variant`]), so that [`for_mesh`](Self::for_mesh) and
+    /// [`for_counts`](Self::for_counts) may change the plan.
+    pub fn has_boundary_variant(&self) -> bool {
+        self.stages.iter().any(|s| s.scheme.has_boundary_variant())
+    }
+
+    /// The plan that counts this one on a mesh with `counts`: every stage through
+    /// [`Scheme::for_mesh`], so a 4:1 alias (`midpoint`, `butterfly`, `icosphere`) counts as
+    /// `loop-boundary` on a mesh with boundary, as `halfedge`'s subdivision does. A later
+    /// stage is decided by the same input mesh: the refinement schemes keep a boundary, and
+    /// `loop-boundary` also counts a closed mesh exactly.
+    ///
+    /// ```
+    /// use schemes::{MeshCounts, Plan};
+    ///
+    /// let open_square = MeshCounts::from_polygons(&[[0, 1, 2], [0, 2, 3]])?;
+    /// let plan = Plan::parse("midpoint:1,butterfly")?.for_mesh(&open_square);
+    /// let canonical: Vec<&str> = plan.stages().iter().map(|s| s.scheme().canonical_name()).collect();
+    /// assert_eq!(canonical, ["loop-boundary", "loop-boundary"]);
+    /// assert_eq!(plan.name(), "midpoint:1,butterfly");
+    /// let c = plan.counts_at(&open_square, 2)?;
+    /// assert_eq!((c.vertices, c.edges, c.faces), (25.into(), 56.into(), 32.into()));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn for_mesh(&self, counts: &MeshCounts) -> Plan {
+        self.map_schemes(|s| s.for_mesh(counts))
+    }
+
+    /// As [`for_mesh`](Self::for_mesh) for counts typed in, through [`Scheme::for_counts`].
+    pub fn for_counts(&self, input: &CountsInput) -> Plan {
+        self.map_schemes(|s| s.for_counts(input))
+    }
+
+    fn map_schemes(&self, f: impl Fn(&Scheme) -> Scheme) -> Plan {
+        Plan {
+            stages: self
+                .stages
+                .iter()
+                .map(|s| Stage {
+                    scheme: f(&s.scheme),
+                    levels: s.levels,
+                })
+                .collect(),
+        }
+    }
+
     /// The stages in order.
     pub fn stages(&self) -> &[Stage] {
         &self.stages

@@ -398,7 +398,8 @@ impl Scheme {
     }
 
     /// The canonical name of the topology rule, e.g. `loop` for `midpoint`, `butterfly` and
-    /// `icosphere`; equal to [`name`](Self::name) when no alias was used.
+    /// `icosphere` (`loop-boundary` for them on a mesh with boundary, see
+    /// [`for_mesh`](Self::for_mesh)); equal to [`name`](Self::name) when no alias was used.
     pub fn canonical_name(&self) -> &str {
         &self.canonical
     }
