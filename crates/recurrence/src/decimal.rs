@@ -1,0 +1,484 @@
+//! Decimal rendering of big integers in subquadratic time.
+//!
+//! num-bigint 0.4 converts to decimal by repeated division by `10^19`, which is quadratic:
+//! a 602,062-digit count (Catmull-Clark at level `10^6`) takes a quarter of a second. Here
+//! the number is split recursively, `n = q 10^w + r`, along a tree of powers `10^(k 2^i)`,
+//! down to leaves of at most 38 digits written from a `u128`:
+//!
+//! - a power of ten `10^w = 5^w 2^w` divides as a shift and a division by `5^w`, which has
+//!   30 % fewer bits;
+//! - at the large levels the quotient comes from a Newton reciprocal of `5^w` (computed once
+//!   per level) and two multiplications, then is corrected by a few units; products of more
+//!   than a few thousand limbs use number-theoretic transforms ([`ntt`]), since num-bigint's
+//!   Toom-3 is what would dominate;
+//! - small levels use num-bigint's own division.
+//!
+//! The result is exactly num-bigint's `to_string`: same digits, a `-` for negative numbers,
+//! `0` for zero.
+
+mod ntt;
+
+use std::fmt;
+
+use num_bigint::{BigInt, BigUint, Sign};
+use num_traits::{ToPrimitive, Zero};
+
+/// The decimal digits of `n`, exactly as `n.to_string()` gives them, in subquadratic time.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use recurrence::to_decimal;
+///
+/// let n = BigInt::from(3).pow(100_000u32); // 47,713 digits
+/// let text = to_decimal(&n);
+/// assert_eq!(text.len(), 47_713);
+/// assert_eq!(text, n.to_string());
+///
+/// let nines = BigInt::from(10).pow(50_000u32) - 1;
+/// assert_eq!(to_decimal(&nines), "9".repeat(50_000));
+/// assert_eq!(to_decimal(&BigInt::from(-42)), "-42");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn to_decimal(n: &BigInt) -> String {
+    let mut out = String::with_capacity(decimal_digits_bound(n.magnitude()) as usize + 1);
+    // Writing into a String cannot fail.
+    let _ = write_decimal(&mut out, n);
+    out
+}
+
+/// Writes the decimal digits of `n` (as [`to_decimal`] gives them) into `out`, a few dozen
+/// digits at a time, without building the whole string.
+///
+/// For an [`std::io::Write`], use [`Decimal`] with `write!`.
+///
+/// # Errors
+///
+/// Whatever `out` returns.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use recurrence::write_decimal;
+///
+/// let mut text = String::from("F = ");
+/// write_decimal(&mut text, &(BigInt::from(20) << 200u32))?;
+/// assert_eq!(text, "F = 32138760885179805510839241846823252050444059875655856706027520");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_decimal<W: fmt::Write + ?Sized>(out: &mut W, n: &BigInt) -> fmt::Result {
+    if n.sign() == Sign::Minus {
+        out.write_char('-')?;
+    }
+    write_magnitude(out, n.magnitude())
+}
+
+/// A big integer to format in decimal with the fast conversion: `format!("{}", ..)` and
+/// `write!` give the same text as the integer's own `Display`, widths and `+` flags
+/// included.
+///
+/// Without a width, the digits stream into the formatter piece by piece, so writing to an
+/// [`std::io::Write`] builds no copy of the number.
+///
+/// ```
+/// use std::io::Write;
+/// use num_bigint::{BigInt, BigUint};
+/// use recurrence::Decimal;
+///
+/// let n = BigInt::from(7).pow(5000u32);
+/// let mut out: Vec<u8> = Vec::new();
+/// write!(out, "{}", Decimal::from(&n))?;
+/// assert_eq!(out, n.to_string().into_bytes());
+///
+/// let small = BigUint::from(1234u32);
+/// assert_eq!(format!("[{:>6}]", Decimal::from(&small)), "[  1234]");
+/// assert_eq!(format!("{:+}", Decimal::from(&BigInt::from(-5))), "-5");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Decimal<'a> {
+    negative: bool,
+    magnitude: &'a BigUint,
+}
+
+impl<'a> From<&'a BigInt> for Decimal<'a> {
+    fn from(n: &'a BigInt) -> Self {
+        Decimal {
+            negative: n.sign() == Sign::Minus,
+            magnitude: n.magnitude(),
+        }
+    }
+}
+
+impl<'a> From<&'a BigUint> for Decimal<'a> {
+    fn from(n: &'a BigUint) -> Self {
+        Decimal {
+            negative: false,
+            magnitude: n,
+        }
+    }
+}
+
+impl fmt::Display for Decimal<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if f.width().is_none() && !f.sign_plus() && !f.sign_aware_zero_pad() {
+            if self.negative {
+                f.write_str("-")?;
+            }
+            return write_magnitude(f, self.magnitude);
+        }
+        let mut digits = String::with_capacity(decimal_digits_bound(self.magnitude) as usize);
+        write_magnitude(&mut digits, self.magnitude)?;
+        f.pad_integral(!self.negative, "", &digits)
+    }
+}
+
+/// An upper bound on the number of decimal digits of `n`: `ceil(bits log10 2)`, at least 1.
+fn decimal_digits_bound(n: &BigUint) -> u64 {
+    // 30103 / 100000 > log10(2), so this never undercounts.
+    (n.bits() * 30_103).div_ceil(100_000).max(1)
+}
+
+/// Leaves are `u128`s below `10^38`.
+const LEAF_MAX_DIGITS: u64 = 38;
+
+/// Levels of at least this many digits divide with Newton reciprocals; smaller ones with
+/// num-bigint's schoolbook division.
+const NEWTON_MIN_DIGITS: u64 = 4_000;
+
+/// Numbers of at most this many bits go to num-bigint's `to_string` directly.
+const DIRECT_MAX_BITS: u64 = 2_000;
+
+fn write_magnitude<W: fmt::Write + ?Sized>(out: &mut W, n: &BigUint) -> fmt::Result {
+    if n.bits() <= DIRECT_MAX_BITS {
+        return match n.to_u128() {
+            Some(v) => write!(out, "{v}"),
+            None => write!(out, "{n}"),
+        };
+    }
+    let tree = PowerTree::new(decimal_digits_bound(n));
+    let mut writer = DigitWriter { out, tree: &tree };
+    writer.write(n, tree.levels.len() - 1, false)
+}
+
+/// Powers `10^(w_i)`, `w_i = k 2^i`, for the splits, with what each level's division needs.
+struct PowerTree {
+    /// Leaf width `k` in digits (at most [`LEAF_MAX_DIGITS`]).
+    leaf_digits: u64,
+    levels: Vec<Level>,
+}
+
+/// One level of the tree: numbers below `10^(2w)` split into two halves of `w` digits.
+struct Level {
+    /// `w`, the number of digits of the lower half.
+    digits: u64,
+    /// `5^w`.
+    five: BigUint,
+    /// For the Newton levels: `V ~ 2^(bits(5^w) + precision) / 5^w`.
+    reciprocal: Option<Reciprocal>,
+}
+
+struct Reciprocal {
+    value: BigUint,
+    precision: u64,
+    /// Transforms of `V` and `5^w` shared by the level's splits, for levels large enough.
+    transforms: Option<LevelTransforms>,
+}
+
+struct LevelTransforms {
+    /// `V` at a length that holds `(n >> t) V` whole.
+    reciprocal: ntt::Transform,
+    /// `5^w` at a length `L` with `2^(64 L) > 2^64 5^w`, for `q 5^w mod (2^(64 L) - 1)`.
+    five: ntt::Transform,
+    /// `2^(64 L) - 1`.
+    modulus: BigUint,
+}
+
+impl Reciprocal {
+    /// The reciprocal of `five = 5^w` for quotients below `10^w`, with transforms when
+    /// `5^w` has at least `transform_min_limbs` limbs.
+    fn new(five: &BigUint, w: u64, transform_min_limbs: usize) -> Reciprocal {
+        let precision = bits_of_pow10(w) + 8;
+        let value = reciprocal(five, precision);
+        let transforms = (ntt::limbs(five) >= transform_min_limbs).then(|| {
+            // n < 10^(2w): n >> w >> (bits(5^w) - 1) has at most this many bits.
+            let top_bits = bits_of_pow10(2 * w) - w - (five.bits() - 1) + 1;
+            let top_limbs = top_bits.div_ceil(64) as usize;
+            let q_len = ntt::transform_len(top_limbs + ntt::limbs(&value));
+            let r_len = ntt::transform_len(ntt::limbs(five) + 1);
+            LevelTransforms {
+                reciprocal: ntt::Transform::new(&value, q_len),
+                five: ntt::Transform::new(five, r_len),
+                modulus: (BigUint::from(1u32) << (64 * r_len as u64)) - 1u32,
+            }
+        });
+        Reciprocal {
+            value,
+            precision,
+            transforms,
+        }
+    }
+}
+
+impl PowerTree {
+    /// The tree for numbers of at most `digits` digits.
+    fn new(digits: u64) -> PowerTree {
+        // Smallest number of levels m + 1 with ceil(digits / 2^(m+1)) <= LEAF_MAX_DIGITS.
+        let mut levels = 1u32;
+        while digits.div_ceil(1 << levels) > LEAF_MAX_DIGITS {
+            levels += 1;
+        }
+        let leaf_digits = digits.div_ceil(1 << levels);
+        let mut out: Vec<Level> = Vec::with_capacity(levels as usize);
+        for i in 0..levels {
+            let w = leaf_digits << i;
+            let five = match out.last() {
+                None => BigUint::from(5u32).pow(w as u32),
+                Some(prev) => ntt_aware_mul(&prev.five, &prev.five),
+            };
+            let reciprocal =
+                (w >= NEWTON_MIN_DIGITS).then(|| Reciprocal::new(&five, w, NTT_MIN_LIMBS));
+            out.push(Level {
+                digits: w,
+                five,
+                reciprocal,
+            });
+        }
+        PowerTree {
+            leaf_digits,
+            levels: out,
+        }
+    }
+}
+
+/// `bits(10^w)` bound: `ceil(w log2 10)` (never an undercount).
+fn bits_of_pow10(w: u64) -> u64 {
+    // 332193 / 100000 > log2(10) = 3.3219280...
+    (w * 332_193).div_ceil(100_000) + 1
+}
+
+struct DigitWriter<'a, W: ?Sized> {
+    out: &'a mut W,
+    tree: &'a PowerTree,
+}
+
+impl<W: fmt::Write + ?Sized> DigitWriter<'_, W> {
+    /// Writes `n < 10^(2 w_level)`; `pad` writes exactly `2 w_level` digits.
+    fn write(&mut self, n: &BigUint, level: usize, pad: bool) -> fmt::Result {
+        let lvl = &self.tree.levels[level];
+        if !pad && n.bits() <= 128 && n.to_u128().is_some_and(|v| v < pow10_u128(38)) {
+            return self.leaf(n, 0, false);
+        }
+        let (q, r) = split(n, lvl);
+        if level == 0 {
+            self.leaf(&q, self.tree.leaf_digits, pad)?;
+            return self.leaf(&r, self.tree.leaf_digits, true);
+        }
+        if pad || !q.is_zero() {
+            self.write(&q, level - 1, pad)?;
+            self.write(&r, level - 1, true)
+        } else {
+            self.write(&r, level - 1, false)
+        }
+    }
+
+    /// Writes `n < 10^38`, zero-padded to `width` digits if `pad`.
+    fn leaf(&mut self, n: &BigUint, width: u64, pad: bool) -> fmt::Result {
+        let v = n.to_u128().unwrap_or(0);
+        debug_assert!(n.bits() <= 128, "leaf of {} bits", n.bits());
+        if pad {
+            write!(self.out, "{v:0width$}", width = width as usize)
+        } else {
+            write!(self.out, "{v}")
+        }
+    }
+}
+
+fn pow10_u128(k: u32) -> u128 {
+    10u128.pow(k)
+}
+
+/// `(q, r)` with `n = q 10^w + r`, `0 <= r < 10^w`, for `n < 10^(2w)`.
+fn split(n: &BigUint, lvl: &Level) -> (BigUint, BigUint) {
+    let w = lvl.digits;
+    let high = n >> w;
+    let (q, r_high) = match &lvl.reciprocal {
+        Some(recip) => div_newton(&high, &lvl.five, recip),
+        None => num_integer::Integer::div_rem(&high, &lvl.five),
+    };
+    let r = (r_high << w) | low_bits(n, w);
+    (q, r)
+}
+
+/// `n mod 2^k`.
+fn low_bits(n: &BigUint, k: u64) -> BigUint {
+    let words = k.div_ceil(32) as usize;
+    let mut digits: Vec<u32> = n.iter_u32_digits().take(words).collect();
+    if let Some(last) = digits.get_mut(words.wrapping_sub(1)) {
+        let rem = k % 32;
+        if rem != 0 {
+            *last &= (1u32 << rem) - 1;
+        }
+    }
+    BigUint::new(digits)
+}
+
+/// Products of operands of at least this many 64-bit limbs (the shorter one) use
+/// transforms.
+const NTT_MIN_LIMBS: usize = 1_000;
+
+fn ntt_aware_mul(a: &BigUint, b: &BigUint) -> BigUint {
+    if ntt::limbs(a).min(ntt::limbs(b)) >= NTT_MIN_LIMBS {
+        ntt::mul(a, b)
+    } else {
+        a * b
+    }
+}
+
+/// `V ~ 2^(bits(d) + p) / d` with a relative error of a few `2^-p`.
+fn reciprocal(d: &BigUint, p: u64) -> BigUint {
+    let f = d.bits();
+    if f > p + 64 {
+        // Only the leading p + 64 bits of d matter.
+        return reciprocal(&(d >> (f - p - 64)), p);
+    }
+    if p <= 4_096 {
+        return (BigUint::from(1u32) << (f + p)) / d;
+    }
+    let h = p / 2 + 32;
+    let v = reciprocal(d, h); // ~ 2^(f + h) / d
+                              // e = 2^(f+h) - d v is small: |e| ~ 2^(f+h) |error of v| ~ 2^f.
+    let dv = ntt_aware_mul(d, &v);
+    let one = BigUint::from(1u32) << (f + h);
+    let (e, e_negative) = if one >= dv {
+        (one - dv, false)
+    } else {
+        (dv - one, true)
+    };
+    // The correction v e / 2^(f + 2h - p) needs only ~h + 64 leading bits of e.
+    let e_bits = e.bits();
+    let cut = e_bits.saturating_sub(h + 64);
+    let e = e >> cut;
+    let shift = (f + 2 * h - p) - cut;
+    let correction = ntt_aware_mul(&v, &e) >> shift;
+    let base = v << (p - h);
+    if e_negative {
+        base - correction
+    } else {
+        base + correction
+    }
+}
+
+/// `(n / d, n mod d)` for a quotient below `2^(recip.precision - 8)`, from the reciprocal
+/// of `d`, corrected to the exact values.
+fn div_newton(n: &BigUint, d: &BigUint, recip: &Reciprocal) -> (BigUint, BigUint) {
+    let f = d.bits();
+    // q ~ n V / 2^(f + p); dropping the low f - 1 bits of n costs less than one unit.
+    let t = f - 1;
+    let top = n >> t;
+    let shift = f + recip.precision - t;
+    let Some(tr) = &recip.transforms else {
+        let mut q = ntt_aware_mul(&top, &recip.value) >> shift;
+        let mut qd = ntt_aware_mul(&q, d);
+        while qd > *n {
+            q -= 1u32;
+            qd -= d;
+        }
+        let mut r = n - qd;
+        while r >= *d {
+            q += 1u32;
+            r -= d;
+        }
+        return (q, r);
+    };
+    let product = if ntt::limbs(&top) + ntt::limbs(&recip.value) <= tr.reciprocal.len() {
+        ntt::mul_cyclic(&top, &tr.reciprocal)
+    } else {
+        ntt::mul(&top, &recip.value)
+    };
+    let mut q = product >> shift;
+    // r = n - q d is within a few d of [0, d), far less than M / 2 (M = 2^(64 L) - 1), so
+    // it follows from n - q d mod M.
+    let qd = ntt::mul_cyclic(&q, &tr.five);
+    let nm = ntt::wrap(n.clone(), tr.five.len());
+    let r_mod = if nm >= qd {
+        nm - qd
+    } else {
+        nm + &tr.modulus - qd
+    };
+    let mut r = if r_mod > (&tr.modulus >> 1u32) {
+        // negative: r = r_mod - M; step q down until r >= 0
+        let mut deficit = &tr.modulus - r_mod;
+        loop {
+            q -= 1u32;
+            if deficit <= *d {
+                break d - deficit;
+            }
+            deficit -= d;
+        }
+    } else {
+        r_mod
+    };
+    while r >= *d {
+        q += 1u32;
+        r -= d;
+    }
+    (q, r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_traits::One;
+
+    #[test]
+    fn ntt_products_match_num_bigint() {
+        for (a, b) in [
+            (3u32, 20_000u32),
+            (7, 30_000),
+            (10, 40_000),
+            (2, 64 * 2048 - 1),
+        ] {
+            let x = BigUint::from(a).pow(b);
+            let y = BigUint::from(b + 17).pow(b / 3) - 1u32;
+            assert_eq!(ntt::mul(&x, &y), &x * &y, "{a}^{b}");
+            assert_eq!(ntt::mul(&x, &x), &x * &x, "{a}^{b} squared");
+        }
+        let max = (BigUint::one() << (64 * 3000)) - 1u32;
+        assert_eq!(ntt::mul(&max, &max), &max * &max);
+        let one = BigUint::one();
+        assert_eq!(ntt::mul(&max, &one), max);
+        assert_eq!(ntt::mul(&max, &BigUint::zero()), BigUint::zero());
+    }
+
+    #[test]
+    fn reciprocal_within_a_few_units() {
+        let d = BigUint::from(5u32).pow(40_000u32);
+        for p in [100, 5_000, 20_000, 150_000] {
+            let v = reciprocal(&d, p);
+            let exact = (BigUint::one() << (d.bits() + p)) / &d;
+            let diff = if v > exact { &v - &exact } else { &exact - &v };
+            assert!(diff <= BigUint::from(4u32), "p = {p}: off by {diff}");
+        }
+    }
+
+    #[test]
+    fn newton_division_is_exact() {
+        let w = 30_000u64;
+        let five = BigUint::from(5u32).pow(w as u32);
+        let ten_w = BigUint::from(10u32).pow(w as u32);
+        for n in [
+            BigUint::zero(),
+            &five - 1u32,
+            five.clone(),
+            &ten_w - 1u32,
+            BigUint::from(3u32).pow(60_000u32) >> w,
+            (&ten_w * &ten_w - 1u32) >> w,
+        ] {
+            let expected = (&n / &five, &n % &five);
+            for transform_min_limbs in [0, usize::MAX] {
+                let recip = Reciprocal::new(&five, w, transform_min_limbs);
+                assert_eq!(recip.transforms.is_some(), transform_min_limbs == 0);
+                assert_eq!(div_newton(&n, &five, &recip), expected);
+            }
+        }
+    }
+}
