@@ -1,7 +1,9 @@
 //! What a command counts: a recurrence (from `--matrix`) or a scheme plan (from `--scheme`,
 //! `--scheme-file`), and its initial state (from `--init`, `--counts`, `--mesh` or `--base`).
 
+use std::cell::RefCell;
 use std::ops::RangeInclusive;
+use std::path::PathBuf;
 
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
@@ -108,19 +110,64 @@ pub(crate) fn not_applicable(mesh: &MeshSource, e: schemes::Error) -> Failure {
     input!("{}: {e}", mesh_label(mesh))
 }
 
+thread_local! {
+    /// The mesh source last counted by [`mesh_counts`] and its statistics: resolving a
+    /// scheme against the mesh ([`Dynamics::from_source`]) and mapping the mesh to the
+    /// initial state ([`Dynamics::initial_state`]) read the file once.
+    static COUNTED: RefCell<Option<(MeshKey, MeshCounts)>> = const { RefCell::new(None) };
+}
+
+/// What identifies a mesh source: the file and the base mesh name.
+type MeshKey = (Option<PathBuf>, Option<String>);
+
 /// The statistics of the mesh named by `--mesh` or `--base`, if any.
 pub(crate) fn mesh_counts(mesh: &MeshSource) -> Result<Option<MeshCounts>, Failure> {
+    let key: MeshKey = (mesh.mesh.clone(), mesh.base.clone());
+    if let Some(counts) = COUNTED.with_borrow(|c| {
+        c.as_ref()
+            .filter(|(k, _)| *k == key)
+            .map(|(_, counts)| counts.clone())
+    }) {
+        return Ok(Some(counts));
+    }
     match load_mesh(mesh)? {
         Some(poly) => {
             refuse_degenerate_faces(&poly, mesh)?;
-            Ok(Some(halfedge::stats::face_list_counts(&poly)))
+            let counts = halfedge::stats::face_list_counts(&poly);
+            COUNTED.set(Some((key, counts.clone())));
+            Ok(Some(counts))
         }
         None => Ok(None),
     }
 }
 
+/// The plan that counts `plan` on the initial state the flags name: the 4:1 aliases
+/// (`midpoint`, `butterfly`, `icosphere`) count as `loop-boundary` on a mesh with boundary,
+/// exactly as `subdivide` and `verify` count them ([`Plan::for_mesh`], [`Plan::for_counts`]).
+/// `loop` itself is unchanged (it refuses a boundary). With no mesh or counts, or with more
+/// than one initial state (a usage error [`Dynamics::initial_state`] reports), or counts
+/// that do not parse (reported there too), the plan is unchanged.
+fn for_initial_state(plan: Plan, source: &Source) -> Result<Plan, Failure> {
+    if !plan.has_boundary_variant() {
+        return Ok(plan);
+    }
+    let mesh_given = source.mesh.mesh.is_some() || source.mesh.base.is_some();
+    match (&source.init, &source.counts, mesh_given) {
+        (None, Some(text), false) => Ok(match CountsInput::parse(text) {
+            Ok(input) => plan.for_counts(&input),
+            Err(_) => plan,
+        }),
+        (None, None, true) => Ok(match mesh_counts(&source.mesh)? {
+            Some(counts) => plan.for_mesh(&counts),
+            None => plan,
+        }),
+        _ => Ok(plan),
+    }
+}
+
 impl Dynamics {
-    /// Builds the rule named by the flags, or the default (`loop`).
+    /// Builds the rule named by the flags, or the default (`loop`), counted for the initial
+    /// state the flags name (a 4:1 alias on a mesh with boundary counts as `loop-boundary`).
     pub(crate) fn from_source(source: &Source) -> Result<Dynamics, Failure> {
         if let Some(text) = source.matrix.as_deref() {
             if source.scheme.is_some() || source.scheme_file.is_some() {
@@ -154,7 +201,7 @@ impl Dynamics {
             (None, Some(custom)) => Plan::single(custom),
             (None, None) => Plan::parse(DEFAULT_SCHEME).map_err(scheme_failure)?,
         };
-        Ok(Dynamics::Plan(plan))
+        Ok(Dynamics::Plan(for_initial_state(plan, source)?))
     }
 
     /// Whether neither a matrix nor a scheme was named (the built-in default).

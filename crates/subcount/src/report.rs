@@ -107,8 +107,14 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
     Ok(0)
 }
 
+/// The note of a [`Fit::Unbounded`] answer: the limited counts are the same at `level` and
+/// every later level, and `level` is the least such level.
 fn unbounded_note(level: u64) -> String {
-    format!("every level fits: the limited counts stop growing at level {level}")
+    if level == 0 {
+        "every level fits: the limited counts never change (level 0 and every later level have the same counts)".to_string()
+    } else {
+        format!("every level fits: the limited counts stop changing at level {level} (level {level} and every later level have the same counts)")
+    }
 }
 
 fn row_text(columns: &[String], row: &Row) -> String {

@@ -1,6 +1,9 @@
-//! `schemes`, `--scheme-file` (examples, round trips, broken files) and `table --scheme`.
+//! `schemes`, `--scheme-file` (examples, round trips, broken files), `table --scheme`, `fit`
+//! when the counts stop changing, and the 4:1 aliases on meshes with boundary.
 
-use crate::util::{data, example_scheme, fails, ok};
+use std::path::Path;
+
+use crate::util::{data, example_scheme, fails, meshes, ok};
 
 const BUILTINS: [&str; 12] = [
     "loop",
@@ -751,4 +754,360 @@ fn formula_json_evaluates_to_the_table() {
         rust.contains("pub fn loop_counts(x0: [i128; 2], s: u64) -> Option<[i128; 2]>"),
         "{rust}"
     );
+}
+
+// ---- `fit` when the counts stop changing ----
+
+/// `fit`'s text and JSON for a custom scheme file and counts, with `--max-vertices`.
+fn fit_outputs(scheme_file: &str, counts: &str, max_vertices: &str) -> (String, String) {
+    let args = [
+        "fit",
+        "--scheme-file",
+        scheme_file,
+        "--counts",
+        counts,
+        "--max-vertices",
+        max_vertices,
+    ];
+    let text = ok(&args);
+    let mut json_args = args.to_vec();
+    json_args.extend(["--format", "json"]);
+    (text, ok(&json_args))
+}
+
+/// Counts that never change fit at every level from level 0 on (the search used to report
+/// level 1, its first probe); counts that settle report the level of their last change; the
+/// growing case is unchanged.
+#[test]
+fn fit_reports_the_level_from_which_the_counts_never_change() {
+    let dir = tempfile::tempdir().unwrap();
+    // The identity: 12, 30, 20 at every level.
+    let (text, json) = fit_outputs(&data("constant.toml"), "V=12,E=30,F=20", "100");
+    assert_eq!(
+        text,
+        "every level fits: the limited counts never change (level 0 and every later level have the same counts)\nV = 12\nE = 30\nF = 20\n"
+    );
+    assert_eq!(
+        json,
+        "{\"level\": null, \"note\": \"every level fits: the limited counts never change (level 0 and every later level have the same counts)\", \"from_level\": 0, \"V\": 12, \"E\": 30, \"F\": 20}\n"
+    );
+    // A built-in from a fixed point: Loop on counts with no edges (V' = V + E, E' = 4E).
+    assert_eq!(
+        ok(&["fit", "--scheme", "loop", "--counts", "V=5,E=0,F=0", "--max-vertices", "5"]),
+        "every level fits: the limited counts never change (level 0 and every later level have the same counts)\nV = 5\nE = 0\nF = 0\n"
+    );
+    // V' = V + E, E' = F, F' = 0 from (10, 5, 3): V is 10, 15, 18, 18, ...
+    let settles = dir.path().join("settles.toml");
+    std::fs::write(
+        &settles,
+        "name = \"settles\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 1, 0], [0, 0, 1], [0, 0, 0]]\n",
+    )
+    .unwrap();
+    let settles = settles.to_str().unwrap();
+    let (text, json) = fit_outputs(settles, "V=10,E=5,F=3", "100");
+    assert_eq!(
+        text,
+        "every level fits: the limited counts stop changing at level 2 (level 2 and every later level have the same counts)\nV = 18\nE = 0\nF = 0\n"
+    );
+    assert_eq!(
+        json,
+        "{\"level\": null, \"note\": \"every level fits: the limited counts stop changing at level 2 (level 2 and every later level have the same counts)\", \"from_level\": 2, \"V\": 18, \"E\": 0, \"F\": 0}\n"
+    );
+    // From (10, 5, 0) V is 10, 15, 15, ...: it stops changing at level 1.
+    let (_, json) = fit_outputs(settles, "V=10,E=5,F=0", "100");
+    assert_eq!(
+        json,
+        "{\"level\": null, \"note\": \"every level fits: the limited counts stop changing at level 1 (level 1 and every later level have the same counts)\", \"from_level\": 1, \"V\": 15, \"E\": 0, \"F\": 0}\n"
+    );
+    // A budget level 2 exceeds: the highest level within it, as for growing counts.
+    let (text, _) = fit_outputs(settles, "V=10,E=5,F=3", "17");
+    assert_eq!(
+        text,
+        "highest level within the budget: 1\nV = 15\nE = 3\nF = 0\n"
+    );
+    // The growing case: V = 12, 42, 162, 642 under Loop.
+    assert_eq!(
+        ok(&[
+            "fit",
+            "--scheme",
+            "loop",
+            "--counts",
+            "V=12,E=30,F=20",
+            "--max-vertices",
+            "641"
+        ]),
+        "highest level within the budget: 2\nV = 162\nE = 480\nF = 320\n"
+    );
+}
+
+// ---- the 4:1 aliases on meshes with boundary ----
+
+const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = ok(args);
+    serde_json::from_str(&out).unwrap_or_else(|e| panic!("subcount {args:?}: {e}: {out}"))
+}
+
+/// The counts every prediction must equal: V, E, F of `subdivide` to `level`.
+fn subdivided(mesh: &[&str], scheme: &str, level: u64) -> [u64; 3] {
+    let mut args = vec!["subdivide", "--scheme", scheme];
+    args.extend(mesh);
+    let level_text = level.to_string();
+    args.extend(["--levels", &level_text]);
+    let out = ok(&args);
+    let rest = out
+        .strip_prefix(&format!("level {level}: V = "))
+        .and_then(|r| r.strip_suffix(" (no -o: nothing written)\n"))
+        .unwrap_or_else(|| panic!("subdivide output: {out}"));
+    let v: Vec<u64> = rest
+        .split(", ")
+        .enumerate()
+        .map(|(i, part)| {
+            let value = if i == 0 {
+                Some(part)
+            } else {
+                part.split(" = ").nth(1)
+            };
+            value
+                .and_then(|v| v.parse().ok())
+                .unwrap_or_else(|| panic!("{out}"))
+        })
+        .collect();
+    [v[0], v[1], v[2]]
+}
+
+/// Every count-predicting command gives, for an alias on `mesh` (which has a boundary),
+/// exactly the counts `subdivide` builds and `verify` checks: those of `loop-boundary`.
+fn check_alias_on_boundary(mesh: &[&str], levels: u64, plot_dir: &Path) {
+    let with = |head: &[&str], scheme: &str, tail: &[&str]| -> Vec<String> {
+        let mut v: Vec<String> = head.iter().map(|s| s.to_string()).collect();
+        v.extend(["--scheme".to_string(), scheme.to_string()]);
+        v.extend(mesh.iter().map(|s| s.to_string()));
+        v.extend(tail.iter().map(|s| s.to_string()));
+        v
+    };
+    let run =
+        |args: Vec<String>| -> String { ok(&args.iter().map(String::as_str).collect::<Vec<_>>()) };
+    let range = format!("0..={levels}");
+    let table_args = |scheme: &str| {
+        with(
+            &["table"],
+            scheme,
+            &["--levels", &range, "--format", "json"],
+        )
+    };
+    let expected: serde_json::Value =
+        serde_json::from_str(&run(table_args("loop-boundary"))).unwrap();
+    let row = |s: u64| &expected[s as usize];
+    let count = |s: u64, key: &str| row(s)[key].as_u64().unwrap();
+    let formula = run(with(&["formula"], "loop-boundary", &[]));
+    assert!(formula.contains("IE(s) = "), "{formula}");
+    for alias in LOOP_ALIASES {
+        let table: serde_json::Value = serde_json::from_str(&run(table_args(alias))).unwrap();
+        assert_eq!(table, expected, "{alias} on {mesh:?}");
+        for s in 1..=levels {
+            assert_eq!(
+                subdivided(mesh, alias, s),
+                [count(s, "V"), count(s, "E"), count(s, "F")],
+                "{alias} on {mesh:?}: level {s}"
+            );
+        }
+        let verify = run(with(&["verify"], alias, &["--levels", &levels.to_string()]));
+        assert!(
+            verify.ends_with("all counts match the prediction\n"),
+            "{verify}"
+        );
+        let mut rows = 0;
+        for line in verify.lines().skip(2).filter(|l| !l.starts_with("all ")) {
+            let f: Vec<&str> = line.split_whitespace().collect();
+            let s: u64 = f[0].parse().unwrap();
+            assert_eq!(f[2], f[3], "{alias} on {mesh:?}: {line}");
+            assert_eq!(
+                f[2],
+                row(s)[f[1]].to_string(),
+                "{alias} on {mesh:?}: {line}"
+            );
+            rows += 1;
+        }
+        assert_eq!(rows, 5 * (levels + 1), "{verify}");
+        let at = run(with(
+            &["at"],
+            alias,
+            &["--level", &levels.to_string(), "--format", "json"],
+        ));
+        assert_eq!(
+            serde_json::from_str::<serde_json::Value>(&at).unwrap(),
+            *row(levels),
+            "{alias}"
+        );
+        assert_eq!(run(with(&["formula"], alias, &[])), formula, "{alias}");
+        let faces = count(levels, "F").to_string();
+        let fit = run(with(
+            &["fit"],
+            alias,
+            &["--max-faces", &faces, "--format", "json"],
+        ));
+        assert_eq!(
+            serde_json::from_str::<serde_json::Value>(&fit).unwrap(),
+            *row(levels),
+            "{alias}"
+        );
+        let density = run(with(
+            &["density"],
+            alias,
+            &[
+                "--level",
+                &levels.to_string(),
+                "--radius",
+                "1",
+                "--format",
+                "json",
+            ],
+        ));
+        let density: serde_json::Value = serde_json::from_str(&density).unwrap();
+        assert_eq!(density["V"], row(levels)["V"], "{alias}");
+        let svg = plot_dir.join(format!("{alias}.svg"));
+        let svg = svg.to_str().unwrap();
+        let plot = run(with(&["plot"], alias, &["--levels", &range, "-o", svg]));
+        assert_eq!(plot, format!("wrote {svg} (5 series, levels {range})\n"));
+        assert!(std::fs::read_to_string(svg)
+            .unwrap()
+            .contains(">BE (boundary edges)</text>"));
+        // Typed-in counts of the same mesh: BE = 2E - 3F > 0.
+        let counts = format!(
+            "V={},E={},F={}",
+            count(0, "V"),
+            count(0, "E"),
+            count(0, "F")
+        );
+        let typed = ok(&[
+            "table", "--scheme", alias, "--counts", &counts, "--levels", &range, "--format", "json",
+        ]);
+        assert_eq!(
+            serde_json::from_str::<serde_json::Value>(&typed).unwrap(),
+            expected
+        );
+    }
+    // `loop` itself refuses the boundary in every command, naming loop-boundary (issue 3).
+    let be = count(0, "BE");
+    let needle = format!(
+        "loop needs a closed mesh, but this mesh has {be} boundary edges; use loop-boundary"
+    );
+    let svg = plot_dir.join("loop.svg");
+    for args in [
+        with(&["table"], "loop", &[]),
+        with(&["at"], "loop", &["--level", "2"]),
+        with(&["formula"], "loop", &[]),
+        with(&["fit"], "loop", &["--max-faces", "1000"]),
+        with(&["density"], "loop", &["--level", "2", "--radius", "1"]),
+        with(&["plot"], "loop", &["-o", svg.to_str().unwrap()]),
+        with(&["verify"], "loop", &["--levels", "1"]),
+        with(&["subdivide"], "loop", &["--levels", "1"]),
+    ] {
+        fails(
+            &args.iter().map(String::as_str).collect::<Vec<_>>(),
+            3,
+            &needle,
+        );
+    }
+    assert!(!svg.exists(), "a refused plot writes nothing");
+}
+
+/// `--scheme butterfly` (or `midpoint`, `icosphere`) on a mesh with boundary predicts what
+/// `subdivide` builds (it used to be refused as `loop` by every command but `subdivide` and
+/// `verify`).
+#[test]
+fn aliases_count_as_loop_boundary_on_generated_meshes_with_boundary() {
+    let dir = tempfile::tempdir().unwrap();
+    check_alias_on_boundary(&["--base", "grid:3x3"], 3, dir.path());
+    check_alias_on_boundary(&["--base", "icosahedron-holes:2"], 2, dir.path());
+    // The numbers, checked by hand on the 3x3 grid: V' = V + IE + BE, IE' = 4IE + BE,
+    // BE' = 2BE from (16, 21, 12).
+    for alias in LOOP_ALIASES {
+        assert_eq!(
+            ok(&["table", "--scheme", alias, "--base", "grid:3x3", "--levels", "3"]),
+            "level    V    IE  BE     E     F\n    0   16    21  12    33    18\n    1   49    96  24   120    72\n    2  169   408  48   456   288\n    3  625  1680  96  1776  1152\n"
+        );
+        assert_eq!(
+            subdivided(&["--base", "grid:3x3"], alias, 3),
+            [625, 1776, 1152]
+        );
+    }
+}
+
+/// On a closed mesh the aliases stay `loop`: state (V, E), the same table.
+#[test]
+fn aliases_count_as_loop_on_closed_meshes() {
+    let expected = ok(&[
+        "table",
+        "--scheme",
+        "loop",
+        "--base",
+        "icosahedron",
+        "--levels",
+        "3",
+        "--format",
+        "json",
+    ]);
+    assert!(
+        expected.starts_with("[\n{\"level\": 0, \"V\": 12, \"E\": 30, \"F\": 20}"),
+        "{expected}"
+    );
+    for alias in LOOP_ALIASES {
+        let args = [
+            "table",
+            "--scheme",
+            alias,
+            "--base",
+            "icosahedron",
+            "--levels",
+            "3",
+            "--format",
+            "json",
+        ];
+        assert_eq!(ok(&args), expected, "{alias}");
+        assert_eq!(
+            subdivided(&["--base", "icosahedron"], alias, 3),
+            [642, 1920, 1280]
+        );
+        assert_eq!(
+            ok(&["formula", "--scheme", alias, "--counts", "V=12,E=30,F=20"]),
+            ok(&["formula", "--scheme", "loop", "--counts", "V=12,E=30,F=20"])
+        );
+    }
+}
+
+/// The shared meshes with boundary (`SUBCOUNT_MESHES`): an alias predicts what `subdivide`
+/// builds, level by level, and the boundary doubles each level.
+#[test]
+fn aliases_on_shared_meshes_with_boundary() {
+    let Some(dir) = meshes() else { return };
+    for (file, levels) in [("planexy.obj", 3), ("face.obj", 2), ("eight_open.obj", 2)] {
+        let path = dir.join(file);
+        let path = path.to_str().unwrap();
+        let mesh = ["--mesh", path];
+        let plot_dir = tempfile::tempdir().unwrap();
+        check_alias_on_boundary(&mesh, levels, plot_dir.path());
+        let stats = json(&["stats", "--mesh", path, "--format", "json"]);
+        let table = json(&[
+            "table",
+            "--scheme",
+            "butterfly",
+            "--mesh",
+            path,
+            "--levels",
+            &levels.to_string(),
+            "--format",
+            "json",
+        ]);
+        for s in 0..=levels {
+            let be = stats["BE"].as_u64().unwrap() << s;
+            assert_eq!(
+                table[s as usize]["BE"].as_u64(),
+                Some(be),
+                "{file} level {s}"
+            );
+        }
+    }
 }
