@@ -73,7 +73,8 @@ pub(crate) fn render() -> anyhow::Result<String> {
     let ternary = schemes::builtin("ternary")?;
     let _ = writeln!(
         out,
-        "Aliases: {} count as `loop` (same topology, other geometry); `ternary` is `{}`.\n",
+        "Aliases: {} count as `loop` (same topology, other geometry), and as `loop-boundary` \
+         on a mesh with boundary edges (and no non-manifold edge); `ternary` is `{}`.\n",
         schemes::catalog::LOOP_ALIASES
             .iter()
             .map(|a| format!("`{a}`"))
