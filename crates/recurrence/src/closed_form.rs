@@ -19,7 +19,7 @@ use num_rational::BigRational;
 use num_traits::{One, Pow, Signed, Zero};
 
 use crate::eigen::{power_of_two_exponent, Eigenvalue, EigenvalueInfo};
-use crate::field::{Field, FieldMatrix, QuadraticSurd};
+use crate::field::{Field, FieldMatrix, QuadraticSurd, RingElem, SurdRing};
 use crate::poly::{divide_by_root, taylor_coefficients};
 use crate::{Error, IntMatrix, Recurrence, Result};
 
@@ -468,6 +468,216 @@ fn spectral_parts<F: Field>(
     parts
 }
 
+/// A field whose elements the fraction-free computation produces as `numerator /
+/// denominator` in `Z[sqrt d]`.
+trait ExactField: Field {
+    /// `num / den`, `den` non-zero, both in `ring`.
+    fn from_ring(
+        num: &RingElem,
+        den: &RingElem,
+        den_conj: &RingElem,
+        den_norm: &BigInt,
+        ring: &SurdRing,
+    ) -> Self;
+}
+
+impl ExactField for BigRational {
+    fn from_ring(num: &RingElem, den: &RingElem, _: &RingElem, _: &BigInt, _: &SurdRing) -> Self {
+        // Rational eigenvalues keep every value in `Z`.
+        BigRational::new(num.x.clone(), den.x.clone())
+    }
+}
+
+impl ExactField for QuadraticSurd {
+    fn from_ring(
+        num: &RingElem,
+        _: &RingElem,
+        den_conj: &RingElem,
+        den_norm: &BigInt,
+        ring: &SurdRing,
+    ) -> Self {
+        let p = ring.mul(num, den_conj);
+        QuadraticSurd::new(
+            BigRational::new(p.x, den_norm.clone()),
+            BigRational::new(p.y, den_norm.clone()),
+            ring.d.clone(),
+        )
+    }
+}
+
+/// What the closed form needs of one exact eigenvalue `l` of multiplicity `mult`: the
+/// projector `P_l`, the matrices `C_t` of [`power_coefficients`] (non-zero `l`), and for
+/// `l = 0` whether row `i` of `N^k P` vanishes.
+struct ExactSpectrum<F> {
+    projector: FieldMatrix<F>,
+    coefficients: Vec<FieldMatrix<F>>,
+    valid_from: Vec<u64>,
+}
+
+/// The spectral data of the exact eigenvalue `lambda` (rational, or in `Q(sqrt d)`) of
+/// multiplicity `mult`, computed fraction-free from generalized eigenspaces instead of
+/// polynomials in `M`:
+///
+/// with `c` the least common denominator of `lambda`'s parts, `mu = c lambda` and
+/// `B = c M - mu I` (entries in `Z[sqrt d]`), the columns of `R` span the kernel of `B^mult`
+/// (the generalized eigenspace) and those of `L` the kernel of its transpose, so
+/// `P = R (L^T R)^(-1) L^T = R X L^T / D` with `G X = D I`, `G = L^T R`, and
+/// `N^k P = B^k R X L^T / (D c^k)`. Every `C_t = sum_k C(s, k)[s^t] l^(-k) N^k P` is then one
+/// integer matrix over the common denominator `D (mult-1)! mu^(mult-1)`, turned into
+/// rationals once. Cost: `O(n^3 log mult)` for `B^mult`, two `n x n` eliminations, and
+/// `O(n^2 mult^2)` for the `C_t`, all in integers the size of minors of `B^mult`.
+///
+/// `None` when an internal consistency check fails (a kernel of the wrong dimension, a
+/// singular `G`, an inexact division): the caller then uses [`spectral_parts`].
+fn exact_spectrum<F: ExactField>(
+    m: &IntMatrix,
+    lambda: &QuadraticSurd,
+    mult: usize,
+) -> Option<ExactSpectrum<F>> {
+    let n = m.dim();
+    let ring = SurdRing {
+        d: lambda.d.clone(),
+    };
+    let c = lambda.a.denom().lcm(lambda.b.denom());
+    let mu = RingElem {
+        x: (&lambda.a * BigRational::from_integer(c.clone())).to_integer(),
+        y: (&lambda.b * BigRational::from_integer(c.clone())).to_integer(),
+    };
+    let mut b: Vec<RingElem> = m
+        .rows()
+        .flatten()
+        .map(|&x| RingElem::int(BigInt::from(x) * &c))
+        .collect();
+    for i in 0..n {
+        b[i * n + i] = ring.sub(&b[i * n + i], &mu);
+    }
+    // B^mult by squaring.
+    let mut power: Option<Vec<RingElem>> = None;
+    let mut base = b.clone();
+    let mut e = mult;
+    while e > 0 {
+        if e & 1 == 1 {
+            power = Some(match power {
+                None => base.clone(),
+                Some(p) => ring.mat_mul(&p, &base, n, n, n),
+            });
+        }
+        e >>= 1;
+        if e > 0 {
+            base = ring.mat_mul(&base, &base, n, n, n);
+        }
+    }
+    let power = power?;
+    let mut transposed = vec![RingElem::default(); n * n];
+    for i in 0..n {
+        for j in 0..n {
+            transposed[j * n + i] = power[i * n + j].clone();
+        }
+    }
+    let right = ring.kernel(power, n, n)?;
+    let left = ring.kernel(transposed, n, n)?;
+    if right.len() != mult || left.len() != mult {
+        return None;
+    }
+    // R as n x mult, L^T as mult x n.
+    let mut r0 = vec![RingElem::default(); n * mult];
+    for (j, v) in right.iter().enumerate() {
+        for i in 0..n {
+            r0[i * mult + j] = v[i].clone();
+        }
+    }
+    let lt: Vec<RingElem> = left.into_iter().flatten().collect();
+    let g = ring.mat_mul(&lt, &r0, mult, n, mult);
+    let (x, d) = ring.scaled_inverse(&g, mult)?;
+    let y = ring.mat_mul(&x, &lt, mult, mult, n);
+    // R_k = B^k R for k < mult.
+    let mut rk = vec![r0];
+    for _ in 1..mult {
+        let next = ring.mat_mul(&b, rk.last()?, n, n, mult);
+        rk.push(next);
+    }
+    let to_field = |num: &[RingElem], den: &RingElem| -> FieldMatrix<F> {
+        let conj = den.conj();
+        let norm = ring.norm(den);
+        FieldMatrix {
+            dim: n,
+            entries: num
+                .iter()
+                .map(|z| {
+                    if z.is_zero() {
+                        F::field_zero()
+                    } else {
+                        F::from_ring(z, den, &conj, &norm, &ring)
+                    }
+                })
+                .collect(),
+        }
+    };
+    let projector = to_field(&ring.mat_mul(&rk[0], &y, n, mult, n), &d);
+    let mut valid_from = Vec::new();
+    let mut coefficients = Vec::new();
+    if lambda.is_field_zero() {
+        // Row i of N^k P = R_k Y / D vanishes iff row i of R_k does (Y has full row rank).
+        valid_from = (0..n)
+            .map(|i| {
+                (0..mult)
+                    .find(|&k| {
+                        rk[k][i * mult..(i + 1) * mult]
+                            .iter()
+                            .all(RingElem::is_zero)
+                    })
+                    .unwrap_or(mult) as u64
+            })
+            .collect();
+    } else {
+        let top = mult - 1;
+        // mu^j for j <= top, and (top!/k!) for k <= top.
+        let mut mu_pow = vec![RingElem::int(BigInt::one())];
+        for _ in 0..top {
+            let next = ring.mul(mu_pow.last()?, &mu);
+            mu_pow.push(next);
+        }
+        let mut fall = vec![BigInt::one(); mult]; // fall[k] = top! / k!
+        for k in (0..top).rev() {
+            fall[k] = &fall[k + 1] * BigInt::from(k + 1);
+        }
+        let den = ring.mul(&ring.mul(&d, &RingElem::int(fall[0].clone())), &mu_pow[top]);
+        let stirling: Vec<Vec<BigInt>> = (0..mult)
+            .map(|k| {
+                binomial_poly(k)
+                    .iter()
+                    .map(|q| {
+                        (q * BigRational::from_integer(fall[0].clone() / &fall[k])).to_integer()
+                    })
+                    .collect()
+            })
+            .collect();
+        coefficients = (0..mult)
+            .map(|t| {
+                let mut s = vec![RingElem::default(); n * mult];
+                for k in t..mult {
+                    let coef = RingElem::int(&stirling[k][t] * &fall[k]);
+                    let coef = ring.mul(&coef, &mu_pow[top - k]);
+                    if coef.is_zero() {
+                        continue;
+                    }
+                    for (acc, v) in s.iter_mut().zip(&rk[k]) {
+                        if !v.is_zero() {
+                            *acc = ring.add(acc, &ring.mul(&coef, v));
+                        }
+                    }
+                }
+                to_field(&ring.mat_mul(&s, &y, n, mult, n), &den)
+            })
+            .collect();
+    }
+    Some(ExactSpectrum {
+        projector,
+        coefficients,
+        valid_from,
+    })
+}
+
 /// Coefficients of `C(s, k) = s (s-1) ... (s-k+1) / k!` as a polynomial in `s`.
 fn binomial_poly(k: usize) -> Vec<BigRational> {
     let mut poly = vec![BigRational::one()];
@@ -516,39 +726,53 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
     let eigenvalues = rec.eigenvalues();
     let mut terms: Vec<Vec<Term>> = vec![Vec::new(); n];
     let mut valid_from = vec![0u64; n];
-    let mut exact_sum = FieldMatrix::<QuadraticSurd>::scalar(n, &QuadraticSurd::field_zero());
+    // Sum of the exact projectors (rational parts: conjugate projectors are conjugate, so
+    // their sum is twice the rational part), to tell which components avoid numeric terms.
+    let mut exact_sum = FieldMatrix::<BigRational>::scalar(n, &BigRational::zero());
     let any_numeric = eigenvalues.iter().any(|e| !e.eigenvalue.is_exact());
     let mut powers = Vec::with_capacity(eigenvalues.len());
     for info in &eigenvalues {
         let mult = info.multiplicity;
         match &info.eigenvalue {
             Eigenvalue::Rational(l) => {
-                let parts = spectral_parts::<BigRational>(m, &p, l, mult);
+                let fast =
+                    exact_spectrum::<BigRational>(m, &QuadraticSurd::rational(l.clone()), mult);
+                let (projector, coefficients, zero_valid) = match fast {
+                    Some(spec) => (spec.projector, spec.coefficients, spec.valid_from),
+                    None => {
+                        let parts = spectral_parts::<BigRational>(m, &p, l, mult);
+                        let valid = if l.is_zero() {
+                            (0..n)
+                                .map(|i| {
+                                    (0..mult)
+                                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
+                                        .unwrap_or(mult) as u64
+                                })
+                                .collect()
+                        } else {
+                            Vec::new()
+                        };
+                        let coefficients = if l.is_zero() {
+                            Vec::new()
+                        } else {
+                            power_coefficients(&parts, l)
+                        };
+                        (
+                            parts.into_iter().next().expect("one part per multiplicity"),
+                            coefficients,
+                            valid,
+                        )
+                    }
+                };
                 if any_numeric {
-                    let q = FieldMatrix {
-                        dim: n,
-                        entries: parts[0]
-                            .entries
-                            .iter()
-                            .map(QuadraticSurd::from_rational)
-                            .collect(),
-                    };
-                    exact_sum = exact_sum.add(&q);
+                    exact_sum = exact_sum.add(&projector);
                 }
                 if l.is_zero() {
-                    for (i, vf) in valid_from.iter_mut().enumerate() {
-                        let k = (0..mult)
-                            .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
-                            .unwrap_or(mult);
-                        *vf = k as u64;
-                    }
+                    valid_from = zero_valid;
                 } else {
-                    push_terms(
-                        &mut terms,
-                        &info.eigenvalue,
-                        &power_coefficients(&parts, l),
-                        |c| Coefficient::Rational(c.clone()),
-                    );
+                    push_terms(&mut terms, &info.eigenvalue, &coefficients, |c| {
+                        Coefficient::Rational(c.clone())
+                    });
                 }
             }
             Eigenvalue::QuadraticSurd { .. } => {
@@ -556,22 +780,31 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                     .eigenvalue
                     .to_surd()
                     .expect("surd eigenvalues are exact");
-                let parts = spectral_parts::<QuadraticSurd>(m, &p, &l, mult);
+                let (projector, coefficients) = match exact_spectrum::<QuadraticSurd>(m, &l, mult) {
+                    Some(spec) => (spec.projector, spec.coefficients),
+                    None => {
+                        let parts = spectral_parts::<QuadraticSurd>(m, &p, &l, mult);
+                        let coefficients = power_coefficients(&parts, &l);
+                        (
+                            parts.into_iter().next().expect("one part per multiplicity"),
+                            coefficients,
+                        )
+                    }
+                };
                 if any_numeric {
-                    exact_sum = exact_sum.add(&parts[0]);
+                    let rational_part = FieldMatrix {
+                        dim: n,
+                        entries: projector.entries.iter().map(|q| q.a.clone()).collect(),
+                    };
+                    exact_sum = exact_sum.add(&rational_part);
                 }
-                push_terms(
-                    &mut terms,
-                    &info.eigenvalue,
-                    &power_coefficients(&parts, &l),
-                    |c| {
-                        if c.is_rational() {
-                            Coefficient::Rational(c.a.clone())
-                        } else {
-                            Coefficient::Surd(c.clone())
-                        }
-                    },
-                );
+                push_terms(&mut terms, &info.eigenvalue, &coefficients, |c| {
+                    if c.is_rational() {
+                        Coefficient::Rational(c.a.clone())
+                    } else {
+                        Coefficient::Surd(c.clone())
+                    }
+                });
             }
             Eigenvalue::Numeric(z) => {
                 let parts = spectral_parts::<Complex<f64>>(m, &p, z, mult);
@@ -602,21 +835,37 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
         for (i, ex) in exact.iter_mut().enumerate() {
             *ex = (0..n).all(|j| {
                 let target = if i == j {
-                    QuadraticSurd::field_one()
+                    BigRational::one()
                 } else {
-                    QuadraticSurd::field_zero()
+                    BigRational::zero()
                 };
                 exact_sum.row(i)[j] == target
             });
         }
     }
     let max_valid = valid_from.iter().copied().max().unwrap_or(0);
-    let powers_of_m: Vec<Vec<Vec<BigInt>>> = (0..max_valid)
-        .map(|k| {
-            rec.checked_matrix_power::<BigInt>(k)
-                .expect("big integers do not overflow")
-        })
-        .collect();
+    // Rows of M^k for the early levels, by repeated multiplication.
+    let mut powers_of_m: Vec<Vec<Vec<BigInt>>> = Vec::new();
+    for _ in 0..max_valid {
+        let next = match powers_of_m.last() {
+            None => (0..n)
+                .map(|i| (0..n).map(|j| BigInt::from(u8::from(i == j))).collect())
+                .collect(),
+            Some(prev) => (0..n)
+                .map(|i| {
+                    (0..n)
+                        .map(|j| {
+                            (0..n)
+                                .filter(|&l| m.get(l, j) != 0)
+                                .map(|l| &prev[i][l] * BigInt::from(m.get(l, j)))
+                                .sum()
+                        })
+                        .collect()
+                })
+                .collect(),
+        };
+        powers_of_m.push(next);
+    }
     let mut components = Vec::with_capacity(n);
     for i in 0..n {
         let mut ts = std::mem::take(&mut terms[i]);

@@ -18,7 +18,7 @@ use num_rational::BigRational;
 use num_traits::{FromPrimitive, One, Signed, Zero};
 
 use crate::field::{rational_to_f64, QuadraticSurd};
-use crate::poly::{div_rem, square_free_factors, Polynomial};
+use crate::poly::{divide_monic_exact, square_free_factors, Polynomial};
 
 /// An eigenvalue of a recurrence matrix, exact when possible.
 ///
@@ -157,9 +157,7 @@ pub struct EigenvalueInfo {
 /// The eigenvalues of the matrix whose characteristic polynomial is `p`, in listing order.
 pub(crate) fn eigenvalues(p: &Polynomial) -> Vec<EigenvalueInfo> {
     let mut out = Vec::new();
-    for (factor, multiplicity) in square_free_factors(&p.to_rational()) {
-        // Monic factors of monic integer polynomials have integer coefficients (Gauss).
-        let factor: Vec<BigInt> = factor.iter().map(|c| c.to_integer()).collect();
+    for (factor, multiplicity) in square_free_factors(p.coefficients()) {
         for eigenvalue in roots_of_square_free(&factor) {
             out.push(EigenvalueInfo {
                 eigenvalue,
@@ -273,11 +271,7 @@ fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
 
 /// Divides `f` by the monic integer polynomial `g` if the division is exact.
 fn divide_exact(f: &[BigInt], g: &[BigInt]) -> Option<Vec<BigInt>> {
-    let fr: Vec<BigRational> = f.iter().cloned().map(BigRational::from_integer).collect();
-    let gr: Vec<BigRational> = g.iter().cloned().map(BigRational::from_integer).collect();
-    let (q, r) = div_rem(&fr, &gr);
-    r.is_empty()
-        .then(|| q.iter().map(|c| c.to_integer()).collect())
+    divide_monic_exact(f, g)
 }
 
 fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {

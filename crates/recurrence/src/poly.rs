@@ -6,7 +6,7 @@ use std::fmt;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, Zero};
+use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::field::Field;
 use crate::IntMatrix;
@@ -146,6 +146,7 @@ pub(crate) fn characteristic_polynomial(m: &IntMatrix) -> Polynomial {
     Polynomial::from_coefficients(coeffs)
 }
 
+#[cfg(test)]
 pub(crate) fn trim<F: Field>(p: &mut Vec<F>) {
     while p.last().is_some_and(Field::is_field_zero) {
         p.pop();
@@ -153,6 +154,7 @@ pub(crate) fn trim<F: Field>(p: &mut Vec<F>) {
 }
 
 /// Quotient and remainder of `p / q` over an exact field; `q` must be non-zero and trimmed.
+#[cfg(test)]
 pub(crate) fn div_rem<F: Field>(p: &[F], q: &[F]) -> (Vec<F>, Vec<F>) {
     let mut r: Vec<F> = p.to_vec();
     trim(&mut r);
@@ -175,6 +177,7 @@ pub(crate) fn div_rem<F: Field>(p: &[F], q: &[F]) -> (Vec<F>, Vec<F>) {
     (quot, r)
 }
 
+#[cfg(test)]
 pub(crate) fn derivative<F: Field>(p: &[F]) -> Vec<F> {
     p.iter()
         .enumerate()
@@ -186,6 +189,7 @@ pub(crate) fn derivative<F: Field>(p: &[F]) -> Vec<F> {
         .collect()
 }
 
+#[cfg(test)]
 fn monic<F: Field>(p: &[F]) -> Vec<F> {
     match p.last() {
         Some(lead) => p.iter().map(|c| c.div(lead)).collect(),
@@ -193,6 +197,7 @@ fn monic<F: Field>(p: &[F]) -> Vec<F> {
     }
 }
 
+#[cfg(test)]
 pub(crate) fn gcd<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
     let mut a = a.to_vec();
     let mut b = b.to_vec();
@@ -206,9 +211,13 @@ pub(crate) fn gcd<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
     monic(&a)
 }
 
+/// Yun's square-free factorization over `Q` with Euclid's algorithm over the rationals: the
+/// slow reference that [`square_free_factors`] must agree with (tests only).
+///
 /// Yun's square-free factorization over `Q` of a monic polynomial: pairs `(f, m)` of monic,
 /// square-free, pairwise coprime factors of degree at least one, with `p = prod f^m`.
-pub(crate) fn square_free_factors(p: &[BigRational]) -> Vec<(Vec<BigRational>, usize)> {
+#[cfg(test)]
+pub(crate) fn square_free_factors_rational(p: &[BigRational]) -> Vec<(Vec<BigRational>, usize)> {
     let mut out = Vec::new();
     let dp = derivative(p);
     let a0 = gcd(p, &dp);
@@ -229,6 +238,7 @@ pub(crate) fn square_free_factors(p: &[BigRational]) -> Vec<(Vec<BigRational>, u
     out
 }
 
+#[cfg(test)]
 fn sub<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
     let n = a.len().max(b.len());
     let mut out: Vec<F> = (0..n)
@@ -240,6 +250,286 @@ fn sub<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
         })
         .collect();
     trim(&mut out);
+    out
+}
+
+// Integer polynomials (coefficients lowest degree first) and their gcds by multi-modular
+// arithmetic. Euclid's algorithm over `Q` makes the coefficients of the remainders explode
+// (seconds for degree 24, minutes for 32); modulo 62-bit primes every operation is a machine
+// multiplication, and the exact result is reconstructed by the Chinese remainder theorem and
+// verified by exact division over `Z`.
+
+fn trim_int(p: &mut Vec<BigInt>) {
+    while p.last().is_some_and(Zero::is_zero) {
+        p.pop();
+    }
+}
+
+fn derivative_int(p: &[BigInt]) -> Vec<BigInt> {
+    let mut d: Vec<BigInt> = p
+        .iter()
+        .enumerate()
+        .skip(1)
+        .map(|(k, c)| c * BigInt::from(k))
+        .collect();
+    trim_int(&mut d);
+    d
+}
+
+fn sub_int(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let n = a.len().max(b.len());
+    let zero = BigInt::zero();
+    let mut out: Vec<BigInt> = (0..n)
+        .map(|i| a.get(i).unwrap_or(&zero) - b.get(i).unwrap_or(&zero))
+        .collect();
+    trim_int(&mut out);
+    out
+}
+
+/// `a / g` over `Z` for a monic `g` (trimmed, degree at least 0), when the division leaves
+/// no remainder.
+pub(crate) fn divide_monic_exact(a: &[BigInt], g: &[BigInt]) -> Option<Vec<BigInt>> {
+    let mut r = a.to_vec();
+    trim_int(&mut r);
+    if r.is_empty() {
+        return Some(Vec::new());
+    }
+    let dg = g.len().checked_sub(1)?;
+    if r.len() <= dg {
+        return None;
+    }
+    let mut quot = vec![BigInt::zero(); r.len() - dg];
+    for k in (0..quot.len()).rev() {
+        let c = std::mem::take(&mut r[k + dg]);
+        if c.is_zero() {
+            continue;
+        }
+        for (i, gi) in g[..dg].iter().enumerate() {
+            if !gi.is_zero() {
+                r[k + i] -= &c * gi;
+            }
+        }
+        quot[k] = c;
+    }
+    r[..dg].iter().all(Zero::is_zero).then_some(quot)
+}
+
+fn mul_mod(a: u64, b: u64, q: u64) -> u64 {
+    ((u128::from(a) * u128::from(b)) % u128::from(q)) as u64
+}
+
+fn pow_mod(mut b: u64, mut e: u64, q: u64) -> u64 {
+    let mut r = 1 % q;
+    while e > 0 {
+        if e & 1 == 1 {
+            r = mul_mod(r, b, q);
+        }
+        b = mul_mod(b, b, q);
+        e >>= 1;
+    }
+    r
+}
+
+/// Deterministic Miller-Rabin for 64-bit integers.
+fn is_prime_u64(n: u64) -> bool {
+    if n < 2 {
+        return false;
+    }
+    const BASES: [u64; 12] = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37];
+    for p in BASES {
+        if n % p == 0 {
+            return n == p;
+        }
+    }
+    let s = (n - 1).trailing_zeros();
+    let d = (n - 1) >> s;
+    'bases: for a in BASES {
+        let mut x = pow_mod(a, d, n);
+        if x == 1 || x == n - 1 {
+            continue;
+        }
+        for _ in 1..s {
+            x = mul_mod(x, x, n);
+            if x == n - 1 {
+                continue 'bases;
+            }
+        }
+        return false;
+    }
+    true
+}
+
+/// The primes below `2^62`, largest first.
+fn large_primes() -> impl Iterator<Item = u64> {
+    let mut n = (1u64 << 62) + 1;
+    std::iter::from_fn(move || loop {
+        n -= 2;
+        if is_prime_u64(n) {
+            return Some(n);
+        }
+    })
+}
+
+fn reduce_mod(p: &[BigInt], q: u64) -> Vec<u64> {
+    let qb = BigInt::from(q);
+    let mut out: Vec<u64> = p
+        .iter()
+        .map(|c| c.mod_floor(&qb).to_u64().unwrap_or(0))
+        .collect();
+    while out.last() == Some(&0) {
+        out.pop();
+    }
+    out
+}
+
+/// The monic gcd of two polynomials over `F_q` (empty when both are zero).
+fn gcd_mod(mut a: Vec<u64>, mut b: Vec<u64>, q: u64) -> Vec<u64> {
+    while !b.is_empty() {
+        // a <- a mod b
+        let inv = pow_mod(b[b.len() - 1], q - 2, q);
+        while a.len() >= b.len() {
+            let shift = a.len() - b.len();
+            let c = mul_mod(a[a.len() - 1], inv, q);
+            for (i, bi) in b.iter().enumerate() {
+                let t = mul_mod(c, *bi, q);
+                let x = &mut a[shift + i];
+                *x = if *x >= t { *x - t } else { *x + q - t };
+            }
+            while a.last() == Some(&0) {
+                a.pop();
+            }
+        }
+        std::mem::swap(&mut a, &mut b);
+    }
+    if let Some(&lead) = a.last() {
+        let inv = pow_mod(lead, q - 2, q);
+        for c in &mut a {
+            *c = mul_mod(*c, inv, q);
+        }
+    }
+    a
+}
+
+/// Most primes tried by [`gcd_monic`] before it falls back to Euclid over `Q` (never reached
+/// in practice: only primes dividing a resultant can mislead it, and they are few).
+const MAX_GCD_PRIMES: usize = 4096;
+
+/// The monic gcd over `Q` of a monic integer polynomial `a` and an integer polynomial `b`
+/// (both trimmed). It has integer coefficients (a monic factor of a monic integer
+/// polynomial), each at most `2^deg(a) * sum |a_i|` in absolute value (Mignotte), so it is
+/// found modulo enough primes and confirmed by exact division.
+pub(crate) fn gcd_monic(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    if b.is_empty() {
+        return a.to_vec();
+    }
+    if a.len() <= 1 || b.len() == 1 {
+        return vec![BigInt::one()];
+    }
+    let norm: BigInt = a.iter().map(Signed::abs).sum();
+    let bound_bits = norm.bits() + a.len() as u64 + 2;
+    let mut best: Option<usize> = None; // degree of the modular gcds being combined
+    let mut residues: Vec<BigInt> = Vec::new();
+    let mut modulus = BigInt::one();
+    let b_lead = &b[b.len() - 1];
+    for q in large_primes().take(MAX_GCD_PRIMES) {
+        if (b_lead % BigInt::from(q)).is_zero() {
+            continue;
+        }
+        let g = gcd_mod(reduce_mod(a, q), reduce_mod(b, q), q);
+        let deg = g.len() - 1;
+        if deg == 0 {
+            return vec![BigInt::one()];
+        }
+        match best {
+            Some(d) if deg > d => continue,
+            Some(d) if deg == d => {}
+            _ => {
+                best = Some(deg);
+                residues = vec![BigInt::zero(); deg + 1];
+                modulus = BigInt::one();
+            }
+        }
+        // Garner: x <- x + m * ((r - x) / m mod q).
+        let qb = BigInt::from(q);
+        let m_inv = pow_mod(modulus.mod_floor(&qb).to_u64().unwrap_or(0), q - 2, q);
+        for (x, r) in residues.iter_mut().zip(&g) {
+            let xr = x.mod_floor(&qb).to_u64().unwrap_or(0);
+            let diff = if *r >= xr { r - xr } else { r + q - xr };
+            let t = mul_mod(diff, m_inv, q);
+            *x += &modulus * BigInt::from(t);
+        }
+        modulus *= &qb;
+        if modulus.bits() > bound_bits {
+            let half = &modulus >> 1u32;
+            let candidate: Vec<BigInt> = residues
+                .iter()
+                .map(|x| if x > &half { x - &modulus } else { x.clone() })
+                .collect();
+            if divide_monic_exact(a, &candidate).is_some()
+                && divide_monic_exact(b, &candidate).is_some()
+            {
+                return candidate;
+            }
+        }
+    }
+    gcd_rational_fallback(a, b)
+}
+
+fn gcd_rational_fallback(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let to_q = |p: &[BigInt]| -> Vec<BigRational> {
+        p.iter().cloned().map(BigRational::from_integer).collect()
+    };
+    let (mut a, mut b) = (to_q(a), to_q(b));
+    while !b.is_empty() {
+        let r = rational_rem(&a, &b);
+        a = b;
+        b = r;
+    }
+    let lead = a.last().cloned().unwrap_or_else(BigRational::one);
+    a.iter().map(|c| (c / &lead).to_integer()).collect()
+}
+
+fn rational_rem(p: &[BigRational], q: &[BigRational]) -> Vec<BigRational> {
+    let mut r = p.to_vec();
+    let dq = q.len() - 1;
+    while r.len() > dq && !r.is_empty() {
+        let k = r.len() - 1 - dq;
+        let c = &r[r.len() - 1] / &q[dq];
+        for (i, qc) in q.iter().enumerate() {
+            r[k + i] = &r[k + i] - &c * qc;
+        }
+        r.pop();
+        while r.last().is_some_and(Zero::is_zero) {
+            r.pop();
+        }
+    }
+    r
+}
+
+/// Yun's square-free factorization of a monic integer polynomial: pairs `(f, m)` of monic,
+/// square-free, pairwise coprime integer factors of degree at least one with `p = prod f^m`,
+/// by increasing `m`. Every gcd is modular ([`gcd_monic`]) and every division exact over `Z`.
+pub(crate) fn square_free_factors(p: &[BigInt]) -> Vec<(Vec<BigInt>, usize)> {
+    let mut out = Vec::new();
+    let mut p = p.to_vec();
+    trim_int(&mut p);
+    let dp = derivative_int(&p);
+    let a0 = gcd_monic(&p, &dp);
+    let exact = "a gcd divides its arguments";
+    let mut b = divide_monic_exact(&p, &a0).expect(exact);
+    let c = divide_monic_exact(&dp, &a0).expect(exact);
+    let mut d = sub_int(&c, &derivative_int(&b));
+    let mut i = 1;
+    while b.len() > 1 {
+        let a = gcd_monic(&b, &d);
+        if a.len() > 1 {
+            out.push((a.clone(), i));
+        }
+        b = divide_monic_exact(&b, &a).expect(exact);
+        let c = divide_monic_exact(&d, &a).expect(exact);
+        d = sub_int(&c, &derivative_int(&b));
+        i += 1;
+    }
     out
 }
 
@@ -303,14 +593,79 @@ mod tests {
         }
     }
 
+    fn ints(c: &[i64]) -> Vec<BigInt> {
+        c.iter().map(|&x| BigInt::from(x)).collect()
+    }
+
     #[test]
     fn square_free_factorization() {
         // (x - 2)^2 (x - 1) = x^3 - 5x^2 + 8x - 4
-        let f = square_free_factors(&int_poly(&[-4, 8, -5, 1]));
-        assert_eq!(f, vec![(int_poly(&[-1, 1]), 1), (int_poly(&[-2, 1]), 2)]);
+        let f = square_free_factors(&ints(&[-4, 8, -5, 1]));
+        assert_eq!(f, vec![(ints(&[-1, 1]), 1), (ints(&[-2, 1]), 2)]);
         // x^2 (x^2 - x - 1)
-        let f = square_free_factors(&int_poly(&[0, 0, -1, -1, 1]));
+        let f = square_free_factors(&ints(&[0, 0, -1, -1, 1]));
+        assert_eq!(f, vec![(ints(&[-1, -1, 1]), 1), (ints(&[0, 1]), 2)]);
+        let f = square_free_factors_rational(&int_poly(&[0, 0, -1, -1, 1]));
         assert_eq!(f, vec![(int_poly(&[-1, -1, 1]), 1), (int_poly(&[0, 1]), 2)]);
+    }
+
+    /// `prod (x - r)` times `x^2 - x - 1` per `fib`, as integer coefficients.
+    fn from_roots(roots: &[i64], fib: usize) -> Vec<BigInt> {
+        let mut p = ints(&[1]);
+        let mut mul = |f: &[BigInt]| {
+            let mut out = vec![BigInt::zero(); p.len() + f.len() - 1];
+            for (i, a) in p.iter().enumerate() {
+                for (j, b) in f.iter().enumerate() {
+                    out[i + j] += a * b;
+                }
+            }
+            p = out;
+        };
+        for &r in roots {
+            mul(&ints(&[-r, 1]));
+        }
+        for _ in 0..fib {
+            mul(&ints(&[-1, -1, 1]));
+        }
+        p
+    }
+
+    #[test]
+    fn modular_yun_agrees_with_euclid_over_q() {
+        let cases: Vec<Vec<BigInt>> = vec![
+            from_roots(&[1, 1, 1, 2, 2, 4], 0),
+            from_roots(&[0, 0, 0, 0, 3, -3, 3, 1_000_003], 2),
+            from_roots(&[7; 9], 3),
+            from_roots(&[-5, 6, 1 << 40, 1 << 40, 999_999_937], 1),
+            from_roots(&[2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41], 0),
+            ints(&[5, -3, 0, 11, -7, 1]),
+            ints(&[-1, 0, 0, 0, 0, 1]),
+        ];
+        for p in cases {
+            let q: Vec<BigRational> = p.iter().cloned().map(BigRational::from_integer).collect();
+            let expected: Vec<(Vec<BigInt>, usize)> = square_free_factors_rational(&q)
+                .into_iter()
+                .map(|(f, m)| (f.iter().map(|c| c.to_integer()).collect(), m))
+                .collect();
+            assert_eq!(square_free_factors(&p), expected, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn modular_gcd_and_exact_division() {
+        let a = from_roots(&[1, 2, 2, 3], 1);
+        let b = from_roots(&[2, 3, 5], 1);
+        assert_eq!(gcd_monic(&a, &b), from_roots(&[2, 3], 1));
+        assert_eq!(gcd_monic(&a, &ints(&[4, 1])), ints(&[1]));
+        assert_eq!(gcd_rational_fallback(&a, &b), from_roots(&[2, 3], 1));
+        assert_eq!(
+            divide_monic_exact(&a, &from_roots(&[2, 2], 0)),
+            Some(from_roots(&[1, 3], 1))
+        );
+        assert_eq!(divide_monic_exact(&a, &from_roots(&[5], 0)), None);
+        assert!(is_prime_u64((1 << 61) - 1));
+        assert!(!is_prime_u64((1 << 62) - 1));
+        assert_eq!(large_primes().next(), Some((1 << 62) - 57));
     }
 
     #[test]
