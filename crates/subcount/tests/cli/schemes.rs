@@ -825,6 +825,35 @@ fn fit_reports_the_level_from_which_the_counts_never_change() {
         text,
         "highest level within the budget: 1\nV = 15\nE = 3\nF = 0\n"
     );
+    // `density --target-area` names the same level when V never reaches the target.
+    for (file, counts, needle) in [
+        (
+            data("constant.toml"),
+            "V=12,E=30,F=20",
+            "it is 12 from level 0 on and stays there",
+        ),
+        (
+            settles.to_string(),
+            "V=10,E=5,F=3",
+            "it is 18 from level 2 on and stays there",
+        ),
+    ] {
+        fails(
+            &[
+                "density",
+                "--scheme-file",
+                &file,
+                "--counts",
+                counts,
+                "--radius",
+                "1",
+                "--target-area",
+                "0.001",
+            ],
+            2,
+            needle,
+        );
+    }
     // The growing case: V = 12, 42, 162, 642 under Loop.
     assert_eq!(
         ok(&[
@@ -1034,6 +1063,45 @@ fn aliases_count_as_loop_boundary_on_generated_meshes_with_boundary() {
             [625, 1776, 1152]
         );
     }
+}
+
+/// In a composition every alias stage counts as `loop-boundary` on a mesh with boundary;
+/// a `loop` stage still refuses the boundary it meets.
+#[test]
+fn aliases_in_compositions_on_a_mesh_with_boundary() {
+    let expected = ok(&[
+        "table",
+        "--scheme",
+        "loop-boundary",
+        "--base",
+        "grid:3x3",
+        "--levels",
+        "3",
+    ]);
+    for plan in [
+        "butterfly:1,loop-boundary",
+        "loop-boundary:2,icosphere",
+        "midpoint:1,butterfly",
+    ] {
+        assert_eq!(
+            ok(&["table", "--scheme", plan, "--base", "grid:3x3", "--levels", "3"]),
+            expected,
+            "{plan}"
+        );
+    }
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "butterfly:1,loop",
+            "--base",
+            "grid:3x3",
+            "--levels",
+            "3",
+        ],
+        3,
+        "loop needs a closed mesh, but after 1 level of butterfly BE = 24; use loop-boundary",
+    );
 }
 
 /// On a closed mesh the aliases stay `loop`: state (V, E), the same table.
