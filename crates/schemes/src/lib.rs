@@ -28,6 +28,10 @@
 //! | `mid-edge` | V, E, F | `[0 1 0] [0 2 0] [1 0 1]` | closed polygons |
 //! | `tri-split-N` (`ternary` = 3) | V, E, F | see [`catalog::tri_split`] | any triangle mesh |
 //!
+//! The aliases `midpoint`, `butterfly` and `icosphere` (the same 4:1 topology with their own
+//! geometry in `halfedge`) count as `loop-boundary` on a mesh with boundary:
+//! [`Scheme::for_mesh`], [`Plan::for_mesh`].
+//!
 //! # Example: the icosahedron under Loop
 //!
 //! ```
