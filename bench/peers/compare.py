@@ -17,7 +17,10 @@ What it does:
      peers in-process in the virtualenv (wall time of the call only, loading excluded; peak RSS
      of the worker process, Python and numpy included);
   4. times python-flint's fmpz_mat power of the Catmull-Clark quad matrix at s = 10^6 and
-     str() of the resulting count (~602,062 digits), next to the whole `subcount at` process;
+     str() of the resulting count (~602,062 digits), next to the whole `subcount at` process
+     and, in-process, `recurrence::to_decimal` and num-bigint's `to_string` on the same number
+     (criterion's samples from `cargo bench -p schemes --bench exact_counts`, group `decimal`;
+     skipped with --no-cargo-bench);
   5. prints one table: median seconds, output faces per second, peak memory, and the ratio of
      each peer's median to subcount's median on the same job, all measured in the same run.
 
@@ -224,6 +227,28 @@ def run_openmesh(binary, scheme, levels, path, reps):
     return {"times": r["wall_s"], "faces": r["faces"], "peak_bytes": r["peak_rss_bytes"]}
 
 
+def criterion_rendering():
+    """Seconds per call of recurrence::to_decimal and num-bigint's to_string on the 602,062-digit
+    count, one figure per criterion sample (group `decimal` of the schemes crate's exact_counts
+    bench, which renders the same E = 12 4^(10^6) as flint's str() here)."""
+    print("running cargo bench (decimal rendering) ...", file=sys.stderr)
+    subprocess.run(
+        ["cargo", "bench", "-p", "schemes", "--bench", "exact_counts", "--", "--noplot",
+         "^decimal/catmull-clark-quad/.*/1000000$"],
+        cwd=REPO, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    meta = json.loads(subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"],
+                                     cwd=REPO, capture_output=True, text=True, check=True).stdout)
+    out = {}
+    for bench, label in (("to-decimal", "recurrence::to_decimal (criterion)"),
+                         ("num-bigint-to-string", "num-bigint to_string (criterion)")):
+        path = os.path.join(meta["target_directory"], "criterion", "decimal",
+                            "catmull-clark-quad_" + bench, "1000000", "new", "sample.json")
+        with open(path) as fh:
+            sample = json.load(fh)
+        out[label] = [t / i / 1e9 for t, i in zip(sample["times"], sample["iters"])]
+    return out
+
+
 def mib(b):
     return "-" if not b else "%.0f MiB" % (b / 2**20)
 
@@ -238,6 +263,8 @@ def main():
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--only", default="", help="run only the jobs whose label contains this")
     ap.add_argument("--json", help="also write every raw figure to this file")
+    ap.add_argument("--no-cargo-bench", action="store_true",
+                    help="skip the in-process decimal rendering figures (criterion)")
     ap.add_argument("--worker", nargs="+", help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.worker:
@@ -324,16 +351,25 @@ def main():
                      "%.2fx" % (statistics.median(summary_times) / at_med)))
         rows.append(("cc-quad counts s=10^6", "subcount at, all digits of V, E, F (process)",
                      "%.4f" % at_med, "%.4f-%.4f" % (min(at_times), max(at_times)), "", "", "1"))
+        rendering = {} if a.no_cargo_bench else criterion_rendering()
         if p.returncode == 0:
             fl = json.loads(p.stdout.strip().splitlines()[-1])
-            raw.append({"job": "flint", **fl, "subcount_at": at_times, "subcount_at_summary": summary_times})
-            for what, ts in (("flint fmpz_mat power", fl["power"]),
-                             ("flint str() %d digits" % fl["digits"], fl["render"])):
-                med = statistics.median(ts)
-                rows.append(("cc-quad counts s=10^6", what, "%.4f" % med,
-                             "%.4f-%.4f" % (min(ts), max(ts)), "", "", "%.2fx" % (med / at_med)))
+            raw.append({"job": "flint", **fl, "subcount_at": at_times, "subcount_at_summary": summary_times,
+                        "criterion_rendering": rendering})
+            ts = fl["power"]
+            med = statistics.median(ts)
+            rows.append(("cc-quad counts s=10^6", "flint fmpz_mat power", "%.4f" % med,
+                         "%.4f-%.4f" % (min(ts), max(ts)), "", "", "%.2fx" % (med / at_med)))
+            rendering["flint str() %d digits" % fl["digits"]] = fl["render"]
         else:
             rows.append(("cc-quad counts s=10^6", "flint", "error: " + p.stderr.strip()[-60:], "", "", "", ""))
+        # Decimal rendering of E = 12 4^(10^6), in-process; ratios to recurrence::to_decimal.
+        ours_render = rendering.get("recurrence::to_decimal (criterion)")
+        for what, ts in rendering.items():
+            med = statistics.median(ts)
+            ratio = "%.2fx" % (med / statistics.median(ours_render)) if ours_render else ""
+            rows.append(("cc-quad E s=10^6 to decimal", what, "%.4f" % med,
+                         "%.4f-%.4f" % (min(ts), max(ts)), "", "", ratio))
 
     head = ("job", "tool", "median s", "min-max s", "faces / rate", "peak memory", "vs subcount")
     widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
