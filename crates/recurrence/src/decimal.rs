@@ -194,10 +194,27 @@ struct LevelTransforms {
 
 impl Reciprocal {
     /// The reciprocal of `five = 5^w` for quotients below `10^w`, with transforms when
-    /// `5^w` has at least `transform_min_limbs` limbs.
-    fn new(five: &BigUint, w: u64, transform_min_limbs: usize) -> Reciprocal {
-        let precision = bits_of_pow10(w) + 8;
-        let value = reciprocal(five, precision);
+    /// `5^w` has at least `transform_min_limbs` limbs. With the level below (`5^(w/2)` and
+    /// its reciprocal), one Newton step from the square of that reciprocal suffices.
+    fn new(
+        five: &BigUint,
+        w: u64,
+        below: Option<(&BigUint, &Reciprocal)>,
+        transform_min_limbs: usize,
+    ) -> Reciprocal {
+        let precision = bits_of_pow10(w) + RECIPROCAL_GUARD_BITS;
+        let value = match below {
+            Some((five_below, r)) if 2 * five_below.bits() - five.bits() <= 1 => {
+                // V'^2 ~ 2^(2 f' + 2 p') / 5^w with relative error ~2^(1 - p'): as an
+                // approximation of 2^(f + h) / 5^w, h = p' - 2.
+                let (f_below, p_below) = (five_below.bits(), r.precision);
+                let h = p_below - 2;
+                let square = ntt_aware_mul(&r.value, &r.value);
+                let v = square >> (2 * f_below + 2 * p_below - five.bits() - h);
+                newton_step(five, v, h, precision)
+            }
+            _ => reciprocal(five, precision),
+        };
         let transforms = (ntt::limbs(five) >= transform_min_limbs).then(|| {
             // n < 10^(2w): n >> w >> (bits(5^w) - 1) has at most this many bits.
             let top_bits = bits_of_pow10(2 * w) - w - (five.bits() - 1) + 1;
@@ -234,8 +251,11 @@ impl PowerTree {
                 None => BigUint::from(5u32).pow(w as u32),
                 Some(prev) => ntt_aware_mul(&prev.five, &prev.five),
             };
+            let below = out
+                .last()
+                .and_then(|l| l.reciprocal.as_ref().map(|r| (&l.five, r)));
             let reciprocal =
-                (w >= NEWTON_MIN_DIGITS).then(|| Reciprocal::new(&five, w, NTT_MIN_LIMBS));
+                (w >= NEWTON_MIN_DIGITS).then(|| Reciprocal::new(&five, w, below, NTT_MIN_LIMBS));
             out.push(Level {
                 digits: w,
                 five,
@@ -323,7 +343,7 @@ fn low_bits(n: &BigUint, k: u64) -> BigUint {
 
 /// Products of operands of at least this many 64-bit limbs (the shorter one) use
 /// transforms.
-const NTT_MIN_LIMBS: usize = 1_000;
+const NTT_MIN_LIMBS: usize = 500;
 
 fn ntt_aware_mul(a: &BigUint, b: &BigUint) -> BigUint {
     if ntt::limbs(a).min(ntt::limbs(b)) >= NTT_MIN_LIMBS {
@@ -343,19 +363,54 @@ fn reciprocal(d: &BigUint, p: u64) -> BigUint {
     if p <= 4_096 {
         return (BigUint::from(1u32) << (f + p)) / d;
     }
-    let h = p / 2 + 32;
-    let v = reciprocal(d, h); // ~ 2^(f + h) / d
-                              // e = 2^(f+h) - d v is small: |e| ~ 2^(f+h) |error of v| ~ 2^f.
-    let dv = ntt_aware_mul(d, &v);
-    let one = BigUint::from(1u32) << (f + h);
-    let (e, e_negative) = if one >= dv {
-        (one - dv, false)
+    let h = p.div_ceil(2) + 32;
+    newton_step(d, reciprocal(d, h), h, p)
+}
+
+/// Guard bits of a level's reciprocal beyond the quotient's bits: enough for
+/// [`newton_step`] from the square of the level below (`p <= 2 (p' - 2) - 64`).
+const RECIPROCAL_GUARD_BITS: u64 = 80;
+
+/// One Newton step `v (1 + e / 2^(f+h))`, `e = 2^(f+h) - d v`: from `v ~ 2^(f + h) / d`
+/// with a relative error of a few `2^-h` to `~2^(f + p) / d` with a few `2^-p`, for
+/// `p <= 2h - 64` (`f = bits(d)`).
+fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64) -> BigUint {
+    debug_assert!(p + 64 <= 2 * h, "precision {p} from {h}");
+    let f = d.bits();
+    if f > p + 64 {
+        // Only the leading p + 64 bits of d matter; v approximates the truncated quotient
+        // 2^((f - s) + h) / (d >> s) just as well.
+        return newton_step(&(d >> (f - p - 64)), v, h, p);
+    }
+    // |e| ~ d |v - 2^(f+h)/d| is below 2^(f + 8) or so: for big d it follows from d v
+    // modulo M = 2^(64 L) - 1 with L > limbs(d), half the product's length.
+    let d_limbs = ntt::limbs(d);
+    let len = ntt::transform_len(d_limbs + 1);
+    let (e, e_negative) = if d_limbs >= NTT_MIN_LIMBS && d_limbs + ntt::limbs(&v) > len {
+        let modulus = (BigUint::from(1u32) << (64 * len as u64)) - 1u32;
+        let dv = ntt::mul_cyclic(&v, &ntt::Transform::new(d, len));
+        let one = BigUint::from(1u32) << ((f + h) % (64 * len as u64));
+        let e = if one >= dv {
+            one - dv
+        } else {
+            one + &modulus - dv
+        };
+        if e > (&modulus >> 1u32) {
+            (modulus - e, true)
+        } else {
+            (e, false)
+        }
     } else {
-        (dv - one, true)
+        let dv = ntt_aware_mul(d, &v);
+        let one = BigUint::from(1u32) << (f + h);
+        if one >= dv {
+            (one - dv, false)
+        } else {
+            (dv - one, true)
+        }
     };
     // The correction v e / 2^(f + 2h - p) needs only ~h + 64 leading bits of e.
-    let e_bits = e.bits();
-    let cut = e_bits.saturating_sub(h + 64);
+    let cut = e.bits().saturating_sub(h + 64);
     let e = e >> cut;
     let shift = (f + 2 * h - p) - cut;
     let correction = ntt_aware_mul(&v, &e) >> shift;
@@ -367,7 +422,7 @@ fn reciprocal(d: &BigUint, p: u64) -> BigUint {
     }
 }
 
-/// `(n / d, n mod d)` for a quotient below `2^(recip.precision - 8)`, from the reciprocal
+/// `(n / d, n mod d)` for a quotient below `2^(recip.precision - 64)`, from the reciprocal
 /// of `d`, corrected to the exact values.
 fn div_newton(n: &BigUint, d: &BigUint, recip: &Reciprocal) -> (BigUint, BigUint) {
     let f = d.bits();
@@ -475,7 +530,7 @@ mod tests {
         ] {
             let expected = (&n / &five, &n % &five);
             for transform_min_limbs in [0, usize::MAX] {
-                let recip = Reciprocal::new(&five, w, transform_min_limbs);
+                let recip = Reciprocal::new(&five, w, None, transform_min_limbs);
                 assert_eq!(recip.transforms.is_some(), transform_min_limbs == 0);
                 assert_eq!(div_newton(&n, &five, &recip), expected);
             }
