@@ -77,6 +77,29 @@ impl PolygonMesh {
         mesh
     }
 
+    /// A mesh from its arrays as [`face_offsets`](Self::face_offsets) and
+    /// [`face_indices`](Self::face_indices) return them (the caller guarantees that the
+    /// offsets start at 0, never decrease and end at `face_indices.len()`).
+    pub(crate) fn from_raw_parts(
+        positions: Vec<DVec3>,
+        face_offsets: Vec<usize>,
+        face_indices: Vec<u32>,
+    ) -> PolygonMesh {
+        debug_assert!(face_offsets.first() == Some(&0));
+        debug_assert!(face_offsets.last() == Some(&face_indices.len()));
+        PolygonMesh {
+            positions,
+            face_offsets,
+            face_indices,
+            face_lines: Vec::new(),
+        }
+    }
+
+    /// The number of recorded file lines (0 for meshes not read from a file).
+    pub(crate) fn face_lines_len(&self) -> usize {
+        self.face_lines.len()
+    }
+
     /// Reserves room for `faces` more faces with `corners` more corners in total.
     pub fn reserve_faces(&mut self, faces: usize, corners: usize) {
         self.face_offsets.reserve(faces);

@@ -2,7 +2,8 @@
 
 use glam::DVec3;
 use halfedge::subdivide::{
-    subdivide, subdivide_polygons, supports, verify, verify_polygons, LevelReport, SubdivideOptions,
+    direct_face_degree, subdivide, subdivide_polygons, subdivide_to_face_list, supports, verify,
+    verify_polygons, LevelReport, SubdivideOptions,
 };
 use halfedge::{shapes, Error, HalfEdgeMesh, PolygonMesh};
 
@@ -183,6 +184,62 @@ fn growing_buffers_and_threads_give_the_same_mesh() {
         let threaded = subdivide(&mesh, scheme, 3, &opts().with_threads(2)).expect("threads");
         assert_eq!(face_sets(&threaded), face_sets(&three), "{scheme} on {b}");
         assert_eq!(threaded.positions(), three.positions(), "{scheme} on {b}");
+    }
+}
+
+/// The face-list last level is the half-edge result converted, exactly, for every scheme on
+/// every base mesh it admits, at levels 0 to 3, with growing buffers too.
+#[test]
+fn face_list_last_level_equals_the_converted_half_edge_mesh() {
+    let mut direct = 0;
+    for b in BASES {
+        let mesh = base(b);
+        for scheme in SCHEMES {
+            if !admits(scheme, &mesh) {
+                let err = subdivide_to_face_list(&mesh, scheme, 1, &opts()).unwrap_err();
+                assert!(matches!(err, Error::Scheme(_)), "{scheme} on {b}: {err}");
+                continue;
+            }
+            let max = levels_for(mesh.n_faces(), scheme, 3);
+            for levels in 0..=max {
+                for o in [opts(), opts().with_preallocate(false)] {
+                    let want = subdivide(&mesh, scheme, levels, &o)
+                        .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                    let got = subdivide_to_face_list(&mesh, scheme, levels, &o)
+                        .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                    let what = format!("{scheme} on {b}, level {levels}, {o:?}");
+                    assert_eq!(got.mesh, want.to_polygon_mesh(), "{what}");
+                    assert_eq!(got.edges, want.n_edges(), "{what}");
+                }
+            }
+            direct += usize::from(direct_face_degree(scheme).is_some());
+        }
+    }
+    assert!(direct > 50, "only {direct} pairs took the direct path");
+}
+
+/// The parallel chunks of the face-list step (4,096 old faces per task) agree with the
+/// sequential path, on meshes large enough to be split (at least 4,096 old faces).
+#[test]
+fn face_list_last_level_is_the_same_with_threads() {
+    let ico = base("icosahedron");
+    let cube = base("cube");
+    for (mesh, scheme, levels) in [
+        (&ico, "loop", 6),
+        (&ico, "butterfly", 6),
+        (&cube, "catmull-clark", 7),
+        (&ico, "catmull-clark", 6),
+    ] {
+        let one = subdivide_to_face_list(mesh, scheme, levels, &opts()).expect("1 thread");
+        let two = subdivide_to_face_list(mesh, scheme, levels, &opts().with_threads(2))
+            .expect("2 threads");
+        assert!(
+            one.mesh.n_faces() > 4 * 4096,
+            "{scheme}: too small to split"
+        );
+        assert_eq!(one, two, "{scheme}");
+        let reference = subdivide(mesh, scheme, levels, &opts().with_threads(2)).expect("he");
+        assert_eq!(two.mesh, reference.to_polygon_mesh(), "{scheme}");
     }
 }
 

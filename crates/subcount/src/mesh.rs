@@ -186,13 +186,17 @@ fn memory_limit() -> u128 {
 }
 
 /// The predicted bytes of the largest two consecutive levels up to `levels`, plus the input.
+/// With `last_faces = Some(d)` the last level is a face list of `d`-gons
+/// ([`sub::subdivide_to_face_list`]), else a half-edge mesh.
 fn predicted_peak_bytes(
     scheme: &Scheme,
     counts: &MeshCounts,
     levels: u32,
+    last_faces: Option<usize>,
 ) -> Result<BigInt, Failure> {
+    let counts_at = |s: u64| scheme.counts_at(counts, s).map_err(scheme_failure);
     let bytes = |s: u64| -> Result<BigInt, Failure> {
-        let c = scheme.counts_at(counts, s).map_err(scheme_failure)?;
+        let c = counts_at(s)?;
         Ok(BigInt::from(halfedge::BYTES_PER_VERTEX) * &c.vertices
             + BigInt::from(halfedge::BYTES_PER_EDGE) * &c.edges
             + BigInt::from(halfedge::BYTES_PER_FACE) * &c.faces)
@@ -201,7 +205,17 @@ fn predicted_peak_bytes(
     if levels == 0 {
         return Ok(input);
     }
-    let last = bytes(u64::from(levels))?;
+    let last = match last_faces {
+        Some(degree) => {
+            // PolygonMesh::bytes_for on big integers: 24 per position, 8 per face offset
+            // (one more than the faces), 4 per corner.
+            let c = counts_at(u64::from(levels))?;
+            BigInt::from(24) * &c.vertices
+                + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+                + BigInt::from(4 * degree) * &c.faces
+        }
+        None => bytes(u64::from(levels))?,
+    };
     let before = bytes(u64::from(levels) - 1)?;
     Ok(if levels == 1 {
         input + last
@@ -214,9 +228,10 @@ fn guard_memory(
     scheme: &Scheme,
     counts: &MeshCounts,
     levels: u32,
+    last_faces: Option<usize>,
     allow_large: bool,
 ) -> Result<BigInt, Failure> {
-    let need = predicted_peak_bytes(scheme, counts, levels)?;
+    let need = predicted_peak_bytes(scheme, counts, levels, last_faces)?;
     let limit = memory_limit();
     if !allow_large && need > BigInt::from(limit) {
         let need_f = need.to_f64().unwrap_or(f64::INFINITY);
@@ -259,7 +274,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             s
         }
     };
-    guard_memory(&scheme, &counts, levels, args.allow_large)?;
+    guard_memory(&scheme, &counts, levels, None, args.allow_large)?;
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let reports = if on_face_list(&scheme) {
         sub::verify_polygons(&poly, &args.scheme, levels, &opts)
@@ -356,8 +371,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     scheme
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
-    let predicted = guard_memory(&scheme, &counts, levels, args.allow_large)?;
     let face_list = on_face_list(&scheme);
+    // Manifold input, preallocated: the 4:1 family and Catmull-Clark write the last level
+    // straight into a face list (half the peak memory of a half-edge last level).
+    let last_faces = (!face_list && !args.no_preallocate)
+        .then(|| sub::direct_face_degree(&args.scheme))
+        .flatten();
+    let predicted = guard_memory(&scheme, &counts, levels, last_faces, args.allow_large)?;
     let mesh = if face_list {
         None
     } else {
@@ -393,6 +413,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         .with_progress(&progress);
     let t1 = Instant::now();
     let result = match &mesh {
+        Some(mesh) if last_faces.is_some() => {
+            sub::subdivide_to_face_list(mesh, &args.scheme, levels, &opts).map(Output::Faces)
+        }
         Some(mesh) => sub::subdivide(mesh, &args.scheme, levels, &opts).map(Output::Mesh),
         None => sub::subdivide_polygons(&poly, &args.scheme, levels, &opts).map(Output::Polygons),
     }
@@ -408,12 +431,14 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         match &result {
             Output::Mesh(m) => halfedge::io::write_obj_file(m, path),
             Output::Polygons(p) => halfedge::io::write_polygon_obj_file(p, path),
+            Output::Faces(level) => halfedge::io::write_polygon_obj_file(&level.mesh, path),
         }
         .map_err(|e| Failure::new(Kind::Input, e))?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let (v, e, f) = match &result {
         Output::Mesh(m) => (m.n_vertices(), m.n_edges(), m.n_faces()),
+        Output::Faces(level) => (level.mesh.n_vertices(), level.edges, level.mesh.n_faces()),
         Output::Polygons(p) => {
             let c = halfedge::stats::face_list_counts(p);
             (c.vertices as usize, c.edges as usize, c.faces as usize)
@@ -437,6 +462,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
 }
 
 enum Output {
+    /// The whole last level as a half-edge mesh.
     Mesh(HalfEdgeMesh),
+    /// The last level written straight into a face list.
+    Faces(sub::FaceListLevel),
+    /// The face-list subdividers' result (non-manifold input).
     Polygons(PolygonMesh),
 }

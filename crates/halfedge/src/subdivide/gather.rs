@@ -31,7 +31,7 @@ use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
 /// Checks the structural counts of a step against the prediction.
-fn check(ctx: &StepContext<'_>, expected: Sizes, built: Sizes) -> Result<()> {
+pub(super) fn check(ctx: &StepContext<'_>, expected: Sizes, built: Sizes) -> Result<()> {
     for (what, p, b) in [
         ("vertices", expected.vertices, built.vertices),
         ("edges", expected.halfedges / 2, built.halfedges / 2),

@@ -76,6 +76,7 @@ mod faces;
 mod gather;
 mod par;
 mod sqrt3;
+mod to_faces;
 mod topo;
 mod trisplit;
 
@@ -227,6 +228,15 @@ struct Plan {
 }
 
 impl Plan {
+    /// The face degree when the last level can be written straight into a face list.
+    fn direct_face_degree(&self) -> Option<usize> {
+        match self.rule {
+            Rule::Tri(_, 2) => Some(3),
+            Rule::CatmullClark => Some(4),
+            _ => None,
+        }
+    }
+
     /// The 4:1 aliases `midpoint`, `icosphere` and `butterfly` count as `loop`, which needs a
     /// closed mesh; their geometry handles boundaries, so on a mesh with boundary they are
     /// counted as `loop-boundary` (the same 4:1 topology).
@@ -473,6 +483,107 @@ pub fn subdivide(
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
 
+/// The last level of [`subdivide_to_face_list`]: the subdivided mesh as a face list.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct FaceListLevel {
+    /// Positions and faces, numbered exactly as [`HalfEdgeMesh::to_polygon_mesh`] numbers the
+    /// mesh [`subdivide`] returns (same vertices, faces in the same order, each face from the
+    /// same corner).
+    pub mesh: PolygonMesh,
+    /// The number of edges of the level: counted by the construction from the half-edge mesh
+    /// of the level before (4:1: `2E + 3F`; Catmull-Clark: `2E` plus one per face corner), or
+    /// read off the half-edge mesh for the schemes built that way.
+    pub edges: usize,
+}
+
+/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `name` straight into a
+/// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
+/// the schemes whose last level is built as a half-edge mesh and converted (and for unknown
+/// names).
+///
+/// ```
+/// use halfedge::subdivide::direct_face_degree;
+/// assert_eq!(direct_face_degree("loop"), Some(3));
+/// assert_eq!(direct_face_degree("butterfly"), Some(3));
+/// assert_eq!(direct_face_degree("catmull-clark-quad"), Some(4));
+/// assert_eq!(direct_face_degree("sqrt3"), None);
+/// assert_eq!(direct_face_degree("tri-split-3"), None);
+/// assert_eq!(direct_face_degree("no-such-scheme"), None);
+/// ```
+pub fn direct_face_degree(name: &str) -> Option<usize> {
+    plan(name).ok().and_then(|p| p.direct_face_degree())
+}
+
+/// Subdivides like [`subdivide`], with the last level written as a face list
+/// ([`PolygonMesh`]) instead of a half-edge mesh.
+///
+/// For the schemes of [`direct_face_degree`] (with [`SubdivideOptions::preallocate`] on) the
+/// last step writes only positions and face corners: 12 bytes per output triangle (16 per
+/// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
+/// is about half and the last level, the largest, is faster to build. The result is identical
+/// to `subdivide(..)?.to_polygon_mesh()` (tested for every scheme); other schemes are built
+/// that way.
+///
+/// # Errors
+///
+/// As [`subdivide`].
+///
+/// ```
+/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, SubdivideOptions};
+/// use halfedge::{shapes, HalfEdgeMesh};
+///
+/// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
+/// let opts = SubdivideOptions::default();
+/// let level = subdivide_to_face_list(&ico, "loop", 2, &opts)?;
+/// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
+/// assert_eq!(level.mesh, subdivide(&ico, "loop", 2, &opts)?.to_polygon_mesh());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn subdivide_to_face_list(
+    mesh: &HalfEdgeMesh,
+    scheme: &str,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<FaceListLevel> {
+    let counts = mesh.counts();
+    let plan = plan(scheme)?.for_mesh(&counts)?;
+    let convert = |m: &HalfEdgeMesh| FaceListLevel {
+        mesh: m.to_polygon_mesh(),
+        edges: m.n_edges(),
+    };
+    drive(
+        &plan,
+        mesh,
+        &counts,
+        levels,
+        opts,
+        |_, _| Ok(()),
+        |input, s, sizes, template| {
+            let ctx = StepContext {
+                scheme: &plan.name,
+                level: s,
+            };
+            let parallel = opts.threads != 1;
+            let direct = match (plan.rule, template) {
+                _ if !opts.preallocate => None,
+                (Rule::Tri(rule, 2), Some(t)) => Some(to_faces::four_to_one(
+                    input, t, rule, sizes, parallel, &ctx,
+                )?),
+                (Rule::CatmullClark, _) => {
+                    Some(to_faces::catmull_clark(input, sizes, parallel, &ctx)?)
+                }
+                _ => None,
+            };
+            match direct {
+                Some((mesh, edges)) => Ok(FaceListLevel { mesh, edges }),
+                None => Ok(convert(&step(&plan, template, input, s, sizes, opts)?)),
+            }
+        },
+        convert,
+    )
+}
+
 /// Loop subdivision (`loop`, or `loop-boundary` when the mesh has a boundary): Loop's
 /// weights, boundary curves as cubic B-splines.
 ///
@@ -628,8 +739,60 @@ fn run_levels(
     counts: &MeshCounts,
     levels: u32,
     opts: &SubdivideOptions<'_>,
-    mut visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
+    visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
 ) -> Result<HalfEdgeMesh> {
+    drive(
+        plan,
+        mesh,
+        counts,
+        levels,
+        opts,
+        visit,
+        |input, s, sizes, template| step(plan, template, input, s, sizes, opts),
+        HalfEdgeMesh::clone,
+    )
+}
+
+/// What the last level of [`drive`] is built as.
+trait LastLevel: Send {
+    /// Vertices, edges and faces.
+    fn vef(&self) -> [usize; 3];
+    /// The half-edge mesh, when the level is one (for the level visitor).
+    fn as_halfedge(&self) -> Option<&HalfEdgeMesh>;
+}
+
+impl LastLevel for HalfEdgeMesh {
+    fn vef(&self) -> [usize; 3] {
+        [self.n_vertices(), self.n_edges(), self.n_faces()]
+    }
+    fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
+        Some(self)
+    }
+}
+
+impl LastLevel for FaceListLevel {
+    fn vef(&self) -> [usize; 3] {
+        [self.mesh.n_vertices(), self.edges, self.mesh.n_faces()]
+    }
+    fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
+        None
+    }
+}
+
+/// Checks the scheme and every level's size, builds levels `1..levels` as half-edge meshes
+/// (only two alive at a time) and the last one with `last`; `level0` answers `levels = 0`.
+/// `visit` sees every half-edge level, the progress callback every level.
+#[allow(clippy::too_many_arguments)]
+fn drive<T: LastLevel>(
+    plan: &Plan,
+    mesh: &HalfEdgeMesh,
+    counts: &MeshCounts,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+    mut visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
+    last: impl FnOnce(&HalfEdgeMesh, u32, Sizes, Option<&Template>) -> Result<T> + Send,
+    level0: impl FnOnce(&HalfEdgeMesh) -> T + Send,
+) -> Result<T> {
     plan.scheme.initial_state(counts)?;
     check_mesh(plan, mesh)?;
     let name = &plan.name;
@@ -639,29 +802,42 @@ fn run_levels(
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
         expected.push(sizes(&c, name, s)?);
     }
+    let Some(&last_sizes) = expected.last() else {
+        return Ok(level0(mesh));
+    };
     let template = match plan.rule {
-        Rule::Tri(_, n) if levels > 0 => Some(Template::new(n)),
+        Rule::Tri(_, n) => Some(Template::new(n)),
         _ => None,
+    };
+    let report = |level: u32, [vertices, edges, faces]: [usize; 3]| {
+        if let Some(progress) = opts.progress {
+            progress(&LevelDone {
+                level,
+                levels,
+                vertices,
+                edges,
+                faces,
+            });
+        }
     };
     with_threads(opts.threads, || {
         let mut current: Option<HalfEdgeMesh> = None;
-        for (s, &sizes) in (1..=levels).zip(&expected) {
+        for (s, &sizes) in (1..levels).zip(&expected) {
             let input = current.as_ref().unwrap_or(mesh);
             let next = step(plan, template.as_ref(), input, s, sizes, opts)?;
             visit(s, &next)?;
-            if let Some(progress) = opts.progress {
-                progress(&LevelDone {
-                    level: s,
-                    levels,
-                    vertices: next.n_vertices(),
-                    edges: next.n_edges(),
-                    faces: next.n_faces(),
-                });
-            }
+            report(s, next.vef());
             // Level s - 1 is dropped here.
             current = Some(next);
         }
-        Ok(current.unwrap_or_else(|| mesh.clone()))
+        let input = current.as_ref().unwrap_or(mesh);
+        let out = last(input, levels, last_sizes, template.as_ref())?;
+        drop(current);
+        if let Some(m) = out.as_halfedge() {
+            visit(levels, m)?;
+        }
+        report(levels, out.vef());
+        Ok(out)
     })
 }
 

@@ -736,7 +736,34 @@ fn timings_print_one_line_with_five_keys() {
         assert!((0.0..60.0).contains(&s), "{key} = {s}");
     }
     assert!(v["peak_bytes"].as_u64().unwrap() > 0);
-    assert!(v["predicted_peak_bytes"].as_u64().unwrap() > 0);
+    // Loop writes its last level straight into a face list: the input (12, 30, 20) and level
+    // 2 (162, 480, 320) as half-edge meshes (28 bytes per vertex, 32 per edge, 4 per face),
+    // level 3 as positions (642 x 24), face offsets (1,281 x 8) and corners (3,840 x 4).
+    let half_edge = |v: u64, e: u64, f: u64| 28 * v + 32 * e + 4 * f;
+    let face_list = 24 * 642 + 8 * 1281 + 4 * 3 * 1280;
+    assert_eq!(
+        v["predicted_peak_bytes"].as_u64(),
+        Some(half_edge(12, 30, 20) + half_edge(162, 480, 320) + face_list)
+    );
+    // Growing buffers build every level, the last one too, as a half-edge mesh.
+    let run = subcount(&[
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "3",
+        "--no-preallocate",
+        "--timings",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let json = run.stderr.strip_prefix("timings: ").unwrap().trim_end();
+    let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+    assert_eq!(
+        v["predicted_peak_bytes"].as_u64(),
+        Some(half_edge(12, 30, 20) + half_edge(162, 480, 320) + half_edge(642, 1920, 1280))
+    );
     // Without --timings, stderr stays empty.
     let run = subcount(&[
         "subdivide",
