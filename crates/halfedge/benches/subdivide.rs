@@ -7,7 +7,9 @@
 //! level 3 (icosphere and armadillo only, to keep the whole run near 10 minutes). Variants:
 //! `prealloc-1t` (the default: arrays allocated once from the prediction, one thread),
 //! `grow-1t` (arrays grown on demand, the paper's baseline) and `prealloc-2t` (rayon, 2 threads;
-//! icosphere and armadillo only).
+//! icosphere and armadillo only); for the schemes whose last level can be written straight
+//! into a face list (`loop`, `catmull-clark`), `faces-1t` and `faces-2t` time
+//! `subdivide_to_face_list` (what `subcount subdivide` runs), preallocated.
 //!
 //! Benchmark ids are `SCHEME-LLEVEL/MESH/VARIANT`, so criterion's filter selects a subset:
 //!
@@ -22,7 +24,9 @@
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput};
-use halfedge::subdivide::{subdivide, SubdivideOptions};
+use halfedge::subdivide::{
+    direct_face_degree, subdivide, subdivide_to_face_list, SubdivideOptions,
+};
 use halfedge::{shapes, HalfEdgeMesh};
 
 /// The large meshes of `$SUBCOUNT_MESHES` used here.
@@ -50,11 +54,13 @@ const JOBS: [(&str, u32); 8] = [
 const JOBS_L3: [(&str, u32); 2] = [("loop", 3), ("catmull-clark", 3)];
 const LEVEL3_INPUTS: [&str; 2] = ["icosphere", "armadillo"];
 
-/// `(variant name, threads, preallocate)`.
-const VARIANTS: [(&str, usize, bool); 3] = [
-    ("prealloc-1t", 1, true),
-    ("grow-1t", 1, false),
-    ("prealloc-2t", 2, true),
+/// `(variant name, threads, preallocate, last level as a face list)`.
+const VARIANTS: [(&str, usize, bool, bool); 5] = [
+    ("prealloc-1t", 1, true, false),
+    ("grow-1t", 1, false, false),
+    ("prealloc-2t", 2, true, false),
+    ("faces-1t", 1, true, true),
+    ("faces-2t", 2, true, true),
 ];
 
 fn icosphere() -> HalfEdgeMesh {
@@ -109,18 +115,29 @@ fn bench_subdivision(c: &mut Criterion) {
                 }
             };
             group.throughput(Throughput::Elements(faces as u64));
-            for (variant, threads, preallocate) in VARIANTS {
-                if threads > 1 && !LEVEL3_INPUTS.contains(&name.as_str()) {
+            for (variant, threads, preallocate, faces) in VARIANTS {
+                if threads > 1 && !LEVEL3_INPUTS.contains(&name.as_str())
+                    || faces && direct_face_degree(scheme).is_none()
+                {
                     continue;
                 }
                 let opts = SubdivideOptions::default()
                     .with_threads(threads)
                     .with_preallocate(preallocate);
-                group.bench_function(BenchmarkId::new(name.as_str(), variant), |b| {
-                    b.iter_with_large_drop(|| {
-                        subdivide(mesh, scheme, level, &opts).expect("checked above")
-                    })
-                });
+                let id = BenchmarkId::new(name.as_str(), variant);
+                if faces {
+                    group.bench_function(id, |b| {
+                        b.iter_with_large_drop(|| {
+                            subdivide_to_face_list(mesh, scheme, level, &opts).expect("applies")
+                        })
+                    });
+                } else {
+                    group.bench_function(id, |b| {
+                        b.iter_with_large_drop(|| {
+                            subdivide(mesh, scheme, level, &opts).expect("checked above")
+                        })
+                    });
+                }
             }
         }
         group.finish();

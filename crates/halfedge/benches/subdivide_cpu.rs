@@ -16,7 +16,9 @@
 
 use std::time::Instant;
 
-use halfedge::subdivide::{subdivide, SubdivideOptions};
+use halfedge::subdivide::{
+    direct_face_degree, subdivide, subdivide_to_face_list, SubdivideOptions,
+};
 use halfedge::{shapes, HalfEdgeMesh};
 
 /// On-CPU nanoseconds of the calling thread.
@@ -80,12 +82,16 @@ fn main() {
         ("sqrt3", 2),
         ("doo-sabin", 2),
     ];
-    // (name, threads, preallocate); with 2 threads the thread CPU column is the calling
-    // thread only, the process user/sys columns count both workers.
+    // (name, threads, preallocate, last level as a face list); with 2 threads the thread
+    // CPU column is the calling thread only, the process user/sys columns count both workers.
+    // The face-list variants run `subdivide_to_face_list` (what `subcount subdivide` runs)
+    // for the schemes that write their last level straight into a face list.
     let variants = [
-        ("prealloc-1t", 1, true),
-        ("grow-1t", 1, false),
-        ("prealloc-2t", 2, true),
+        ("prealloc-1t", 1, true, false),
+        ("grow-1t", 1, false, false),
+        ("prealloc-2t", 2, true, false),
+        ("faces-1t", 1, true, true),
+        ("faces-2t", 2, true, true),
     ];
     let ticks_per_s = 100.0; // USER_HZ on Linux
     println!(
@@ -93,9 +99,9 @@ fn main() {
     );
     for (name, mesh) in &inputs {
         for (scheme, level) in jobs {
-            for (variant, threads, preallocate) in variants {
+            for (variant, threads, preallocate, face_list) in variants {
                 let id = format!("{scheme}-L{level}/{name}/{variant}");
-                if !id.contains(&filter) {
+                if !id.contains(&filter) || face_list && direct_face_degree(scheme).is_none() {
                     continue;
                 }
                 let opts = SubdivideOptions::default()
@@ -107,11 +113,18 @@ fn main() {
                 for _ in 0..reps {
                     let c0 = thread_cpu_ns().unwrap_or_default();
                     let t0 = Instant::now();
-                    let out = subdivide(mesh, scheme, level, &opts).expect("the job applies");
-                    wall.push(t0.elapsed().as_secs_f64());
-                    cpu.push((thread_cpu_ns().unwrap_or_default() - c0) as f64 * 1e-9);
-                    faces = out.n_faces();
-                    drop(out);
+                    if face_list {
+                        let out = subdivide_to_face_list(mesh, scheme, level, &opts)
+                            .expect("the job applies");
+                        wall.push(t0.elapsed().as_secs_f64());
+                        cpu.push((thread_cpu_ns().unwrap_or_default() - c0) as f64 * 1e-9);
+                        faces = out.mesh.n_faces();
+                    } else {
+                        let out = subdivide(mesh, scheme, level, &opts).expect("the job applies");
+                        wall.push(t0.elapsed().as_secs_f64());
+                        cpu.push((thread_cpu_ns().unwrap_or_default() - c0) as f64 * 1e-9);
+                        faces = out.n_faces();
+                    }
                 }
                 let (u1, s1) = process_ticks().unwrap_or_default();
                 let per_run = |a: u64, b: u64| (b - a) as f64 / ticks_per_s / reps as f64;
