@@ -189,10 +189,19 @@ pub(crate) fn numeric_roots(f: &[BigInt]) -> Vec<Complex<f64>> {
     for i in 0..n {
         companion[(i, n - 1)] = -coeffs[i];
     }
-    match nalgebra::linalg::Schur::try_new(companion, f64::EPSILON, 100_000) {
+    match nalgebra::linalg::Schur::try_new(companion, f64::EPSILON, schur_iterations(n)) {
         Some(schur) => schur.complex_eigenvalues().iter().copied().collect(),
         None => durand_kerner(&coeffs),
     }
+}
+
+/// The most QR iterations the Schur decomposition of a degree-`n` companion matrix may take:
+/// LAPACK's `dlahqr` allows `30 max(10, n)`; this allows `100 max(10, n)`. Each iteration
+/// costs `O(n^2)`, and a decomposition that has not converged by then does not converge at
+/// all (badly scaled companions of degree 28 and more), so the cap keeps the cost `O(n^3)`
+/// before [`durand_kerner`] takes over.
+fn schur_iterations(n: usize) -> usize {
+    100 * n.max(10)
 }
 
 /// Durand-Kerner iteration, the fallback when the Schur decomposition does not converge.

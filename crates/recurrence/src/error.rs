@@ -86,4 +86,15 @@ pub enum Error {
         /// Estimated size of the largest count, in bits.
         bits: u64,
     },
+    /// Computing the closed form would cost more than the caller allowed
+    /// ([`Recurrence::closed_form_cost`](crate::Recurrence::closed_form_cost)).
+    #[error("the closed form of this {dim}x{dim} matrix would cost about {cost} work units, more than the limit of {limit}")]
+    ClosedFormTooCostly {
+        /// Dimension of the matrix.
+        dim: usize,
+        /// The estimate of [`Recurrence::closed_form_cost`](crate::Recurrence::closed_form_cost).
+        cost: u64,
+        /// The limit the caller gave.
+        limit: u64,
+    },
 }

@@ -205,6 +205,74 @@ impl Recurrence {
         crate::closed_form::closed_form(self)
     }
 
+    /// An upper estimate, in work units (about one machine-word or floating-point operation
+    /// each), of what [`closed_form`](Self::closed_form) costs, from the dimension `n` and
+    /// the bit length `b` of the largest entry alone (nothing is computed):
+    ///
+    /// `n^5 + n^3 * w^2` with `w = ceil(n (b + bits(n)) / 64)`.
+    ///
+    /// The first term bounds the numeric spectral parts (`n^4` per eigenvalue outside `Q`
+    /// and `Q(sqrt d)`, at most `n` of them); the second the fraction-free eliminations of
+    /// the exact ones (`O(n^3)` operations on integers of up to `n (b + bits(n))` bits, the
+    /// size of the minors involved). Use it to refuse matrices whose closed form would take
+    /// long before starting: [`closed_form_within`](Self::closed_form_within).
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::new("[[1, 1], [0, 4]]".parse::<IntMatrix>()?);
+    /// assert_eq!(r.closed_form_cost(), 32 + 8); // 2^5 + 2^3 * 1^2
+    /// let big = Recurrence::new(IntMatrix::try_from_rows(vec![vec![1000; 32]; 32])?);
+    /// assert_eq!(big.closed_form_cost(), 32u64.pow(5) + 32u64.pow(3) * 8 * 8);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn closed_form_cost(&self) -> u64 {
+        let n = self.dim() as u64;
+        let b = self
+            .matrix
+            .rows()
+            .flatten()
+            .map(|x| u64::from(64 - x.unsigned_abs().leading_zeros()))
+            .max()
+            .unwrap_or(0)
+            .max(1);
+        let bits_n = u64::from(64 - n.leading_zeros());
+        let w = n.saturating_mul(b + bits_n).div_ceil(64);
+        let n3 = n.saturating_mul(n).saturating_mul(n);
+        n3.saturating_mul(n)
+            .saturating_mul(n)
+            .saturating_add(n3.saturating_mul(w.saturating_mul(w)))
+    }
+
+    /// The closed form, if its [`closed_form_cost`](Self::closed_form_cost) is at most
+    /// `limit`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::ClosedFormTooCostly`] (with the estimate) when the cost exceeds `limit`;
+    /// nothing is computed then.
+    ///
+    /// ```
+    /// # use recurrence::{Error, IntMatrix, Recurrence};
+    /// let r = Recurrence::new("[[1, 1], [0, 4]]".parse::<IntMatrix>()?);
+    /// assert!(r.closed_form_within(1000)?.is_exact());
+    /// assert!(matches!(
+    ///     r.closed_form_within(10),
+    ///     Err(Error::ClosedFormTooCostly { dim: 2, cost: 40, limit: 10 })
+    /// ));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn closed_form_within(&self, limit: u64) -> Result<ClosedForm> {
+        let cost = self.closed_form_cost();
+        if cost > limit {
+            return Err(Error::ClosedFormTooCostly {
+                dim: self.dim(),
+                cost,
+                limit,
+            });
+        }
+        Ok(self.closed_form())
+    }
+
     fn check_len(&self, got: usize) -> Result {
         if got == self.dim() {
             Ok(())
