@@ -145,13 +145,12 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
 }
 
 /// The scheme whose counts `halfedge` will check for this mesh: the 4:1 geometry aliases
-/// count as `loop`, or as `loop-boundary` on a mesh with boundary.
+/// count as `loop`, or as `loop-boundary` on a mesh with boundary and no non-manifold edge
+/// ([`Scheme::for_mesh`], the rule `table` and the other predicting commands use too).
 fn counting_scheme(name: &str, counts: &MeshCounts) -> Result<Scheme, Failure> {
-    let scheme = schemes::builtin(name).map_err(scheme_failure)?;
-    if scheme.canonical_name() == "loop" && scheme.name() != "loop" && counts.boundary_edges > 0 {
-        return schemes::builtin("loop-boundary").map_err(scheme_failure);
-    }
-    Ok(scheme)
+    Ok(schemes::builtin(name)
+        .map_err(scheme_failure)?
+        .for_mesh(counts))
 }
 
 /// Whether to run on the raw face list (the schemes that allow non-manifold input).

@@ -1104,6 +1104,37 @@ fn aliases_in_compositions_on_a_mesh_with_boundary() {
     );
 }
 
+/// With a non-manifold edge next to the boundary an alias stays `loop` (as in `halfedge`'s
+/// subdivision): every command refuses with the same message, naming the alias.
+#[test]
+fn aliases_refuse_non_manifold_edges_the_same_everywhere() {
+    let dir = tempfile::tempdir().unwrap();
+    let fin = dir.path().join("fin.obj");
+    // Three triangles on the edge 1-2: NME = 1, BE = 6.
+    std::fs::write(
+        &fin,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n",
+    )
+    .unwrap();
+    let fin = fin.to_str().unwrap();
+    for alias in LOOP_ALIASES {
+        let needle = format!(
+            "{fin}: {alias} needs every edge to have one or two faces, but this mesh has 1 non-manifold edge"
+        );
+        for command in [
+            &["table"][..],
+            &["at", "--level", "1"],
+            &["verify", "--levels", "1"],
+            &["subdivide", "--levels", "1"],
+        ] {
+            let mut args = command.to_vec();
+            args.extend(["--scheme", alias, "--mesh", fin]);
+            let err = fails(&args, 3, &needle);
+            assert!(err.ends_with("; use loop-general\n"), "{err}");
+        }
+    }
+}
+
 /// On a closed mesh the aliases stay `loop`: state (V, E), the same table.
 #[test]
 fn aliases_count_as_loop_on_closed_meshes() {
