@@ -324,4 +324,7 @@ pub(crate) struct FormulaArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub(crate) format: FormulaFormat,
+    /// Lift the resource guard (closed forms of at most about 20 components).
+    #[arg(long)]
+    pub(crate) allow_large: bool,
 }

@@ -181,7 +181,7 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     // (any level); otherwise the counts are computed under the digit guard.
     let cheap = if args.summary {
         dynamics
-            .direct_form()
+            .direct_form_within(args.allow_large)
             .filter(|f| f.is_exact())
             .and_then(|form| crate::huge::summaries(&dynamics, &form, &x0, s))
     } else {
@@ -254,6 +254,7 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
 
 fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let dynamics = Dynamics::from_source(&args.source)?;
+    crate::model::guard_closed_forms(&dynamics, args.allow_large)?;
     // With an initial state (--init, --counts, --mesh, --base), the text form also shows the
     // numbers substituted.
     let given = args.source.init.is_some()

@@ -309,10 +309,22 @@ impl Dynamics {
     }
 
     /// The closed form that gives the state at every level directly, when there is one: a
-    /// bare matrix, or a single scheme without a first step or a cycle.
+    /// bare matrix, or a single scheme without a first step or a cycle; and when its
+    /// [`closed_form_cost`](Recurrence::closed_form_cost) is within [`CLOSED_FORM_LIMIT`]
+    /// (callers then power the matrix, which is exact too).
     pub(crate) fn direct_form(&self) -> Option<recurrence::ClosedForm> {
+        self.direct_form_within(false)
+    }
+
+    /// [`direct_form`](Self::direct_form), with no cost limit when `allow_large` is set.
+    pub(crate) fn direct_form_within(&self, allow_large: bool) -> Option<recurrence::ClosedForm> {
+        let limit = if allow_large {
+            u64::MAX
+        } else {
+            CLOSED_FORM_LIMIT
+        };
         match self {
-            Dynamics::Matrix(r) => Some(r.closed_form()),
+            Dynamics::Matrix(r) => r.closed_form_within(limit).ok(),
             Dynamics::Plan(plan) => {
                 let phases = plan.phases();
                 match phases.as_slice() {
@@ -321,7 +333,7 @@ impl Dynamics {
                             && only.period == 1
                             && only.last_level.is_none() =>
                     {
-                        Some(only.recurrence.closed_form())
+                        only.recurrence.closed_form_within(limit).ok()
                     }
                     _ => None,
                 }
@@ -433,6 +445,51 @@ impl Dynamics {
             }
         }
     }
+}
+
+/// The largest [`Recurrence::closed_form_cost`] computed without `--allow-large` (about
+/// 20 components with entries up to 10^4, a second or two in a debug build). Above it,
+/// `formula` refuses (exit 4) and `at`, `table` and `plot` power the matrix instead.
+pub(crate) const CLOSED_FORM_LIMIT: u64 = 1 << 22;
+
+/// Refuses, with exit 4, closed forms whose cost estimate exceeds [`CLOSED_FORM_LIMIT`]
+/// (every phase of a plan), unless `allow_large`.
+pub(crate) fn guard_closed_forms(dynamics: &Dynamics, allow_large: bool) -> Result<(), Failure> {
+    if allow_large {
+        return Ok(());
+    }
+    let recurrences: Vec<(String, Recurrence)> = match dynamics {
+        Dynamics::Matrix(r) => vec![("--matrix".to_string(), r.clone())],
+        Dynamics::Plan(plan) => {
+            let phases = plan.phases();
+            let single = phases.len() == 1;
+            phases
+                .into_iter()
+                .map(|p| {
+                    let what = if single {
+                        format!("scheme `{}`", plan.name())
+                    } else {
+                        format!("scheme `{}`, {}", plan.name(), p.description)
+                    };
+                    (what, p.recurrence)
+                })
+                .collect()
+        }
+    };
+    for (what, r) in recurrences {
+        let cost = r.closed_form_cost();
+        if cost > CLOSED_FORM_LIMIT {
+            return Err(Failure::new(
+                Kind::Guard,
+                anyhow::anyhow!(
+                    "{what}: the closed form of a {n}x{n} matrix would cost about {cost:.2e} work units (estimated from its size and entries), more than the limit of {CLOSED_FORM_LIMIT} (about 20 components): use `at` or `table` for exact counts (they power the matrix), or --allow-large to compute it anyway",
+                    n = r.dim(),
+                    cost = cost as f64,
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// The matrix of one full cycle of a scheme (its steady matrix when it is not periodic).

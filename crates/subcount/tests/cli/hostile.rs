@@ -730,3 +730,145 @@ fn face_list_refusals_name_file_and_line() {
     );
     assert!(err.contains("have the same vertices"), "{err}");
 }
+
+/// A dense 32x32 matrix with entries up to 1000, as `[[...], ...]` rows.
+fn dense_32() -> Vec<Vec<i64>> {
+    (0..32i64)
+        .map(|i| {
+            (0..32i64)
+                .map(|j| (i * 37 + j * 101 + i * j * 7) % 1001)
+                .collect()
+        })
+        .collect()
+}
+
+fn bracketed(rows: &[Vec<i64>]) -> String {
+    let rows: Vec<String> = rows
+        .iter()
+        .map(|r| {
+            let r: Vec<String> = r.iter().map(i64::to_string).collect();
+            format!("[{}]", r.join(","))
+        })
+        .collect();
+    format!("[{}]", rows.join(","))
+}
+
+/// `M^level x0` in `i128` (small levels only).
+fn power_apply(rows: &[Vec<i64>], x0: &[i128], level: u32) -> Vec<i128> {
+    let mut x = x0.to_vec();
+    for _ in 0..level {
+        x = rows
+            .iter()
+            .map(|r| r.iter().zip(&x).map(|(a, b)| i128::from(*a) * b).sum())
+            .collect();
+    }
+    x
+}
+
+/// Issue 6: a dense 32x32 matrix (from `--matrix` or a 32-component scheme file, the most
+/// a scheme file may have) never starts an expensive closed form. `formula` refuses with
+/// exit 4 at once (the cost estimate is `n^5 + n^3 w^2`), naming the matrix size and what to
+/// do; `at` and `table` power the matrix instead and answer exactly, in well under a second.
+#[test]
+fn a_dense_32x32_matrix_is_refused_by_formula_and_powered_by_at_and_table() {
+    let rows = dense_32();
+    let matrix = bracketed(&rows);
+    let ones = vec!["1"; 32].join(",");
+    let x0 = vec![1i128; 32];
+    let names: Vec<String> = (0..32).map(|i| format!("\"S{i}\"")).collect();
+    let files = Files::new();
+    let scheme = files.write(
+        "dense32.toml",
+        format!(
+            "name = \"dense32\"\nstate = [{}]\nmatrix = {matrix}\n",
+            names.join(", ")
+        )
+        .as_bytes(),
+    );
+    let cost = "the closed form of a 32x32 matrix would cost about 3.57e7 work units (estimated from its size and entries), more than the limit of 4194304 (about 20 components): use `at` or `table` for exact counts (they power the matrix), or --allow-large to compute it anyway";
+    let sources: [(&[&str], String, String); 2] = [
+        (
+            &["--matrix", &matrix, "--init", &ones],
+            format!("error: --matrix: {cost}"),
+            "x".to_string(),
+        ),
+        (
+            &["--scheme-file", &scheme, "--init", &ones],
+            format!("error: scheme `dense32`: {cost}"),
+            "S".to_string(),
+        ),
+    ];
+    for (source, refusal, prefix) in &sources {
+        for format in ["text", "latex", "rust", "json"] {
+            let mut args = vec!["formula", "--format", format];
+            args.extend_from_slice(source);
+            let err = fails(&args, 4, refusal);
+            assert_eq!(err.trim_end(), refusal.as_str());
+        }
+        // `at` below and above level 64 (above it, `at` would use the closed form if it
+        // were cheap): exact, by powering.
+        for level in [3u32, 100] {
+            let mut args = vec!["at", "--level"];
+            let text = level.to_string();
+            args.push(&text);
+            args.extend_from_slice(source);
+            let out = ok(&args);
+            let lines: Vec<&str> = out.lines().collect();
+            assert_eq!(lines.len(), 33, "{out}");
+            if level == 3 {
+                let expected = power_apply(&rows, &x0, 3);
+                for (i, v) in expected.iter().enumerate() {
+                    assert_eq!(lines[i + 1], format!("{prefix}{i} = {v}"));
+                }
+            }
+        }
+        // At a level far beyond memory, `--summary` needs the closed form: the digit guard
+        // refuses instead of computing it.
+        let mut args = vec!["at", "--level", "1000000000000", "--summary"];
+        args.extend_from_slice(source);
+        fails(&args, 4, "decimal digits");
+        let mut args = vec!["table", "--levels", "0..=3", "--format", "csv"];
+        args.extend_from_slice(source);
+        let out = ok(&args);
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines.len(), 5, "{out}");
+        let expected = power_apply(&rows, &x0, 3);
+        let cells: Vec<&str> = lines[4].split(',').collect();
+        assert_eq!(cells[0], "3");
+        for (i, v) in expected.iter().enumerate() {
+            assert_eq!(cells[i + 1], v.to_string(), "component {i}");
+        }
+    }
+}
+
+/// `--allow-large` lifts the closed-form guard: a 24x24 triangular matrix (cost estimate
+/// 8.1e6, above the limit; eigenvalues 1, 2 and 4, each eight times, with Jordan blocks)
+/// gets its exact closed form, one line per component.
+#[test]
+fn allow_large_computes_a_closed_form_above_the_limit() {
+    let n = 24usize;
+    let rows: Vec<Vec<i64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| match j.cmp(&i) {
+                    std::cmp::Ordering::Equal => [1, 2, 4][i % 3],
+                    std::cmp::Ordering::Greater => ((i * 7 + j * 3) % 5) as i64,
+                    std::cmp::Ordering::Less => 0,
+                })
+                .collect()
+        })
+        .collect();
+    let matrix = bracketed(&rows);
+    fails(
+        &["formula", "--matrix", &matrix],
+        4,
+        "24x24 matrix would cost about 8.09e6 work units",
+    );
+    let out = ok(&["formula", "--matrix", &matrix, "--allow-large"]);
+    assert_eq!(out.lines().count(), n, "{out}");
+    assert!(
+        out.starts_with("x0(s) = x0_0 + "),
+        "{}",
+        &out[..200.min(out.len())]
+    );
+}
