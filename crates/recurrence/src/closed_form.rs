@@ -980,3 +980,228 @@ fn build_fast(comp: &ComponentForm, eigenvalues: &[EigenvalueInfo]) -> Option<Fa
             .collect(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// The reference: polynomials in `M` over the field (Horner), as before the
+    /// fraction-free path. Returns the projector, the `C_t` and the zero-eigenvalue rows.
+    fn reference<F: Field>(
+        m: &IntMatrix,
+        lambda: &F,
+        mult: usize,
+        zero: bool,
+    ) -> (FieldMatrix<F>, Vec<FieldMatrix<F>>, Vec<u64>) {
+        let p = Recurrence::new(m.clone())
+            .characteristic_polynomial()
+            .to_rational();
+        let parts = spectral_parts::<F>(m, &p, lambda, mult);
+        let n = m.dim();
+        let valid = if zero {
+            (0..n)
+                .map(|i| {
+                    (0..mult)
+                        .find(|&k| parts[k].row(i).iter().all(Field::is_field_zero))
+                        .unwrap_or(mult) as u64
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let coefficients = if zero {
+            Vec::new()
+        } else {
+            power_coefficients(&parts, lambda)
+        };
+        (parts[0].clone(), coefficients, valid)
+    }
+
+    fn same<F: Field + PartialEq>(a: &FieldMatrix<F>, b: &FieldMatrix<F>) -> bool {
+        a.dim == b.dim && a.entries == b.entries
+    }
+
+    /// Checks every exact eigenvalue of `m`: the fraction-free path is taken (no fallback)
+    /// and gives exactly the reference's matrices.
+    fn check(m: &IntMatrix) -> std::result::Result<(), TestCaseError> {
+        let r = Recurrence::new(m.clone());
+        for info in r.eigenvalues() {
+            let mult = info.multiplicity;
+            match &info.eigenvalue {
+                Eigenvalue::Rational(l) => {
+                    let spec =
+                        exact_spectrum::<BigRational>(m, &QuadraticSurd::rational(l.clone()), mult);
+                    prop_assert!(spec.is_some(), "fallback for {l} in {m}");
+                    let spec = spec.unwrap();
+                    let (p, c, v) = reference::<BigRational>(m, l, mult, l.is_zero());
+                    prop_assert!(same(&spec.projector, &p), "projector of {l} in {m}");
+                    prop_assert_eq!(spec.coefficients.len(), c.len());
+                    for (a, b) in spec.coefficients.iter().zip(&c) {
+                        prop_assert!(same(a, b), "C_t of {} in {}", l, m);
+                    }
+                    prop_assert_eq!(spec.valid_from, v);
+                }
+                Eigenvalue::QuadraticSurd { .. } => {
+                    let l = info.eigenvalue.to_surd().unwrap();
+                    let spec = exact_spectrum::<QuadraticSurd>(m, &l, mult);
+                    prop_assert!(spec.is_some(), "fallback for {l} in {m}");
+                    let spec = spec.unwrap();
+                    let (p, c, _) = reference::<QuadraticSurd>(m, &l, mult, false);
+                    prop_assert!(same(&spec.projector, &p), "projector of {l} in {m}");
+                    for (a, b) in spec.coefficients.iter().zip(&c) {
+                        prop_assert!(same(a, b), "C_t of {} in {}", l, m);
+                    }
+                }
+                Eigenvalue::Numeric(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn matrix(rows: Vec<Vec<i64>>) -> IntMatrix {
+        IntMatrix::try_from_rows(rows).unwrap()
+    }
+
+    /// `E J E^-1` for elementary `E = I + k e_i e_j^T` applied in sequence: the same Jordan
+    /// structure, dense entries.
+    fn conjugated(mut m: Vec<Vec<i64>>, ops: &[(usize, usize, i64)]) -> IntMatrix {
+        let n = m.len();
+        for &(i, j, k) in ops {
+            let (i, j) = (i % n, j % n);
+            if i == j {
+                continue;
+            }
+            for c in 0..n {
+                m[i][c] += k * m[j][c];
+            }
+            for row in m.iter_mut() {
+                row[j] -= k * row[i];
+            }
+        }
+        matrix(m)
+    }
+
+    #[test]
+    fn fraction_free_spectra_match_the_reference_on_jordan_forms() {
+        let cases: Vec<(Vec<(i64, usize)>, Vec<(usize, usize, i64)>)> = vec![
+            (
+                vec![(2, 3), (2, 1), (1, 2)],
+                vec![(0, 3, 1), (4, 1, -1), (2, 5, 1), (5, 0, 2)],
+            ),
+            (
+                vec![(0, 3), (0, 1), (3, 2)],
+                vec![(1, 4, 1), (3, 0, -2), (5, 2, 1)],
+            ),
+            (
+                vec![(-1, 4), (4, 2)],
+                vec![(0, 5, 1), (5, 1, 1), (2, 4, -1), (3, 0, 1)],
+            ),
+            (
+                vec![(5, 6)],
+                vec![(0, 5, 1), (1, 4, -1), (2, 3, 1), (5, 0, 1)],
+            ),
+        ];
+        for (blocks, ops) in cases {
+            let n: usize = blocks.iter().map(|b| b.1).sum();
+            let mut j = vec![vec![0i64; n]; n];
+            let mut o = 0;
+            for (l, k) in blocks {
+                for a in 0..k {
+                    j[o + a][o + a] = l;
+                    if a + 1 < k {
+                        j[o + a][o + a + 1] = 1;
+                    }
+                }
+                o += k;
+            }
+            check(&conjugated(j, &ops)).unwrap();
+        }
+        // Quadratic eigenvalues, repeated: two Fibonacci blocks and a Pell block.
+        let fib2 = matrix(vec![
+            vec![1, 1, 0, 0, 1],
+            vec![1, 0, 0, 0, 0],
+            vec![0, 0, 1, 1, 0],
+            vec![0, 0, 1, 0, 0],
+            vec![0, 0, 0, 0, 3],
+        ]);
+        check(&fib2).unwrap();
+        check(&matrix(vec![vec![0, 2, 1], vec![1, 0, 1], vec![0, 0, 2]])).unwrap();
+    }
+
+    /// Two different quadratic fields next to numeric eigenvalues: the exact projectors are
+    /// summed by their rational parts (adding `Q(sqrt 5)` entries to `Q(sqrt 2)` ones would mix
+    /// fields), and exactly the components of the 5-cycle are numeric.
+    #[test]
+    fn two_quadratic_fields_beside_numeric_eigenvalues() {
+        let mut rows = vec![vec![0i64; 9]; 9];
+        rows[0][0] = 1;
+        rows[0][1] = 1;
+        rows[1][0] = 1;
+        rows[2][3] = 2;
+        rows[3][2] = 1;
+        for i in 0..5 {
+            rows[4 + (i + 1) % 5][4 + i] = 1;
+        }
+        let form = Recurrence::new(matrix(rows)).closed_form();
+        let exact: Vec<bool> = form.components().iter().map(|c| c.exact).collect();
+        assert_eq!(
+            exact,
+            [true, true, true, true, false, false, false, false, false]
+        );
+        let fields: Vec<String> = form
+            .eigenvalues()
+            .iter()
+            .filter_map(|e| match &e.eigenvalue {
+                Eigenvalue::QuadraticSurd { d, .. } => Some(d.to_string()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(fields.len(), 4, "{fields:?}");
+        assert!(fields.contains(&"5".to_string()) && fields.contains(&"2".to_string()));
+    }
+
+    fn small_matrix() -> impl Strategy<Value = IntMatrix> {
+        (1usize..=5).prop_flat_map(|n| {
+            proptest::collection::vec(-3i64..=3, n * n)
+                .prop_map(move |e| matrix(e.chunks(n).map(<[i64]>::to_vec).collect()))
+        })
+    }
+
+    fn jordan_like() -> impl Strategy<Value = IntMatrix> {
+        (
+            proptest::collection::vec((-2i64..=3, 1usize..=3), 1..=3),
+            proptest::collection::vec((0usize..8, 0usize..8, -1i64..=1), 0..8),
+        )
+            .prop_map(|(blocks, ops)| {
+                let n: usize = blocks.iter().map(|b| b.1).sum();
+                let mut j = vec![vec![0i64; n]; n];
+                let mut o = 0;
+                for (l, k) in blocks {
+                    for a in 0..k {
+                        j[o + a][o + a] = l;
+                        if a + 1 < k {
+                            j[o + a][o + a + 1] = 1;
+                        }
+                    }
+                    o += k;
+                }
+                conjugated(j, &ops)
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+
+        #[test]
+        fn fraction_free_spectra_match_the_reference(m in small_matrix()) {
+            check(&m)?;
+        }
+
+        #[test]
+        fn fraction_free_spectra_match_the_reference_with_repeats(m in jordan_like()) {
+            check(&m)?;
+        }
+    }
+}
