@@ -1073,8 +1073,9 @@ mod tests {
             if i == j {
                 continue;
             }
-            for c in 0..n {
-                m[i][c] += k * m[j][c];
+            let source = m[j].clone();
+            for (target, x) in m[i].iter_mut().zip(&source) {
+                *target += k * x;
             }
             for row in m.iter_mut() {
                 row[j] -= k * row[i];
@@ -1085,7 +1086,8 @@ mod tests {
 
     #[test]
     fn fraction_free_spectra_match_the_reference_on_jordan_forms() {
-        let cases: Vec<(Vec<(i64, usize)>, Vec<(usize, usize, i64)>)> = vec![
+        type Case = (Vec<(i64, usize)>, Vec<(usize, usize, i64)>);
+        let cases: Vec<Case> = vec![
             (
                 vec![(2, 3), (2, 1), (1, 2)],
                 vec![(0, 3, 1), (4, 1, -1), (2, 5, 1), (5, 0, 2)],
