@@ -617,6 +617,29 @@ pub(crate) fn log10_big(v: &BigInt) -> f64 {
 mod tests {
     use super::*;
 
+    /// The closed-form guard never refuses a built-in scheme (their costs are a few thousand
+    /// units, far below the limit), and refuses exactly from 21 components for 3-digit
+    /// entries: `n^5 + n^3 w^2` with `w = ceil(n (10 + bits(n)) / 64)`.
+    #[test]
+    fn closed_form_guard_spares_builtins_and_stops_near_20_components() {
+        for scheme in schemes::builtins() {
+            let plan = Plan::single(scheme.clone());
+            for phase in plan.phases() {
+                let cost = phase.recurrence.closed_form_cost();
+                assert!(cost < 100_000, "{}: {cost}", scheme.name());
+            }
+            assert!(guard_closed_forms(&Dynamics::Plan(plan), false).is_ok());
+        }
+        let dense =
+            |n: usize| Recurrence::new(IntMatrix::try_from_rows(vec![vec![999; n]; n]).unwrap());
+        assert_eq!(dense(20).closed_form_cost(), 3_200_000 + 8000 * 25);
+        assert!(guard_closed_forms(&Dynamics::Matrix(dense(20)), false).is_ok());
+        assert_eq!(dense(21).closed_form_cost(), 4_084_101 + 9261 * 25);
+        let refused = guard_closed_forms(&Dynamics::Matrix(dense(21)), false).unwrap_err();
+        assert_eq!(refused.kind.exit_code(), 4);
+        assert!(guard_closed_forms(&Dynamics::Matrix(dense(21)), true).is_ok());
+    }
+
     #[test]
     fn estimate_tracks_exact_digits() {
         let r = Recurrence::with_names("[[1,1],[0,4]]".parse().unwrap(), ["V", "E"]).unwrap();
