@@ -237,21 +237,13 @@ impl Plan {
         }
     }
 
-    /// The 4:1 aliases `midpoint`, `icosphere` and `butterfly` count as `loop`, which needs a
+    /// The scheme that counts this plan on a mesh with `counts` ([`Scheme::for_mesh`]): the
+    /// 4:1 aliases `midpoint`, `icosphere` and `butterfly` count as `loop`, which needs a
     /// closed mesh; their geometry handles boundaries, so on a mesh with boundary they are
-    /// counted as `loop-boundary` (the same 4:1 topology).
-    fn for_mesh(mut self, counts: &MeshCounts) -> Result<Plan> {
-        let alias = matches!(
-            self.rule,
-            Rule::Tri(
-                TriRule::Midpoint | TriRule::Icosphere | TriRule::Butterfly,
-                _
-            )
-        );
-        if alias && counts.boundary_edges > 0 && counts.nonmanifold_edges == 0 {
-            self.scheme = schemes::builtin("loop-boundary")?;
-        }
-        Ok(self)
+    /// counted as `loop-boundary` (the same 4:1 topology), under their own name.
+    fn for_mesh(mut self, counts: &MeshCounts) -> Plan {
+        self.scheme = self.scheme.for_mesh(counts);
+        self
     }
 }
 
@@ -479,7 +471,7 @@ pub fn subdivide(
     opts: &SubdivideOptions<'_>,
 ) -> Result<HalfEdgeMesh> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts)?;
+    let plan = plan(scheme)?.for_mesh(&counts);
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
 
@@ -547,7 +539,7 @@ pub fn subdivide_to_face_list(
     opts: &SubdivideOptions<'_>,
 ) -> Result<FaceListLevel> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts)?;
+    let plan = plan(scheme)?.for_mesh(&counts);
     let convert = |m: &HalfEdgeMesh| FaceListLevel {
         mesh: m.to_polygon_mesh(),
         edges: m.n_edges(),
@@ -912,7 +904,7 @@ pub fn verify(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts)?;
+    let plan = plan(scheme)?.for_mesh(&counts);
     let mut reports = vec![report(&plan.scheme, &counts, 0, &counts)?];
     run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
         reports.push(report(&plan.scheme, &counts, s, &m.counts())?);
@@ -952,7 +944,7 @@ pub fn subdivide_polygons(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<PolygonMesh> {
-    let plan = plan(scheme)?.for_mesh(&crate::stats::face_list_counts(mesh))?;
+    let plan = plan(scheme)?.for_mesh(&crate::stats::face_list_counts(mesh));
     faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))
 }
 
@@ -981,7 +973,7 @@ pub fn verify_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = crate::stats::face_list_counts(mesh);
-    let plan = plan(scheme)?.for_mesh(&counts)?;
+    let plan = plan(scheme)?.for_mesh(&counts);
     let mut reports = vec![report(&plan.scheme, &counts, 0, &counts)?];
     faces::run_levels(&plan, mesh, levels, opts, |s, m| {
         let measured = crate::stats::face_list_counts(m);
