@@ -1,17 +1,23 @@
 //! Decimal rendering of big integers in subquadratic time.
 //!
-//! num-bigint 0.4 converts to decimal by repeated division by `10^19`, which is quadratic:
-//! a 602,062-digit count (Catmull-Clark at level `10^6`) takes a quarter of a second. Here
-//! the number is split recursively, `n = q 10^w + r`, along a tree of powers `10^(k 2^i)`,
-//! down to leaves of at most 38 digits written from a `u128`:
+//! num-bigint 0.4 converts to decimal in quadratic time: a 602,062-digit count
+//! (Catmull-Clark at level `10^6`) takes a quarter of a second or more. Here the number is
+//! split recursively, `n = q 10^w + r`, along a tree of powers `10^(k 2^i)`, down to leaves
+//! of at most [`Tuning::leaf_max_digits`] digits that num-bigint converts (zero-padded):
 //!
 //! - a power of ten `10^w = 5^w 2^w` divides as a shift and a division by `5^w`, which has
 //!   30 % fewer bits;
-//! - at the large levels the quotient comes from a Newton reciprocal of `5^w` (computed once
-//!   per level) and two multiplications, then is corrected by a few units; products of more
-//!   than a few thousand limbs use number-theoretic transforms ([`ntt`]), since num-bigint's
-//!   Toom-3 is what would dominate;
+//! - at the large levels the quotient comes from a Newton reciprocal of `5^w` (each level's
+//!   from the square of the level below's and one Newton step) and two multiplications,
+//!   then is corrected by a few units; the remainder needs `q 5^w` only modulo
+//!   `2^(64 L) - 1`, a product half as long; products of [`Tuning::ntt_min_limbs`] limbs and more use
+//!   number-theoretic transforms ([`ntt`]), since num-bigint's Toom-3 is what would dominate,
+//!   and the transforms of `5^w` and its reciprocal are computed once per level;
 //! - small levels use num-bigint's own division.
+//!
+//! Numbers of up to [`Tuning::direct_max_digits`] digits go to num-bigint directly: its
+//! conversion is a divide-and-conquer with schoolbook division, which the Newton levels beat
+//! only from a few hundred thousand digits on (see BENCHMARKS.md).
 //!
 //! The result is exactly num-bigint's `to_string`: same digits, a `-` for negative numbers,
 //! `0` for zero.
@@ -137,32 +143,56 @@ fn decimal_digits_bound(n: &BigUint) -> u64 {
     (n.bits() * 30_103).div_ceil(100_000).max(1)
 }
 
-/// Leaves are `u128`s below `10^38`.
-const LEAF_MAX_DIGITS: u64 = 38;
+/// The thresholds of the conversion. [`Tuning::DEFAULT`] was measured on a 2-core AMD EPYC
+/// (see BENCHMARKS.md); the tests run small ones so every path meets small numbers.
+#[derive(Clone, Copy, Debug)]
+struct Tuning {
+    /// Leaves have at most this many digits (and more than half as many).
+    leaf_max_digits: u64,
+    /// Levels of at least this many digits divide with Newton reciprocals; smaller ones with
+    /// num-bigint's schoolbook division.
+    newton_min_digits: u64,
+    /// Numbers of at most this many digits go to num-bigint directly.
+    direct_max_digits: u64,
+    /// Products whose shorter operand has at least this many 64-bit limbs use transforms.
+    ntt_min_limbs: usize,
+}
 
-/// Levels of at least this many digits divide with Newton reciprocals; smaller ones with
-/// num-bigint's schoolbook division.
-const NEWTON_MIN_DIGITS: u64 = 4_000;
-
-/// Numbers of at most this many bits go to num-bigint's `to_string` directly.
-const DIRECT_MAX_BITS: u64 = 2_000;
+impl Tuning {
+    const DEFAULT: Tuning = Tuning {
+        leaf_max_digits: 32_000,
+        newton_min_digits: 12_000,
+        direct_max_digits: 160_000,
+        ntt_min_limbs: 500,
+    };
+}
 
 fn write_magnitude<W: fmt::Write + ?Sized>(out: &mut W, n: &BigUint) -> fmt::Result {
-    if n.bits() <= DIRECT_MAX_BITS {
+    write_magnitude_tuned(out, n, Tuning::DEFAULT)
+}
+
+fn write_magnitude_tuned<W: fmt::Write + ?Sized>(
+    out: &mut W,
+    n: &BigUint,
+    tuning: Tuning,
+) -> fmt::Result {
+    let digits = decimal_digits_bound(n);
+    if digits <= tuning.direct_max_digits.max(tuning.leaf_max_digits) {
         return match n.to_u128() {
             Some(v) => write!(out, "{v}"),
             None => write!(out, "{n}"),
         };
     }
-    let tree = PowerTree::new(decimal_digits_bound(n));
+    let tree = PowerTree::new(digits, tuning);
     let mut writer = DigitWriter { out, tree: &tree };
     writer.write(n, tree.levels.len() - 1, false)
 }
 
 /// Powers `10^(w_i)`, `w_i = k 2^i`, for the splits, with what each level's division needs.
 struct PowerTree {
-    /// Leaf width `k` in digits (at most [`LEAF_MAX_DIGITS`]).
+    /// Leaf width `k` in digits (at most [`Tuning::leaf_max_digits`]).
     leaf_digits: u64,
+    tuning: Tuning,
     levels: Vec<Level>,
 }
 
@@ -209,11 +239,11 @@ impl Reciprocal {
                 // approximation of 2^(f + h) / 5^w, h = p' - 2.
                 let (f_below, p_below) = (five_below.bits(), r.precision);
                 let h = p_below - 2;
-                let square = ntt_aware_mul(&r.value, &r.value);
+                let square = ntt_aware_mul(&r.value, &r.value, transform_min_limbs);
                 let v = square >> (2 * f_below + 2 * p_below - five.bits() - h);
-                newton_step(five, v, h, precision)
+                newton_step(five, v, h, precision, transform_min_limbs)
             }
-            _ => reciprocal(five, precision),
+            _ => reciprocal(five, precision, transform_min_limbs),
         };
         let transforms = (ntt::limbs(five) >= transform_min_limbs).then(|| {
             // n < 10^(2w): n >> w >> (bits(5^w) - 1) has at most this many bits.
@@ -237,10 +267,10 @@ impl Reciprocal {
 
 impl PowerTree {
     /// The tree for numbers of at most `digits` digits.
-    fn new(digits: u64) -> PowerTree {
-        // Smallest number of levels m + 1 with ceil(digits / 2^(m+1)) <= LEAF_MAX_DIGITS.
+    fn new(digits: u64, tuning: Tuning) -> PowerTree {
+        // Smallest number of levels m + 1 with ceil(digits / 2^(m+1)) <= leaf_max_digits.
         let mut levels = 1u32;
-        while digits.div_ceil(1 << levels) > LEAF_MAX_DIGITS {
+        while digits.div_ceil(1 << levels) > tuning.leaf_max_digits {
             levels += 1;
         }
         let leaf_digits = digits.div_ceil(1 << levels);
@@ -249,13 +279,13 @@ impl PowerTree {
             let w = leaf_digits << i;
             let five = match out.last() {
                 None => BigUint::from(5u32).pow(w as u32),
-                Some(prev) => ntt_aware_mul(&prev.five, &prev.five),
+                Some(prev) => ntt_aware_mul(&prev.five, &prev.five, tuning.ntt_min_limbs),
             };
             let below = out
                 .last()
                 .and_then(|l| l.reciprocal.as_ref().map(|r| (&l.five, r)));
-            let reciprocal =
-                (w >= NEWTON_MIN_DIGITS).then(|| Reciprocal::new(&five, w, below, NTT_MIN_LIMBS));
+            let reciprocal = (w >= tuning.newton_min_digits)
+                .then(|| Reciprocal::new(&five, w, below, tuning.ntt_min_limbs));
             out.push(Level {
                 digits: w,
                 five,
@@ -264,6 +294,7 @@ impl PowerTree {
         }
         PowerTree {
             leaf_digits,
+            tuning,
             levels: out,
         }
     }
@@ -284,11 +315,14 @@ impl<W: fmt::Write + ?Sized> DigitWriter<'_, W> {
     /// Writes `n < 10^(2 w_level)`; `pad` writes exactly `2 w_level` digits.
     fn write(&mut self, n: &BigUint, level: usize, pad: bool) -> fmt::Result {
         let lvl = &self.tree.levels[level];
-        if !pad && n.bits() <= 128 && n.to_u128().is_some_and(|v| v < pow10_u128(38)) {
+        if !pad && decimal_digits_bound(n) <= self.tree.tuning.leaf_max_digits {
             return self.leaf(n, 0, false);
         }
-        let (q, r) = split(n, lvl);
+        let (q, r) = split(n, lvl, self.tree.tuning.ntt_min_limbs);
         if level == 0 {
+            if !pad && q.is_zero() {
+                return self.leaf(&r, 0, false);
+            }
             self.leaf(&q, self.tree.leaf_digits, pad)?;
             return self.leaf(&r, self.tree.leaf_digits, true);
         }
@@ -300,28 +334,23 @@ impl<W: fmt::Write + ?Sized> DigitWriter<'_, W> {
         }
     }
 
-    /// Writes `n < 10^38`, zero-padded to `width` digits if `pad`.
+    /// Writes `n` with num-bigint's own conversion (quadratic, but the fastest for a few
+    /// thousand digits), zero-padded to `width` digits if `pad`.
     fn leaf(&mut self, n: &BigUint, width: u64, pad: bool) -> fmt::Result {
-        let v = n.to_u128().unwrap_or(0);
-        debug_assert!(n.bits() <= 128, "leaf of {} bits", n.bits());
         if pad {
-            write!(self.out, "{v:0width$}", width = width as usize)
+            write!(self.out, "{n:0width$}", width = width as usize)
         } else {
-            write!(self.out, "{v}")
+            write!(self.out, "{n}")
         }
     }
 }
 
-fn pow10_u128(k: u32) -> u128 {
-    10u128.pow(k)
-}
-
 /// `(q, r)` with `n = q 10^w + r`, `0 <= r < 10^w`, for `n < 10^(2w)`.
-fn split(n: &BigUint, lvl: &Level) -> (BigUint, BigUint) {
+fn split(n: &BigUint, lvl: &Level, ntt_min_limbs: usize) -> (BigUint, BigUint) {
     let w = lvl.digits;
     let high = n >> w;
     let (q, r_high) = match &lvl.reciprocal {
-        Some(recip) => div_newton(&high, &lvl.five, recip),
+        Some(recip) => div_newton(&high, &lvl.five, recip, ntt_min_limbs),
         None => num_integer::Integer::div_rem(&high, &lvl.five),
     };
     let r = (r_high << w) | low_bits(n, w);
@@ -341,12 +370,9 @@ fn low_bits(n: &BigUint, k: u64) -> BigUint {
     BigUint::new(digits)
 }
 
-/// Products of operands of at least this many 64-bit limbs (the shorter one) use
-/// transforms.
-const NTT_MIN_LIMBS: usize = 500;
-
-fn ntt_aware_mul(a: &BigUint, b: &BigUint) -> BigUint {
-    if ntt::limbs(a).min(ntt::limbs(b)) >= NTT_MIN_LIMBS {
+/// `a b`, by transforms when both have at least `ntt_min_limbs` limbs.
+fn ntt_aware_mul(a: &BigUint, b: &BigUint, ntt_min_limbs: usize) -> BigUint {
+    if ntt::limbs(a).min(ntt::limbs(b)) >= ntt_min_limbs {
         ntt::mul(a, b)
     } else {
         a * b
@@ -354,17 +380,17 @@ fn ntt_aware_mul(a: &BigUint, b: &BigUint) -> BigUint {
 }
 
 /// `V ~ 2^(bits(d) + p) / d` with a relative error of a few `2^-p`.
-fn reciprocal(d: &BigUint, p: u64) -> BigUint {
+fn reciprocal(d: &BigUint, p: u64, ntt_min_limbs: usize) -> BigUint {
     let f = d.bits();
     if f > p + 64 {
         // Only the leading p + 64 bits of d matter.
-        return reciprocal(&(d >> (f - p - 64)), p);
+        return reciprocal(&(d >> (f - p - 64)), p, ntt_min_limbs);
     }
     if p <= 4_096 {
         return (BigUint::from(1u32) << (f + p)) / d;
     }
     let h = p.div_ceil(2) + 32;
-    newton_step(d, reciprocal(d, h), h, p)
+    newton_step(d, reciprocal(d, h, ntt_min_limbs), h, p, ntt_min_limbs)
 }
 
 /// Guard bits of a level's reciprocal beyond the quotient's bits: enough for
@@ -374,19 +400,19 @@ const RECIPROCAL_GUARD_BITS: u64 = 80;
 /// One Newton step `v (1 + e / 2^(f+h))`, `e = 2^(f+h) - d v`: from `v ~ 2^(f + h) / d`
 /// with a relative error of a few `2^-h` to `~2^(f + p) / d` with a few `2^-p`, for
 /// `p <= 2h - 64` (`f = bits(d)`).
-fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64) -> BigUint {
+fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64, ntt_min_limbs: usize) -> BigUint {
     debug_assert!(p + 64 <= 2 * h, "precision {p} from {h}");
     let f = d.bits();
     if f > p + 64 {
         // Only the leading p + 64 bits of d matter; v approximates the truncated quotient
         // 2^((f - s) + h) / (d >> s) just as well.
-        return newton_step(&(d >> (f - p - 64)), v, h, p);
+        return newton_step(&(d >> (f - p - 64)), v, h, p, ntt_min_limbs);
     }
     // |e| ~ d |v - 2^(f+h)/d| is below 2^(f + 8) or so: for big d it follows from d v
     // modulo M = 2^(64 L) - 1 with L > limbs(d), half the product's length.
     let d_limbs = ntt::limbs(d);
     let len = ntt::transform_len(d_limbs + 1);
-    let (e, e_negative) = if d_limbs >= NTT_MIN_LIMBS && d_limbs + ntt::limbs(&v) > len {
+    let (e, e_negative) = if d_limbs >= ntt_min_limbs && d_limbs + ntt::limbs(&v) > len {
         let modulus = (BigUint::from(1u32) << (64 * len as u64)) - 1u32;
         let dv = ntt::mul_cyclic(&v, &ntt::Transform::new(d, len));
         let one = BigUint::from(1u32) << ((f + h) % (64 * len as u64));
@@ -401,7 +427,7 @@ fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64) -> BigUint {
             (e, false)
         }
     } else {
-        let dv = ntt_aware_mul(d, &v);
+        let dv = ntt_aware_mul(d, &v, ntt_min_limbs);
         let one = BigUint::from(1u32) << (f + h);
         if one >= dv {
             (one - dv, false)
@@ -413,7 +439,7 @@ fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64) -> BigUint {
     let cut = e.bits().saturating_sub(h + 64);
     let e = e >> cut;
     let shift = (f + 2 * h - p) - cut;
-    let correction = ntt_aware_mul(&v, &e) >> shift;
+    let correction = ntt_aware_mul(&v, &e, ntt_min_limbs) >> shift;
     let base = v << (p - h);
     if e_negative {
         base - correction
@@ -424,15 +450,20 @@ fn newton_step(d: &BigUint, v: BigUint, h: u64, p: u64) -> BigUint {
 
 /// `(n / d, n mod d)` for a quotient below `2^(recip.precision - 64)`, from the reciprocal
 /// of `d`, corrected to the exact values.
-fn div_newton(n: &BigUint, d: &BigUint, recip: &Reciprocal) -> (BigUint, BigUint) {
+fn div_newton(
+    n: &BigUint,
+    d: &BigUint,
+    recip: &Reciprocal,
+    ntt_min_limbs: usize,
+) -> (BigUint, BigUint) {
     let f = d.bits();
     // q ~ n V / 2^(f + p); dropping the low f - 1 bits of n costs less than one unit.
     let t = f - 1;
     let top = n >> t;
     let shift = f + recip.precision - t;
     let Some(tr) = &recip.transforms else {
-        let mut q = ntt_aware_mul(&top, &recip.value) >> shift;
-        let mut qd = ntt_aware_mul(&q, d);
+        let mut q = ntt_aware_mul(&top, &recip.value, ntt_min_limbs) >> shift;
+        let mut qd = ntt_aware_mul(&q, d, ntt_min_limbs);
         while qd > *n {
             q -= 1u32;
             qd -= d;
@@ -484,6 +515,80 @@ mod tests {
     use super::*;
     use num_traits::One;
 
+    /// Small thresholds, so numbers of a few hundred digits already take every path: the
+    /// tree, Newton levels built from scratch (`SMALL`) or from the level below, transforms
+    /// at every size, and the modular remainders.
+    const SMALL: Tuning = Tuning {
+        leaf_max_digits: 40,
+        newton_min_digits: 150,
+        direct_max_digits: 0,
+        ntt_min_limbs: 4,
+    };
+    const SMALL_LATE_NEWTON: Tuning = Tuning {
+        newton_min_digits: 1_500,
+        ..SMALL
+    };
+    const SMALL_SCHOOLBOOK: Tuning = Tuning {
+        newton_min_digits: u64::MAX,
+        ..SMALL
+    };
+
+    fn check(n: &BigUint) {
+        let expected = n.to_string();
+        for tuning in [SMALL, SMALL_LATE_NEWTON, SMALL_SCHOOLBOOK, Tuning::DEFAULT] {
+            let mut got = String::new();
+            write_magnitude_tuned(&mut got, n, tuning).unwrap();
+            assert_eq!(got, expected, "{} bits, {tuning:?}", n.bits());
+        }
+    }
+
+    #[test]
+    fn small_thresholds_edge_cases() {
+        for k in (0..130).chain([150, 151, 299, 300, 301, 640, 641, 1_280, 2_560, 5_000]) {
+            let p = BigUint::from(10u32).pow(k);
+            check(&p);
+            check(&(&p + 1u32));
+            if k > 0 {
+                check(&(&p - 1u32));
+            }
+        }
+        for bits in [
+            1, 63, 64, 65, 127, 128, 129, 1_000, 4_097, 10_000, 33_219, 33_220,
+        ] {
+            let p = BigUint::one() << bits;
+            check(&p);
+            check(&(p - 1u32));
+        }
+        check(&BigUint::zero());
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig {
+            cases: 32,
+            failure_persistence: None,
+            ..proptest::prelude::ProptestConfig::default()
+        })]
+
+        #[test]
+        fn small_thresholds_agree_with_num_bigint(
+            bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..6_000),
+        ) {
+            check(&BigUint::from_bytes_le(&bytes));
+        }
+
+        #[test]
+        fn small_thresholds_on_runs_of_zeros_and_nines(
+            a in 1u32..8_000,
+            b in 1u32..8_000,
+            c in 1u32..10,
+        ) {
+            // 10^a + c 10^b - 1 and 10^a + c 10^b + 1: long runs of 0s and 9s.
+            let n = BigUint::from(10u32).pow(a.max(b) + 1) + BigUint::from(c) * BigUint::from(10u32).pow(a.min(b));
+            check(&(&n - 1u32));
+            check(&(&n + 1u32));
+        }
+    }
+
     #[test]
     fn ntt_products_match_num_bigint() {
         for (a, b) in [
@@ -508,7 +613,7 @@ mod tests {
     fn reciprocal_within_a_few_units() {
         let d = BigUint::from(5u32).pow(40_000u32);
         for p in [100, 5_000, 20_000, 150_000] {
-            let v = reciprocal(&d, p);
+            let v = reciprocal(&d, p, 8);
             let exact = (BigUint::one() << (d.bits() + p)) / &d;
             let diff = if v > exact { &v - &exact } else { &exact - &v };
             assert!(diff <= BigUint::from(4u32), "p = {p}: off by {diff}");
@@ -532,7 +637,7 @@ mod tests {
             for transform_min_limbs in [0, usize::MAX] {
                 let recip = Reciprocal::new(&five, w, None, transform_min_limbs);
                 assert_eq!(recip.transforms.is_some(), transform_min_limbs == 0);
-                assert_eq!(div_newton(&n, &five, &recip), expected);
+                assert_eq!(div_newton(&n, &five, &recip, 8), expected);
             }
         }
     }
