@@ -1,12 +1,15 @@
 //! Exact closed forms from the spectral decomposition
 //! `M^s = sum_l sum_(k < m_l) C(s, k) l^(s-k) N_l^k P_l`.
 //!
-//! For each eigenvalue `l` of multiplicity `m`, write `p(x) = (x - l)^m h(x)`. The spectral
-//! projector is `P_l = h(M) v(M)` where `v` is the inverse of `h` modulo `(x - l)^m`, read off
-//! the Taylor series of `1/h` at `l` (so no extended Euclid is needed), and the nilpotent part
-//! is `N_l = (M - l I) P_l`. Everything runs in the field that holds `l`: the rationals,
-//! `Q(sqrt d)`, or complex `f64` for numeric eigenvalues. `C(s, k) l^(-k)` is then expanded
-//! into powers of `s`, which gives each component as `sum p_l(s) l^s`.
+//! For an exact eigenvalue `l` (rational or in `Q(sqrt d)`) of multiplicity `m`, the
+//! projector and the nilpotent parts come fraction-free from the generalized eigenspaces, the
+//! kernels of `(M - l I)^m` and of its transpose, in the ring `Z[sqrt d]`
+//! ([`exact_spectrum`]): integers throughout, one rational per entry at the end. For a numeric
+//! eigenvalue, write `p(x) = (x - l)^m h(x)`: the spectral projector is `P_l = h(M) v(M)`
+//! where `v` is the inverse of `h` modulo `(x - l)^m`, read off the Taylor series of `1/h` at
+//! `l`, and the nilpotent part is `N_l = (M - l I) P_l`, in complex `f64`
+//! ([`spectral_parts`], also the exact path's fallback and test reference). `C(s, k) l^(-k)`
+//! is then expanded into powers of `s`, which gives each component as `sum p_l(s) l^s`.
 //!
 //! The zero eigenvalue contributes `N_0^s P_0`, which vanishes from level `m_0` on; per
 //! component, `valid_from` is the least `k` with `e_i^T N_0^k P_0 = 0`, and the levels below
