@@ -681,6 +681,14 @@ fn exact_spectrum<F: ExactField>(
     })
 }
 
+/// The entrywise conjugate `a - b sqrt(d)` of a matrix over `Q(sqrt d)`.
+fn conjugate_matrix(m: &FieldMatrix<QuadraticSurd>) -> FieldMatrix<QuadraticSurd> {
+    FieldMatrix {
+        dim: m.dim,
+        entries: m.entries.iter().map(QuadraticSurd::conjugate).collect(),
+    }
+}
+
 /// Coefficients of `C(s, k) = s (s-1) ... (s-k+1) / k!` as a polynomial in `s`.
 fn binomial_poly(k: usize) -> Vec<BigRational> {
     let mut poly = vec![BigRational::one()];
@@ -734,6 +742,12 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
     let mut exact_sum = FieldMatrix::<BigRational>::scalar(n, &BigRational::zero());
     let any_numeric = eigenvalues.iter().any(|e| !e.eigenvalue.is_exact());
     let mut powers = Vec::with_capacity(eigenvalues.len());
+    type SurdData = (
+        QuadraticSurd,
+        FieldMatrix<QuadraticSurd>,
+        Vec<FieldMatrix<QuadraticSurd>>,
+    );
+    let mut surd_cache: Vec<SurdData> = Vec::new();
     for info in &eigenvalues {
         let mult = info.multiplicity;
         match &info.eigenvalue {
@@ -783,17 +797,34 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                     .eigenvalue
                     .to_surd()
                     .expect("surd eigenvalues are exact");
-                let (projector, coefficients) = match exact_spectrum::<QuadraticSurd>(m, &l, mult) {
-                    Some(spec) => (spec.projector, spec.coefficients),
-                    None => {
-                        let parts = spectral_parts::<QuadraticSurd>(m, &p, &l, mult);
-                        let coefficients = power_coefficients(&parts, &l);
-                        (
-                            parts.into_iter().next().expect("one part per multiplicity"),
-                            coefficients,
-                        )
-                    }
+                // The conjugate eigenvalue's data are the entrywise conjugates (the Galois
+                // automorphism of Q(sqrt d) fixes M): computed once per pair.
+                let conjugate = l.conjugate();
+                let cached =
+                    surd_cache
+                        .iter()
+                        .find(|(k, _, _)| *k == conjugate)
+                        .map(|(_, p, c)| {
+                            (
+                                conjugate_matrix(p),
+                                c.iter().map(conjugate_matrix).collect(),
+                            )
+                        });
+                let (projector, coefficients): (_, Vec<_>) = match cached {
+                    Some(found) => found,
+                    None => match exact_spectrum::<QuadraticSurd>(m, &l, mult) {
+                        Some(spec) => (spec.projector, spec.coefficients),
+                        None => {
+                            let parts = spectral_parts::<QuadraticSurd>(m, &p, &l, mult);
+                            let coefficients = power_coefficients(&parts, &l);
+                            (
+                                parts.into_iter().next().expect("one part per multiplicity"),
+                                coefficients,
+                            )
+                        }
+                    },
                 };
+                surd_cache.push((l.clone(), projector.clone(), coefficients.clone()));
                 if any_numeric {
                     let rational_part = FieldMatrix {
                         dim: n,
