@@ -12,7 +12,8 @@ What it does:
      `subcount subdivide --base icosahedron --scheme icosphere --levels 6 -o FILE`;
   3. for every job (scheme, levels, input) runs each tool in its own process, REPS times
      (once when a run takes more than 10 s): subcount through `subcount subdivide --timings`
-     (the median of "subdivide_s", peak_bytes and predicted_peak_bytes), OpenMesh through the
+     (the median of "subdivide_s", peak_bytes and predicted_peak_bytes; "subcount" with the
+     default threads, i.e. every core, "subcount-1t" with --threads 1), OpenMesh through the
      driver built by bench/peers/openmesh/build.sh (skipped when it is missing), and the Python
      peers in-process in the virtualenv (wall time of the call only, loading excluded; peak RSS
      of the worker process, Python and numpy included);
@@ -45,13 +46,13 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # other names are files of --meshes. trimesh's subdivide is the plain 4:1 midpoint split, so
 # it is compared with subcount's `midpoint` on the same input.
 JOBS = [
-    ("loop L3 icosphere", "loop", 3, "icosphere", ["subcount-thp", "openmesh", "igl", "pymeshlab"]),
-    ("midpoint L3 icosphere", "midpoint", 3, "icosphere", ["trimesh"]),
-    ("catmull-clark L3 icosphere", "catmull-clark", 3, "icosphere", ["subcount-thp", "openmesh", "pymeshlab"]),
-    ("sqrt3 L2 icosphere", "sqrt3", 2, "icosphere", ["openmesh"]),
-    ("loop L2 armadillo", "loop", 2, "armadillo", ["openmesh", "igl", "pymeshlab"]),
-    ("catmull-clark L2 armadillo", "catmull-clark", 2, "armadillo", ["openmesh", "pymeshlab"]),
-    ("sqrt3 L2 armadillo", "sqrt3", 2, "armadillo", ["openmesh"]),
+    ("loop L3 icosphere", "loop", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "igl", "pymeshlab"]),
+    ("midpoint L3 icosphere", "midpoint", 3, "icosphere", ["subcount-1t", "trimesh"]),
+    ("catmull-clark L3 icosphere", "catmull-clark", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "pymeshlab"]),
+    ("sqrt3 L2 icosphere", "sqrt3", 2, "icosphere", ["subcount-1t", "openmesh"]),
+    ("loop L2 armadillo", "loop", 2, "armadillo", ["subcount-1t", "openmesh", "igl", "pymeshlab"]),
+    ("catmull-clark L2 armadillo", "catmull-clark", 2, "armadillo", ["subcount-1t", "openmesh", "pymeshlab"]),
+    ("sqrt3 L2 armadillo", "sqrt3", 2, "armadillo", ["subcount-1t", "openmesh"]),
 ]
 
 # The Catmull-Clark quad recurrence, state (V, E, F) on a closed quad mesh: each level
@@ -301,7 +302,12 @@ def main():
         ours_med = statistics.median(ours["times"])
         results = [("subcount", ours)]
         for tool in peers:
-            if tool == "subcount-thp":
+            if tool == "subcount-1t":
+                # The single-thread path (--threads 1); "subcount" is the default, rayon's
+                # pool over every core.
+                r = run_subcount(a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels),
+                                              "--threads", "1"], a.reps)
+            elif tool == "subcount-thp":
                 # The same binary with glibc's malloc asking for transparent huge pages
                 # (fewer, larger page faults on the fresh output arrays).
                 r = run_subcount(a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels)],
