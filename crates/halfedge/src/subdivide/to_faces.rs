@@ -110,14 +110,22 @@ pub(crate) fn catmull_clark(
     };
     let mut corners = vec![0u32; 4 * built.faces];
     if mesh.is_quad_mesh() {
-        // Old face f owns output faces 4f..4f + 4: fill in chunks.
+        // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
+        // and their targets are loaded once (prev(h_k) = h_(k-1), so `quad` is inlined here
+        // without its prev lookup).
         let fill = |(chunk, out): (usize, &mut [u32])| {
             let first = chunk * FACES_PER_TASK;
             for (f, quads) in (first as u32..).zip(out.chunks_exact_mut(16)) {
-                let mut h = t.face_halfedge(f);
-                for q in quads.chunks_exact_mut(4) {
-                    q.copy_from_slice(&quad(f, h));
-                    h = t.next(h);
+                let h0 = t.face_halfedge(f);
+                let h1 = t.next(h0);
+                let h2 = t.next(h1);
+                let h3 = t.next(h2);
+                let hs = [h0, h1, h2, h3];
+                let targets = hs.map(|h| t.target(h));
+                let center = nv + ne + f;
+                for (k, q) in quads.chunks_exact_mut(4).enumerate() {
+                    let p = (k + 3) % 4;
+                    q.copy_from_slice(&[targets[p], nv + (hs[k] >> 1), center, nv + (hs[p] >> 1)]);
                 }
             }
         };
