@@ -19,8 +19,8 @@ What it does:
      of the worker process, Python and numpy included);
   4. times python-flint's fmpz_mat power of the Catmull-Clark quad matrix at s = 10^6 and
      str() of the resulting count (~602,062 digits), next to the whole `subcount at` process
-     and, in-process, `recurrence::to_decimal` and num-bigint's `to_string` on the same number
-     (criterion's samples from `cargo bench -p schemes --bench exact_counts`, group `decimal`;
+     and, in-process, `decimal::to_decimal` and num-bigint's `to_string` on the same number
+     (criterion's samples from `cargo bench -p decimal --bench to_decimal`, group `decimal`;
      skipped with --no-cargo-bench);
   5. prints one table: median seconds, output faces per second, peak memory, and the ratio of
      each peer's median to subcount's median on the same job, all measured in the same run.
@@ -229,18 +229,18 @@ def run_openmesh(binary, scheme, levels, path, reps):
 
 
 def criterion_rendering():
-    """Seconds per call of recurrence::to_decimal and num-bigint's to_string on the 602,062-digit
-    count, one figure per criterion sample (group `decimal` of the schemes crate's exact_counts
+    """Seconds per call of decimal::to_decimal and num-bigint's to_string on the 602,062-digit
+    count, one figure per criterion sample (group `decimal` of the decimal crate's to_decimal
     bench, which renders the same E = 12 4^(10^6) as flint's str() here)."""
     print("running cargo bench (decimal rendering) ...", file=sys.stderr)
     subprocess.run(
-        ["cargo", "bench", "-p", "schemes", "--bench", "exact_counts", "--", "--noplot",
+        ["cargo", "bench", "-p", "decimal", "--bench", "to_decimal", "--", "--noplot",
          "^decimal/catmull-clark-quad/.*/1000000$"],
         cwd=REPO, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     meta = json.loads(subprocess.run(["cargo", "metadata", "--format-version", "1", "--no-deps"],
                                      cwd=REPO, capture_output=True, text=True, check=True).stdout)
     out = {}
-    for bench, label in (("to-decimal", "recurrence::to_decimal (criterion)"),
+    for bench, label in (("to-decimal", "decimal::to_decimal (criterion)"),
                          ("num-bigint-to-string", "num-bigint to_string (criterion)")):
         path = os.path.join(meta["target_directory"], "criterion", "decimal",
                             "catmull-clark-quad_" + bench, "1000000", "new", "sample.json")
@@ -369,8 +369,8 @@ def main():
             rendering["flint str() %d digits" % fl["digits"]] = fl["render"]
         else:
             rows.append(("cc-quad counts s=10^6", "flint", "error: " + p.stderr.strip()[-60:], "", "", "", ""))
-        # Decimal rendering of E = 12 4^(10^6), in-process; ratios to recurrence::to_decimal.
-        ours_render = rendering.get("recurrence::to_decimal (criterion)")
+        # Decimal rendering of E = 12 4^(10^6), in-process; ratios to decimal::to_decimal.
+        ours_render = rendering.get("decimal::to_decimal (criterion)")
         for what, ts in rendering.items():
             med = statistics.median(ts)
             ratio = "%.2fx" % (med / statistics.median(ours_render)) if ours_render else ""

@@ -64,7 +64,6 @@
 #![deny(missing_docs)]
 
 mod closed_form;
-mod decimal;
 mod eigen;
 mod error;
 mod field;
@@ -77,7 +76,6 @@ mod render;
 mod summary;
 
 pub use crate::closed_form::{ClosedForm, Coefficient, ComponentForm, EarlyLevel, Term};
-pub use crate::decimal::{to_decimal, write_decimal, Decimal};
 pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
 pub use crate::error::{Error, Result};
 pub use crate::field::QuadraticSurd;

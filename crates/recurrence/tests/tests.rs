@@ -1,7 +1,6 @@
 //! Integration tests of the `recurrence` crate, one module per topic.
 
 mod closed_form;
-mod decimal;
 mod generated_rust;
 mod paper;
 mod props;

@@ -1,9 +1,8 @@
 //! Exact counts of every built-in scheme at s = 10, 10^3, 10^5, 10^6: closed-form evaluation
-//! against matrix powering (group `scheme-counts`), and the decimal rendering of the largest
-//! count of `loop` and `catmull-clark-quad` at the same levels, with num-bigint's quadratic
-//! `to_string` and with `recurrence::to_decimal` (group `decimal`; issue 5).
+//! against matrix powering (group `scheme-counts`). The decimal rendering of the largest counts
+//! is benchmarked in the `decimal` crate (`cargo bench -p decimal --bench to_decimal`).
 //!
-//! `cargo bench -p schemes --bench exact_counts` (filter with e.g. `-- loop/` or `-- decimal`).
+//! `cargo bench -p schemes --bench exact_counts` (filter with e.g. `-- loop/`).
 #![allow(missing_docs)] // criterion_group! generates an undocumented public function
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion};
@@ -57,36 +56,5 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-/// Decimal rendering of the largest count: for `catmull-clark-quad` on the cube at
-/// s = 10^6 that is `E = 12 4^(10^6)`, the 602,062-digit number python-flint's `str()` is
-/// timed on in `bench/peers/compare.py`.
-fn bench_decimal(c: &mut Criterion) {
-    let mut group = c.benchmark_group("decimal");
-    group.sample_size(10);
-    for scheme in schemes::builtins() {
-        let name = scheme.name().to_string();
-        if name != "loop" && name != "catmull-clark-quad" {
-            continue;
-        }
-        let x0 = counts_for(&scheme);
-        for s in [10u64, 1_000, 100_000, 1_000_000] {
-            let state = scheme.state_at(&x0, s).expect("state");
-            let largest = state.iter().max().expect("non-empty state").clone();
-            assert_eq!(recurrence::to_decimal(&largest), largest.to_string());
-            group.bench_with_input(
-                BenchmarkId::new(format!("{name}/num-bigint-to-string"), s),
-                &largest,
-                |b, n| b.iter(|| black_box(n).to_string()),
-            );
-            group.bench_with_input(
-                BenchmarkId::new(format!("{name}/to-decimal"), s),
-                &largest,
-                |b, n| b.iter(|| recurrence::to_decimal(black_box(n))),
-            );
-        }
-    }
-    group.finish();
-}
-
-criterion_group!(benches, bench, bench_decimal);
+criterion_group!(benches, bench);
 criterion_main!(benches);

@@ -236,9 +236,7 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
                 let mut r = writeln!(out, "level {s}");
                 for (name, v) in columns.iter().zip(&row.values) {
                     if let Some(v) = v {
-                        r = r.and_then(|_| {
-                            writeln!(out, "{name} = {}", recurrence::Decimal::from(v))
-                        });
+                        r = r.and_then(|_| writeln!(out, "{name} = {}", decimal::Decimal::from(v)));
                     }
                 }
                 r

@@ -2,13 +2,13 @@
 //!
 //! Counts are written by hand as decimal JSON integers of any size: no quotes, floats or
 //! exponents, so `{"level": 0, "V": 12}` stays exact for a program that reads big integers.
-//! Their digits come from [`recurrence::Decimal`], which streams a 600,000-digit count in a
+//! Their digits come from [`decimal::Decimal`], which streams a 600,000-digit count in a
 //! fraction of the time num-bigint's quadratic `to_string` takes (same text).
 
 use std::io::{self, Write};
 
+use decimal::Decimal;
 use num_bigint::BigInt;
-use recurrence::Decimal;
 
 /// One row of a table: a level and one value per column.
 pub(crate) struct Row {
@@ -87,7 +87,7 @@ pub(crate) fn write_table_text(
             std::iter::once(r.level.to_string())
                 .chain(r.values.iter().map(|v| {
                     v.as_ref()
-                        .map_or_else(|| "-".to_string(), recurrence::to_decimal)
+                        .map_or_else(|| "-".to_string(), decimal::to_decimal)
                 }))
                 .collect()
         })

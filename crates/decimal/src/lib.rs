@@ -1,39 +1,82 @@
-//! Decimal rendering of big integers in subquadratic time.
+//! Decimal text of big integers in subquadratic time: exactly num-bigint's `to_string`,
+//! faster for numbers of hundreds of thousands of digits.
 //!
-//! num-bigint 0.4 converts to decimal in quadratic time: a 602,062-digit count
-//! (Catmull-Clark at level `10^6`) takes a quarter of a second or more. Here the number is
-//! split recursively, `n = q 10^w + r`, along a tree of powers `10^(k 2^i)`, down to leaves
-//! of at most [`Tuning::leaf_max_digits`] digits that num-bigint converts (zero-padded):
+//! num-bigint 0.4 converts to decimal by a divide and conquer whose divisions are schoolbook,
+//! so its time grows quadratically with the number of digits: the 602,062-digit edge count of
+//! Catmull-Clark at level `10^6` takes it about 150 ms, most of what `subcount at` spends
+//! printing it. This crate gives the same text (the same digits, a `-` for negative numbers,
+//! `0` for zero) through three entry points:
+//!
+//! - [`to_decimal`] returns a `String`;
+//! - [`write_decimal`] writes into any [`std::fmt::Write`], a few dozen digits at a time;
+//! - [`Decimal`] formats with `format!` and `write!`, widths and flags as the integer's own
+//!   `Display` takes them, and streams into an [`std::io::Write`] without building the string.
+//!
+//! # Why a crate of its own
+//!
+//! Measured against the alternatives on a 601,173-digit number (issue 10): num-bigint's
+//! `to_string` 149 ms, dashu 178 ms, ibig 219 ms, this crate 84-91 ms. The other big-integer
+//! crates do not beat it, so the conversion stays; it lives here, apart from `recurrence`
+//! (which is about recurrences), with its own benchmark against num-bigint
+//! (`cargo bench -p decimal --bench to_decimal`; the figures are in BENCHMARKS.md).
+//! It depends on num-bigint (and the num-traits and num-integer crates under it) only.
+//!
+//! # Example
+//!
+//! ```
+//! use std::io::Write;
+//! use num_bigint::BigInt;
+//! use decimal::{to_decimal, Decimal};
+//!
+//! // 190,849 digits: past the size up to which num-bigint's own conversion is used.
+//! let n = BigInt::from(3).pow(400_000u32);
+//! let text = to_decimal(&n);
+//! assert_eq!(text.len(), 190_849);
+//! assert_eq!(text, n.to_string());
+//!
+//! let mut out: Vec<u8> = Vec::new();
+//! write!(out, "F = {}", Decimal::from(&-&n))?;
+//! assert_eq!(out, format!("F = -{text}").into_bytes());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # How
+//!
+//! The number is split recursively, `n = q 10^w + r`, along a tree of powers `10^(k 2^i)`,
+//! down to leaves of at most 32,000 digits that num-bigint converts (zero-padded):
 //!
 //! - a power of ten `10^w = 5^w 2^w` divides as a shift and a division by `5^w`, which has
 //!   30 % fewer bits;
 //! - at the large levels the quotient comes from a Newton reciprocal of `5^w` (each level's
 //!   from the square of the level below's and one Newton step) and two multiplications,
 //!   then is corrected by a few units; the remainder needs `q 5^w` only modulo
-//!   `2^(64 L) - 1`, a product half as long; products of [`Tuning::ntt_min_limbs`] limbs and more use
-//!   number-theoretic transforms ([`ntt`]), since num-bigint's Toom-3 is what would dominate,
-//!   and the transforms of `5^w` and its reciprocal are computed once per level;
+//!   `2^(64 L) - 1`, a product half as long; products of 500 limbs and more use
+//!   number-theoretic transforms (three 62-bit primes), since num-bigint's Toom-3 is what
+//!   would dominate, and the transforms of `5^w` and its reciprocal are computed once per
+//!   level;
 //! - small levels use num-bigint's own division.
 //!
-//! Numbers of up to [`Tuning::direct_max_digits`] digits go to num-bigint directly: its
-//! conversion is a divide-and-conquer with schoolbook division, which the Newton levels beat
-//! only from a few hundred thousand digits on (see BENCHMARKS.md).
-//!
-//! The result is exactly num-bigint's `to_string`: same digits, a `-` for negative numbers,
-//! `0` for zero.
+//! Numbers of up to 160,000 digits go to num-bigint directly: its conversion is faster there,
+//! and the Newton levels win only from a few hundred thousand digits on (see BENCHMARKS.md).
+//! The thresholds (the private `Tuning::DEFAULT`) were measured on a 2-core AMD EPYC; the unit
+//! tests run small ones so that every path meets small numbers.
+#![deny(missing_docs)]
 
 mod ntt;
 
 use std::fmt;
 
-use num_bigint::{BigInt, BigUint, Sign};
+use num_bigint::Sign;
+/// The integer types the conversions take, re-exported so that a caller needs no second
+/// dependency to name them.
+pub use num_bigint::{BigInt, BigUint};
 use num_traits::{ToPrimitive, Zero};
 
 /// The decimal digits of `n`, exactly as `n.to_string()` gives them, in subquadratic time.
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use recurrence::to_decimal;
+/// use decimal::to_decimal;
 ///
 /// let n = BigInt::from(3).pow(100_000u32); // 47,713 digits
 /// let text = to_decimal(&n);
@@ -63,7 +106,7 @@ pub fn to_decimal(n: &BigInt) -> String {
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// use recurrence::write_decimal;
+/// use decimal::write_decimal;
 ///
 /// let mut text = String::from("F = ");
 /// write_decimal(&mut text, &(BigInt::from(20) << 200u32))?;
@@ -87,7 +130,7 @@ pub fn write_decimal<W: fmt::Write + ?Sized>(out: &mut W, n: &BigInt) -> fmt::Re
 /// ```
 /// use std::io::Write;
 /// use num_bigint::{BigInt, BigUint};
-/// use recurrence::Decimal;
+/// use decimal::Decimal;
 ///
 /// let n = BigInt::from(7).pow(5000u32);
 /// let mut out: Vec<u8> = Vec::new();

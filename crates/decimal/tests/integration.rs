@@ -2,10 +2,10 @@
 
 use std::fmt::Write as _;
 
+use decimal::{to_decimal, write_decimal, Decimal};
 use num_bigint::{BigInt, BigUint, Sign};
 use num_traits::{One, Zero};
 use proptest::prelude::*;
-use recurrence::{to_decimal, write_decimal, Decimal};
 
 /// Asserts every entry point against num-bigint for `n` and `-n`.
 fn check(n: &BigInt) {
