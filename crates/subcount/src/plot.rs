@@ -82,14 +82,14 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         ImageFormat::Svg => chart.to_svg()?.into_bytes(),
         ImageFormat::Png => chart.to_png()?,
     };
-    halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(|e| {
-        match e {
+    halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(
+        |e| match e {
             halfedge::Error::Io { path, source } => {
                 input!("cannot write {}: {source}", path.display())
             }
             other => input!("cannot write {}: {other}", args.output.display()),
-        }
-    })?;
+        },
+    )?;
     writeln!(
         out,
         "wrote {} ({} series, levels {}..={})",
@@ -361,9 +361,15 @@ impl MarkerKind {
 struct Look {
     color: RGBColor,
     marker: MarkerKind,
-    /// The series lies on an earlier one (within a few pixels at every level): its line is
-    /// dashed and its markers are larger outlines, so the one underneath shows through.
-    over: bool,
+    /// The series runs on an earlier one: its line is dashed (dash and gap in image pixels)
+    /// and its markers are larger outlines, so the one underneath shows through.
+    dash: Option<(f64, f64)>,
+}
+
+impl Look {
+    /// Dash patterns of the series that run on earlier ones, cycled: two such series on the
+    /// same line still differ.
+    const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
 }
 
 /// The font family plotters' `ab_glyph` table knows the embedded font by; the SVG back end
@@ -508,27 +514,30 @@ impl Pen {
                 .into_iter()
                 .map(|(x, y)| self.at(x, y))
                 .collect();
-            if look.over {
+            if look.dash.is_some() {
                 corners.push(corners[0]);
             }
             corners
         };
         let anchor = EmptyElement::at(at);
-        match (look.marker, look.over) {
+        match (look.marker, look.dash.is_some()) {
             (MarkerKind::Circle, false) => (anchor
                 + Circle::new((0, 0), self.px(radius + 1.0) as u32, WHITE.filled())
                 + Circle::new((0, 0), self.px(radius) as u32, color.filled()))
             .into_dyn(),
             (MarkerKind::Circle, true) => (anchor
-                + Circle::new((0, 0), self.px(radius * 1.7) as u32, self.stroke(color, 1.5)))
+                + Circle::new(
+                    (0, 0),
+                    self.px(radius * 1.7) as u32,
+                    self.stroke(color, 1.5),
+                ))
             .into_dyn(),
             (_, false) => (anchor
                 + Polygon::new(points(radius + 1.0), WHITE.filled())
                 + Polygon::new(points(radius), color.filled()))
             .into_dyn(),
-            (_, true) => (anchor
-                + PathElement::new(points(radius * 1.7), self.stroke(color, 1.5)))
-            .into_dyn(),
+            (_, true) => (anchor + PathElement::new(points(radius * 1.7), self.stroke(color, 1.5)))
+                .into_dyn(),
         }
     }
 }
@@ -618,21 +627,36 @@ impl Chart {
         Ok(bytes)
     }
 
-    /// How each series is drawn: palette color and marker by position, and `over` for a
-    /// series within `tolerance` (log10 units) of an earlier one at each of its levels.
+    /// How each series is drawn: palette color and marker by position, and a dash for a
+    /// series that runs within `tolerance` (log10 units) of an earlier one at two consecutive
+    /// levels, so that one segment of its line would hide the other's.
     fn looks(&self, tolerance: f64) -> Vec<Look> {
+        let near = |a: &Series, b: &Series, level: u64| {
+            // Points are in level order.
+            let at = |s: &Series| {
+                let i = s.points.binary_search_by_key(&level, |p| p.0).ok()?;
+                Some(s.points[i].1)
+            };
+            matches!((at(a), at(b)), (Some(x), Some(y)) if (x - y).abs() <= tolerance)
+        };
+        let mut dashed = 0;
         (0..self.series.len())
-            .map(|i| Look {
-                color: PALETTE[i % PALETTE.len()],
-                marker: MARKERS[i % MARKERS.len()],
-                over: self.series[..i].iter().any(|earlier| {
-                    self.series[i].points.iter().all(|&(level, y)| {
-                        earlier
-                            .points
-                            .iter()
-                            .any(|&(l, e)| l == level && (e - y).abs() <= tolerance)
+            .map(|i| {
+                let s = &self.series[i];
+                let over = self.series[..i].iter().any(|earlier| {
+                    s.points.windows(2).any(|w| {
+                        w[1].0 == w[0].0 + 1 && near(s, earlier, w[0].0) && near(s, earlier, w[1].0)
                     })
-                }),
+                });
+                let dash = over.then(|| {
+                    dashed += 1;
+                    Look::DASHES[(dashed - 1) % Look::DASHES.len()]
+                });
+                Look {
+                    color: PALETTE[i % PALETTE.len()],
+                    marker: MARKERS[i % MARKERS.len()],
+                    dash,
+                }
             })
             .collect()
     }
@@ -682,7 +706,14 @@ impl Chart {
             title = title.chars().take(keep).collect::<String>() + "...";
         }
         pen.text(root, &title, (w / 2.0, 28.0), 20.0, TEXT, HPos::Center)?;
-        pen.text(root, &self.subtitle, (w / 2.0, 51.0), 13.0, MUTED, HPos::Center)?;
+        pen.text(
+            root,
+            &self.subtitle,
+            (w / 2.0, 51.0),
+            13.0,
+            MUTED,
+            HPos::Center,
+        )?;
 
         // Axes: levels as offsets from the first (exact in f64 for any u64 level), log10
         // counts, each with PAD pixels of room inside the frame.
@@ -739,7 +770,10 @@ impl Chart {
             .x_label_style(pen.font(14.0, TEXT, HPos::Center, VPos::Top))
             // The y labels are drawn below, with raised exponents (plotters draws nothing for
             // a transparent text).
-            .y_label_style(pen.font(14.0, TEXT, HPos::Right, VPos::Center).color(&TRANSPARENT))
+            .y_label_style(
+                pen.font(14.0, TEXT, HPos::Right, VPos::Center)
+                    .color(&TRANSPARENT),
+            )
             .draw()?;
         let y_at = |log: f64| f64::from(chart.backend_coord(&(0.0, log)).1) / pen.scale;
         for k in ticks.majors() {
@@ -754,9 +788,23 @@ impl Chart {
             }
         }
         for (log, label) in ticks.minor_labels() {
-            pen.text(root, &label, (left - 9.0, y_at(log)), 12.0, MUTED, HPos::Right)?;
+            pen.text(
+                root,
+                &label,
+                (left - 9.0, y_at(log)),
+                12.0,
+                MUTED,
+                HPos::Right,
+            )?;
         }
-        pen.text(root, "level", ((left + right) / 2.0, h - 20.0), 15.0, TEXT, HPos::Center)?;
+        pen.text(
+            root,
+            "level",
+            ((left + right) / 2.0, h - 20.0),
+            15.0,
+            TEXT,
+            HPos::Center,
+        )?;
         // Turned a quarter counter-clockwise about its center.
         root.draw(&Text::new(
             "count (log scale)",
@@ -781,8 +829,9 @@ impl Chart {
                     continue;
                 }
                 let points = run.iter().map(|&(l, y)| ((l - first) as f64, y));
-                if look.over {
-                    chart.draw_series(DashedLineSeries::new(points, pen.px(7.0), pen.px(5.0), line))?;
+                if let Some((dash, gap)) = look.dash {
+                    let (dash, gap) = (pen.px(dash), pen.px(gap));
+                    chart.draw_series(DashedLineSeries::new(points, dash, gap, line))?;
                 } else {
                     chart.draw_series(LineSeries::new(points, line))?;
                 }
@@ -805,8 +854,9 @@ impl Chart {
             let y = top + 19.0 + row * i as f64;
             let segment = vec![pen.at(lx + 10.0, y), pen.at(lx + 38.0, y)];
             let line = pen.stroke(look.color, 2.0);
-            if look.over {
-                root.draw(&DashedPathElement::new(segment, pen.px(7.0), pen.px(5.0), line))?;
+            if let Some((dash, gap)) = look.dash {
+                let (dash, gap) = (pen.px(dash), pen.px(gap));
+                root.draw(&DashedPathElement::new(segment, dash, gap, line))?;
             } else {
                 root.draw(&PathElement::new(segment, line))?;
             }
@@ -956,17 +1006,51 @@ mod tests {
     }
 
     #[test]
-    fn text_escapes_and_formats() {
-        assert_eq!(xml_escape("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&apos;");
-        assert_eq!(num(1.0), "1");
-        assert_eq!(num(2.345), "2.35");
-        assert_eq!(num(-0.001), "0");
-        let label = power_label(12, 14.0);
-        assert_eq!(label[0].text, "10");
-        assert_eq!(label[1].text, "12");
-        assert!(label[1].rise > 0.0);
+    fn labels() {
+        assert_eq!(power_label(0), ("1", None));
+        assert_eq!(power_label(1), ("10", None));
+        assert_eq!(power_label(12), ("10", Some("12".to_string())));
+        assert_eq!(power_label(-3), ("10", Some("-3".to_string())));
         assert_eq!(legend_label("IE"), "IE (interior edges)");
         assert_eq!(legend_label("x0"), "x0");
+    }
+
+    #[test]
+    fn text_is_measured_with_the_embedded_font() {
+        let pen = Pen::svg(embedded_font().unwrap());
+        let one = pen.width("level", 14.0);
+        assert!((20.0..50.0).contains(&one), "{one}");
+        assert!((pen.width("level", 28.0) - 2.0 * one).abs() < 0.5);
+        // Each glyph's bitmap starts at its left bearing: a `j` reaches left of its pen
+        // position (Noto Sans), a `b` starts right of it.
+        let (glyphs, _) = pen.glyphs("obj", 100.0);
+        let caret_j = pen.width("ob", 100.0);
+        assert!(glyphs[2].1 < caret_j, "{glyphs:?}");
+        assert!(glyphs[1].1 > pen.width("o", 100.0), "{glyphs:?}");
+        // The bitmap's font size has the em the SVG's has.
+        let bitmap = Pen::bitmap(embedded_font().unwrap(), 3.0);
+        assert!(
+            (1.2..1.5).contains(&bitmap.size_per_em),
+            "{}",
+            bitmap.size_per_em
+        );
+    }
+
+    #[test]
+    fn downsample_averages_blocks() {
+        // 2 x 1 pixels from 4 x 2 at factor 2: a white and a half-black block.
+        let big = [
+            [255, 255, 255],
+            [255, 255, 255],
+            [0, 0, 0],
+            [255, 0, 0],
+            [255, 255, 255],
+            [255, 255, 255],
+            [0, 0, 0],
+            [255, 0, 0],
+        ]
+        .concat();
+        assert_eq!(downsample(&big, 2, 2), [255, 255, 255, 128, 0, 0]);
     }
 
     #[test]
@@ -996,43 +1080,84 @@ mod tests {
         }
     }
 
+    /// The 2-pixel polylines of an SVG (series lines and the legend's samples).
+    fn wide_polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+        let doc = roxmltree::Document::parse(svg).expect("well-formed XML");
+        doc.descendants()
+            .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some("2"))
+            .map(|n| {
+                n.attribute("points")
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|p| {
+                        let (x, y) = p.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     #[test]
-    fn layout_breaks_lines_at_gaps_and_notes_hidden_columns() {
-        let font = Font::embedded().unwrap();
+    fn lines_break_at_gaps_and_hidden_columns_are_noted() {
         let gap = Series {
             name: "x0".into(),
             points: vec![(0, 0.0), (1, 1.0), (3, 3.0), (4, 4.0), (5, 5.0)],
         };
-        let scene = chart(vec![gap]).layout(&font);
-        let lines: Vec<usize> = scene
-            .shapes
-            .iter()
-            .filter_map(|s| match s {
-                Shape::Polyline { points, .. } => Some(points.len()),
-                _ => None,
-            })
-            .collect();
-        assert_eq!(lines, [2, 3]);
-        let markers = scene
-            .shapes
-            .iter()
-            .filter(|s| matches!(s, Shape::Marker { .. }))
-            .count();
-        assert_eq!(markers, 5 + 1, "one per point, and the legend's");
-        let svg = scene.to_svg();
-        assert!(svg.contains(">BE: no positive count</text>"), "{svg}");
-        assert!(svg.contains("<title>t</title>"));
+        let chart = chart(vec![gap]);
+        let svg = chart.to_svg().unwrap();
+        let lines = wide_polylines(&svg);
+        let lengths: Vec<usize> = lines.iter().map(Vec::len).collect();
+        assert_eq!(lengths, [2, 3, 2], "two runs, and the legend's sample");
         // Higher counts are drawn higher (smaller y).
-        let Some(Shape::Polyline { points, .. }) = scene
-            .shapes
-            .iter()
-            .find(|s| matches!(s, Shape::Polyline { .. }))
-        else {
-            unreachable!("a polyline was counted above")
-        };
-        assert!(points[1].1 < points[0].1);
-        let png = raster::to_png(&scene, &font).unwrap();
+        assert!(lines[0][1].1 < lines[0][0].1);
+        let markers = svg.matches("<circle").count();
+        assert_eq!(
+            markers,
+            2 * (5 + 1),
+            "one per point and the legend's, each on a halo"
+        );
+        assert!(svg.contains("\nBE: no positive count\n</text>"), "{svg}");
+        assert!(svg.contains("\nt\n</text>"), "the title");
+        let png = chart.to_png().unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    }
+
+    #[test]
+    fn a_series_on_an_earlier_one_is_dashed() {
+        let line = |name: &str, lift: f64| Series {
+            name: name.into(),
+            points: (0..4).map(|l| (l, l as f64 + lift)).collect(),
+        };
+        // b lies on a (within the tolerance), c is apart, d lies on a and b, e touches a at
+        // one level only (a crossing hides no segment).
+        let e = Series {
+            name: "e".into(),
+            points: vec![(0, 0.0), (1, 3.0)],
+        };
+        let chart = chart(vec![
+            line("a", 0.0),
+            line("b", 0.01),
+            line("c", 0.5),
+            line("d", -0.01),
+            e,
+        ]);
+        let dashes: Vec<_> = chart.looks(0.02).iter().map(|l| l.dash).collect();
+        assert_eq!(
+            dashes,
+            [
+                None,
+                Some(Look::DASHES[0]),
+                None,
+                Some(Look::DASHES[1]),
+                None
+            ]
+        );
+        let svg = chart.to_svg().unwrap();
+        assert!(
+            wide_polylines(&svg).len() > 5 + 5,
+            "dashes are polylines of their own"
+        );
     }
 
     #[test]
