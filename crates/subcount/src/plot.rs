@@ -390,8 +390,10 @@ fn embedded_font() -> Result<ab_glyph::FontRef<'static>, Failure> {
 struct Pen {
     scale: f64,
     size_per_em: f64,
-    /// The embedded font, which measures text (plotters' bitmap text has its metrics).
+    /// The embedded font, which measures text (as plotters' bitmap text does).
     face: ab_glyph::FontRef<'static>,
+    /// The font's height (ascent to descent) per em: `ab_glyph` scales to the height.
+    height_per_em: f64,
     /// Whether [`Pen::text`] places each glyph itself: plotters' `ab_glyph` text starts every
     /// glyph's bitmap at the pen position, without the glyph's left bearing, which opens a gap
     /// before a `j`. The SVG keeps whole strings for the viewer to lay out.
@@ -401,24 +403,25 @@ struct Pen {
 impl Pen {
     /// The pen of the SVG back end, which writes `font-size` as the size / 1.24.
     fn svg(face: ab_glyph::FontRef<'static>) -> Pen {
-        Pen {
-            scale: 1.0,
-            size_per_em: 1.24,
-            face,
-            per_glyph: false,
-        }
+        Pen::new(face, 1.0, Some(1.24))
     }
 
     /// The pen of the bitmap back end at `scale`, whose `ab_glyph` text scales the font's
-    /// height (ascent to descent) to the size.
+    /// height to the size.
     fn bitmap(face: ab_glyph::FontRef<'static>, scale: f64) -> Pen {
+        Pen::new(face, scale, None)
+    }
+
+    fn new(face: ab_glyph::FontRef<'static>, scale: f64, svg_size_per_em: Option<f64>) -> Pen {
         use ab_glyph::Font as _;
-        let size_per_em = f64::from(face.height_unscaled() / face.units_per_em().unwrap_or(1000.0));
+        let height = face.height_unscaled() / face.units_per_em().unwrap_or(1000.0);
+        let height_per_em = f64::from(height);
         Pen {
             scale,
-            size_per_em,
+            size_per_em: svg_size_per_em.unwrap_or(height_per_em),
             face,
-            per_glyph: true,
+            height_per_em,
+            per_glyph: svg_size_per_em.is_none(),
         }
     }
 
@@ -445,7 +448,7 @@ impl Pen {
     /// (from the start of the text), and the advance of the whole text.
     fn glyphs(&self, text: &str, em: f64) -> (Vec<(char, f64)>, f64) {
         use ab_glyph::{Font as _, ScaleFont as _};
-        let scale = ab_glyph::PxScale::from((em * self.size_per_em) as f32);
+        let scale = ab_glyph::PxScale::from((em * self.height_per_em) as f32);
         let scaled = self.face.as_scaled(scale);
         let mut caret = 0f32;
         let mut prev = None;
