@@ -4,17 +4,25 @@
 //! approximate. Each count is turned into log10 from its bit length and its leading 64 bits, so
 //! counts of any size (thousands of digits) map to finite plot positions without overflow.
 //!
-//! One [`Scene`] (lines, markers, text in pixel coordinates) is laid out once and then either
-//! written as SVG by hand or rasterized here into RGB pixels and encoded with `png`. Text in the
-//! PNG is drawn with an embedded Noto Sans (the `notosans` crate) through `ab_glyph`, so the image
-//! does not depend on the fonts of the machine. Both files are written atomically.
+//! The picture is drawn with `plotters`, once for either back end: its SVG back end, or its
+//! bitmap back end at [`SUPERSAMPLE`] times the size, averaged down to the image size (plotters
+//! fills wide lines and polygons without anti-aliasing) and encoded with `png`. Text is drawn
+//! with an embedded Noto Sans (the `notosans` crate) registered with plotters' `ab_glyph` font
+//! table, so the image does not depend on the fonts of the machine. The file is written
+//! atomically by `halfedge`'s writer.
 
-use std::fmt::Write as _;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use num_bigint::{BigInt, Sign};
 use num_traits::ToPrimitive;
+use std::ops::Range;
+
+use plotters::coord::ranged1d::{DefaultFormatting, KeyPointHint, Ranged};
+use plotters::coord::Shift;
+use plotters::element::DashedPathElement;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::args::{PlotArgs, Source};
 use crate::commands::write_failure;
@@ -70,13 +78,18 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         series,
         hidden,
     };
-    let font = Font::embedded()?;
-    let scene = chart.layout(&font);
     let bytes = match format {
-        ImageFormat::Svg => scene.to_svg().into_bytes(),
-        ImageFormat::Png => raster::to_png(&scene, &font)?,
+        ImageFormat::Svg => chart.to_svg()?.into_bytes(),
+        ImageFormat::Png => chart.to_png()?,
     };
-    write_atomically(&args.output, &bytes)?;
+    halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(
+        |e| match e {
+            halfedge::Error::Io { path, source } => {
+                input!("cannot write {}: {source}", path.display())
+            }
+            other => input!("cannot write {}: {other}", args.output.display()),
+        },
+    )?;
     writeln!(
         out,
         "wrote {} ({} series, levels {}..={})",
@@ -280,51 +293,33 @@ fn level_ticks(first: u64, last: u64) -> Vec<u64> {
         .collect()
 }
 
-/// `10^k` as text runs (base, then a raised exponent); plain `1` and `10` for k = 0, 1.
-fn power_label(k: i64, size: f64) -> Vec<Run> {
+/// `10^k` as the base and the exponent to raise; plain `1` and `10` for k = 0, 1.
+fn power_label(k: i64) -> (&'static str, Option<String>) {
     match k {
-        0 => vec![Run::new("1", size)],
-        1 => vec![Run::new("10", size)],
-        _ => vec![
-            Run::new("10", size),
-            Run {
-                text: k.to_string(),
-                size: size * 0.72,
-                rise: size * 0.45,
-            },
-        ],
+        0 => ("1", None),
+        1 => ("10", None),
+        _ => ("10", Some(k.to_string())),
     }
 }
 
-/// An RGB color.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Color(u8, u8, u8);
-
-impl Color {
-    const WHITE: Color = Color(255, 255, 255);
-    const TEXT: Color = Color(0x22, 0x22, 0x22);
-    const AXIS: Color = Color(0x44, 0x44, 0x44);
-    const GRID: Color = Color(0xd4, 0xd4, 0xd4);
-    const GRID_MINOR: Color = Color(0xee, 0xee, 0xee);
-    const MUTED: Color = Color(0x66, 0x66, 0x66);
-
-    fn hex(self) -> String {
-        format!("#{:02x}{:02x}{:02x}", self.0, self.1, self.2)
-    }
-}
+const TEXT: RGBColor = RGBColor(0x22, 0x22, 0x22);
+const AXIS: RGBColor = RGBColor(0x44, 0x44, 0x44);
+const GRID: RGBColor = RGBColor(0xd4, 0xd4, 0xd4);
+const GRID_MINOR: RGBColor = RGBColor(0xee, 0xee, 0xee);
+const MUTED: RGBColor = RGBColor(0x66, 0x66, 0x66);
 
 /// Series colors (the "tab10" palette), cycled.
-const PALETTE: [Color; 10] = [
-    Color(0x1f, 0x77, 0xb4),
-    Color(0xff, 0x7f, 0x0e),
-    Color(0x2c, 0xa0, 0x2c),
-    Color(0xd6, 0x27, 0x28),
-    Color(0x94, 0x67, 0xbd),
-    Color(0x8c, 0x56, 0x4b),
-    Color(0xe3, 0x77, 0xc2),
-    Color(0x7f, 0x7f, 0x7f),
-    Color(0xbc, 0xbd, 0x22),
-    Color(0x17, 0xbe, 0xcf),
+const PALETTE: [RGBColor; 10] = [
+    RGBColor(0x1f, 0x77, 0xb4),
+    RGBColor(0xff, 0x7f, 0x0e),
+    RGBColor(0x2c, 0xa0, 0x2c),
+    RGBColor(0xd6, 0x27, 0x28),
+    RGBColor(0x94, 0x67, 0xbd),
+    RGBColor(0x8c, 0x56, 0x4b),
+    RGBColor(0xe3, 0x77, 0xc2),
+    RGBColor(0x7f, 0x7f, 0x7f),
+    RGBColor(0xbc, 0xbd, 0x22),
+    RGBColor(0x17, 0xbe, 0xcf),
 ];
 
 /// Marker shapes, cycled (with the colors, 30 series stay distinct).
@@ -346,163 +341,240 @@ const MARKERS: [MarkerKind; 5] = [
 ];
 
 impl MarkerKind {
-    /// The corners of the convex polygon of a non-circle marker of radius `r` at `(x, y)`.
-    fn polygon(self, x: f64, y: f64, r: f64) -> Vec<(f64, f64)> {
+    /// The corners of a non-circle marker of radius `r` about its center (y down).
+    fn corners(self, r: f64) -> Vec<(f64, f64)> {
+        let (s, d, t) = (r * 0.85, r * 1.2, r * 1.25);
         match self {
             MarkerKind::Circle => Vec::new(),
-            MarkerKind::Square => {
-                let h = r * 0.85;
-                vec![
-                    (x - h, y - h),
-                    (x + h, y - h),
-                    (x + h, y + h),
-                    (x - h, y + h),
-                ]
-            }
-            MarkerKind::Diamond => {
-                let h = r * 1.2;
-                vec![(x, y - h), (x + h, y), (x, y + h), (x - h, y)]
-            }
-            MarkerKind::TriangleUp => {
-                let h = r * 1.25;
-                vec![
-                    (x, y - h),
-                    (x + h * 0.95, y + h * 0.6),
-                    (x - h * 0.95, y + h * 0.6),
-                ]
-            }
+            MarkerKind::Square => vec![(-s, -s), (s, -s), (s, s), (-s, s)],
+            MarkerKind::Diamond => vec![(0.0, -d), (d, 0.0), (0.0, d), (-d, 0.0)],
+            MarkerKind::TriangleUp => vec![(0.0, -t), (t * 0.95, t * 0.6), (-t * 0.95, t * 0.6)],
             MarkerKind::TriangleDown => {
-                let h = r * 1.25;
-                vec![
-                    (x - h * 0.95, y - h * 0.6),
-                    (x + h * 0.95, y - h * 0.6),
-                    (x, y + h),
-                ]
+                vec![(-t * 0.95, -t * 0.6), (t * 0.95, -t * 0.6), (0.0, t)]
             }
         }
     }
 }
 
-/// A piece of text at one size, raised by `rise` pixels (for exponents).
-#[derive(Clone, Debug, PartialEq)]
-struct Run {
-    text: String,
-    size: f64,
-    rise: f64,
+/// How one series is drawn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Look {
+    color: RGBColor,
+    marker: MarkerKind,
+    /// The series runs on an earlier one: its line is dashed (dash and gap in image pixels)
+    /// and its markers are larger outlines, so the one underneath shows through.
+    dash: Option<(f64, f64)>,
 }
 
-impl Run {
-    fn new(text: &str, size: f64) -> Run {
-        Run {
-            text: text.to_string(),
-            size,
-            rise: 0.0,
+impl Look {
+    /// Dash patterns of the series that run on earlier ones, cycled: two such series on the
+    /// same line still differ.
+    const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
+}
+
+/// The font family plotters' `ab_glyph` table knows the embedded font by; the SVG back end
+/// writes it as the `font-family`, so viewers without Noto Sans fall back to a similar sans.
+const FONT_FAMILY: &str = "'Noto Sans', 'DejaVu Sans', Arial, sans-serif";
+
+/// Registers the embedded Noto Sans with plotters' `ab_glyph` font table and returns it.
+fn embedded_font() -> Result<ab_glyph::FontRef<'static>, Failure> {
+    let cannot = || input!("the embedded font cannot be read");
+    plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, notosans::REGULAR_TTF)
+        .map_err(|_| cannot())?;
+    ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF).map_err(|_| cannot())
+}
+
+/// Device sizes and text for one back end. The chart is laid out in image pixels (960 x 600)
+/// and drawn at `scale` device pixels per image pixel; a font of `em` image pixels is given to
+/// plotters as `em * size_per_em` (its back ends scale text differently).
+struct Pen {
+    scale: f64,
+    size_per_em: f64,
+    /// The embedded font, which measures text (as plotters' bitmap text does).
+    face: ab_glyph::FontRef<'static>,
+    /// The font's height (ascent to descent) per em: `ab_glyph` scales to the height.
+    height_per_em: f64,
+    /// Whether [`Pen::text`] places each glyph itself: plotters' `ab_glyph` text starts every
+    /// glyph's bitmap at the pen position, without the glyph's left bearing, which opens a gap
+    /// before a `j`. The SVG keeps whole strings for the viewer to lay out.
+    per_glyph: bool,
+}
+
+impl Pen {
+    /// The pen of the SVG back end, which writes `font-size` as the size / 1.24.
+    fn svg(face: ab_glyph::FontRef<'static>) -> Pen {
+        Pen::new(face, 1.0, Some(1.24))
+    }
+
+    /// The pen of the bitmap back end at `scale`, whose `ab_glyph` text scales the font's
+    /// height to the size.
+    fn bitmap(face: ab_glyph::FontRef<'static>, scale: f64) -> Pen {
+        Pen::new(face, scale, None)
+    }
+
+    fn new(face: ab_glyph::FontRef<'static>, scale: f64, svg_size_per_em: Option<f64>) -> Pen {
+        use ab_glyph::Font as _;
+        let height = face.height_unscaled() / face.units_per_em().unwrap_or(1000.0);
+        let height_per_em = f64::from(height);
+        Pen {
+            scale,
+            size_per_em: svg_size_per_em.unwrap_or(height_per_em),
+            face,
+            height_per_em,
+            per_glyph: svg_size_per_em.is_none(),
         }
     }
-}
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Anchor {
-    Start,
-    Middle,
-    End,
-}
-
-/// Text whose baseline starts, centers or ends at `(x, y)`; `vertical` turns it a quarter
-/// counter-clockwise about that point (for the y-axis label).
-#[derive(Clone, Debug, PartialEq)]
-struct Text {
-    x: f64,
-    y: f64,
-    runs: Vec<Run>,
-    anchor: Anchor,
-    vertical: bool,
-    color: Color,
-}
-
-/// One drawing primitive, in pixels (y down).
-#[derive(Clone, Debug, PartialEq)]
-enum Shape {
-    Rect {
-        x: f64,
-        y: f64,
-        w: f64,
-        h: f64,
-        fill: Option<Color>,
-        stroke: Option<Color>,
-    },
-    Line {
-        from: (f64, f64),
-        to: (f64, f64),
-        color: Color,
-        width: f64,
-    },
-    Polyline {
-        points: Vec<(f64, f64)>,
-        color: Color,
-        width: f64,
-    },
-    Marker {
-        at: (f64, f64),
-        kind: MarkerKind,
-        radius: f64,
-        color: Color,
-    },
-    Text(Text),
-}
-
-/// A laid-out drawing: the same for SVG and PNG.
-struct Scene {
-    width: u32,
-    height: u32,
-    title: String,
-    shapes: Vec<Shape>,
-}
-
-/// The embedded font, for text widths (layout) and glyphs (PNG).
-struct Font {
-    face: ab_glyph::FontRef<'static>,
-}
-
-impl Font {
-    fn embedded() -> Result<Font, Failure> {
-        let face = ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF)
-            .map_err(|e| input!("the embedded font cannot be read: {e}"))?;
-        Ok(Font { face })
+    fn px(&self, v: f64) -> i32 {
+        (v * self.scale).round() as i32
     }
 
-    /// The `ab_glyph` scale whose em is `size` pixels (CSS `font-size`).
-    fn scale(&self, size: f64) -> ab_glyph::PxScale {
-        use ab_glyph::Font as _;
-        let em = self.face.units_per_em().unwrap_or(1000.0);
-        ab_glyph::PxScale::from((size as f32) * self.face.height_unscaled() / em)
+    fn at(&self, x: f64, y: f64) -> BackendCoordinate {
+        (self.px(x), self.px(y))
     }
 
-    /// Glyphs of a run starting at `x` on `baseline`, and the caret after it.
-    fn layout(&self, run: &Run, x: f64, baseline: f64) -> (Vec<ab_glyph::Glyph>, f64) {
+    fn stroke(&self, color: RGBColor, width: f64) -> ShapeStyle {
+        color.stroke_width(self.px(width).max(1) as u32)
+    }
+
+    fn font(&self, em: f64, color: RGBColor, h: HPos, v: VPos) -> TextStyle<'static> {
+        (FONT_FAMILY, em * self.size_per_em * self.scale)
+            .into_font()
+            .color(&color)
+            .pos(Pos::new(h, v))
+    }
+
+    /// Each character of `text` at `em` device pixels with the left edge of its glyph's bitmap
+    /// (from the start of the text), and the advance of the whole text.
+    fn glyphs(&self, text: &str, em: f64) -> (Vec<(char, f64)>, f64) {
         use ab_glyph::{Font as _, ScaleFont as _};
-        let scale = self.scale(run.size);
+        let scale = ab_glyph::PxScale::from((em * self.height_per_em) as f32);
         let scaled = self.face.as_scaled(scale);
-        let mut caret = x as f32;
+        let mut caret = 0f32;
         let mut prev = None;
         let mut glyphs = Vec::new();
-        for c in run.text.chars() {
+        for c in text.chars() {
             let id = scaled.glyph_id(c);
             if let Some(p) = prev {
                 caret += scaled.kern(p, id);
             }
-            glyphs.push(id.with_scale_and_position(
-                scale,
-                ab_glyph::point(caret, (baseline - run.rise) as f32),
-            ));
+            if let Some(outline) = scaled.outline_glyph(id.with_scale(scale)) {
+                glyphs.push((c, f64::from(caret + outline.px_bounds().min.x)));
+            }
             caret += scaled.h_advance(id);
             prev = Some(id);
         }
         (glyphs, f64::from(caret))
     }
 
-    fn width(&self, runs: &[Run]) -> f64 {
-        runs.iter().fold(0.0, |x, run| self.layout(run, x, 0.0).1)
+    /// The width of `text` at `em`, in image pixels.
+    fn width(&self, text: &str, em: f64) -> f64 {
+        self.glyphs(text, em).1
+    }
+
+    /// Draws `text` at `em` image pixels, centered vertically on `(x, y)` and aligned by `h`.
+    fn text<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        text: &str,
+        (x, y): (f64, f64),
+        em: f64,
+        color: RGBColor,
+        h: HPos,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        if !self.per_glyph {
+            let style = self.font(em, color, h, VPos::Center);
+            return area.draw(&Text::new(text.to_string(), self.at(x, y), style));
+        }
+        let (glyphs, width) = self.glyphs(text, em * self.scale);
+        let start = x * self.scale
+            - match h {
+                HPos::Left => 0.0,
+                HPos::Center => width / 2.0,
+                HPos::Right => width,
+            };
+        let style = self.font(em, color, HPos::Left, VPos::Center);
+        for (c, left) in glyphs {
+            let at = ((start + left).round() as i32, self.px(y));
+            area.draw(&Text::new(c.to_string(), at, style.clone()))?;
+        }
+        Ok(())
+    }
+
+    /// A series marker at `at`: a filled shape on a white halo, or a larger outline when the
+    /// series lies on an earlier one.
+    fn marker<'a, DB: DrawingBackend + 'a, C: Clone + 'a>(
+        &self,
+        at: C,
+        look: Look,
+        radius: f64,
+    ) -> DynElement<'a, DB, C> {
+        let color = look.color;
+        let points = |r: f64| -> Vec<BackendCoordinate> {
+            let mut corners: Vec<_> = look
+                .marker
+                .corners(r)
+                .into_iter()
+                .map(|(x, y)| self.at(x, y))
+                .collect();
+            if look.dash.is_some() {
+                corners.push(corners[0]);
+            }
+            corners
+        };
+        let anchor = EmptyElement::at(at);
+        match (look.marker, look.dash.is_some()) {
+            (MarkerKind::Circle, false) => (anchor
+                + Circle::new((0, 0), self.px(radius + 1.0) as u32, WHITE.filled())
+                + Circle::new((0, 0), self.px(radius) as u32, color.filled()))
+            .into_dyn(),
+            (MarkerKind::Circle, true) => (anchor
+                + Circle::new(
+                    (0, 0),
+                    self.px(radius * 1.7) as u32,
+                    self.stroke(color, 1.5),
+                ))
+            .into_dyn(),
+            (_, false) => (anchor
+                + Polygon::new(points(radius + 1.0), WHITE.filled())
+                + Polygon::new(points(radius), color.filled()))
+            .into_dyn(),
+            (_, true) => (anchor + PathElement::new(points(radius * 1.7), self.stroke(color, 1.5)))
+                .into_dyn(),
+        }
+    }
+}
+
+type BackendCoordinate = (i32, i32);
+
+/// A linear axis with the key points we choose: `bold` ones are labelled and get a grid line,
+/// `light` ones a fainter grid line (plotters' own numeric axes pick their own).
+#[derive(Clone)]
+struct Axis {
+    range: Range<f64>,
+    bold: Vec<f64>,
+    light: Vec<f64>,
+}
+
+impl Ranged for Axis {
+    type FormatOption = DefaultFormatting;
+    type ValueType = f64;
+
+    fn map(&self, value: &f64, limit: (i32, i32)) -> i32 {
+        let t = (value - self.range.start) / (self.range.end - self.range.start);
+        limit.0 + (t * f64::from(limit.1 - limit.0)).round() as i32
+    }
+
+    fn key_points<Hint: KeyPointHint>(&self, hint: Hint) -> Vec<f64> {
+        if hint.weight().allow_light_points() {
+            self.light.clone()
+        } else {
+            self.bold.clone()
+        }
+    }
+
+    fn range(&self) -> Range<f64> {
+        self.range.clone()
     }
 }
 
@@ -517,31 +589,92 @@ struct Chart {
     hidden: Vec<String>,
 }
 
+/// Pixels of free space inside the plot frame around the data, so end markers are not cut.
+const PAD: f64 = 12.0;
+
 impl Chart {
-    fn layout(&self, font: &Font) -> Scene {
-        let (w, h) = (f64::from(WIDTH), f64::from(HEIGHT));
-        let mut shapes = vec![Shape::Rect {
-            x: 0.0,
-            y: 0.0,
-            w,
-            h,
-            fill: Some(Color::WHITE),
-            stroke: None,
-        }];
-        let text = |x: f64, y: f64, runs: Vec<Run>, anchor: Anchor, color: Color| {
-            Shape::Text(Text {
-                x,
-                y,
-                runs,
-                anchor,
-                vertical: false,
-                color,
-            })
+    /// The chart as an SVG document.
+    fn to_svg(&self) -> Result<String, Failure> {
+        let pen = Pen::svg(embedded_font()?);
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)).into_drawing_area();
+            self.draw(&root, &pen)
+                .and_then(|()| root.present())
+                .map_err(|e| input!("cannot draw the plot: {e}"))?;
+        }
+        Ok(svg)
+    }
+
+    /// The chart as PNG bytes: drawn at `SUPERSAMPLE` times the size, then averaged down.
+    fn to_png(&self) -> Result<Vec<u8>, Failure> {
+        let pen = Pen::bitmap(embedded_font()?, f64::from(SUPERSAMPLE));
+        let (w, h) = (WIDTH * SUPERSAMPLE, HEIGHT * SUPERSAMPLE);
+        let mut big = vec![0u8; w as usize * h as usize * 3];
+        {
+            let root = BitMapBackend::with_buffer(&mut big, (w, h)).into_drawing_area();
+            self.draw(&root, &pen)
+                .and_then(|()| root.present())
+                .map_err(|e| input!("cannot draw the plot: {e}"))?;
+        }
+        let pixels = downsample(&big, WIDTH as usize, SUPERSAMPLE as usize);
+        let mut bytes = Vec::new();
+        let mut encoder = png::Encoder::new(&mut bytes, WIDTH, HEIGHT);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        let cannot = |e: png::EncodingError| input!("cannot encode the PNG: {e}");
+        let mut writer = encoder.write_header().map_err(cannot)?;
+        writer.write_image_data(&pixels).map_err(cannot)?;
+        writer.finish().map_err(cannot)?;
+        Ok(bytes)
+    }
+
+    /// How each series is drawn: palette color and marker by position, and a dash for a
+    /// series that runs within `tolerance` (log10 units) of an earlier one at two consecutive
+    /// levels, so that one segment of its line would hide the other's.
+    fn looks(&self, tolerance: f64) -> Vec<Look> {
+        let near = |a: &Series, b: &Series, level: u64| {
+            // Points are in level order.
+            let at = |s: &Series| {
+                let i = s.points.binary_search_by_key(&level, |p| p.0).ok()?;
+                Some(s.points[i].1)
+            };
+            matches!((at(a), at(b)), (Some(x), Some(y)) if (x - y).abs() <= tolerance)
         };
+        let mut dashed = 0;
+        (0..self.series.len())
+            .map(|i| {
+                let s = &self.series[i];
+                let over = self.series[..i].iter().any(|earlier| {
+                    s.points.windows(2).any(|w| {
+                        w[1].0 == w[0].0 + 1 && near(s, earlier, w[0].0) && near(s, earlier, w[1].0)
+                    })
+                });
+                let dash = over.then(|| {
+                    dashed += 1;
+                    Look::DASHES[(dashed - 1) % Look::DASHES.len()]
+                });
+                Look {
+                    color: PALETTE[i % PALETTE.len()],
+                    marker: MARKERS[i % MARKERS.len()],
+                    dash,
+                }
+            })
+            .collect()
+    }
+
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+        pen: &Pen,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        let (w, h) = (f64::from(WIDTH), f64::from(HEIGHT));
+        root.fill(&WHITE)?;
 
         // Legend on the right, outside the plot area, so it never hides a line.
         // A line hidden under an earlier identical one says so in its label.
-        let labels: Vec<Vec<Run>> = self
+        let labels: Vec<String> = self
             .series
             .iter()
             .enumerate()
@@ -550,18 +683,18 @@ impl Chart {
                 if let Some(same) = self.series[..i].iter().find(|e| e.points == s.points) {
                     label.push_str(&format!(" = {}", same.name));
                 }
-                vec![Run::new(&label, 14.0)]
+                label
             })
             .collect();
-        let notes: Vec<Vec<Run>> = self
+        let notes: Vec<String> = self
             .hidden
             .iter()
-            .map(|name| vec![Run::new(&format!("{name}: no positive count"), 13.0)])
+            .map(|name| format!("{name}: no positive count"))
             .collect();
         let label_w = labels
             .iter()
-            .map(|l| font.width(l))
-            .chain(notes.iter().map(|l| font.width(l) - 36.0))
+            .map(|l| pen.width(l, 14.0))
+            .chain(notes.iter().map(|n| pen.width(n, 13.0) - 36.0))
             .fold(0.0, f64::max);
         // Room for the label in a wider fallback font of an SVG viewer, too.
         let legend_w = (label_w * 1.08 + 62.0).max(110.0);
@@ -571,26 +704,22 @@ impl Chart {
 
         // Title and subtitle.
         let mut title = self.title.clone();
-        while font.width(&[Run::new(&title, 20.0)]) > w - 40.0 && title.chars().count() > 4 {
+        while pen.width(&title, 20.0) > w - 40.0 && title.chars().count() > 4 {
             let keep = title.chars().count() - 4;
             title = title.chars().take(keep).collect::<String>() + "...";
         }
-        shapes.push(text(
-            w / 2.0,
-            34.0,
-            vec![Run::new(&title, 20.0)],
-            Anchor::Middle,
-            Color::TEXT,
-        ));
-        shapes.push(text(
-            w / 2.0,
-            56.0,
-            vec![Run::new(&self.subtitle, 13.0)],
-            Anchor::Middle,
-            Color::MUTED,
-        ));
+        pen.text(root, &title, (w / 2.0, 28.0), 20.0, TEXT, HPos::Center)?;
+        pen.text(
+            root,
+            &self.subtitle,
+            (w / 2.0, 51.0),
+            13.0,
+            MUTED,
+            HPos::Center,
+        )?;
 
-        // Axes: the data range, with a little room so end markers are not cut.
+        // Axes: levels as offsets from the first (exact in f64 for any u64 level), log10
+        // counts, each with PAD pixels of room inside the frame.
         let (min, max) = self
             .series
             .iter()
@@ -599,673 +728,176 @@ impl Chart {
                 (a.min(y), b.max(y))
             });
         let ticks = LogTicks::covering(min, max);
-        let pad = 12.0;
-        let (x0, x1) = if self.last_level > self.first_level {
-            (self.first_level as f64, self.last_level as f64)
-        } else {
-            (self.first_level as f64 - 1.0, self.first_level as f64 + 1.0)
+        let span = (self.last_level - self.first_level) as f64;
+        let (x_lo, x_hi) = if span > 0.0 { (0.0, span) } else { (-1.0, 1.0) };
+        let (y_lo, y_hi) = (ticks.lo as f64, ticks.hi as f64);
+        let x_pad = (x_hi - x_lo) * PAD / (right - left - 2.0 * PAD);
+        let y_per_px = (y_hi - y_lo) / (bottom - top - 2.0 * PAD);
+        let level_ticks: Vec<f64> = level_ticks(self.first_level, self.last_level)
+            .into_iter()
+            .map(|t| (t - self.first_level) as f64)
+            .collect();
+        let x_axis = Axis {
+            range: (x_lo - x_pad)..(x_hi + x_pad),
+            bold: level_ticks.clone(),
+            light: Vec::new(),
         };
-        let px = |level: f64| left + pad + (level - x0) / (x1 - x0) * (right - left - 2.0 * pad);
-        let py = |log: f64| {
-            bottom
-                - pad
-                - (log - ticks.lo as f64) / (ticks.hi - ticks.lo) as f64
-                    * (bottom - top - 2.0 * pad)
+        let y_axis = Axis {
+            range: (y_lo - PAD * y_per_px)..(y_hi + PAD * y_per_px),
+            bold: ticks.majors().map(|k| k as f64).collect(),
+            light: ticks.minors(),
         };
+        let mut chart = ChartBuilder::on(root)
+            .margin_top(pen.px(top))
+            .margin_right(pen.px(w - right))
+            .x_label_area_size(pen.px(h - bottom))
+            .y_label_area_size(pen.px(left))
+            .build_cartesian_2d(x_axis, y_axis)?;
 
-        for m in ticks.minors() {
-            let y = py(m);
-            shapes.push(Shape::Line {
-                from: (left, y),
-                to: (right, y),
-                color: Color::GRID_MINOR,
-                width: 1.0,
-            });
-        }
-        for (m, label) in ticks.minor_labels() {
-            shapes.push(text(
-                left - 9.0,
-                py(m) + 5.0,
-                vec![Run::new(&label, 12.0)],
-                Anchor::End,
-                Color::MUTED,
-            ));
-        }
+        chart.draw_series(level_ticks.iter().map(|&t| {
+            PathElement::new(
+                vec![(t, y_lo - PAD * y_per_px), (t, y_hi + PAD * y_per_px)],
+                pen.stroke(GRID_MINOR, 1.0),
+            )
+        }))?;
+        let first = self.first_level;
+        let x_label = |x: &f64| (first + x.round() as u64).to_string();
+        chart
+            .configure_mesh()
+            .disable_x_mesh()
+            .bold_line_style(pen.stroke(GRID, 1.0))
+            .light_line_style(pen.stroke(GRID_MINOR, 1.0))
+            .axis_style(pen.stroke(AXIS, 1.0))
+            .set_all_tick_mark_size(pen.px(5.0))
+            .x_label_formatter(&x_label)
+            .x_label_style(pen.font(14.0, TEXT, HPos::Center, VPos::Top))
+            // The y labels are drawn below, with raised exponents (plotters draws nothing for
+            // a transparent text).
+            .y_label_style(
+                pen.font(14.0, TEXT, HPos::Right, VPos::Center)
+                    .color(&TRANSPARENT),
+            )
+            .draw()?;
+        let y_at = |log: f64| f64::from(chart.backend_coord(&(0.0, log)).1) / pen.scale;
         for k in ticks.majors() {
-            let y = py(k as f64);
-            shapes.push(Shape::Line {
-                from: (left, y),
-                to: (right, y),
-                color: Color::GRID,
-                width: 1.0,
-            });
-            shapes.push(Shape::Line {
-                from: (left - 5.0, y),
-                to: (left, y),
-                color: Color::AXIS,
-                width: 1.0,
-            });
-            shapes.push(text(
-                left - 9.0,
-                y + 5.0,
-                power_label(k, 14.0),
-                Anchor::End,
-                Color::TEXT,
-            ));
+            let (base, exponent) = power_label(k);
+            let small = 14.0 * 0.72;
+            let base_w = pen.width(base, 14.0);
+            let exponent_w = exponent.as_ref().map_or(0.0, |e| pen.width(e, small));
+            let (x, y) = (left - 9.0 - base_w - exponent_w, y_at(k as f64));
+            pen.text(root, base, (x, y), 14.0, TEXT, HPos::Left)?;
+            if let Some(e) = exponent {
+                pen.text(root, &e, (x + base_w, y - 5.5), small, TEXT, HPos::Left)?;
+            }
         }
-        for t in level_ticks(self.first_level, self.last_level) {
-            let x = px(t as f64);
-            shapes.push(Shape::Line {
-                from: (x, top),
-                to: (x, bottom),
-                color: Color::GRID_MINOR,
-                width: 1.0,
-            });
-            shapes.push(Shape::Line {
-                from: (x, bottom),
-                to: (x, bottom + 5.0),
-                color: Color::AXIS,
-                width: 1.0,
-            });
-            shapes.push(text(
-                x,
-                bottom + 21.0,
-                vec![Run::new(&t.to_string(), 14.0)],
-                Anchor::Middle,
-                Color::TEXT,
-            ));
+        for (log, label) in ticks.minor_labels() {
+            pen.text(
+                root,
+                &label,
+                (left - 9.0, y_at(log)),
+                12.0,
+                MUTED,
+                HPos::Right,
+            )?;
         }
-        shapes.push(Shape::Rect {
-            x: left,
-            y: top,
-            w: right - left,
-            h: bottom - top,
-            fill: None,
-            stroke: Some(Color::AXIS),
-        });
-        shapes.push(text(
-            (left + right) / 2.0,
-            h - 16.0,
-            vec![Run::new("level", 15.0)],
-            Anchor::Middle,
-            Color::TEXT,
-        ));
-        shapes.push(Shape::Text(Text {
-            x: 24.0,
-            y: (top + bottom) / 2.0,
-            runs: vec![Run::new("count (log scale)", 15.0)],
-            anchor: Anchor::Middle,
-            vertical: true,
-            color: Color::TEXT,
-        }));
+        pen.text(
+            root,
+            "level",
+            ((left + right) / 2.0, h - 20.0),
+            15.0,
+            TEXT,
+            HPos::Center,
+        )?;
+        // Turned a quarter counter-clockwise about its center.
+        root.draw(&Text::new(
+            "count (log scale)",
+            pen.at(24.0, (top + bottom) / 2.0),
+            pen.font(15.0, TEXT, HPos::Center, VPos::Center)
+                .transform(FontTransform::Rotate270),
+        ))?;
+        let (xs, ys) = chart.plotting_area().get_pixel_range();
+        root.draw(&Rectangle::new(
+            [(xs.start, ys.start), (xs.end, ys.end)],
+            pen.stroke(AXIS, 1.0),
+        ))?;
 
         // The series, then the legend.
-        let style = |i: usize| (PALETTE[i % PALETTE.len()], MARKERS[i % MARKERS.len()]);
-        for (i, s) in self.series.iter().enumerate() {
-            let (color, kind) = style(i);
+        let looks = self.looks(5.0 * y_per_px);
+        for (s, &look) in self.series.iter().zip(&looks) {
+            let line = pen.stroke(look.color, 2.0);
             // One line per run of consecutive levels: a level without a positive count (zero
             // or negative, off a log scale) leaves a gap rather than a misleading segment.
             for run in s.points.chunk_by(|a, b| b.0 == a.0 + 1) {
-                if run.len() > 1 {
-                    shapes.push(Shape::Polyline {
-                        points: run.iter().map(|&(l, y)| (px(l as f64), py(y))).collect(),
-                        color,
-                        width: 2.0,
-                    });
+                if run.len() < 2 {
+                    continue;
+                }
+                let points = run.iter().map(|&(l, y)| ((l - first) as f64, y));
+                if let Some((dash, gap)) = look.dash {
+                    let (dash, gap) = (pen.px(dash), pen.px(gap));
+                    chart.draw_series(DashedLineSeries::new(points, dash, gap, line))?;
+                } else {
+                    chart.draw_series(LineSeries::new(points, line))?;
                 }
             }
-            let points: Vec<(f64, f64)> = s
-                .points
-                .iter()
-                .map(|&(l, y)| (px(l as f64), py(y)))
-                .collect();
             // Markers only while they stay apart.
             if self.last_level - self.first_level <= 40 {
-                for at in points {
-                    shapes.push(Shape::Marker {
-                        at,
-                        kind,
-                        radius: 4.0,
-                        color,
-                    });
+                for &(l, y) in &s.points {
+                    let at = ((l - first) as f64, y);
+                    chart.plotting_area().draw(&pen.marker(at, look, 4.0))?;
                 }
             }
         }
         let lx = right + 18.0;
         let row = 24.0;
-        shapes.push(Shape::Rect {
-            x: lx,
-            y: top,
-            w: legend_w,
-            h: row * (self.series.len() + notes.len()) as f64 + 14.0,
-            fill: Some(Color::WHITE),
-            stroke: Some(Color::GRID),
-        });
-        for (i, label) in labels.into_iter().enumerate() {
-            let (color, kind) = style(i);
+        let legend_h = row * (self.series.len() + notes.len()) as f64 + 14.0;
+        let corners = [pen.at(lx, top), pen.at(lx + legend_w, top + legend_h)];
+        root.draw(&Rectangle::new(corners, WHITE.filled()))?;
+        root.draw(&Rectangle::new(corners, pen.stroke(GRID, 1.0)))?;
+        for (i, (label, &look)) in labels.into_iter().zip(&looks).enumerate() {
             let y = top + 19.0 + row * i as f64;
-            shapes.push(Shape::Line {
-                from: (lx + 10.0, y),
-                to: (lx + 38.0, y),
-                color,
-                width: 2.0,
-            });
-            shapes.push(Shape::Marker {
-                at: (lx + 24.0, y),
-                kind,
-                radius: 4.0,
-                color,
-            });
-            shapes.push(text(lx + 46.0, y + 5.0, label, Anchor::Start, Color::TEXT));
+            let segment = vec![pen.at(lx + 10.0, y), pen.at(lx + 38.0, y)];
+            let line = pen.stroke(look.color, 2.0);
+            if let Some((dash, gap)) = look.dash {
+                let (dash, gap) = (pen.px(dash), pen.px(gap));
+                root.draw(&DashedPathElement::new(segment, dash, gap, line))?;
+            } else {
+                root.draw(&PathElement::new(segment, line))?;
+            }
+            root.draw(&pen.marker(pen.at(lx + 24.0, y), look, 4.0))?;
+            pen.text(root, &label, (lx + 46.0, y), 14.0, TEXT, HPos::Left)?;
         }
         for (i, note) in notes.into_iter().enumerate() {
             let y = top + 19.0 + row * (self.series.len() + i) as f64;
-            shapes.push(text(lx + 10.0, y + 5.0, note, Anchor::Start, Color::MUTED));
+            pen.text(root, &note, (lx + 10.0, y), 13.0, MUTED, HPos::Left)?;
         }
-        Scene {
-            width: WIDTH,
-            height: HEIGHT,
-            title: self.title.clone(),
-            shapes,
-        }
+        Ok(())
     }
 }
 
-/// Escapes text for XML content and attribute values.
-fn xml_escape(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            // Control characters are not allowed in XML 1.0.
-            c if (c as u32) < 0x20 && c != '\t' && c != '\n' && c != '\r' => out.push('?'),
-            c => out.push(c),
+/// Device pixels per image pixel (in each direction) of the PNG's drawing.
+const SUPERSAMPLE: u32 = 3;
+
+/// Averages each `factor` x `factor` block of an RGB image `width * factor` pixels wide into
+/// one pixel: the anti-aliasing of the supersampled drawing.
+fn downsample(big: &[u8], width: usize, factor: usize) -> Vec<u8> {
+    let big_row = width * factor * 3;
+    let height = big.len() / big_row / factor;
+    let mut out = Vec::with_capacity(width * height * 3);
+    let n = (factor * factor) as u32;
+    for y in 0..height {
+        for x in 0..width {
+            for c in 0..3 {
+                let sum: u32 = (0..factor * factor)
+                    .map(|i| {
+                        let (dy, dx) = (i / factor, i % factor);
+                        u32::from(big[(y * factor + dy) * big_row + (x * factor + dx) * 3 + c])
+                    })
+                    .sum();
+                out.push(((sum + n / 2) / n) as u8);
+            }
         }
     }
     out
-}
-
-/// A coordinate with at most two decimals.
-fn num(v: f64) -> String {
-    let s = format!("{v:.2}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_string()
-    } else {
-        s.to_string()
-    }
-}
-
-impl Scene {
-    fn to_svg(&self) -> String {
-        let mut s = String::new();
-        let _ = writeln!(s, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
-        let _ = writeln!(
-            s,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" font-family=\"'Noto Sans', 'DejaVu Sans', Arial, sans-serif\">",
-            w = self.width,
-            h = self.height
-        );
-        let _ = writeln!(s, "<title>{}</title>", xml_escape(&self.title));
-        for shape in &self.shapes {
-            match shape {
-                Shape::Rect {
-                    x,
-                    y,
-                    w,
-                    h,
-                    fill,
-                    stroke,
-                } => {
-                    let _ = writeln!(
-                        s,
-                        "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"{}\" stroke=\"{}\"/>",
-                        num(*x),
-                        num(*y),
-                        num(*w),
-                        num(*h),
-                        fill.map_or_else(|| "none".to_string(), Color::hex),
-                        stroke.map_or_else(|| "none".to_string(), Color::hex),
-                    );
-                }
-                Shape::Line {
-                    from,
-                    to,
-                    color,
-                    width,
-                } => {
-                    let _ = writeln!(
-                        s,
-                        "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"/>",
-                        num(from.0),
-                        num(from.1),
-                        num(to.0),
-                        num(to.1),
-                        color.hex(),
-                        num(*width)
-                    );
-                }
-                Shape::Polyline {
-                    points,
-                    color,
-                    width,
-                } => {
-                    let pts: Vec<String> = points
-                        .iter()
-                        .map(|p| format!("{},{}", num(p.0), num(p.1)))
-                        .collect();
-                    let _ = writeln!(
-                        s,
-                        "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\" stroke-linecap=\"round\"/>",
-                        pts.join(" "),
-                        color.hex(),
-                        num(*width)
-                    );
-                }
-                Shape::Marker {
-                    at,
-                    kind,
-                    radius,
-                    color,
-                } => {
-                    if *kind == MarkerKind::Circle {
-                        let _ = writeln!(
-                            s,
-                            "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"1\"/>",
-                            num(at.0),
-                            num(at.1),
-                            num(*radius),
-                            color.hex()
-                        );
-                    } else {
-                        let pts: Vec<String> = kind
-                            .polygon(at.0, at.1, *radius)
-                            .iter()
-                            .map(|p| format!("{},{}", num(p.0), num(p.1)))
-                            .collect();
-                        let _ = writeln!(
-                            s,
-                            "<polygon points=\"{}\" fill=\"{}\" stroke=\"#ffffff\" stroke-width=\"1\"/>",
-                            pts.join(" "),
-                            color.hex()
-                        );
-                    }
-                }
-                Shape::Text(t) => {
-                    let anchor = match t.anchor {
-                        Anchor::Start => "start",
-                        Anchor::Middle => "middle",
-                        Anchor::End => "end",
-                    };
-                    let transform = if t.vertical {
-                        format!(" transform=\"rotate(-90 {} {})\"", num(t.x), num(t.y))
-                    } else {
-                        String::new()
-                    };
-                    let first = t.runs.first().map_or(14.0, |r| r.size);
-                    let _ = write!(
-                        s,
-                        "<text x=\"{}\" y=\"{}\" font-size=\"{}\" fill=\"{}\" text-anchor=\"{anchor}\"{transform}>",
-                        num(t.x),
-                        num(t.y),
-                        num(first),
-                        t.color.hex()
-                    );
-                    let mut rise = 0.0;
-                    for (i, run) in t.runs.iter().enumerate() {
-                        if i == 0 && run.rise == 0.0 {
-                            s.push_str(&xml_escape(&run.text));
-                            continue;
-                        }
-                        let _ = write!(
-                            s,
-                            "<tspan dy=\"{}\" font-size=\"{}\">{}</tspan>",
-                            num(rise - run.rise),
-                            num(run.size),
-                            xml_escape(&run.text)
-                        );
-                        rise = run.rise;
-                    }
-                    s.push_str("</text>\n");
-                }
-            }
-        }
-        s.push_str("</svg>\n");
-        s
-    }
-}
-
-/// The PNG rasterizer: anti-aliased coverage from distances for lines and markers, glyph
-/// coverage from `ab_glyph` for text, blended over a white RGB canvas.
-mod raster {
-    use super::{Anchor, Color, Font, MarkerKind, Scene, Shape, Text};
-    use crate::failure::{input, Failure};
-
-    struct Canvas {
-        width: usize,
-        height: usize,
-        rgb: Vec<[f32; 3]>,
-        /// Per-pixel coverage of the shape being drawn (so overlapping segments of one line do
-        /// not darken their joints), with the bounding box of what it touched.
-        cover: Vec<f32>,
-        touched: Option<(usize, usize, usize, usize)>,
-    }
-
-    impl Canvas {
-        fn new(width: usize, height: usize) -> Canvas {
-            Canvas {
-                width,
-                height,
-                rgb: vec![[1.0; 3]; width * height],
-                cover: vec![0.0; width * height],
-                touched: None,
-            }
-        }
-
-        /// Raises the coverage of pixel (x, y) to `c`.
-        fn cover(&mut self, x: i64, y: i64, c: f32) {
-            if c <= 0.0 || x < 0 || y < 0 || x as usize >= self.width || y as usize >= self.height {
-                return;
-            }
-            let (x, y) = (x as usize, y as usize);
-            let i = y * self.width + x;
-            self.cover[i] = self.cover[i].max(c.min(1.0));
-            self.touched = Some(match self.touched {
-                None => (x, y, x, y),
-                Some((a, b, c, d)) => (a.min(x), b.min(y), c.max(x), d.max(y)),
-            });
-        }
-
-        /// Blends the accumulated coverage in `color` and clears it.
-        fn flush(&mut self, color: Color) {
-            let Some((x0, y0, x1, y1)) = self.touched.take() else {
-                return;
-            };
-            let c = [
-                f32::from(color.0) / 255.0,
-                f32::from(color.1) / 255.0,
-                f32::from(color.2) / 255.0,
-            ];
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    let i = y * self.width + x;
-                    let a = self.cover[i];
-                    if a > 0.0 {
-                        for (dst, src) in self.rgb[i].iter_mut().zip(c) {
-                            *dst += (src - *dst) * a;
-                        }
-                        self.cover[i] = 0.0;
-                    }
-                }
-            }
-        }
-
-        /// Pixels whose centers may lie within `r` of the box (x0, y0)-(x1, y1).
-        fn pixels_near(
-            &self,
-            (x0, y0): (f64, f64),
-            (x1, y1): (f64, f64),
-            r: f64,
-        ) -> impl Iterator<Item = (i64, i64)> {
-            let lo_x = ((x0.min(x1) - r - 1.0).floor() as i64).max(0);
-            let hi_x = ((x0.max(x1) + r + 1.0).ceil() as i64).min(self.width as i64 - 1);
-            let lo_y = ((y0.min(y1) - r - 1.0).floor() as i64).max(0);
-            let hi_y = ((y0.max(y1) + r + 1.0).ceil() as i64).min(self.height as i64 - 1);
-            (lo_y..=hi_y).flat_map(move |y| (lo_x..=hi_x).map(move |x| (x, y)))
-        }
-
-        fn segment(&mut self, a: (f64, f64), b: (f64, f64), width: f64) {
-            let half = width / 2.0;
-            let pixels: Vec<(i64, i64)> = self.pixels_near(a, b, half).collect();
-            for (x, y) in pixels {
-                let d = distance_to_segment((x as f64 + 0.5, y as f64 + 0.5), a, b);
-                self.cover(x, y, (half + 0.5 - d).clamp(0.0, 1.0) as f32);
-            }
-        }
-
-        fn rect_fill(&mut self, x: f64, y: f64, w: f64, h: f64) {
-            let pixels: Vec<(i64, i64)> = self.pixels_near((x, y), (x + w, y + h), 0.0).collect();
-            for (px, py) in pixels {
-                let ox = (x + w).min(px as f64 + 1.0) - x.max(px as f64);
-                let oy = (y + h).min(py as f64 + 1.0) - y.max(py as f64);
-                self.cover(px, py, (ox.max(0.0) * oy.max(0.0)) as f32);
-            }
-        }
-
-        /// A filled circle or convex polygon, through a signed distance.
-        fn marker(&mut self, at: (f64, f64), kind: MarkerKind, r: f64) {
-            let poly = kind.polygon(at.0, at.1, r);
-            let reach = r * 1.3;
-            let pixels: Vec<(i64, i64)> = self.pixels_near(at, at, reach).collect();
-            for (x, y) in pixels {
-                let p = (x as f64 + 0.5, y as f64 + 0.5);
-                let sd = if poly.is_empty() {
-                    ((p.0 - at.0).powi(2) + (p.1 - at.1).powi(2)).sqrt() - r
-                } else {
-                    convex_signed_distance(p, &poly)
-                };
-                self.cover(x, y, (0.5 - sd).clamp(0.0, 1.0) as f32);
-            }
-        }
-
-        fn text(&mut self, t: &Text, font: &Font) {
-            use ab_glyph::Font as _;
-            let width = font.width(&t.runs);
-            let start = match t.anchor {
-                Anchor::Start => 0.0,
-                Anchor::Middle => -width / 2.0,
-                Anchor::End => -width,
-            };
-            let mut caret = start;
-            for run in &t.runs {
-                let (glyphs, next) = font.layout(run, caret, 0.0);
-                caret = next;
-                for g in glyphs {
-                    let Some(outlined) = font.face.outline_glyph(g) else {
-                        continue;
-                    };
-                    let b = outlined.px_bounds();
-                    let mut pixels = Vec::new();
-                    outlined.draw(|gx, gy, c| {
-                        pixels.push((
-                            f64::from(b.min.x) + f64::from(gx),
-                            f64::from(b.min.y) + f64::from(gy),
-                            c,
-                        ));
-                    });
-                    for (dx, dy, c) in pixels {
-                        // (dx, dy) is the pixel's top-left corner relative to the anchor.
-                        let (x, y) = if t.vertical {
-                            // A quarter turn counter-clockwise: (dx, dy) -> (dy, -dx).
-                            (t.x + dy, t.y - dx - 1.0)
-                        } else {
-                            (t.x + dx, t.y + dy)
-                        };
-                        self.cover(x.round() as i64, y.round() as i64, c);
-                    }
-                }
-            }
-        }
-
-        fn to_rgb8(&self) -> Vec<u8> {
-            self.rgb
-                .iter()
-                .flat_map(|p| p.map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8))
-                .collect()
-        }
-    }
-
-    fn distance_to_segment(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
-        let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (cx, cy) = (a.0 + t * dx, a.1 + t * dy);
-        ((p.0 - cx).powi(2) + (p.1 - cy).powi(2)).sqrt()
-    }
-
-    /// max over edges of the distance to the edge's line, positive outside (any winding).
-    fn convex_signed_distance(p: (f64, f64), poly: &[(f64, f64)]) -> f64 {
-        let n = poly.len();
-        let area2: f64 = (0..n)
-            .map(|i| {
-                let (a, b) = (poly[i], poly[(i + 1) % n]);
-                a.0 * b.1 - b.0 * a.1
-            })
-            .sum();
-        let orientation = if area2 >= 0.0 { 1.0 } else { -1.0 };
-        (0..n)
-            .map(|i| {
-                let (a, b) = (poly[i], poly[(i + 1) % n]);
-                let (ex, ey) = (b.0 - a.0, b.1 - a.1);
-                let len = (ex * ex + ey * ey).sqrt().max(1e-12);
-                // Inside lies on the side where the cross product has the area's sign.
-                let cross = ex * (p.1 - a.1) - ey * (p.0 - a.0);
-                -orientation * cross / len
-            })
-            .fold(f64::NEG_INFINITY, f64::max)
-    }
-
-    pub(super) fn render(scene: &Scene, font: &Font) -> Vec<u8> {
-        let mut canvas = Canvas::new(scene.width as usize, scene.height as usize);
-        for shape in &scene.shapes {
-            match shape {
-                Shape::Rect {
-                    x,
-                    y,
-                    w,
-                    h,
-                    fill,
-                    stroke,
-                } => {
-                    if let Some(color) = fill {
-                        canvas.rect_fill(*x, *y, *w, *h);
-                        canvas.flush(*color);
-                    }
-                    if let Some(color) = stroke {
-                        // A 1-pixel outline centered on the edges, like SVG's stroke.
-                        canvas.rect_fill(x - 0.5, y - 0.5, w + 1.0, 1.0);
-                        canvas.rect_fill(x - 0.5, y + h - 0.5, w + 1.0, 1.0);
-                        canvas.rect_fill(x - 0.5, y - 0.5, 1.0, h + 1.0);
-                        canvas.rect_fill(x + w - 0.5, y - 0.5, 1.0, h + 1.0);
-                        canvas.flush(*color);
-                    }
-                }
-                Shape::Line {
-                    from,
-                    to,
-                    color,
-                    width,
-                } => {
-                    if from.0 == to.0 || from.1 == to.1 {
-                        // Axis-aligned: exact pixel coverage keeps grid lines crisp.
-                        let (x0, x1) = (from.0.min(to.0), from.0.max(to.0));
-                        let (y0, y1) = (from.1.min(to.1), from.1.max(to.1));
-                        if from.1 == to.1 {
-                            canvas.rect_fill(x0, y0 - width / 2.0, x1 - x0, *width);
-                        } else {
-                            canvas.rect_fill(x0 - width / 2.0, y0, *width, y1 - y0);
-                        }
-                    } else {
-                        canvas.segment(*from, *to, *width);
-                    }
-                    canvas.flush(*color);
-                }
-                Shape::Polyline {
-                    points,
-                    color,
-                    width,
-                } => {
-                    for pair in points.windows(2) {
-                        canvas.segment(pair[0], pair[1], *width);
-                    }
-                    canvas.flush(*color);
-                }
-                Shape::Marker {
-                    at,
-                    kind,
-                    radius,
-                    color,
-                } => {
-                    canvas.marker(*at, *kind, radius + 1.0);
-                    canvas.flush(Color::WHITE);
-                    canvas.marker(*at, *kind, *radius);
-                    canvas.flush(*color);
-                }
-                Shape::Text(t) => {
-                    canvas.text(t, font);
-                    canvas.flush(t.color);
-                }
-            }
-        }
-        canvas.to_rgb8()
-    }
-
-    /// The scene as PNG bytes.
-    pub(super) fn to_png(scene: &Scene, font: &Font) -> Result<Vec<u8>, Failure> {
-        let pixels = render(scene, font);
-        let mut bytes = Vec::new();
-        let mut encoder = png::Encoder::new(&mut bytes, scene.width, scene.height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_compression(png::Compression::Fast);
-        let mut writer = encoder
-            .write_header()
-            .map_err(|e| input!("cannot encode the PNG: {e}"))?;
-        writer
-            .write_image_data(&pixels)
-            .map_err(|e| input!("cannot encode the PNG: {e}"))?;
-        writer
-            .finish()
-            .map_err(|e| input!("cannot encode the PNG: {e}"))?;
-        Ok(bytes)
-    }
-
-    #[cfg(test)]
-    mod tests {
-        use super::*;
-
-        #[test]
-        fn signed_distance_of_a_square() {
-            let sq = [(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0)];
-            assert!((convex_signed_distance((1.0, 1.0), &sq) + 1.0).abs() < 1e-12);
-            assert!((convex_signed_distance((3.0, 1.0), &sq) - 1.0).abs() < 1e-12);
-            let reversed: Vec<_> = sq.iter().rev().copied().collect();
-            assert!((convex_signed_distance((3.0, 1.0), &reversed) - 1.0).abs() < 1e-12);
-            assert!((distance_to_segment((1.0, 1.0), (0.0, 0.0), (2.0, 0.0)) - 1.0).abs() < 1e-12);
-            assert!((distance_to_segment((3.0, 0.0), (0.0, 0.0), (2.0, 0.0)) - 1.0).abs() < 1e-12);
-        }
-    }
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename, so the
-/// target is either the complete image or untouched.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Failure> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let name = path
-        .file_name()
-        .map_or_else(|| "plot".into(), |n| n.to_string_lossy().into_owned());
-    let tmp = dir.join(format!(".{name}.{}.tmp", std::process::id()));
-    let result = (|| {
-        let mut file = std::fs::File::create(&tmp)?;
-        file.write_all(bytes)?;
-        file.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        input!("cannot write {}: {e}", path.display())
-    })
 }
 
 #[cfg(test)]
@@ -1377,17 +1009,51 @@ mod tests {
     }
 
     #[test]
-    fn text_escapes_and_formats() {
-        assert_eq!(xml_escape("a<b>&\"c'"), "a&lt;b&gt;&amp;&quot;c&apos;");
-        assert_eq!(num(1.0), "1");
-        assert_eq!(num(2.345), "2.35");
-        assert_eq!(num(-0.001), "0");
-        let label = power_label(12, 14.0);
-        assert_eq!(label[0].text, "10");
-        assert_eq!(label[1].text, "12");
-        assert!(label[1].rise > 0.0);
+    fn labels() {
+        assert_eq!(power_label(0), ("1", None));
+        assert_eq!(power_label(1), ("10", None));
+        assert_eq!(power_label(12), ("10", Some("12".to_string())));
+        assert_eq!(power_label(-3), ("10", Some("-3".to_string())));
         assert_eq!(legend_label("IE"), "IE (interior edges)");
         assert_eq!(legend_label("x0"), "x0");
+    }
+
+    #[test]
+    fn text_is_measured_with_the_embedded_font() {
+        let pen = Pen::svg(embedded_font().unwrap());
+        let one = pen.width("level", 14.0);
+        assert!((20.0..50.0).contains(&one), "{one}");
+        assert!((pen.width("level", 28.0) - 2.0 * one).abs() < 0.5);
+        // Each glyph's bitmap starts at its left bearing: a `j` reaches left of its pen
+        // position (Noto Sans), a `b` starts right of it.
+        let (glyphs, _) = pen.glyphs("obj", 100.0);
+        let caret_j = pen.width("ob", 100.0);
+        assert!(glyphs[2].1 < caret_j, "{glyphs:?}");
+        assert!(glyphs[1].1 > pen.width("o", 100.0), "{glyphs:?}");
+        // The bitmap's font size has the em the SVG's has.
+        let bitmap = Pen::bitmap(embedded_font().unwrap(), 3.0);
+        assert!(
+            (1.2..1.5).contains(&bitmap.size_per_em),
+            "{}",
+            bitmap.size_per_em
+        );
+    }
+
+    #[test]
+    fn downsample_averages_blocks() {
+        // 2 x 1 pixels from 4 x 2 at factor 2: a white and a half-black block.
+        let big = [
+            [255, 255, 255],
+            [255, 255, 255],
+            [0, 0, 0],
+            [255, 0, 0],
+            [255, 255, 255],
+            [255, 255, 255],
+            [0, 0, 0],
+            [255, 0, 0],
+        ]
+        .concat();
+        assert_eq!(downsample(&big, 2, 2), [255, 255, 255, 128, 0, 0]);
     }
 
     #[test]
@@ -1417,43 +1083,84 @@ mod tests {
         }
     }
 
+    /// The 2-pixel polylines of an SVG (series lines and the legend's samples).
+    fn wide_polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+        let doc = roxmltree::Document::parse(svg).expect("well-formed XML");
+        doc.descendants()
+            .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke-width") == Some("2"))
+            .map(|n| {
+                n.attribute("points")
+                    .unwrap()
+                    .split_whitespace()
+                    .map(|p| {
+                        let (x, y) = p.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
     #[test]
-    fn layout_breaks_lines_at_gaps_and_notes_hidden_columns() {
-        let font = Font::embedded().unwrap();
+    fn lines_break_at_gaps_and_hidden_columns_are_noted() {
         let gap = Series {
             name: "x0".into(),
             points: vec![(0, 0.0), (1, 1.0), (3, 3.0), (4, 4.0), (5, 5.0)],
         };
-        let scene = chart(vec![gap]).layout(&font);
-        let lines: Vec<usize> = scene
-            .shapes
-            .iter()
-            .filter_map(|s| match s {
-                Shape::Polyline { points, .. } => Some(points.len()),
-                _ => None,
-            })
-            .collect();
-        assert_eq!(lines, [2, 3]);
-        let markers = scene
-            .shapes
-            .iter()
-            .filter(|s| matches!(s, Shape::Marker { .. }))
-            .count();
-        assert_eq!(markers, 5 + 1, "one per point, and the legend's");
-        let svg = scene.to_svg();
-        assert!(svg.contains(">BE: no positive count</text>"), "{svg}");
-        assert!(svg.contains("<title>t</title>"));
+        let chart = chart(vec![gap]);
+        let svg = chart.to_svg().unwrap();
+        let lines = wide_polylines(&svg);
+        let lengths: Vec<usize> = lines.iter().map(Vec::len).collect();
+        assert_eq!(lengths, [2, 3, 2], "two runs, and the legend's sample");
         // Higher counts are drawn higher (smaller y).
-        let Some(Shape::Polyline { points, .. }) = scene
-            .shapes
-            .iter()
-            .find(|s| matches!(s, Shape::Polyline { .. }))
-        else {
-            unreachable!("a polyline was counted above")
-        };
-        assert!(points[1].1 < points[0].1);
-        let png = raster::to_png(&scene, &font).unwrap();
+        assert!(lines[0][1].1 < lines[0][0].1);
+        let markers = svg.matches("<circle").count();
+        assert_eq!(
+            markers,
+            2 * (5 + 1),
+            "one per point and the legend's, each on a halo"
+        );
+        assert!(svg.contains("\nBE: no positive count\n</text>"), "{svg}");
+        assert!(svg.contains("\nt\n</text>"), "the title");
+        let png = chart.to_png().unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    }
+
+    #[test]
+    fn a_series_on_an_earlier_one_is_dashed() {
+        let line = |name: &str, lift: f64| Series {
+            name: name.into(),
+            points: (0..4).map(|l| (l, l as f64 + lift)).collect(),
+        };
+        // b lies on a (within the tolerance), c is apart, d lies on a and b, e touches a at
+        // one level only (a crossing hides no segment).
+        let e = Series {
+            name: "e".into(),
+            points: vec![(0, 0.0), (1, 3.0)],
+        };
+        let chart = chart(vec![
+            line("a", 0.0),
+            line("b", 0.01),
+            line("c", 0.5),
+            line("d", -0.01),
+            e,
+        ]);
+        let dashes: Vec<_> = chart.looks(0.02).iter().map(|l| l.dash).collect();
+        assert_eq!(
+            dashes,
+            [
+                None,
+                Some(Look::DASHES[0]),
+                None,
+                Some(Look::DASHES[1]),
+                None
+            ]
+        );
+        let svg = chart.to_svg().unwrap();
+        assert!(
+            wide_polylines(&svg).len() > 5 + 5,
+            "dashes are polylines of their own"
+        );
     }
 
     #[test]

@@ -92,7 +92,8 @@ where
     w.flush()
 }
 
-fn write_atomically(
+/// Writes `path` atomically: `body` fills a temporary file in the same folder, which is then renamed over `path`.
+pub fn write_atomically(
     path: &Path,
     body: impl FnOnce(&mut File) -> std::io::Result<()>,
 ) -> Result<()> {

@@ -1002,7 +1002,7 @@ fn check_alias_on_boundary(mesh: &[&str], levels: u64, plot_dir: &Path) {
         assert_eq!(plot, format!("wrote {svg} (5 series, levels {range})\n"));
         assert!(std::fs::read_to_string(svg)
             .unwrap()
-            .contains(">BE (boundary edges)</text>"));
+            .contains("\nBE (boundary edges)\n</text>"));
         // Typed-in counts of the same mesh: BE = 2E - 3F > 0.
         let counts = format!(
             "V={},E={},F={}",
