@@ -4,7 +4,7 @@
 //!
 //! Tests run unoptimized, so a (mesh, scheme) whose level 1 would have more than
 //! [`MAX_FACES`] faces is left to `cargo xtask verify`, which runs every scheme on every
-//! shared mesh in release mode (CI runs both); the skipped pairs are printed.
+//! shared mesh in release mode (CI runs both); the pairs left to it are printed.
 
 /// The largest level-1 face count subdivided here (`buildings_400k.obj` is above it).
 const MAX_FACES: u64 = 500_000;
