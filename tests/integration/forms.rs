@@ -14,20 +14,10 @@ mod generated {
 
 use generated::FORMS;
 
+/// `generated_forms.rs` is what the code generates (`UPDATE_EXPECT=1` rewrites it).
 #[test]
-fn generated_forms_are_current() -> Result<(), Box<dyn std::error::Error>> {
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("integration/generated_forms.rs");
-    let want = generated_forms_source();
-    if std::env::var_os("UPDATE_EXPECT").is_some() {
-        std::fs::write(&path, &want)?;
-    }
-    let have = std::fs::read_to_string(&path)?.replace("\r\n", "\n");
-    assert!(
-        have == want,
-        "tests/integration/generated_forms.rs is stale: run UPDATE_EXPECT=1 cargo test -p subcount-tests"
-    );
-    Ok(())
+fn generated_forms_are_current() {
+    expect_test::expect_file!["generated_forms.rs"].assert_eq(&generated_forms_source());
 }
 
 /// Every phase of every built-in scheme has a generated function, in order.

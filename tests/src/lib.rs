@@ -1,9 +1,7 @@
 //! Shared helpers for subcount's cross-crate integration tests (`tests/integration`): the
-//! generator of `integration/generated_forms.rs`, the generated base meshes a scheme applies
-//! to, and the shared-mesh folder.
+//! generator of `integration/generated_forms.rs` and the generated base meshes a scheme
+//! applies to. (The shared-mesh folder comes from the `testdata` crate.)
 #![deny(missing_docs)]
-
-use std::path::PathBuf;
 
 use halfedge::subdivide::LevelReport;
 use num_bigint::BigInt;
@@ -101,16 +99,4 @@ pub fn measured_state(report: &LevelReport, names: &[String]) -> Option<Vec<BigI
                 .map(|(_, v)| v.clone())
         })
         .collect()
-}
-
-/// The folder of real meshes from `SUBCOUNT_MESHES`, or `None` with a printed notice when the
-/// variable is unset (CI always sets it).
-pub fn meshes_dir() -> Option<PathBuf> {
-    match std::env::var_os("SUBCOUNT_MESHES") {
-        Some(dir) => Some(PathBuf::from(dir)),
-        None => {
-            eprintln!("SUBCOUNT_MESHES is not set: skipping the tests over the shared meshes");
-            None
-        }
-    }
 }

@@ -63,10 +63,10 @@ fn main() {
     let sphere = subdivide(&ico, "icosphere", 6, &SubdivideOptions::default())
         .expect("the icosahedron subdivides");
     let mut inputs = vec![("icosphere".to_owned(), sphere)];
-    match std::env::var_os("SUBCOUNT_MESHES") {
-        Some(dir) => {
-            let path = std::path::Path::new(&dir).join("armadillo.obj");
-            let poly = halfedge::io::read_mesh(&path).expect("armadillo.obj loads");
+    match std::env::var_os(testdata::VAR) {
+        Some(_) => {
+            let poly = halfedge::io::read_mesh(testdata::mesh("armadillo.obj"))
+                .expect("armadillo.obj loads");
             inputs.push((
                 "armadillo".to_owned(),
                 HalfEdgeMesh::try_from(&poly).expect("armadillo is a half-edge mesh"),

@@ -600,21 +600,11 @@ fn paper_tori_of_higher_genus_under_loop() {
     }
 }
 
-fn meshes_dir() -> Option<std::path::PathBuf> {
-    match std::env::var_os("SUBCOUNT_MESHES") {
-        Some(dir) => Some(std::path::PathBuf::from(dir)),
-        None => {
-            eprintln!("SUBCOUNT_MESHES is not set: skipping the tests over the shared meshes");
-            None
-        }
-    }
-}
-
 /// The paper's 3Holes mesh (genus 3): 3596 vertices, 10800 edges, 7200 faces, then Loop.
 #[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
 fn paper_three_holes_counts() {
-    let Some(dir) = meshes_dir() else { return };
-    let polygons = halfedge::io::read_mesh(dir.join("3holes.obj")).expect("3holes.obj");
+    let polygons = halfedge::io::read_mesh(testdata::mesh("3holes.obj")).expect("3holes.obj");
     let mesh = HalfEdgeMesh::try_from(&polygons).expect("3holes is a valid mesh");
     let c = mesh.counts();
     assert_eq!((c.vertices, c.edges, c.faces), (3596, 10800, 7200));
@@ -642,7 +632,7 @@ fn paper_three_holes_counts() {
         ("osd_catmark_nonquads.obj", "catmull-clark"),
         ("eight.obj", "mid-edge"),
     ] {
-        let polygons = halfedge::io::read_mesh(dir.join(file)).expect(file);
+        let polygons = halfedge::io::read_mesh(testdata::mesh(file)).expect(file);
         let mesh = HalfEdgeMesh::try_from(&polygons).expect(file);
         assert_reports(
             &format!("{scheme} on {file}"),

@@ -38,18 +38,10 @@ fn render_all() -> String {
     out
 }
 
+/// `generated/forms.rs` is what the code generates (`UPDATE_EXPECT=1` rewrites it).
 #[test]
 fn generated_file_is_current() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/generated/forms.rs");
-    let want = render_all();
-    if std::env::var_os("UPDATE_EXPECT").is_some() {
-        std::fs::write(&path, &want).unwrap();
-    }
-    let have = std::fs::read_to_string(&path).unwrap();
-    assert_eq!(
-        have, want,
-        "tests/generated/forms.rs is stale: run UPDATE_EXPECT=1 cargo test -p recurrence"
-    );
+    expect_test::expect_file!["generated/forms.rs"].assert_eq(&render_all());
 }
 
 fn check<const N: usize>(f: fn([i128; N], u64) -> Option<[i128; N]>, case: usize, x0: [i128; N]) {

@@ -212,8 +212,14 @@ pub(crate) struct SchemesArgs {
 /// Where the recurrence and its initial state come from.
 #[derive(Args, Debug, Clone, Default)]
 pub(crate) struct Source {
-    /// The recurrence matrix, e.g. '[[1,1,0],[0,2,3],[0,0,4]]'.
-    #[arg(long, value_name = "ROWS")]
+    /// The recurrence matrix, e.g. `[[1,1,0],[0,2,3],[0,0,4]]`.
+    // The help text is spelled out: clap prints doc comments as they are, and rustdoc would
+    // read the bracketed example as links.
+    #[arg(
+        long,
+        value_name = "ROWS",
+        help = "The recurrence matrix, e.g. '[[1,1,0],[0,2,3],[0,0,4]]'"
+    )]
     pub(crate) matrix: Option<String>,
     /// Component names in state order, e.g. V,E,F (default x0, x1, ...).
     #[arg(long, value_name = "NAMES", value_delimiter = ',')]

@@ -60,18 +60,6 @@ pub(crate) fn fails(args: &[&str], code: i32, needle: &str) -> String {
     run.stderr
 }
 
-/// The test meshes folder, if `SUBCOUNT_MESHES` is set.
-#[allow(dead_code)]
-pub(crate) fn meshes() -> Option<PathBuf> {
-    match std::env::var_os("SUBCOUNT_MESHES") {
-        Some(dir) => Some(PathBuf::from(dir)),
-        None => {
-            eprintln!("note: SUBCOUNT_MESHES is unset; skipping a test over ../shared/meshes");
-            None
-        }
-    }
-}
-
 /// A fixture in `crates/subcount/tests/data/`, as an absolute path string.
 #[allow(dead_code)]
 pub(crate) fn data(name: &str) -> String {
