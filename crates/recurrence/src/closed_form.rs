@@ -24,7 +24,7 @@ use num_traits::{One, Pow, Signed, Zero};
 use crate::eigen::{power_of_two_exponent, Eigenvalue, EigenvalueInfo};
 use crate::field::{Field, FieldMatrix, QuadraticSurd, RingElem, SurdRing};
 use crate::poly::{divide_by_root, taylor_coefficients};
-use crate::{Error, IntMatrix, Recurrence, Result};
+use crate::{Complex64, Error, IntMatrix, Recurrence, Result};
 
 /// A coefficient of a closed-form term: exact rational, exact in `Q(sqrt d)`, or numeric.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,7 +34,7 @@ pub enum Coefficient {
     /// An exact element `a + b*sqrt(d)` of a quadratic field.
     Surd(QuadraticSurd),
     /// A numeric approximation.
-    Numeric(Complex<f64>),
+    Numeric(Complex64),
 }
 
 impl Coefficient {
@@ -54,7 +54,7 @@ impl std::fmt::Display for Coefficient {
         match self {
             Coefficient::Rational(r) => write!(f, "{r}"),
             Coefficient::Surd(q) => write!(f, "{q}"),
-            Coefficient::Numeric(z) => f.write_str(&crate::eigen::format_complex(*z)),
+            Coefficient::Numeric(z) => write!(f, "{z}"),
         }
     }
 }
@@ -100,7 +100,7 @@ pub struct ComponentForm {
 ///
 /// Built by [`Recurrence::closed_form`]; evaluate it with [`ClosedForm::evaluate`], print it
 /// with [`ClosedForm::to_text`], [`ClosedForm::to_latex`], [`ClosedForm::to_rust`] or
-/// [`ClosedForm::to_json`].
+/// `ClosedForm::to_json` (with the `json` feature).
 #[derive(Clone, Debug)]
 pub struct ClosedForm {
     names: Vec<String>,
@@ -841,12 +841,13 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                 });
             }
             Eigenvalue::Numeric(z) => {
-                let parts = spectral_parts::<Complex<f64>>(m, &p, z, mult);
+                let z = z.to_nalgebra();
+                let parts = spectral_parts::<Complex<f64>>(m, &p, &z, mult);
                 push_terms(
                     &mut terms,
                     &info.eigenvalue,
-                    &power_coefficients(&parts, z),
-                    |c| Coefficient::Numeric(*c),
+                    &power_coefficients(&parts, &z),
+                    |c| Coefficient::Numeric(Complex64::from_nalgebra(*c)),
                 );
             }
         }

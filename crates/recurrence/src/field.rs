@@ -12,6 +12,8 @@ use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
+use crate::Complex64;
+
 /// The arithmetic of a field, as the spectral decomposition needs it.
 pub(crate) trait Field: Clone + fmt::Debug {
     fn field_zero() -> Self;
@@ -208,14 +210,14 @@ impl QuadraticSurd {
     }
 
     /// The value as a complex `f64` (real when `d >= 0`).
-    pub fn to_f64(&self) -> Complex<f64> {
+    pub fn to_f64(&self) -> Complex64 {
         let a = rational_to_f64(&self.a);
         let b = rational_to_f64(&self.b);
         let d = self.d.to_f64().unwrap_or(f64::NAN);
         if d >= 0.0 {
-            Complex::new(a + b * d.sqrt(), 0.0)
+            Complex64::new(a + b * d.sqrt(), 0.0)
         } else {
-            Complex::new(a, b * (-d).sqrt())
+            Complex64::new(a, b * (-d).sqrt())
         }
     }
 

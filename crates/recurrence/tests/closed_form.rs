@@ -115,16 +115,20 @@ fn five_cycle_is_numeric_and_evaluate_refuses() {
                 .terms
                 .iter()
                 .map(|t| {
-                    let lam = t.eigenvalue.to_complex();
+                    let z = t.eigenvalue.to_complex();
+                    let lam = nalgebra::Complex::new(z.re, z.im);
                     let coef = t.coefficients.iter().zip(&x0).fold(
                         nalgebra::Complex::new(0.0, 0.0),
                         |acc, (c, x)| {
                             let c = match c {
-                                Coefficient::Numeric(z) => *z,
+                                Coefficient::Numeric(z) => nalgebra::Complex::new(z.re, z.im),
                                 Coefficient::Rational(r) => {
                                     nalgebra::Complex::new(r.to_f64().unwrap(), 0.0)
                                 }
-                                Coefficient::Surd(q) => q.to_f64(),
+                                Coefficient::Surd(q) => {
+                                    let z = q.to_f64();
+                                    nalgebra::Complex::new(z.re, z.im)
+                                }
                             };
                             acc + c * x.to_string().parse::<f64>().unwrap()
                         },
