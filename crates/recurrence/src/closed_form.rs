@@ -15,7 +15,6 @@
 //! component, `valid_from` is the least `k` with `e_i^T N_0^k P_0 = 0`, and the levels below
 //! it are stored as rows of `M^k`.
 
-use nalgebra::Complex;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
@@ -24,7 +23,7 @@ use num_traits::{One, Pow, Signed, Zero};
 use crate::eigen::{power_of_two_exponent, Eigenvalue, EigenvalueInfo};
 use crate::field::{Field, FieldMatrix, QuadraticSurd, RingElem, SurdRing};
 use crate::poly::{divide_by_root, taylor_coefficients};
-use crate::{Complex64, Error, IntMatrix, Recurrence, Result};
+use crate::{Complex64, Error, IntMatrix, Matrix, Recurrence, Result};
 
 /// A coefficient of a closed-form term: exact rational, exact in `Q(sqrt d)`, or numeric.
 #[derive(Clone, Debug, PartialEq)]
@@ -360,12 +359,12 @@ impl ClosedForm {
                         coeffs
                             .iter()
                             .zip(x0)
-                            .fold(QuadraticSurd::field_zero(), |acc, (c, x)| {
-                                acc.add(&c.mul(&QuadraticSurd::rational(
-                                    BigRational::from_integer(x.clone()),
+                            .fold(QuadraticSurd::zero(), |acc, (c, x)| {
+                                &acc + &(c * &QuadraticSurd::rational(BigRational::from_integer(
+                                    x.clone(),
                                 )))
                             });
-                    if c.is_field_zero() {
+                    if c.is_zero() {
                         continue;
                     }
                     let FastEigenvalue::Surd(lambda) = &self.powers[*e] else {
@@ -375,12 +374,12 @@ impl ClosedForm {
                     let PowerValue::Surd(pw) = pw else { continue };
                     let sp =
                         QuadraticSurd::rational(BigRational::from_integer(Pow::pow(&s_big, *p)));
-                    let term = c.mul(pw).mul(&sp);
+                    let term = &(&c * pw) * &sp;
                     match sums
                         .iter_mut()
                         .find(|q| q.is_rational() || term.is_rational() || q.d == term.d)
                     {
-                        Some(q) => *q = q.add(&term),
+                        Some(q) => *q = &*q + &term,
                         None => sums.push(term),
                     }
                 }
@@ -421,15 +420,15 @@ pub(crate) fn dot(c: &[BigInt], x: &[BigInt]) -> BigInt {
 }
 
 pub(crate) fn surd_pow(base: &QuadraticSurd, mut s: u64) -> QuadraticSurd {
-    let mut result = QuadraticSurd::field_one();
+    let mut result = QuadraticSurd::one();
     let mut b = base.clone();
     while s > 0 {
         if s & 1 == 1 {
-            result = result.mul(&b);
+            result = &result * &b;
         }
         s >>= 1;
         if s > 0 {
-            b = b.mul(&b);
+            b = &b * &b;
         }
     }
     result
@@ -442,26 +441,26 @@ fn spectral_parts<F: Field>(
     p: &[BigRational],
     lambda: &F,
     mult: usize,
-) -> Vec<FieldMatrix<F>> {
+) -> Vec<Matrix<F>> {
     let mut h: Vec<F> = p.iter().map(F::from_rational).collect();
     for _ in 0..mult {
         h = divide_by_root(&h, lambda);
     }
     let t = taylor_coefficients(&h, lambda, mult);
     // Inverse power series of h at lambda, to order mult.
-    let inv0 = F::field_one().div(&t[0]);
+    let inv0 = F::one() / t[0].clone();
     let mut c: Vec<F> = vec![inv0.clone()];
     for k in 1..mult {
-        let mut acc = F::field_zero();
+        let mut acc = F::zero();
         for j in 1..=k {
             if let Some(tj) = t.get(j) {
-                acc = acc.add(&tj.mul(&c[k - j]));
+                acc = acc + tj.clone() * c[k - j].clone();
             }
         }
-        c.push(acc.mul(&inv0).neg());
+        c.push(-(acc * inv0.clone()));
     }
-    let mf = FieldMatrix::<F>::from_int(m);
-    let a = mf.add_scalar(&lambda.neg());
+    let mf = m.map(|&x| F::from_rational(&BigRational::from_integer(BigInt::from(x))));
+    let a = mf.add_scalar(&-lambda.clone());
     let projector = F::eval_poly_at_int(m, &h).mul(&a.eval_poly(&c));
     let mut parts = vec![projector];
     for _ in 1..mult {
@@ -512,8 +511,8 @@ impl ExactField for QuadraticSurd {
 /// projector `P_l`, the matrices `C_t` of [`power_coefficients`] (non-zero `l`), and for
 /// `l = 0` whether row `i` of `N^k P` vanishes.
 struct ExactSpectrum<F> {
-    projector: FieldMatrix<F>,
-    coefficients: Vec<FieldMatrix<F>>,
+    projector: Matrix<F>,
+    coefficients: Vec<Matrix<F>>,
     valid_from: Vec<u64>,
 }
 
@@ -599,27 +598,25 @@ fn exact_spectrum<F: ExactField>(
         let next = ring.mat_mul(&b, rk.last()?, n, n, mult);
         rk.push(next);
     }
-    let to_field = |num: &[RingElem], den: &RingElem| -> FieldMatrix<F> {
+    let to_field = |num: &[RingElem], den: &RingElem| -> Matrix<F> {
         let conj = den.conj();
         let norm = ring.norm(den);
-        FieldMatrix {
-            dim: n,
-            entries: num
-                .iter()
-                .map(|z| {
-                    if z.is_zero() {
-                        F::field_zero()
-                    } else {
-                        F::from_ring(z, den, &conj, &norm, &ring)
-                    }
-                })
-                .collect(),
-        }
+        let entries = num
+            .iter()
+            .map(|z| {
+                if z.is_zero() {
+                    F::zero()
+                } else {
+                    F::from_ring(z, den, &conj, &norm, &ring)
+                }
+            })
+            .collect();
+        Matrix::from_vec(n, n, entries)
     };
     let projector = to_field(&ring.mat_mul(&rk[0], &y, n, mult, n), &d);
     let mut valid_from = Vec::new();
     let mut coefficients = Vec::new();
-    if lambda.is_field_zero() {
+    if lambda.is_zero() {
         // Row i of N^k P = R_k Y / D vanishes iff row i of R_k does (Y has full row rank).
         valid_from = (0..n)
             .map(|i| {
@@ -682,11 +679,8 @@ fn exact_spectrum<F: ExactField>(
 }
 
 /// The entrywise conjugate `a - b sqrt(d)` of a matrix over `Q(sqrt d)`.
-fn conjugate_matrix(m: &FieldMatrix<QuadraticSurd>) -> FieldMatrix<QuadraticSurd> {
-    FieldMatrix {
-        dim: m.dim,
-        entries: m.entries.iter().map(QuadraticSurd::conjugate).collect(),
-    }
+fn conjugate_matrix(m: &Matrix<QuadraticSurd>) -> Matrix<QuadraticSurd> {
+    m.map(QuadraticSurd::conjugate)
 }
 
 /// Coefficients of `C(s, k) = s (s-1) ... (s-k+1) / k!` as a polynomial in `s`.
@@ -706,24 +700,21 @@ fn binomial_poly(k: usize) -> Vec<BigRational> {
 }
 
 /// Matrices `C_t` with `M^s P_l = sum_t s^t l^s C_t` for a non-zero eigenvalue.
-fn power_coefficients<F: Field>(parts: &[FieldMatrix<F>], lambda: &F) -> Vec<FieldMatrix<F>> {
+fn power_coefficients<F: Field>(parts: &[Matrix<F>], lambda: &F) -> Vec<Matrix<F>> {
     let mult = parts.len();
-    let dim = parts[0].dim;
-    let inv = F::field_one().div(lambda);
+    let dim = parts[0].dim();
+    let inv = F::one() / lambda.clone();
     let mut out = Vec::with_capacity(mult);
     for t in 0..mult {
-        let mut acc = FieldMatrix::scalar(dim, &F::field_zero());
-        let mut inv_k = F::field_one();
+        let mut acc = Matrix::scalar(dim, &F::zero());
+        let mut inv_k = F::one();
         for (k, part) in parts.iter().enumerate() {
             if k >= t {
-                let c = F::from_rational(&binomial_poly(k)[t]).mul(&inv_k);
-                let scaled = FieldMatrix {
-                    dim,
-                    entries: part.entries.iter().map(|e| e.mul(&c)).collect(),
-                };
+                let c = F::from_rational(&binomial_poly(k)[t]) * inv_k.clone();
+                let scaled = part.map(|e| e.clone() * c.clone());
                 acc = acc.add(&scaled);
             }
-            inv_k = inv_k.mul(&inv);
+            inv_k = inv_k * inv.clone();
         }
         out.push(acc);
     }
@@ -739,13 +730,13 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
     let mut valid_from = vec![0u64; n];
     // Sum of the exact projectors (rational parts: conjugate projectors are conjugate, so
     // their sum is twice the rational part), to tell which components avoid numeric terms.
-    let mut exact_sum = FieldMatrix::<BigRational>::scalar(n, &BigRational::zero());
+    let mut exact_sum = Matrix::<BigRational>::scalar(n, &BigRational::zero());
     let any_numeric = eigenvalues.iter().any(|e| !e.eigenvalue.is_exact());
     let mut powers = Vec::with_capacity(eigenvalues.len());
     type SurdData = (
         QuadraticSurd,
-        FieldMatrix<QuadraticSurd>,
-        Vec<FieldMatrix<QuadraticSurd>>,
+        Matrix<QuadraticSurd>,
+        Vec<Matrix<QuadraticSurd>>,
     );
     let mut surd_cache: Vec<SurdData> = Vec::new();
     for info in &eigenvalues {
@@ -826,10 +817,7 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                 };
                 surd_cache.push((l.clone(), projector.clone(), coefficients.clone()));
                 if any_numeric {
-                    let rational_part = FieldMatrix {
-                        dim: n,
-                        entries: projector.entries.iter().map(|q| q.a.clone()).collect(),
-                    };
+                    let rational_part = projector.map(|q| q.a.clone());
                     exact_sum = exact_sum.add(&rational_part);
                 }
                 push_terms(&mut terms, &info.eigenvalue, &coefficients, |c| {
@@ -841,13 +829,12 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                 });
             }
             Eigenvalue::Numeric(z) => {
-                let z = z.to_nalgebra();
-                let parts = spectral_parts::<Complex<f64>>(m, &p, &z, mult);
+                let parts = spectral_parts::<Complex64>(m, &p, z, mult);
                 push_terms(
                     &mut terms,
                     &info.eigenvalue,
-                    &power_coefficients(&parts, &z),
-                    |c| Coefficient::Numeric(Complex64::from_nalgebra(*c)),
+                    &power_coefficients(&parts, z),
+                    |c| Coefficient::Numeric(*c),
                 );
             }
         }
@@ -880,24 +867,14 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
     }
     let max_valid = valid_from.iter().copied().max().unwrap_or(0);
     // Rows of M^k for the early levels, by repeated multiplication.
-    let mut powers_of_m: Vec<Vec<Vec<BigInt>>> = Vec::new();
+    let big = m.map(|&x| BigInt::from(x));
+    let mut powers_of_m: Vec<Matrix<BigInt>> = Vec::new();
     for _ in 0..max_valid {
         let next = match powers_of_m.last() {
-            None => (0..n)
-                .map(|i| (0..n).map(|j| BigInt::from(u8::from(i == j))).collect())
-                .collect(),
-            Some(prev) => (0..n)
-                .map(|i| {
-                    (0..n)
-                        .map(|j| {
-                            (0..n)
-                                .filter(|&l| m.get(l, j) != 0)
-                                .map(|l| &prev[i][l] * BigInt::from(m.get(l, j)))
-                                .sum()
-                        })
-                        .collect()
-                })
-                .collect(),
+            None => Matrix::identity(n),
+            Some(prev) => prev
+                .checked_mul(&big)
+                .expect("big integers do not overflow"),
         };
         powers_of_m.push(next);
     }
@@ -910,7 +887,7 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
         let early_levels = (0..valid_from[i])
             .map(|k| EarlyLevel {
                 level: k,
-                coefficients: powers_of_m[k as usize][i].clone(),
+                coefficients: powers_of_m[k as usize].row(i).to_vec(),
             })
             .collect();
         components.push(ComponentForm {
@@ -938,7 +915,7 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
 fn push_terms<F: Field>(
     terms: &mut [Vec<Term>],
     eigenvalue: &Eigenvalue,
-    coeffs: &[FieldMatrix<F>],
+    coeffs: &[Matrix<F>],
     convert: impl Fn(&F) -> Coefficient,
 ) {
     for (i, comp) in terms.iter_mut().enumerate() {
@@ -1029,7 +1006,7 @@ mod tests {
         lambda: &F,
         mult: usize,
         zero: bool,
-    ) -> (FieldMatrix<F>, Vec<FieldMatrix<F>>, Vec<u64>) {
+    ) -> (Matrix<F>, Vec<Matrix<F>>, Vec<u64>) {
         let p = Recurrence::new(m.clone())
             .characteristic_polynomial()
             .to_rational();
@@ -1039,7 +1016,7 @@ mod tests {
             (0..n)
                 .map(|i| {
                     (0..mult)
-                        .find(|&k| parts[k].row(i).iter().all(Field::is_field_zero))
+                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
                         .unwrap_or(mult) as u64
                 })
                 .collect()
@@ -1054,8 +1031,8 @@ mod tests {
         (parts[0].clone(), coefficients, valid)
     }
 
-    fn same<F: Field + PartialEq>(a: &FieldMatrix<F>, b: &FieldMatrix<F>) -> bool {
-        a.dim == b.dim && a.entries == b.entries
+    fn same<F: Field + PartialEq>(a: &Matrix<F>, b: &Matrix<F>) -> bool {
+        a == b
     }
 
     /// Checks every exact eigenvalue of `m`: the fraction-free path is taken (no fallback)

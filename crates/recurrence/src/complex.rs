@@ -3,10 +3,15 @@
 //! `Complex` inside the crate).
 
 use std::fmt;
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+use num_traits::{CheckedAdd, CheckedMul, One, Zero};
 
 /// A complex number in `f64`: a numeric eigenvalue, coefficient or value of a surd.
 ///
 /// Displays as `re` or `re+imi` with 12 significant digits, the form every rendering uses.
+/// The arithmetic operators round as `num_complex` does; [`Zero::is_zero`] means negligible
+/// (`|z| < 1e-12`).
 ///
 /// ```
 /// use recurrence::Complex64;
@@ -35,12 +40,83 @@ impl Complex64 {
         self.re.hypot(self.im)
     }
 
-    pub(crate) fn to_nalgebra(self) -> nalgebra::Complex<f64> {
-        nalgebra::Complex::new(self.re, self.im)
-    }
-
     pub(crate) fn from_nalgebra(z: nalgebra::Complex<f64>) -> Self {
         Complex64::new(z.re, z.im)
+    }
+}
+
+impl Add for Complex64 {
+    type Output = Complex64;
+    fn add(self, rhs: Complex64) -> Complex64 {
+        Complex64::new(self.re + rhs.re, self.im + rhs.im)
+    }
+}
+
+impl Sub for Complex64 {
+    type Output = Complex64;
+    fn sub(self, rhs: Complex64) -> Complex64 {
+        Complex64::new(self.re - rhs.re, self.im - rhs.im)
+    }
+}
+
+impl Mul for Complex64 {
+    type Output = Complex64;
+    fn mul(self, rhs: Complex64) -> Complex64 {
+        Complex64::new(
+            self.re * rhs.re - self.im * rhs.im,
+            self.re * rhs.im + self.im * rhs.re,
+        )
+    }
+}
+
+impl Div for Complex64 {
+    type Output = Complex64;
+    /// `self conj(rhs) / |rhs|^2`, rounded as `num_complex` does.
+    fn div(self, rhs: Complex64) -> Complex64 {
+        let norm_sqr = rhs.re * rhs.re + rhs.im * rhs.im;
+        Complex64::new(
+            (self.re * rhs.re + self.im * rhs.im) / norm_sqr,
+            (self.im * rhs.re - self.re * rhs.im) / norm_sqr,
+        )
+    }
+}
+
+impl Neg for Complex64 {
+    type Output = Complex64;
+    fn neg(self) -> Complex64 {
+        Complex64::new(-self.re, -self.im)
+    }
+}
+
+impl Zero for Complex64 {
+    fn zero() -> Self {
+        Complex64::new(0.0, 0.0)
+    }
+
+    /// Whether the value is negligible, `|z| < 1e-12`: numeric products skip such entries
+    /// as the exact ones skip zeros.
+    fn is_zero(&self) -> bool {
+        self.norm() < 1e-12
+    }
+}
+
+impl One for Complex64 {
+    fn one() -> Self {
+        Complex64::new(1.0, 0.0)
+    }
+}
+
+impl CheckedAdd for Complex64 {
+    /// Always `Some`: floating point saturates to infinity rather than overflowing.
+    fn checked_add(&self, rhs: &Self) -> Option<Self> {
+        Some(*self + *rhs)
+    }
+}
+
+impl CheckedMul for Complex64 {
+    /// Always `Some`: floating point saturates to infinity rather than overflowing.
+    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+        Some(*self * *rhs)
     }
 }
 

@@ -1,133 +1,98 @@
 //! The fields the closed-form machinery computes in: the rationals, quadratic fields
 //! `Q(sqrt d)` (exact), and `f64` complex numbers (numeric, for everything else).
 //!
-//! The spectral decomposition is written once over the crate-private [`Field`] trait and run
-//! with the field that holds the eigenvalue at hand.
+//! The spectral decomposition is written once over `num_traits` bounds (the crate-private
+//! [`Field`] adds only division and the rationals) and run with the field that holds the
+//! eigenvalue at hand.
 
 use std::fmt;
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
-use nalgebra::Complex;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{CheckedAdd, CheckedMul, One, Signed, ToPrimitive, Zero};
 
-use crate::Complex64;
+use crate::{Complex64, IntMatrix, Matrix};
 
-/// The arithmetic of a field, as the spectral decomposition needs it.
-pub(crate) trait Field: Clone + fmt::Debug {
-    fn field_zero() -> Self;
-    fn field_one() -> Self;
-    /// Whether the value is zero (exact fields), or negligibly small (numeric fields).
-    fn is_field_zero(&self) -> bool;
-    fn add(&self, rhs: &Self) -> Self;
-    #[cfg_attr(not(test), allow(dead_code))]
-    fn sub(&self, rhs: &Self) -> Self;
-    fn mul(&self, rhs: &Self) -> Self;
-    /// Division; the caller guarantees that `rhs` is not zero.
-    fn div(&self, rhs: &Self) -> Self;
-    fn neg(&self) -> Self;
+/// What the spectral decomposition needs of the field it computes in, beyond `num_traits`'
+/// ring operations: division, negation and the embedding of the rationals. The checked
+/// operations (by reference, so big numbers are not copied) never fail in these fields;
+/// [`Matrix`]'s products use them.
+pub(crate) trait Field:
+    Clone
+    + fmt::Debug
+    + Zero
+    + One
+    + CheckedAdd
+    + CheckedMul
+    + Sub<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
     fn from_rational(r: &BigRational) -> Self;
 
     /// `q(M)` for an integer matrix `M`. The default runs Horner's rule in the field;
     /// the rationals override it with integer arithmetic when `q` has integer coefficients
     /// (as every cofactor of an integer eigenvalue does), which avoids a gcd per operation.
-    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
-        FieldMatrix::<Self>::from_int(m).eval_poly(coeffs)
+    fn eval_poly_at_int(m: &IntMatrix, coeffs: &[Self]) -> Matrix<Self> {
+        m.map(|&x| Self::from_rational(&BigRational::from_integer(BigInt::from(x))))
+            .eval_poly(coeffs)
     }
 }
 
 impl Field for BigRational {
-    fn field_zero() -> Self {
-        Zero::zero()
-    }
-    fn field_one() -> Self {
-        One::one()
-    }
-    fn is_field_zero(&self) -> bool {
-        Zero::is_zero(self)
-    }
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-    fn div(&self, rhs: &Self) -> Self {
-        self / rhs
-    }
-    fn neg(&self) -> Self {
-        -self
-    }
     fn from_rational(r: &BigRational) -> Self {
         r.clone()
     }
 
-    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
+    fn eval_poly_at_int(m: &IntMatrix, coeffs: &[Self]) -> Matrix<Self> {
         if !coeffs.iter().all(|c| c.is_integer()) {
-            return FieldMatrix::<Self>::from_int(m).eval_poly(coeffs);
+            return m.map(|&x| BigRational::from_integer(BigInt::from(x))).eval_poly(coeffs);
         }
-        let n = m.dim();
-        let a: Vec<BigInt> = m.rows().flatten().map(|&x| BigInt::from(x)).collect();
-        let mut acc = vec![BigInt::zero(); n * n];
-        for c in coeffs.iter().rev() {
-            let mut next = vec![BigInt::zero(); n * n];
-            for i in 0..n {
-                for k in 0..n {
-                    let x = &acc[i * n + k];
-                    if x.is_zero() {
-                        continue;
-                    }
-                    for j in 0..n {
-                        let y = &a[k * n + j];
-                        if !y.is_zero() {
-                            next[i * n + j] += x * y;
-                        }
-                    }
-                }
-            }
-            for i in 0..n {
-                next[i * n + i] += c.to_integer();
-            }
-            acc = next;
-        }
-        FieldMatrix {
-            dim: n,
-            entries: acc.into_iter().map(BigRational::from_integer).collect(),
-        }
+        let integer: Vec<BigInt> = coeffs.iter().map(BigRational::to_integer).collect();
+        m.map(|&x| BigInt::from(x))
+            .checked_eval_poly(&integer)
+            .expect("big integers do not overflow")
+            .map(|x| BigRational::from_integer(x.clone()))
     }
 }
 
-impl Field for Complex<f64> {
-    fn field_zero() -> Self {
-        Complex::new(0.0, 0.0)
-    }
-    fn field_one() -> Self {
-        Complex::new(1.0, 0.0)
-    }
-    fn is_field_zero(&self) -> bool {
-        self.norm() < 1e-12
-    }
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-    fn div(&self, rhs: &Self) -> Self {
-        self / rhs
-    }
-    fn neg(&self) -> Self {
-        -self
-    }
+impl Field for Complex64 {
     fn from_rational(r: &BigRational) -> Self {
-        Complex::new(rational_to_f64(r), 0.0)
+        Complex64::new(rational_to_f64(r), 0.0)
+    }
+}
+
+/// Matrix arithmetic in a [`Field`], where [`Matrix`]'s checked operations never fail.
+pub(crate) trait FieldMatrix<F> {
+    /// `self * rhs`.
+    fn mul(&self, rhs: &Self) -> Self;
+    /// `self + rhs`.
+    fn add(&self, rhs: &Self) -> Self;
+    /// `self + c I`.
+    fn add_scalar(&self, c: &F) -> Self;
+    /// `q(self)` for a polynomial with coefficients lowest degree first, by Horner's rule.
+    fn eval_poly(&self, coeffs: &[F]) -> Self;
+}
+
+const EXACT: &str = "field arithmetic does not overflow";
+
+impl<F: Field> FieldMatrix<F> for Matrix<F> {
+    fn mul(&self, rhs: &Self) -> Self {
+        self.checked_mul(rhs).expect(EXACT)
+    }
+
+    fn add(&self, rhs: &Self) -> Self {
+        self.checked_add(rhs).expect(EXACT)
+    }
+
+    fn add_scalar(&self, c: &F) -> Self {
+        self.checked_add_scalar(c).expect(EXACT)
+    }
+
+    fn eval_poly(&self, coeffs: &[F]) -> Self {
+        self.checked_eval_poly(coeffs).expect(EXACT)
     }
 }
 
@@ -255,23 +220,38 @@ impl fmt::Display for QuadraticSurd {
     }
 }
 
-impl Field for QuadraticSurd {
-    fn field_zero() -> Self {
+impl Zero for QuadraticSurd {
+    fn zero() -> Self {
         QuadraticSurd::rational(Zero::zero())
     }
-    fn field_one() -> Self {
-        QuadraticSurd::rational(One::one())
-    }
-    fn is_field_zero(&self) -> bool {
+    fn is_zero(&self) -> bool {
         Zero::is_zero(&self.a) && Zero::is_zero(&self.b)
     }
-    fn add(&self, rhs: &Self) -> Self {
+}
+
+impl One for QuadraticSurd {
+    fn one() -> Self {
+        QuadraticSurd::rational(One::one())
+    }
+}
+
+impl Add<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn add(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         QuadraticSurd::new(&self.a + &rhs.a, &self.b + &rhs.b, self.radicand(rhs))
     }
-    fn sub(&self, rhs: &Self) -> Self {
+}
+
+impl Sub<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn sub(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         QuadraticSurd::new(&self.a - &rhs.a, &self.b - &rhs.b, self.radicand(rhs))
     }
-    fn mul(&self, rhs: &Self) -> Self {
+}
+
+impl Mul<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn mul(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         let d = self.radicand(rhs);
         let dr = BigRational::from_integer(d.clone());
         QuadraticSurd::new(
@@ -280,104 +260,64 @@ impl Field for QuadraticSurd {
             d,
         )
     }
-    fn div(&self, rhs: &Self) -> Self {
+}
+
+impl Div<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    /// Division; the caller guarantees that `rhs` is not zero.
+    fn div(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         let n = rhs.norm();
-        let p = self.mul(&rhs.conjugate());
+        let p = self * &rhs.conjugate();
         QuadraticSurd::new(&p.a / &n, &p.b / &n, p.d)
     }
-    fn neg(&self) -> Self {
+}
+
+impl Neg for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn neg(self) -> QuadraticSurd {
         QuadraticSurd {
             a: -&self.a,
             b: -&self.b,
             d: self.d.clone(),
         }
     }
-    fn from_rational(r: &BigRational) -> Self {
-        QuadraticSurd::rational(r.clone())
+}
+
+impl Neg for QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn neg(self) -> QuadraticSurd {
+        -&self
     }
 }
 
-/// Dense square matrices over a [`Field`], row-major.
-#[derive(Clone, Debug)]
-pub(crate) struct FieldMatrix<F> {
-    pub(crate) dim: usize,
-    pub(crate) entries: Vec<F>,
-}
-
-impl<F: Field> FieldMatrix<F> {
-    pub(crate) fn from_int(m: &crate::IntMatrix) -> Self {
-        let entries = m
-            .rows()
-            .flatten()
-            .map(|&x| F::from_rational(&BigRational::from_integer(BigInt::from(x))))
-            .collect();
-        FieldMatrix {
-            dim: m.dim(),
-            entries,
-        }
-    }
-
-    pub(crate) fn scalar(dim: usize, c: &F) -> Self {
-        let mut entries = vec![F::field_zero(); dim * dim];
-        for i in 0..dim {
-            entries[i * dim + i] = c.clone();
-        }
-        FieldMatrix { dim, entries }
-    }
-
-    pub(crate) fn mul(&self, rhs: &Self) -> Self {
-        let n = self.dim;
-        let mut entries = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let mut acc = F::field_zero();
-                for k in 0..n {
-                    let a = &self.entries[i * n + k];
-                    let b = &rhs.entries[k * n + j];
-                    if a.is_field_zero() || b.is_field_zero() {
-                        continue;
-                    }
-                    acc = acc.add(&a.mul(b));
-                }
-                entries.push(acc);
+/// The by-value operators, forwarded to the by-reference ones.
+macro_rules! forward_by_value {
+    ($($imp:ident $method:ident),*) => {$(
+        impl $imp for QuadraticSurd {
+            type Output = QuadraticSurd;
+            fn $method(self, rhs: QuadraticSurd) -> QuadraticSurd {
+                (&self).$method(&rhs)
             }
         }
-        FieldMatrix { dim: n, entries }
-    }
+    )*};
+}
+forward_by_value!(Add add, Sub sub, Mul mul, Div div);
 
-    /// `self + c I`.
-    pub(crate) fn add_scalar(&self, c: &F) -> Self {
-        let mut out = self.clone();
-        for i in 0..self.dim {
-            out.entries[i * self.dim + i] = out.entries[i * self.dim + i].add(c);
-        }
-        out
+impl CheckedAdd for QuadraticSurd {
+    fn checked_add(&self, rhs: &Self) -> Option<Self> {
+        Some(self + rhs)
     }
+}
 
-    pub(crate) fn add(&self, rhs: &Self) -> Self {
-        let entries = self
-            .entries
-            .iter()
-            .zip(&rhs.entries)
-            .map(|(a, b)| a.add(b))
-            .collect();
-        FieldMatrix {
-            dim: self.dim,
-            entries,
-        }
+impl CheckedMul for QuadraticSurd {
+    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+        Some(self * rhs)
     }
+}
 
-    pub(crate) fn row(&self, i: usize) -> &[F] {
-        &self.entries[i * self.dim..(i + 1) * self.dim]
-    }
-
-    /// `q(self)` for a polynomial with coefficients lowest degree first, by Horner's rule.
-    pub(crate) fn eval_poly(&self, coeffs: &[F]) -> Self {
-        let mut acc = FieldMatrix::scalar(self.dim, &F::field_zero());
-        for c in coeffs.iter().rev() {
-            acc = acc.mul(self).add_scalar(c);
-        }
-        acc
+impl Field for QuadraticSurd {
+    fn from_rational(r: &BigRational) -> Self {
+        QuadraticSurd::rational(r.clone())
     }
 }
 
@@ -613,14 +553,15 @@ mod tests {
     fn surd_arithmetic_is_exact() {
         let phi = QuadraticSurd::new(q(1, 2), q(1, 2), 5.into());
         let psi = phi.conjugate();
-        assert_eq!(phi.add(&psi), QuadraticSurd::rational(q(1, 1)));
-        assert_eq!(phi.mul(&psi), QuadraticSurd::rational(q(-1, 1)));
+        assert_eq!(&phi + &psi, QuadraticSurd::rational(q(1, 1)));
+        assert_eq!(&phi * &psi, QuadraticSurd::rational(q(-1, 1)));
         // phi^2 = phi + 1
-        assert_eq!(phi.mul(&phi), phi.add(&QuadraticSurd::field_one()));
-        assert_eq!(phi.div(&phi), QuadraticSurd::field_one());
+        assert_eq!(&phi * &phi, &phi + &QuadraticSurd::one());
+        assert_eq!(&phi / &phi, QuadraticSurd::one());
+        assert_eq!(-(&phi - &psi), QuadraticSurd::new(q(0, 1), q(-1, 1), 5.into()));
         assert_eq!(psi.to_string(), "1/2-1/2*sqrt(5)");
         let i = QuadraticSurd::new(q(0, 1), q(1, 1), (-1).into());
-        assert_eq!(i.mul(&i), QuadraticSurd::rational(q(-1, 1)));
+        assert_eq!(&i * &i, QuadraticSurd::rational(q(-1, 1)));
         assert_eq!(i.to_string(), "sqrt(-1)");
     }
 

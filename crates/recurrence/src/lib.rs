@@ -79,7 +79,7 @@ pub use crate::decimal::{to_decimal, write_decimal, Decimal};
 pub use crate::eigen::{Eigenvalue, EigenvalueInfo};
 pub use crate::error::{Error, Result};
 pub use crate::field::QuadraticSurd;
-pub use crate::matrix::{IntMatrix, ParseMatrixError};
+pub use crate::matrix::{IntMatrix, Matrix, ParseMatrixError};
 pub use crate::poly::Polynomial;
 pub use crate::power::CheckedRing;
 pub use crate::recurrence::Recurrence;
