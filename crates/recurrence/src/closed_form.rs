@@ -21,7 +21,7 @@ use num_rational::BigRational;
 use num_traits::{One, Pow, Signed, Zero};
 
 use crate::eigen::{power_of_two_exponent, Eigenvalue, EigenvalueInfo};
-use crate::field::{Field, FieldMatrix, QuadraticSurd, RingElem, SurdRing};
+use crate::field::{kernel, scaled_inverse, Field, FieldMatrix, QuadraticSurd, RingElem};
 use crate::poly::{divide_by_root, taylor_coefficients};
 use crate::{Complex64, Error, IntMatrix, Matrix, Recurrence, Result};
 
@@ -473,36 +473,25 @@ fn spectral_parts<F: Field>(
 /// A field whose elements the fraction-free computation produces as `numerator /
 /// denominator` in `Z[sqrt d]`.
 trait ExactField: Field {
-    /// `num / den`, `den` non-zero, both in `ring`.
-    fn from_ring(
-        num: &RingElem,
-        den: &RingElem,
-        den_conj: &RingElem,
-        den_norm: &BigInt,
-        ring: &SurdRing,
-    ) -> Self;
+    /// `num / den`, `den` non-zero, given its conjugate and norm.
+    fn from_ring(num: &RingElem, den: &RingElem, den_conj: &RingElem, den_norm: &BigInt)
+        -> Self;
 }
 
 impl ExactField for BigRational {
-    fn from_ring(num: &RingElem, den: &RingElem, _: &RingElem, _: &BigInt, _: &SurdRing) -> Self {
+    fn from_ring(num: &RingElem, den: &RingElem, _: &RingElem, _: &BigInt) -> Self {
         // Rational eigenvalues keep every value in `Z`.
         BigRational::new(num.x.clone(), den.x.clone())
     }
 }
 
 impl ExactField for QuadraticSurd {
-    fn from_ring(
-        num: &RingElem,
-        _: &RingElem,
-        den_conj: &RingElem,
-        den_norm: &BigInt,
-        ring: &SurdRing,
-    ) -> Self {
-        let p = ring.mul(num, den_conj);
+    fn from_ring(num: &RingElem, _: &RingElem, den_conj: &RingElem, den_norm: &BigInt) -> Self {
+        let p = num * den_conj;
         QuadraticSurd::new(
             BigRational::new(p.x, den_norm.clone()),
             BigRational::new(p.y, den_norm.clone()),
-            ring.d.clone(),
+            p.d,
         )
     }
 }
@@ -537,83 +526,52 @@ fn exact_spectrum<F: ExactField>(
     mult: usize,
 ) -> Option<ExactSpectrum<F>> {
     let n = m.dim();
-    let ring = SurdRing {
-        d: lambda.d.clone(),
-    };
     let c = lambda.a.denom().lcm(lambda.b.denom());
-    let mu = RingElem {
-        x: (&lambda.a * BigRational::from_integer(c.clone())).to_integer(),
-        y: (&lambda.b * BigRational::from_integer(c.clone())).to_integer(),
-    };
-    let mut b: Vec<RingElem> = m
-        .rows()
-        .flatten()
+    let mu = RingElem::new(
+        (&lambda.a * BigRational::from_integer(c.clone())).to_integer(),
+        (&lambda.b * BigRational::from_integer(c.clone())).to_integer(),
+        &lambda.d,
+    );
+    let b = m
         .map(|&x| RingElem::int(BigInt::from(x) * &c))
-        .collect();
-    for i in 0..n {
-        b[i * n + i] = ring.sub(&b[i * n + i], &mu);
-    }
-    // B^mult by squaring.
-    let mut power: Option<Vec<RingElem>> = None;
-    let mut base = b.clone();
-    let mut e = mult;
-    while e > 0 {
-        if e & 1 == 1 {
-            power = Some(match power {
-                None => base.clone(),
-                Some(p) => ring.mat_mul(&p, &base, n, n, n),
-            });
-        }
-        e >>= 1;
-        if e > 0 {
-            base = ring.mat_mul(&base, &base, n, n, n);
-        }
-    }
-    let power = power?;
-    let mut transposed = vec![RingElem::default(); n * n];
-    for i in 0..n {
-        for j in 0..n {
-            transposed[j * n + i] = power[i * n + j].clone();
-        }
-    }
-    let right = ring.kernel(power, n, n)?;
-    let left = ring.kernel(transposed, n, n)?;
+        .checked_add_scalar(&-&mu)?;
+    let power = b.checked_pow(u64::try_from(mult).ok()?)?;
+    let transposed = power.transpose();
+    let right = kernel(power)?;
+    let left = kernel(transposed)?;
     if right.len() != mult || left.len() != mult {
         return None;
     }
     // R as n x mult, L^T as mult x n.
-    let mut r0 = vec![RingElem::default(); n * mult];
-    for (j, v) in right.iter().enumerate() {
-        for i in 0..n {
-            r0[i * mult + j] = v[i].clone();
-        }
-    }
-    let lt: Vec<RingElem> = left.into_iter().flatten().collect();
-    let g = ring.mat_mul(&lt, &r0, mult, n, mult);
-    let (x, d) = ring.scaled_inverse(&g, mult)?;
-    let y = ring.mat_mul(&x, &lt, mult, mult, n);
+    let r0 = Matrix::from_vec(
+        n,
+        mult,
+        (0..n * mult)
+            .map(|k| right[k % mult][k / mult].clone())
+            .collect(),
+    );
+    let lt = Matrix::from_vec(mult, n, left.into_iter().flatten().collect());
+    let g = lt.checked_mul(&r0)?;
+    let (x, d) = scaled_inverse(&g)?;
+    let y = x.checked_mul(&lt)?;
     // R_k = B^k R for k < mult.
     let mut rk = vec![r0];
     for _ in 1..mult {
-        let next = ring.mat_mul(&b, rk.last()?, n, n, mult);
+        let next = b.checked_mul(rk.last()?)?;
         rk.push(next);
     }
-    let to_field = |num: &[RingElem], den: &RingElem| -> Matrix<F> {
+    let to_field = |num: &Matrix<RingElem>, den: &RingElem| -> Matrix<F> {
         let conj = den.conj();
-        let norm = ring.norm(den);
-        let entries = num
-            .iter()
-            .map(|z| {
-                if z.is_zero() {
-                    F::zero()
-                } else {
-                    F::from_ring(z, den, &conj, &norm, &ring)
-                }
-            })
-            .collect();
-        Matrix::from_vec(n, n, entries)
+        let norm = den.norm();
+        num.map(|z| {
+            if z.is_zero() {
+                F::zero()
+            } else {
+                F::from_ring(z, den, &conj, &norm)
+            }
+        })
     };
-    let projector = to_field(&ring.mat_mul(&rk[0], &y, n, mult, n), &d);
+    let projector = to_field(&rk[0].checked_mul(&y)?, &d);
     let mut valid_from = Vec::new();
     let mut coefficients = Vec::new();
     if lambda.is_zero() {
@@ -621,27 +579,23 @@ fn exact_spectrum<F: ExactField>(
         valid_from = (0..n)
             .map(|i| {
                 (0..mult)
-                    .find(|&k| {
-                        rk[k][i * mult..(i + 1) * mult]
-                            .iter()
-                            .all(RingElem::is_zero)
-                    })
+                    .find(|&k| rk[k].row(i).iter().all(RingElem::is_zero))
                     .unwrap_or(mult) as u64
             })
             .collect();
     } else {
         let top = mult - 1;
         // mu^j for j <= top, and (top!/k!) for k <= top.
-        let mut mu_pow = vec![RingElem::int(BigInt::one())];
+        let mut mu_pow = vec![RingElem::one()];
         for _ in 0..top {
-            let next = ring.mul(mu_pow.last()?, &mu);
+            let next = mu_pow.last()? * &mu;
             mu_pow.push(next);
         }
         let mut fall = vec![BigInt::one(); mult]; // fall[k] = top! / k!
         for k in (0..top).rev() {
             fall[k] = &fall[k + 1] * BigInt::from(k + 1);
         }
-        let den = ring.mul(&ring.mul(&d, &RingElem::int(fall[0].clone())), &mu_pow[top]);
+        let den = &(&d * &RingElem::int(fall[0].clone())) * &mu_pow[top];
         let stirling: Vec<Vec<BigInt>> = (0..mult)
             .map(|k| {
                 binomial_poly(k)
@@ -654,22 +608,21 @@ fn exact_spectrum<F: ExactField>(
             .collect();
         coefficients = (0..mult)
             .map(|t| {
-                let mut s = vec![RingElem::default(); n * mult];
+                let mut s = Matrix::<RingElem>::zeros(n, mult);
                 for k in t..mult {
-                    let coef = RingElem::int(&stirling[k][t] * &fall[k]);
-                    let coef = ring.mul(&coef, &mu_pow[top - k]);
+                    let coef = &RingElem::int(&stirling[k][t] * &fall[k]) * &mu_pow[top - k];
                     if coef.is_zero() {
                         continue;
                     }
-                    for (acc, v) in s.iter_mut().zip(&rk[k]) {
+                    for (acc, v) in s.entries_mut().iter_mut().zip(rk[k].entries()) {
                         if !v.is_zero() {
-                            *acc = ring.add(acc, &ring.mul(&coef, v));
+                            *acc = &*acc + &(&coef * v);
                         }
                     }
                 }
-                to_field(&ring.mat_mul(&s, &y, n, mult, n), &den)
+                Some(to_field(&s.checked_mul(&y)?, &den))
             })
-            .collect();
+            .collect::<Option<Vec<_>>>()?;
     }
     Some(ExactSpectrum {
         projector,

@@ -321,18 +321,19 @@ impl Field for QuadraticSurd {
     }
 }
 
-/// An element `x + y*sqrt(d)` of the ring `Z[sqrt d]`, the `d` being held by the
-/// [`SurdRing`] that does the arithmetic (`y` is zero throughout for plain integers).
+/// An element `x + y*sqrt(d)` of the ring `Z[sqrt d]`; `d` is `0` whenever `y` is, so plain
+/// integers carry no radicand (and cloning them copies no radicand).
 ///
 /// The exact closed forms are computed fraction-free in this ring: a rational or quadratic
 /// eigenvalue `l` scaled by the least common denominator `c` of its parts lies in it, and so
 /// does every entry of `c M - c l I`, every minor (fraction-free elimination), and every
 /// numerator of the spectral parts. Each rational number is then formed once, at the end,
-/// instead of reducing a fraction after every operation.
+/// instead of reducing a fraction after every operation. The products are [`Matrix`]'s.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct RingElem {
     pub(crate) x: BigInt,
     pub(crate) y: BigInt,
+    pub(crate) d: BigInt,
 }
 
 impl RingElem {
@@ -340,205 +341,214 @@ impl RingElem {
         RingElem {
             x,
             y: BigInt::zero(),
+            d: BigInt::zero(),
         }
     }
 
-    pub(crate) fn is_zero(&self) -> bool {
-        self.x.is_zero() && self.y.is_zero()
+    /// `x + y sqrt(d)`, normalized so that `d` is `0` when `y` is.
+    pub(crate) fn new(x: BigInt, y: BigInt, d: &BigInt) -> Self {
+        if y.is_zero() {
+            RingElem::int(x)
+        } else {
+            RingElem { x, y, d: d.clone() }
+        }
+    }
+
+    /// The radicand shared by `self` and `rhs` (elements of one ring; integers have none).
+    fn radicand<'a>(&'a self, rhs: &'a Self) -> &'a BigInt {
+        if self.y.is_zero() {
+            &rhs.d
+        } else {
+            &self.d
+        }
     }
 
     pub(crate) fn conj(&self) -> Self {
         RingElem {
             x: self.x.clone(),
             y: -&self.y,
-        }
-    }
-}
-
-/// The arithmetic of `Z[sqrt d]` (`d = 0`: the integers).
-#[derive(Clone, Debug)]
-pub(crate) struct SurdRing {
-    pub(crate) d: BigInt,
-}
-
-impl SurdRing {
-    pub(crate) fn add(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        RingElem {
-            x: &a.x + &b.x,
-            y: &a.y + &b.y,
-        }
-    }
-
-    pub(crate) fn sub(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        RingElem {
-            x: &a.x - &b.x,
-            y: &a.y - &b.y,
-        }
-    }
-
-    pub(crate) fn mul(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        if a.y.is_zero() && b.y.is_zero() {
-            return RingElem::int(&a.x * &b.x);
-        }
-        RingElem {
-            x: &a.x * &b.x + &a.y * &b.y * &self.d,
-            y: &a.x * &b.y + &a.y * &b.x,
+            d: self.d.clone(),
         }
     }
 
     /// The norm `x^2 - d y^2`, an integer (zero only for zero when `d` is not a square).
-    pub(crate) fn norm(&self, a: &RingElem) -> BigInt {
-        &a.x * &a.x - &a.y * &a.y * &self.d
+    pub(crate) fn norm(&self) -> BigInt {
+        &self.x * &self.x - &self.y * &self.y * &self.d
     }
 
-    /// `a / b` when it lies in the ring, `None` otherwise (or when `b` is zero).
-    pub(crate) fn div_exact(&self, a: &RingElem, b: &RingElem) -> Option<RingElem> {
-        if b.y.is_zero() {
-            if b.x.is_zero() {
-                return None;
-            }
-            let (qx, rx) = a.x.div_rem(&b.x);
-            let (qy, ry) = a.y.div_rem(&b.x);
-            return (rx.is_zero() && ry.is_zero()).then_some(RingElem { x: qx, y: qy });
-        }
-        let n = self.norm(b);
+    /// `self / b` when it lies in the ring, `None` otherwise (or when `b` is zero).
+    pub(crate) fn div_exact(&self, b: &RingElem) -> Option<RingElem> {
+        let (p, n) = if b.y.is_zero() {
+            (self.clone(), b.x.clone())
+        } else {
+            (self * &b.conj(), b.norm())
+        };
         if n.is_zero() {
             return None;
         }
-        let p = self.mul(a, &b.conj());
         let (qx, rx) = p.x.div_rem(&n);
         let (qy, ry) = p.y.div_rem(&n);
-        (rx.is_zero() && ry.is_zero()).then_some(RingElem { x: qx, y: qy })
+        (rx.is_zero() && ry.is_zero()).then(|| RingElem::new(qx, qy, &p.d))
     }
+}
 
-    /// The product of a `rows x inner` and an `inner x cols` matrix (row-major).
-    pub(crate) fn mat_mul(
-        &self,
-        a: &[RingElem],
-        b: &[RingElem],
-        rows: usize,
-        inner: usize,
-        cols: usize,
-    ) -> Vec<RingElem> {
-        let mut out = vec![RingElem::default(); rows * cols];
+impl Add<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn add(self, rhs: &RingElem) -> RingElem {
+        RingElem::new(&self.x + &rhs.x, &self.y + &rhs.y, self.radicand(rhs))
+    }
+}
+
+impl Sub<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn sub(self, rhs: &RingElem) -> RingElem {
+        RingElem::new(&self.x - &rhs.x, &self.y - &rhs.y, self.radicand(rhs))
+    }
+}
+
+impl Mul<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn mul(self, rhs: &RingElem) -> RingElem {
+        if self.y.is_zero() && rhs.y.is_zero() {
+            return RingElem::int(&self.x * &rhs.x);
+        }
+        let d = self.radicand(rhs);
+        RingElem::new(
+            &self.x * &rhs.x + &self.y * &rhs.y * d,
+            &self.x * &rhs.y + &self.y * &rhs.x,
+            d,
+        )
+    }
+}
+
+impl Neg for &RingElem {
+    type Output = RingElem;
+    fn neg(self) -> RingElem {
+        RingElem {
+            x: -&self.x,
+            y: -&self.y,
+            d: self.d.clone(),
+        }
+    }
+}
+
+impl Add for RingElem {
+    type Output = RingElem;
+    fn add(self, rhs: RingElem) -> RingElem {
+        &self + &rhs
+    }
+}
+
+impl Mul for RingElem {
+    type Output = RingElem;
+    fn mul(self, rhs: RingElem) -> RingElem {
+        &self * &rhs
+    }
+}
+
+impl Zero for RingElem {
+    fn zero() -> Self {
+        RingElem::default()
+    }
+    fn is_zero(&self) -> bool {
+        self.x.is_zero() && self.y.is_zero()
+    }
+}
+
+impl One for RingElem {
+    fn one() -> Self {
+        RingElem::int(BigInt::one())
+    }
+}
+
+impl CheckedAdd for RingElem {
+    fn checked_add(&self, rhs: &Self) -> Option<Self> {
+        Some(self + rhs)
+    }
+}
+
+impl CheckedMul for RingElem {
+    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+        Some(self * rhs)
+    }
+}
+
+/// Fraction-free Gauss-Jordan elimination (Bareiss' rule, each division exact by Sylvester's
+/// identity) of a matrix in place: afterwards every pivot equals the last pivot `D` (a minor
+/// of the input), the pivot columns are `D` times unit vectors, and the rows past the rank
+/// are zero. Returns the pivot columns and `D`, or `None` if a division was not exact (which
+/// would be a bug; the caller falls back).
+pub(crate) fn rref(a: &mut Matrix<RingElem>) -> Option<(Vec<usize>, RingElem)> {
+    let (rows, cols) = (a.dim(), a.ncols());
+    let a = a.entries_mut();
+    let mut pivots = Vec::new();
+    let mut prev = RingElem::one();
+    let mut r = 0;
+    for col in 0..cols {
+        if r == rows {
+            break;
+        }
+        let Some(p) = (r..rows).find(|&i| !a[i * cols + col].is_zero()) else {
+            continue;
+        };
+        if p != r {
+            for j in 0..cols {
+                a.swap(p * cols + j, r * cols + j);
+            }
+        }
+        let pivot = a[r * cols + col].clone();
         for i in 0..rows {
-            for k in 0..inner {
-                let x = &a[i * inner + k];
-                if x.is_zero() {
-                    continue;
-                }
-                for j in 0..cols {
-                    let y = &b[k * cols + j];
-                    if !y.is_zero() {
-                        let t = self.mul(x, y);
-                        let o = &mut out[i * cols + j];
-                        o.x += t.x;
-                        o.y += t.y;
-                    }
-                }
-            }
-        }
-        out
-    }
-
-    /// Fraction-free Gauss-Jordan elimination (Bareiss' rule, each division exact by
-    /// Sylvester's identity) of a `rows x cols` matrix in place: afterwards every pivot
-    /// equals the last pivot `D` (a minor of the input), the pivot columns are `D` times unit
-    /// vectors, and the rows past the rank are zero. Returns the pivot columns and `D`, or
-    /// `None` if a division was not exact (which would be a bug; the caller falls back).
-    pub(crate) fn rref(
-        &self,
-        a: &mut [RingElem],
-        rows: usize,
-        cols: usize,
-    ) -> Option<(Vec<usize>, RingElem)> {
-        let mut pivots = Vec::new();
-        let mut prev = RingElem::int(BigInt::one());
-        let mut r = 0;
-        for col in 0..cols {
-            if r == rows {
-                break;
-            }
-            let Some(p) = (r..rows).find(|&i| !a[i * cols + col].is_zero()) else {
+            if i == r {
                 continue;
-            };
-            if p != r {
-                for j in 0..cols {
-                    a.swap(p * cols + j, r * cols + j);
-                }
             }
-            let pivot = a[r * cols + col].clone();
-            for i in 0..rows {
-                if i == r {
-                    continue;
-                }
-                let f = a[i * cols + col].clone();
-                for j in 0..cols {
-                    let v = self.sub(
-                        &self.mul(&pivot, &a[i * cols + j]),
-                        &self.mul(&f, &a[r * cols + j]),
-                    );
-                    a[i * cols + j] = if v.is_zero() {
-                        v
-                    } else {
-                        self.div_exact(&v, &prev)?
-                    };
-                }
+            let f = a[i * cols + col].clone();
+            for j in 0..cols {
+                let v = &(&pivot * &a[i * cols + j]) - &(&f * &a[r * cols + j]);
+                a[i * cols + j] = if v.is_zero() { v } else { v.div_exact(&prev)? };
             }
-            pivots.push(col);
-            prev = pivot;
-            r += 1;
         }
-        Some((pivots, prev))
+        pivots.push(col);
+        prev = pivot;
+        r += 1;
     }
+    Some((pivots, prev))
+}
 
-    /// A basis of the kernel of a `rows x cols` matrix: one vector per non-pivot column,
-    /// with entries in the ring.
-    pub(crate) fn kernel(
-        &self,
-        mut a: Vec<RingElem>,
-        rows: usize,
-        cols: usize,
-    ) -> Option<Vec<Vec<RingElem>>> {
-        let (pivots, d) = self.rref(&mut a, rows, cols)?;
-        let mut basis = Vec::new();
-        for f in (0..cols).filter(|c| !pivots.contains(c)) {
-            let mut v = vec![RingElem::default(); cols];
-            v[f] = d.clone();
-            for (r, &pc) in pivots.iter().enumerate() {
-                let e = &a[r * cols + f];
-                v[pc] = RingElem { x: -&e.x, y: -&e.y };
-            }
-            basis.push(v);
+/// A basis of the kernel of a matrix: one vector per non-pivot column, with entries in the
+/// ring.
+pub(crate) fn kernel(mut a: Matrix<RingElem>) -> Option<Vec<Vec<RingElem>>> {
+    let cols = a.ncols();
+    let (pivots, d) = rref(&mut a)?;
+    let mut basis = Vec::new();
+    for f in (0..cols).filter(|c| !pivots.contains(c)) {
+        let mut v = vec![RingElem::zero(); cols];
+        v[f] = d.clone();
+        for (r, &pc) in pivots.iter().enumerate() {
+            v[pc] = -a.entry(r, f);
         }
-        Some(basis)
+        basis.push(v);
     }
+    Some(basis)
+}
 
-    /// `(X, D)` with `G X = D I` for an invertible `m x m` matrix `G`, or `None` when `G` is
-    /// singular or a division was not exact.
-    pub(crate) fn scaled_inverse(
-        &self,
-        g: &[RingElem],
-        m: usize,
-    ) -> Option<(Vec<RingElem>, RingElem)> {
-        let cols = 2 * m;
-        let mut a = vec![RingElem::default(); m * cols];
-        for i in 0..m {
-            for j in 0..m {
-                a[i * cols + j] = g[i * m + j].clone();
-            }
-            a[i * cols + m + i] = RingElem::int(BigInt::one());
+/// `(X, D)` with `G X = D I` for an invertible square matrix `G`, or `None` when `G` is
+/// singular or a division was not exact.
+pub(crate) fn scaled_inverse(g: &Matrix<RingElem>) -> Option<(Matrix<RingElem>, RingElem)> {
+    let m = g.dim();
+    let cols = 2 * m;
+    let mut a = Matrix::zeros(m, cols);
+    for i in 0..m {
+        for j in 0..m {
+            a.entries_mut()[i * cols + j] = g.entry(i, j).clone();
         }
-        let (pivots, d) = self.rref(&mut a, m, cols)?;
-        if pivots.len() != m || pivots.iter().enumerate().any(|(i, &c)| c != i) {
-            return None;
-        }
-        let mut x = Vec::with_capacity(m * m);
-        for i in 0..m {
-            x.extend_from_slice(&a[i * cols + m..(i + 1) * cols]);
-        }
-        Some((x, d))
+        a.entries_mut()[i * cols + m + i] = RingElem::one();
     }
+    let (pivots, d) = rref(&mut a)?;
+    if pivots.len() != m || pivots.iter().enumerate().any(|(i, &c)| c != i) {
+        return None;
+    }
+    let x = a.rows().flat_map(|row| row[m..].iter().cloned()).collect();
+    Some((Matrix::from_vec(m, m, x), d))
 }
 
 #[cfg(test)]

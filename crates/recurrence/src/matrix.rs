@@ -139,9 +139,9 @@ impl<T> Matrix<T> {
         &self.entries
     }
 
-    /// The entries, row by row, by value.
-    pub(crate) fn into_entries(self) -> Vec<T> {
-        self.entries
+    /// The entries, row by row, for changes in place.
+    pub(crate) fn entries_mut(&mut self) -> &mut [T] {
+        &mut self.entries
     }
 
     /// The matrix with `f` applied to every entry.
