@@ -48,7 +48,9 @@ impl Field for BigRational {
 
     fn eval_poly_at_int(m: &IntMatrix, coeffs: &[Self]) -> Matrix<Self> {
         if !coeffs.iter().all(|c| c.is_integer()) {
-            return m.map(|&x| BigRational::from_integer(BigInt::from(x))).eval_poly(coeffs);
+            return m
+                .map(|&x| BigRational::from_integer(BigInt::from(x)))
+                .eval_poly(coeffs);
         }
         let integer: Vec<BigInt> = coeffs.iter().map(BigRational::to_integer).collect();
         m.map(|&x| BigInt::from(x))
@@ -568,7 +570,10 @@ mod tests {
         // phi^2 = phi + 1
         assert_eq!(&phi * &phi, &phi + &QuadraticSurd::one());
         assert_eq!(&phi / &phi, QuadraticSurd::one());
-        assert_eq!(-(&phi - &psi), QuadraticSurd::new(q(0, 1), q(-1, 1), 5.into()));
+        assert_eq!(
+            -(&phi - &psi),
+            QuadraticSurd::new(q(0, 1), q(-1, 1), 5.into())
+        );
         assert_eq!(psi.to_string(), "1/2-1/2*sqrt(5)");
         let i = QuadraticSurd::new(q(0, 1), q(1, 1), (-1).into());
         assert_eq!(&i * &i, QuadraticSurd::rational(q(-1, 1)));

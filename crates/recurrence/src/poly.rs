@@ -548,7 +548,11 @@ mod tests {
                 for _ in 0..*m {
                     back = product(&back, f);
                 }
-                assert_eq!(gcd_monic(f, &derivative_int(f)), ints(&[1]), "{f:?} of {p:?}");
+                assert_eq!(
+                    gcd_monic(f, &derivative_int(f)),
+                    ints(&[1]),
+                    "{f:?} of {p:?}"
+                );
             }
             assert_eq!(back, p);
             for (i, (f, m)) in factors.iter().enumerate() {
@@ -586,7 +590,10 @@ mod tests {
             int_poly(&[9, 6, 1])
         );
         assert_eq!(
-            divide_by_root(&int_poly(&[-4, 8, -5, 1]), &BigRational::from_integer(2.into())),
+            divide_by_root(
+                &int_poly(&[-4, 8, -5, 1]),
+                &BigRational::from_integer(2.into())
+            ),
             int_poly(&[2, -3, 1])
         );
         assert_eq!(

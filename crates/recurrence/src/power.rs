@@ -4,7 +4,6 @@
 use num_bigint::BigInt;
 use num_traits::{CheckedAdd, CheckedMul, One, Zero};
 
-
 use crate::IntMatrix;
 
 /// The arithmetic that matrix powering needs: a ring whose operations report overflow, and
