@@ -19,6 +19,14 @@
 //!   (a compilable checked-`i128` function) and, with the `json` feature, `ClosedForm::to_json`.
 //! - **Growth**: [`Recurrence::dominant_eigenvalue`], and
 //!   [`ClosedForm::estimated_bits`] for the size of a count before computing it.
+//! - **Matrices**: [`Matrix`] is the one dense matrix type ([`IntMatrix`] is `Matrix<i64>`),
+//!   with products, matrix-vector products and powers written once over `num_traits`
+//!   bounds ([`Matrix::checked_mul`], [`Matrix::checked_apply`], [`Matrix::checked_pow`]):
+//!   `i64`/`i128` report overflow, `BigInt` never does.
+//!
+//! The public API names no dependency's type besides `num-bigint` and `num-rational`
+//! (numeric values are [`Complex64`]); the `json` feature adds `ClosedForm::to_json`, which
+//! returns a `serde_json::Value`.
 //!
 //! # Example: the icosahedron under 4:1 subdivision
 //!

@@ -44,7 +44,7 @@ impl ClosedForm {
     }
 
     /// The exact state at level `s` from the closed form; agrees with
-    /// [`Recurrence::state_at`] for every `s`.
+    /// [`Recurrence::state_at`](crate::Recurrence::state_at) for every `s`.
     ///
     /// Powers of eigenvalues `+-2^k` are shifts, and each component is summed over a common
     /// denominator and divided once, exactly.
@@ -243,8 +243,6 @@ fn surd_pow(base: &QuadraticSurd, mut s: u64) -> QuadraticSurd {
     }
     result
 }
-
-/// The matrices `N^k P` for `k < mult` of the eigenvalue `lambda` of `m`, whose
 
 /// The integer data for evaluating an exact component, `None` for numeric ones.
 pub(super) fn build_fast(

@@ -86,9 +86,9 @@ pub struct ComponentForm {
     pub early_levels: Vec<EarlyLevel>,
 }
 
-/// The closed form of every component of a [`Recurrence`].
+/// The closed form of every component of a [`Recurrence`](crate::Recurrence).
 ///
-/// Built by [`Recurrence::closed_form`]; evaluate it with [`ClosedForm::evaluate`], print it
+/// Built by [`Recurrence::closed_form`](crate::Recurrence::closed_form); evaluate it with [`ClosedForm::evaluate`], print it
 /// with [`ClosedForm::to_text`], [`ClosedForm::to_latex`], [`ClosedForm::to_rust`] or
 /// `ClosedForm::to_json` (with the `json` feature).
 #[derive(Clone, Debug)]
