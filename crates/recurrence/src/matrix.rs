@@ -548,4 +548,42 @@ mod tests {
             vec![vec![1, 5], vec![0, 16]]
         );
     }
+
+    #[test]
+    fn generic_powers_agree_with_repeated_products() {
+        use num_bigint::BigInt;
+
+        let m = IntMatrix::try_from_rows(vec![vec![1, 1, 0], vec![0, 2, 3], vec![-1, 0, 4]])
+            .unwrap()
+            .map(|&x| BigInt::from(x));
+        let mut product = Matrix::<BigInt>::identity(3);
+        for s in 0..40u64 {
+            assert_eq!(m.checked_pow(s).unwrap(), product, "level {s}");
+            product = product.checked_mul(&m).unwrap();
+        }
+        let x = [1, -2, 5].map(BigInt::from);
+        let step = m.checked_apply(&x).unwrap();
+        assert_eq!(step, [-1, 11, 19].map(BigInt::from));
+        assert_eq!(m.checked_apply(&x[..2]), None);
+        // i128 reports overflow where BigInt keeps going.
+        let two = IntMatrix::try_from_rows(vec![vec![2]]).unwrap();
+        let wide = two.map(|&x| i128::from(x));
+        assert_eq!(wide.checked_pow(126).unwrap().get(0, 0), 1i128 << 126);
+        assert_eq!(wide.checked_pow(127), None);
+    }
+
+    #[test]
+    fn rectangular_blocks_multiply_and_transpose() {
+        let a = Matrix::from_vec(2, 3, vec![1i64, 2, 3, 4, 5, 6]);
+        let t = a.transpose();
+        assert_eq!((t.dim(), t.ncols()), (3, 2));
+        assert_eq!(t.entries(), &[1, 4, 2, 5, 3, 6]);
+        let g = a.checked_mul(&t).unwrap();
+        assert_eq!(g.to_rows(), vec![vec![14, 32], vec![32, 77]]);
+        assert_eq!(a.checked_mul(&a), None, "2x3 times 2x3 does not multiply");
+        assert_eq!(
+            Matrix::from_fn(2, |i, j| i64::try_from(10 * i + j).unwrap()).to_rows(),
+            vec![vec![0, 1], vec![10, 11]]
+        );
+    }
 }

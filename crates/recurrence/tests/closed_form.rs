@@ -90,6 +90,31 @@ fn complex_quadratic_eigenvalues_are_exact() {
     assert_form_matches_powering(&r, &big(&[1, 2, 3]), 30);
 }
 
+/// Two real quadratic fields, `Q(sqrt 22)` and `Q(sqrt 29)`, whose terms interleave: the
+/// per-field sums of the evaluation must not mix (found by `closed_form_equals_powering`
+/// with more cases; the assertion that conjugate terms cancel fired in debug builds).
+#[test]
+fn interleaved_quadratic_fields_sum_per_field() {
+    let r = rec("[[-3,-2,2,1],[-1,0,-3,0],[2,-3,0,-3],[3,-4,-3,-2]]", "");
+    let fields: Vec<String> = r
+        .eigenvalues()
+        .iter()
+        .map(|e| e.eigenvalue.to_string())
+        .collect();
+    assert_eq!(
+        fields,
+        [
+            "-2-sqrt(22)",
+            "-1/2-1/2*sqrt(29)",
+            "-2+sqrt(22)",
+            "-1/2+1/2*sqrt(29)"
+        ]
+    );
+    for x0 in [big(&[0, 0, 0, -1]), big(&[1, -2, 3, 5])] {
+        assert_form_matches_powering(&r, &x0, 61);
+    }
+}
+
 #[test]
 fn five_cycle_is_numeric_and_evaluate_refuses() {
     // x^5 - 1 = (x - 1)(x^4 + x^3 + x^2 + x + 1): the quartic is irreducible over Q.

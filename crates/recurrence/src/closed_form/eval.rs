@@ -163,8 +163,11 @@ impl ClosedForm {
             let mut value =
                 BigRational::new(r, fast.denominator.clone()) + BigRational::from_integer(q);
             {
-                // One running sum per quadratic field: conjugate terms cancel within each.
-                let mut sums: Vec<QuadraticSurd> = Vec::new();
+                // One running sum per quadratic field, keyed by the eigenvalue's radicand:
+                // conjugate terms cancel within each. (Keyed by the running value instead, a
+                // sum that had just become rational took the next field's term and left two
+                // sums with irrational parts that cancel only together.)
+                let mut sums: Vec<(BigInt, QuadraticSurd)> = Vec::new();
                 for (e, p, coeffs) in &fast.surd {
                     let c = coeffs
                         .iter()
@@ -185,15 +188,12 @@ impl ClosedForm {
                     let sp =
                         QuadraticSurd::rational(BigRational::from_integer(Pow::pow(&s_big, *p)));
                     let term = &(&c * pw) * &sp;
-                    match sums
-                        .iter_mut()
-                        .find(|q| q.is_rational() || term.is_rational() || q.d == term.d)
-                    {
-                        Some(q) => *q = &*q + &term,
-                        None => sums.push(term),
+                    match sums.iter_mut().find(|(d, _)| *d == lambda.d) {
+                        Some((_, q)) => *q = &*q + &term,
+                        None => sums.push((lambda.d.clone(), term)),
                     }
                 }
-                for sum in sums {
+                for (_, sum) in sums {
                     debug_assert!(sum.is_rational(), "conjugate terms cancel");
                     value += sum.a;
                 }
