@@ -13,6 +13,8 @@ use std::cmp::Ordering;
 use std::fmt;
 
 use nalgebra::{Complex, DMatrix};
+
+use crate::Complex64;
 use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{FromPrimitive, One, Signed, Zero};
@@ -40,7 +42,7 @@ pub enum Eigenvalue {
         d: BigInt,
     },
     /// A numeric approximation (complex in general), for roots of higher-degree factors.
-    Numeric(Complex<f64>),
+    Numeric(Complex64),
 }
 
 impl Eigenvalue {
@@ -69,9 +71,9 @@ impl Eigenvalue {
     }
 
     /// The value as a complex `f64`.
-    pub fn to_complex(&self) -> Complex<f64> {
+    pub fn to_complex(&self) -> Complex64 {
         match self {
-            Eigenvalue::Rational(r) => Complex::new(rational_to_f64(r), 0.0),
+            Eigenvalue::Rational(r) => Complex64::new(rational_to_f64(r), 0.0),
             Eigenvalue::QuadraticSurd { a, b, d } => {
                 QuadraticSurd::new(a.clone(), b.clone(), d.clone()).to_f64()
             }
@@ -109,40 +111,9 @@ impl fmt::Display for Eigenvalue {
             Eigenvalue::QuadraticSurd { a, b, d } => {
                 write!(f, "{}", QuadraticSurd::new(a.clone(), b.clone(), d.clone()))
             }
-            Eigenvalue::Numeric(z) => f.write_str(&format_complex(*z)),
+            Eigenvalue::Numeric(z) => write!(f, "{z}"),
         }
     }
-}
-
-/// `re`, or `re+imi`, with 12 significant digits.
-pub(crate) fn format_complex(z: Complex<f64>) -> String {
-    let re = format_float(z.re);
-    if z.im.abs() <= 1e-12 * z.norm().max(1e-300) {
-        re
-    } else if z.im < 0.0 {
-        format!("{re}-{}i", format_float(-z.im))
-    } else {
-        format!("{re}+{}i", format_float(z.im))
-    }
-}
-
-fn format_float(x: f64) -> String {
-    if x == 0.0 {
-        return "0".to_string();
-    }
-    let s = format!("{:.11e}", x);
-    // Prefer plain notation for moderate magnitudes.
-    if (1e-4..1e12).contains(&x.abs()) {
-        let digits = 11 - x.abs().log10().floor() as i32;
-        let t = format!("{:.*}", digits.max(0) as usize, x);
-        let t = if t.contains('.') {
-            t.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            t
-        };
-        return t;
-    }
-    s
 }
 
 /// An eigenvalue with its algebraic multiplicity.
@@ -347,7 +318,11 @@ fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
         }
         i += 1;
     }
-    found.extend(numeric.into_iter().map(Eigenvalue::Numeric));
+    found.extend(
+        numeric
+            .into_iter()
+            .map(|z| Eigenvalue::Numeric(Complex64::from_nalgebra(z))),
+    );
     found
 }
 

@@ -64,20 +64,6 @@ pub enum Error {
         /// The component whose form is numeric.
         component: String,
     },
-    /// A weight vector does not have one weight per component.
-    #[error("{got} weights given for {expected} components")]
-    WeightsLength {
-        /// Number of weights given.
-        got: usize,
-        /// Dimension of the recurrence.
-        expected: usize,
-    },
-    /// A level search could not be bounded from the closed form and gave up after scanning.
-    #[error("the level search gave up after scanning {levels} levels: the weighted sum neither settles nor grows in a way the closed form can bound")]
-    SearchLimit {
-        /// Number of levels scanned.
-        levels: u64,
-    },
     /// A number is too large to be computed in memory.
     #[error("level {level} needs about {bits} bits per count, more than this machine can hold")]
     TooLarge {

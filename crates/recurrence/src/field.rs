@@ -1,131 +1,100 @@
 //! The fields the closed-form machinery computes in: the rationals, quadratic fields
 //! `Q(sqrt d)` (exact), and `f64` complex numbers (numeric, for everything else).
 //!
-//! The spectral decomposition is written once over the crate-private [`Field`] trait and run
-//! with the field that holds the eigenvalue at hand.
+//! The spectral decomposition is written once over `num_traits` bounds (the crate-private
+//! [`Field`] adds only division and the rationals) and run with the field that holds the
+//! eigenvalue at hand.
 
 use std::fmt;
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
-use nalgebra::Complex;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{One, Signed, ToPrimitive, Zero};
+use num_traits::{CheckedAdd, CheckedMul, One, Signed, ToPrimitive, Zero};
 
-/// The arithmetic of a field, as the spectral decomposition needs it.
-pub(crate) trait Field: Clone + fmt::Debug {
-    fn field_zero() -> Self;
-    fn field_one() -> Self;
-    /// Whether the value is zero (exact fields), or negligibly small (numeric fields).
-    fn is_field_zero(&self) -> bool;
-    fn add(&self, rhs: &Self) -> Self;
-    #[cfg_attr(not(test), allow(dead_code))]
-    fn sub(&self, rhs: &Self) -> Self;
-    fn mul(&self, rhs: &Self) -> Self;
-    /// Division; the caller guarantees that `rhs` is not zero.
-    fn div(&self, rhs: &Self) -> Self;
-    fn neg(&self) -> Self;
+use crate::{Complex64, IntMatrix, Matrix};
+
+/// What the spectral decomposition needs of the field it computes in, beyond `num_traits`'
+/// ring operations: division, negation and the embedding of the rationals. The checked
+/// operations (by reference, so big numbers are not copied) never fail in these fields;
+/// [`Matrix`]'s products use them.
+pub(crate) trait Field:
+    Clone
+    + fmt::Debug
+    + Zero
+    + One
+    + CheckedAdd
+    + CheckedMul
+    + Sub<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
     fn from_rational(r: &BigRational) -> Self;
 
     /// `q(M)` for an integer matrix `M`. The default runs Horner's rule in the field;
     /// the rationals override it with integer arithmetic when `q` has integer coefficients
     /// (as every cofactor of an integer eigenvalue does), which avoids a gcd per operation.
-    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
-        FieldMatrix::<Self>::from_int(m).eval_poly(coeffs)
+    fn eval_poly_at_int(m: &IntMatrix, coeffs: &[Self]) -> Matrix<Self> {
+        m.map(|&x| Self::from_rational(&BigRational::from_integer(BigInt::from(x))))
+            .eval_poly(coeffs)
     }
 }
 
 impl Field for BigRational {
-    fn field_zero() -> Self {
-        Zero::zero()
-    }
-    fn field_one() -> Self {
-        One::one()
-    }
-    fn is_field_zero(&self) -> bool {
-        Zero::is_zero(self)
-    }
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-    fn div(&self, rhs: &Self) -> Self {
-        self / rhs
-    }
-    fn neg(&self) -> Self {
-        -self
-    }
     fn from_rational(r: &BigRational) -> Self {
         r.clone()
     }
 
-    fn eval_poly_at_int(m: &crate::IntMatrix, coeffs: &[Self]) -> FieldMatrix<Self> {
+    fn eval_poly_at_int(m: &IntMatrix, coeffs: &[Self]) -> Matrix<Self> {
         if !coeffs.iter().all(|c| c.is_integer()) {
-            return FieldMatrix::<Self>::from_int(m).eval_poly(coeffs);
+            return m
+                .map(|&x| BigRational::from_integer(BigInt::from(x)))
+                .eval_poly(coeffs);
         }
-        let n = m.dim();
-        let a: Vec<BigInt> = m.rows().flatten().map(|&x| BigInt::from(x)).collect();
-        let mut acc = vec![BigInt::zero(); n * n];
-        for c in coeffs.iter().rev() {
-            let mut next = vec![BigInt::zero(); n * n];
-            for i in 0..n {
-                for k in 0..n {
-                    let x = &acc[i * n + k];
-                    if x.is_zero() {
-                        continue;
-                    }
-                    for j in 0..n {
-                        let y = &a[k * n + j];
-                        if !y.is_zero() {
-                            next[i * n + j] += x * y;
-                        }
-                    }
-                }
-            }
-            for i in 0..n {
-                next[i * n + i] += c.to_integer();
-            }
-            acc = next;
-        }
-        FieldMatrix {
-            dim: n,
-            entries: acc.into_iter().map(BigRational::from_integer).collect(),
-        }
+        let integer: Vec<BigInt> = coeffs.iter().map(BigRational::to_integer).collect();
+        m.map(|&x| BigInt::from(x))
+            .checked_eval_poly(&integer)
+            .expect("big integers do not overflow")
+            .map(|x| BigRational::from_integer(x.clone()))
     }
 }
 
-impl Field for Complex<f64> {
-    fn field_zero() -> Self {
-        Complex::new(0.0, 0.0)
-    }
-    fn field_one() -> Self {
-        Complex::new(1.0, 0.0)
-    }
-    fn is_field_zero(&self) -> bool {
-        self.norm() < 1e-12
-    }
-    fn add(&self, rhs: &Self) -> Self {
-        self + rhs
-    }
-    fn sub(&self, rhs: &Self) -> Self {
-        self - rhs
-    }
-    fn mul(&self, rhs: &Self) -> Self {
-        self * rhs
-    }
-    fn div(&self, rhs: &Self) -> Self {
-        self / rhs
-    }
-    fn neg(&self) -> Self {
-        -self
-    }
+impl Field for Complex64 {
     fn from_rational(r: &BigRational) -> Self {
-        Complex::new(rational_to_f64(r), 0.0)
+        Complex64::new(rational_to_f64(r), 0.0)
+    }
+}
+
+/// Matrix arithmetic in a [`Field`], where [`Matrix`]'s checked operations never fail.
+pub(crate) trait FieldMatrix<F> {
+    /// `self * rhs`.
+    fn mul(&self, rhs: &Self) -> Self;
+    /// `self + rhs`.
+    fn add(&self, rhs: &Self) -> Self;
+    /// `self + c I`.
+    fn add_scalar(&self, c: &F) -> Self;
+    /// `q(self)` for a polynomial with coefficients lowest degree first, by Horner's rule.
+    fn eval_poly(&self, coeffs: &[F]) -> Self;
+}
+
+const EXACT: &str = "field arithmetic does not overflow";
+
+impl<F: Field> FieldMatrix<F> for Matrix<F> {
+    fn mul(&self, rhs: &Self) -> Self {
+        self.checked_mul(rhs).expect(EXACT)
+    }
+
+    fn add(&self, rhs: &Self) -> Self {
+        self.checked_add(rhs).expect(EXACT)
+    }
+
+    fn add_scalar(&self, c: &F) -> Self {
+        self.checked_add_scalar(c).expect(EXACT)
+    }
+
+    fn eval_poly(&self, coeffs: &[F]) -> Self {
+        self.checked_eval_poly(coeffs).expect(EXACT)
     }
 }
 
@@ -208,14 +177,14 @@ impl QuadraticSurd {
     }
 
     /// The value as a complex `f64` (real when `d >= 0`).
-    pub fn to_f64(&self) -> Complex<f64> {
+    pub fn to_f64(&self) -> Complex64 {
         let a = rational_to_f64(&self.a);
         let b = rational_to_f64(&self.b);
         let d = self.d.to_f64().unwrap_or(f64::NAN);
         if d >= 0.0 {
-            Complex::new(a + b * d.sqrt(), 0.0)
+            Complex64::new(a + b * d.sqrt(), 0.0)
         } else {
-            Complex::new(a, b * (-d).sqrt())
+            Complex64::new(a, b * (-d).sqrt())
         }
     }
 
@@ -253,23 +222,38 @@ impl fmt::Display for QuadraticSurd {
     }
 }
 
-impl Field for QuadraticSurd {
-    fn field_zero() -> Self {
+impl Zero for QuadraticSurd {
+    fn zero() -> Self {
         QuadraticSurd::rational(Zero::zero())
     }
-    fn field_one() -> Self {
-        QuadraticSurd::rational(One::one())
-    }
-    fn is_field_zero(&self) -> bool {
+    fn is_zero(&self) -> bool {
         Zero::is_zero(&self.a) && Zero::is_zero(&self.b)
     }
-    fn add(&self, rhs: &Self) -> Self {
+}
+
+impl One for QuadraticSurd {
+    fn one() -> Self {
+        QuadraticSurd::rational(One::one())
+    }
+}
+
+impl Add<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn add(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         QuadraticSurd::new(&self.a + &rhs.a, &self.b + &rhs.b, self.radicand(rhs))
     }
-    fn sub(&self, rhs: &Self) -> Self {
+}
+
+impl Sub<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn sub(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         QuadraticSurd::new(&self.a - &rhs.a, &self.b - &rhs.b, self.radicand(rhs))
     }
-    fn mul(&self, rhs: &Self) -> Self {
+}
+
+impl Mul<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn mul(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         let d = self.radicand(rhs);
         let dr = BigRational::from_integer(d.clone());
         QuadraticSurd::new(
@@ -278,119 +262,80 @@ impl Field for QuadraticSurd {
             d,
         )
     }
-    fn div(&self, rhs: &Self) -> Self {
+}
+
+impl Div<&QuadraticSurd> for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    /// Division; the caller guarantees that `rhs` is not zero.
+    fn div(self, rhs: &QuadraticSurd) -> QuadraticSurd {
         let n = rhs.norm();
-        let p = self.mul(&rhs.conjugate());
+        let p = self * &rhs.conjugate();
         QuadraticSurd::new(&p.a / &n, &p.b / &n, p.d)
     }
-    fn neg(&self) -> Self {
+}
+
+impl Neg for &QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn neg(self) -> QuadraticSurd {
         QuadraticSurd {
             a: -&self.a,
             b: -&self.b,
             d: self.d.clone(),
         }
     }
+}
+
+impl Neg for QuadraticSurd {
+    type Output = QuadraticSurd;
+    fn neg(self) -> QuadraticSurd {
+        -&self
+    }
+}
+
+/// The by-value operators, forwarded to the by-reference ones.
+macro_rules! forward_by_value {
+    ($($imp:ident $method:ident),*) => {$(
+        impl $imp for QuadraticSurd {
+            type Output = QuadraticSurd;
+            fn $method(self, rhs: QuadraticSurd) -> QuadraticSurd {
+                (&self).$method(&rhs)
+            }
+        }
+    )*};
+}
+forward_by_value!(Add add, Sub sub, Mul mul, Div div);
+
+impl CheckedAdd for QuadraticSurd {
+    fn checked_add(&self, rhs: &Self) -> Option<Self> {
+        Some(self + rhs)
+    }
+}
+
+impl CheckedMul for QuadraticSurd {
+    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+        Some(self * rhs)
+    }
+}
+
+impl Field for QuadraticSurd {
     fn from_rational(r: &BigRational) -> Self {
         QuadraticSurd::rational(r.clone())
     }
 }
 
-/// Dense square matrices over a [`Field`], row-major.
-#[derive(Clone, Debug)]
-pub(crate) struct FieldMatrix<F> {
-    pub(crate) dim: usize,
-    pub(crate) entries: Vec<F>,
-}
-
-impl<F: Field> FieldMatrix<F> {
-    pub(crate) fn from_int(m: &crate::IntMatrix) -> Self {
-        let entries = m
-            .rows()
-            .flatten()
-            .map(|&x| F::from_rational(&BigRational::from_integer(BigInt::from(x))))
-            .collect();
-        FieldMatrix {
-            dim: m.dim(),
-            entries,
-        }
-    }
-
-    pub(crate) fn scalar(dim: usize, c: &F) -> Self {
-        let mut entries = vec![F::field_zero(); dim * dim];
-        for i in 0..dim {
-            entries[i * dim + i] = c.clone();
-        }
-        FieldMatrix { dim, entries }
-    }
-
-    pub(crate) fn mul(&self, rhs: &Self) -> Self {
-        let n = self.dim;
-        let mut entries = Vec::with_capacity(n * n);
-        for i in 0..n {
-            for j in 0..n {
-                let mut acc = F::field_zero();
-                for k in 0..n {
-                    let a = &self.entries[i * n + k];
-                    let b = &rhs.entries[k * n + j];
-                    if a.is_field_zero() || b.is_field_zero() {
-                        continue;
-                    }
-                    acc = acc.add(&a.mul(b));
-                }
-                entries.push(acc);
-            }
-        }
-        FieldMatrix { dim: n, entries }
-    }
-
-    /// `self + c I`.
-    pub(crate) fn add_scalar(&self, c: &F) -> Self {
-        let mut out = self.clone();
-        for i in 0..self.dim {
-            out.entries[i * self.dim + i] = out.entries[i * self.dim + i].add(c);
-        }
-        out
-    }
-
-    pub(crate) fn add(&self, rhs: &Self) -> Self {
-        let entries = self
-            .entries
-            .iter()
-            .zip(&rhs.entries)
-            .map(|(a, b)| a.add(b))
-            .collect();
-        FieldMatrix {
-            dim: self.dim,
-            entries,
-        }
-    }
-
-    pub(crate) fn row(&self, i: usize) -> &[F] {
-        &self.entries[i * self.dim..(i + 1) * self.dim]
-    }
-
-    /// `q(self)` for a polynomial with coefficients lowest degree first, by Horner's rule.
-    pub(crate) fn eval_poly(&self, coeffs: &[F]) -> Self {
-        let mut acc = FieldMatrix::scalar(self.dim, &F::field_zero());
-        for c in coeffs.iter().rev() {
-            acc = acc.mul(self).add_scalar(c);
-        }
-        acc
-    }
-}
-
-/// An element `x + y*sqrt(d)` of the ring `Z[sqrt d]`, the `d` being held by the
-/// [`SurdRing`] that does the arithmetic (`y` is zero throughout for plain integers).
+/// An element `x + y*sqrt(d)` of the ring `Z[sqrt d]`; `d` is `0` whenever `y` is, so plain
+/// integers carry no radicand (and cloning them copies no radicand).
 ///
 /// The exact closed forms are computed fraction-free in this ring: a rational or quadratic
 /// eigenvalue `l` scaled by the least common denominator `c` of its parts lies in it, and so
 /// does every entry of `c M - c l I`, every minor (fraction-free elimination), and every
 /// numerator of the spectral parts. Each rational number is then formed once, at the end,
-/// instead of reducing a fraction after every operation.
+/// instead of reducing a fraction after every operation. The products are [`Matrix`]'s.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub(crate) struct RingElem {
     pub(crate) x: BigInt,
     pub(crate) y: BigInt,
+    pub(crate) d: BigInt,
 }
 
 impl RingElem {
@@ -398,205 +343,214 @@ impl RingElem {
         RingElem {
             x,
             y: BigInt::zero(),
+            d: BigInt::zero(),
         }
     }
 
-    pub(crate) fn is_zero(&self) -> bool {
-        self.x.is_zero() && self.y.is_zero()
+    /// `x + y sqrt(d)`, normalized so that `d` is `0` when `y` is.
+    pub(crate) fn new(x: BigInt, y: BigInt, d: &BigInt) -> Self {
+        if y.is_zero() {
+            RingElem::int(x)
+        } else {
+            RingElem { x, y, d: d.clone() }
+        }
+    }
+
+    /// The radicand shared by `self` and `rhs` (elements of one ring; integers have none).
+    fn radicand<'a>(&'a self, rhs: &'a Self) -> &'a BigInt {
+        if self.y.is_zero() {
+            &rhs.d
+        } else {
+            &self.d
+        }
     }
 
     pub(crate) fn conj(&self) -> Self {
         RingElem {
             x: self.x.clone(),
             y: -&self.y,
-        }
-    }
-}
-
-/// The arithmetic of `Z[sqrt d]` (`d = 0`: the integers).
-#[derive(Clone, Debug)]
-pub(crate) struct SurdRing {
-    pub(crate) d: BigInt,
-}
-
-impl SurdRing {
-    pub(crate) fn add(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        RingElem {
-            x: &a.x + &b.x,
-            y: &a.y + &b.y,
-        }
-    }
-
-    pub(crate) fn sub(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        RingElem {
-            x: &a.x - &b.x,
-            y: &a.y - &b.y,
-        }
-    }
-
-    pub(crate) fn mul(&self, a: &RingElem, b: &RingElem) -> RingElem {
-        if a.y.is_zero() && b.y.is_zero() {
-            return RingElem::int(&a.x * &b.x);
-        }
-        RingElem {
-            x: &a.x * &b.x + &a.y * &b.y * &self.d,
-            y: &a.x * &b.y + &a.y * &b.x,
+            d: self.d.clone(),
         }
     }
 
     /// The norm `x^2 - d y^2`, an integer (zero only for zero when `d` is not a square).
-    pub(crate) fn norm(&self, a: &RingElem) -> BigInt {
-        &a.x * &a.x - &a.y * &a.y * &self.d
+    pub(crate) fn norm(&self) -> BigInt {
+        &self.x * &self.x - &self.y * &self.y * &self.d
     }
 
-    /// `a / b` when it lies in the ring, `None` otherwise (or when `b` is zero).
-    pub(crate) fn div_exact(&self, a: &RingElem, b: &RingElem) -> Option<RingElem> {
-        if b.y.is_zero() {
-            if b.x.is_zero() {
-                return None;
-            }
-            let (qx, rx) = a.x.div_rem(&b.x);
-            let (qy, ry) = a.y.div_rem(&b.x);
-            return (rx.is_zero() && ry.is_zero()).then_some(RingElem { x: qx, y: qy });
-        }
-        let n = self.norm(b);
+    /// `self / b` when it lies in the ring, `None` otherwise (or when `b` is zero).
+    pub(crate) fn div_exact(&self, b: &RingElem) -> Option<RingElem> {
+        let (p, n) = if b.y.is_zero() {
+            (self.clone(), b.x.clone())
+        } else {
+            (self * &b.conj(), b.norm())
+        };
         if n.is_zero() {
             return None;
         }
-        let p = self.mul(a, &b.conj());
         let (qx, rx) = p.x.div_rem(&n);
         let (qy, ry) = p.y.div_rem(&n);
-        (rx.is_zero() && ry.is_zero()).then_some(RingElem { x: qx, y: qy })
+        (rx.is_zero() && ry.is_zero()).then(|| RingElem::new(qx, qy, &p.d))
     }
+}
 
-    /// The product of a `rows x inner` and an `inner x cols` matrix (row-major).
-    pub(crate) fn mat_mul(
-        &self,
-        a: &[RingElem],
-        b: &[RingElem],
-        rows: usize,
-        inner: usize,
-        cols: usize,
-    ) -> Vec<RingElem> {
-        let mut out = vec![RingElem::default(); rows * cols];
+impl Add<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn add(self, rhs: &RingElem) -> RingElem {
+        RingElem::new(&self.x + &rhs.x, &self.y + &rhs.y, self.radicand(rhs))
+    }
+}
+
+impl Sub<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn sub(self, rhs: &RingElem) -> RingElem {
+        RingElem::new(&self.x - &rhs.x, &self.y - &rhs.y, self.radicand(rhs))
+    }
+}
+
+impl Mul<&RingElem> for &RingElem {
+    type Output = RingElem;
+    fn mul(self, rhs: &RingElem) -> RingElem {
+        if self.y.is_zero() && rhs.y.is_zero() {
+            return RingElem::int(&self.x * &rhs.x);
+        }
+        let d = self.radicand(rhs);
+        RingElem::new(
+            &self.x * &rhs.x + &self.y * &rhs.y * d,
+            &self.x * &rhs.y + &self.y * &rhs.x,
+            d,
+        )
+    }
+}
+
+impl Neg for &RingElem {
+    type Output = RingElem;
+    fn neg(self) -> RingElem {
+        RingElem {
+            x: -&self.x,
+            y: -&self.y,
+            d: self.d.clone(),
+        }
+    }
+}
+
+impl Add for RingElem {
+    type Output = RingElem;
+    fn add(self, rhs: RingElem) -> RingElem {
+        &self + &rhs
+    }
+}
+
+impl Mul for RingElem {
+    type Output = RingElem;
+    fn mul(self, rhs: RingElem) -> RingElem {
+        &self * &rhs
+    }
+}
+
+impl Zero for RingElem {
+    fn zero() -> Self {
+        RingElem::default()
+    }
+    fn is_zero(&self) -> bool {
+        self.x.is_zero() && self.y.is_zero()
+    }
+}
+
+impl One for RingElem {
+    fn one() -> Self {
+        RingElem::int(BigInt::one())
+    }
+}
+
+impl CheckedAdd for RingElem {
+    fn checked_add(&self, rhs: &Self) -> Option<Self> {
+        Some(self + rhs)
+    }
+}
+
+impl CheckedMul for RingElem {
+    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+        Some(self * rhs)
+    }
+}
+
+/// Fraction-free Gauss-Jordan elimination (Bareiss' rule, each division exact by Sylvester's
+/// identity) of a matrix in place: afterwards every pivot equals the last pivot `D` (a minor
+/// of the input), the pivot columns are `D` times unit vectors, and the rows past the rank
+/// are zero. Returns the pivot columns and `D`, or `None` if a division was not exact (which
+/// would be a bug; the caller falls back).
+pub(crate) fn rref(a: &mut Matrix<RingElem>) -> Option<(Vec<usize>, RingElem)> {
+    let (rows, cols) = (a.dim(), a.ncols());
+    let a = a.entries_mut();
+    let mut pivots = Vec::new();
+    let mut prev = RingElem::one();
+    let mut r = 0;
+    for col in 0..cols {
+        if r == rows {
+            break;
+        }
+        let Some(p) = (r..rows).find(|&i| !a[i * cols + col].is_zero()) else {
+            continue;
+        };
+        if p != r {
+            for j in 0..cols {
+                a.swap(p * cols + j, r * cols + j);
+            }
+        }
+        let pivot = a[r * cols + col].clone();
         for i in 0..rows {
-            for k in 0..inner {
-                let x = &a[i * inner + k];
-                if x.is_zero() {
-                    continue;
-                }
-                for j in 0..cols {
-                    let y = &b[k * cols + j];
-                    if !y.is_zero() {
-                        let t = self.mul(x, y);
-                        let o = &mut out[i * cols + j];
-                        o.x += t.x;
-                        o.y += t.y;
-                    }
-                }
-            }
-        }
-        out
-    }
-
-    /// Fraction-free Gauss-Jordan elimination (Bareiss' rule, each division exact by
-    /// Sylvester's identity) of a `rows x cols` matrix in place: afterwards every pivot
-    /// equals the last pivot `D` (a minor of the input), the pivot columns are `D` times unit
-    /// vectors, and the rows past the rank are zero. Returns the pivot columns and `D`, or
-    /// `None` if a division was not exact (which would be a bug; the caller falls back).
-    pub(crate) fn rref(
-        &self,
-        a: &mut [RingElem],
-        rows: usize,
-        cols: usize,
-    ) -> Option<(Vec<usize>, RingElem)> {
-        let mut pivots = Vec::new();
-        let mut prev = RingElem::int(BigInt::one());
-        let mut r = 0;
-        for col in 0..cols {
-            if r == rows {
-                break;
-            }
-            let Some(p) = (r..rows).find(|&i| !a[i * cols + col].is_zero()) else {
+            if i == r {
                 continue;
-            };
-            if p != r {
-                for j in 0..cols {
-                    a.swap(p * cols + j, r * cols + j);
-                }
             }
-            let pivot = a[r * cols + col].clone();
-            for i in 0..rows {
-                if i == r {
-                    continue;
-                }
-                let f = a[i * cols + col].clone();
-                for j in 0..cols {
-                    let v = self.sub(
-                        &self.mul(&pivot, &a[i * cols + j]),
-                        &self.mul(&f, &a[r * cols + j]),
-                    );
-                    a[i * cols + j] = if v.is_zero() {
-                        v
-                    } else {
-                        self.div_exact(&v, &prev)?
-                    };
-                }
+            let f = a[i * cols + col].clone();
+            for j in 0..cols {
+                let v = &(&pivot * &a[i * cols + j]) - &(&f * &a[r * cols + j]);
+                a[i * cols + j] = if v.is_zero() { v } else { v.div_exact(&prev)? };
             }
-            pivots.push(col);
-            prev = pivot;
-            r += 1;
         }
-        Some((pivots, prev))
+        pivots.push(col);
+        prev = pivot;
+        r += 1;
     }
+    Some((pivots, prev))
+}
 
-    /// A basis of the kernel of a `rows x cols` matrix: one vector per non-pivot column,
-    /// with entries in the ring.
-    pub(crate) fn kernel(
-        &self,
-        mut a: Vec<RingElem>,
-        rows: usize,
-        cols: usize,
-    ) -> Option<Vec<Vec<RingElem>>> {
-        let (pivots, d) = self.rref(&mut a, rows, cols)?;
-        let mut basis = Vec::new();
-        for f in (0..cols).filter(|c| !pivots.contains(c)) {
-            let mut v = vec![RingElem::default(); cols];
-            v[f] = d.clone();
-            for (r, &pc) in pivots.iter().enumerate() {
-                let e = &a[r * cols + f];
-                v[pc] = RingElem { x: -&e.x, y: -&e.y };
-            }
-            basis.push(v);
+/// A basis of the kernel of a matrix: one vector per non-pivot column, with entries in the
+/// ring.
+pub(crate) fn kernel(mut a: Matrix<RingElem>) -> Option<Vec<Vec<RingElem>>> {
+    let cols = a.ncols();
+    let (pivots, d) = rref(&mut a)?;
+    let mut basis = Vec::new();
+    for f in (0..cols).filter(|c| !pivots.contains(c)) {
+        let mut v = vec![RingElem::zero(); cols];
+        v[f] = d.clone();
+        for (r, &pc) in pivots.iter().enumerate() {
+            v[pc] = -a.entry(r, f);
         }
-        Some(basis)
+        basis.push(v);
     }
+    Some(basis)
+}
 
-    /// `(X, D)` with `G X = D I` for an invertible `m x m` matrix `G`, or `None` when `G` is
-    /// singular or a division was not exact.
-    pub(crate) fn scaled_inverse(
-        &self,
-        g: &[RingElem],
-        m: usize,
-    ) -> Option<(Vec<RingElem>, RingElem)> {
-        let cols = 2 * m;
-        let mut a = vec![RingElem::default(); m * cols];
-        for i in 0..m {
-            for j in 0..m {
-                a[i * cols + j] = g[i * m + j].clone();
-            }
-            a[i * cols + m + i] = RingElem::int(BigInt::one());
+/// `(X, D)` with `G X = D I` for an invertible square matrix `G`, or `None` when `G` is
+/// singular or a division was not exact.
+pub(crate) fn scaled_inverse(g: &Matrix<RingElem>) -> Option<(Matrix<RingElem>, RingElem)> {
+    let m = g.dim();
+    let cols = 2 * m;
+    let mut a = Matrix::zeros(m, cols);
+    for i in 0..m {
+        for j in 0..m {
+            a.entries_mut()[i * cols + j] = g.entry(i, j).clone();
         }
-        let (pivots, d) = self.rref(&mut a, m, cols)?;
-        if pivots.len() != m || pivots.iter().enumerate().any(|(i, &c)| c != i) {
-            return None;
-        }
-        let mut x = Vec::with_capacity(m * m);
-        for i in 0..m {
-            x.extend_from_slice(&a[i * cols + m..(i + 1) * cols]);
-        }
-        Some((x, d))
+        a.entries_mut()[i * cols + m + i] = RingElem::one();
     }
+    let (pivots, d) = rref(&mut a)?;
+    if pivots.len() != m || pivots.iter().enumerate().any(|(i, &c)| c != i) {
+        return None;
+    }
+    let x = a.rows().flat_map(|row| row[m..].iter().cloned()).collect();
+    Some((Matrix::from_vec(m, m, x), d))
 }
 
 #[cfg(test)]
@@ -611,14 +565,18 @@ mod tests {
     fn surd_arithmetic_is_exact() {
         let phi = QuadraticSurd::new(q(1, 2), q(1, 2), 5.into());
         let psi = phi.conjugate();
-        assert_eq!(phi.add(&psi), QuadraticSurd::rational(q(1, 1)));
-        assert_eq!(phi.mul(&psi), QuadraticSurd::rational(q(-1, 1)));
+        assert_eq!(&phi + &psi, QuadraticSurd::rational(q(1, 1)));
+        assert_eq!(&phi * &psi, QuadraticSurd::rational(q(-1, 1)));
         // phi^2 = phi + 1
-        assert_eq!(phi.mul(&phi), phi.add(&QuadraticSurd::field_one()));
-        assert_eq!(phi.div(&phi), QuadraticSurd::field_one());
+        assert_eq!(&phi * &phi, &phi + &QuadraticSurd::one());
+        assert_eq!(&phi / &phi, QuadraticSurd::one());
+        assert_eq!(
+            -(&phi - &psi),
+            QuadraticSurd::new(q(0, 1), q(-1, 1), 5.into())
+        );
         assert_eq!(psi.to_string(), "1/2-1/2*sqrt(5)");
         let i = QuadraticSurd::new(q(0, 1), q(1, 1), (-1).into());
-        assert_eq!(i.mul(&i), QuadraticSurd::rational(q(-1, 1)));
+        assert_eq!(&i * &i, QuadraticSurd::rational(q(-1, 1)));
         assert_eq!(i.to_string(), "sqrt(-1)");
     }
 

@@ -1,39 +1,58 @@
-//! Square integer matrices, the input of every recurrence.
+//! [`Matrix`], the crate's one dense matrix type (its `i64` instance [`IntMatrix`] is the
+//! input of every recurrence), and the bracketed text form `[[1, 1], [0, 4]]`.
 
 use std::fmt;
 
+use num_traits::{CheckedAdd, CheckedMul, One, Zero};
+
 use crate::{Error, Result};
 
-/// A square matrix of `i64` entries, stored row-major.
+/// A dense matrix over any ring, stored row-major: the one matrix type of the crate.
 ///
-/// The invariant is that the matrix is square and non-empty; it is checked by
-/// [`IntMatrix::try_from_rows`], so every `IntMatrix` in existence satisfies it.
+/// Every public constructor builds a square, non-empty matrix ([`Matrix::try_from_rows`]
+/// checks it), and products of square matrices are square, so a `Matrix` from outside the
+/// crate is square; inside it, the fraction-free eliminations multiply rectangular blocks
+/// with the same type.
+///
+/// The arithmetic is written once over `num_traits` bounds: [`checked_mul`](Self::checked_mul),
+/// [`checked_apply`](Self::checked_apply) and [`checked_pow`](Self::checked_pow) need
+/// `Zero + CheckedAdd + CheckedMul` (and `One` for powers), so `i64` and `i128` report
+/// overflow with `None` while `BigInt` and the exact fields never do.
 ///
 /// # Example
 ///
 /// ```
-/// use recurrence::IntMatrix;
+/// use num_bigint::BigInt;
+/// use recurrence::{IntMatrix, Matrix};
 ///
 /// let m = IntMatrix::try_from_rows(vec![vec![1, 1], vec![0, 4]])?;
 /// assert_eq!(m.dim(), 2);
 /// assert_eq!(m.get(0, 1), 1);
 /// assert_eq!(m.to_string(), "[[1, 1], [0, 4]]");
+/// let big: Matrix<BigInt> = m.map(|&x| BigInt::from(x));
+/// let p = big.checked_pow(40).expect("big integers do not overflow");
+/// assert_eq!(p.get(1, 1), BigInt::from(4).pow(40));
+/// assert_eq!(m.checked_pow(40), None); // 4^40 does not fit in i64
 /// # Ok::<(), recurrence::Error>(())
 /// ```
 #[derive(Clone, PartialEq, Eq, Hash)]
-pub struct IntMatrix {
-    dim: usize,
-    entries: Vec<i64>,
+pub struct Matrix<T> {
+    nrows: usize,
+    ncols: usize,
+    entries: Vec<T>,
 }
 
-impl IntMatrix {
-    /// Builds a matrix from its rows.
+/// A square matrix of `i64` entries, the input of every recurrence.
+pub type IntMatrix = Matrix<i64>;
+
+impl<T> Matrix<T> {
+    /// Builds a square matrix from its rows.
     ///
     /// # Errors
     ///
     /// [`Error::EmptyMatrix`] when there are no rows, [`Error::NotSquare`] naming the first
     /// row whose length differs from the number of rows.
-    pub fn try_from_rows(rows: Vec<Vec<i64>>) -> Result<Self> {
+    pub fn try_from_rows(rows: Vec<Vec<T>>) -> Result<Self> {
         let dim = rows.len();
         if dim == 0 {
             return Err(Error::EmptyMatrix);
@@ -49,36 +68,56 @@ impl IntMatrix {
             }
             entries.extend(r);
         }
-        Ok(IntMatrix { dim, entries })
+        Ok(Matrix {
+            nrows: dim,
+            ncols: dim,
+            entries,
+        })
     }
 
-    /// The `dim x dim` identity matrix.
+    /// The `dim x dim` matrix whose entry in row `i`, column `j` is `f(i, j)`.
     ///
     /// # Panics
     ///
     /// Panics if `dim` is zero.
-    pub fn identity(dim: usize) -> Self {
+    pub fn from_fn(dim: usize, mut f: impl FnMut(usize, usize) -> T) -> Self {
         assert!(dim > 0, "a matrix needs at least one row");
-        let mut entries = vec![0; dim * dim];
-        for i in 0..dim {
-            entries[i * dim + i] = 1;
+        let entries = (0..dim * dim).map(|k| f(k / dim, k % dim)).collect();
+        Matrix {
+            nrows: dim,
+            ncols: dim,
+            entries,
         }
-        IntMatrix { dim, entries }
+    }
+
+    /// A `nrows x ncols` block from its row-major entries (inside the crate only).
+    pub(crate) fn from_vec(nrows: usize, ncols: usize, entries: Vec<T>) -> Self {
+        debug_assert_eq!(entries.len(), nrows * ncols, "entries fill the block");
+        Matrix {
+            nrows,
+            ncols,
+            entries,
+        }
     }
 
     /// Number of rows (and columns).
     pub fn dim(&self) -> usize {
-        self.dim
+        self.nrows
     }
 
-    /// The entry in row `i`, column `j`.
+    /// Number of columns (equal to [`dim`](Self::dim) outside the crate).
+    pub(crate) fn ncols(&self) -> usize {
+        self.ncols
+    }
+
+    /// A reference to the entry in row `i`, column `j`.
     ///
     /// # Panics
     ///
-    /// Panics if `i` or `j` is not below [`dim`](Self::dim).
-    pub fn get(&self, i: usize, j: usize) -> i64 {
-        assert!(i < self.dim && j < self.dim, "index out of range");
-        self.entries[i * self.dim + j]
+    /// Panics if `i` or `j` is out of range.
+    pub fn entry(&self, i: usize, j: usize) -> &T {
+        assert!(i < self.nrows && j < self.ncols, "index out of range");
+        &self.entries[i * self.ncols + j]
     }
 
     /// Row `i` as a slice.
@@ -86,41 +125,204 @@ impl IntMatrix {
     /// # Panics
     ///
     /// Panics if `i` is not below [`dim`](Self::dim).
-    pub fn row(&self, i: usize) -> &[i64] {
-        &self.entries[i * self.dim..(i + 1) * self.dim]
+    pub fn row(&self, i: usize) -> &[T] {
+        &self.entries[i * self.ncols..(i + 1) * self.ncols]
     }
 
     /// Iterates over the rows.
-    pub fn rows(&self) -> impl ExactSizeIterator<Item = &[i64]> + '_ {
-        self.entries.chunks_exact(self.dim)
+    pub fn rows(&self) -> impl ExactSizeIterator<Item = &[T]> + '_ {
+        self.entries.chunks_exact(self.ncols)
+    }
+
+    /// The entries, row by row.
+    pub fn entries(&self) -> &[T] {
+        &self.entries
+    }
+
+    /// The entries, row by row, for changes in place.
+    pub(crate) fn entries_mut(&mut self) -> &mut [T] {
+        &mut self.entries
+    }
+
+    /// The matrix with `f` applied to every entry.
+    pub fn map<U>(&self, f: impl FnMut(&T) -> U) -> Matrix<U> {
+        Matrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            entries: self.entries.iter().map(f).collect(),
+        }
+    }
+
+    /// The matrix with `f` applied to every entry, or `None` if `f` fails for one.
+    pub fn try_map<U>(&self, f: impl FnMut(&T) -> Option<U>) -> Option<Matrix<U>> {
+        Some(Matrix {
+            nrows: self.nrows,
+            ncols: self.ncols,
+            entries: self.entries.iter().map(f).collect::<Option<Vec<U>>>()?,
+        })
+    }
+}
+
+impl<T: Clone> Matrix<T> {
+    /// The entry in row `i`, column `j`.
+    ///
+    /// # Panics
+    ///
+    /// Panics if `i` or `j` is not below [`dim`](Self::dim).
+    pub fn get(&self, i: usize, j: usize) -> T {
+        self.entry(i, j).clone()
     }
 
     /// The rows as owned vectors (the inverse of [`try_from_rows`](Self::try_from_rows)).
-    pub fn to_rows(&self) -> Vec<Vec<i64>> {
-        self.rows().map(<[i64]>::to_vec).collect()
+    pub fn to_rows(&self) -> Vec<Vec<T>> {
+        self.rows().map(<[T]>::to_vec).collect()
     }
 
-    /// The product `self * rhs`, or `None` if an entry overflows `i64` or the dimensions differ.
+    /// The transpose.
+    pub(crate) fn transpose(&self) -> Self {
+        let entries = (0..self.nrows * self.ncols)
+            .map(|k| self.entries[(k % self.nrows) * self.ncols + k / self.nrows].clone())
+            .collect();
+        Matrix {
+            nrows: self.ncols,
+            ncols: self.nrows,
+            entries,
+        }
+    }
+}
+
+impl<T: Clone + Zero> Matrix<T> {
+    /// The `nrows x ncols` zero block.
+    pub(crate) fn zeros(nrows: usize, ncols: usize) -> Self {
+        Matrix::from_vec(nrows, ncols, vec![T::zero(); nrows * ncols])
+    }
+
+    /// `c I`, `dim x dim`.
+    pub(crate) fn scalar(dim: usize, c: &T) -> Self {
+        let mut m = Matrix::zeros(dim, dim);
+        for i in 0..dim {
+            m.entries[i * dim + i] = c.clone();
+        }
+        m
+    }
+}
+
+impl<T: Clone + Zero + One> Matrix<T> {
+    /// The `dim x dim` identity matrix.
     ///
-    /// Applying `rhs` first and then `self` is the product `self * rhs`.
-    pub fn checked_mul(&self, rhs: &IntMatrix) -> Option<IntMatrix> {
-        if self.dim != rhs.dim {
+    /// # Panics
+    ///
+    /// Panics if `dim` is zero.
+    pub fn identity(dim: usize) -> Self {
+        assert!(dim > 0, "a matrix needs at least one row");
+        Matrix::scalar(dim, &T::one())
+    }
+}
+
+impl<T: Clone + Zero + CheckedAdd + CheckedMul> Matrix<T> {
+    /// The product `self * rhs`, or `None` if an operation overflows (a partial sum
+    /// included) or the dimensions do not match.
+    ///
+    /// Applying `rhs` first and then `self` is the product `self * rhs`. Zero entries are
+    /// skipped.
+    pub fn checked_mul(&self, rhs: &Matrix<T>) -> Option<Matrix<T>> {
+        if self.ncols != rhs.nrows {
             return None;
         }
-        let n = self.dim;
-        let mut entries = vec![0i64; n * n];
+        let (n, inner, m) = (self.nrows, self.ncols, rhs.ncols);
+        let mut entries = Vec::with_capacity(n * m);
         for i in 0..n {
-            for j in 0..n {
-                let mut acc: i128 = 0;
-                for k in 0..n {
-                    acc += i128::from(self.get(i, k)) * i128::from(rhs.get(k, j));
+            for j in 0..m {
+                let mut acc = T::zero();
+                for k in 0..inner {
+                    let a = &self.entries[i * inner + k];
+                    let b = &rhs.entries[k * m + j];
+                    if a.is_zero() || b.is_zero() {
+                        continue;
+                    }
+                    acc = acc.checked_add(&a.checked_mul(b)?)?;
                 }
-                entries[i * n + j] = i64::try_from(acc).ok()?;
+                entries.push(acc);
             }
         }
-        Some(IntMatrix { dim: n, entries })
+        Some(Matrix::from_vec(n, m, entries))
     }
 
+    /// The vector `self x`, or `None` on overflow or when `x` has the wrong length.
+    pub fn checked_apply(&self, x: &[T]) -> Option<Vec<T>> {
+        if x.len() != self.ncols {
+            return None;
+        }
+        self.rows()
+            .map(|row| {
+                row.iter().zip(x).try_fold(T::zero(), |acc, (a, xk)| {
+                    if a.is_zero() || xk.is_zero() {
+                        Some(acc)
+                    } else {
+                        acc.checked_add(&a.checked_mul(xk)?)
+                    }
+                })
+            })
+            .collect()
+    }
+
+    /// The entrywise sum, or `None` on overflow or when the shapes differ.
+    pub(crate) fn checked_add(&self, rhs: &Matrix<T>) -> Option<Matrix<T>> {
+        if (self.nrows, self.ncols) != (rhs.nrows, rhs.ncols) {
+            return None;
+        }
+        let entries = self
+            .entries
+            .iter()
+            .zip(&rhs.entries)
+            .map(|(a, b)| a.checked_add(b))
+            .collect::<Option<Vec<T>>>()?;
+        Some(Matrix::from_vec(self.nrows, self.ncols, entries))
+    }
+
+    /// `q(self)` for a polynomial with coefficients lowest degree first, by Horner's rule,
+    /// or `None` on overflow.
+    pub(crate) fn checked_eval_poly(&self, coeffs: &[T]) -> Option<Matrix<T>> {
+        let mut acc = Matrix::zeros(self.nrows, self.ncols);
+        for c in coeffs.iter().rev() {
+            acc = acc.checked_mul(self)?.checked_add_scalar(c)?;
+        }
+        Some(acc)
+    }
+
+    /// `self + c I`, or `None` on overflow.
+    pub(crate) fn checked_add_scalar(&self, c: &T) -> Option<Matrix<T>> {
+        let mut out = self.clone();
+        for i in 0..self.nrows.min(self.ncols) {
+            let e = &mut out.entries[i * self.ncols + i];
+            *e = e.checked_add(c)?;
+        }
+        Some(out)
+    }
+}
+
+impl<T: Clone + Zero + One + CheckedAdd + CheckedMul> Matrix<T> {
+    /// `self^s` by squaring, or `None` on overflow (or for a matrix that is not square).
+    pub fn checked_pow(&self, mut s: u64) -> Option<Matrix<T>> {
+        if self.nrows != self.ncols {
+            return None;
+        }
+        let mut result = Matrix::identity(self.nrows);
+        let mut base = self.clone();
+        while s > 0 {
+            if s & 1 == 1 {
+                result = result.checked_mul(&base)?;
+            }
+            s >>= 1;
+            if s > 0 {
+                base = base.checked_mul(&base)?;
+            }
+        }
+        Some(result)
+    }
+}
+
+impl Matrix<i64> {
     /// Parses the bracketed form `[[1, 1], [0, 4]]` (also what [`Display`](fmt::Display) prints).
     ///
     /// # Errors
@@ -139,13 +341,13 @@ impl IntMatrix {
     }
 }
 
-impl fmt::Debug for IntMatrix {
+impl<T: fmt::Display> fmt::Debug for Matrix<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         fmt::Display::fmt(self, f)
     }
 }
 
-impl fmt::Display for IntMatrix {
+impl<T: fmt::Display> fmt::Display for Matrix<T> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("[")?;
         for (i, row) in self.rows().enumerate() {
@@ -344,6 +546,44 @@ mod tests {
         assert_eq!(
             b.checked_mul(&b).unwrap().to_rows(),
             vec![vec![1, 5], vec![0, 16]]
+        );
+    }
+
+    #[test]
+    fn generic_powers_agree_with_repeated_products() {
+        use num_bigint::BigInt;
+
+        let m = IntMatrix::try_from_rows(vec![vec![1, 1, 0], vec![0, 2, 3], vec![-1, 0, 4]])
+            .unwrap()
+            .map(|&x| BigInt::from(x));
+        let mut product = Matrix::<BigInt>::identity(3);
+        for s in 0..40u64 {
+            assert_eq!(m.checked_pow(s).unwrap(), product, "level {s}");
+            product = product.checked_mul(&m).unwrap();
+        }
+        let x = [1, -2, 5].map(BigInt::from);
+        let step = m.checked_apply(&x).unwrap();
+        assert_eq!(step, [-1, 11, 19].map(BigInt::from));
+        assert_eq!(m.checked_apply(&x[..2]), None);
+        // i128 reports overflow where BigInt keeps going.
+        let two = IntMatrix::try_from_rows(vec![vec![2]]).unwrap();
+        let wide = two.map(|&x| i128::from(x));
+        assert_eq!(wide.checked_pow(126).unwrap().get(0, 0), 1i128 << 126);
+        assert_eq!(wide.checked_pow(127), None);
+    }
+
+    #[test]
+    fn rectangular_blocks_multiply_and_transpose() {
+        let a = Matrix::from_vec(2, 3, vec![1i64, 2, 3, 4, 5, 6]);
+        let t = a.transpose();
+        assert_eq!((t.dim(), t.ncols()), (3, 2));
+        assert_eq!(t.entries(), &[1, 4, 2, 5, 3, 6]);
+        let g = a.checked_mul(&t).unwrap();
+        assert_eq!(g.to_rows(), vec![vec![14, 32], vec![32, 77]]);
+        assert_eq!(a.checked_mul(&a), None, "2x3 times 2x3 does not multiply");
+        assert_eq!(
+            Matrix::from_fn(2, |i, j| i64::try_from(10 * i + j).unwrap()).to_rows(),
+            vec![vec![0, 1], vec![10, 11]]
         );
     }
 }

@@ -1,5 +1,7 @@
-//! Polynomials: the public integer [`Polynomial`] (characteristic polynomials) and the
-//! field-generic helpers the eigenvalue search and the spectral decomposition use.
+//! Polynomials, the one module for them: the public integer [`Polynomial`] (characteristic
+//! polynomials), integer square-free factorization with modular gcds, and the two
+//! field-generic helpers the spectral decomposition uses (division by `x - l`, Taylor
+//! coefficients).
 
 use std::fmt;
 
@@ -9,7 +11,7 @@ use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use crate::field::Field;
-use crate::IntMatrix;
+use crate::{IntMatrix, Matrix};
 
 /// A polynomial in `x` with integer coefficients, such as a characteristic polynomial.
 ///
@@ -109,148 +111,33 @@ impl fmt::Display for Polynomial {
 /// integer arithmetic (every division in it is exact).
 pub(crate) fn characteristic_polynomial(m: &IntMatrix) -> Polynomial {
     let n = m.dim();
-    let a: Vec<BigInt> = m.rows().flatten().map(|&x| BigInt::from(x)).collect();
+    let a: Matrix<BigInt> = m.map(|&x| BigInt::from(x));
+    let exact = "big integers do not overflow";
     let mut coeffs = vec![BigInt::zero(); n + 1];
     coeffs[n] = BigInt::one();
     // mk = M_k, starting with M_0 = 0.
-    let mut mk = vec![BigInt::zero(); n * n];
+    let mut mk = Matrix::<BigInt>::zeros(n, n);
     for k in 1..=n {
         // M_k = A M_{k-1} + c_{n-k+1} I
-        let mut next = vec![BigInt::zero(); n * n];
-        for i in 0..n {
-            for j in 0..n {
-                let mut acc = BigInt::zero();
-                for l in 0..n {
-                    if !a[i * n + l].is_zero() && !mk[l * n + j].is_zero() {
-                        acc += &a[i * n + l] * &mk[l * n + j];
-                    }
-                }
-                next[i * n + j] = acc;
-            }
-        }
-        for i in 0..n {
-            next[i * n + i] += &coeffs[n - k + 1];
-        }
+        mk = a
+            .checked_mul(&mk)
+            .and_then(|p| p.checked_add_scalar(&coeffs[n - k + 1]))
+            .expect(exact);
         // c_{n-k} = -tr(A M_k) / k
-        let mut tr = BigInt::zero();
-        for i in 0..n {
-            for l in 0..n {
-                tr += &a[i * n + l] * &next[l * n + i];
-            }
-        }
+        let tr: BigInt = (0..n)
+            .map(|i| {
+                a.row(i)
+                    .iter()
+                    .enumerate()
+                    .map(|(l, x)| x * mk.entry(l, i))
+                    .sum::<BigInt>()
+            })
+            .sum();
         let (q, r) = tr.div_rem(&BigInt::from(k));
         debug_assert!(r.is_zero(), "Faddeev-LeVerrier division is exact");
         coeffs[n - k] = -q;
-        mk = next;
     }
     Polynomial::from_coefficients(coeffs)
-}
-
-#[cfg(test)]
-pub(crate) fn trim<F: Field>(p: &mut Vec<F>) {
-    while p.last().is_some_and(Field::is_field_zero) {
-        p.pop();
-    }
-}
-
-/// Quotient and remainder of `p / q` over an exact field; `q` must be non-zero and trimmed.
-#[cfg(test)]
-pub(crate) fn div_rem<F: Field>(p: &[F], q: &[F]) -> (Vec<F>, Vec<F>) {
-    let mut r: Vec<F> = p.to_vec();
-    trim(&mut r);
-    let dq = q.len() - 1;
-    let lead = &q[dq];
-    if r.len() < q.len() {
-        return (Vec::new(), r);
-    }
-    let mut quot = vec![F::field_zero(); r.len() - dq];
-    while r.len() > dq && !r.is_empty() {
-        let k = r.len() - 1 - dq;
-        let c = r[r.len() - 1].div(lead);
-        for (i, qc) in q.iter().enumerate() {
-            r[k + i] = r[k + i].sub(&c.mul(qc));
-        }
-        quot[k] = c;
-        r.pop();
-        trim(&mut r);
-    }
-    (quot, r)
-}
-
-#[cfg(test)]
-pub(crate) fn derivative<F: Field>(p: &[F]) -> Vec<F> {
-    p.iter()
-        .enumerate()
-        .skip(1)
-        .map(|(k, c)| {
-            let kf = F::from_rational(&BigRational::from_integer(BigInt::from(k)));
-            c.mul(&kf)
-        })
-        .collect()
-}
-
-#[cfg(test)]
-fn monic<F: Field>(p: &[F]) -> Vec<F> {
-    match p.last() {
-        Some(lead) => p.iter().map(|c| c.div(lead)).collect(),
-        None => Vec::new(),
-    }
-}
-
-#[cfg(test)]
-pub(crate) fn gcd<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
-    let mut a = a.to_vec();
-    let mut b = b.to_vec();
-    trim(&mut a);
-    trim(&mut b);
-    while !b.is_empty() {
-        let (_, r) = div_rem(&a, &b);
-        a = b;
-        b = r;
-    }
-    monic(&a)
-}
-
-/// Yun's square-free factorization over `Q` with Euclid's algorithm over the rationals: the
-/// slow reference that [`square_free_factors`] must agree with (tests only).
-///
-/// Yun's square-free factorization over `Q` of a monic polynomial: pairs `(f, m)` of monic,
-/// square-free, pairwise coprime factors of degree at least one, with `p = prod f^m`.
-#[cfg(test)]
-pub(crate) fn square_free_factors_rational(p: &[BigRational]) -> Vec<(Vec<BigRational>, usize)> {
-    let mut out = Vec::new();
-    let dp = derivative(p);
-    let a0 = gcd(p, &dp);
-    let mut b = div_rem(p, &a0).0;
-    let mut c = div_rem(&dp, &a0).0;
-    let mut d = sub(&c, &derivative(&b));
-    let mut i = 1;
-    while b.len() > 1 {
-        let a = gcd(&b, &d);
-        if a.len() > 1 {
-            out.push((a.clone(), i));
-        }
-        b = div_rem(&b, &a).0;
-        c = div_rem(&d, &a).0;
-        d = sub(&c, &derivative(&b));
-        i += 1;
-    }
-    out
-}
-
-#[cfg(test)]
-fn sub<F: Field>(a: &[F], b: &[F]) -> Vec<F> {
-    let n = a.len().max(b.len());
-    let mut out: Vec<F> = (0..n)
-        .map(|i| match (a.get(i), b.get(i)) {
-            (Some(x), Some(y)) => x.sub(y),
-            (Some(x), None) => x.clone(),
-            (None, Some(y)) => y.neg(),
-            (None, None) => F::field_zero(),
-        })
-        .collect();
-    trim(&mut out);
-    out
 }
 
 // Integer polynomials (coefficients lowest degree first) and their gcds by multi-modular
@@ -539,10 +426,10 @@ pub(crate) fn divide_by_root<F: Field>(p: &[F], lambda: &F) -> Vec<F> {
         return Vec::new();
     }
     let n = p.len() - 1;
-    let mut q = vec![F::field_zero(); n];
-    let mut carry = F::field_zero();
+    let mut q = vec![F::zero(); n];
+    let mut carry = F::zero();
     for k in (0..n).rev() {
-        carry = p[k + 1].add(&carry.mul(lambda));
+        carry = p[k + 1].clone() + carry * lambda.clone();
         q[k] = carry.clone();
     }
     q
@@ -553,9 +440,9 @@ pub(crate) fn taylor_coefficients<F: Field>(p: &[F], lambda: &F, count: usize) -
     let mut out = Vec::with_capacity(count);
     let mut cur = p.to_vec();
     for _ in 0..count {
-        let mut value = F::field_zero();
+        let mut value = F::zero();
         for c in cur.iter().rev() {
-            value = value.mul(lambda).add(c);
+            value = value * lambda.clone() + c.clone();
         }
         out.push(value);
         cur = divide_by_root(&cur, lambda);
@@ -605,8 +492,6 @@ mod tests {
         // x^2 (x^2 - x - 1)
         let f = square_free_factors(&ints(&[0, 0, -1, -1, 1]));
         assert_eq!(f, vec![(ints(&[-1, -1, 1]), 1), (ints(&[0, 1]), 2)]);
-        let f = square_free_factors_rational(&int_poly(&[0, 0, -1, -1, 1]));
-        assert_eq!(f, vec![(int_poly(&[-1, -1, 1]), 1), (int_poly(&[0, 1]), 2)]);
     }
 
     /// `prod (x - r)` times `x^2 - x - 1` per `fib`, as integer coefficients.
@@ -630,8 +515,21 @@ mod tests {
         p
     }
 
+    fn product(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+        let mut out = vec![BigInt::zero(); a.len() + b.len() - 1];
+        for (i, x) in a.iter().enumerate() {
+            for (j, y) in b.iter().enumerate() {
+                out[i + j] += x * y;
+            }
+        }
+        out
+    }
+
+    /// The factorization multiplies back to `p`, its factors are square-free and pairwise
+    /// coprime with distinct, increasing multiplicities, and every modular gcd it relies on
+    /// agrees with Euclid's algorithm over `Q`.
     #[test]
-    fn modular_yun_agrees_with_euclid_over_q() {
+    fn modular_yun_factors_multiply_back() {
         let cases: Vec<Vec<BigInt>> = vec![
             from_roots(&[1, 1, 1, 2, 2, 4], 0),
             from_roots(&[0, 0, 0, 0, 3, -3, 3, 1_000_003], 2),
@@ -642,12 +540,27 @@ mod tests {
             ints(&[-1, 0, 0, 0, 0, 1]),
         ];
         for p in cases {
-            let q: Vec<BigRational> = p.iter().cloned().map(BigRational::from_integer).collect();
-            let expected: Vec<(Vec<BigInt>, usize)> = square_free_factors_rational(&q)
-                .into_iter()
-                .map(|(f, m)| (f.iter().map(|c| c.to_integer()).collect(), m))
-                .collect();
-            assert_eq!(square_free_factors(&p), expected, "{p:?}");
+            let dp = derivative_int(&p);
+            assert_eq!(gcd_monic(&p, &dp), gcd_rational_fallback(&p, &dp), "{p:?}");
+            let factors = square_free_factors(&p);
+            let mut back = ints(&[1]);
+            for (f, m) in &factors {
+                for _ in 0..*m {
+                    back = product(&back, f);
+                }
+                assert_eq!(
+                    gcd_monic(f, &derivative_int(f)),
+                    ints(&[1]),
+                    "{f:?} of {p:?}"
+                );
+            }
+            assert_eq!(back, p);
+            for (i, (f, m)) in factors.iter().enumerate() {
+                for (g, k) in &factors[i + 1..] {
+                    assert!(m < k, "{p:?}");
+                    assert_eq!(gcd_monic(f, g), ints(&[1]), "{p:?}");
+                }
+            }
         }
     }
 
@@ -676,8 +589,16 @@ mod tests {
             taylor_coefficients(&p, &BigRational::from_integer(3.into()), 3),
             int_poly(&[9, 6, 1])
         );
-        let (q, r) = div_rem(&int_poly(&[-4, 8, -5, 1]), &int_poly(&[-2, 1]));
-        assert_eq!(q, int_poly(&[2, -3, 1]));
-        assert!(r.is_empty());
+        assert_eq!(
+            divide_by_root(
+                &int_poly(&[-4, 8, -5, 1]),
+                &BigRational::from_integer(2.into())
+            ),
+            int_poly(&[2, -3, 1])
+        );
+        assert_eq!(
+            divide_monic_exact(&ints(&[-4, 8, -5, 1]), &ints(&[-2, 1])),
+            Some(ints(&[2, -3, 1]))
+        );
     }
 }

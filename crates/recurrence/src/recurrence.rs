@@ -2,7 +2,7 @@
 
 use num_bigint::BigInt;
 
-use crate::power::{checked_power_apply, CheckedRing, RingMatrix};
+use crate::power::{checked_power_apply, CheckedRing};
 use crate::{ClosedForm, Eigenvalue, EigenvalueInfo, Error, IntMatrix, Polynomial, Result};
 
 /// A linear recurrence `x_s = M x_(s-1)` over named components.
@@ -123,7 +123,7 @@ impl Recurrence {
     /// [`Error::InitialLength`] for a wrong-length `x0`.
     pub fn states_up_to(&self, x0: &[BigInt], last: u64) -> Result<Vec<Vec<BigInt>>> {
         self.check_len(x0.len())?;
-        let m = RingMatrix::<BigInt>::from_int(&self.matrix).expect("big integers do not overflow");
+        let m = self.matrix.map(|&x| BigInt::from(x));
         let mut out = Vec::with_capacity(usize::try_from(last).unwrap_or(0).saturating_add(1));
         let mut x = x0.to_vec();
         for s in 0..=last {
@@ -137,8 +137,8 @@ impl Recurrence {
 
     /// The matrix `M^s` over any [`CheckedRing`], or `None` on overflow.
     pub fn checked_matrix_power<T: CheckedRing>(&self, s: u64) -> Option<Vec<Vec<T>>> {
-        let p = RingMatrix::<T>::from_int(&self.matrix)?.checked_pow(s)?;
-        Some(p.entries.chunks(p.dim).map(<[T]>::to_vec).collect())
+        let p = self.matrix.try_map(|&x| T::from_entry(x))?.checked_pow(s)?;
+        Some(p.to_rows())
     }
 
     /// The characteristic polynomial `det(x I - M)`, exact (Faddeev-LeVerrier over the

@@ -1,4 +1,5 @@
-//! Rendering closed forms: plain text, LaTeX, Rust source and JSON.
+//! Rendering closed forms: plain text, LaTeX and Rust source (JSON: `json.rs`, behind the
+//! `json` feature).
 //!
 //! Text and LaTeX group each component's terms by initial component, like the paper: the
 //! coefficient of each initial value is a sum of `n * s^p * l^s` over a common denominator,
@@ -10,7 +11,6 @@ use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
-use serde_json::{json, Map, Value};
 
 use crate::closed_form::{ClosedForm, Coefficient, ComponentForm};
 use crate::eigen::Eigenvalue;
@@ -66,67 +66,6 @@ impl ClosedForm {
             .map(|c| component_line(c, self.names(), Style::Latex))
             .collect::<Vec<_>>()
             .join("\n")
-    }
-
-    /// The closed forms as JSON: an array with one object per component,
-    /// `{"component", "valid_from", "exact", "terms", "early_levels"}`. Each term is
-    /// `{"eigenvalue", "s_power", "coefficients": {name: "p/q", ...}}`; the component equals
-    /// the sum over terms of (sum of coefficient * initial value) * s^s_power *
-    /// eigenvalue^s for every `s >= valid_from`. Surds read `a+b*sqrt(d)`.
-    ///
-    /// ```
-    /// # use recurrence::{IntMatrix, Recurrence};
-    /// let r = Recurrence::with_names("[[1, 1], [0, 4]]".parse::<IntMatrix>()?, ["V", "E"])?;
-    /// let json = r.closed_form().to_json();
-    /// assert_eq!(json[0]["terms"][0]["eigenvalue"], "4");
-    /// assert_eq!(json[0]["terms"][0]["coefficients"]["E"], "1/3");
-    /// assert_eq!(json[0]["terms"][1]["coefficients"]["E"], "-1/3");
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    pub fn to_json(&self) -> Value {
-        let names = self.names();
-        Value::Array(
-            self.components()
-                .iter()
-                .map(|c| {
-                    let terms: Vec<Value> = c
-                        .terms
-                        .iter()
-                        .map(|t| {
-                            let coeffs: Map<String, Value> = names
-                                .iter()
-                                .zip(&t.coefficients)
-                                .map(|(n, c)| (n.clone(), Value::String(c.to_string())))
-                                .collect();
-                            json!({
-                                "eigenvalue": t.eigenvalue.to_string(),
-                                "s_power": t.s_power,
-                                "coefficients": coeffs,
-                            })
-                        })
-                        .collect();
-                    let early: Vec<Value> = c
-                        .early_levels
-                        .iter()
-                        .map(|l| {
-                            let coeffs: Map<String, Value> = names
-                                .iter()
-                                .zip(&l.coefficients)
-                                .map(|(n, c)| (n.clone(), Value::String(c.to_string())))
-                                .collect();
-                            json!({"level": l.level, "coefficients": coeffs})
-                        })
-                        .collect();
-                    json!({
-                        "component": c.name,
-                        "valid_from": c.valid_from,
-                        "exact": c.exact,
-                        "terms": terms,
-                        "early_levels": early,
-                    })
-                })
-                .collect(),
-        )
     }
 
     /// A compilable Rust function `fn_name(x0: [i128; n], s: u64) -> Option<[i128; n]>`

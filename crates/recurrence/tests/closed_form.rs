@@ -90,6 +90,31 @@ fn complex_quadratic_eigenvalues_are_exact() {
     assert_form_matches_powering(&r, &big(&[1, 2, 3]), 30);
 }
 
+/// Two real quadratic fields, `Q(sqrt 22)` and `Q(sqrt 29)`, whose terms interleave: the
+/// per-field sums of the evaluation must not mix (found by `closed_form_equals_powering`
+/// with more cases; the assertion that conjugate terms cancel fired in debug builds).
+#[test]
+fn interleaved_quadratic_fields_sum_per_field() {
+    let r = rec("[[-3,-2,2,1],[-1,0,-3,0],[2,-3,0,-3],[3,-4,-3,-2]]", "");
+    let fields: Vec<String> = r
+        .eigenvalues()
+        .iter()
+        .map(|e| e.eigenvalue.to_string())
+        .collect();
+    assert_eq!(
+        fields,
+        [
+            "-2-sqrt(22)",
+            "-1/2-1/2*sqrt(29)",
+            "-2+sqrt(22)",
+            "-1/2+1/2*sqrt(29)"
+        ]
+    );
+    for x0 in [big(&[0, 0, 0, -1]), big(&[1, -2, 3, 5])] {
+        assert_form_matches_powering(&r, &x0, 61);
+    }
+}
+
 #[test]
 fn five_cycle_is_numeric_and_evaluate_refuses() {
     // x^5 - 1 = (x - 1)(x^4 + x^3 + x^2 + x + 1): the quartic is irreducible over Q.
@@ -115,16 +140,20 @@ fn five_cycle_is_numeric_and_evaluate_refuses() {
                 .terms
                 .iter()
                 .map(|t| {
-                    let lam = t.eigenvalue.to_complex();
+                    let z = t.eigenvalue.to_complex();
+                    let lam = nalgebra::Complex::new(z.re, z.im);
                     let coef = t.coefficients.iter().zip(&x0).fold(
                         nalgebra::Complex::new(0.0, 0.0),
                         |acc, (c, x)| {
                             let c = match c {
-                                Coefficient::Numeric(z) => *z,
+                                Coefficient::Numeric(z) => nalgebra::Complex::new(z.re, z.im),
                                 Coefficient::Rational(r) => {
                                     nalgebra::Complex::new(r.to_f64().unwrap(), 0.0)
                                 }
-                                Coefficient::Surd(q) => q.to_f64(),
+                                Coefficient::Surd(q) => {
+                                    let z = q.to_f64();
+                                    nalgebra::Complex::new(z.re, z.im)
+                                }
                             };
                             acc + c * x.to_string().parse::<f64>().unwrap()
                         },

@@ -85,6 +85,7 @@ proptest! {
         prop_assert_eq!(infos.iter().map(|e| e.multiplicity).sum::<usize>(), n);
         for info in infos {
             let z = info.eigenvalue.to_complex();
+            let z = Complex::new(z.re, z.im);
             let tol = (1.0 + z.norm()) * 1e-6f64.powf(1.0 / info.multiplicity as f64);
             for _ in 0..info.multiplicity {
                 let best = (0..n)
