@@ -725,4 +725,156 @@ mod tests {
             "inconsistent mesh counts: E=31 but IE + BE + NME = 30 (IE=30, BE=0, NME=0)"
         );
     }
+
+    /// The rules of [`MeshCounts::from_face_list`] written out the slow, obvious way: maps of
+    /// edges to side counts and a graph search for components.
+    fn naive_counts(faces: &[Vec<u32>], positions: usize) -> MeshCounts {
+        use std::collections::{BTreeSet, HashMap};
+        let used: BTreeSet<u32> = faces.iter().flatten().copied().collect();
+        let mut sides: BTreeMap<(u32, u32), u64> = BTreeMap::new();
+        let mut neighbours: HashMap<u32, Vec<u32>> = HashMap::new();
+        let mut c = MeshCounts::default();
+        for face in faces {
+            c.faces += 1;
+            c.corners += face.len() as u64;
+            *c.faces_by_degree.entry(face.len() as u32).or_insert(0) += 1;
+            for (i, &a) in face.iter().enumerate() {
+                let b = face[(i + 1) % face.len()];
+                neighbours.entry(a).or_default().push(b);
+                neighbours.entry(b).or_default().push(a);
+                if a != b {
+                    *sides.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+                }
+            }
+        }
+        let search = |start: u32, seen: &mut BTreeSet<u32>, graph: &HashMap<u32, Vec<u32>>| {
+            let mut stack = vec![start];
+            while let Some(v) = stack.pop() {
+                if seen.insert(v) {
+                    stack.extend(graph.get(&v).into_iter().flatten());
+                }
+            }
+        };
+        let mut seen = BTreeSet::new();
+        for &v in &used {
+            if !seen.contains(&v) {
+                c.components += 1;
+                search(v, &mut seen, &neighbours);
+            }
+        }
+        let mut boundary: HashMap<u32, Vec<u32>> = HashMap::new();
+        for (&(a, b), &n) in &sides {
+            c.edges += 1;
+            match n {
+                1 => {
+                    c.boundary_edges += 1;
+                    boundary.entry(a).or_default().push(b);
+                    boundary.entry(b).or_default().push(a);
+                }
+                2 => c.interior_edges += 1,
+                _ => c.nonmanifold_edges += 1,
+            }
+        }
+        let mut seen = BTreeSet::new();
+        for &v in boundary.keys() {
+            if !seen.contains(&v) {
+                c.boundary_loops += 1;
+                search(v, &mut seen, &boundary);
+            }
+        }
+        c.vertices = used.len() as u64;
+        c.unreferenced_vertices =
+            (0..positions).filter(|&v| !used.contains(&(v as u32))).count() as u64;
+        c.euler_characteristic = c.vertices as i64 - c.edges as i64 + c.faces as i64;
+        c
+    }
+
+    /// Any face list: degrees 0 to 9, indices from a small range (repeats and shared edges
+    /// are frequent) or, sometimes, far beyond the positions (the sorted-id path).
+    fn face_list() -> impl Strategy<Value = (Vec<Vec<u32>>, usize)> {
+        let index = prop_oneof![8 => 0u32..10, 1 => (u32::MAX - 3)..=u32::MAX];
+        (
+            prop::collection::vec(prop::collection::vec(index, 0..10), 0..12),
+            0usize..14,
+        )
+    }
+
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn from_face_list_follows_the_documented_rules((faces, positions) in face_list()) {
+            let counts = MeshCounts::from_face_list(&faces, positions);
+            prop_assert_eq!(&counts, &naive_counts(&faces, positions));
+            prop_assert!(counts.faces_by_degree.values().sum::<u64>() == counts.faces);
+        }
+
+        #[test]
+        fn first_repeated_vertex_is_the_first_repeating_corner(
+            faces in prop::collection::vec(prop::collection::vec(0u32..40, 0..30), 0..6),
+        ) {
+            let naive = faces.iter().enumerate().find_map(|(f, face)| {
+                (1..face.len())
+                    .find(|&i| face[..i].contains(&face[i]))
+                    .map(|i| (f, face[i]))
+            });
+            prop_assert_eq!(first_repeated_vertex(&faces), naive);
+        }
+
+        #[test]
+        fn from_polygons_counts_valid_faces_like_from_face_list(
+            (faces, _) in face_list(),
+        ) {
+            let valid: Vec<Vec<u32>> = faces
+                .into_iter()
+                .filter(|f| f.len() >= 3 && first_repeated_vertex([f]).is_none())
+                .collect();
+            prop_assert_eq!(
+                MeshCounts::from_polygons(&valid).expect("valid faces"),
+                MeshCounts::from_face_list(&valid, 0)
+            );
+        }
+    }
+
+    #[test]
+    fn repeated_and_unreferenced_vertices_follow_one_rule() {
+        // Quad 0 1 0 2 runs along {0, 1} and {0, 2} twice each: two interior edges, no loop
+        // edge; vertex 3 has a position but no face.
+        let c = MeshCounts::from_face_list([[0u32, 1, 0, 2]], 4);
+        assert_eq!(
+            (c.vertices, c.edges, c.interior_edges, c.boundary_edges),
+            (3, 2, 2, 0)
+        );
+        assert_eq!((c.corners, c.unreferenced_vertices), (4, 1));
+        // A degenerate triangle 0 0 1: one edge used twice, the side 0 -> 0 is no edge.
+        let c = MeshCounts::from_face_list([[0u32, 0, 1]], 2);
+        assert_eq!((c.vertices, c.edges, c.interior_edges, c.corners), (2, 1, 1, 3));
+        // An index without a position is still a vertex; it is not an unreferenced one.
+        let c = MeshCounts::from_face_list([[0u32, 1, 4_000_000_000]], 2);
+        assert_eq!((c.vertices, c.edges, c.unreferenced_vertices), (3, 3, 0));
+        // from_polygons refuses what from_face_list counts.
+        assert_eq!(
+            MeshCounts::from_polygons(&[[0, 1, 0, 2]]).unwrap_err().to_string(),
+            "face 0: repeats vertex 0"
+        );
+    }
+
+    #[test]
+    fn identical_faces_and_one_huge_face_are_counted_quickly() {
+        // Sizes that take minutes in a quadratic pass: 200,000 copies of one triangle, and
+        // one face of 300,001 corners that repeats a vertex at its end.
+        let mut faces: Vec<Vec<u32>> = vec![vec![0, 1, 2]; 200_000];
+        let mut huge: Vec<u32> = (3..300_003).collect();
+        huge.push(150_000);
+        faces.push(huge);
+        let c = MeshCounts::from_face_list(&faces, 300_003);
+        assert_eq!((c.vertices, c.edges, c.nonmanifold_edges), (300_003, 300_004, 3));
+        assert_eq!((c.faces, c.corners, c.components), (200_001, 900_001, 2));
+        assert_eq!(c.boundary_edges, 300_001);
+        assert_eq!(first_repeated_vertex(&faces), Some((200_000, 150_000)));
+        assert_eq!(
+            MeshCounts::from_polygons(&faces).unwrap_err().to_string(),
+            "face 200000: repeats vertex 150000"
+        );
+    }
 }
