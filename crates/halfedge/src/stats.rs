@@ -433,4 +433,54 @@ mod tests {
             assert_eq!(mesh.counts(), face_list_counts(&polygons), "{name}");
         }
     }
+
+    #[test]
+    fn identical_faces_and_one_huge_face_take_no_quadratic_pass() {
+        // Sizes that take minutes in a quadratic pass (pairs of equal faces, corners of one
+        // face compared with each other): 200,000 copies of one triangle, one face of 10^6
+        // corners.
+        let n = 1_000_000u32;
+        let positions: Vec<DVec3> = (0..n + 3)
+            .map(|i| DVec3::new(f64::from(i), 0.0, 0.0))
+            .collect();
+        let mut copies = PolygonMesh::with_positions(positions.clone());
+        for _ in 0..200_000 {
+            copies.push_face(&[0, 1, 2]);
+        }
+        let c = face_list_counts(&copies);
+        assert_eq!((c.vertices, c.edges, c.nonmanifold_edges), (3, 3, 3));
+        assert_eq!((c.faces, c.unreferenced_vertices), (200_000, u64::from(n)));
+        let p = face_list_problems(&copies);
+        assert_eq!((p.duplicate_faces, p.nonmanifold_edges), (199_999, 3));
+        assert_eq!(
+            HalfEdgeMesh::try_from(&copies).unwrap_err().to_string(),
+            "faces 0 and 1 have the same vertices (0, 1, 2)"
+        );
+
+        let mut huge = PolygonMesh::with_positions(positions);
+        huge.push_face_from_iter(3..n + 3);
+        let c = face_list_counts(&huge);
+        assert_eq!(
+            (c.vertices, c.edges, c.boundary_edges),
+            (u64::from(n), u64::from(n), u64::from(n))
+        );
+        assert_eq!(
+            (c.components, c.boundary_loops, c.unreferenced_vertices),
+            (1, 1, 3)
+        );
+        assert!(face_list_problems(&huge).is_empty());
+        let mesh = HalfEdgeMesh::try_from(&huge).expect("a disk");
+        assert_eq!(mesh.counts(), c);
+        let mut repeated = PolygonMesh::with_positions(vec![DVec3::ZERO; n as usize]);
+        repeated.push_face_from_iter((0..n).chain([n / 2]));
+        assert_eq!(
+            schemes::first_repeated_vertex(repeated.faces()),
+            Some((0, n / 2))
+        );
+        assert_eq!(face_list_problems(&repeated).faces_with_repeated_vertex, 1);
+        assert!(matches!(
+            HalfEdgeMesh::try_from(&repeated),
+            Err(crate::Error::RepeatedVertex { face: 0, vertex, .. }) if vertex == n / 2
+        ));
+    }
 }

@@ -783,8 +783,9 @@ mod tests {
             }
         }
         c.vertices = used.len() as u64;
-        c.unreferenced_vertices =
-            (0..positions).filter(|&v| !used.contains(&(v as u32))).count() as u64;
+        c.unreferenced_vertices = (0..positions)
+            .filter(|&v| !used.contains(&(v as u32)))
+            .count() as u64;
         c.euler_characteristic = c.vertices as i64 - c.edges as i64 + c.faces as i64;
         c
     }
@@ -848,13 +849,18 @@ mod tests {
         assert_eq!((c.corners, c.unreferenced_vertices), (4, 1));
         // A degenerate triangle 0 0 1: one edge used twice, the side 0 -> 0 is no edge.
         let c = MeshCounts::from_face_list([[0u32, 0, 1]], 2);
-        assert_eq!((c.vertices, c.edges, c.interior_edges, c.corners), (2, 1, 1, 3));
+        assert_eq!(
+            (c.vertices, c.edges, c.interior_edges, c.corners),
+            (2, 1, 1, 3)
+        );
         // An index without a position is still a vertex; it is not an unreferenced one.
         let c = MeshCounts::from_face_list([[0u32, 1, 4_000_000_000]], 2);
         assert_eq!((c.vertices, c.edges, c.unreferenced_vertices), (3, 3, 0));
         // from_polygons refuses what from_face_list counts.
         assert_eq!(
-            MeshCounts::from_polygons(&[[0, 1, 0, 2]]).unwrap_err().to_string(),
+            MeshCounts::from_polygons(&[[0, 1, 0, 2]])
+                .unwrap_err()
+                .to_string(),
             "face 0: repeats vertex 0"
         );
     }
@@ -868,7 +874,10 @@ mod tests {
         huge.push(150_000);
         faces.push(huge);
         let c = MeshCounts::from_face_list(&faces, 300_003);
-        assert_eq!((c.vertices, c.edges, c.nonmanifold_edges), (300_003, 300_004, 3));
+        assert_eq!(
+            (c.vertices, c.edges, c.nonmanifold_edges),
+            (300_003, 300_004, 3)
+        );
         assert_eq!((c.faces, c.corners, c.components), (200_001, 900_001, 2));
         assert_eq!(c.boundary_edges, 300_001);
         assert_eq!(first_repeated_vertex(&faces), Some((200_000, 150_000)));
