@@ -8,6 +8,7 @@
 //! (a flipped face or a non-orientable surface), non-manifold vertices.
 
 use glam::DVec3;
+use schemes::DisjointSets;
 
 use crate::error::{Error, FaceVertices, Result};
 use crate::mesh::{HalfEdgeMesh, INVALID};
@@ -277,41 +278,7 @@ pub(crate) fn mix(v: u32) -> u64 {
 }
 
 fn check_duplicate_faces<'a>(n_faces: usize, face: &impl Fn(usize) -> &'a [u32]) -> Result<()> {
-    let mut keys: Vec<(u32, u32, u64, u32)> = (0..n_faces)
-        .map(|f| {
-            let vertices = face(f);
-            let min = vertices.iter().copied().min().unwrap_or(0);
-            let hash = vertices
-                .iter()
-                .fold(0u64, |acc, &v| acc.wrapping_add(mix(v)));
-            (min, vertices.len() as u32, hash, f as u32)
-        })
-        .collect();
-    keys.sort_unstable();
-    let mut first: Option<(u32, u32)> = None;
-    let mut i = 0;
-    while i < keys.len() {
-        let group = |k: &(u32, u32, u64, u32)| (k.0, k.1, k.2);
-        let mut j = i + 1;
-        while j < keys.len() && group(&keys[j]) == group(&keys[i]) {
-            j += 1;
-        }
-        for p in i..j {
-            for q in p + 1..j {
-                let (fa, fb) = (keys[p].3, keys[q].3);
-                let mut sa = face(fa as usize).to_vec();
-                let mut sb = face(fb as usize).to_vec();
-                sa.sort_unstable();
-                sb.sort_unstable();
-                if sa == sb {
-                    let candidate = (fa.min(fb), fa.max(fb));
-                    first = Some(first.map_or(candidate, |f| f.min(candidate)));
-                }
-            }
-        }
-        i = j;
-    }
-    match first {
+    match crate::stats::duplicate_faces(n_faces, face).first_pair {
         Some((first, second)) => Err(Error::DuplicateFace {
             first,
             second,
@@ -421,29 +388,21 @@ fn non_manifold_vertex<'a>(
             }
         }
     }
-    let mut parent: Vec<usize> = (0..corners.len()).collect();
-    fn find(parent: &mut [usize], mut x: usize) -> usize {
-        while parent[x] != x {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        x
-    }
+    let mut fans = DisjointSets::new(corners.len());
     // Join corners through shared neighbour vertices (an edge at the vertex).
-    let mut by_neighbour: Vec<(u32, usize)> = Vec::with_capacity(2 * corners.len());
-    for (i, &(p, n)) in corners.iter().enumerate() {
+    let mut by_neighbour: Vec<(u32, u32)> = Vec::with_capacity(2 * corners.len());
+    for (i, &(p, n)) in (0u32..).zip(&corners) {
         by_neighbour.push((p, i));
         by_neighbour.push((n, i));
     }
     by_neighbour.sort_unstable();
     for pair in by_neighbour.windows(2) {
         if pair[0].0 == pair[1].0 {
-            let (a, b) = (find(&mut parent, pair[0].1), find(&mut parent, pair[1].1));
-            parent[a] = b;
+            fans.union(pair[0].1, pair[1].1);
         }
     }
-    let fans = (0..corners.len())
-        .filter(|&i| find(&mut parent, i) == i)
+    let fans = (0..corners.len() as u32)
+        .filter(|&i| fans.find(i) == i)
         .count();
     Error::NonManifoldVertex { vertex, fans }
 }

@@ -9,9 +9,10 @@
 //!   offending face, vertex or edge: [`Error::RepeatedVertex`], [`Error::NonManifoldEdge`],
 //!   [`Error::InconsistentOrientation`], [`Error::NonOrientable`],
 //!   [`Error::NonManifoldVertex`], [`Error::DuplicateFace`], ...
-//! - [`stats`] computes [`schemes::MeshCounts`] (V, E, IE, BE, NME, F, H, faces by degree,
-//!   boundary loops, components, Euler characteristic, genus) of any face list, non-manifold
-//!   ones included, and of a half-edge mesh.
+//! - [`stats`] gives [`schemes::MeshCounts`] (V, E, IE, BE, NME, F, H, faces by degree,
+//!   boundary loops, components, Euler characteristic; and the genus) of any face list,
+//!   non-manifold ones included, and of a half-edge mesh, both through
+//!   [`schemes::MeshCounts::from_face_list`], and counts every defect of a face list.
 //! - [`shapes`] generates base meshes in code (platonic solids, cube, tori of any genus,
 //!   icosahedron with holes, grids, a mixed-polygon disk), also by name (`torus:3`).
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output

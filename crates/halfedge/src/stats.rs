@@ -1,8 +1,9 @@
 //! Mesh statistics ([`schemes::MeshCounts`]) of face lists and half-edge meshes.
 //!
-//! [`face_list_counts`] works on any face list, including the non-manifold meshes that
-//! [`HalfEdgeMesh`] refuses; [`HalfEdgeMesh::counts`] gives the same numbers for a valid mesh
-//! in time linear in its size.
+//! Both [`face_list_counts`] (any face list, including the non-manifold meshes that
+//! [`HalfEdgeMesh`] refuses) and [`HalfEdgeMesh::counts`] (a valid mesh) count through
+//! [`MeshCounts::from_face_list`], the one implementation, which `schemes` owns and documents;
+//! this module adds the defect counts ([`face_list_problems`]) and the genus.
 //!
 //! # Example
 //!
@@ -18,55 +19,17 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use std::collections::BTreeMap;
+use schemes::{DisjointSets, MeshCounts};
 
-use schemes::MeshCounts;
-
-use crate::mesh::{HalfEdgeMesh, INVALID};
+use crate::mesh::{FaceId, HalfEdgeMesh};
 use crate::polygon::PolygonMesh;
 
-/// Union-find over `0..n` with path halving.
-struct DisjointSets {
-    parent: Vec<u32>,
-}
-
-impl DisjointSets {
-    fn new(n: usize) -> Self {
-        DisjointSets {
-            parent: (0..n as u32).collect(),
-        }
-    }
-
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let grand = self.parent[self.parent[x as usize] as usize];
-            self.parent[x as usize] = grand;
-            x = grand;
-        }
-        x
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra != rb {
-            self.parent[ra as usize] = rb;
-        }
-    }
-}
-
-/// The statistics of a raw face list (any faces: non-manifold edges and vertices, repeated
-/// vertices, flipped faces, even indices without a position are counted as they are).
+/// The statistics of a raw face list, counted as it is by [`MeshCounts::from_face_list`]
+/// (the one implementation, whose documentation gives the rules): non-manifold edges and
+/// vertices, repeated vertices, flipped faces, even indices without a position are counted,
+/// never refused; positions no face uses are `unreferenced_vertices`.
 ///
-/// - `V`: distinct vertex indices used by faces; `unreferenced_vertices`: positions no face
-///   uses.
-/// - `E`: distinct unordered pairs `{a, b}` of consecutive corners (the closing pair included)
-///   with `a != b`; `IE`, `BE`, `NME`: edges used by exactly 2, exactly 1, 3 or more face
-///   sides (a face that runs along an edge twice counts twice).
-/// - `F`, `H` (corners), faces by degree; `boundary_loops`: connected components of the graph
-///   of boundary edges; `components`: faces joined through shared vertices;
-///   `euler_characteristic` = `V - E + F`.
-///
-/// Runs in `O(H log H)` (one sort of the corners).
+/// Runs in `O(H log d)` for `H` corners and vertex degrees `d`.
 ///
 /// # Example
 ///
@@ -83,111 +46,7 @@ impl DisjointSets {
 /// assert_eq!((c.components, c.boundary_loops, c.euler_characteristic), (1, 1, 1));
 /// ```
 pub fn face_list_counts(mesh: &PolygonMesh) -> MeshCounts {
-    let indices = mesh.face_indices();
-    let offsets = mesh.face_offsets();
-    let n_faces = mesh.n_faces();
-
-    // Compact vertex ids: a dense array when all indices have a position, else a sorted list.
-    let max_index = indices.iter().copied().max().map_or(0, |m| m as usize + 1);
-    let (compact, n_used): (Vec<u32>, usize) = if max_index <= mesh.positions.len().max(1 << 20) {
-        let mut id = vec![INVALID; max_index];
-        let mut next = 0u32;
-        let compact = indices
-            .iter()
-            .map(|&v| {
-                let slot = &mut id[v as usize];
-                if *slot == INVALID {
-                    *slot = next;
-                    next += 1;
-                }
-                *slot
-            })
-            .collect();
-        (compact, next as usize)
-    } else {
-        let mut sorted = indices.to_vec();
-        sorted.sort_unstable();
-        sorted.dedup();
-        let compact = indices
-            .iter()
-            .map(|v| sorted.partition_point(|x| x < v) as u32)
-            .collect();
-        (compact, sorted.len())
-    };
-    let used_with_position = {
-        let mut seen = vec![false; mesh.positions.len()];
-        let mut count = 0usize;
-        for &v in indices {
-            if let Some(s) = seen.get_mut(v as usize) {
-                if !*s {
-                    *s = true;
-                    count += 1;
-                }
-            }
-        }
-        count
-    };
-
-    // Edges: sort the undirected corner pairs (compact ids).
-    let mut keys: Vec<u64> = Vec::with_capacity(indices.len());
-    let mut faces_by_degree = BTreeMap::new();
-    let mut components = DisjointSets::new(n_used);
-    for f in 0..n_faces {
-        let (start, end) = (offsets[f], offsets[f + 1]);
-        *faces_by_degree.entry((end - start) as u32).or_insert(0u64) += 1;
-        for c in start..end {
-            let a = compact[c];
-            let b = compact[if c + 1 == end { start } else { c + 1 }];
-            components.union(a, b);
-            if a != b {
-                keys.push((u64::from(a.min(b)) << 32) | u64::from(a.max(b)));
-            }
-        }
-    }
-    keys.sort_unstable();
-    let (mut edges, mut interior, mut boundary, mut nonmanifold) = (0u64, 0u64, 0u64, 0u64);
-    let mut loops = DisjointSets::new(n_used);
-    let mut on_boundary = vec![false; n_used];
-    let mut i = 0;
-    while i < keys.len() {
-        let mut j = i + 1;
-        while j < keys.len() && keys[j] == keys[i] {
-            j += 1;
-        }
-        edges += 1;
-        match j - i {
-            1 => {
-                boundary += 1;
-                let (a, b) = ((keys[i] >> 32) as u32, keys[i] as u32);
-                loops.union(a, b);
-                on_boundary[a as usize] = true;
-                on_boundary[b as usize] = true;
-            }
-            2 => interior += 1,
-            _ => nonmanifold += 1,
-        }
-        i = j;
-    }
-    let boundary_loops = (0..n_used as u32)
-        .filter(|&v| on_boundary[v as usize] && loops.find(v) == v)
-        .count() as u64;
-    let n_components = (0..n_used as u32)
-        .filter(|&v| components.find(v) == v)
-        .count() as u64;
-    MeshCounts {
-        vertices: n_used as u64,
-        edges,
-        interior_edges: interior,
-        boundary_edges: boundary,
-        nonmanifold_edges: nonmanifold,
-        faces: n_faces as u64,
-        corners: indices.len() as u64,
-        faces_by_degree,
-        boundary_loops,
-        components: n_components,
-        euler_characteristic: n_used as i64 - edges as i64 + n_faces as i64,
-        unreferenced_vertices: (mesh.positions.len() - used_with_position) as u64,
-    }
+    MeshCounts::from_face_list(mesh.faces(), mesh.n_vertices())
 }
 
 /// The defects of a face list that make [`HalfEdgeMesh`] refuse it (or would, for some of
@@ -262,9 +121,8 @@ pub fn face_list_problems(mesh: &PolygonMesh) -> MeshProblems {
         }
     };
 
-    // Faces with a repeated vertex, and duplicate vertex sets (a set hash, then exact).
+    // Faces with a repeated vertex.
     let mut repeated = 0u64;
-    let mut sets: Vec<(u64, u32)> = Vec::with_capacity(n_faces);
     let mut scratch: Vec<u32> = Vec::new();
     for f in 0..n_faces {
         scratch.clear();
@@ -275,35 +133,8 @@ pub fn face_list_problems(mesh: &PolygonMesh) -> MeshProblems {
         if scratch.len() < len {
             repeated += 1;
         }
-        let hash = scratch.iter().fold(scratch.len() as u64, |h, &v| {
-            h.wrapping_mul(0x100_0000_01b3)
-                .wrapping_add(crate::build::mix(v))
-        });
-        sets.push((hash, f as u32));
     }
-    sets.sort_unstable();
-    let mut duplicates = 0u64;
-    let distinct_set = |f: u32| {
-        let mut s = face(f as usize).to_vec();
-        s.sort_unstable();
-        s.dedup();
-        s
-    };
-    let mut i = 0;
-    while i < sets.len() {
-        let mut j = i + 1;
-        while j < sets.len() && sets[j].0 == sets[i].0 {
-            j += 1;
-        }
-        if j - i > 1 {
-            let mut group: Vec<Vec<u32>> =
-                sets[i..j].iter().map(|&(_, f)| distinct_set(f)).collect();
-            group.sort_unstable();
-            group.dedup();
-            duplicates += (j - i - group.len()) as u64;
-        }
-        i = j;
-    }
+    let duplicates = duplicate_faces(n_faces, &face).count;
 
     // Edges: undirected key with direction bit.
     let mut edges: Vec<(u64, bool)> = Vec::with_capacity(indices.len());
@@ -382,6 +213,81 @@ pub fn face_list_problems(mesh: &PolygonMesh) -> MeshProblems {
     }
 }
 
+/// Faces on the vertex set of an earlier face: how many, and the first such pair.
+pub(crate) struct DuplicateFaces {
+    /// Faces whose set of distinct vertices equals that of an earlier face.
+    pub(crate) count: u64,
+    /// The smallest pair `(first, second)`, `first < second`, of faces on one vertex set.
+    pub(crate) first_pair: Option<(u32, u32)>,
+}
+
+/// Finds the faces on equal vertex sets in `O(H log H)`: faces are sorted by a hash of their
+/// set, and only faces of equal hash are compared, by sorting their sets (so a file of
+/// identical faces costs one sort, not a comparison of every pair).
+pub(crate) fn duplicate_faces<'a>(
+    n_faces: usize,
+    face: &impl Fn(usize) -> &'a [u32],
+) -> DuplicateFaces {
+    let distinct_set = |f: u32| {
+        let mut s = face(f as usize).to_vec();
+        s.sort_unstable();
+        s.dedup();
+        s
+    };
+    let mut sets: Vec<(u64, u32)> = (0..n_faces as u32)
+        .map(|f| {
+            let set = distinct_set(f);
+            let hash = set.iter().fold(set.len() as u64, |h, &v| {
+                h.wrapping_mul(0x100_0000_01b3)
+                    .wrapping_add(crate::build::mix(v))
+            });
+            (hash, f)
+        })
+        .collect();
+    sets.sort_unstable();
+    let mut found = DuplicateFaces {
+        count: 0,
+        first_pair: None,
+    };
+    let mut i = 0;
+    while i < sets.len() {
+        let mut j = i + 1;
+        while j < sets.len() && sets[j].0 == sets[i].0 {
+            j += 1;
+        }
+        if j - i > 1 {
+            // Sorted by set, then by face: each run of one set starts with its two
+            // smallest faces.
+            let mut group: Vec<(Vec<u32>, u32)> = sets[i..j]
+                .iter()
+                .map(|&(_, f)| (distinct_set(f), f))
+                .collect();
+            group.sort_unstable();
+            for pair in group.windows(2) {
+                if pair[0].0 == pair[1].0 {
+                    found.count += 1;
+                }
+            }
+            let mut k = 0;
+            while k + 1 < group.len() {
+                if group[k].0 == group[k + 1].0 {
+                    let candidate = (group[k].1, group[k + 1].1);
+                    found.first_pair =
+                        Some(found.first_pair.map_or(candidate, |p| p.min(candidate)));
+                    let set = &group[k].0;
+                    while k < group.len() && group[k].0 == *set {
+                        k += 1;
+                    }
+                } else {
+                    k += 1;
+                }
+            }
+        }
+        i = j;
+    }
+    found
+}
+
 /// The genus of a manifold, orientable surface with these counts: `(2C - chi - b) / 2` (the
 /// sum over components), with `C` components, `chi` the Euler characteristic over used
 /// vertices and `b` boundary loops.
@@ -409,9 +315,10 @@ pub fn genus(counts: &MeshCounts) -> Option<u64> {
 }
 
 impl HalfEdgeMesh {
-    /// The statistics of this mesh ([`schemes::MeshCounts`]), in linear time. They equal
-    /// [`face_list_counts`] of the face list the mesh was built from (whose unused vertices
-    /// are reported in `unreferenced_vertices`).
+    /// The statistics of this mesh ([`schemes::MeshCounts`]), counted from its faces by
+    /// [`MeshCounts::from_face_list`] like every other face list. They equal
+    /// [`face_list_counts`] of the face list the mesh was built from, whose unused vertices
+    /// the mesh dropped and reports in `unreferenced_vertices`.
     ///
     /// # Example
     ///
@@ -422,48 +329,11 @@ impl HalfEdgeMesh {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn counts(&self) -> MeshCounts {
-        let nv = self.n_vertices();
-        let mut faces_by_degree = BTreeMap::new();
-        for f in self.faces() {
-            *faces_by_degree
-                .entry(self.face_degree(f) as u32)
-                .or_insert(0u64) += 1;
-        }
-        let boundary_halfedges =
-            self.halfedge_face.iter().filter(|&&f| f == INVALID).count() as u64;
-        // Boundary loops: cycles of boundary half-edges.
-        let mut seen = vec![false; self.n_halfedges()];
-        let mut boundary_loops = 0u64;
-        for h in 0..self.n_halfedges() {
-            if self.halfedge_face[h] != INVALID || seen[h] {
-                continue;
-            }
-            boundary_loops += 1;
-            let mut g = h;
-            while !seen[g] {
-                seen[g] = true;
-                g = self.halfedge_next[g] as usize;
-            }
-        }
-        let mut sets = DisjointSets::new(nv);
-        for h in (0..self.n_halfedges()).step_by(2) {
-            sets.union(self.halfedge_vertex[h], self.halfedge_vertex[h + 1]);
-        }
-        let components = (0..nv as u32).filter(|&v| sets.find(v) == v).count() as u64;
-        let (v, e, f) = (nv as u64, self.n_edges() as u64, self.n_faces() as u64);
+        let faces = (0..self.n_faces() as u32).map(|f| self.face_vertices(FaceId(f)).map(|v| v.0));
         MeshCounts {
-            vertices: v,
-            edges: e,
-            interior_edges: e - boundary_halfedges,
-            boundary_edges: boundary_halfedges,
-            nonmanifold_edges: 0,
-            faces: f,
-            corners: self.n_halfedges() as u64 - boundary_halfedges,
-            faces_by_degree,
-            boundary_loops,
-            components,
-            euler_characteristic: v as i64 - e as i64 + f as i64,
+            // The mesh keeps only the vertices its faces use, and how many it dropped.
             unreferenced_vertices: self.unreferenced_vertices,
+            ..MeshCounts::from_face_list(faces, self.n_vertices())
         }
     }
 
@@ -562,5 +432,55 @@ mod tests {
             let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid");
             assert_eq!(mesh.counts(), face_list_counts(&polygons), "{name}");
         }
+    }
+
+    #[test]
+    fn identical_faces_and_one_huge_face_take_no_quadratic_pass() {
+        // Sizes that take minutes in a quadratic pass (pairs of equal faces, corners of one
+        // face compared with each other): 200,000 copies of one triangle, one face of 10^6
+        // corners.
+        let n = 1_000_000u32;
+        let positions: Vec<DVec3> = (0..n + 3)
+            .map(|i| DVec3::new(f64::from(i), 0.0, 0.0))
+            .collect();
+        let mut copies = PolygonMesh::with_positions(positions.clone());
+        for _ in 0..200_000 {
+            copies.push_face(&[0, 1, 2]);
+        }
+        let c = face_list_counts(&copies);
+        assert_eq!((c.vertices, c.edges, c.nonmanifold_edges), (3, 3, 3));
+        assert_eq!((c.faces, c.unreferenced_vertices), (200_000, u64::from(n)));
+        let p = face_list_problems(&copies);
+        assert_eq!((p.duplicate_faces, p.nonmanifold_edges), (199_999, 3));
+        assert_eq!(
+            HalfEdgeMesh::try_from(&copies).unwrap_err().to_string(),
+            "faces 0 and 1 have the same vertices (0, 1, 2)"
+        );
+
+        let mut huge = PolygonMesh::with_positions(positions);
+        huge.push_face_from_iter(3..n + 3);
+        let c = face_list_counts(&huge);
+        assert_eq!(
+            (c.vertices, c.edges, c.boundary_edges),
+            (u64::from(n), u64::from(n), u64::from(n))
+        );
+        assert_eq!(
+            (c.components, c.boundary_loops, c.unreferenced_vertices),
+            (1, 1, 3)
+        );
+        assert!(face_list_problems(&huge).is_empty());
+        let mesh = HalfEdgeMesh::try_from(&huge).expect("a disk");
+        assert_eq!(mesh.counts(), c);
+        let mut repeated = PolygonMesh::with_positions(vec![DVec3::ZERO; n as usize]);
+        repeated.push_face_from_iter((0..n).chain([n / 2]));
+        assert_eq!(
+            schemes::first_repeated_vertex(repeated.faces()),
+            Some((0, n / 2))
+        );
+        assert_eq!(face_list_problems(&repeated).faces_with_repeated_vertex, 1);
+        assert!(matches!(
+            HalfEdgeMesh::try_from(&repeated),
+            Err(crate::Error::RepeatedVertex { face: 0, vertex, .. }) if vertex == n / 2
+        ));
     }
 }

@@ -76,7 +76,7 @@ mod scheme;
 
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};
-pub use crate::counts::{MeshCounts, Stat};
+pub use crate::counts::{first_repeated_vertex, DisjointSets, MeshCounts, Stat};
 pub use crate::error::{Error, Result};
 pub use crate::fit::{
     density, fit, level_for_area, parse_byte_size, Budget, Density, Fit, MemoryBudget,

@@ -86,21 +86,17 @@ pub(crate) fn refuse_degenerate_faces(
     poly: &halfedge::PolygonMesh,
     mesh: &MeshSource,
 ) -> Result<(), Failure> {
-    for (f, face) in poly.faces().enumerate() {
-        for (i, v) in face.iter().enumerate() {
-            if face[..i].contains(v) {
-                let vertices: Vec<String> = face.iter().map(ToString::to_string).collect();
-                let label = mesh_label(mesh);
-                let place = poly
-                    .face_line(f)
-                    .map(|l| format!("line {l}: "))
-                    .unwrap_or_default();
-                return Err(input!(
-                    "{label}: {place}face {f} (vertices {}) repeats vertex {v}",
-                    vertices.join(", ")
-                ));
-            }
-        }
+    if let Some((f, v)) = schemes::first_repeated_vertex(poly.faces()) {
+        let vertices: Vec<String> = poly.face(f).iter().map(ToString::to_string).collect();
+        let label = mesh_label(mesh);
+        let place = poly
+            .face_line(f)
+            .map(|l| format!("line {l}: "))
+            .unwrap_or_default();
+        return Err(input!(
+            "{label}: {place}face {f} (vertices {}) repeats vertex {v}",
+            vertices.join(", ")
+        ));
     }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! Property tests: validation agrees with the defect counts on random face lists, nothing
-//! panics, and every accepted mesh is consistent with its face list.
+//! panics, and every accepted mesh is consistent with its face list (its counts equal the
+//! face list's, and both agree with what the half-edge structure shows directly).
 
 use glam::DVec3;
 use halfedge::{shapes, stats, Error, HalfEdgeMesh, PolygonMesh};
@@ -71,6 +72,59 @@ fn damaged_shape() -> impl Strategy<Value = PolygonMesh> {
         })
 }
 
+/// A named shape with random parameters, possibly subdivided once or twice.
+fn parametrized_shape() -> impl Strategy<Value = PolygonMesh> {
+    let name = prop_oneof![
+        (1u32..4, 1u32..4).prop_map(|(w, h)| format!("grid:{w}x{h}")),
+        (1u32..4, 1u32..4).prop_map(|(w, h)| format!("quad-grid:{w}x{h}")),
+        (1u32..4).prop_map(|g| format!("torus:{g}")),
+        (1u32..5).prop_map(|k| format!("icosahedron-holes:{k}")),
+        prop::sample::select(vec![
+            "tetrahedron",
+            "octahedron",
+            "icosahedron",
+            "cube",
+            "mixed"
+        ])
+        .prop_map(str::to_string),
+    ];
+    let scheme = prop::sample::select(vec!["catmull-clark", "doo-sabin", "mid-edge", "sqrt3"]);
+    (name, scheme, 0u32..3).prop_map(|(name, scheme, levels)| {
+        let base = shapes::from_name(&name).expect("shape");
+        let mesh = HalfEdgeMesh::try_from(&base).expect("valid shape");
+        let opts = halfedge::subdivide::SubdivideOptions::default();
+        halfedge::subdivide::subdivide(&mesh, scheme, levels, &opts)
+            .map_or(base, |m| m.to_polygon_mesh())
+    })
+}
+
+/// The counts of a valid mesh against what its half-edges show without any counting code:
+/// element numbers, boundary half-edges, cycles of boundary half-edges.
+fn check_structure(mesh: &HalfEdgeMesh, counts: &schemes::MeshCounts) -> Result<(), TestCaseError> {
+    let boundary: Vec<_> = mesh.halfedges().filter(|&h| mesh.is_boundary(h)).collect();
+    let mut seen = std::collections::HashSet::new();
+    let mut cycles = 0u64;
+    for &h in &boundary {
+        if seen.contains(&h) {
+            continue;
+        }
+        cycles += 1;
+        let mut g = h;
+        while seen.insert(g) {
+            g = mesh.next(g);
+        }
+    }
+    prop_assert_eq!(counts.vertices, mesh.n_vertices() as u64);
+    prop_assert_eq!(counts.edges, mesh.n_edges() as u64);
+    prop_assert_eq!(counts.faces, mesh.n_faces() as u64);
+    prop_assert_eq!(counts.boundary_edges, boundary.len() as u64);
+    prop_assert_eq!(counts.corners, (mesh.n_halfedges() - boundary.len()) as u64);
+    prop_assert_eq!(counts.boundary_loops, cycles);
+    prop_assert_eq!(counts.nonmanifold_edges, 0);
+    prop_assert_eq!(counts.unreferenced_vertices, mesh.unreferenced_vertices());
+    Ok(())
+}
+
 fn check_agreement(mesh: &PolygonMesh) -> Result<(), TestCaseError> {
     let problems = stats::face_list_problems(mesh);
     let counts = stats::face_list_counts(mesh);
@@ -80,6 +134,7 @@ fn check_agreement(mesh: &PolygonMesh) -> Result<(), TestCaseError> {
             prop_assert!(built.check_invariants().is_ok());
             prop_assert_eq!(built.counts(), counts.clone());
             prop_assert_eq!(stats::genus(&counts), Some(built.genus()));
+            check_structure(&built, &counts)?;
         }
         Err(err) => {
             // The first failing check, in the documented order, is the one reported.
@@ -120,6 +175,34 @@ proptest! {
     #[test]
     fn validation_agrees_with_defect_counts_on_damaged_shapes(mesh in damaged_shape()) {
         check_agreement(&mesh)?;
+    }
+
+    #[test]
+    fn half_edge_counts_equal_face_list_counts_on_shapes(mesh in parametrized_shape()) {
+        let built = HalfEdgeMesh::try_from(&mesh).expect("shapes and their subdivisions are valid");
+        let counts = stats::face_list_counts(&mesh);
+        prop_assert_eq!(built.counts(), counts.clone());
+        check_structure(&built, &counts)?;
+    }
+
+    #[test]
+    fn half_edge_counts_keep_the_unreferenced_vertices(
+        mesh in damaged_shape(),
+        extra in 0usize..4,
+    ) {
+        // Unused positions at the end and (by rewiring) in the middle.
+        let mut positions = mesh.positions.clone();
+        positions.extend(std::iter::repeat(DVec3::ONE).take(extra));
+        let padded = PolygonMesh::from_faces(positions, mesh.faces());
+        let counts = stats::face_list_counts(&padded);
+        prop_assert_eq!(
+            counts.unreferenced_vertices,
+            stats::face_list_counts(&mesh).unreferenced_vertices + extra as u64
+        );
+        if let Ok(built) = HalfEdgeMesh::try_from(&padded) {
+            prop_assert_eq!(built.counts(), counts.clone());
+            check_structure(&built, &counts)?;
+        }
     }
 
     #[test]

@@ -944,3 +944,63 @@ fn verify_refuses_broken_shared_meshes() {
         assert_eq!(s["manifold"], false, "{file}");
     }
 }
+
+/// Issue 11 ("Unbounded work"): `stats` on 200,000 identical triangles and one face of
+/// 100,000 corners. Every pass is linear or `n log n`; a quadratic one (every pair of equal
+/// faces, every pair of corners of the long face) would take many minutes here.
+#[test]
+fn stats_of_identical_faces_and_a_huge_face_is_not_quadratic() {
+    use std::fmt::Write as _;
+    let n = 100_000;
+    let mut text = String::new();
+    for i in 0..n + 3 {
+        writeln!(text, "v {i} {} 0", i % 7).unwrap();
+    }
+    text.push_str(&"f 1 2 3\n".repeat(200_000));
+    let huge: Vec<String> = (4..n + 4).map(|i| i.to_string()).collect();
+    writeln!(text, "f {}", huge.join(" ")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("hostile.obj");
+    std::fs::write(&path, text).unwrap();
+    let path = path.to_str().unwrap();
+    assert_eq!(
+        ok(&["stats", "--mesh", path]),
+        format!(
+            "V = 100003 (vertices used by faces; 0 unreferenced)\n\
+             E = 100003 (IE = 0 interior, BE = 100000 boundary, NME = 3 non-manifold)\n\
+             F = 200001 (200000 of degree 3, 1 of degree 100000)\n\
+             H = 700000 (sum of face degrees)\n\
+             boundary loops = 1\n\
+             components = 2\n\
+             Euler characteristic = 200001\n\
+             not a valid half-edge mesh: {path}: line 100005: faces 0 and 1 have the same vertices (0, 1, 2)\n\
+             applicable schemes: catmull-clark-general\n"
+        )
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", path, "--format", "json"])).unwrap();
+    assert_eq!(v["problems"]["duplicate_faces"], 199_999);
+    assert_eq!(v["faces_by_degree"]["100000"], 1);
+    // The predicting commands check the long face for a repeated vertex first.
+    let disk = dir.path().join("disk.obj");
+    let mut text = String::new();
+    for i in 0..n {
+        writeln!(text, "v {i} {} 0", i % 7).unwrap();
+    }
+    let ring: Vec<String> = (1..=n).map(|i| i.to_string()).collect();
+    writeln!(text, "f {}", ring.join(" ")).unwrap();
+    std::fs::write(&disk, text).unwrap();
+    let table = ok(&[
+        "table",
+        "--mesh",
+        disk.to_str().unwrap(),
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ]);
+    // Catmull-Clark level 1 of an n-gon: n + n + 1 vertices, n quads.
+    let row = table.lines().nth(2).unwrap_or_default();
+    let row: Vec<&str> = row.split_whitespace().collect();
+    assert_eq!(row[..2], ["1", &(2 * n + 1).to_string()], "{table}");
+}
