@@ -7,14 +7,13 @@
 mod args;
 mod commands;
 mod failure;
-mod huge;
+mod guard;
 mod levels;
 mod mesh;
 mod model;
 mod output;
 mod plot;
 mod report;
-mod specialize;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
