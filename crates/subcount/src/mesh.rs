@@ -7,7 +7,7 @@ use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, PolygonMesh};
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
-use schemes::{MeshCounts, Scheme};
+use schemes::{Budget, MeshCounts, Plan, Scheme};
 
 use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
 use serde_json::{json, Value};
@@ -19,6 +19,9 @@ use crate::model::{
     face_place, load_mesh, mesh_label, not_applicable, refuse_degenerate_faces, validate,
 };
 use crate::output::json_text;
+
+/// The most levels `verify` picks by itself from `--max-faces`.
+const MAX_VERIFY_LEVELS: u64 = 64;
 
 fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
     load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
@@ -243,24 +246,19 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
     let scheme = counting_scheme(&args.scheme, &counts)?;
-    scheme
+    let x0 = scheme
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
     let levels = match &args.levels {
         Some(t) => parse_levels_count(t)?,
         None => {
-            // The highest level whose predicted face count stays within the cap.
-            let mut s = 0u32;
-            while s < 64 {
-                let next = scheme
-                    .counts_at(&counts, u64::from(s) + 1)
-                    .map_err(scheme_failure)?;
-                if next.faces > BigInt::from(args.max_faces) {
-                    break;
-                }
-                s += 1;
-            }
-            s
+            // The highest level whose predicted face count stays within the cap (at most 64).
+            let budget = Budget {
+                max_faces: Some(BigInt::from(args.max_faces)),
+                ..Budget::default()
+            };
+            let fit = schemes::fit(&Plan::single(scheme.clone()), &x0, &budget)?;
+            fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
         }
     };
     guard_memory(&scheme, &counts, levels, None, args.allow_large)?;

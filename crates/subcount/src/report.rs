@@ -63,10 +63,8 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let x0 = input.initial_state(&counter)?;
     let fit = schemes::fit(&plan, &x0, &budget)?;
     let columns = counter.columns();
-    let (counts, note) = match &fit {
-        Fit::Level(counts) => (counts, None),
-        Fit::Unbounded { counts } => (counts, Some(unbounded_note(counts.level))),
-    };
+    let counts = fit.counts()?;
+    let note = matches!(fit, Fit::Unbounded { .. }).then(|| unbounded_note(counts.level));
     let row = counter.row_from_state(counts.level, counts.state.clone())?;
     let mut buf = Vec::new();
     match (note, args.format) {
