@@ -20,8 +20,6 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-use crate::failure::{Failure, Kind};
-
 fn main() -> ExitCode {
     let cli = match args::Cli::try_parse() {
         Ok(cli) => cli,
@@ -30,12 +28,7 @@ fn main() -> ExitCode {
     let stdout = io::stdout();
     let mut out = io::BufWriter::new(stdout.lock());
     let result = commands::run(cli.command, &mut out).and_then(|code| {
-        out.flush().map_err(|e| {
-            Failure::new(
-                Kind::Input,
-                anyhow::Error::new(e).context("cannot write the output"),
-            )
-        })?;
+        out.flush().map_err(failure::write_failure)?;
         Ok(code)
     });
     match result {
