@@ -193,16 +193,15 @@ fn candidate_schemes(options: &Options) -> Vec<Scheme> {
 /// The highest level whose predicted face count stays within the cap (0 when level 1 does
 /// not fit).
 fn levels_within(scheme: &Scheme, counts: &MeshCounts, max_faces: u64) -> anyhow::Result<u32> {
-    let cap = BigInt::from(max_faces);
-    let mut levels = 0;
-    while levels < MAX_LEVELS {
-        let next = scheme.counts_at(counts, u64::from(levels) + 1)?;
-        if next.faces > cap {
-            break;
-        }
-        levels += 1;
-    }
-    Ok(levels)
+    let budget = schemes::Budget {
+        max_faces: Some(BigInt::from(max_faces)),
+        ..schemes::Budget::default()
+    };
+    let x0 = scheme.initial_state(counts)?;
+    let fit = schemes::fit(&schemes::Plan::single(scheme.clone()), &x0, &budget)?;
+    Ok(fit
+        .highest_level(u64::from(MAX_LEVELS))
+        .map_or(0, |l| l as u32))
 }
 
 fn verify_file(path: &Path, broken: bool, options: &Options) -> Vec<Row> {

@@ -116,12 +116,12 @@ pub enum Error {
         known: String,
     },
     /// An `--init` vector could not be parsed.
-    #[error("initial state `{text}`: {reason}")]
+    #[error("initial state `{text}`: `{item}` is not an integer")]
     InitSyntax {
         /// The whole text.
         text: String,
-        /// What is wrong.
-        reason: String,
+        /// The first value that is not an integer (trimmed; empty for an empty value).
+        item: String,
     },
     /// An initial state has the wrong number of values.
     #[error("{scheme} has {expected} state components ({names}), but {got} values were given")]

@@ -97,6 +97,55 @@ pub enum Fit {
         /// The counts at the least level from which the limited counts never change.
         counts: LevelCounts,
     },
+    /// Level 0 already exceeds a limit: no level fits.
+    NoneFits {
+        /// The counts at level 0.
+        counts: LevelCounts,
+        /// Each exceeded limit, `V = 42 > 40, F = 80 > 50`.
+        detail: String,
+    },
+}
+
+impl Fit {
+    /// The highest level that fits, at most `cap`: `cap` when every level fits, `None` when
+    /// none does. The one answer to "how many levels can I afford" for callers that stop at
+    /// a cap (`subcount verify` without `--levels`, `cargo xtask verify`).
+    ///
+    /// ```
+    /// use num_bigint::BigInt;
+    /// use schemes::{fit, Budget, CountsInput, Plan};
+    ///
+    /// let plan = Plan::parse("loop")?;
+    /// let x0 = plan.state_from_input(&"V=12,E=30,F=20".parse::<CountsInput>()?)?;
+    /// let faces = |n: u64| Budget { max_faces: Some(BigInt::from(n)), ..Budget::default() };
+    /// // 20, 80, 320, 1280, 5120 faces.
+    /// assert_eq!(fit(&plan, &x0, &faces(5119))?.highest_level(64), Some(3));
+    /// assert_eq!(fit(&plan, &x0, &faces(5119))?.highest_level(2), Some(2));
+    /// assert_eq!(fit(&plan, &x0, &faces(19))?.highest_level(64), None);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn highest_level(&self, cap: u64) -> Option<u64> {
+        match self {
+            Fit::Level(c) => Some(c.level.min(cap)),
+            Fit::Unbounded { .. } => Some(cap),
+            Fit::NoneFits { .. } => None,
+        }
+    }
+
+    /// The answer as a level's counts, with "no level fits" as [`Error::NothingFits`] (the
+    /// counts of [`Fit::Unbounded`] are those from which nothing changes).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NothingFits`] for [`Fit::NoneFits`].
+    pub fn counts(&self) -> Result<&LevelCounts> {
+        match self {
+            Fit::Level(counts) | Fit::Unbounded { counts } => Ok(counts),
+            Fit::NoneFits { detail, .. } => Err(Error::NothingFits {
+                detail: detail.clone(),
+            }),
+        }
+    }
 }
 
 /// The largest state (in total bits) a search computes: 2^26 bits, 8 MiB.
@@ -319,12 +368,13 @@ impl Probe<'_> {
     }
 }
 
-/// The highest level whose counts stay within every limit of `budget`.
+/// The highest level whose counts stay within every limit of `budget`: the one budget
+/// search of the workspace (`subcount fit`, `subcount verify` and `cargo xtask verify` use
+/// it, through [`Fit::highest_level`] for the latter two).
 ///
 /// # Errors
 ///
-/// [`Error::NoLimit`] when `budget` sets nothing, [`Error::NothingFits`] when level 0 already
-/// exceeds a limit, [`Error::NotMonotone`] when a limited quantity decreases from level 1 on
+/// [`Error::NoLimit`] when `budget` sets nothing, [`Error::NotMonotone`] when a limited quantity decreases from level 1 on
 /// (see the module documentation), and the errors of [`Plan::state_at`] and [`Plan::vef`].
 ///
 /// ```
@@ -362,7 +412,8 @@ pub fn fit(plan: &Plan, x0: &[BigInt], budget: &Budget) -> Result<Fit> {
                 .filter(|q| q.value(&vef) > q.bound)
                 .map(|q| format!("{} = {} > {}", q.name, q.value(&vef), q.bound))
                 .collect();
-            Err(Error::NothingFits {
+            Ok(Fit::NoneFits {
+                counts: c,
                 detail: detail.join(", "),
             })
         }

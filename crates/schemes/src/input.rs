@@ -169,45 +169,35 @@ impl fmt::Display for CountsInput {
     }
 }
 
-/// Parses a plain initial state in state order: `12,30`, `12 30` or `[12, 30]`.
+/// Parses a plain initial state in state order: integers separated by commas, `12,30`
+/// (spaces around each value are ignored). This is the grammar of `subcount --init`.
 ///
 /// Values may be negative (a custom recurrence need not count anything).
 ///
 /// # Errors
 ///
-/// [`Error::InitSyntax`] naming the first value that is not an integer, or an empty list.
+/// [`Error::InitSyntax`] naming the first value that is not an integer (an empty value
+/// included, so `12,,30` and the empty text are refused).
 ///
 /// ```
 /// use num_bigint::BigInt;
-/// assert_eq!(schemes::parse_init("[12, 30]")?, vec![BigInt::from(12), BigInt::from(30)]);
-/// assert!(schemes::parse_init("12,x").is_err());
+/// assert_eq!(schemes::parse_init("12, -30")?, vec![BigInt::from(12), BigInt::from(-30)]);
+/// assert_eq!(
+///     schemes::parse_init("12,x").unwrap_err().to_string(),
+///     "initial state `12,x`: `x` is not an integer"
+/// );
 /// # Ok::<(), schemes::Error>(())
 /// ```
 pub fn parse_init(text: &str) -> Result<Vec<BigInt>> {
-    let inner = text.trim();
-    let inner = inner
-        .strip_prefix('[')
-        .and_then(|t| t.strip_suffix(']'))
-        .unwrap_or(inner);
-    let mut out = Vec::new();
-    for (i, item) in inner
-        .split(|c: char| c == ',' || c.is_whitespace())
-        .filter(|s| !s.is_empty())
-        .enumerate()
-    {
-        let v: BigInt = item.parse().map_err(|_| Error::InitSyntax {
-            text: text.to_string(),
-            reason: format!("value {} `{item}` is not an integer", i + 1),
-        })?;
-        out.push(v);
-    }
-    if out.is_empty() {
-        return Err(Error::InitSyntax {
-            text: text.to_string(),
-            reason: "no values given".into(),
-        });
-    }
-    Ok(out)
+    text.split(',')
+        .map(|item| {
+            let item = item.trim();
+            item.parse::<BigInt>().map_err(|_| Error::InitSyntax {
+                text: text.to_string(),
+                item: item.to_string(),
+            })
+        })
+        .collect()
 }
 
 pub(crate) fn is_identifier(name: &str) -> bool {

@@ -9,7 +9,10 @@
 //! - Built-ins: [`builtin`] by name, [`builtins`] for the list; each is derived in the
 //!   documentation of its constructor in [`catalog`].
 //! - Custom schemes from TOML text: [`Scheme::from_toml`]; export with [`Scheme::to_toml`].
-//! - Composition `A:k,B` and uniform counting: [`Plan`].
+//! - Composition `A:k,B`: [`Plan`].
+//! - Counting a plan or a bare matrix (powering or closed form, table columns and rows, size
+//!   estimates, digit summaries of huge levels, closed forms with a state substituted):
+//!   [`Counter`].
 //! - Budgets and the paper's eq. (1): [`fit`], [`parse_byte_size`], [`density`].
 //!
 //! # Built-in schemes
@@ -66,6 +69,7 @@
 
 pub mod catalog;
 mod class;
+mod counter;
 mod counts;
 pub mod custom;
 mod error;
@@ -76,6 +80,9 @@ mod scheme;
 
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};
+pub use crate::counter::{
+    log10_abs, specialized_lines, Counter, Row, CLOSED_FORM_LIMIT, SUMMARY_DIGITS,
+};
 pub use crate::counts::{first_repeated_vertex, DisjointSets, MeshCounts, Stat};
 pub use crate::error::{Error, Result};
 pub use crate::fit::{

@@ -464,29 +464,6 @@ impl Plan {
         })
     }
 
-    /// The columns of a counts table at `level` (see [`Scheme::column_names`]); they change
-    /// at stage boundaries when the stages have different states.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::LevelBeyondPlan`].
-    pub fn column_names_at(&self, level: u64) -> Result<Vec<String>> {
-        Ok(self.scheme_at(level)?.column_names())
-    }
-
-    /// The values of [`column_names_at(counts.level)`](Self::column_names_at).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::LevelBeyondPlan`].
-    ///
-    /// # Panics
-    ///
-    /// Panics if `counts` did not come from this plan (a state of the wrong length).
-    pub fn table_row(&self, counts: &LevelCounts) -> Result<Vec<BigInt>> {
-        Ok(self.scheme_at(counts.level)?.table_row(counts))
-    }
-
     /// The counts of `mesh` at `level`.
     ///
     /// # Errors

@@ -723,41 +723,6 @@ impl Scheme {
         Ok(out)
     }
 
-    /// The columns of a counts table: the state names in order, then those of `V`, `E`, `F`
-    /// that the state lacks (all three are always present for a scheme that counts them).
-    ///
-    /// ```
-    /// assert_eq!(schemes::builtin("loop-boundary")?.column_names(), ["V", "IE", "BE", "E", "F"]);
-    /// # Ok::<(), schemes::Error>(())
-    /// ```
-    pub fn column_names(&self) -> Vec<String> {
-        let mut out = self.names.clone();
-        for (name, src) in ["V", "E", "F"].into_iter().zip(&self.vef) {
-            if matches!(src, Source::Derived(_)) {
-                out.push(name.to_string());
-            }
-        }
-        out
-    }
-
-    /// The values of [`column_names`](Self::column_names) for one level's counts (the state,
-    /// then the derived V, E, F).
-    ///
-    /// # Panics
-    ///
-    /// Panics if `counts.state` is not a state of this scheme (wrong length).
-    pub fn table_row(&self, counts: &LevelCounts) -> Vec<BigInt> {
-        assert_eq!(counts.state.len(), self.dim(), "a state of another scheme");
-        let mut out = counts.state.clone();
-        let vef = [&counts.vertices, &counts.edges, &counts.faces];
-        for (v, src) in vef.into_iter().zip(&self.vef) {
-            if matches!(src, Source::Derived(_)) {
-                out.push(v.clone());
-            }
-        }
-        out
-    }
-
     /// Derived V, E, F must be integers for an initial state that describes a mesh.
     fn check_derived(&self, state: &[BigInt]) -> Result {
         if self.vef.iter().any(|s| matches!(s, Source::Derived(_))) && self.has_mesh_counts() {

@@ -65,3 +65,34 @@ macro_rules! input {
 }
 
 pub(crate) use {input, usage};
+
+/// A failure to write the output (exit 3).
+pub(crate) fn write_failure(e: std::io::Error) -> Failure {
+    Failure::new(
+        Kind::Input,
+        anyhow::Error::new(e).context("cannot write the output"),
+    )
+}
+
+/// Maps a `schemes` error to an exit code: problems with the typed command line are usage
+/// errors (2); a scheme that does not apply or a bad scheme file is exit 3; a search that
+/// grew too large is exit 4.
+pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
+    use schemes::Error as E;
+    let kind = match &e {
+        E::NotApplicable { .. }
+        | E::SchemeFile { .. }
+        | E::NoMeshCounts { .. }
+        | E::BadFace { .. }
+        | E::NothingFits { .. } => Kind::Input,
+        E::SearchTooLarge { .. } => Kind::Guard,
+        _ => Kind::Usage,
+    };
+    Failure::new(kind, e)
+}
+
+impl From<schemes::Error> for Failure {
+    fn from(e: schemes::Error) -> Failure {
+        scheme_failure(e)
+    }
+}

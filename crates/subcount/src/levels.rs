@@ -1,14 +1,52 @@
-//! Parsing of `--levels`: `N` (meaning `0..=N`), `A..=B` or `A..B`.
+//! Parsing of levels: `--level N`, a range `--levels N` (meaning `0..=N`), `A..=B` or `A..B`,
+//! and a number of levels (`subdivide --levels N`). Every message names the flag.
 
 use std::ops::RangeInclusive;
+
+use crate::failure::{usage, Failure};
+
+/// A whole number in `T`, trimmed; `Err(true)` when it is negative, `Err(false)` otherwise.
+/// Every level parser reads its numbers here and words the error for its flag.
+fn whole<T: std::str::FromStr>(text: &str) -> Result<T, bool> {
+    text.trim()
+        .parse()
+        .map_err(|_| text.trim().starts_with('-'))
+}
+
+/// Parses `--level`: a whole number from 0 to `u64::MAX`.
+pub(crate) fn parse_level(text: &str) -> Result<u64, Failure> {
+    let t = text.trim();
+    whole(t).map_err(|negative| {
+        if negative {
+            usage!("invalid --level: `{t}` is negative; levels start at 0")
+        } else {
+            usage!(
+                "invalid --level: `{t}` is not a whole number from 0 to {}",
+                u64::MAX
+            )
+        }
+    })
+}
+
+/// Parses the number of levels of `subdivide` and `verify` (`--levels`).
+pub(crate) fn parse_levels_count(text: &str) -> Result<u32, Failure> {
+    let t = text.trim();
+    whole(t).map_err(|negative| {
+        if negative {
+            usage!("invalid --levels: `{t}` is negative")
+        } else {
+            usage!("invalid --levels: `{t}` is not a whole number of levels")
+        }
+    })
+}
 
 /// Parses a level range. The result is never empty.
 pub(crate) fn parse_levels(text: &str) -> Result<RangeInclusive<u64>, String> {
     let text = text.trim();
     let number = |t: &str| -> Result<u64, String> {
         let t = t.trim();
-        t.parse::<u64>().map_err(|_| {
-            if t.starts_with('-') {
+        whole(t).map_err(|negative| {
+            if negative {
                 format!("level `{t}` is negative; levels start at 0")
             } else {
                 format!(

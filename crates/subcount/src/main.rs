@@ -7,21 +7,18 @@
 mod args;
 mod commands;
 mod failure;
-mod huge;
+mod guard;
 mod levels;
 mod mesh;
 mod model;
 mod output;
 mod plot;
 mod report;
-mod specialize;
 
 use std::io::{self, Write};
 use std::process::ExitCode;
 
 use clap::Parser;
-
-use crate::failure::{Failure, Kind};
 
 fn main() -> ExitCode {
     let cli = match args::Cli::try_parse() {
@@ -31,12 +28,7 @@ fn main() -> ExitCode {
     let stdout = io::stdout();
     let mut out = io::BufWriter::new(stdout.lock());
     let result = commands::run(cli.command, &mut out).and_then(|code| {
-        out.flush().map_err(|e| {
-            Failure::new(
-                Kind::Input,
-                anyhow::Error::new(e).context("cannot write the output"),
-            )
-        })?;
+        out.flush().map_err(failure::write_failure)?;
         Ok(code)
     });
     match result {

@@ -7,13 +7,21 @@ use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, PolygonMesh};
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
-use schemes::{MeshCounts, Scheme};
+use schemes::{Budget, MeshCounts, Plan, Scheme};
 
 use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
-use crate::commands::{human_bytes, write_failure};
-use crate::failure::{usage, Failure, Kind};
-use crate::model::{load_mesh, not_applicable, refuse_degenerate_faces, scheme_failure, validate};
-use crate::output::json_string;
+use serde_json::{json, Value};
+
+use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
+use crate::guard::human_bytes;
+use crate::levels::parse_levels_count;
+use crate::model::{
+    face_place, load_mesh, mesh_label, not_applicable, refuse_degenerate_faces, validate,
+};
+use crate::output::json_text;
+
+/// The most levels `verify` picks by itself from `--max-faces`.
+const MAX_VERIFY_LEVELS: u64 = 64;
 
 fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
     load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
@@ -38,11 +46,7 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
 /// refusal) names the mesh file and the face's line.
 fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) -> Failure {
     if let Some(f) = e.face() {
-        let label = crate::model::mesh_label(mesh);
-        let place = poly
-            .face_line(f as usize)
-            .map(|l| format!("line {l}: "))
-            .unwrap_or_default();
+        let (label, place) = (mesh_label(mesh), face_place(poly, f as usize));
         return Failure::new(Kind::Input, anyhow::anyhow!("{label}: {place}{e}"));
     }
     halfedge_failure(e)
@@ -78,35 +82,35 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let c = &counts;
     let text = match args.format {
         ReportFormat::Json => {
-            let degrees: Vec<String> = c
+            let degrees: serde_json::Map<String, Value> = c
                 .faces_by_degree
                 .iter()
-                .map(|(d, n)| format!("\"{d}\": {n}"))
+                .map(|(d, n)| (d.to_string(), Value::from(*n)))
                 .collect();
-            let schemes: Vec<String> = applicable.iter().map(|s| json_string(s)).collect();
-            format!(
-                "{{\"V\": {}, \"E\": {}, \"IE\": {}, \"BE\": {}, \"NME\": {}, \"F\": {}, \"H\": {}, \"faces_by_degree\": {{{}}}, \"boundary_loops\": {}, \"components\": {}, \"euler_characteristic\": {}, \"genus\": {}, \"unreferenced_vertices\": {}, \"manifold\": {}, \"problems\": {{\"faces_with_repeated_vertex\": {}, \"duplicate_faces\": {}, \"nonmanifold_edges\": {}, \"nonmanifold_vertices\": {}, \"inconsistently_oriented_edges\": {}}}, \"applicable_schemes\": [{}]}}",
-                c.vertices,
-                c.edges,
-                c.interior_edges,
-                c.boundary_edges,
-                c.nonmanifold_edges,
-                c.faces,
-                c.corners,
-                degrees.join(", "),
-                c.boundary_loops,
-                c.components,
-                c.euler_characteristic,
-                genus.map_or_else(|| "null".to_string(), |g| g.to_string()),
-                c.unreferenced_vertices,
-                validation.is_none(),
-                problems.faces_with_repeated_vertex,
-                problems.duplicate_faces,
-                problems.nonmanifold_edges,
-                problems.nonmanifold_vertices,
-                problems.inconsistently_oriented_edges,
-                schemes.join(", ")
-            )
+            json_text(&json!({
+                "V": c.vertices,
+                "E": c.edges,
+                "IE": c.interior_edges,
+                "BE": c.boundary_edges,
+                "NME": c.nonmanifold_edges,
+                "F": c.faces,
+                "H": c.corners,
+                "faces_by_degree": degrees,
+                "boundary_loops": c.boundary_loops,
+                "components": c.components,
+                "euler_characteristic": c.euler_characteristic,
+                "genus": genus,
+                "unreferenced_vertices": c.unreferenced_vertices,
+                "manifold": validation.is_none(),
+                "problems": {
+                    "faces_with_repeated_vertex": problems.faces_with_repeated_vertex,
+                    "duplicate_faces": problems.duplicate_faces,
+                    "nonmanifold_edges": problems.nonmanifold_edges,
+                    "nonmanifold_vertices": problems.nonmanifold_vertices,
+                    "inconsistently_oriented_edges": problems.inconsistently_oriented_edges,
+                },
+                "applicable_schemes": applicable,
+            }))
         }
         ReportFormat::Text => {
             let degrees: Vec<String> = c
@@ -156,17 +160,6 @@ fn counting_scheme(name: &str, counts: &MeshCounts) -> Result<Scheme, Failure> {
 /// Whether to run on the raw face list (the schemes that allow non-manifold input).
 fn on_face_list(scheme: &Scheme) -> bool {
     !scheme.mesh_class().needs_manifold() && sub::supports_polygons(scheme.name())
-}
-
-fn parse_levels_count(text: &str) -> Result<u32, Failure> {
-    let t = text.trim();
-    t.parse::<u32>().map_err(|_| {
-        if t.starts_with('-') {
-            usage!("invalid --levels: `{t}` is negative")
-        } else {
-            usage!("invalid --levels: `{t}` is not a whole number of levels")
-        }
-    })
 }
 
 /// Bytes available to this process: half of MemAvailable from /proc/meminfo (or 4 GiB when
@@ -253,24 +246,19 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
     let scheme = counting_scheme(&args.scheme, &counts)?;
-    scheme
+    let x0 = scheme
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
     let levels = match &args.levels {
         Some(t) => parse_levels_count(t)?,
         None => {
-            // The highest level whose predicted face count stays within the cap.
-            let mut s = 0u32;
-            while s < 64 {
-                let next = scheme
-                    .counts_at(&counts, u64::from(s) + 1)
-                    .map_err(scheme_failure)?;
-                if next.faces > BigInt::from(args.max_faces) {
-                    break;
-                }
-                s += 1;
-            }
-            s
+            // The highest level whose predicted face count stays within the cap (at most 64).
+            let budget = Budget {
+                max_faces: Some(BigInt::from(args.max_faces)),
+                ..Budget::default()
+            };
+            let fit = schemes::fit(&Plan::single(scheme.clone()), &x0, &budget)?;
+            fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
         }
     };
     guard_memory(&scheme, &counts, levels, None, args.allow_large)?;
@@ -285,23 +273,26 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
+            // Counts of a mesh in memory fit in u64; a larger one would be written as a string.
+            let object = |pairs: &[(String, BigInt)]| -> Value {
+                pairs
+                    .iter()
+                    .map(|(k, v)| {
+                        let v = v.to_u64().map_or_else(|| v.to_string().into(), Value::from);
+                        (k.clone(), v)
+                    })
+                    .collect::<serde_json::Map<_, _>>()
+                    .into()
+            };
             let rows: Vec<String> = reports
                 .iter()
                 .map(|r| {
-                    let obj = |pairs: &[(String, BigInt)]| {
-                        let items: Vec<String> = pairs
-                            .iter()
-                            .map(|(k, v)| format!("{}: {v}", json_string(k)))
-                            .collect();
-                        format!("{{{}}}", items.join(", "))
-                    };
-                    format!(
-                        "{{\"level\": {}, \"match\": {}, \"predicted\": {}, \"measured\": {}}}",
-                        r.level,
-                        r.is_match(),
-                        obj(&r.predicted),
-                        obj(&r.measured)
-                    )
+                    json_text(&json!({
+                        "level": r.level,
+                        "match": r.is_match(),
+                        "predicted": object(&r.predicted),
+                        "measured": object(&r.measured),
+                    }))
                 })
                 .collect();
             format!("[\n{}\n]", rows.join(",\n"))

@@ -1,24 +1,92 @@
 //! Rendering of count tables and single-level results as text, JSON and CSV.
 //!
-//! Counts are written by hand as decimal JSON integers of any size: no quotes, floats or
-//! exponents, so `{"level": 0, "V": 12}` stays exact for a program that reads big integers.
-//! Their digits come from [`decimal::Decimal`], which streams a 600,000-digit count in a
-//! fraction of the time num-bigint's quadratic `to_string` takes (same text).
+//! JSON is one line per object, `{"level": 0, "V": 12}` (a space after `:` and `,`): serde
+//! values through [`Spaced`], and counts as decimal JSON integers of any size ([`Field::Count`]:
+//! no quotes, floats or exponents, so the object stays exact for a program that reads big
+//! integers). Their digits come from [`decimal::Decimal`], which streams a 600,000-digit
+//! count in a fraction of the time num-bigint's quadratic `to_string` takes (same text).
 
 use std::io::{self, Write};
 
 use decimal::Decimal;
 use num_bigint::BigInt;
+use serde::Serialize;
+use serde_json::Value;
 
 /// One row of a table: a level and one value per column.
-pub(crate) struct Row {
-    pub(crate) level: u64,
-    pub(crate) values: Vec<Option<BigInt>>,
+pub(crate) use schemes::Row;
+
+/// The JSON layout of every command: compact, with a space after `:` and after `,`.
+pub(crate) struct Spaced;
+
+impl serde_json::ser::Formatter for Spaced {
+    fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        if first {
+            Ok(())
+        } else {
+            w.write_all(b", ")
+        }
+    }
+
+    fn begin_object_key<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
+        self.begin_array_value(w, first)
+    }
+
+    fn begin_object_value<W: ?Sized + Write>(&mut self, w: &mut W) -> io::Result<()> {
+        w.write_all(b": ")
+    }
 }
 
-/// Writes a JSON string literal (component names are plain identifiers, but escape anyway).
-pub(crate) fn json_string(s: &str) -> String {
-    serde_json::to_string(s).unwrap_or_else(|_| format!("\"{s}\""))
+/// Writes `value` in the [`Spaced`] layout.
+pub(crate) fn write_json(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
+    let mut ser = serde_json::Serializer::with_formatter(out, Spaced);
+    value.serialize(&mut ser).map_err(io::Error::other)
+}
+
+/// `value` in the [`Spaced`] layout, as a string.
+pub(crate) fn json_text(value: &impl Serialize) -> String {
+    let mut buf = Vec::new();
+    // Writing to a `Vec` fails only for values serde_json cannot represent (none here).
+    let _ = write_json(&mut buf, value);
+    String::from_utf8_lossy(&buf).into_owned()
+}
+
+/// One member of a JSON object written by [`write_object`].
+pub(crate) enum Field<'a> {
+    /// Any serde value.
+    Json(Value),
+    /// A count of any size, or `null`.
+    Count(Option<&'a BigInt>),
+}
+
+/// Writes the object `{"key": value, ...}` (no trailing newline) in the [`Spaced`] layout.
+pub(crate) fn write_object(out: &mut impl Write, fields: &[(&str, Field<'_>)]) -> io::Result<()> {
+    write!(out, "{{")?;
+    for (i, (key, field)) in fields.iter().enumerate() {
+        if i > 0 {
+            write!(out, ", ")?;
+        }
+        write_json(out, key)?;
+        write!(out, ": ")?;
+        match field {
+            Field::Json(v) => write_json(out, v)?,
+            Field::Count(Some(v)) => write!(out, "{}", Decimal::from(*v))?,
+            Field::Count(None) => write!(out, "null")?,
+        }
+    }
+    write!(out, "}}")
+}
+
+/// The members `"level": s, "V": ..., ...` of a row, to extend and pass to [`write_object`].
+pub(crate) fn row_fields<'a>(columns: &'a [String], row: &'a Row) -> Vec<(&'a str, Field<'a>)> {
+    std::iter::once(("level", Field::Json(row.level.into())))
+        .chain(
+            columns
+                .iter()
+                .zip(&row.values)
+                .map(|(name, v)| (name.as_str(), Field::Count(v.as_ref()))),
+        )
+        .collect()
 }
 
 /// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
@@ -41,14 +109,7 @@ pub(crate) fn write_row_json(
     columns: &[String],
     row: &Row,
 ) -> io::Result<()> {
-    write!(out, "{{\"level\": {}", row.level)?;
-    for (name, value) in columns.iter().zip(&row.values) {
-        match value {
-            Some(v) => write!(out, ", {}: {}", json_string(name), Decimal::from(v))?,
-            None => write!(out, ", {}: null", json_string(name))?,
-        }
-    }
-    write!(out, "}}")
+    write_object(out, &row_fields(columns, row))
 }
 
 /// `level,V,E,F` then one line per level.
@@ -126,18 +187,16 @@ pub(crate) fn write_table_text(
 pub(crate) use recurrence::DigitSummary;
 
 /// `{"digits": n, "leading": "...", "trailing": "..."}` (plus `"negative": true` if so).
-pub(crate) fn summary_json(d: &DigitSummary) -> String {
-    format!(
-        "{{\"digits\": {}, \"leading\": {}, \"trailing\": {}{}}}",
-        d.digits,
-        json_string(&d.leading),
-        json_string(&d.trailing),
-        if d.negative {
-            ", \"negative\": true"
-        } else {
-            ""
-        }
-    )
+pub(crate) fn summary_json(d: &DigitSummary) -> Value {
+    let mut v = serde_json::json!({
+        "digits": d.digits,
+        "leading": d.leading,
+        "trailing": d.trailing,
+    });
+    if d.negative {
+        v["negative"] = Value::Bool(true);
+    }
+    v
 }
 
 /// `602062 digits: 19604598754139134831...31093324874142187520`, or the whole number when
@@ -198,7 +257,7 @@ mod tests {
         assert_eq!(d.digits, 30);
         assert_eq!(summary_text(&d), "30 digits: 12345...67890");
         assert_eq!(
-            summary_json(&d),
+            json_text(&summary_json(&d)),
             "{\"digits\": 30, \"leading\": \"12345\", \"trailing\": \"67890\"}"
         );
         let small = recurrence::digit_summary(&BigInt::from(42), 20);

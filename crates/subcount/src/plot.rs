@@ -25,11 +25,11 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 use crate::args::{PlotArgs, Source};
-use crate::commands::write_failure;
-use crate::failure::{input, usage, Failure};
+use crate::failure::{input, usage, write_failure, Failure};
 use crate::levels::parse_levels;
-use crate::model::{Dynamics, DEFAULT_COUNTS};
+use crate::model::{Input, DEFAULT_COUNTS};
 use crate::output::Row;
+use schemes::Counter as Dynamics;
 
 /// The most levels one plot draws (each is a point on every line).
 const MAX_LEVELS: u64 = 1000;
@@ -48,9 +48,10 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
             u128::from(levels.end() - levels.start()) + 1
         ));
     }
-    let dynamics = Dynamics::from_source(&args.source)?;
-    let x0 = dynamics.initial_state(&args.source)?;
-    crate::commands::guard_table(&dynamics, &x0, &levels)?;
+    let input = Input::new(&args.source);
+    let dynamics = input.counter()?;
+    let x0 = input.initial_state(&dynamics)?;
+    crate::guard::table(&dynamics, &x0, &levels)?;
     let rows = dynamics.rows(&x0, levels.clone())?;
     let columns = dynamics.columns();
     let series = series_of(&columns, &rows);

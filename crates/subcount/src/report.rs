@@ -3,18 +3,20 @@
 use std::io::Write;
 
 use num_bigint::BigInt;
-use schemes::{Budget, Fit, MemoryBudget};
+use schemes::{Budget, Counter, Fit, MemoryBudget, Plan};
+use serde_json::Value;
 
 use crate::args::{DensityArgs, FitArgs, ReportFormat, SchemesArgs, SchemesFormat};
-use crate::commands::{parse_level, write_failure};
-use crate::failure::{input, usage, Failure, Kind};
-use crate::model::{scheme_failure, Dynamics};
-use crate::output::{self, Row};
+use crate::failure::{input, usage, write_failure, Failure, Kind};
+use crate::guard::{self, Hint};
+use crate::levels::parse_level;
+use crate::model::Input;
+use crate::output::{self, Field, Row};
 
-fn plan_of(dynamics: &Dynamics, command: &str) -> Result<schemes::Plan, Failure> {
-    match dynamics {
-        Dynamics::Plan(plan) => Ok(plan.clone()),
-        Dynamics::Matrix(_) => Err(usage!(
+fn plan_of(counter: Counter, command: &str) -> Result<Plan, Failure> {
+    match counter {
+        Counter::Plan(plan) => Ok(plan),
+        Counter::Matrix(_) => Err(usage!(
             "{command} needs a scheme (--scheme or --scheme-file), not --matrix"
         )),
     }
@@ -32,13 +34,10 @@ fn parse_limit(flag: &str, text: &Option<String>) -> Result<Option<BigInt>, Fail
     Ok(Some(v))
 }
 
-fn level_row(dynamics: &Dynamics, counts: &schemes::LevelCounts) -> Result<Row, Failure> {
-    dynamics.row_from_state(counts.level, counts.state.clone())
-}
-
 pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let dynamics = Dynamics::from_source(&args.source)?;
-    let plan = plan_of(&dynamics, "fit")?;
+    let input = Input::new(&args.source);
+    let counter = input.counter()?;
+    let plan = plan_of(counter.clone(), "fit")?;
     let memory = match &args.memory {
         Some(text) => Some(MemoryBudget {
             bytes: BigInt::from(
@@ -61,49 +60,34 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
             "fit needs a limit: --max-vertices, --max-edges, --max-faces or --memory"
         ));
     }
-    let x0 = dynamics.initial_state(&args.source)?;
-    let fit = schemes::fit(&plan, &x0, &budget).map_err(scheme_failure)?;
-    let columns = dynamics.columns();
-    let text = match (&fit, args.format) {
-        (Fit::Level(counts), ReportFormat::Json) => {
-            let mut buf = Vec::new();
-            output::write_row_json(&mut buf, &columns, &level_row(&dynamics, counts)?)
-                .map_err(write_failure)?;
-            String::from_utf8_lossy(&buf).into_owned()
+    let x0 = input.initial_state(&counter)?;
+    let fit = schemes::fit(&plan, &x0, &budget)?;
+    let columns = counter.columns();
+    let counts = fit.counts()?;
+    let note = matches!(fit, Fit::Unbounded { .. }).then(|| unbounded_note(counts.level));
+    let row = counter.row_from_state(counts.level, counts.state.clone())?;
+    let mut buf = Vec::new();
+    match (note, args.format) {
+        (None, ReportFormat::Json) => output::write_row_json(&mut buf, &columns, &row),
+        (None, ReportFormat::Text) => write!(
+            buf,
+            "highest level within the budget: {}\n{}",
+            counts.level,
+            row_text(&columns, &row)
+        ),
+        (Some(note), ReportFormat::Json) => {
+            let mut fields = vec![
+                ("level", Field::Json(Value::Null)),
+                ("note", Field::Json(note.into())),
+                ("from_level", Field::Json(counts.level.into())),
+            ];
+            fields.extend(output::row_fields(&columns, &row).into_iter().skip(1));
+            output::write_object(&mut buf, &fields)
         }
-        (Fit::Level(counts), ReportFormat::Text) => {
-            let row = level_row(&dynamics, counts)?;
-            format!(
-                "highest level within the budget: {}\n{}",
-                counts.level,
-                row_text(&columns, &row)
-            )
-        }
-        (Fit::Unbounded { counts }, ReportFormat::Json) => {
-            let row = level_row(&dynamics, counts)?;
-            let mut buf = Vec::new();
-            output::write_row_json(&mut buf, &columns, &row).map_err(write_failure)?;
-            let body = String::from_utf8_lossy(&buf).into_owned();
-            let rest = body
-                .split_once(", ")
-                .map(|(_, r)| r.trim_end_matches('}'))
-                .unwrap_or("");
-            format!(
-                "{{\"level\": null, \"note\": {}, \"from_level\": {}, {rest}}}",
-                output::json_string(&unbounded_note(counts.level)),
-                counts.level
-            )
-        }
-        (Fit::Unbounded { counts }, ReportFormat::Text) => {
-            let row = level_row(&dynamics, counts)?;
-            format!(
-                "{}\n{}",
-                unbounded_note(counts.level),
-                row_text(&columns, &row)
-            )
-        }
-    };
-    writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
+        (Some(note), ReportFormat::Text) => write!(buf, "{note}\n{}", row_text(&columns, &row)),
+    }
+    .map_err(write_failure)?;
+    writeln!(out, "{}", String::from_utf8_lossy(&buf).trim_end()).map_err(write_failure)?;
     Ok(0)
 }
 
@@ -127,24 +111,17 @@ fn row_text(columns: &[String], row: &Row) -> String {
 }
 
 pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let dynamics = Dynamics::from_source(&args.source)?;
-    let plan = plan_of(&dynamics, "density")?;
-    let x0 = dynamics.initial_state(&args.source)?;
+    let input = Input::new(&args.source);
+    let counter = input.counter()?;
+    let plan = plan_of(counter.clone(), "density")?;
+    let x0 = input.initial_state(&counter)?;
     let counts = match (&args.level, args.target_area) {
         (Some(level), _) => {
             let s = parse_level(level)?;
-            crate::commands::guard_digits_for(
-                &dynamics,
-                &x0,
-                s,
-                false,
-                crate::commands::Hint::Levels,
-            )?;
-            plan.level_counts(&x0, s).map_err(scheme_failure)?
+            guard::digits(&counter, &x0, s, false, Hint::Levels)?;
+            plan.level_counts(&x0, s)?
         }
-        (None, Some(area)) => {
-            schemes::level_for_area(&plan, &x0, args.radius, area).map_err(scheme_failure)?
-        }
+        (None, Some(area)) => schemes::level_for_area(&plan, &x0, args.radius, area)?,
         (None, None) => return Err(usage!("density needs --level or --target-area")),
     };
     let tau = args.tau.unwrap_or(0.0);
@@ -153,22 +130,22 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
     let phi = args.tau.map(|_| d.phi);
     let text = match args.format {
         ReportFormat::Json => {
-            let num = |x: f64| serde_json::to_string(&x).unwrap_or_else(|_| "null".into());
-            let mut t = format!(
-                "{{\"level\": {}, \"V\": {}, \"radius\": {}",
-                counts.level,
-                counts.vertices,
-                num(args.radius)
-            );
+            let mut fields = vec![
+                ("level", Field::Json(counts.level.into())),
+                ("V", Field::Count(Some(&counts.vertices))),
+                ("radius", Field::Json(args.radius.into())),
+            ];
             if let Some(a) = args.target_area {
-                t.push_str(&format!(", \"target_area\": {}", num(a)));
+                fields.push(("target_area", Field::Json(a.into())));
             }
-            t.push_str(&format!(", \"mean_area\": {}", num(d.mean_area)));
+            fields.push(("mean_area", Field::Json(d.mean_area.into())));
             if let (Some(tau), Some(p)) = (args.tau, phi) {
-                t.push_str(&format!(", \"tau\": {}, \"phi\": {}", num(tau), num(p)));
+                fields.push(("tau", Field::Json(tau.into())));
+                fields.push(("phi", Field::Json(p.into())));
             }
-            t.push('}');
-            t
+            let mut buf = Vec::new();
+            output::write_object(&mut buf, &fields).map_err(write_failure)?;
+            String::from_utf8_lossy(&buf).into_owned()
         }
         ReportFormat::Text => {
             let mut t = format!(
@@ -187,7 +164,7 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
 
 pub(crate) fn list_schemes(args: SchemesArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let list = match &args.name {
-        Some(name) => vec![schemes::builtin(name).map_err(scheme_failure)?],
+        Some(name) => vec![schemes::builtin(name)?],
         None => schemes::builtins(),
     };
     let text = match args.format {

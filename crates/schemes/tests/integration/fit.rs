@@ -62,7 +62,7 @@ fn fit_matches_a_linear_scan() {
                 .last();
             match (fit(&plan, &x0, &budget), scan) {
                 (Ok(Fit::Level(c)), Some(s)) => assert_eq!(c.level, s, "{name} {bytes}"),
-                (Err(Error::NothingFits { .. }), None) => {}
+                (Ok(Fit::NoneFits { .. }), None) => {}
                 (got, want) => panic!("{name} {bytes}: {got:?} vs {want:?}"),
             }
         }
@@ -81,10 +81,10 @@ fn pick_mesh(s: &Scheme) -> schemes::MeshCounts {
 fn fit_edge_cases() {
     let plan = Plan::parse("loop").unwrap();
     let x0 = ico(&plan);
-    assert_eq!(
-        fit(&plan, &x0, &vertices(11)).unwrap_err().to_string(),
-        "level 0 does not fit: V = 12 > 11"
-    );
+    assert!(matches!(
+        fit(&plan, &x0, &vertices(11)).unwrap(),
+        Fit::NoneFits { detail, .. } if detail == "V = 12 > 11"
+    ));
     assert!(matches!(
         fit(&plan, &x0, &Budget::default()),
         Err(Error::NoLimit)
@@ -222,4 +222,41 @@ fn density_and_target_areas() {
         level_for_area(&plan, &zero, 1.0, 1.0),
         Err(Error::NeverReached { .. })
     ));
+}
+
+/// "Nothing fits" is an answer, with level 0's counts and each exceeded limit; as counts it
+/// is the error `subcount fit` reports.
+#[test]
+fn none_fits_is_an_answer() {
+    let plan = Plan::parse("loop").unwrap();
+    let x0 = ico(&plan);
+    let budget = Budget {
+        max_vertices: Some(BigInt::from(11)),
+        max_faces: Some(BigInt::from(20)),
+        ..Budget::default()
+    };
+    let answer = fit(&plan, &x0, &budget).unwrap();
+    let Fit::NoneFits { counts, detail } = &answer else {
+        panic!("{answer:?}")
+    };
+    assert_eq!((counts.level, detail.as_str()), (0, "V = 12 > 11"));
+    assert_eq!(answer.highest_level(64), None);
+    assert_eq!(
+        answer.counts().unwrap_err().to_string(),
+        "level 0 does not fit: V = 12 > 11"
+    );
+    // Within the budget from level 0 on, every level fits for a constant scheme: the cap.
+    let constant = Scheme::from_toml(
+        "name = \"c\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n",
+    )
+    .unwrap();
+    let every = fit(
+        &Plan::from(constant),
+        &[10, 5, 3].map(BigInt::from),
+        &vertices(100),
+    )
+    .unwrap();
+    assert!(matches!(every, Fit::Unbounded { .. }), "{every:?}");
+    assert_eq!(every.highest_level(30), Some(30));
+    assert_eq!(every.counts().unwrap().level, 0);
 }

@@ -92,13 +92,21 @@ fn contradictions_and_refusals() {
 fn plain_initial_vectors() {
     assert_eq!(parse_init("12, 30").unwrap(), [12, 30].map(BigInt::from));
     assert_eq!(
-        parse_init("[1 -2 3]").unwrap(),
+        parse_init(" 1, -2 ,3").unwrap(),
         [1, -2, 3].map(BigInt::from)
     );
     assert_eq!(
-        parse_init("1,,x").unwrap_err().to_string(),
-        "initial state `1,,x`: value 2 `x` is not an integer"
+        parse_init("1,x").unwrap_err().to_string(),
+        "initial state `1,x`: `x` is not an integer"
     );
+    // One grammar with `subcount --init`: an empty value, brackets or spaces between
+    // values are refused.
+    for (text, item) in [("1,,2", ""), ("", ""), ("[1,2]", "[1"), ("1 2", "1 2")] {
+        assert!(
+            matches!(parse_init(text), Err(Error::InitSyntax { item: i, .. }) if i == item),
+            "{text}"
+        );
+    }
     let l = builtin("loop").unwrap();
     assert_eq!(
         l.check_state(&parse_init("1,2,3").unwrap())

@@ -35,13 +35,27 @@ fn catmull_clark_then_quad_rule_on_a_triangle() {
     assert_eq!(plan.state_names_at(2).unwrap(), ["V", "IE", "BE", "F", "H"]);
     assert_eq!(plan.state_at(&x0, 3).unwrap(), big(&[61, 108, 48]));
     assert_eq!(plan.state_names_at(3).unwrap(), ["V", "E", "F"]);
+    // One table for the whole composition: every stage's state, then the missing V, E, F;
+    // a level leaves empty the columns its stage does not count.
+    let counter = schemes::Counter::from(plan.clone());
+    assert_eq!(counter.columns(), ["V", "IE", "BE", "F", "H", "E"]);
+    let some = |v: &[i64]| big(v).into_iter().map(Some).collect::<Vec<_>>();
     assert_eq!(
-        plan.column_names_at(2).unwrap(),
-        ["V", "IE", "BE", "F", "H", "E"]
+        counter.row_at(&x0, 2).unwrap().values,
+        some(&[19, 18, 12, 12, 48, 30])
     );
-    assert_eq!(plan.column_names_at(3).unwrap(), ["V", "E", "F"]);
-    let row = plan.table_row(&plan.level_counts(&x0, 2).unwrap()).unwrap();
-    assert_eq!(row, big(&[19, 18, 12, 12, 48, 30]));
+    let row = counter.row_at(&x0, 3).unwrap().values;
+    assert_eq!(
+        row,
+        [
+            Some(61.into()),
+            None,
+            None,
+            Some(48.into()),
+            None,
+            Some(108.into())
+        ]
+    );
     // The composition gives the same V, E, F as catmull-clark alone, at every level.
     let cc = builtin("catmull-clark").unwrap();
     let seq = plan.states_up_to(&x0, 7).unwrap();

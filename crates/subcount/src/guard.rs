@@ -1,0 +1,166 @@
+//! Resource guards: refuse (exit 4) before materializing counts, tables or closed forms
+//! too large for memory or time.
+
+use std::ops::RangeInclusive;
+
+use num_bigint::BigInt;
+use schemes::{Counter, CLOSED_FORM_LIMIT};
+
+use crate::failure::{Failure, Kind};
+
+/// Most decimal digits a count may have without `--allow-large`.
+const MAX_DIGITS: f64 = 1e7;
+/// Most decimal digits a table (all rows and columns together) may hold.
+const MAX_TABLE_DIGITS: f64 = 1e8;
+/// Most cells a table may hold.
+const MAX_TABLE_CELLS: f64 = 1e7;
+
+/// What the digit guard suggests: `at` has `--summary` and `--allow-large`; the commands
+/// that print every level (`table`, `plot`, `density`) can only ask for fewer levels.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Hint {
+    At,
+    AtSummary,
+    Levels,
+}
+
+/// Refuses, with exit 4, counts of more than [`MAX_DIGITS`] decimal digits at level `s`.
+pub(crate) fn digits(
+    counter: &Counter,
+    x0: &[BigInt],
+    s: u64,
+    allow_large: bool,
+    hint: Hint,
+) -> Result<(), Failure> {
+    if allow_large {
+        return Ok(());
+    }
+    let worst = counter.estimated_log10(x0, s)?;
+    if worst > MAX_DIGITS {
+        let bytes = worst * std::f64::consts::LOG2_10 / 8.0;
+        let hint = match hint {
+            Hint::AtSummary => "--summary works without materializing the counts only with an exact closed form from level 0 (not for periodic or composed schemes, nor irrational eigenvalues at such levels); use --allow-large to try anyway",
+            Hint::At => "use --summary, or --allow-large to try anyway",
+            Hint::Levels => "ask for lower levels (or use `at --summary` for one huge level)",
+        };
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: {hint}",
+                worst.ceil(),
+                human_bytes(bytes)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// The guard of the commands that hold every level of a range (`table`, `plot`): the largest
+/// count, then the whole table (rows times columns times digits), before anything is computed.
+pub(crate) fn table(
+    counter: &Counter,
+    x0: &[BigInt],
+    levels: &RangeInclusive<u64>,
+) -> Result<(), Failure> {
+    digits(counter, x0, *levels.end(), false, Hint::Levels)?;
+    let rows = (*levels.end() - *levels.start()) as f64 + 1.0;
+    let cells = rows * counter.columns().len() as f64;
+    let digits = counter.estimated_log10(x0, *levels.end())? + 1.0;
+    if cells > MAX_TABLE_CELLS || cells * digits > MAX_TABLE_DIGITS {
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "levels {}..={} would make a table of {rows:.0} rows and about {:.3e} decimal digits; the limits are 10^7 cells and 10^8 digits: ask for fewer levels",
+                levels.start(),
+                levels.end(),
+                (cells * digits).ceil()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses, with exit 4, closed forms whose cost estimate exceeds [`CLOSED_FORM_LIMIT`]
+/// (every phase of a plan), unless `allow_large`.
+pub(crate) fn closed_forms(counter: &Counter, allow_large: bool) -> Result<(), Failure> {
+    if allow_large {
+        return Ok(());
+    }
+    for (phase, r) in counter.form_recurrences() {
+        let what = match (counter.plan(), phase) {
+            (None, _) => "--matrix".to_string(),
+            (Some(plan), None) => format!("scheme `{}`", plan.name()),
+            (Some(plan), Some(phase)) => format!("scheme `{}`, {phase}", plan.name()),
+        };
+        let cost = r.closed_form_cost();
+        if cost > CLOSED_FORM_LIMIT {
+            return Err(Failure::new(
+                Kind::Guard,
+                anyhow::anyhow!(
+                    "{what}: the closed form of a {n}x{n} matrix would cost about {cost:.2e} work units (estimated from its size and entries), more than the limit of {CLOSED_FORM_LIMIT} (about 20 components): use `at` or `table` for exact counts (they power the matrix), or --allow-large to compute it anyway",
+                    n = r.dim(),
+                    cost = cost as f64,
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `1.5 GiB`-style rendering of a byte count.
+pub(crate) fn human_bytes(bytes: f64) -> String {
+    if !bytes.is_finite() || bytes > 1e30 {
+        return "10^30+ bytes".to_string();
+    }
+    const UNITS: [&str; 7] = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut v = bytes;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{v:.0} bytes")
+    } else if v >= 1024.0 {
+        format!("{:.3e} {}", v, UNITS[unit])
+    } else {
+        format!("{v:.1} {}", UNITS[unit])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use recurrence::{IntMatrix, Recurrence};
+
+    /// The closed-form guard never refuses a built-in scheme (their costs are a few thousand
+    /// units, far below the limit), and refuses exactly from 21 components for 3-digit
+    /// entries: `n^5 + n^3 w^2` with `w = ceil(n (10 + bits(n)) / 64)`.
+    #[test]
+    fn closed_form_guard_spares_builtins_and_stops_near_20_components() {
+        for scheme in schemes::builtins() {
+            let counter = Counter::from(scheme.clone());
+            for (_, r) in counter.form_recurrences() {
+                let cost = r.closed_form_cost();
+                assert!(cost < 100_000, "{}: {cost}", scheme.name());
+            }
+            assert!(closed_forms(&counter, false).is_ok());
+        }
+        let dense = |n: usize| {
+            Counter::from(Recurrence::new(
+                IntMatrix::try_from_rows(vec![vec![999; n]; n]).unwrap(),
+            ))
+        };
+        assert!(closed_forms(&dense(20), false).is_ok());
+        let refused = closed_forms(&dense(21), false).unwrap_err();
+        assert_eq!(refused.kind.exit_code(), 4);
+        assert!(closed_forms(&dense(21), true).is_ok());
+    }
+
+    #[test]
+    fn bytes_read_as_binary_units() {
+        assert_eq!(human_bytes(512.0), "512 bytes");
+        assert_eq!(human_bytes(1536.0), "1.5 KiB");
+        assert_eq!(human_bytes(f64::INFINITY), "10^30+ bytes");
+    }
+}
