@@ -225,8 +225,7 @@ fn correspondence(
             }
             out
         };
-        let ours_edges: std::collections::HashSet<(u32, u32)> =
-            edges(ours).into_iter().collect();
+        let ours_edges: std::collections::HashSet<(u32, u32)> = edges(ours).into_iter().collect();
         let theirs_edges = edges(theirs);
         loop {
             let mut progress = false;
@@ -301,7 +300,10 @@ fn compare(file: &str, scheme: Osd, level: u32, boundary: &str) -> Result<Outcom
         .map_err(|e| format!("{file}: halfedge {name} level {level}: {e}"))?
         .mesh;
     let theirs = opensubdiv(scheme, level, &path, boundary);
-    let at = format!("{file}, {name} vs OpenSubdiv {}, level {level}", scheme.driver_name());
+    let at = format!(
+        "{file}, {name} vs OpenSubdiv {}, level {level}",
+        scheme.driver_name()
+    );
 
     if ours.n_vertices() != theirs.n_vertices() || ours.n_faces() != theirs.n_faces() {
         return Err(format!(
@@ -315,8 +317,7 @@ fn compare(file: &str, scheme: Osd, level: u32, boundary: &str) -> Result<Outcom
 
     let diagonal = bounding_box_diagonal(&base.positions);
     let tolerance = TOLERANCE * diagonal;
-    let to_ours = correspondence(&theirs, &ours, tolerance)
-        .map_err(|e| format!("{at}: {e}"))?;
+    let to_ours = correspondence(&theirs, &ours, tolerance).map_err(|e| format!("{at}: {e}"))?;
     let max_deviation = theirs
         .positions
         .iter()
