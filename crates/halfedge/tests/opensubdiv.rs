@@ -279,6 +279,44 @@ fn correspondence(
     Ok(to_ours)
 }
 
+/// How OpenSubdiv's side of a comparison is made.
+#[derive(Clone, Copy)]
+struct Reference {
+    /// The driver's boundary interpolation (`edge-only`: `VTX_BOUNDARY_EDGE_ONLY`).
+    boundary: &'static str,
+    /// Whether vertices in no face are removed from OpenSubdiv's output before comparing.
+    drop_bare_vertices: bool,
+}
+
+impl Reference {
+    /// The reference the project promises to match.
+    const EDGE_ONLY: Reference = Reference {
+        boundary: "edge-only",
+        drop_bare_vertices: false,
+    };
+}
+
+/// The mesh without the vertices no face uses, the others renumbered in order.
+fn without_bare_vertices(mesh: &PolygonMesh) -> PolygonMesh {
+    let mut used = vec![false; mesh.n_vertices()];
+    for &v in mesh.face_indices() {
+        used[v as usize] = true;
+    }
+    let mut new_index = vec![u32::MAX; mesh.n_vertices()];
+    let mut positions = Vec::new();
+    for (v, &p) in mesh.positions.iter().enumerate() {
+        if used[v] {
+            new_index[v] = u32::try_from(positions.len()).expect("vertex index fits u32");
+            positions.push(p);
+        }
+    }
+    let faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|face| face.iter().map(|&v| new_index[v as usize]).collect())
+        .collect();
+    PolygonMesh::from_faces(positions, faces)
+}
+
 /// What one comparison found.
 struct Outcome {
     /// Largest distance between matched vertices, as a fraction of the diagonal.
@@ -291,7 +329,7 @@ struct Outcome {
 
 /// Compares `halfedge` with OpenSubdiv on one mesh, scheme and level; `Err` names the first
 /// disagreement (mesh, scheme, level, vertex or face, deviation).
-fn compare(file: &str, scheme: Osd, level: u32, boundary: &str) -> Result<Outcome, String> {
+fn compare(file: &str, scheme: Osd, level: u32, reference: Reference) -> Result<Outcome, String> {
     let path = meshes_dir().join(file);
     let base = io::read_mesh(&path).map_err(|e| format!("{file}: {e}"))?;
     let mesh = HalfEdgeMesh::try_from(&base).map_err(|e| format!("{file}: {e}"))?;
@@ -299,7 +337,10 @@ fn compare(file: &str, scheme: Osd, level: u32, boundary: &str) -> Result<Outcom
     let ours = subdivide_to_face_list(&mesh, name, level, &SubdivideOptions::default())
         .map_err(|e| format!("{file}: halfedge {name} level {level}: {e}"))?
         .mesh;
-    let theirs = opensubdiv(scheme, level, &path, boundary);
+    let mut theirs = opensubdiv(scheme, level, &path, reference.boundary);
+    if reference.drop_bare_vertices {
+        theirs = without_bare_vertices(&theirs);
+    }
     let at = format!(
         "{file}, {name} vs OpenSubdiv {}, level {level}",
         scheme.driver_name()
@@ -365,7 +406,7 @@ fn check(scheme: Osd, files: &[&str], levels: std::ops::RangeInclusive<u32>) {
     let mut failures = Vec::new();
     for file in files {
         for level in levels.clone() {
-            match compare(file, scheme, level, "edge-only") {
+            match compare(file, scheme, level, Reference::EDGE_ONLY) {
                 Ok(outcome) => eprintln!(
                     "{file} {} level {level}: max deviation {:.3e} of the diagonal{}",
                     scheme.driver_name(),
@@ -406,19 +447,26 @@ fn loop_on_closed_meshes_matches_opensubdiv() {
 }
 
 /// Loop's boundary rules (`loop-boundary`) against `VTX_BOUNDARY_EDGE_ONLY`: a grid with
-/// corners, a genus-2 surface with a hole, an open mesh with several boundary loops.
+/// corners, a genus-2 surface with a hole, an open mesh with four boundary loops (and
+/// coincident vertices along its cuts), two scanned open meshes.
 #[test]
 #[ignore = "needs libosd-dev and SUBCOUNT_MESHES"]
 fn loop_on_meshes_with_boundary_matches_opensubdiv() {
     check(
         Osd::Loop,
-        &["planexy.obj", "eight_hole.obj", "eight_open.obj"],
+        &[
+            "planexy.obj",
+            "eight_hole.obj",
+            "eight_open.obj",
+            "face.obj",
+            "alligator.obj",
+        ],
         1..=3,
     );
 }
 
 /// Catmull-Clark on closed polygon meshes: quads with genus 1 and 3, a pyramid (triangles
-/// and a quad), quads of a character model, n-gons.
+/// and a quad), quad and mixed control meshes of character models, n-gons, a CAD part.
 #[test]
 #[ignore = "needs libosd-dev and SUBCOUNT_MESHES"]
 fn catmull_clark_on_closed_meshes_matches_opensubdiv() {
@@ -431,6 +479,10 @@ fn catmull_clark_on_closed_meshes_matches_opensubdiv() {
             "osd_catmark_pyramid.obj",
             "spot_control_mesh.obj",
             "cylinder_ngon.obj",
+            "fandisk_quads.obj",
+            "blub_control_mesh.obj",
+            "penguin_control_mesh.obj",
+            "chamfer_cube.obj",
         ],
         1..=3,
     );
@@ -438,6 +490,7 @@ fn catmull_clark_on_closed_meshes_matches_opensubdiv() {
 
 /// Catmull-Clark with boundaries: OpenSubdiv's mixed-polygon shapes, a grid, open quad
 /// meshes (crease tags in the files are ignored on both sides), and triangles.
+/// (`osd_catmark_nonman_bareverts` has its own test below: its vertices in no face.)
 #[test]
 #[ignore = "needs libosd-dev and SUBCOUNT_MESHES"]
 fn catmull_clark_on_meshes_with_boundary_matches_opensubdiv() {
@@ -447,6 +500,8 @@ fn catmull_clark_on_meshes_with_boundary_matches_opensubdiv() {
             "osd_catmark_nonquads.obj",
             "osd_catmark_chaikin2.obj",
             "osd_catmark_pawn.obj",
+            "osd_catmark_bishop.obj",
+            "inspired_mesh_quads_smooth.obj",
             "suzanne.obj",
             "planexy.obj",
             "eight_hole.obj",
@@ -462,12 +517,49 @@ fn catmull_clark_on_meshes_with_boundary_matches_opensubdiv() {
 #[ignore = "needs libosd-dev and SUBCOUNT_MESHES"]
 fn a_different_boundary_rule_is_told_apart() {
     for scheme in [Osd::Loop, Osd::Catmark] {
-        let err = compare("planexy.obj", scheme, 1, "edge-and-corner")
+        let corners = Reference {
+            boundary: "edge-and-corner",
+            ..Reference::EDGE_ONLY
+        };
+        let err = compare("planexy.obj", scheme, 1, corners)
             .err()
             .unwrap_or_else(|| panic!("{scheme:?}: corner rules went unnoticed"));
         assert!(
             err.contains("planexy.obj") && err.contains("has no halfedge vertex within"),
             "{err}"
         );
+    }
+}
+
+/// Vertices in no face ("bare" vertices, 10 of the 25 in OpenSubdiv's
+/// catmark_nonman_bareverts shape): OpenSubdiv keeps each one at every level (a vertex child
+/// of itself, at the same place), `halfedge` drops them from level 1 on. Everything else
+/// agrees: with the bare vertices taken out of OpenSubdiv's output, the levels match.
+///
+/// FIXME: a known difference, asserted so a change on either side is noticed; whether
+/// `halfedge` should carry unreferenced vertices along is the lead's call.
+#[test]
+#[ignore = "needs libosd-dev and SUBCOUNT_MESHES"]
+fn bare_vertices_are_kept_by_opensubdiv_and_dropped_by_halfedge() {
+    let file = "osd_catmark_nonman_bareverts.obj";
+    for level in 1..=3 {
+        let err = compare(file, Osd::Catmark, level, Reference::EDGE_ONLY)
+            .err()
+            .unwrap_or_else(|| panic!("level {level}: the bare vertices now agree"));
+        let (ours, theirs) = [(45, 55), (153, 163), (561, 571)][level as usize - 1];
+        let faces = 8 * 4_u32.pow(level);
+        assert!(
+            err.ends_with(&format!(
+                "halfedge has {ours} vertices and {faces} faces, OpenSubdiv {theirs} and {faces}"
+            )),
+            "{err}"
+        );
+        let without = Reference {
+            drop_bare_vertices: true,
+            ..Reference::EDGE_ONLY
+        };
+        if let Err(err) = compare(file, Osd::Catmark, level, without) {
+            panic!("{err}");
+        }
     }
 }
