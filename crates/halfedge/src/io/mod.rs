@@ -165,6 +165,14 @@ impl<R: BufRead> Lines<R> {
             let Ok(s) = std::str::from_utf8(&self.buf) else {
                 return Err(self.error(ParseError::NotText));
             };
+            // A UTF-8 byte-order mark (what some Windows editors put first) is not part of
+            // the first statement: without this, `\u{feff}v` is an unknown keyword and the
+            // first line would be skipped silently.
+            let s = if self.line == 1 && first {
+                s.strip_prefix('\u{feff}').unwrap_or(s)
+            } else {
+                s
+            };
             let s = s.split('#').next().unwrap_or("");
             let s = s.trim_end();
             first = false;
@@ -222,6 +230,23 @@ mod tests {
         assert_eq!(
             err.to_string(),
             format!("long.obj: line 2: line is longer than {MAX_LINE_BYTES} bytes")
+        );
+    }
+
+    #[test]
+    fn a_byte_order_mark_before_the_first_line_is_not_part_of_it() {
+        let obj = "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let mesh = read_obj_from(obj.as_bytes(), "bom.obj").expect("valid");
+        assert_eq!((mesh.n_vertices(), mesh.n_faces()), (3, 1));
+        let off = "\u{feff}OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let mesh = read_off_from(off.as_bytes(), "bom.off").expect("valid");
+        assert_eq!((mesh.n_vertices(), mesh.n_faces()), (3, 1));
+        // Only a mark before the first line is skipped; elsewhere it is an unknown token.
+        let later = "v 0 0 0\n\u{feff}v 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let err = read_obj_from(later.as_bytes(), "later.obj").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "later.obj: line 4: face index 3 is out of range (the file has 2 vertices)"
         );
     }
 
