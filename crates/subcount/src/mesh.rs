@@ -169,19 +169,11 @@ fn parse_levels_count(text: &str) -> Result<u32, Failure> {
     })
 }
 
-/// Bytes available to this process: half of MemAvailable from /proc/meminfo (or 4 GiB when
-/// that cannot be read).
+/// Bytes available to this process: half of [`halfedge::memory::available_bytes`] (the least
+/// of MemAvailable, the address-space limit and the cgroup limit), or of 8 GiB when none of
+/// them can be read.
 fn memory_limit() -> u128 {
-    let available = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|text| {
-            text.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u128>().ok())
-                .map(|kb| kb * 1024)
-        });
-    available.unwrap_or(8 << 30) / 2
+    u128::from(halfedge::memory::available_bytes().unwrap_or(8 << 30)) / 2
 }
 
 /// The predicted bytes of the largest two consecutive levels up to `levels`, plus the input.
