@@ -119,6 +119,15 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// An output file the user may not write: it is left as it is (see
+    /// [`crate::io::write_atomically`]).
+    #[error("{}: refusing to write over it: {reason}", path.display())]
+    WriteProtected {
+        /// The file as given.
+        path: PathBuf,
+        /// Why it may not be written (its mode, or the system's answer).
+        reason: String,
+    },
     /// A line of a mesh file could not be read.
     #[error("{file}: line {line}: {kind}")]
     Parse {

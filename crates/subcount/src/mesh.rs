@@ -442,7 +442,12 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         ),
         None => format!("level {levels}: V = {v}, E = {e}, F = {f} (no -o: nothing written)"),
     };
-    writeln!(out, "{message}").map_err(write_failure)?;
+    // With `-o -` the mesh is standard output: the summary goes to stderr.
+    if args.output.as_deref() == Some(std::path::Path::new("-")) {
+        eprintln!("{}", message.replace("wrote -", "wrote standard output"));
+    } else {
+        writeln!(out, "{message}").map_err(write_failure)?;
+    }
     if args.timings {
         let peak = peak_rss_bytes().map_or_else(|| "null".to_string(), |b| b.to_string());
         eprintln!(

@@ -19,7 +19,9 @@
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
 //! open; files are written to a temporary file in the target folder and renamed over the
-//! target only when complete, so no partial output is ever left behind.
+//! target only when complete, so no partial output is ever left behind ([`write_atomically`]:
+//! also `-` for standard output, symbolic links, special files, write-protected targets and
+//! signals).
 //!
 //! # Example
 //!
@@ -46,7 +48,9 @@ mod write;
 
 pub use self::obj::{read_obj, read_obj_from};
 pub use self::off::{read_off, read_off_from};
-pub use self::write::{write_obj, write_obj_file, write_polygon_obj, write_polygon_obj_file};
+pub use self::write::{
+    write_atomically, write_obj, write_obj_file, write_polygon_obj, write_polygon_obj_file,
+};
 
 use std::io::{BufRead, Read};
 use std::path::Path;

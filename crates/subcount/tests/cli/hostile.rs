@@ -872,3 +872,158 @@ fn allow_large_computes_a_closed_form_above_the_limit() {
         &out[..200.min(out.len())]
     );
 }
+
+/// The names in a folder, sorted.
+fn folder_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("listed")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+const SUBDIVIDE_TETRAHEDRON: [&str; 7] = [
+    "subdivide",
+    "--base",
+    "tetrahedron",
+    "--scheme",
+    "loop",
+    "--levels",
+    "1",
+];
+
+/// Issue 11: `-o` on a read-only file (mode 444) used to replace it silently (renaming over a
+/// file needs only the folder's permission). It is refused, exit 3, and left intact, as root
+/// too.
+#[test]
+fn output_over_a_read_only_file_is_refused_and_left_intact() {
+    use std::os::unix::fs::PermissionsExt;
+    let files = Files::new();
+    let target = files.write("ro.obj", b"keep\n");
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o444)).expect("chmod");
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", target.as_str()]);
+    let stderr = fails(&args, 3, "ro.obj: refusing to write over it");
+    assert_eq!(
+        stderr,
+        format!("error: {target}: refusing to write over it: it is read-only (mode 444)\n")
+    );
+    assert_eq!(std::fs::read_to_string(&target).expect("read"), "keep\n");
+    assert_eq!(folder_names(files.dir.path()), ["ro.obj"]);
+}
+
+/// `-o -` writes the OBJ to standard output, and the summary to stderr.
+#[test]
+fn output_dash_is_standard_output() {
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", "-"]);
+    let run = subcount(&args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(run.stdout.lines().filter(|l| l.starts_with("v ")).count(), 10);
+    assert_eq!(run.stdout.lines().filter(|l| l.starts_with("f ")).count(), 16);
+    assert_eq!(
+        run.stderr,
+        "level 1: V = 10, E = 24, F = 16; wrote standard output\n"
+    );
+    assert!(!Path::new("-").exists());
+}
+
+/// `-o /dev/stdout` (a symbolic link to a pipe here) is written directly: the OBJ, then the
+/// summary, on stdout; `/dev/stdout` is not renamed over (issue 11: as root it was).
+#[test]
+fn output_to_dev_stdout_is_written_directly() {
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", "/dev/stdout"]);
+    let out = ok(&args);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 27, "{out}");
+    assert_eq!(
+        lines[26],
+        "level 1: V = 10, E = 24, F = 16; wrote /dev/stdout"
+    );
+    let meta = std::fs::symlink_metadata("/dev/stdout").expect("stat");
+    assert!(meta.file_type().is_symlink(), "/dev/stdout was replaced");
+}
+
+/// A symbolic link is written through to its target, and the link stays.
+#[test]
+fn output_through_a_symlink_replaces_its_target() {
+    let files = Files::new();
+    let real = files.write("real.obj", b"old\n");
+    let link = files.path("link.obj");
+    std::os::unix::fs::symlink("real.obj", &link).expect("link");
+    let link = link.display().to_string();
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", link.as_str()]);
+    ok(&args);
+    let meta = std::fs::symlink_metadata(&link).expect("stat");
+    assert!(meta.file_type().is_symlink());
+    let text = std::fs::read_to_string(&real).expect("read");
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 16);
+    assert_eq!(folder_names(files.dir.path()), ["link.obj", "real.obj"]);
+}
+
+/// A target name of 255 bytes (NAME_MAX) is written: the temporary file's name is short.
+#[test]
+fn output_names_of_255_bytes_are_written() {
+    let files = Files::new();
+    let name = format!("{}.obj", "m".repeat(251));
+    assert_eq!(name.len(), 255);
+    let target = files.path(&name).display().to_string();
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", target.as_str()]);
+    ok(&args);
+    assert_eq!(folder_names(files.dir.path()), [name]);
+}
+
+/// Issue 11: a `SIGTERM` or `SIGINT` during the write left the temporary file behind (376 MB).
+/// It is removed, the target is untouched, and the process ends by the signal.
+#[test]
+fn a_signal_during_the_write_removes_the_temporary_file() {
+    use std::os::unix::process::ExitStatusExt;
+    for (signal, number) in [("TERM", 15), ("INT", 2)] {
+        let files = Files::new();
+        let target = files.write("out.obj", b"previous\n");
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_subcount"))
+            .args([
+                "subdivide",
+                "--base",
+                "icosahedron",
+                "--scheme",
+                "loop",
+                "--levels",
+                "8",
+                "-o",
+                &target,
+            ])
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("started");
+        // Wait until the temporary file appears (the 60 MB write takes a while), then signal.
+        let start = std::time::Instant::now();
+        let mut seen = false;
+        while start.elapsed() < std::time::Duration::from_secs(120) {
+            if folder_names(files.dir.path()).len() > 1 {
+                seen = true;
+                break;
+            }
+            if child.try_wait().expect("polled").is_some() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(1));
+        }
+        assert!(seen, "the temporary file never appeared");
+        let killed = std::process::Command::new("kill")
+            .args([format!("-{signal}"), child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let status = child.wait().expect("waited");
+        assert_eq!(status.signal(), Some(number), "{status:?}");
+        assert_eq!(folder_names(files.dir.path()), ["out.obj"]);
+        assert_eq!(std::fs::read_to_string(&target).expect("read"), "previous\n");
+    }
+}
