@@ -25,7 +25,7 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
     let kind = match &e {
         E::Scheme(inner) => return scheme_failure(inner.clone()),
         E::UnsupportedScheme { .. } => Kind::Usage,
-        E::TooLarge { .. } | E::TooManyElements { .. } => Kind::Guard,
+        _ if e.is_resource_limit() => Kind::Guard,
         E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
             Kind::Mismatch
         }

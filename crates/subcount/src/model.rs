@@ -46,12 +46,22 @@ pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
 pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMesh>, Failure> {
     match (&mesh.mesh, &mesh.base) {
         (Some(_), Some(_)) => Err(usage!("--mesh and --base cannot be used together")),
-        (Some(path), None) => halfedge::io::read_mesh(path)
-            .map(Some)
-            .map_err(|e| Failure::new(Kind::Input, e)),
-        (None, Some(name)) => halfedge::shapes::from_name(name)
-            .map(Some)
-            .map_err(|e| Failure::new(Kind::Usage, e)),
+        (Some(path), None) => halfedge::io::read_mesh(path).map(Some).map_err(|e| {
+            let kind = if e.is_resource_limit() {
+                Kind::Guard
+            } else {
+                Kind::Input
+            };
+            Failure::new(kind, e)
+        }),
+        (None, Some(name)) => halfedge::shapes::from_name(name).map(Some).map_err(|e| {
+            let kind = if e.is_resource_limit() {
+                Kind::Guard
+            } else {
+                Kind::Usage
+            };
+            Failure::new(kind, e)
+        }),
         (None, None) => Ok(None),
     }
 }
@@ -505,10 +515,14 @@ fn cycle_recurrence(scheme: &Scheme) -> Recurrence {
     Recurrence::new(product)
 }
 
+/// The largest scheme file read, in bytes (a 32-component matrix of 20-digit entries is
+/// about 25 KB).
+pub(crate) const SCHEME_FILE_MAX_BYTES: u64 = 1 << 20;
+
 /// Reads and validates a custom scheme file.
 pub(crate) fn load_scheme_file(path: &std::path::Path) -> Result<Scheme, Failure> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| input!("cannot read {}: {e}", path.display()))?;
+    let text = halfedge::io::read_text_capped(path, SCHEME_FILE_MAX_BYTES)
+        .map_err(|e| input!("cannot read {}: {e}", path.display()))?;
     Scheme::from_toml(&text).map_err(|e| input!("{}: {e}", path.display()))
 }
 
