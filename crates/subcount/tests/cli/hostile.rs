@@ -1027,3 +1027,180 @@ fn a_signal_during_the_write_removes_the_temporary_file() {
         assert_eq!(std::fs::read_to_string(&target).expect("read"), "previous\n");
     }
 }
+
+/// Runs `subcount` under `prlimit --as=BYTES` (util-linux), or returns `None` with a notice
+/// when `prlimit` is missing.
+fn subcount_with_address_space(bytes: u64, args: &[&str]) -> Option<crate::util::Run> {
+    let output = std::process::Command::new("prlimit")
+        .arg(format!("--as={bytes}"))
+        .arg(env!("CARGO_BIN_EXE_subcount"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output();
+    match output {
+        Ok(output) => Some(crate::util::Run {
+            code: output.status.code().unwrap_or(-1),
+            stdout: String::from_utf8(output.stdout).expect("stdout is UTF-8"),
+            stderr: String::from_utf8(output.stderr).expect("stderr is UTF-8"),
+        }),
+        Err(e) => {
+            eprintln!("note: prlimit cannot run ({e}); the address-space test is skipped");
+            None
+        }
+    }
+}
+
+/// Issue 11: under `prlimit --as=2000000000`, `subdivide --levels 11` aborted (exit 134,
+/// "memory allocation of 1006633008 bytes failed"): the guard took half of MemAvailable and
+/// ignored the address-space limit. It now takes the least of MemAvailable, RLIMIT_AS minus
+/// the address space in use and the cgroup limit.
+#[test]
+fn the_memory_guard_sees_the_address_space_limit() {
+    let args = [
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "11",
+    ];
+    let Some(run) = subcount_with_address_space(2_000_000_000, &args) else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with(
+            "error: loop to level 11 needs about 3.8 GiB of memory (levels 10 and 11 with the input), more than the limit of "
+        ),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.ends_with(" MiB (half the available memory); use fewer levels, or --allow-large to try anyway\n"));
+}
+
+/// With `--allow-large` past the limit, a failed allocation is a refusal (exit 4), not an
+/// abort.
+#[test]
+fn a_failed_allocation_is_a_refusal_not_an_abort() {
+    let args = [
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "11",
+        "--allow-large",
+    ];
+    let Some(run) = subcount_with_address_space(2_000_000_000, &args) else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with("error: cannot allocate "),
+        "{}",
+        run.stderr
+    );
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+}
+
+/// A generated base mesh goes through the memory guard before it is allocated (exit 4); past
+/// the cell cap it stays a usage error (exit 2, the message of old).
+#[test]
+fn base_meshes_are_guarded_before_they_are_built() {
+    let args = ["stats", "--base", "grid:4096x4096"];
+    if let Some(run) = subcount_with_address_space(1_000_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr.starts_with("error: base mesh `grid:4096x4096` would need 1073938464 bytes of memory, more than the limit of "),
+            "{}",
+            run.stderr
+        );
+    }
+    let args = ["table", "--scheme", "loop", "--base", "torus:1000000"];
+    if let Some(run) = subcount_with_address_space(1_000_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr.starts_with("error: base mesh `torus:1000000` would need "),
+            "{}",
+            run.stderr
+        );
+    }
+    fails(
+        &["stats", "--base", "grid:100000x100000"],
+        2,
+        "base mesh `grid:100000x100000`: 100000x100000 cells is more than the 16777216 allowed",
+    );
+}
+
+/// A mesh file larger than the memory available is refused before it is read (a sparse
+/// file of 4 GB: reading it would take minutes and fill memory).
+#[test]
+fn a_mesh_file_larger_than_memory_is_refused_before_reading() {
+    let files = Files::new();
+    let path = files.path("huge.obj");
+    std::fs::File::create(&path)
+        .and_then(|f| f.set_len(4_000_000_000))
+        .expect("a sparse file");
+    let path = path.display().to_string();
+    let Some(run) = subcount_with_address_space(1_000_000_000, &["stats", "--mesh", &path])
+    else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with(&format!(
+            "error: {path}: the file is 4000000000 bytes, more than the "
+        )),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.ends_with(" bytes of memory available to this process\n"));
+}
+
+/// Issue 11: `table --scheme-file /dev/zero` read until memory ran out. Scheme files are
+/// capped at 1 MiB, checked before reading it all (by length, or by a bounded read).
+#[test]
+fn scheme_files_are_capped() {
+    fails(
+        &["table", "--scheme-file", "/dev/zero"],
+        3,
+        "cannot read /dev/zero: the file is larger than the limit of 1048576 bytes",
+    );
+    let files = Files::new();
+    let path = files.write("big.toml", &vec![b'#'; (1 << 20) + 1]);
+    fails(
+        &["formula", "--scheme-file", &path],
+        3,
+        "big.toml: the file is larger than the limit of 1048576 bytes",
+    );
+}
+
+/// Issue 11: a UTF-8 byte-order mark made the reader drop the first line (then "face index 3
+/// is out of range (the file has 2 vertices)"). It is skipped, in OBJ, OFF and scheme files.
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let files = Files::new();
+    let obj = files.write("bom.obj", format!("\u{feff}{TRIANGLE}f 1 2 3\n").as_bytes());
+    let out = ok(&["stats", "--mesh", &obj]);
+    assert!(out.starts_with("V = 3 (vertices used by faces; 0 unreferenced)"), "{out}");
+    let off = files.write(
+        "bom.off",
+        "\u{feff}OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n".as_bytes(),
+    );
+    let out = ok(&["stats", "--mesh", &off]);
+    assert!(out.starts_with("V = 3 "), "{out}");
+    let toml = ok(&["schemes", "--format", "toml", "loop"]);
+    let scheme = files.write("bom.toml", format!("\u{feff}{toml}").as_bytes());
+    let out = ok(&[
+        "at",
+        "--scheme-file",
+        &scheme,
+        "--counts",
+        "V=12,E=30,F=20",
+        "--level",
+        "1",
+    ]);
+    assert!(out.contains("42"), "{out}");
+}
