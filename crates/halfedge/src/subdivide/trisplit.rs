@@ -177,7 +177,7 @@ pub(crate) fn tri_split<const GROW: bool>(
     let interior_base = nv + (n - 1) * ne;
     let edge_base = n * ne;
 
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     let mut corners = [(0u32, 0u32); 3];
     for f in 0..nf {
         let h0 = t.face_halfedge(f);
@@ -223,7 +223,7 @@ pub(crate) fn tri_split<const GROW: bool>(
         rule,
         (!GROW).then_some(expected.vertices),
         parallel,
-    );
+    )?;
     b.finish(positions, ctx)
 }
 
@@ -235,12 +235,15 @@ pub(crate) fn tri_positions(
     rule: TriRule,
     capacity: Option<usize>,
     parallel: bool,
-) -> Vec<DVec3> {
+) -> crate::Result<Vec<DVec3>> {
     let n = template.n;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let points_per_face = template.interior_points.len() as u32;
     let t = *t;
-    let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
+    let mut positions = match capacity {
+        Some(n) => super::alloc::with_capacity(n, "positions")?,
+        None => Vec::new(),
+    };
     // Old vertices.
     if rule == TriRule::Loop {
         par::extend(&mut positions, nv as usize, parallel, |v| {
@@ -281,7 +284,7 @@ pub(crate) fn tri_positions(
             p0 + (p1 - p0) * (a as f64 / nn) + (p2 - p0) * (bb as f64 / nn)
         });
     }
-    positions
+    Ok(positions)
 }
 
 fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {
