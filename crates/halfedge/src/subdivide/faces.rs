@@ -286,7 +286,7 @@ pub(super) fn run_levels(
         }
         check_no_duplicate_triangles(mesh)?;
     }
-    let mut expected = super::alloc::with_capacity(levels as usize, "expected")?;
+    let mut expected = Vec::with_capacity(levels as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(&counts, u64::from(s))?;
         expected.push(sizes(&c, name, s)?);
@@ -323,6 +323,11 @@ pub(super) fn run_levels(
                 return Err(ctx.mismatch(what, predicted, actual));
             }
         }
+        let before = super::finite::Before::Counts {
+            vertices: ix.positions.len(),
+            edges: ix.edge_low.len(),
+        };
+        super::finite::check_positions(name, plan.rule, s, &before, &next.positions)?;
         drop(ix);
         visit(s, &next)?;
         if let Some(progress) = opts.progress {

@@ -259,7 +259,7 @@ pub(crate) fn tri_positions(
         match rule {
             TriRule::Loop => loop_edge(&t, e),
             TriRule::Midpoint => midpoint(&t, e),
-            TriRule::Icosphere => midpoint(&t, e).normalize(),
+            TriRule::Icosphere => project_to_sphere(midpoint(&t, e)),
             TriRule::Butterfly => butterfly_edge(&t, e),
             TriRule::Linear => {
                 let k = (i % per_edge) as f64 + 1.0;
@@ -285,6 +285,20 @@ pub(crate) fn tri_positions(
         });
     }
     Ok(positions)
+}
+
+/// `p` on the unit sphere. Where `p`'s squared length would overflow (coordinates beyond
+/// about 1e154) or vanish (below about 1e-154, subnormals included), it is first divided by
+/// its largest coordinate, so the direction stays exact; other points take glam's
+/// `normalize` unchanged. A point at the origin has no direction: NaN, which the level's
+/// finiteness check refuses, naming the edge.
+fn project_to_sphere(p: DVec3) -> DVec3 {
+    let largest = p.abs().max_element();
+    if largest > 1e150 || (largest < 1e-150 && largest > 0.0) {
+        (p / largest).normalize()
+    } else {
+        p.normalize()
+    }
 }
 
 fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {

@@ -1207,3 +1207,31 @@ fn a_byte_order_mark_is_accepted() {
     ]);
     assert!(out.contains("42"), "{out}");
 }
+
+/// Issue 11: `subdivide --scheme icosphere` on a triangle whose edge midpoint is the origin
+/// wrote `v NaN NaN NaN` with exit 0. Every level's positions are checked: exit 3, naming the
+/// vertex and the edge, and nothing is written. Coordinates near `f64::MAX` whose averages
+/// overflow are refused the same way.
+#[test]
+fn non_finite_points_are_refused_and_nothing_is_written() {
+    let files = Files::new();
+    let origin = files.write("origin.obj", b"v 1 1 0\nv -1 -1 0\nv 0 1 1\nf 1 2 3\n");
+    let out = files.path("out.obj").display().to_string();
+    fails(
+        &[
+            "subdivide", "--mesh", &origin, "--scheme", "icosphere", "--levels", "1", "-o", &out,
+        ],
+        3,
+        "icosphere level 1: vertex 3 (on edge (0, 1) of the input) would be at (NaN, NaN, NaN), not a finite point",
+    );
+    let huge = files.write(
+        "huge.obj",
+        b"v 1.7e308 0 0\nv 1.7e308 1 0\nv 0 0 1\nv 0 1 1\nf 1 2 3\nf 2 4 3\n",
+    );
+    fails(
+        &["subdivide", "--mesh", &huge, "--scheme", "loop-boundary", "--levels", "1", "-o", &out],
+        3,
+        "loop-boundary level 1: vertex 4 (on edge (0, 1) of the input) would be at (inf, ",
+    );
+    assert_eq!(folder_names(files.dir.path()), ["huge.obj", "origin.obj"]);
+}
