@@ -133,7 +133,8 @@ fn cgroup_room(cgroups: &str, read: &dyn Fn(&str) -> Option<String>) -> Option<u
     let mut least: Option<u64> = None;
     for line in cgroups.lines() {
         let mut fields = line.splitn(3, ':');
-        let (Some(id), Some(controllers), Some(path)) = (fields.next(), fields.next(), fields.next())
+        let (Some(id), Some(controllers), Some(path)) =
+            (fields.next(), fields.next(), fields.next())
         else {
             continue;
         };
@@ -189,9 +190,13 @@ mod tests {
                       Max stack size            8388608              unlimited            bytes     \n\
                       Max address space         2000000000           unlimited            bytes     \n";
         assert_eq!(address_space_limit(limits), Some(2_000_000_000));
-        let unlimited = "Max address space         unlimited            unlimited            bytes\n";
+        let unlimited =
+            "Max address space         unlimited            unlimited            bytes\n";
         assert_eq!(address_space_limit(unlimited), None);
-        assert_eq!(vm_size("Name:\tx\nVmSize:\t    3892 kB\n"), Some(3892 * 1024));
+        assert_eq!(
+            vm_size("Name:\tx\nVmSize:\t    3892 kB\n"),
+            Some(3892 * 1024)
+        );
     }
 
     #[test]

@@ -318,7 +318,10 @@ mod tests {
         assert!(err.is_resource_limit());
         let off = format!("OFF\n1000 1 0\n{}3 0 1 2\n", "0 0 0\n".repeat(1000));
         let err = off::read_off_within(off.as_bytes(), "m.off", budget).unwrap_err();
-        assert!(matches!(err, Error::MeshTooLarge { line: 502, .. }), "{err}");
+        assert!(
+            matches!(err, Error::MeshTooLarge { line: 502, .. }),
+            "{err}"
+        );
     }
 
     #[test]
@@ -329,10 +332,16 @@ mod tests {
         std::fs::write(&path, "name = \"x\"\n").expect("written");
         assert_eq!(read_text_capped(&path, 11).expect("read"), "name = \"x\"\n");
         let err = read_text_capped(&path, 10).unwrap_err();
-        assert_eq!(err.to_string(), "the file is larger than the limit of 10 bytes");
+        assert_eq!(
+            err.to_string(),
+            "the file is larger than the limit of 10 bytes"
+        );
         std::fs::remove_dir_all(&dir).expect("cleanup");
         let err = read_text_capped(Path::new("/dev/zero"), 1 << 20).unwrap_err();
-        assert_eq!(err.to_string(), "the file is larger than the limit of 1048576 bytes");
+        assert_eq!(
+            err.to_string(),
+            "the file is larger than the limit of 1048576 bytes"
+        );
     }
 
     #[test]

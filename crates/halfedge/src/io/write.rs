@@ -160,10 +160,7 @@ pub fn write_atomically(
                 .and_then(|mut file| body(&mut file).and_then(|()| file.flush()));
             result.map_err(io_error)
         }
-        Target::Regular {
-            resolved,
-            existing,
-        } => {
+        Target::Regular { resolved, existing } => {
             if let Some(metadata) = &existing {
                 refuse_write_protected(path, &resolved, metadata)?;
             }
@@ -361,7 +358,8 @@ fn short_prefix(name: &str, max: usize) -> &str {
 /// The temporary files being written now, which a signal removes.
 fn live_temporaries() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
     static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
-    LIVE.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    LIVE.lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
 }
 
 fn register_temporary(path: &Path) {
@@ -429,7 +427,8 @@ mod tests {
     use super::*;
 
     fn temp_dir(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("halfedge-write-{name}-{}", std::process::id()));
+        let dir =
+            std::env::temp_dir().join(format!("halfedge-write-{name}-{}", std::process::id()));
         let _ = fs::remove_dir_all(&dir);
         fs::create_dir_all(&dir).expect("a temporary folder");
         dir
@@ -479,8 +478,14 @@ mod tests {
         let link2 = dir.join("link2.obj");
         std::os::unix::fs::symlink(&link, &link2).expect("link");
         write_atomically(&link2, |f| f.write_all(b"new\n")).expect("written");
-        assert!(fs::symlink_metadata(&link).expect("stat").file_type().is_symlink());
-        assert!(fs::symlink_metadata(&link2).expect("stat").file_type().is_symlink());
+        assert!(fs::symlink_metadata(&link)
+            .expect("stat")
+            .file_type()
+            .is_symlink());
+        assert!(fs::symlink_metadata(&link2)
+            .expect("stat")
+            .file_type()
+            .is_symlink());
         assert_eq!(fs::read_to_string(&real).expect("read"), "new\n");
         let mode = fs::metadata(&real).expect("stat").permissions().mode() & 0o777;
         assert_eq!(mode, 0o640);
@@ -489,8 +494,14 @@ mod tests {
         let dangling = dir.join("dangling.obj");
         std::os::unix::fs::symlink("real/new.obj", &dangling).expect("link");
         write_atomically(&dangling, |f| f.write_all(b"made\n")).expect("written");
-        assert_eq!(fs::read_to_string(dir.join("real/new.obj")).expect("read"), "made\n");
-        assert!(fs::symlink_metadata(&dangling).expect("stat").file_type().is_symlink());
+        assert_eq!(
+            fs::read_to_string(dir.join("real/new.obj")).expect("read"),
+            "made\n"
+        );
+        assert!(fs::symlink_metadata(&dangling)
+            .expect("stat")
+            .file_type()
+            .is_symlink());
         fs::remove_dir_all(&dir).expect("cleanup");
     }
 
@@ -533,7 +544,10 @@ mod tests {
     fn a_directory_is_refused() {
         let dir = temp_dir("dir");
         let err = write_atomically(&dir, |f| f.write_all(b"x")).unwrap_err();
-        assert_eq!(err.to_string(), format!("{}: is a directory", dir.display()));
+        assert_eq!(
+            err.to_string(),
+            format!("{}: is a directory", dir.display())
+        );
         fs::remove_dir_all(&dir).expect("cleanup");
     }
 }

@@ -15,7 +15,8 @@ fn failed<T>(n: usize, what: &str, e: std::collections::TryReserveError) -> Erro
 /// An empty vector with room for exactly `n` elements (`what` names it in the error).
 pub(crate) fn with_capacity<T>(n: usize, what: &str) -> Result<Vec<T>> {
     let mut v = Vec::new();
-    v.try_reserve_exact(n).map_err(|e| failed::<T>(n, what, e))?;
+    v.try_reserve_exact(n)
+        .map_err(|e| failed::<T>(n, what, e))?;
     Ok(v)
 }
 

@@ -248,7 +248,10 @@ pub(crate) fn catmull_clark(
     // k / 4, so the inverse table is skipped (one u32 per corner less at the peak).
     let quads = mesh.is_quad_mesh();
     let mut corner_of = super::alloc::filled(INVALID, 2 * ne as usize, "corner of")?;
-    let mut corner_halfedge = super::alloc::with_capacity(if quads { 0 } else { n_corners as usize }, "corner halfedge")?;
+    let mut corner_halfedge = super::alloc::with_capacity(
+        if quads { 0 } else { n_corners as usize },
+        "corner halfedge",
+    )?;
     let mut corners = 0u32;
     for f in 0..nf {
         t.for_face(f, |h| {

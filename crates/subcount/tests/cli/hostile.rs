@@ -920,8 +920,14 @@ fn output_dash_is_standard_output() {
     args.extend(["-o", "-"]);
     let run = subcount(&args);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(run.stdout.lines().filter(|l| l.starts_with("v ")).count(), 10);
-    assert_eq!(run.stdout.lines().filter(|l| l.starts_with("f ")).count(), 16);
+    assert_eq!(
+        run.stdout.lines().filter(|l| l.starts_with("v ")).count(),
+        10
+    );
+    assert_eq!(
+        run.stdout.lines().filter(|l| l.starts_with("f ")).count(),
+        16
+    );
     assert_eq!(
         run.stderr,
         "level 1: V = 10, E = 24, F = 16; wrote standard output\n"
@@ -1024,7 +1030,10 @@ fn a_signal_during_the_write_removes_the_temporary_file() {
         let status = child.wait().expect("waited");
         assert_eq!(status.signal(), Some(number), "{status:?}");
         assert_eq!(folder_names(files.dir.path()), ["out.obj"]);
-        assert_eq!(std::fs::read_to_string(&target).expect("read"), "previous\n");
+        assert_eq!(
+            std::fs::read_to_string(&target).expect("read"),
+            "previous\n"
+        );
     }
 }
 
@@ -1076,7 +1085,9 @@ fn the_memory_guard_sees_the_address_space_limit() {
         "{}",
         run.stderr
     );
-    assert!(run.stderr.ends_with(" MiB (half the available memory); use fewer levels, or --allow-large to try anyway\n"));
+    assert!(run.stderr.ends_with(
+        " MiB (half the available memory); use fewer levels, or --allow-large to try anyway\n"
+    ));
 }
 
 /// With `--allow-large` past the limit, a failed allocation is a refusal (exit 4), not an
@@ -1125,7 +1136,8 @@ fn base_meshes_are_guarded_before_they_are_built() {
     if let Some(run) = subcount_with_address_space(1_000_000_000, &args) {
         assert_eq!(run.code, 4, "{}", run.stderr);
         assert!(
-            run.stderr.starts_with("error: base mesh `torus:1000000` would need "),
+            run.stderr
+                .starts_with("error: base mesh `torus:1000000` would need "),
             "{}",
             run.stderr
         );
@@ -1147,8 +1159,7 @@ fn a_mesh_file_larger_than_memory_is_refused_before_reading() {
         .and_then(|f| f.set_len(4_000_000_000))
         .expect("a sparse file");
     let path = path.display().to_string();
-    let Some(run) = subcount_with_address_space(1_000_000_000, &["stats", "--mesh", &path])
-    else {
+    let Some(run) = subcount_with_address_space(1_000_000_000, &["stats", "--mesh", &path]) else {
         return;
     };
     assert_eq!(run.code, 4, "{}", run.stderr);
@@ -1159,7 +1170,9 @@ fn a_mesh_file_larger_than_memory_is_refused_before_reading() {
         "{}",
         run.stderr
     );
-    assert!(run.stderr.ends_with(" bytes of memory available to this process\n"));
+    assert!(run
+        .stderr
+        .ends_with(" bytes of memory available to this process\n"));
 }
 
 /// Issue 11: `table --scheme-file /dev/zero` read until memory ran out. Scheme files are
@@ -1187,7 +1200,10 @@ fn a_byte_order_mark_is_accepted() {
     let files = Files::new();
     let obj = files.write("bom.obj", format!("\u{feff}{TRIANGLE}f 1 2 3\n").as_bytes());
     let out = ok(&["stats", "--mesh", &obj]);
-    assert!(out.starts_with("V = 3 (vertices used by faces; 0 unreferenced)"), "{out}");
+    assert!(
+        out.starts_with("V = 3 (vertices used by faces; 0 unreferenced)"),
+        "{out}"
+    );
     let off = files.write(
         "bom.off",
         "\u{feff}OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n".as_bytes(),
@@ -1229,7 +1245,17 @@ fn non_finite_points_are_refused_and_nothing_is_written() {
         b"v 1.7e308 0 0\nv 1.7e308 1 0\nv 0 0 1\nv 0 1 1\nf 1 2 3\nf 2 4 3\n",
     );
     fails(
-        &["subdivide", "--mesh", &huge, "--scheme", "loop-boundary", "--levels", "1", "-o", &out],
+        &[
+            "subdivide",
+            "--mesh",
+            &huge,
+            "--scheme",
+            "loop-boundary",
+            "--levels",
+            "1",
+            "-o",
+            &out,
+        ],
         3,
         "loop-boundary level 1: vertex 4 (on edge (0, 1) of the input) would be at (inf, ",
     );
