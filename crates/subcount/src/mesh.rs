@@ -369,6 +369,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         .then(|| sub::direct_face_degree(&args.scheme))
         .flatten();
     let predicted = guard_memory(&scheme, &counts, levels, last_faces, args.allow_large)?;
+    if let Some(path) = &args.output {
+        halfedge::io::check_output(path).map_err(|e| Failure::new(Kind::Input, e))?;
+    }
     let mesh = if face_list {
         None
     } else {

@@ -170,6 +170,30 @@ pub fn write_atomically(
     }
 }
 
+/// Checks up front what [`write_atomically`] would refuse without writing anything: a
+/// write-protected target or a folder, so that a long computation is not wasted on an output
+/// that cannot be written. Everything else (`-`, a new file, a special file) passes.
+///
+/// # Errors
+///
+/// As [`write_atomically`]'s refusals: [`Error::WriteProtected`], [`Error::Io`].
+pub fn check_output(path: &Path) -> Result<()> {
+    if path.as_os_str() == "-" {
+        return Ok(());
+    }
+    let io_error = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    match resolve_target(path).map_err(io_error)? {
+        Target::Regular {
+            resolved,
+            existing: Some(metadata),
+        } => refuse_write_protected(path, &resolved, &metadata),
+        _ => Ok(()),
+    }
+}
+
 /// Where [`write_atomically`] puts the bytes.
 enum Target {
     /// Not a regular file: written directly.
@@ -461,6 +485,12 @@ mod tests {
         );
         assert_eq!(fs::read_to_string(&target).expect("read"), "keep\n");
         assert_eq!(names(&dir), ["ro.obj"]);
+        // The same refusal up front, before any work.
+        let early = check_output(&target).unwrap_err();
+        assert_eq!(early.to_string(), err.to_string());
+        check_output(&dir.join("new.obj")).expect("a new file may be written");
+        check_output(Path::new("-")).expect("stdout may be written");
+        check_output(Path::new("/dev/null")).expect("a device may be written");
         fs::remove_dir_all(&dir).expect("cleanup");
     }
 
