@@ -351,7 +351,7 @@ mod non_finite {
     fn scale() -> impl Strategy<Value = f64> {
         prop_oneof![
             (0.05f64..=1.0).prop_map(|u| f64::MAX * u),
-            (1u64..=1 << 40).prop_map(|k| f64::from_bits(k)),
+            (1u64..=1 << 40).prop_map(f64::from_bits),
             (1e-3f64..1e3),
         ]
     }
