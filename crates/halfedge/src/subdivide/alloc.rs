@@ -12,6 +12,20 @@ fn failed<T>(n: usize, what: &str, e: std::collections::TryReserveError) -> Erro
     }
 }
 
+/// Room for `faces` faces of `corners` corners in all in `mesh`.
+pub(crate) fn reserve_faces(
+    mesh: &mut crate::PolygonMesh,
+    faces: usize,
+    corners: usize,
+) -> Result<()> {
+    mesh.try_reserve_faces(faces, corners)
+        .map_err(|e| Error::AllocationFailed {
+            what: "the faces".to_string(),
+            bytes: faces as u128 * std::mem::size_of::<usize>() as u128 + corners as u128 * 4,
+            reason: e.to_string(),
+        })
+}
+
 /// An empty vector with room for exactly `n` elements (`what` names it in the error).
 pub(crate) fn with_capacity<T>(n: usize, what: &str) -> Result<Vec<T>> {
     let mut v = Vec::new();

@@ -141,7 +141,7 @@ fn tri_split(
         }
     }
     let mut out = PolygonMesh::with_positions(Vec::new());
-    out.reserve_faces(expected_faces, 3 * expected_faces);
+    super::alloc::reserve_faces(&mut out, expected_faces, 3 * expected_faces)?;
     for (f, &start) in offsets[..ix.mesh.n_faces()].iter().enumerate() {
         let vs = [
             ix.corner_vertex[start],
@@ -206,7 +206,7 @@ fn catmull_clark(
     }
     positions.extend_from_slice(&edge_mid);
     let mut out = PolygonMesh::with_positions(Vec::new());
-    out.reserve_faces(expected_faces, 4 * expected_faces);
+    super::alloc::reserve_faces(&mut out, expected_faces, 4 * expected_faces)?;
     for f in 0..ix.mesh.n_faces() {
         let (start, end) = (offsets[f], offsets[f + 1]);
         let fp = nv + ne + f as u32;

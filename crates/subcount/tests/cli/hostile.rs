@@ -1117,6 +1117,25 @@ fn a_failed_allocation_is_a_refusal_not_an_abort() {
         run.stderr
     );
     assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    // The face-list subdividers (non-manifold schemes) too.
+    let args = [
+        "subdivide",
+        "--base",
+        "grid:3x3",
+        "--scheme",
+        "loop-general",
+        "--levels",
+        "12",
+        "--allow-large",
+    ];
+    if let Some(run) = subcount_with_address_space(1_500_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr.starts_with("error: cannot allocate "),
+            "{}",
+            run.stderr
+        );
+    }
 }
 
 /// A generated base mesh goes through the memory guard before it is allocated (exit 4); past
