@@ -119,6 +119,38 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// An output file the user may not write: it is left as it is (see
+    /// [`crate::io::write_atomically`]).
+    #[error("{}: refusing to write over it: {reason}", path.display())]
+    WriteProtected {
+        /// The file as given.
+        path: PathBuf,
+        /// Why it may not be written (its mode, or the system's answer).
+        reason: String,
+    },
+    /// A mesh file larger than the memory this process may allocate, refused before it is
+    /// read (a resource guard: see [`Error::is_resource_limit`]).
+    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", path.display())]
+    FileTooLarge {
+        /// The file.
+        path: PathBuf,
+        /// Its size in bytes.
+        size: u64,
+        /// The bytes available ([`crate::memory::available_bytes`]).
+        limit: u64,
+    },
+    /// A mesh file whose faces and vertices need more memory than a reader may fill (half
+    /// of [`crate::memory::available_bytes`]), refused where the reader got to (a resource
+    /// guard).
+    #[error("{file}: line {line}: the mesh read so far needs more than {limit} bytes of memory, half of what is available to this process")]
+    MeshTooLarge {
+        /// The file name.
+        file: String,
+        /// The line being read.
+        line: u64,
+        /// The budget in bytes.
+        limit: u64,
+    },
     /// A line of a mesh file could not be read.
     #[error("{file}: line {line}: {kind}")]
     Parse {
@@ -324,6 +356,47 @@ pub enum Error {
         /// The predicted count.
         count: num_bigint::BigInt,
     },
+    /// A generated base mesh larger than the memory this process may allocate (half of
+    /// [`crate::memory::available_bytes`]), refused before it is built.
+    #[error("base mesh `{name}` would need {bytes} bytes of memory, more than the limit of {limit} bytes (half the memory available to this process)")]
+    ShapeTooLarge {
+        /// The name as given.
+        name: String,
+        /// The bytes its face list would need.
+        bytes: u128,
+        /// The limit in bytes.
+        limit: u64,
+    },
+    /// The system refused memory for a large buffer (`try_reserve` failed): the process's
+    /// limits are tighter than the guards estimated.
+    #[error("cannot allocate {bytes} bytes for {what}: {reason}")]
+    AllocationFailed {
+        /// What the buffer is for.
+        what: String,
+        /// Its size in bytes.
+        bytes: u128,
+        /// The allocator's answer.
+        reason: String,
+    },
+    /// A subdivision step computed a position that is not finite (an overflow of huge
+    /// coordinates, a projection of a point at the origin): refused, nothing is returned.
+    #[error("{scheme} level {level}: vertex {vertex} ({origin}) would be at ({x}, {y}, {z}), not a finite point")]
+    NonFinitePosition {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// The vertex of that level.
+        vertex: u32,
+        /// What it is computed from, naming the element of the level before.
+        origin: String,
+        /// Its x coordinate.
+        x: f64,
+        /// Its y coordinate.
+        y: f64,
+        /// Its z coordinate.
+        z: f64,
+    },
     /// The thread pool for parallel subdivision could not be created.
     #[error("cannot start {threads} threads for subdivision: {reason}")]
     ThreadPool {
@@ -335,6 +408,22 @@ pub enum Error {
 }
 
 impl Error {
+    /// Whether this is a refusal by a resource guard (memory or 32-bit handles), rather than
+    /// bad input or a bug: [`Error::FileTooLarge`], [`Error::MeshTooLarge`],
+    /// [`Error::ShapeTooLarge`], [`Error::AllocationFailed`], [`Error::TooLarge`],
+    /// [`Error::TooManyElements`].
+    pub fn is_resource_limit(&self) -> bool {
+        matches!(
+            self,
+            Error::FileTooLarge { .. }
+                | Error::MeshTooLarge { .. }
+                | Error::ShapeTooLarge { .. }
+                | Error::AllocationFailed { .. }
+                | Error::TooLarge { .. }
+                | Error::TooManyElements { .. }
+        )
+    }
+
     /// The face a validation error is about (for two faces, the later one), as an index into
     /// the face list; map it to a file line with [`crate::PolygonMesh::face_line`].
     pub fn face(&self) -> Option<u32> {

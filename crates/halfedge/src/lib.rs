@@ -65,7 +65,7 @@
 mod build;
 mod error;
 pub mod io;
-mod memory;
+pub mod memory;
 mod mesh;
 mod polygon;
 pub mod shapes;

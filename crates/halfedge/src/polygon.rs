@@ -106,6 +106,17 @@ impl PolygonMesh {
         self.face_indices.reserve(corners);
     }
 
+    /// As [`reserve_faces`](Self::reserve_faces), reporting a refused allocation instead of
+    /// aborting (for the subdividers' large outputs).
+    pub(crate) fn try_reserve_faces(
+        &mut self,
+        faces: usize,
+        corners: usize,
+    ) -> std::result::Result<(), std::collections::TryReserveError> {
+        self.face_offsets.try_reserve_exact(faces)?;
+        self.face_indices.try_reserve_exact(corners)
+    }
+
     /// Appends a face (its vertex indices in order; not validated).
     pub fn push_face(&mut self, vertices: &[u32]) {
         self.face_indices.extend_from_slice(vertices);

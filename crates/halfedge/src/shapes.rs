@@ -46,7 +46,8 @@ pub const MAX_ICOSAHEDRON_HOLES: u32 = 4;
 /// # Errors
 ///
 /// [`Error::UnknownShape`] for another name, [`Error::InvalidShapeParameter`] for a missing,
-/// malformed or out-of-range parameter.
+/// malformed or out-of-range parameter, [`Error::ShapeTooLarge`] for a mesh that would need
+/// more than half the memory available to the process (checked before allocating).
 ///
 /// # Example
 ///
@@ -313,6 +314,18 @@ fn check_cells(name: String, w: u64, h: u64) -> Result<()> {
     Ok(())
 }
 
+/// Refuses a generated mesh of `vertices`, `faces` and `corners` whose face list would need
+/// more than half the memory this process may allocate (the rule the CLI applies to
+/// subdivision), before anything is allocated.
+fn guard_memory(name: String, vertices: u64, faces: u64, corners: u64) -> Result<()> {
+    let bytes = PolygonMesh::bytes_for(vertices, faces, corners);
+    let limit = crate::memory::available_bytes().map_or(u64::MAX, |b| b / 2);
+    if bytes > u128::from(limit) {
+        return Err(Error::ShapeTooLarge { name, bytes, limit });
+    }
+    Ok(())
+}
+
 /// Grid vertices `(i, j)` for `0 <= i <= w`, `0 <= j <= h` in the plane `z = 0`, with unit
 /// spacing, row by row.
 fn grid_positions(w: u32, h: u32) -> Vec<DVec3> {
@@ -330,9 +343,18 @@ fn grid_positions(w: u32, h: u32) -> Vec<DVec3> {
 ///
 /// # Errors
 ///
-/// [`Error::InvalidShapeParameter`] when `w` or `h` is 0 or `w * h > MAX_CELLS`.
+/// [`Error::InvalidShapeParameter`] when `w` or `h` is 0 or `w * h > MAX_CELLS`,
+/// [`Error::ShapeTooLarge`] when the mesh would need more than half the memory available to
+/// the process ([`crate::memory::available_bytes`]).
 pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    check_cells(format!("grid:{w}x{h}"), u64::from(w), u64::from(h))?;
+    let (w64, h64) = (u64::from(w), u64::from(h));
+    check_cells(format!("grid:{w}x{h}"), w64, h64)?;
+    guard_memory(
+        format!("grid:{w}x{h}"),
+        (w64 + 1) * (h64 + 1),
+        2 * w64 * h64,
+        6 * w64 * h64,
+    )?;
     let mut mesh = PolygonMesh::with_positions(grid_positions(w, h));
     mesh.reserve_faces(2 * w as usize * h as usize, 6 * w as usize * h as usize);
     let id = |i: u32, j: u32| j * (w + 1) + i;
@@ -350,9 +372,16 @@ pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
 ///
 /// # Errors
 ///
-/// [`Error::InvalidShapeParameter`] when `w` or `h` is 0 or `w * h > MAX_CELLS`.
+/// As [`grid`].
 pub fn quad_grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    check_cells(format!("quad-grid:{w}x{h}"), u64::from(w), u64::from(h))?;
+    let (w64, h64) = (u64::from(w), u64::from(h));
+    check_cells(format!("quad-grid:{w}x{h}"), w64, h64)?;
+    guard_memory(
+        format!("quad-grid:{w}x{h}"),
+        (w64 + 1) * (h64 + 1),
+        w64 * h64,
+        4 * w64 * h64,
+    )?;
     let mut mesh = PolygonMesh::with_positions(grid_positions(w, h));
     mesh.reserve_faces(w as usize * h as usize, 4 * w as usize * h as usize);
     let id = |i: u32, j: u32| j * (w + 1) + i;
@@ -373,7 +402,8 @@ pub fn quad_grid(w: u32, h: u32) -> Result<PolygonMesh> {
 ///
 /// # Errors
 ///
-/// [`Error::InvalidShapeParameter`] when `genus` is 0 or more than [`MAX_CELLS`] / 16.
+/// [`Error::InvalidShapeParameter`] when `genus` is 0 or more than [`MAX_CELLS`] / 16, and
+/// [`Error::ShapeTooLarge`] as for [`grid`].
 pub fn torus(genus: u32) -> Result<PolygonMesh> {
     if genus == 0 || u64::from(genus) > MAX_CELLS / 16 {
         return Err(Error::InvalidShapeParameter {
@@ -386,6 +416,12 @@ pub fn torus(genus: u32) -> Result<PolygonMesh> {
     }
     let nx = 3 * genus + 2;
     let ny = 5u32;
+    {
+        // At most two vertices per grid point; four triangles per kept square.
+        let points = u64::from(nx + 1) * u64::from(ny + 1);
+        let faces = 4 * (u64::from(nx) * u64::from(ny) - u64::from(genus));
+        guard_memory(format!("torus:{genus}"), 2 * points, faces, 3 * faces)?;
+    }
     let is_hole = |i: u32, j: u32| j == 2 && i >= 2 && i < 3 * genus + 2 && (i - 2) % 3 == 0;
     let hole_corner =
         |i: u32, j: u32| (j == 2 || j == 3) && i >= 2 && i <= 3 * genus && (i - 2) % 3 != 2;

@@ -309,3 +309,128 @@ proptest! {
         }
     }
 }
+
+/// Every supported scheme on base meshes scaled towards `f64::MAX` or into the subnormals
+/// (issue 11: `v NaN NaN NaN` was written with exit 0): the result has only finite positions,
+/// or the subdivision is refused with `Error::NonFinitePosition` naming a vertex; never a
+/// non-finite point. Far from the extremes every scheme gives finite points.
+mod non_finite {
+    use super::*;
+    use halfedge::subdivide::{subdivide_polygons, subdivide_to_face_list};
+    use halfedge::Error;
+
+    const SCHEMES: [&str; 13] = [
+        "loop",
+        "loop-boundary",
+        "midpoint",
+        "icosphere",
+        "butterfly",
+        "ternary",
+        "catmull-clark",
+        "catmull-clark-quad",
+        "sqrt3",
+        "sqrt3-boundary",
+        "doo-sabin",
+        "mid-edge",
+        "tri-split-2",
+    ];
+
+    fn bases() -> Vec<PolygonMesh> {
+        let grid = shapes::grid(2, 2).expect("grid");
+        let quads = shapes::quad_grid(2, 2).expect("quad grid");
+        vec![
+            shapes::tetrahedron(),
+            shapes::cube(),
+            shapes::icosahedron(),
+            grid,
+            quads,
+        ]
+    }
+
+    /// Coordinates near the largest finite value, subnormal, or ordinary.
+    fn scale() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            (0.05f64..=1.0).prop_map(|u| f64::MAX * u),
+            (1u64..=1 << 40).prop_map(f64::from_bits),
+            (1e-3f64..1e3),
+        ]
+    }
+
+    fn scaled(mesh: &PolygonMesh, s: [f64; 3]) -> PolygonMesh {
+        let mut out = mesh.clone();
+        for p in &mut out.positions {
+            *p = DVec3::new(p.x * s[0], p.y * s[1], p.z * s[2]);
+        }
+        out
+    }
+
+    fn check(
+        scheme: &str,
+        result: halfedge::Result<Vec<DVec3>>,
+        ordinary: bool,
+    ) -> Result<(), TestCaseError> {
+        match result {
+            Ok(positions) => {
+                prop_assert!(positions.iter().all(|p| p.is_finite()), "{scheme}");
+            }
+            Err(Error::NonFinitePosition { x, y, z, .. }) => {
+                prop_assert!(!DVec3::new(x, y, z).is_finite());
+                prop_assert!(!ordinary, "{scheme} refused ordinary coordinates");
+            }
+            // The scheme does not apply to this base mesh (class, valence).
+            Err(_) => {}
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        #[test]
+        fn positions_are_finite_or_refused(sx in scale(), sy in scale(), sz in scale()) {
+            let ordinary = [sx, sy, sz].iter().all(|s| (1e-3..1e3).contains(s));
+            for base in bases() {
+                let poly = scaled(&base, [sx, sy, sz]);
+                let Ok(mesh) = HalfEdgeMesh::try_from(&poly) else { continue };
+                for scheme in SCHEMES {
+                    let r = subdivide(&mesh, scheme, 2, &opts()).map(|m| m.positions().to_vec());
+                    check(scheme, r, ordinary)?;
+                    let r = subdivide_to_face_list(&mesh, scheme, 2, &opts())
+                        .map(|l| l.mesh.positions.clone());
+                    check(scheme, r, ordinary)?;
+                }
+                for scheme in ["loop-general", "catmull-clark-general"] {
+                    let r = subdivide_polygons(&poly, scheme, 2, &opts()).map(|m| m.positions);
+                    check(scheme, r, ordinary)?;
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_midpoint_at_the_origin_is_refused_naming_the_edge() {
+        let mut poly = PolygonMesh::with_positions(vec![
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ]);
+        poly.push_face(&[0, 1, 2]);
+        let mesh = HalfEdgeMesh::try_from(&poly).expect("valid");
+        let err = subdivide(&mesh, "icosphere", 1, &opts()).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "icosphere level 1: vertex 3 (on edge (0, 1) of the input) would be at (NaN, NaN, NaN), not a finite point"
+        );
+    }
+
+    #[test]
+    fn huge_and_tiny_points_reach_the_sphere() {
+        for s in [f64::MAX / 2.0, 1e200, 1e-200, f64::from_bits(3)] {
+            let poly = scaled(&shapes::icosahedron(), [s, s, s]);
+            let mesh = HalfEdgeMesh::try_from(&poly).expect("valid");
+            let out = subdivide(&mesh, "icosphere", 1, &opts()).expect("finite");
+            for p in &out.positions()[12..] {
+                assert!((p.length() - 1.0).abs() < 1e-12, "{s}: {p}");
+            }
+        }
+    }
+}

@@ -33,7 +33,7 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
     let kind = match &e {
         E::Scheme(inner) => return scheme_failure(inner.clone()),
         E::UnsupportedScheme { .. } => Kind::Usage,
-        E::TooLarge { .. } | E::TooManyElements { .. } => Kind::Guard,
+        _ if e.is_resource_limit() => Kind::Guard,
         E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
             Kind::Mismatch
         }
@@ -162,19 +162,11 @@ fn on_face_list(scheme: &Scheme) -> bool {
     !scheme.mesh_class().needs_manifold() && sub::supports_polygons(scheme.name())
 }
 
-/// Bytes available to this process: half of MemAvailable from /proc/meminfo (or 4 GiB when
-/// that cannot be read).
+/// Bytes available to this process: half of [`halfedge::memory::available_bytes`] (the least
+/// of MemAvailable, the address-space limit and the cgroup limit), or of 8 GiB when none of
+/// them can be read.
 fn memory_limit() -> u128 {
-    let available = std::fs::read_to_string("/proc/meminfo")
-        .ok()
-        .and_then(|text| {
-            text.lines()
-                .find(|l| l.starts_with("MemAvailable:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u128>().ok())
-                .map(|kb| kb * 1024)
-        });
-    available.unwrap_or(8 << 30) / 2
+    u128::from(halfedge::memory::available_bytes().unwrap_or(8 << 30)) / 2
 }
 
 /// The predicted bytes of the largest two consecutive levels up to `levels`, plus the input.
@@ -368,6 +360,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         .then(|| sub::direct_face_degree(&args.scheme))
         .flatten();
     let predicted = guard_memory(&scheme, &counts, levels, last_faces, args.allow_large)?;
+    if let Some(path) = &args.output {
+        halfedge::io::check_output(path).map_err(|e| Failure::new(Kind::Input, e))?;
+    }
     let mesh = if face_list {
         None
     } else {
@@ -441,7 +436,12 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         ),
         None => format!("level {levels}: V = {v}, E = {e}, F = {f} (no -o: nothing written)"),
     };
-    writeln!(out, "{message}").map_err(write_failure)?;
+    // With `-o -` the mesh is standard output: the summary goes to stderr.
+    if args.output.as_deref() == Some(std::path::Path::new("-")) {
+        eprintln!("{}", message.replace("wrote -", "wrote standard output"));
+    } else {
+        writeln!(out, "{message}").map_err(write_failure)?;
+    }
     if args.timings {
         let peak = peak_rss_bytes().map_or_else(|| "null".to_string(), |b| b.to_string());
         eprintln!(

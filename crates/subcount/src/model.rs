@@ -186,12 +186,22 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMes
         (Some(_), Some(_)) => Err(usage!("--mesh and --base cannot be used together")),
         (Some(path), None) => halfedge::io::read_mesh(path)
             .map(Some)
-            .map_err(|e| Failure::new(Kind::Input, e)),
+            .map_err(|e| mesh_failure(e, Kind::Input)),
         (None, Some(name)) => halfedge::shapes::from_name(name)
             .map(Some)
-            .map_err(|e| Failure::new(Kind::Usage, e)),
+            .map_err(|e| mesh_failure(e, Kind::Usage)),
         (None, None) => Ok(None),
     }
+}
+
+/// A mesh that could not be loaded: a resource limit is exit 4, anything else `otherwise`.
+fn mesh_failure(e: halfedge::Error, otherwise: Kind) -> Failure {
+    let kind = if e.is_resource_limit() {
+        Kind::Guard
+    } else {
+        otherwise
+    };
+    Failure::new(kind, e)
 }
 
 /// How errors name the mesh: its path, or `base mesh NAME`.
@@ -246,9 +256,13 @@ pub(crate) fn not_applicable(mesh: &MeshSource, e: schemes::Error) -> Failure {
     input!("{}: {e}", mesh_label(mesh))
 }
 
+/// The largest scheme file read, in bytes (a 32-component matrix of 20-digit entries is
+/// about 25 KB).
+pub(crate) const SCHEME_FILE_MAX_BYTES: u64 = 1 << 20;
+
 /// Reads and validates a custom scheme file.
 pub(crate) fn load_scheme_file(path: &std::path::Path) -> Result<Scheme, Failure> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| input!("cannot read {}: {e}", path.display()))?;
+    let text = halfedge::io::read_text_capped(path, SCHEME_FILE_MAX_BYTES)
+        .map_err(|e| input!("cannot read {}: {e}", path.display()))?;
     Scheme::from_toml(&text).map_err(|e| input!("{}: {e}", path.display()))
 }

@@ -19,7 +19,9 @@
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
 //! open; files are written to a temporary file in the target folder and renamed over the
-//! target only when complete, so no partial output is ever left behind.
+//! target only when complete, so no partial output is ever left behind ([`write_atomically`]:
+//! also `-` for standard output, symbolic links, special files, write-protected targets and
+//! signals).
 //!
 //! # Example
 //!
@@ -46,8 +48,10 @@ mod write;
 
 pub use self::obj::{read_obj, read_obj_from};
 pub use self::off::{read_off, read_off_from};
-pub use self::write::write_atomically;
-pub use self::write::{write_obj, write_obj_file, write_polygon_obj, write_polygon_obj_file};
+pub use self::write::{
+    check_output, write_atomically, write_obj, write_obj_file, write_polygon_obj,
+    write_polygon_obj_file,
+};
 
 use std::io::{BufRead, Read};
 use std::path::Path;
@@ -91,13 +95,90 @@ pub fn read_mesh(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// corners written as `v/vt/vn`.
 pub const MAX_LINE_BYTES: usize = 16 << 20;
 
-/// Opens a file for buffered reading, with the path in the error.
+/// Opens a mesh file for buffered reading, with the path in the error; a regular file larger
+/// than the memory available to this process ([`crate::memory::available_bytes`]) is
+/// refused before it is read ([`Error::FileTooLarge`]).
 fn open(path: &Path) -> Result<std::io::BufReader<std::fs::File>> {
-    let file = std::fs::File::open(path).map_err(|source| Error::Io {
+    let io_error = |source| Error::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let file = std::fs::File::open(path).map_err(io_error)?;
+    let metadata = file.metadata().map_err(io_error)?;
+    if let Some(limit) = crate::memory::available_bytes() {
+        if metadata.is_file() && metadata.len() > limit {
+            return Err(Error::FileTooLarge {
+                path: path.to_path_buf(),
+                size: metadata.len(),
+                limit,
+            });
+        }
+    }
     Ok(std::io::BufReader::with_capacity(1 << 16, file))
+}
+
+/// Reads a whole text file of at most `max_bytes` bytes (a scheme file, a configuration),
+/// checking the size before reading it all: a regular file by its length, anything else
+/// (`/dev/zero`, a FIFO) by reading at most one byte past the limit.
+///
+/// # Errors
+///
+/// The error of opening or reading the file; [`std::io::ErrorKind::InvalidData`] for a file
+/// longer than `max_bytes` ("the file is larger than the limit of N bytes") or not UTF-8.
+///
+/// # Example
+///
+/// ```
+/// let err = halfedge::io::read_text_capped(std::path::Path::new("/dev/zero"), 1024).unwrap_err();
+/// assert_eq!(err.to_string(), "the file is larger than the limit of 1024 bytes");
+/// ```
+pub fn read_text_capped(path: &Path, max_bytes: u64) -> std::io::Result<String> {
+    let too_large = || {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("the file is larger than the limit of {max_bytes} bytes"),
+        )
+    };
+    let file = std::fs::File::open(path)?;
+    let metadata = file.metadata()?;
+    if metadata.is_file() && metadata.len() > max_bytes {
+        return Err(too_large());
+    }
+    let mut bytes = Vec::new();
+    file.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large());
+    }
+    String::from_utf8(bytes).map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))
+}
+
+/// The memory a reader may fill with the mesh it reads: half of what the process may still
+/// allocate ([`crate::memory::available_bytes`]), leaving room for a vector's growth.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Budget {
+    bytes: u64,
+}
+
+impl Budget {
+    /// Half of [`crate::memory::available_bytes`] (no limit when it is unknown).
+    pub(crate) fn of_process() -> Budget {
+        Budget {
+            bytes: crate::memory::available_bytes().map_or(u64::MAX, |b| b / 2),
+        }
+    }
+
+    /// Refuses once `mesh` occupies more than the budget.
+    fn check<R>(self, mesh: &PolygonMesh, lines: &Lines<R>) -> Result<()> {
+        if mesh.heap_bytes() as u64 > self.bytes {
+            return Err(Error::MeshTooLarge {
+                file: lines.name.clone(),
+                line: lines.line,
+                limit: self.bytes,
+            });
+        }
+        Ok(())
+    }
 }
 
 /// Reads lines as bytes, tracks line numbers, strips comments, rejects binary data and joins
@@ -166,6 +247,14 @@ impl<R: BufRead> Lines<R> {
             let Ok(s) = std::str::from_utf8(&self.buf) else {
                 return Err(self.error(ParseError::NotText));
             };
+            // A UTF-8 byte-order mark (what some Windows editors put first) is not part of
+            // the first statement: without this, `\u{feff}v` is an unknown keyword and the
+            // first line would be skipped silently.
+            let s = if self.line == 1 && first {
+                s.strip_prefix('\u{feff}').unwrap_or(s)
+            } else {
+                s
+            };
             let s = s.split('#').next().unwrap_or("");
             let s = s.trim_end();
             first = false;
@@ -215,6 +304,48 @@ mod tests {
     use std::io::BufReader;
 
     #[test]
+    fn a_mesh_beyond_the_budget_is_refused_where_the_reader_got_to() {
+        // An endless stream of vertices (a FIFO, a generated file): refused once the mesh
+        // read so far exceeds the budget, instead of filling memory.
+        let endless = BufReader::new(std::io::repeat(b'v').take(1 << 30));
+        let vertices = b"v 0 0 0\n".repeat(1000);
+        let data = std::io::Cursor::new(vertices).chain(endless);
+        let budget = Budget { bytes: 24 * 500 };
+        let err = obj::read_obj_within(BufReader::new(data), "endless.obj", budget).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "endless.obj: line 500: the mesh read so far needs more than 12000 bytes of memory, half of what is available to this process"
+        );
+        assert!(err.is_resource_limit());
+        let off = format!("OFF\n1000 1 0\n{}3 0 1 2\n", "0 0 0\n".repeat(1000));
+        let err = off::read_off_within(off.as_bytes(), "m.off", budget).unwrap_err();
+        assert!(
+            matches!(err, Error::MeshTooLarge { line: 502, .. }),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn capped_text_files() {
+        let dir = std::env::temp_dir().join(format!("halfedge-capped-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("s.toml");
+        std::fs::write(&path, "name = \"x\"\n").expect("written");
+        assert_eq!(read_text_capped(&path, 11).expect("read"), "name = \"x\"\n");
+        let err = read_text_capped(&path, 10).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "the file is larger than the limit of 10 bytes"
+        );
+        std::fs::remove_dir_all(&dir).expect("cleanup");
+        let err = read_text_capped(Path::new("/dev/zero"), 1 << 20).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "the file is larger than the limit of 1048576 bytes"
+        );
+    }
+
+    #[test]
     fn an_overlong_line_is_refused_after_a_bounded_read() {
         // An endless line: the reader must stop at the limit instead of buffering it all.
         let endless = BufReader::new(std::io::repeat(b'1'));
@@ -223,6 +354,23 @@ mod tests {
         assert_eq!(
             err.to_string(),
             format!("long.obj: line 2: line is longer than {MAX_LINE_BYTES} bytes")
+        );
+    }
+
+    #[test]
+    fn a_byte_order_mark_before_the_first_line_is_not_part_of_it() {
+        let obj = "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let mesh = read_obj_from(obj.as_bytes(), "bom.obj").expect("valid");
+        assert_eq!((mesh.n_vertices(), mesh.n_faces()), (3, 1));
+        let off = "\u{feff}OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let mesh = read_off_from(off.as_bytes(), "bom.off").expect("valid");
+        assert_eq!((mesh.n_vertices(), mesh.n_faces()), (3, 1));
+        // Only a mark before the first line is skipped; elsewhere it is an unknown token.
+        let later = "v 0 0 0\n\u{feff}v 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let err = read_obj_from(later.as_bytes(), "later.obj").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "later.obj: line 4: face index 3 is out of range (the file has 2 vertices)"
         );
     }
 

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{open, parse_coordinate, shorten, Lines};
+use super::{open, parse_coordinate, shorten, Budget, Lines};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
@@ -15,7 +15,10 @@ use crate::polygon::PolygonMesh;
 /// # Errors
 ///
 /// [`Error::Io`] when the file cannot be read, [`Error::Parse`] naming the file and line of
-/// the first malformed statement, [`Error::NoFaces`] for a file without faces.
+/// the first malformed statement, [`Error::NoFaces`] for a file without faces,
+/// [`Error::FileTooLarge`] for a file larger than the memory available to the process
+/// (refused before reading), [`Error::MeshTooLarge`] once the mesh read so far needs more
+/// than half of it.
 ///
 /// # Example
 ///
@@ -41,7 +44,7 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 ///
 /// As [`read_obj`]: a bad or non-finite coordinate, a vertex with fewer than three
 /// coordinates, a face index that is 0, not a number, too large or out of range, a face with
-/// fewer than three corners, binary data, no faces at all.
+/// fewer than three corners, binary data, no faces at all, a mesh beyond the memory budget.
 ///
 /// # Example
 ///
@@ -53,6 +56,15 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
+    read_obj_within(reader, name, Budget::of_process())
+}
+
+/// [`read_obj_from`] with the mesh's memory limited to `budget`.
+pub(crate) fn read_obj_within(
+    reader: impl BufRead,
+    name: &str,
+    budget: Budget,
+) -> Result<PolygonMesh> {
     let mut lines = Lines::new(reader, name);
     let mut mesh = PolygonMesh::default();
     let mut corners: Vec<u32> = Vec::new();
@@ -84,6 +96,7 @@ pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
                     });
                 }
                 mesh.positions.push(DVec3::from_array(xyz));
+                budget.check(&mesh, &lines)?;
             }
             "f" => {
                 corners.clear();
@@ -116,6 +129,7 @@ pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
                     return Err(lines.error(kind));
                 }
                 mesh.push_face_from_line(&corners, lines.line);
+                budget.check(&mesh, &lines)?;
             }
             _ => {}
         }

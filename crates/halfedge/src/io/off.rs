@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{open, parse_coordinate, shorten, Lines};
+use super::{open, parse_coordinate, shorten, Budget, Lines};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
@@ -14,7 +14,9 @@ use crate::polygon::PolygonMesh;
 /// # Errors
 ///
 /// [`Error::Io`] when the file cannot be read, [`Error::Parse`] naming the file and line of
-/// the first malformed line, [`Error::NoFaces`] for a file without faces.
+/// the first malformed line, [`Error::NoFaces`] for a file without faces, and the memory
+/// refusals of [`read_obj`](super::read_obj) ([`Error::FileTooLarge`],
+/// [`Error::MeshTooLarge`]).
 ///
 /// # Example
 ///
@@ -48,6 +50,15 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
+    read_off_within(reader, name, Budget::of_process())
+}
+
+/// [`read_off_from`] with the mesh's memory limited to `budget`.
+pub(crate) fn read_off_within(
+    reader: impl BufRead,
+    name: &str,
+    budget: Budget,
+) -> Result<PolygonMesh> {
     let mut lines = Lines::new(reader, name);
     let malformed = |what: String| ParseError::Malformed { what };
 
@@ -119,6 +130,7 @@ pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
             *slot = parse_coordinate(token).map_err(|kind| lines.error(kind))?;
         }
         mesh.positions.push(DVec3::from_array(xyz));
+        budget.check(&mesh, &lines)?;
     }
     let mut corners: Vec<u32> = Vec::new();
     while mesh.n_faces() < n_faces as usize {
@@ -170,6 +182,7 @@ pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
             corners.push(index as u32);
         }
         mesh.push_face_from_line(&corners, lines.line);
+        budget.check(&mesh, &lines)?;
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {

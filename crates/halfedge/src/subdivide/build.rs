@@ -68,23 +68,28 @@ pub(crate) struct Builder<const GROW: bool> {
 
 impl<const GROW: bool> Builder<GROW> {
     /// Allocates the arrays: exactly `expected` when preallocating, empty when growing.
-    pub(crate) fn new(expected: Sizes) -> Self {
+    ///
+    /// # Errors
+    ///
+    /// [`Error::AllocationFailed`] when the system refuses the memory.
+    pub(crate) fn new(expected: Sizes) -> Result<Self> {
         let (nv, nh, nf) = if GROW {
             (0, 0, 0)
         } else {
             (expected.vertices, expected.halfedges, expected.faces)
         };
-        Builder {
+        use super::alloc::{filled, with_capacity};
+        Ok(Builder {
             expected,
-            vertex_halfedge: vec![INVALID; nv],
-            halfedge_vertex: vec![INVALID; nh],
-            halfedge_face: vec![INVALID; nh],
-            halfedge_next: vec![INVALID; nh],
-            halfedge_prev: vec![INVALID; nh],
-            face_halfedge: Vec::with_capacity(nf),
+            vertex_halfedge: filled(INVALID, nv, "vertex half-edges")?,
+            halfedge_vertex: filled(INVALID, nh, "half-edge targets")?,
+            halfedge_face: filled(INVALID, nh, "half-edge faces")?,
+            halfedge_next: filled(INVALID, nh, "next half-edges")?,
+            halfedge_prev: filled(INVALID, nh, "previous half-edges")?,
+            face_halfedge: with_capacity(nf, "face half-edges")?,
             max_vertex: 0,
             max_halfedge: 0,
-        }
+        })
     }
 
     #[inline]

@@ -32,7 +32,7 @@ pub(crate) fn catmull_clark<const GROW: bool>(
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let offsets = t.corner_offsets();
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     let mut quad = [(0u32, 0u32); 4];
     for f in 0..nf {
         let fp = nv + ne + f;
@@ -54,18 +54,29 @@ pub(crate) fn catmull_clark<const GROW: bool>(
         }
     }
 
-    let positions = cc_positions(&t, (!GROW).then_some(expected.vertices), parallel);
+    let positions = cc_positions(&t, (!GROW).then_some(expected.vertices), parallel)?;
     b.finish(positions, ctx)
 }
 
 /// The positions of a Catmull-Clark step: moved old vertices, edge points, face points.
 /// `capacity`: allocate exactly this many up front (else grow).
-pub(crate) fn cc_positions(t: &Topo<'_>, capacity: Option<usize>, parallel: bool) -> Vec<DVec3> {
+///
+/// # Errors
+///
+/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
+pub(crate) fn cc_positions(
+    t: &Topo<'_>,
+    capacity: Option<usize>,
+    parallel: bool,
+) -> crate::Result<Vec<DVec3>> {
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
+    let mut positions = match capacity {
+        Some(n) => super::alloc::with_capacity(n, "positions")?,
+        None => Vec::new(),
+    };
     // Face points first: the vertex and edge rules use them.
-    let mut face_points = Vec::with_capacity(nf as usize);
+    let mut face_points = super::alloc::with_capacity(nf as usize, "face points")?;
     par::extend(&mut face_points, nf as usize, parallel, |f| {
         let mut sum = DVec3::ZERO;
         let mut n = 0u32;
@@ -104,5 +115,5 @@ pub(crate) fn cc_positions(t: &Topo<'_>, capacity: Option<usize>, parallel: bool
         }
     });
     positions.extend_from_slice(&face_points);
-    positions
+    Ok(positions)
 }

@@ -39,7 +39,7 @@ pub(crate) fn doo_sabin<const GROW: bool>(
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for f in 0..nf {
         corners.clear();
@@ -71,7 +71,7 @@ pub(crate) fn doo_sabin<const GROW: bool>(
     let mut positions = if GROW {
         Vec::new()
     } else {
-        Vec::with_capacity(expected.vertices)
+        super::alloc::with_capacity(expected.vertices, "positions")?
     };
     par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
         doo_sabin_point(&t, h as u32)
@@ -106,7 +106,7 @@ pub(crate) fn mid_edge<const GROW: bool>(
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for f in 0..nf {
         corners.clear();
@@ -128,7 +128,7 @@ pub(crate) fn mid_edge<const GROW: bool>(
     let mut positions = if GROW {
         Vec::new()
     } else {
-        Vec::with_capacity(expected.vertices)
+        super::alloc::with_capacity(expected.vertices, "positions")?
     };
     par::extend(&mut positions, ne as usize, parallel, |e| {
         let h = 2 * e as u32;

@@ -37,9 +37,9 @@ struct Indexed<'a> {
 impl<'a> Indexed<'a> {
     fn new(mesh: &'a PolygonMesh) -> Result<Indexed<'a>> {
         let nv = mesh.positions.len();
-        let mut dense = vec![INVALID; nv];
+        let mut dense = super::alloc::filled(INVALID, nv, "dense")?;
         let mut positions = Vec::new();
-        let mut corner_vertex = Vec::with_capacity(mesh.n_corners());
+        let mut corner_vertex = super::alloc::with_capacity(mesh.n_corners(), "corner vertex")?;
         for (f, face) in mesh.faces().enumerate() {
             let face_id = u32::try_from(f).unwrap_or(u32::MAX);
             if face.len() < 3 {
@@ -75,7 +75,7 @@ impl<'a> Indexed<'a> {
         }
         // Sides sorted by their unordered vertex pair.
         let offsets = mesh.face_offsets();
-        let mut keys: Vec<(u64, u32)> = Vec::with_capacity(corner_vertex.len());
+        let mut keys: Vec<(u64, u32)> = super::alloc::with_capacity(corner_vertex.len(), "keys")?;
         for f in 0..mesh.n_faces() {
             let (start, end) = (offsets[f], offsets[f + 1]);
             for c in start..end {
@@ -86,7 +86,7 @@ impl<'a> Indexed<'a> {
             }
         }
         keys.sort_unstable();
-        let mut corner_edge = vec![0u32; corner_vertex.len()];
+        let mut corner_edge = super::alloc::filled(0u32, corner_vertex.len(), "corner edge")?;
         let mut edge_low = Vec::new();
         let mut last = u64::MAX;
         for &(key, c) in &keys {
@@ -112,18 +112,18 @@ fn tri_split(
     template: &Template,
     expected_vertices: usize,
     expected_faces: usize,
-) -> PolygonMesh {
+) -> Result<PolygonMesh> {
     let n = template.n;
     let nv = ix.positions.len() as u32;
     let ne = ix.edge_low.len() as u32;
     let per_face = template.interior_points.len() as u32;
     let interior_base = nv + (n - 1) * ne;
 
-    let mut positions = Vec::with_capacity(expected_vertices);
+    let mut positions = super::alloc::with_capacity(expected_vertices, "positions")?;
     positions.extend_from_slice(&ix.positions);
     let nf = n as f64;
     // Endpoints of each edge (the first side found).
-    let mut edge_high = vec![INVALID; ne as usize];
+    let mut edge_high = super::alloc::filled(INVALID, ne as usize, "edge high")?;
     let offsets = ix.mesh.face_offsets();
     for f in 0..ix.mesh.n_faces() {
         let (start, end) = (offsets[f], offsets[f + 1]);
@@ -141,7 +141,7 @@ fn tri_split(
         }
     }
     let mut out = PolygonMesh::with_positions(Vec::new());
-    out.reserve_faces(expected_faces, 3 * expected_faces);
+    super::alloc::reserve_faces(&mut out, expected_faces, 3 * expected_faces)?;
     for (f, &start) in offsets[..ix.mesh.n_faces()].iter().enumerate() {
         let vs = [
             ix.corner_vertex[start],
@@ -180,17 +180,21 @@ fn tri_split(
         }
     }
     out.positions = positions;
-    out
+    Ok(out)
 }
 
 /// One Catmull-Clark step (topology, linear points) on any face list.
-fn catmull_clark(ix: &Indexed<'_>, expected_vertices: usize, expected_faces: usize) -> PolygonMesh {
+fn catmull_clark(
+    ix: &Indexed<'_>,
+    expected_vertices: usize,
+    expected_faces: usize,
+) -> Result<PolygonMesh> {
     let nv = ix.positions.len() as u32;
     let ne = ix.edge_low.len() as u32;
     let offsets = ix.mesh.face_offsets();
-    let mut positions = Vec::with_capacity(expected_vertices);
+    let mut positions = super::alloc::with_capacity(expected_vertices, "positions")?;
     positions.extend_from_slice(&ix.positions);
-    let mut edge_mid = vec![DVec3::ZERO; ne as usize];
+    let mut edge_mid = super::alloc::filled(DVec3::ZERO, ne as usize, "edge mid")?;
     for f in 0..ix.mesh.n_faces() {
         let (start, end) = (offsets[f], offsets[f + 1]);
         for c in start..end {
@@ -202,7 +206,7 @@ fn catmull_clark(ix: &Indexed<'_>, expected_vertices: usize, expected_faces: usi
     }
     positions.extend_from_slice(&edge_mid);
     let mut out = PolygonMesh::with_positions(Vec::new());
-    out.reserve_faces(expected_faces, 4 * expected_faces);
+    super::alloc::reserve_faces(&mut out, expected_faces, 4 * expected_faces)?;
     for f in 0..ix.mesh.n_faces() {
         let (start, end) = (offsets[f], offsets[f + 1]);
         let fp = nv + ne + f as u32;
@@ -220,7 +224,7 @@ fn catmull_clark(ix: &Indexed<'_>, expected_vertices: usize, expected_faces: usi
         positions.push(centroid / (end - start) as f64);
     }
     out.positions = positions;
-    out
+    Ok(out)
 }
 
 /// Two triangles on the same three vertices would give the same interior edges under a
@@ -299,8 +303,8 @@ pub(super) fn run_levels(
             None => Indexed::new(current.as_ref().unwrap_or(mesh))?,
         };
         let next = match &template {
-            Some(t) => tri_split(&ix, t, e.vertices, e.faces),
-            None => catmull_clark(&ix, e.vertices, e.faces),
+            Some(t) => tri_split(&ix, t, e.vertices, e.faces)?,
+            None => catmull_clark(&ix, e.vertices, e.faces)?,
         };
         let ctx = StepContext {
             scheme: name,
@@ -319,6 +323,11 @@ pub(super) fn run_levels(
                 return Err(ctx.mismatch(what, predicted, actual));
             }
         }
+        let before = super::finite::Before::Counts {
+            vertices: ix.positions.len(),
+            edges: ix.edge_low.len(),
+        };
+        super::finite::check_positions(name, plan.rule, s, &before, &next.positions)?;
         drop(ix);
         visit(s, &next)?;
         if let Some(progress) = opts.progress {

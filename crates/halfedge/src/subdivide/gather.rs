@@ -193,8 +193,8 @@ pub(crate) fn four_to_one(
                 ]
             }
         }
-    });
-    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    })?;
+    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
     par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
         let v = v as u32;
         if v < nv {
@@ -203,7 +203,7 @@ pub(crate) fn four_to_one(
             midpoint_halfedge(&t, v - nv)
         }
     });
-    let mut face_halfedge = Vec::with_capacity(built.faces);
+    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
     par::extend(&mut face_halfedge, built.faces, parallel, |g| {
         let (f, k) = (g as u32 / 4, g as u32 % 4);
         if k == 0 {
@@ -212,7 +212,7 @@ pub(crate) fn four_to_one(
             inner + 2 * (3 * f + k - 1) + 1
         }
     });
-    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel);
+    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel)?;
     finish(
         ctx,
         expected,
@@ -242,13 +242,16 @@ pub(crate) fn catmull_clark(
     check(ctx, expected, built)?;
     // Positions first, so that their temporary face points are freed before the corner tables
     // and the half-edge arrays are allocated (a lower peak).
-    let positions = cc_positions(&t, Some(expected.vertices), parallel);
+    let positions = cc_positions(&t, Some(expected.vertices), parallel)?;
     // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse. On a
     // quad mesh (every level after the first) corner k is the (k % 4)-th half-edge of face
     // k / 4, so the inverse table is skipped (one u32 per corner less at the peak).
     let quads = mesh.is_quad_mesh();
-    let mut corner_of = vec![INVALID; 2 * ne as usize];
-    let mut corner_halfedge = Vec::with_capacity(if quads { 0 } else { n_corners as usize });
+    let mut corner_of = super::alloc::filled(INVALID, 2 * ne as usize, "corner of")?;
+    let mut corner_halfedge = super::alloc::with_capacity(
+        if quads { 0 } else { n_corners as usize },
+        "corner halfedge",
+    )?;
     let mut corners = 0u32;
     for f in 0..nf {
         t.for_face(f, |h| {
@@ -324,8 +327,8 @@ pub(crate) fn catmull_clark(
                 ]
             }
         }
-    });
-    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    })?;
+    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
     par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
         let v = v as u32;
         if v < nv {
@@ -337,7 +340,7 @@ pub(crate) fn catmull_clark(
             inner + 2 * corner(t.face_halfedge(v - nv - ne)) + 1
         }
     });
-    let mut face_halfedge = Vec::with_capacity(built.faces);
+    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
     par::extend(&mut face_halfedge, built.faces, parallel, |k| {
         source_piece(corner_h(k as u32))
     });
@@ -413,8 +416,8 @@ pub(crate) fn sqrt3_closed(
                 [t.source(g), corner(g ^ 1), spoke(t.next(g ^ 1)), g ^ 1]
             }
         }
-    });
-    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    })?;
+    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
     par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
         let v = v as u32;
         if v < nv {
@@ -423,7 +426,7 @@ pub(crate) fn sqrt3_closed(
             spoke(t.face_halfedge(v - nv)) + 1
         }
     });
-    let mut face_halfedge = Vec::with_capacity(built.faces);
+    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
     par::extend(&mut face_halfedge, built.faces, parallel, |c| {
         let (f, k) = (c as u32 / 3, c as u32 % 3);
         let h0 = t.face_halfedge(f);
@@ -433,7 +436,7 @@ pub(crate) fn sqrt3_closed(
             _ => t.prev(h0),
         }
     });
-    let mut positions = Vec::with_capacity(expected.vertices);
+    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
     par::extend(&mut positions, nv as usize, parallel, |v| {
         interior_vertex(&t, v as u32)
     });
@@ -494,12 +497,12 @@ pub(crate) fn doo_sabin(
                 ]
             }
         }
-    });
-    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    })?;
+    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
     par::extend(&mut vertex_halfedge, built.vertices, parallel, |h| {
         2 * h as u32
     });
-    let mut face_halfedge = Vec::with_capacity(built.faces);
+    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
     par::extend(&mut face_halfedge, built.faces, parallel, |f| {
         let f = f as u32;
         if f < nf {
@@ -510,7 +513,7 @@ pub(crate) fn doo_sabin(
             b0 + 2 * t.vertex_halfedge(f - nf - ne) + 1
         }
     });
-    let mut positions = Vec::with_capacity(expected.vertices);
+    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
     par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
         doo_sabin_point(&t, h as u32)
     });
@@ -553,12 +556,12 @@ pub(crate) fn mid_edge(
                 2 * (t.next(h) ^ 1) + 1,
             ]
         }
-    });
-    let mut vertex_halfedge = Vec::with_capacity(built.vertices);
+    })?;
+    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
     par::extend(&mut vertex_halfedge, built.vertices, parallel, |e| {
         4 * e as u32
     });
-    let mut face_halfedge = Vec::with_capacity(built.faces);
+    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
     par::extend(&mut face_halfedge, built.faces, parallel, |f| {
         let f = f as u32;
         if f < nf {
@@ -567,7 +570,7 @@ pub(crate) fn mid_edge(
             2 * (t.vertex_halfedge(f - nf) ^ 1) + 1
         }
     });
-    let mut positions = Vec::with_capacity(expected.vertices);
+    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
     par::extend(&mut positions, ne as usize, parallel, |e| {
         let h = 2 * e as u32;
         (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5

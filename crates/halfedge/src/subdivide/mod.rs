@@ -69,10 +69,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod alloc;
 mod build;
 mod catmull_clark;
 mod dual;
 mod faces;
+mod finite;
 mod gather;
 mod par;
 mod sqrt3;
@@ -80,6 +82,7 @@ mod to_faces;
 mod topo;
 mod trisplit;
 
+use glam::DVec3;
 use num_bigint::BigInt;
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
@@ -749,6 +752,8 @@ fn run_levels(
 trait LastLevel: Send {
     /// Vertices, edges and faces.
     fn vef(&self) -> [usize; 3];
+    /// The vertex positions.
+    fn positions(&self) -> &[DVec3];
     /// The half-edge mesh, when the level is one (for the level visitor).
     fn as_halfedge(&self) -> Option<&HalfEdgeMesh>;
 }
@@ -756,6 +761,9 @@ trait LastLevel: Send {
 impl LastLevel for HalfEdgeMesh {
     fn vef(&self) -> [usize; 3] {
         [self.n_vertices(), self.n_edges(), self.n_faces()]
+    }
+    fn positions(&self) -> &[DVec3] {
+        HalfEdgeMesh::positions(self)
     }
     fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
         Some(self)
@@ -765,6 +773,9 @@ impl LastLevel for HalfEdgeMesh {
 impl LastLevel for FaceListLevel {
     fn vef(&self) -> [usize; 3] {
         [self.mesh.n_vertices(), self.edges, self.mesh.n_faces()]
+    }
+    fn positions(&self) -> &[DVec3] {
+        &self.mesh.positions
     }
     fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
         None
@@ -817,6 +828,8 @@ fn drive<T: LastLevel>(
         for (s, &sizes) in (1..levels).zip(&expected) {
             let input = current.as_ref().unwrap_or(mesh);
             let next = step(plan, template.as_ref(), input, s, sizes, opts)?;
+            let before = finite::Before::Mesh(input);
+            finite::check_positions(name, plan.rule, s, &before, next.positions())?;
             visit(s, &next)?;
             report(s, next.vef());
             // Level s - 1 is dropped here.
@@ -824,6 +837,8 @@ fn drive<T: LastLevel>(
         }
         let input = current.as_ref().unwrap_or(mesh);
         let out = last(input, levels, last_sizes, template.as_ref())?;
+        let before = finite::Before::Mesh(input);
+        finite::check_positions(name, plan.rule, levels, &before, out.positions())?;
         drop(current);
         if let Some(m) = out.as_halfedge() {
             visit(levels, m)?;

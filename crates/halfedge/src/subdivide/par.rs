@@ -34,15 +34,17 @@ type Chunks<'a> = (
 /// The four half-edge arrays (`vertex`, `face`, `next`, `prev`), each of length `n`, with
 /// entry `q` of each array from `f(q)`. The arrays are allocated zeroed (no memset: the pages
 /// come zeroed from the allocator) and written front to back, in chunks in parallel.
+///
+/// # Errors
+///
+/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
 pub(crate) fn halfedge_arrays(
     n: usize,
     parallel: bool,
     f: impl Fn(u32) -> [u32; 4] + Sync + Send,
-) -> [Vec<u32>; 4] {
-    let mut vertex = vec![0u32; n];
-    let mut face = vec![0u32; n];
-    let mut next = vec![0u32; n];
-    let mut prev = vec![0u32; n];
+) -> crate::Result<[Vec<u32>; 4]> {
+    let [mut vertex, mut face, mut next, mut prev] =
+        super::alloc::zeroed_u32::<4>(n, "the half-edge arrays")?;
     let fill = |(chunk, (((v, fa), ne), pr)): (usize, Chunks<'_>)| {
         let base = (chunk * CHUNK) as u32;
         // Zipped iterators: no bounds checks on the four slices.
@@ -72,5 +74,5 @@ pub(crate) fn halfedge_arrays(
             .enumerate()
             .for_each(fill);
     }
-    [vertex, face, next, prev]
+    Ok([vertex, face, next, prev])
 }

@@ -54,7 +54,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     // corner[g] = 3f + k for face half-edges.
-    let mut corner = vec![INVALID; 2 * ne as usize];
+    let mut corner = super::alloc::filled(INVALID, 2 * ne as usize, "corner")?;
     for f in 0..nf {
         let mut k = 0;
         t.for_face(f, |g| {
@@ -67,8 +67,8 @@ pub(crate) fn sqrt3<const GROW: bool>(
     let mut number_of = Vec::new();
     let mut boundary_faces = Vec::new();
     if step_b {
-        boundary_of = vec![INVALID; nf as usize];
-        number_of = vec![INVALID; nf as usize];
+        boundary_of = super::alloc::filled(INVALID, nf as usize, "boundary faces")?;
+        number_of = super::alloc::filled(INVALID, nf as usize, "boundary face numbers")?;
         for f in 0..nf {
             let mut found = INVALID;
             let mut count = 0;
@@ -129,7 +129,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
         _ => 2 * spoke(k) + 1,
     };
 
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     for f in 0..nf {
         let g0 = t.face_halfedge(f);
         for g in [g0, t.next(g0), t.prev(g0)] {
@@ -161,7 +161,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
     let mut positions = if GROW {
         Vec::new()
     } else {
-        Vec::with_capacity(expected.vertices)
+        super::alloc::with_capacity(expected.vertices, "positions")?
     };
     par::extend(&mut positions, nv as usize, parallel, |v| {
         let v = v as u32;

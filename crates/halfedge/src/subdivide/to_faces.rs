@@ -50,8 +50,8 @@ pub(crate) fn four_to_one(
         faces: 4 * nf,
     };
     check(ctx, expected, built)?;
-    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel);
-    let mut corners = vec![0u32; 3 * built.faces];
+    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel)?;
+    let mut corners = super::alloc::filled(0u32, 3 * built.faces, "corners")?;
     let fill = |(chunk, out): (usize, &mut [u32])| {
         let first = chunk * FACES_PER_TASK;
         for (f, tris) in (first as u32..).zip(out.chunks_exact_mut(12)) {
@@ -103,12 +103,12 @@ pub(crate) fn catmull_clark(
         faces: n_corners,
     };
     check(ctx, expected, built)?;
-    let positions = cc_positions(&t, Some(expected.vertices), parallel);
+    let positions = cc_positions(&t, Some(expected.vertices), parallel)?;
     let quad = |f: u32, h: u32| -> [u32; 4] {
         let p = t.prev(h);
         [t.target(p), nv + (h >> 1), nv + ne + f, nv + (p >> 1)]
     };
-    let mut corners = vec![0u32; 4 * built.faces];
+    let mut corners = super::alloc::filled(0u32, 4 * built.faces, "corners")?;
     if mesh.is_quad_mesh() {
         // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
         // and their targets are loaded once (prev(h_k) = h_(k-1), so `quad` is inlined here
@@ -188,7 +188,7 @@ fn finish(
             return Err(ctx.mismatch(what, predicted, len.max(cap)));
         }
     }
-    let mut offsets = Vec::with_capacity(expected.faces + 1);
+    let mut offsets = super::alloc::with_capacity(expected.faces + 1, "offsets")?;
     super::par::extend(&mut offsets, expected.faces + 1, parallel, |f| degree * f);
     Ok(PolygonMesh::from_raw_parts(positions, offsets, corners))
 }

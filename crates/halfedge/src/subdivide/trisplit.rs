@@ -177,7 +177,7 @@ pub(crate) fn tri_split<const GROW: bool>(
     let interior_base = nv + (n - 1) * ne;
     let edge_base = n * ne;
 
-    let mut b = Builder::<GROW>::new(expected);
+    let mut b = Builder::<GROW>::new(expected)?;
     let mut corners = [(0u32, 0u32); 3];
     for f in 0..nf {
         let h0 = t.face_halfedge(f);
@@ -223,7 +223,7 @@ pub(crate) fn tri_split<const GROW: bool>(
         rule,
         (!GROW).then_some(expected.vertices),
         parallel,
-    );
+    )?;
     b.finish(positions, ctx)
 }
 
@@ -235,12 +235,15 @@ pub(crate) fn tri_positions(
     rule: TriRule,
     capacity: Option<usize>,
     parallel: bool,
-) -> Vec<DVec3> {
+) -> crate::Result<Vec<DVec3>> {
     let n = template.n;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let points_per_face = template.interior_points.len() as u32;
     let t = *t;
-    let mut positions = capacity.map_or_else(Vec::new, Vec::with_capacity);
+    let mut positions = match capacity {
+        Some(n) => super::alloc::with_capacity(n, "positions")?,
+        None => Vec::new(),
+    };
     // Old vertices.
     if rule == TriRule::Loop {
         par::extend(&mut positions, nv as usize, parallel, |v| {
@@ -256,7 +259,7 @@ pub(crate) fn tri_positions(
         match rule {
             TriRule::Loop => loop_edge(&t, e),
             TriRule::Midpoint => midpoint(&t, e),
-            TriRule::Icosphere => midpoint(&t, e).normalize(),
+            TriRule::Icosphere => project_to_sphere(midpoint(&t, e)),
             TriRule::Butterfly => butterfly_edge(&t, e),
             TriRule::Linear => {
                 let k = (i % per_edge) as f64 + 1.0;
@@ -281,7 +284,21 @@ pub(crate) fn tri_positions(
             p0 + (p1 - p0) * (a as f64 / nn) + (p2 - p0) * (bb as f64 / nn)
         });
     }
-    positions
+    Ok(positions)
+}
+
+/// `p` on the unit sphere. Where `p`'s squared length would overflow (coordinates beyond
+/// about 1e154) or vanish (below about 1e-154, subnormals included), it is first divided by
+/// its largest coordinate, so the direction stays exact; other points take glam's
+/// `normalize` unchanged. A point at the origin has no direction: NaN, which the level's
+/// finiteness check refuses, naming the edge.
+fn project_to_sphere(p: DVec3) -> DVec3 {
+    let largest = p.abs().max_element();
+    if largest > 1e150 || (largest < 1e-150 && largest > 0.0) {
+        (p / largest).normalize()
+    } else {
+        p.normalize()
+    }
 }
 
 fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {

@@ -872,3 +872,411 @@ fn allow_large_computes_a_closed_form_above_the_limit() {
         &out[..200.min(out.len())]
     );
 }
+
+/// The names in a folder, sorted.
+fn folder_names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("listed")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+const SUBDIVIDE_TETRAHEDRON: [&str; 7] = [
+    "subdivide",
+    "--base",
+    "tetrahedron",
+    "--scheme",
+    "loop",
+    "--levels",
+    "1",
+];
+
+/// Issue 11: `-o` on a read-only file (mode 444) used to replace it silently (renaming over a
+/// file needs only the folder's permission). It is refused, exit 3, and left intact, as root
+/// too.
+#[test]
+fn output_over_a_read_only_file_is_refused_and_left_intact() {
+    use std::os::unix::fs::PermissionsExt;
+    let files = Files::new();
+    let target = files.write("ro.obj", b"keep\n");
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o444)).expect("chmod");
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", target.as_str()]);
+    let stderr = fails(&args, 3, "ro.obj: refusing to write over it");
+    assert_eq!(
+        stderr,
+        format!("error: {target}: refusing to write over it: it is read-only (mode 444)\n")
+    );
+    assert_eq!(std::fs::read_to_string(&target).expect("read"), "keep\n");
+    assert_eq!(folder_names(files.dir.path()), ["ro.obj"]);
+}
+
+/// `-o -` writes the OBJ to standard output, and the summary to stderr.
+#[test]
+fn output_dash_is_standard_output() {
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", "-"]);
+    let run = subcount(&args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout.lines().filter(|l| l.starts_with("v ")).count(),
+        10
+    );
+    assert_eq!(
+        run.stdout.lines().filter(|l| l.starts_with("f ")).count(),
+        16
+    );
+    assert_eq!(
+        run.stderr,
+        "level 1: V = 10, E = 24, F = 16; wrote standard output\n"
+    );
+    assert!(!Path::new("-").exists());
+}
+
+/// `-o /dev/stdout` (a symbolic link to a pipe here) is written directly: the OBJ, then the
+/// summary, on stdout; `/dev/stdout` is not renamed over (issue 11: as root it was).
+#[test]
+fn output_to_dev_stdout_is_written_directly() {
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", "/dev/stdout"]);
+    let out = ok(&args);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 27, "{out}");
+    assert_eq!(
+        lines[26],
+        "level 1: V = 10, E = 24, F = 16; wrote /dev/stdout"
+    );
+    let meta = std::fs::symlink_metadata("/dev/stdout").expect("stat");
+    assert!(meta.file_type().is_symlink(), "/dev/stdout was replaced");
+}
+
+/// A symbolic link is written through to its target, and the link stays.
+#[test]
+fn output_through_a_symlink_replaces_its_target() {
+    let files = Files::new();
+    let real = files.write("real.obj", b"old\n");
+    let link = files.path("link.obj");
+    std::os::unix::fs::symlink("real.obj", &link).expect("link");
+    let link = link.display().to_string();
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", link.as_str()]);
+    ok(&args);
+    let meta = std::fs::symlink_metadata(&link).expect("stat");
+    assert!(meta.file_type().is_symlink());
+    let text = std::fs::read_to_string(&real).expect("read");
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 16);
+    assert_eq!(folder_names(files.dir.path()), ["link.obj", "real.obj"]);
+}
+
+/// A target name of 255 bytes (NAME_MAX) is written: the temporary file's name is short.
+#[test]
+fn output_names_of_255_bytes_are_written() {
+    let files = Files::new();
+    let name = format!("{}.obj", "m".repeat(251));
+    assert_eq!(name.len(), 255);
+    let target = files.path(&name).display().to_string();
+    let mut args = SUBDIVIDE_TETRAHEDRON.to_vec();
+    args.extend(["-o", target.as_str()]);
+    ok(&args);
+    assert_eq!(folder_names(files.dir.path()), [name]);
+}
+
+/// Issue 11: a `SIGTERM` or `SIGINT` during the write left the temporary file behind (376 MB).
+/// It is removed, the target is untouched, and the process ends by the signal.
+#[test]
+fn a_signal_during_the_write_removes_the_temporary_file() {
+    use std::os::unix::process::ExitStatusExt;
+    for (signal, number) in [("TERM", 15), ("INT", 2)] {
+        let files = Files::new();
+        let target = files.write("out.obj", b"previous\n");
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_subcount"))
+            .args([
+                "subdivide",
+                "--base",
+                "icosahedron",
+                "--scheme",
+                "loop",
+                "--levels",
+                "8",
+                "-o",
+                &target,
+            ])
+            .stdin(std::process::Stdio::null())
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("started");
+        // Wait until the temporary file appears (the 60 MB write takes a while), then signal.
+        let start = std::time::Instant::now();
+        let mut seen = false;
+        while start.elapsed() < std::time::Duration::from_secs(120) {
+            if folder_names(files.dir.path()).len() > 1 {
+                seen = true;
+                break;
+            }
+            if child.try_wait().expect("polled").is_some() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(1));
+        }
+        assert!(seen, "the temporary file never appeared");
+        let killed = std::process::Command::new("kill")
+            .args([format!("-{signal}"), child.id().to_string()])
+            .status()
+            .expect("kill runs");
+        assert!(killed.success());
+        let status = child.wait().expect("waited");
+        assert_eq!(status.signal(), Some(number), "{status:?}");
+        assert_eq!(folder_names(files.dir.path()), ["out.obj"]);
+        assert_eq!(
+            std::fs::read_to_string(&target).expect("read"),
+            "previous\n"
+        );
+    }
+}
+
+/// Runs `subcount` under `prlimit --as=BYTES` (util-linux), or returns `None` with a notice
+/// when `prlimit` is missing.
+fn subcount_with_address_space(bytes: u64, args: &[&str]) -> Option<crate::util::Run> {
+    let output = std::process::Command::new("prlimit")
+        .arg(format!("--as={bytes}"))
+        .arg(env!("CARGO_BIN_EXE_subcount"))
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output();
+    match output {
+        Ok(output) => Some(crate::util::Run {
+            code: output.status.code().unwrap_or(-1),
+            stdout: String::from_utf8(output.stdout).expect("stdout is UTF-8"),
+            stderr: String::from_utf8(output.stderr).expect("stderr is UTF-8"),
+        }),
+        Err(e) => {
+            eprintln!("note: prlimit cannot run ({e}); the address-space test is skipped");
+            None
+        }
+    }
+}
+
+/// Issue 11: under `prlimit --as=2000000000`, `subdivide --levels 11` aborted (exit 134,
+/// "memory allocation of 1006633008 bytes failed"): the guard took half of MemAvailable and
+/// ignored the address-space limit. It now takes the least of MemAvailable, RLIMIT_AS minus
+/// the address space in use and the cgroup limit.
+#[test]
+fn the_memory_guard_sees_the_address_space_limit() {
+    let args = [
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "11",
+    ];
+    let Some(run) = subcount_with_address_space(2_000_000_000, &args) else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with(
+            "error: loop to level 11 needs about 3.8 GiB of memory (levels 10 and 11 with the input), more than the limit of "
+        ),
+        "{}",
+        run.stderr
+    );
+    assert!(run.stderr.ends_with(
+        " MiB (half the available memory); use fewer levels, or --allow-large to try anyway\n"
+    ));
+}
+
+/// With `--allow-large` past the limit, a failed allocation is a refusal (exit 4), not an
+/// abort ("memory allocation of N bytes failed", exit 134). The limit is 1.5 GB rather than
+/// the issue's 2 GB because this is the debug binary, whose debug-only invariant check of
+/// each level (`HalfEdgeMesh::from_raw_parts`) allocates before level 11's buffers would.
+#[test]
+fn a_failed_allocation_is_a_refusal_not_an_abort() {
+    let args = [
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "11",
+        "--allow-large",
+    ];
+    let Some(run) = subcount_with_address_space(1_500_000_000, &args) else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .starts_with("error: cannot allocate 1006632960 bytes for the half-edge arrays: "),
+        "{}",
+        run.stderr
+    );
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    // The face-list subdividers (non-manifold schemes) too.
+    let args = [
+        "subdivide",
+        "--base",
+        "grid:3x3",
+        "--scheme",
+        "loop-general",
+        "--levels",
+        "12",
+        "--allow-large",
+    ];
+    if let Some(run) = subcount_with_address_space(1_500_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr.starts_with("error: cannot allocate "),
+            "{}",
+            run.stderr
+        );
+    }
+}
+
+/// A generated base mesh goes through the memory guard before it is allocated (exit 4); past
+/// the cell cap it stays a usage error (exit 2, the message of old).
+#[test]
+fn base_meshes_are_guarded_before_they_are_built() {
+    let args = ["stats", "--base", "grid:4096x4096"];
+    if let Some(run) = subcount_with_address_space(1_000_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr.starts_with("error: base mesh `grid:4096x4096` would need 1073938464 bytes of memory, more than the limit of "),
+            "{}",
+            run.stderr
+        );
+    }
+    let args = ["table", "--scheme", "loop", "--base", "torus:1000000"];
+    if let Some(run) = subcount_with_address_space(1_000_000_000, &args) {
+        assert_eq!(run.code, 4, "{}", run.stderr);
+        assert!(
+            run.stderr
+                .starts_with("error: base mesh `torus:1000000` would need "),
+            "{}",
+            run.stderr
+        );
+    }
+    fails(
+        &["stats", "--base", "grid:100000x100000"],
+        2,
+        "base mesh `grid:100000x100000`: 100000x100000 cells is more than the 16777216 allowed",
+    );
+}
+
+/// A mesh file larger than the memory available is refused before it is read (a sparse
+/// file of 4 GB: reading it would take minutes and fill memory).
+#[test]
+fn a_mesh_file_larger_than_memory_is_refused_before_reading() {
+    let files = Files::new();
+    let path = files.path("huge.obj");
+    std::fs::File::create(&path)
+        .and_then(|f| f.set_len(4_000_000_000))
+        .expect("a sparse file");
+    let path = path.display().to_string();
+    let Some(run) = subcount_with_address_space(1_000_000_000, &["stats", "--mesh", &path]) else {
+        return;
+    };
+    assert_eq!(run.code, 4, "{}", run.stderr);
+    assert!(
+        run.stderr.starts_with(&format!(
+            "error: {path}: the file is 4000000000 bytes, more than the "
+        )),
+        "{}",
+        run.stderr
+    );
+    assert!(run
+        .stderr
+        .ends_with(" bytes of memory available to this process\n"));
+}
+
+/// Issue 11: `table --scheme-file /dev/zero` read until memory ran out. Scheme files are
+/// capped at 1 MiB, checked before reading it all (by length, or by a bounded read).
+#[test]
+fn scheme_files_are_capped() {
+    fails(
+        &["table", "--scheme-file", "/dev/zero"],
+        3,
+        "cannot read /dev/zero: the file is larger than the limit of 1048576 bytes",
+    );
+    let files = Files::new();
+    let path = files.write("big.toml", &vec![b'#'; (1 << 20) + 1]);
+    fails(
+        &["formula", "--scheme-file", &path],
+        3,
+        "big.toml: the file is larger than the limit of 1048576 bytes",
+    );
+}
+
+/// Issue 11: a UTF-8 byte-order mark made the reader drop the first line (then "face index 3
+/// is out of range (the file has 2 vertices)"). It is skipped, in OBJ, OFF and scheme files.
+#[test]
+fn a_byte_order_mark_is_accepted() {
+    let files = Files::new();
+    let obj = files.write("bom.obj", format!("\u{feff}{TRIANGLE}f 1 2 3\n").as_bytes());
+    let out = ok(&["stats", "--mesh", &obj]);
+    assert!(
+        out.starts_with("V = 3 (vertices used by faces; 0 unreferenced)"),
+        "{out}"
+    );
+    let off = files.write(
+        "bom.off",
+        "\u{feff}OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n".as_bytes(),
+    );
+    let out = ok(&["stats", "--mesh", &off]);
+    assert!(out.starts_with("V = 3 "), "{out}");
+    let toml = ok(&["schemes", "--format", "toml", "loop"]);
+    let scheme = files.write("bom.toml", format!("\u{feff}{toml}").as_bytes());
+    let out = ok(&[
+        "at",
+        "--scheme-file",
+        &scheme,
+        "--counts",
+        "V=12,E=30,F=20",
+        "--level",
+        "1",
+    ]);
+    assert!(out.contains("42"), "{out}");
+}
+
+/// Issue 11: `subdivide --scheme icosphere` on a triangle whose edge midpoint is the origin
+/// wrote `v NaN NaN NaN` with exit 0. Every level's positions are checked: exit 3, naming the
+/// vertex and the edge, and nothing is written. Coordinates near `f64::MAX` whose averages
+/// overflow are refused the same way.
+#[test]
+fn non_finite_points_are_refused_and_nothing_is_written() {
+    let files = Files::new();
+    let origin = files.write("origin.obj", b"v 1 1 0\nv -1 -1 0\nv 0 1 1\nf 1 2 3\n");
+    let out = files.path("out.obj").display().to_string();
+    fails(
+        &[
+            "subdivide", "--mesh", &origin, "--scheme", "icosphere", "--levels", "1", "-o", &out,
+        ],
+        3,
+        "icosphere level 1: vertex 3 (on edge (0, 1) of the input) would be at (NaN, NaN, NaN), not a finite point",
+    );
+    let huge = files.write(
+        "huge.obj",
+        b"v 1.7e308 0 0\nv 1.7e308 1 0\nv 0 0 1\nv 0 1 1\nf 1 2 3\nf 2 4 3\n",
+    );
+    fails(
+        &[
+            "subdivide",
+            "--mesh",
+            &huge,
+            "--scheme",
+            "loop-boundary",
+            "--levels",
+            "1",
+            "-o",
+            &out,
+        ],
+        3,
+        "loop-boundary level 1: vertex 4 (on edge (0, 1) of the input) would be at (inf, ",
+    );
+    assert_eq!(folder_names(files.dir.path()), ["huge.obj", "origin.obj"]);
+}

@@ -1,0 +1,89 @@
+//! Every level's positions are checked before they are returned: a non-finite point (huge
+//! coordinates whose weighted sums overflow, a point at the origin that the icosphere rule
+//! cannot project onto the sphere) is [`Error::NonFinitePosition`], naming the vertex and the
+//! element of the level before it was computed from.
+
+use glam::DVec3;
+
+use super::topo::Topo;
+use super::Rule;
+use crate::error::{Error, Result};
+use crate::mesh::HalfEdgeMesh;
+
+/// The level before, as far as naming an origin needs it.
+pub(super) enum Before<'a> {
+    /// A half-edge mesh: edges are named by their end vertices.
+    Mesh(&'a HalfEdgeMesh),
+    /// A face list with `vertices` positions and `edges` edges (named by number).
+    Counts { vertices: usize, edges: usize },
+}
+
+/// Refuses the first non-finite position of level `level`.
+pub(super) fn check_positions(
+    scheme: &str,
+    rule: Rule,
+    level: u32,
+    before: &Before<'_>,
+    positions: &[DVec3],
+) -> Result<()> {
+    let Some(v) = positions.iter().position(|p| !p.is_finite()) else {
+        return Ok(());
+    };
+    let p = positions[v];
+    Err(Error::NonFinitePosition {
+        scheme: scheme.to_string(),
+        level,
+        vertex: v as u32,
+        origin: origin(rule, level, before, v),
+        x: p.x,
+        y: p.y,
+        z: p.z,
+    })
+}
+
+/// What vertex `v` of level `level` is computed from, in the numbering each module documents
+/// (old vertices first, then edge points, then face points; one point per half-edge for
+/// Doo-Sabin, per edge for mid-edge).
+fn origin(rule: Rule, level: u32, before: &Before<'_>, v: usize) -> String {
+    let of = if level == 1 {
+        "of the input".to_string()
+    } else {
+        format!("of level {}", level - 1)
+    };
+    let (nv, ne) = match before {
+        Before::Mesh(m) => (m.n_vertices(), m.n_edges()),
+        Before::Counts { vertices, edges } => (*vertices, *edges),
+    };
+    let edge = |e: usize| match before {
+        Before::Mesh(m) => {
+            let t = Topo::new(m);
+            let h = 2 * e as u32;
+            format!("edge ({}, {}) {of}", t.source(h), t.target(h))
+        }
+        Before::Counts { .. } => format!("edge {e} {of}"),
+    };
+    match rule {
+        Rule::Tri(..) | Rule::CatmullClark if v < nv => format!("from vertex {v} {of}"),
+        Rule::Tri(_, n) if v < nv + (n as usize - 1) * ne => {
+            format!("on {}", edge((v - nv) / (n as usize - 1)))
+        }
+        Rule::CatmullClark if v < nv + ne => format!("on {}", edge(v - nv)),
+        Rule::CatmullClark => format!("the point of face {} {of}", v - nv - ne),
+        Rule::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
+        Rule::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
+        Rule::MidEdge => format!("the midpoint of {}", edge(v)),
+        Rule::DooSabin => match before {
+            Before::Mesh(m) => {
+                let t = Topo::new(m);
+                let h = v as u32;
+                format!(
+                    "the corner of face {} at vertex {} {of}",
+                    t.face(h),
+                    t.source(h)
+                )
+            }
+            Before::Counts { .. } => format!("from half-edge {v} {of}"),
+        },
+        _ => format!("computed from {}", of.trim_start_matches("of ")),
+    }
+}
