@@ -600,18 +600,15 @@ impl Chart {
         let looks = self.looks(5.0 * y_pad / PAD);
         for ((series, &look), label) in self.series.iter().zip(&looks).zip(labels) {
             let line = s.stroke(look.color, 2.0);
+            // A solid line is drawn as one dash that never ends.
+            let (dash, gap) = look.dash.map_or((i32::MAX, 0), |(d, g)| (s.px(d), s.px(g)));
             // One line per run of consecutive levels: a level without a positive count (zero
             // or negative, off a log scale) leaves a gap rather than a misleading segment.
             for run in series.points.chunk_by(|a, b| b.0 == a.0 + 1) {
                 let points = run.iter().map(|&(l, y)| ((l - base) as f64, y));
-                match look.dash.filter(|_| run.len() > 1) {
-                    Some((dash, gap)) => {
-                        let (dash, gap) = (s.px(dash), s.px(gap));
-                        chart.draw_series(DashedLineSeries::new(points, dash, gap, line))?
-                    }
-                    None if run.len() > 1 => chart.draw_series(LineSeries::new(points, line))?,
-                    None => continue,
-                };
+                if run.len() > 1 {
+                    chart.draw_series(DashedLineSeries::new(points, dash, gap, line))?;
+                }
             }
             // Markers only while they stay apart.
             let markers = series.points.iter().filter(|_| span <= 40.0);
@@ -622,23 +619,15 @@ impl Chart {
             }))?;
             // The legend's sample: a piece of the line with a marker.
             let ends = vec![(0, 0), (s.px(28.0), 0)];
-            let marker = Marker {
-                at: (s.px(14.0), 0),
-                look,
-                scale: s,
-            };
-            let anno = legend.draw_series(no_points())?.label(label);
-            if let Some((dash, gap)) = look.dash {
-                let (dash, gap) = (s.px(dash), s.px(gap));
-                anno.legend(move |at| {
+            let at = (s.px(14.0), 0);
+            let marker = Marker { at, look, scale: s };
+            legend
+                .draw_series(no_points())?
+                .label(label)
+                .legend(move |at| {
                     let line = DashedPathElement::new(ends.clone(), dash, gap, line);
                     EmptyElement::at(at) + line + marker
                 });
-            } else {
-                anno.legend(move |at| {
-                    EmptyElement::at(at) + PathElement::new(ends.clone(), line) + marker
-                });
-            }
         }
         for note in notes {
             legend.draw_series(no_points())?.label(note);
