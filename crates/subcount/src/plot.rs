@@ -44,11 +44,11 @@ const HEIGHT: u32 = 600;
 pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let svg = is_svg(&args.output)?;
     let levels = parse_levels(&args.levels).map_err(|e| usage!("invalid --levels: {e}"))?;
-    if levels.end() - levels.start() >= MAX_LEVELS {
+    let (first, last) = (*levels.start(), *levels.end());
+    if last - first >= MAX_LEVELS {
+        let (given, n) = (args.levels.trim(), u128::from(last - first) + 1);
         return Err(usage!(
-            "invalid --levels: `{}` has {} levels; a plot shows at most {MAX_LEVELS}",
-            args.levels.trim(),
-            u128::from(levels.end() - levels.start()) + 1
+            "invalid --levels: `{given}` has {n} levels; a plot shows at most {MAX_LEVELS}"
         ));
     }
     let input = Input::new(&args.source);
@@ -64,11 +64,8 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         .cloned()
         .collect();
     if series.is_empty() {
-        return Err(usage!(
-            "nothing to plot: no count is positive at levels {}..={}",
-            levels.start(),
-            levels.end()
-        ));
+        let why = format!("no count is positive at levels {first}..={last}");
+        return Err(usage!("nothing to plot: {why}"));
     }
     let chart = Chart {
         title: title(&dynamics, &args.source),
@@ -77,7 +74,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         hidden,
     };
     let bytes = if svg {
-        chart.to_svg()?.into_bytes()
+        chart.to_svg()?.into()
     } else {
         chart.to_png()?
     };
@@ -89,15 +86,8 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
             other => input!("cannot write {}: {other}", args.output.display()),
         },
     )?;
-    writeln!(
-        out,
-        "wrote {} ({} series, levels {}..={})",
-        args.output.display(),
-        chart.series.len(),
-        levels.start(),
-        levels.end()
-    )
-    .map_err(write_failure)?;
+    let (path, n) = (args.output.display(), chart.series.len());
+    writeln!(out, "wrote {path} ({n} series, levels {first}..={last})").map_err(write_failure)?;
     Ok(0)
 }
 
@@ -219,11 +209,8 @@ fn decades(min: f64, max: f64) -> (i64, i64, i64) {
     let lo = min.floor() as i64;
     let hi = (max.ceil() as i64).max(lo + 1);
     let step = nice_step(hi - lo, 8);
-    (
-        lo.div_euclid(step) * step,
-        -(-hi).div_euclid(step) * step,
-        step,
-    )
+    let (lo, hi) = (lo.div_euclid(step), -(-hi).div_euclid(step));
+    (lo * step, hi * step, step)
 }
 
 /// The label of 10^k: `1`, `10`, then 10 with a superscript exponent (`10¹²`).
@@ -536,22 +523,19 @@ impl Chart {
         // decades; each with PAD pixels of room inside the frame. Plotters picks the ticks: the
         // finest 1-2-5 step with at most the number asked for, so at most 12 level steps (never
         // a fraction of a level) and the step of `decades` (never a fraction of a decade).
-        let (min, max) = self
+        let ys = self
             .series
             .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1))
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
-                (a.min(y), b.max(y))
-            });
+            .flat_map(|s| s.points.iter().map(|p| p.1));
+        let (min, max) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
+            (a.min(y), b.max(y))
+        });
         let (lo, hi, step) = decades(min, max);
         let base = first - first % 1000;
         let (x_lo, x_hi) = ((first - base) as f64, (last - base) as f64);
         let span = x_hi - x_lo;
-        let (x_lo, x_hi) = if span > 0.0 {
-            (x_lo, x_hi)
-        } else {
-            (x_lo - 1.0, x_hi + 1.0)
-        };
+        let room = if span > 0.0 { 0.0 } else { 1.0 };
+        let (x_lo, x_hi) = (x_lo - room, x_hi + room);
         let x_pad = (x_hi - x_lo) * PAD / (right - left - 2.0 * PAD);
         let y_pad = (hi - lo) as f64 * PAD / (bottom - top - 2.0 * PAD);
         let (x_lo, x_hi) = (x_lo - x_pad, x_hi + x_pad);
