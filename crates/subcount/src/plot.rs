@@ -688,47 +688,6 @@ mod tests {
         }
     }
 
-    /// The 2-pixel polylines of an SVG (series lines and the legend's samples).
-    fn wide_polylines(svg: &str) -> Vec<Vec<(f64, f64)>> {
-        let doc = roxmltree::Document::parse(svg).expect("well-formed XML");
-        let wide = |n: &roxmltree::Node| n.attribute("stroke-width") == Some("2");
-        let point = |p: &str| {
-            let (x, y) = p.split_once(',').unwrap();
-            (x.parse().unwrap(), y.parse().unwrap())
-        };
-        let lines = doc
-            .descendants()
-            .filter(|n| n.has_tag_name("polyline") && wide(n));
-        lines
-            .map(|n| {
-                n.attribute("points")
-                    .unwrap()
-                    .split_whitespace()
-                    .map(point)
-                    .collect()
-            })
-            .collect()
-    }
-
-    #[test]
-    fn lines_break_at_gaps_and_hidden_columns_are_noted() {
-        let points = vec![(0, 0.0), (1, 1.0), (3, 3.0), (4, 4.0), (5, 5.0)];
-        let name = "x0".into();
-        let chart = chart(vec![Series { name, points }]);
-        let svg = chart.to_svg().unwrap();
-        let lines = wide_polylines(&svg);
-        let lengths: Vec<usize> = lines.iter().map(Vec::len).collect();
-        assert_eq!(lengths, [2, 3, 2], "two runs, and the legend's sample");
-        // Higher counts are drawn higher (smaller y).
-        assert!(lines[0][1].1 < lines[0][0].1);
-        let markers = svg.matches("<circle").count();
-        assert_eq!(markers, 2 * (5 + 1), "per point and the legend's, on halos");
-        assert!(svg.contains("\nBE: no positive count\n</text>"), "{svg}");
-        assert!(svg.contains("\nt\n</text>"), "the title");
-        let png = chart.to_png().unwrap();
-        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
-    }
-
     #[test]
     fn a_series_on_an_earlier_one_is_dashed() {
         let line = |name: &str, lift: f64| Series {
@@ -749,9 +708,6 @@ mod tests {
         let dashes: Vec<_> = chart.looks(0.02).iter().map(|l| l.dash).collect();
         let d = Look::DASHES;
         assert_eq!(dashes, [None, Some(d[0]), None, Some(d[1]), None]);
-        let svg = chart.to_svg().unwrap();
-        let lines = wide_polylines(&svg).len();
-        assert!(lines > 5 + 5, "dashes are polylines of their own: {lines}");
     }
 
     #[test]

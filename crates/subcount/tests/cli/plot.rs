@@ -318,6 +318,37 @@ fn plot_meshes_schemes_and_zero_columns() {
     assert!(polylines(&doc).iter().all(|l| l.len() == 20));
 }
 
+/// A level whose count is not positive (off a log scale) breaks the line into runs; the
+/// other lines and the markers stay.
+#[test]
+fn lines_break_where_a_count_is_not_positive() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("gap.svg");
+    let path = path.to_str().unwrap();
+    // x0 = (s - 2)^2 is 0 at level 2, x1 = 2s - 3 is negative at levels 0 and 1, x2 = 2.
+    let matrix = "[[1,1,0],[0,1,1],[0,0,1]]";
+    let args = [
+        "plot", "--matrix", matrix, "--init", "4,-3,2", "--levels", "0..=5",
+    ];
+    let out = ok(&[&args[..], &["-o", path]].concat());
+    assert_eq!(out, format!("wrote {path} (3 series, levels 0..=5)\n"));
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let lengths: Vec<usize> = polylines(&doc).iter().map(Vec::len).collect();
+    assert_eq!(lengths, [2, 3, 4, 6], "x0 in two runs, then x1 and x2");
+    // Higher counts are drawn higher (smaller y): x0 rises from level 3 to 5.
+    let x0 = &polylines(&doc)[1];
+    assert!(x0.windows(2).all(|w| w[1].1 < w[0].1), "{x0:?}");
+    assert_eq!(
+        colored_circles(&doc),
+        5 + 1,
+        "x0's markers, and the legend's"
+    );
+    let texts = all_texts(&doc);
+    let title = format!("matrix {matrix} on initial state 4,-3,2");
+    assert_eq!(texts[0], title);
+}
+
 #[test]
 fn plot_errors() {
     let dir = tempfile::tempdir().unwrap();
