@@ -33,17 +33,17 @@ fn number(node: &roxmltree::Node<'_, '_>, attribute: &str) -> f64 {
         .unwrap()
 }
 
-/// The powers of ten on the y axis, as "10^k": a "10" followed by a smaller, raised text.
+/// The powers of ten on the y axis, as "10^k": the labels written "10" with a superscript
+/// exponent ("10¹²").
 fn powers(doc: &roxmltree::Document<'_>) -> Vec<String> {
-    let texts: Vec<_> = text_nodes(doc).collect();
-    texts
-        .windows(2)
-        .filter(|w| {
-            text_of(&w[0]) == "10"
-                && number(&w[1], "font-size") < number(&w[0], "font-size")
-                && number(&w[1], "y") < number(&w[0], "y")
+    let exponent = |c: char| "⁰¹²³⁴⁵⁶⁷⁸⁹".chars().position(|d| d == c);
+    all_texts(doc)
+        .iter()
+        .filter_map(|t| {
+            let digits = t.strip_prefix("10")?.chars().map(exponent);
+            let k: Option<String> = digits.map(|d| char::from_digit(d? as u32, 10)).collect();
+            k.filter(|k| !k.is_empty()).map(|k| format!("10^{k}"))
         })
-        .map(|w| format!("10^{}", text_of(&w[1])))
         .collect()
 }
 
@@ -175,16 +175,10 @@ fn png_has_the_signature_size_and_colors() {
     assert_eq!(u32::from_be_bytes(bytes[16..20].try_into().unwrap()), 960);
     assert_eq!(u32::from_be_bytes(bytes[20..24].try_into().unwrap()), 600);
 
-    let decoder = png::Decoder::new(std::io::Cursor::new(&bytes));
-    let mut reader = decoder.read_info().expect("a readable PNG");
-    let mut pixels = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut pixels).expect("one frame");
-    assert_eq!((info.width, info.height), (960, 600));
-    assert_eq!(info.color_type, png::ColorType::Rgb);
-    let rgb: Vec<[u8; 3]> = pixels[..info.buffer_size()]
-        .chunks(3)
-        .map(|c| [c[0], c[1], c[2]])
-        .collect();
+    let image = image::load_from_memory(&bytes).expect("a readable PNG");
+    assert_eq!(image.color(), image::ColorType::Rgb8);
+    let rgb: Vec<[u8; 3]> = image.to_rgb8().pixels().map(|p| p.0).collect();
+    assert_eq!(rgb.len(), 960 * 600);
     assert_eq!(rgb[0], [255, 255, 255], "white background");
     // The three series colors and dark text are drawn.
     for color in [[0x1f, 0x77, 0xb4], [0xff, 0x7f, 0x0e], [0x2c, 0xa0, 0x2c]] {
@@ -322,6 +316,37 @@ fn plot_meshes_schemes_and_zero_columns() {
     );
     // x1 is 0 at level 0 only, which the range leaves out: both lines have 20 points.
     assert!(polylines(&doc).iter().all(|l| l.len() == 20));
+}
+
+/// A level whose count is not positive (off a log scale) breaks the line into runs; the
+/// other lines and the markers stay.
+#[test]
+fn lines_break_where_a_count_is_not_positive() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("gap.svg");
+    let path = path.to_str().unwrap();
+    // x0 = (s - 2)^2 is 0 at level 2, x1 = 2s - 3 is negative at levels 0 and 1, x2 = 2.
+    let matrix = "[[1,1,0],[0,1,1],[0,0,1]]";
+    let args = [
+        "plot", "--matrix", matrix, "--init", "4,-3,2", "--levels", "0..=5",
+    ];
+    let out = ok(&[&args[..], &["-o", path]].concat());
+    assert_eq!(out, format!("wrote {path} (3 series, levels 0..=5)\n"));
+    let svg = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&svg).unwrap();
+    let lengths: Vec<usize> = polylines(&doc).iter().map(Vec::len).collect();
+    assert_eq!(lengths, [2, 3, 4, 6], "x0 in two runs, then x1 and x2");
+    // Higher counts are drawn higher (smaller y): x0 rises from level 3 to 5.
+    let x0 = &polylines(&doc)[1];
+    assert!(x0.windows(2).all(|w| w[1].1 < w[0].1), "{x0:?}");
+    assert_eq!(
+        colored_circles(&doc),
+        5 + 1,
+        "x0's markers, and the legend's"
+    );
+    let texts = all_texts(&doc);
+    let title = format!("matrix {matrix} on initial state 4,-3,2");
+    assert_eq!(texts[0], title);
 }
 
 #[test]
