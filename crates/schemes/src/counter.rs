@@ -26,6 +26,10 @@ pub const SUMMARY_DIGITS: usize = 20;
 /// rather than through the closed form, and size estimates are exact.
 const EXACT_LEVELS: u64 = 64;
 
+/// Past this many steps, [`Counter::estimated_log10`] grows by the closed form's rate per
+/// step rather than asking it for the bits at the level (which saturate at `u64::MAX`).
+const RATE_STEPS: u64 = 1 << 40;
+
 /// One row of a counts table: a level and one value per [`Counter::columns`] entry (`None`
 /// where the level's scheme has no such count).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -291,6 +295,11 @@ impl Counter {
         }
         let steps = (s - base_level).div_ceil(period);
         let bits = match steady.closed_form_within(CLOSED_FORM_LIMIT) {
+            // `estimated_bits` saturates at `u64::MAX` bits: past 2^40 steps, grow by its
+            // rate over 2^40 steps instead (exact to about 2^-40 bits a step).
+            Ok(form) if steps > RATE_STEPS => {
+                form.estimated_bits(RATE_STEPS) as f64 / RATE_STEPS as f64 * steps as f64
+            }
             Ok(form) => form.estimated_bits(steps) as f64,
             Err(_) => {
                 let norm = steady

@@ -236,6 +236,16 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
+    /// A floating-point figure of [`density`](crate::density) or a target-area search is
+    /// infinite, not a number or zero where the exact value is positive: it cannot be
+    /// printed as a number.
+    #[error("density: {what} {reason}")]
+    OutOfFloatRange {
+        /// The figure, e.g. `the mean co-volume area 4 pi r^2 / V`.
+        what: String,
+        /// Why it is out of range, with the inputs that made it so.
+        reason: String,
+    },
     /// A search would need states too large to compute (a quantity grows slowly while
     /// another component of the state explodes), or reached the last level a `u64` can name
     /// while the counts still grow (polynomial growth against a huge budget).
