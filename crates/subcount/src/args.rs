@@ -13,9 +13,7 @@ pub(crate) const MAX_THREADS: usize = 256;
 fn parse_threads(text: &str) -> Result<usize, String> {
     let n: usize = text.parse().map_err(|e| format!("{e}"))?;
     if n > MAX_THREADS {
-        return Err(format!(
-            "at most {MAX_THREADS} threads (0 uses every core)"
-        ));
+        return Err(format!("at most {MAX_THREADS} threads (0 uses every core)"));
     }
     Ok(n)
 }

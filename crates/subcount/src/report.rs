@@ -130,11 +130,10 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
         ));
     }
     let tau = args.tau.unwrap_or(0.0);
-    let d = schemes::density(&counts.vertices, args.radius, tau)
-        .map_err(|e| match e {
-            schemes::Error::Density { .. } => Failure::new(Kind::Usage, e),
-            e => scheme_failure(e),
-        })?;
+    let d = schemes::density(&counts.vertices, args.radius, tau).map_err(|e| match e {
+        schemes::Error::Density { .. } => Failure::new(Kind::Usage, e),
+        e => scheme_failure(e),
+    })?;
     let phi = args.tau.map(|_| d.phi);
     let text = match args.format {
         ReportFormat::Json => {
