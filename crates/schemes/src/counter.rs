@@ -761,6 +761,84 @@ mod tests {
         );
     }
 
+    /// Issue 11: compositions, cycles and first steps past level 64 (`loop:2,sqrt3` at
+    /// level 67 panicked in the old CLI model). `state_at`, `row_at` and `rows` equal one
+    /// matrix-vector product per level with each stage's own step matrices.
+    #[test]
+    fn plans_past_level_64_equal_stepping_through_the_stage_matrices() {
+        let cases = [
+            ("loop:2,sqrt3", big(&[12, 30])),
+            ("sqrt3-boundary", big(&[4, 1, 4, 2])),
+            ("loop-boundary:1,sqrt3-boundary", big(&[4, 1, 4])),
+            ("catmull-clark:3,doo-sabin", big(&[8, 12, 0, 6, 24])),
+            ("catmull-clark", big(&[4, 0, 4, 1, 4])),
+        ];
+        for (text, x0) in cases {
+            let plan = Plan::parse(text).unwrap();
+            let counter = Counter::from(plan.clone());
+            // The last stage starts where the earlier ones end (0 for a single scheme).
+            let start = plan.stages()[..plan.stages().len() - 1]
+                .iter()
+                .map(|s| s.levels().unwrap())
+                .sum::<u64>();
+            let last = plan.stages().last().unwrap().scheme();
+            // The first level in the last stage's names: 0 for a single scheme, else the
+            // level after the switch (the switch level belongs to the earlier stage).
+            let begin = if plan.is_single() { 0 } else { start + 1 };
+            let mut x = plan.state_at(&x0, begin).unwrap();
+            let mut expected = vec![(begin, x.clone())];
+            for level in begin + 1..=130 {
+                x = crate::scheme::apply(last.rule().matrix_of_step(level - start), &x);
+                expected.push((level, x.clone()));
+            }
+            for (level, state) in &expected {
+                if [63, 64, 65, 66, 67, 68, 128, 130].contains(level) {
+                    assert_eq!(
+                        &counter.state_at(&x0, *level).unwrap(),
+                        state,
+                        "{text} at {level}"
+                    );
+                    let row = counter.row_at(&x0, *level).unwrap();
+                    assert_eq!(row, counter.row_from_state(*level, state.clone()).unwrap());
+                }
+            }
+            let rows = counter.rows(&x0, 60..=70).unwrap();
+            let high = counter.rows(&x0, 66..=70).unwrap();
+            assert_eq!(rows[6..], high[..], "{text}");
+            for row in rows {
+                let state = &expected[(row.level - begin) as usize].1;
+                assert_eq!(
+                    row,
+                    counter.row_from_state(row.level, state.clone()).unwrap()
+                );
+            }
+        }
+    }
+
+    proptest::proptest! {
+        /// Issue 11: size estimates at levels near `u64::MAX` grow by the dominant
+        /// eigenvalue (log10(4) a level for Loop, log10(3) for sqrt3, periodic or composed),
+        /// rather than saturating at `u64::MAX` bits (`log10(2) u64::MAX` digits).
+        #[test]
+        fn estimates_near_u64_max_follow_the_growth_rate(back in 0u64..1 << 62) {
+            let s = u64::MAX - back;
+            let cases = [
+                ("loop", big(&[12, 30]), 4f64),
+                ("sqrt3-boundary", big(&[4, 1, 4, 2]), 3.0),
+                ("loop:2,sqrt3", big(&[12, 30]), 3.0),
+            ];
+            for (text, x0, rate) in cases {
+                let counter = Counter::from(Plan::parse(text).unwrap());
+                let estimate = counter.estimated_log10(&x0, s).unwrap();
+                let expected = s as f64 * rate.log10();
+                proptest::prop_assert!(
+                    estimate.is_finite() && (estimate - expected).abs() <= 1e-6 * expected,
+                    "{} at {}: {} vs {}", text, s, estimate, expected
+                );
+            }
+        }
+    }
+
     #[test]
     fn rendering_in_another_variable() {
         assert_eq!(

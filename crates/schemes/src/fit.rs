@@ -531,15 +531,20 @@ pub fn density(n_v: &BigInt, radius: f64, tau: f64) -> Result<Density> {
     }
     let n = n_v.to_f64().unwrap_or(f64::INFINITY);
     let mean_area = 4.0 * std::f64::consts::PI * radius * radius / n;
-    let out_of_range = |what: &str, value: f64| Error::OutOfFloatRange {
+    let out_of_range = |what: &str, value: f64| {
+        Error::OutOfFloatRange {
         what: what.to_string(),
         reason: format!(
             "is {value:e} in floating point (radius {radius:e}, tau {tau:e}, V = 10^{:.1}), outside the range of a double: ask for another level or radius",
             crate::log10_abs(n_v)
         ),
+    }
     };
     if !(mean_area.is_finite() && mean_area > 0.0) {
-        return Err(out_of_range("the mean co-volume area 4 pi r^2 / V", mean_area));
+        return Err(out_of_range(
+            "the mean co-volume area 4 pi r^2 / V",
+            mean_area,
+        ));
     }
     let phi = (tau / mean_area).sqrt();
     if !phi.is_finite() || (phi == 0.0 && tau > 0.0) {
