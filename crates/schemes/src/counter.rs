@@ -30,6 +30,10 @@ const EXACT_LEVELS: u64 = 64;
 /// step rather than asking it for the bits at the level (which saturate at `u64::MAX`).
 const RATE_STEPS: u64 = 1 << 40;
 
+/// The largest count (as a log10) from which [`Counter::estimated_log10`] computes a later
+/// stage's state exactly; past it, the stage grows from the estimate at its first level.
+const AFFORDABLE_LOG10: f64 = 1e5;
+
 /// One row of a counts table: a level and one value per [`Counter::columns`] entry (`None`
 /// where the level's scheme has no such count).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -263,54 +267,50 @@ impl Counter {
     }
 
     /// An estimate of log10 of the largest count at level `s`, for resource guards: exact up
-    /// to 64 levels past the last change of rule, then the largest count there grown by
-    /// [`ClosedForm::estimated_bits`] of the steady rule (one full cycle of a periodic
-    /// scheme); when that closed form would cost more than [`CLOSED_FORM_LIMIT`], by the
-    /// largest absolute row sum of the matrix, an upper bound of its growth.
+    /// to 64 levels past the last change of rule of the stage that produces `s`, then the
+    /// largest count there grown by [`ClosedForm::estimated_bits`] of that stage's steady
+    /// rule (one full cycle of a periodic scheme); when that closed form would cost more
+    /// than [`CLOSED_FORM_LIMIT`], by the largest absolute row sum of the matrix, an upper
+    /// bound of its growth. A later stage whose first level holds counts of more than 10^5
+    /// digits grows from the estimate there, so nothing huge is materialized.
     ///
     /// # Errors
     ///
     /// As [`state_at`](Self::state_at).
     pub fn estimated_log10(&self, x0: &[BigInt], s: u64) -> Result<f64> {
-        let (base_level, period, steady) = match self {
-            Counter::Matrix(r) => (0, 1, r.clone()),
-            Counter::Plan(plan) => {
-                let last = plan.stages().last().expect("a plan has a stage").scheme();
-                let base = plan.last_level().unwrap_or(0) + last.period() + 1;
-                (base, last.period().max(1), cycle_recurrence(last))
+        let plan = match self {
+            Counter::Matrix(r) => {
+                if s <= EXACT_LEVELS {
+                    return Ok(largest_log10(&r.state_at(x0, s)?).max(0.0));
+                }
+                let start = largest_log10(&r.state_at(x0, 0)?);
+                return Ok(grown(start, r, s));
             }
+            Counter::Plan(plan) => plan,
         };
-        let largest = |state: &[BigInt]| {
-            state
-                .iter()
-                .map(log10_abs)
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        if s <= base_level + EXACT_LEVELS {
-            return Ok(largest(&self.state_at(x0, s)?).max(0.0));
+        // The stage that produces level `s`, from its first level `a` on; its rule settles
+        // after a first step and one cycle.
+        let i = plan.stage_index_at(s)?;
+        let stages = plan.stages();
+        let a = stages[..i]
+            .iter()
+            .map(|st| st.levels().unwrap_or(0))
+            .fold(0u64, u64::saturating_add);
+        let scheme = stages[i].scheme();
+        let base = a.saturating_add(scheme.period()).saturating_add(1);
+        // A later stage starts from an exact state only when that state is affordable;
+        // otherwise from the estimate at its first level.
+        let exact_start = i == 0 || self.estimated_log10(x0, a)? <= AFFORDABLE_LOG10;
+        if exact_start && s <= base.saturating_add(EXACT_LEVELS) {
+            return Ok(largest_log10(&plan.state_at(x0, s)?).max(0.0));
         }
-        let start = largest(&self.state_at(x0, base_level)?);
-        if start == f64::NEG_INFINITY {
-            return Ok(0.0);
-        }
-        let steps = (s - base_level).div_ceil(period);
-        let bits = match steady.closed_form_within(CLOSED_FORM_LIMIT) {
-            // `estimated_bits` saturates at `u64::MAX` bits: past 2^40 steps, grow by its
-            // rate over 2^40 steps instead (exact to about 2^-40 bits a step).
-            Ok(form) if steps > RATE_STEPS => {
-                form.estimated_bits(RATE_STEPS) as f64 / RATE_STEPS as f64 * steps as f64
-            }
-            Ok(form) => form.estimated_bits(steps) as f64,
-            Err(_) => {
-                let norm = steady
-                    .matrix()
-                    .rows()
-                    .map(|r| r.iter().map(|x| x.unsigned_abs() as f64).sum::<f64>())
-                    .fold(1.0, f64::max);
-                steps as f64 * norm.log2()
-            }
+        let (from, start) = if exact_start {
+            (base, largest_log10(&plan.state_at(x0, base)?))
+        } else {
+            (a, self.estimated_log10(x0, a)?)
         };
-        Ok((start + bits * std::f64::consts::LOG10_2).max(0.0))
+        let steps = (s - from).div_ceil(scheme.period().max(1));
+        Ok(grown(start, &cycle_recurrence(scheme), steps))
     }
 
     /// Digit summaries ([`SUMMARY_DIGITS`] each end) of every column at level `s`, from the
@@ -419,6 +419,41 @@ pub fn log10_abs(v: &BigInt) -> f64 {
     // At most 60 bits: exact in u64, and within f64's relative precision.
     let top = u64::try_from(v.magnitude() >> shift).map_or(1.0, |t| t as f64);
     top.log10() + shift as f64 * std::f64::consts::LOG10_2
+}
+
+/// log10 of the largest magnitude in `state` (negative infinity when every entry is zero).
+fn largest_log10(state: &[BigInt]) -> f64 {
+    state
+        .iter()
+        .map(log10_abs)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// `start` (a log10) grown by `steps` steps of `steady`: by [`ClosedForm::estimated_bits`]
+/// of its closed form, or, when that would cost more than [`CLOSED_FORM_LIMIT`], by the
+/// largest absolute row sum of the matrix, an upper bound of its growth. Zero counts stay
+/// zero (an estimate of 0 digits).
+fn grown(start: f64, steady: &Recurrence, steps: u64) -> f64 {
+    if start == f64::NEG_INFINITY {
+        return 0.0;
+    }
+    let bits = match steady.closed_form_within(CLOSED_FORM_LIMIT) {
+        // `estimated_bits` saturates at `u64::MAX` bits: past 2^40 steps, grow by its
+        // rate over 2^40 steps instead (exact to about 2^-40 bits a step).
+        Ok(form) if steps > RATE_STEPS => {
+            form.estimated_bits(RATE_STEPS) as f64 / RATE_STEPS as f64 * steps as f64
+        }
+        Ok(form) => form.estimated_bits(steps) as f64,
+        Err(_) => {
+            let norm = steady
+                .matrix()
+                .rows()
+                .map(|r| r.iter().map(|x| x.unsigned_abs() as f64).sum::<f64>())
+                .fold(1.0, f64::max);
+            steps as f64 * norm.log2()
+        }
+    };
+    (start + bits * std::f64::consts::LOG10_2).max(0.0)
 }
 
 /// The matrix of one full cycle of a scheme (its steady matrix when it is not periodic).
@@ -813,6 +848,41 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Issue 11: a composition's estimate follows the stage that produces the level (it used
+    /// the last stage's growth from level 2, and overflowed `u64` for a bounded last stage of
+    /// `u64::MAX` levels), without materializing a huge early stage.
+    #[test]
+    fn composition_estimates_follow_the_stage_of_the_level() {
+        let x0 = big(&[12, 30]);
+        let (l4, l3) = (4f64.log10(), 3f64.log10());
+        let cases: [(&str, u64, f64); 5] = [
+            ("loop:1000000000000,sqrt3", 1_000_000_000, 1e9 * l4),
+            (
+                "loop:1000000000000,sqrt3",
+                1_000_000_000_100,
+                1e12 * l4 + 100.0 * l3,
+            ),
+            ("loop:100,sqrt3", 1_000_000, 100.0 * l4 + (1e6 - 100.0) * l3),
+            (
+                "loop:18446744073709551615,sqrt3",
+                u64::MAX,
+                u64::MAX as f64 * l4,
+            ),
+            ("loop:18446744073709551615", u64::MAX, u64::MAX as f64 * l4),
+        ];
+        for (text, s, expected) in cases {
+            let counter = Counter::from(Plan::parse(text).unwrap());
+            let estimate = counter.estimated_log10(&x0, s).unwrap();
+            assert!(
+                (estimate - expected).abs() <= 1e-6 * expected + 10.0,
+                "{text} at {s}: {estimate} vs {expected}"
+            );
+        }
+        let bounded = Counter::from(Plan::parse("loop:18446744073709551615").unwrap());
+        let exact = bounded.estimated_log10(&x0, 5).unwrap();
+        assert!((exact - 30720f64.log10()).abs() < 1e-12, "{exact}");
     }
 
     proptest::proptest! {

@@ -256,6 +256,15 @@ pub enum Error {
         /// Total bits of the state there.
         bits: u64,
     },
+    /// A search would reach a level whose counts are estimated too large to compute (an
+    /// early stage of a composition that runs for a huge number of levels).
+    #[error("the search would reach level {level}, where the counts would have about {digits} decimal digits; refusing to go further")]
+    SearchEstimateTooLarge {
+        /// The level.
+        level: u64,
+        /// The estimated decimal digits of the largest count there, e.g. `1.111e19`.
+        digits: String,
+    },
     /// The target of a search is never reached (the counts stop growing).
     #[error("{what} never reaches {target}: it is {value} from level {level} on and stays there")]
     NeverReached {

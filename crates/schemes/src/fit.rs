@@ -222,8 +222,25 @@ impl Probe<'_> {
         Ok(self.values_of(&self.plan.vef(level, &state)?))
     }
 
+    /// Refuses, before materializing it, a level whose largest count is estimated at more
+    /// than four times [`MAX_STATE_BITS`] bits (a huge level of an early stage:
+    /// `loop:18446744073709551615,sqrt3`). The search doubles its level, so on its ordinary
+    /// path the exact check of the state ([`Error::SearchTooLarge`]) refuses first.
+    fn check_affordable(&self, level: u64) -> Result {
+        let counter = crate::Counter::from(self.plan.clone());
+        let digits = counter.estimated_log10(self.x0, level)?;
+        if digits * std::f64::consts::LOG2_10 > 4.0 * MAX_STATE_BITS as f64 {
+            return Err(Error::SearchEstimateTooLarge {
+                level,
+                digits: format!("{digits:.3e}"),
+            });
+        }
+        Ok(())
+    }
+
     /// Values at `h..=h + w`, stepping within the last stage.
     fn window(&self, h: u64, w: u64) -> Result<Vec<Vec<BigInt>>> {
+        self.check_affordable(h)?;
         let (scheme, start, _) = self.plan.tail();
         let mut state = self.plan.tail_state(self.x0, h)?;
         let bits: u64 = state.iter().map(BigInt::bits).sum();
@@ -339,6 +356,7 @@ impl Probe<'_> {
         last: u64,
         v0: Vec<BigInt>,
     ) -> Result<Crossing> {
+        self.check_affordable(last)?;
         let v_last = self.at(last)?;
         if !hit(&v_last) {
             return Ok(Crossing::Never(last));
