@@ -673,22 +673,24 @@ impl Scheme {
             found,
             hint: hint.as_ref().map(|h| format!("use {h}")),
         };
-        if facts.manifold {
-            if let Some(v) = given[Stat::NME.index()].as_ref().filter(|v| !v.is_zero()) {
-                return Err(refuse(
-                    "every edge to have one or two faces",
-                    format!("NME={v}"),
-                    &self.hints.nonmanifold,
-                ));
-            }
-        }
-        if facts.closed {
-            if let Some(v) = given[Stat::BE.index()].as_ref().filter(|v| !v.is_zero()) {
-                return Err(refuse(
-                    "a closed mesh",
-                    format!("BE={v}"),
-                    &self.hints.boundary,
-                ));
+        let required = [
+            (
+                facts.manifold,
+                Stat::NME,
+                "every edge to have one or two faces",
+                &self.hints.nonmanifold,
+            ),
+            (
+                facts.closed,
+                Stat::BE,
+                "a closed mesh",
+                &self.hints.boundary,
+            ),
+        ];
+        for (applies, stat, needs, hint) in required {
+            let given = given[stat.index()].as_ref().filter(|v| !v.is_zero());
+            if let Some(v) = given.filter(|_| applies) {
+                return Err(refuse(needs, format!("{}={v}", stat.short_name()), hint));
             }
         }
         let solved = solve(&given, facts)?;
@@ -814,15 +816,7 @@ impl Scheme {
     ///
     /// As [`state_at`](Self::state_at) and [`vef`](Self::vef).
     pub fn level_counts(&self, x0: &[BigInt], level: u64) -> Result<LevelCounts> {
-        let state = self.state_at(x0, level)?;
-        let [vertices, edges, faces] = self.vef(&state)?;
-        Ok(LevelCounts {
-            level,
-            state,
-            vertices,
-            edges,
-            faces,
-        })
+        crate::Plan::single(self.clone()).level_counts(x0, level)
     }
 
     /// The counts of `mesh` after `level` steps: what the `halfedge` crate preallocates.
@@ -841,8 +835,7 @@ impl Scheme {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn counts_at(&self, mesh: &MeshCounts, level: u64) -> Result<LevelCounts> {
-        let x0 = self.initial_state(mesh)?;
-        self.level_counts(&x0, level)
+        crate::Plan::single(self.clone()).counts_at(mesh, level)
     }
 
     /// The phases for closed forms: one per residue class of the cycle (one phase when the

@@ -1135,3 +1135,22 @@ fn long_first_stages_are_estimated_by_their_own_growth() {
         "the counts at level 18000000 would have about 1.084e7 decimal digits (4.3 MiB per count)",
     );
 }
+
+/// The table guard names the exact number of rows (it printed `1152921504606846976` for
+/// `2^60 + 2` rows, rounded through a float).
+#[test]
+fn the_table_guard_counts_rows_exactly() {
+    fails(
+        &[
+            "table",
+            "--matrix",
+            "[[1]]",
+            "--init",
+            "1",
+            "--levels",
+            "0..=1152921504606846977",
+        ],
+        4,
+        "levels 0..=1152921504606846977 would make a table of 1152921504606846978 rows",
+    );
+}
