@@ -136,7 +136,14 @@ impl Derivation {
             .fold(divisor, |g, &c| g.gcd(&c.unsigned_abs()));
         let g = g.max(1);
         Derivation {
-            coefficients: coefficients.iter().map(|&c| c / g as i64).collect(),
+            // `g` divides every nonzero `c`, so `|c / g| <= |c|` fits in `i64`; in `i128`
+            // because `g` may be 2^63 (`g as i64` turned `i64::MIN / 2^63` into `+1`).
+            coefficients: coefficients
+                .iter()
+                .map(|&c| {
+                    i64::try_from(i128::from(c) / i128::from(g)).expect("|c / g| is at most |c|")
+                })
+                .collect(),
             divisor: divisor / g,
         }
     }
@@ -891,5 +898,25 @@ fn phase_text(p: u64, first: u64) -> String {
         format!("s = {t}")
     } else {
         format!("s = {t} + {first}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reduction to lowest terms is exact at the ends of `i64` and `u64`: `i64::MIN x / 2^63`
+    /// is `-x` (the cast `2^63 as i64` made it `+x`).
+    #[test]
+    fn derivations_reduce_exactly_at_the_ends_of_the_integers() {
+        let d = Derivation::new(vec![i64::MIN, 0], 1 << 63);
+        assert_eq!((d.coefficients(), d.divisor()), (&[-1, 0][..], 1));
+        let d = Derivation::new(vec![i64::MIN, 1 << 62], 1 << 63);
+        assert_eq!((d.coefficients(), d.divisor()), (&[-2, 1][..], 2));
+        let d = Derivation::new(vec![0, 0], u64::MAX);
+        assert_eq!((d.coefficients(), d.divisor()), (&[0, 0][..], 1));
+        let d = Derivation::new(vec![i64::MAX, -i64::MAX], u64::MAX);
+        assert_eq!(d.coefficients(), [i64::MAX, -i64::MAX]);
+        assert_eq!(d.divisor(), u64::MAX);
     }
 }
