@@ -527,7 +527,9 @@ pub struct Density {
 /// # Errors
 ///
 /// [`Error::Density`] when `n_v` is zero, `radius` is not positive and finite, or `tau` is
-/// negative or not finite.
+/// negative or not finite; [`Error::OutOfFloatRange`] when the area or the scale factor is
+/// infinite or zero in floating point (a huge `n_v` or radius, a tiny radius, a huge `tau`)
+/// although its exact value is positive and finite.
 ///
 /// ```
 /// use num_bigint::BigInt;
@@ -577,6 +579,8 @@ pub fn density(n_v: &BigInt, radius: f64, tau: f64) -> Result<Density> {
 /// # Errors
 ///
 /// [`Error::Density`] for a radius or target area that is not positive and finite,
+/// [`Error::OutOfFloatRange`] when the vertex count it needs is infinite or zero in floating
+/// point,
 /// [`Error::NeverReached`] when `V` stops growing below the needed count, and the errors of
 /// the search (see the module documentation).
 ///
@@ -648,6 +652,35 @@ mod tests {
 
     fn state(values: &[i64]) -> Vec<BigInt> {
         values.iter().map(|&v| BigInt::from(v)).collect()
+    }
+
+    /// Issue 11: eq. (1)'s figures are finite and positive, or refused: a count beyond a
+    /// double, a radius whose square overflows or underflows, a `tau` whose scale factor
+    /// overflows, a target area whose vertex count does.
+    #[test]
+    fn density_figures_outside_a_double_are_refused() {
+        let out_of_range = |r: Result<Density>| matches!(r, Err(Error::OutOfFloatRange { .. }));
+        let huge = BigInt::from(10u32).pow(400u32);
+        assert!(out_of_range(density(&huge, 1.0, 0.0)));
+        assert!(out_of_range(density(&BigInt::from(12), 1e300, 0.0)));
+        assert!(out_of_range(density(&BigInt::from(12), 1e-300, 0.0)));
+        let many = BigInt::from(10_000_000_000u64);
+        assert!(out_of_range(density(&many, 1.0, f64::MAX)));
+        let near = BigInt::from(10u32).pow(300u32);
+        let d = density(&near, 1.0, 1e-300).unwrap();
+        assert!(
+            d.mean_area > 0.0 && d.phi > 0.0 && d.phi.is_finite(),
+            "{d:?}"
+        );
+        let plan = Plan::single(builtin("loop").unwrap());
+        let x0 = state(&[12, 30]);
+        for (radius, area) in [(1.0, 1e-320), (1e200, 1e-200), (1e-300, 1.0)] {
+            let r = level_for_area(&plan, &x0, radius, area);
+            assert!(
+                matches!(r, Err(Error::OutOfFloatRange { .. })),
+                "{radius} {area}: {r:?}"
+            );
+        }
     }
 
     fn max_vertices(n: u64) -> Budget {
