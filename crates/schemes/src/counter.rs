@@ -886,6 +886,28 @@ mod tests {
     }
 
     proptest::proptest! {
+        /// Levels and stage lengths anywhere up to `u64::MAX`: the estimate of
+        /// `loop:k,sqrt3` at level `s` never overflows and follows Loop up to `k`, then
+        /// sqrt3 (within the rounding of a float and the few digits of the start).
+        #[test]
+        fn composition_estimates_at_any_level(
+            k in proptest::prop_oneof![0u64..200, (u64::MAX - 1000)..=u64::MAX, proptest::num::u64::ANY],
+            s in proptest::prop_oneof![0u64..200, (u64::MAX - 1000)..=u64::MAX, proptest::num::u64::ANY],
+        ) {
+            let counter = Counter::from(Plan::parse(&format!("loop:{k},sqrt3")).unwrap());
+            let estimate = counter.estimated_log10(&big(&[12, 30]), s).unwrap();
+            let (l4, l3) = (4f64.log10(), 3f64.log10());
+            let expected = if s <= k {
+                s as f64 * l4
+            } else {
+                k as f64 * l4 + (s - k) as f64 * l3
+            };
+            proptest::prop_assert!(
+                estimate.is_finite() && (estimate - expected).abs() <= 1e-6 * expected + 5.0,
+                "loop:{},sqrt3 at {}: {} vs {}", k, s, estimate, expected
+            );
+        }
+
         /// Issue 11: size estimates at levels near `u64::MAX` grow by the dominant
         /// eigenvalue (log10(4) a level for Loop, log10(3) for sqrt3, periodic or composed),
         /// rather than saturating at `u64::MAX` bits (`log10(2) u64::MAX` digits).
