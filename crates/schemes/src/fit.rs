@@ -280,14 +280,22 @@ impl Probe<'_> {
         if hit(&v0) {
             return Ok(Crossing::At(0));
         }
+        let (scheme, start, tail_start) = self.plan.tail();
+        // Strictly after the start of the last stage, where the plan reports its own state.
+        let mut h = tail_start.max(start.saturating_add(1));
+        let end = self.plan.last_level().unwrap_or(h);
+        if self.check_affordable(end).is_err() {
+            // An earlier stage runs for so many levels that its end cannot be computed:
+            // look for the crossing inside it first.
+            if let Some(crossing) = self.gallop(hit, &v0, end)? {
+                return Ok(crossing);
+            }
+        }
         if let Some(last) = self.plan.last_level() {
             return self.bounded(hit, last, v0);
         }
-        let (scheme, start, tail_start) = self.plan.tail();
         let w = (scheme.dim() as u64).saturating_mul(scheme.period());
         let mut lo = (0u64, v0);
-        // Strictly after the start of the last stage, where the plan reports its own state.
-        let mut h = tail_start.max(start.saturating_add(1));
         loop {
             let values = self.window(h, w)?;
             self.check_order((lo.0, &lo.1), (h, &values[0]))?;
@@ -348,6 +356,28 @@ impl Probe<'_> {
             }
         }
         Ok(hi)
+    }
+
+    /// The crossing at levels `1, 2, 4, ...` below `end`, bisected between the last miss
+    /// and the first hit; `None` when no affordable level below `end` hits.
+    fn gallop(
+        &self,
+        hit: &dyn Fn(&[BigInt]) -> bool,
+        v0: &[BigInt],
+        end: u64,
+    ) -> Result<Option<Crossing>> {
+        let mut lo = (0u64, v0.to_vec());
+        let mut level = 1u64;
+        while level < end && self.check_affordable(level).is_ok() {
+            let v = self.at(level)?;
+            self.check_order((lo.0, &lo.1), (level, &v))?;
+            if hit(&v) {
+                return self.bisect(hit, lo, (level, v)).map(Some);
+            }
+            lo = (level, v);
+            level = level.saturating_mul(2);
+        }
+        Ok(None)
     }
 
     fn bounded(
@@ -652,6 +682,25 @@ mod tests {
 
     fn state(values: &[i64]) -> Vec<BigInt> {
         values.iter().map(|&v| BigInt::from(v)).collect()
+    }
+
+    /// Issue 11: a first stage of `u64::MAX` levels is searched inside (its end cannot be
+    /// computed): the same level as the scheme alone, bounded plan or not.
+    #[test]
+    fn a_crossing_inside_a_huge_first_stage_is_found() {
+        let x0 = state(&[12, 30]);
+        let alone = fit(&Plan::parse("loop").unwrap(), &x0, &max_vertices(1 << 40)).unwrap();
+        for text in [
+            "loop:18446744073709551615,sqrt3",
+            "loop:18446744073709551615",
+        ] {
+            let plan = Plan::parse(text).unwrap();
+            assert_eq!(
+                fit(&plan, &x0, &max_vertices(1 << 40)).unwrap(),
+                alone,
+                "{text}"
+            );
+        }
     }
 
     /// Issue 11: eq. (1)'s figures are finite and positive, or refused: a count beyond a
