@@ -42,6 +42,30 @@ pub const BUILTIN_NAMES: [&str; 11] = [
 /// # Errors
 ///
 /// [`Error::UnknownScheme`] listing the built-ins, [`Error::InvalidSplitFactor`] for
+/// A scheme over the state `(V, E, F)` of closed manifold polygon meshes that produces
+/// polygons (Doo-Sabin, mid-edge), pointing to Catmull-Clark for boundaries and to
+/// `catmull-clark-general` for non-manifold edges.
+fn closed_polygon_scheme(name: &'static str, description: &'static str, rows: &[&[i64]]) -> Scheme {
+    build(Def {
+        name,
+        description,
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(rows)),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: true,
+            manifold: true,
+        },
+        produces: FaceKind::Polygons,
+        derive: vec![],
+        hints: Hints {
+            boundary: Some("catmull-clark".into()),
+            nonmanifold: Some("catmull-clark-general".into()),
+            ..Hints::default()
+        },
+    })
+}
+
 /// `tri-split-N` with `N` below 2, not a number or too large.
 ///
 /// ```
@@ -597,24 +621,11 @@ pub fn sqrt3_boundary() -> Scheme {
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`: `V(s) =
 /// 2 * 4^(s-1) E0` only from `s = 1`), 0 for `E` (`E(s) = 4^s E0`).
 pub fn doo_sabin() -> Scheme {
-    build(Def {
-        name: "doo-sabin",
-        description: "Doo-Sabin subdivision on closed polygon meshes",
-        state: &[Stat::V, Stat::E, Stat::F],
-        rule: StepRule::single(matrix(&[&[0, 2, 0], &[0, 4, 0], &[1, 1, 1]])),
-        requires: MeshClass {
-            faces: FaceKind::Polygons,
-            closed: true,
-            manifold: true,
-        },
-        produces: FaceKind::Polygons,
-        derive: vec![],
-        hints: Hints {
-            boundary: Some("catmull-clark".into()),
-            nonmanifold: Some("catmull-clark-general".into()),
-            ..Hints::default()
-        },
-    })
+    closed_polygon_scheme(
+        "doo-sabin",
+        "Doo-Sabin subdivision on closed polygon meshes",
+        &[&[0, 2, 0], &[0, 4, 0], &[1, 1, 1]],
+    )
 }
 
 /// `mid-edge`: Peters and Reif's mid-edge subdivision on closed polygon meshes, state
@@ -635,24 +646,11 @@ pub fn doo_sabin() -> Scheme {
 ///
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`), 0 for `E`.
 pub fn mid_edge() -> Scheme {
-    build(Def {
-        name: "mid-edge",
-        description: "Peters-Reif mid-edge subdivision on closed polygon meshes",
-        state: &[Stat::V, Stat::E, Stat::F],
-        rule: StepRule::single(matrix(&[&[0, 1, 0], &[0, 2, 0], &[1, 0, 1]])),
-        requires: MeshClass {
-            faces: FaceKind::Polygons,
-            closed: true,
-            manifold: true,
-        },
-        produces: FaceKind::Polygons,
-        derive: vec![],
-        hints: Hints {
-            boundary: Some("catmull-clark".into()),
-            nonmanifold: Some("catmull-clark-general".into()),
-            ..Hints::default()
-        },
-    })
+    closed_polygon_scheme(
+        "mid-edge",
+        "Peters-Reif mid-edge subdivision on closed polygon meshes",
+        &[&[0, 1, 0], &[0, 2, 0], &[1, 0, 1]],
+    )
 }
 
 /// `tri-split-N`: the 1:N^2 triangle split on any triangle mesh, state `(V, E, F)`

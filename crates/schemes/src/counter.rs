@@ -26,6 +26,14 @@ pub const SUMMARY_DIGITS: usize = 20;
 /// rather than through the closed form, and size estimates are exact.
 const EXACT_LEVELS: u64 = 64;
 
+/// Past this many steps, [`Counter::estimated_log10`] grows by the closed form's rate per
+/// step rather than asking it for the bits at the level (which saturate at `u64::MAX`).
+const RATE_STEPS: u64 = 1 << 40;
+
+/// The largest count (as a log10) from which [`Counter::estimated_log10`] computes a later
+/// stage's state exactly; past it, the stage grows from the estimate at its first level.
+const AFFORDABLE_LOG10: f64 = 1e5;
+
 /// One row of a counts table: a level and one value per [`Counter::columns`] entry (`None`
 /// where the level's scheme has no such count).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -259,49 +267,50 @@ impl Counter {
     }
 
     /// An estimate of log10 of the largest count at level `s`, for resource guards: exact up
-    /// to 64 levels past the last change of rule, then the largest count there grown by
-    /// [`ClosedForm::estimated_bits`] of the steady rule (one full cycle of a periodic
-    /// scheme); when that closed form would cost more than [`CLOSED_FORM_LIMIT`], by the
-    /// largest absolute row sum of the matrix, an upper bound of its growth.
+    /// to 64 levels past the last change of rule of the stage that produces `s`, then the
+    /// largest count there grown by [`ClosedForm::estimated_bits`] of that stage's steady
+    /// rule (one full cycle of a periodic scheme); when that closed form would cost more
+    /// than [`CLOSED_FORM_LIMIT`], by the largest absolute row sum of the matrix, an upper
+    /// bound of its growth. A later stage whose first level holds counts of more than 10^5
+    /// digits grows from the estimate there, so nothing huge is materialized.
     ///
     /// # Errors
     ///
     /// As [`state_at`](Self::state_at).
     pub fn estimated_log10(&self, x0: &[BigInt], s: u64) -> Result<f64> {
-        let (base_level, period, steady) = match self {
-            Counter::Matrix(r) => (0, 1, r.clone()),
-            Counter::Plan(plan) => {
-                let last = plan.stages().last().expect("a plan has a stage").scheme();
-                let base = plan.last_level().unwrap_or(0) + last.period() + 1;
-                (base, last.period().max(1), cycle_recurrence(last))
+        let plan = match self {
+            Counter::Matrix(r) => {
+                if s <= EXACT_LEVELS {
+                    return Ok(largest_log10(&r.state_at(x0, s)?).max(0.0));
+                }
+                let start = largest_log10(&r.state_at(x0, 0)?);
+                return Ok(grown(start, r, s));
             }
+            Counter::Plan(plan) => plan,
         };
-        let largest = |state: &[BigInt]| {
-            state
-                .iter()
-                .map(log10_abs)
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        if s <= base_level + EXACT_LEVELS {
-            return Ok(largest(&self.state_at(x0, s)?).max(0.0));
+        // The stage that produces level `s`, from its first level `a` on; its rule settles
+        // after a first step and one cycle.
+        let i = plan.stage_index_at(s)?;
+        let stages = plan.stages();
+        let a = stages[..i]
+            .iter()
+            .map(|st| st.levels().unwrap_or(0))
+            .fold(0u64, u64::saturating_add);
+        let scheme = stages[i].scheme();
+        let base = a.saturating_add(scheme.period()).saturating_add(1);
+        // A later stage starts from an exact state only when that state is affordable;
+        // otherwise from the estimate at its first level.
+        let exact_start = i == 0 || self.estimated_log10(x0, a)? <= AFFORDABLE_LOG10;
+        if exact_start && s <= base.saturating_add(EXACT_LEVELS) {
+            return Ok(largest_log10(&plan.state_at(x0, s)?).max(0.0));
         }
-        let start = largest(&self.state_at(x0, base_level)?);
-        if start == f64::NEG_INFINITY {
-            return Ok(0.0);
-        }
-        let steps = (s - base_level).div_ceil(period);
-        let bits = match steady.closed_form_within(CLOSED_FORM_LIMIT) {
-            Ok(form) => form.estimated_bits(steps) as f64,
-            Err(_) => {
-                let norm = steady
-                    .matrix()
-                    .rows()
-                    .map(|r| r.iter().map(|x| x.unsigned_abs() as f64).sum::<f64>())
-                    .fold(1.0, f64::max);
-                steps as f64 * norm.log2()
-            }
+        let (from, start) = if exact_start {
+            (base, largest_log10(&plan.state_at(x0, base)?))
+        } else {
+            (a, self.estimated_log10(x0, a)?)
         };
-        Ok((start + bits * std::f64::consts::LOG10_2).max(0.0))
+        let steps = (s - from).div_ceil(scheme.period().max(1));
+        Ok(grown(start, &cycle_recurrence(scheme), steps))
     }
 
     /// Digit summaries ([`SUMMARY_DIGITS`] each end) of every column at level `s`, from the
@@ -410,6 +419,41 @@ pub fn log10_abs(v: &BigInt) -> f64 {
     // At most 60 bits: exact in u64, and within f64's relative precision.
     let top = u64::try_from(v.magnitude() >> shift).map_or(1.0, |t| t as f64);
     top.log10() + shift as f64 * std::f64::consts::LOG10_2
+}
+
+/// log10 of the largest magnitude in `state` (negative infinity when every entry is zero).
+fn largest_log10(state: &[BigInt]) -> f64 {
+    state
+        .iter()
+        .map(log10_abs)
+        .fold(f64::NEG_INFINITY, f64::max)
+}
+
+/// `start` (a log10) grown by `steps` steps of `steady`: by [`ClosedForm::estimated_bits`]
+/// of its closed form, or, when that would cost more than [`CLOSED_FORM_LIMIT`], by the
+/// largest absolute row sum of the matrix, an upper bound of its growth. Zero counts stay
+/// zero (an estimate of 0 digits).
+fn grown(start: f64, steady: &Recurrence, steps: u64) -> f64 {
+    if start == f64::NEG_INFINITY {
+        return 0.0;
+    }
+    let bits = match steady.closed_form_within(CLOSED_FORM_LIMIT) {
+        // `estimated_bits` saturates at `u64::MAX` bits: past 2^40 steps, grow by its
+        // rate over 2^40 steps instead (exact to about 2^-40 bits a step).
+        Ok(form) if steps > RATE_STEPS => {
+            form.estimated_bits(RATE_STEPS) as f64 / RATE_STEPS as f64 * steps as f64
+        }
+        Ok(form) => form.estimated_bits(steps) as f64,
+        Err(_) => {
+            let norm = steady
+                .matrix()
+                .rows()
+                .map(|r| r.iter().map(|x| x.unsigned_abs() as f64).sum::<f64>())
+                .fold(1.0, f64::max);
+            steps as f64 * norm.log2()
+        }
+    };
+    (start + bits * std::f64::consts::LOG10_2).max(0.0)
 }
 
 /// The matrix of one full cycle of a scheme (its steady matrix when it is not periodic).
@@ -750,6 +794,141 @@ mod tests {
                 .unwrap(),
             0.0
         );
+    }
+
+    /// Issue 11: compositions, cycles and first steps past level 64 (`loop:2,sqrt3` at
+    /// level 67 panicked in the old CLI model). `state_at`, `row_at` and `rows` equal one
+    /// matrix-vector product per level with each stage's own step matrices.
+    #[test]
+    fn plans_past_level_64_equal_stepping_through_the_stage_matrices() {
+        let cases = [
+            ("loop:2,sqrt3", big(&[12, 30])),
+            ("sqrt3-boundary", big(&[4, 1, 4, 2])),
+            ("loop-boundary:1,sqrt3-boundary", big(&[4, 1, 4])),
+            ("catmull-clark:3,doo-sabin", big(&[8, 12, 0, 6, 24])),
+            ("catmull-clark", big(&[4, 0, 4, 1, 4])),
+        ];
+        for (text, x0) in cases {
+            let plan = Plan::parse(text).unwrap();
+            let counter = Counter::from(plan.clone());
+            // The last stage starts where the earlier ones end (0 for a single scheme).
+            let start = plan.stages()[..plan.stages().len() - 1]
+                .iter()
+                .map(|s| s.levels().unwrap())
+                .sum::<u64>();
+            let last = plan.stages().last().unwrap().scheme();
+            // The first level in the last stage's names: 0 for a single scheme, else the
+            // level after the switch (the switch level belongs to the earlier stage).
+            let begin = if plan.is_single() { 0 } else { start + 1 };
+            let mut x = plan.state_at(&x0, begin).unwrap();
+            let mut expected = vec![(begin, x.clone())];
+            for level in begin + 1..=130 {
+                x = crate::scheme::apply(last.rule().matrix_of_step(level - start), &x);
+                expected.push((level, x.clone()));
+            }
+            for (level, state) in &expected {
+                if [63, 64, 65, 66, 67, 68, 128, 130].contains(level) {
+                    assert_eq!(
+                        &counter.state_at(&x0, *level).unwrap(),
+                        state,
+                        "{text} at {level}"
+                    );
+                    let row = counter.row_at(&x0, *level).unwrap();
+                    assert_eq!(row, counter.row_from_state(*level, state.clone()).unwrap());
+                }
+            }
+            let rows = counter.rows(&x0, 60..=70).unwrap();
+            let high = counter.rows(&x0, 66..=70).unwrap();
+            assert_eq!(rows[6..], high[..], "{text}");
+            for row in rows {
+                let state = &expected[(row.level - begin) as usize].1;
+                assert_eq!(
+                    row,
+                    counter.row_from_state(row.level, state.clone()).unwrap()
+                );
+            }
+        }
+    }
+
+    /// Issue 11: a composition's estimate follows the stage that produces the level (it used
+    /// the last stage's growth from level 2, and overflowed `u64` for a bounded last stage of
+    /// `u64::MAX` levels), without materializing a huge early stage.
+    #[test]
+    fn composition_estimates_follow_the_stage_of_the_level() {
+        let x0 = big(&[12, 30]);
+        let (l4, l3) = (4f64.log10(), 3f64.log10());
+        let cases: [(&str, u64, f64); 5] = [
+            ("loop:1000000000000,sqrt3", 1_000_000_000, 1e9 * l4),
+            (
+                "loop:1000000000000,sqrt3",
+                1_000_000_000_100,
+                1e12 * l4 + 100.0 * l3,
+            ),
+            ("loop:100,sqrt3", 1_000_000, 100.0 * l4 + (1e6 - 100.0) * l3),
+            (
+                "loop:18446744073709551615,sqrt3",
+                u64::MAX,
+                u64::MAX as f64 * l4,
+            ),
+            ("loop:18446744073709551615", u64::MAX, u64::MAX as f64 * l4),
+        ];
+        for (text, s, expected) in cases {
+            let counter = Counter::from(Plan::parse(text).unwrap());
+            let estimate = counter.estimated_log10(&x0, s).unwrap();
+            assert!(
+                (estimate - expected).abs() <= 1e-6 * expected + 10.0,
+                "{text} at {s}: {estimate} vs {expected}"
+            );
+        }
+        let bounded = Counter::from(Plan::parse("loop:18446744073709551615").unwrap());
+        let exact = bounded.estimated_log10(&x0, 5).unwrap();
+        assert!((exact - 30720f64.log10()).abs() < 1e-12, "{exact}");
+    }
+
+    proptest::proptest! {
+        /// Levels and stage lengths anywhere up to `u64::MAX`: the estimate of
+        /// `loop:k,sqrt3` at level `s` never overflows and follows Loop up to `k`, then
+        /// sqrt3 (within the rounding of a float and the few digits of the start).
+        #[test]
+        fn composition_estimates_at_any_level(
+            k in proptest::prop_oneof![0u64..200, (u64::MAX - 1000)..=u64::MAX, proptest::num::u64::ANY],
+            s in proptest::prop_oneof![0u64..200, (u64::MAX - 1000)..=u64::MAX, proptest::num::u64::ANY],
+        ) {
+            let counter = Counter::from(Plan::parse(&format!("loop:{k},sqrt3")).unwrap());
+            let estimate = counter.estimated_log10(&big(&[12, 30]), s).unwrap();
+            let (l4, l3) = (4f64.log10(), 3f64.log10());
+            let expected = if s <= k {
+                s as f64 * l4
+            } else {
+                k as f64 * l4 + (s - k) as f64 * l3
+            };
+            proptest::prop_assert!(
+                estimate.is_finite() && (estimate - expected).abs() <= 1e-6 * expected + 5.0,
+                "loop:{},sqrt3 at {}: {} vs {}", k, s, estimate, expected
+            );
+        }
+
+        /// Issue 11: size estimates at levels near `u64::MAX` grow by the dominant
+        /// eigenvalue (log10(4) a level for Loop, log10(3) for sqrt3, periodic or composed),
+        /// rather than saturating at `u64::MAX` bits (`log10(2) u64::MAX` digits).
+        #[test]
+        fn estimates_near_u64_max_follow_the_growth_rate(back in 0u64..1 << 62) {
+            let s = u64::MAX - back;
+            let cases = [
+                ("loop", big(&[12, 30]), 4f64),
+                ("sqrt3-boundary", big(&[4, 1, 4, 2]), 3.0),
+                ("loop:2,sqrt3", big(&[12, 30]), 3.0),
+            ];
+            for (text, x0, rate) in cases {
+                let counter = Counter::from(Plan::parse(text).unwrap());
+                let estimate = counter.estimated_log10(&x0, s).unwrap();
+                let expected = s as f64 * rate.log10();
+                proptest::prop_assert!(
+                    estimate.is_finite() && (estimate - expected).abs() <= 1e-6 * expected,
+                    "{} at {}: {} vs {}", text, s, estimate, expected
+                );
+            }
+        }
     }
 
     #[test]

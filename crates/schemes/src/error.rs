@@ -236,6 +236,16 @@ pub enum Error {
         /// What is wrong.
         reason: String,
     },
+    /// A floating-point figure of [`density`](crate::density) or a target-area search is
+    /// infinite, not a number or zero where the exact value is positive: it cannot be
+    /// printed as a number.
+    #[error("density: {what} {reason}")]
+    OutOfFloatRange {
+        /// The figure, e.g. `the mean co-volume area 4 pi r^2 / V`.
+        what: String,
+        /// Why it is out of range, with the inputs that made it so.
+        reason: String,
+    },
     /// A search would need states too large to compute (a quantity grows slowly while
     /// another component of the state explodes), or reached the last level a `u64` can name
     /// while the counts still grow (polynomial growth against a huge budget).
@@ -245,6 +255,15 @@ pub enum Error {
         level: u64,
         /// Total bits of the state there.
         bits: u64,
+    },
+    /// A search would reach a level whose counts are estimated too large to compute (an
+    /// early stage of a composition that runs for a huge number of levels).
+    #[error("the search would reach level {level}, where the counts would have about {digits} decimal digits; refusing to go further")]
+    SearchEstimateTooLarge {
+        /// The level.
+        level: u64,
+        /// The estimated decimal digits of the largest count there, e.g. `1.111e19`.
+        digits: String,
     },
     /// The target of a search is never reached (the counts stop growing).
     #[error("{what} never reaches {target}: it is {value} from level {level} on and stays there")]

@@ -222,8 +222,25 @@ impl Probe<'_> {
         Ok(self.values_of(&self.plan.vef(level, &state)?))
     }
 
+    /// Refuses, before materializing it, a level whose largest count is estimated at more
+    /// than four times [`MAX_STATE_BITS`] bits (a huge level of an early stage:
+    /// `loop:18446744073709551615,sqrt3`). The search doubles its level, so on its ordinary
+    /// path the exact check of the state ([`Error::SearchTooLarge`]) refuses first.
+    fn check_affordable(&self, level: u64) -> Result {
+        let counter = crate::Counter::from(self.plan.clone());
+        let digits = counter.estimated_log10(self.x0, level)?;
+        if digits * std::f64::consts::LOG2_10 > 4.0 * MAX_STATE_BITS as f64 {
+            return Err(Error::SearchEstimateTooLarge {
+                level,
+                digits: format!("{digits:.3e}"),
+            });
+        }
+        Ok(())
+    }
+
     /// Values at `h..=h + w`, stepping within the last stage.
     fn window(&self, h: u64, w: u64) -> Result<Vec<Vec<BigInt>>> {
+        self.check_affordable(h)?;
         let (scheme, start, _) = self.plan.tail();
         let mut state = self.plan.tail_state(self.x0, h)?;
         let bits: u64 = state.iter().map(BigInt::bits).sum();
@@ -263,14 +280,22 @@ impl Probe<'_> {
         if hit(&v0) {
             return Ok(Crossing::At(0));
         }
+        let (scheme, start, tail_start) = self.plan.tail();
+        // Strictly after the start of the last stage, where the plan reports its own state.
+        let mut h = tail_start.max(start.saturating_add(1));
+        let end = self.plan.last_level().unwrap_or(h);
+        if self.check_affordable(end).is_err() {
+            // An earlier stage runs for so many levels that its end cannot be computed:
+            // look for the crossing inside it first.
+            if let Some(crossing) = self.gallop(hit, &v0, end)? {
+                return Ok(crossing);
+            }
+        }
         if let Some(last) = self.plan.last_level() {
             return self.bounded(hit, last, v0);
         }
-        let (scheme, start, tail_start) = self.plan.tail();
         let w = (scheme.dim() as u64).saturating_mul(scheme.period());
         let mut lo = (0u64, v0);
-        // Strictly after the start of the last stage, where the plan reports its own state.
-        let mut h = tail_start.max(start.saturating_add(1));
         loop {
             let values = self.window(h, w)?;
             self.check_order((lo.0, &lo.1), (h, &values[0]))?;
@@ -333,12 +358,35 @@ impl Probe<'_> {
         Ok(hi)
     }
 
+    /// The crossing at levels `1, 2, 4, ...` below `end`, bisected between the last miss
+    /// and the first hit; `None` when no affordable level below `end` hits.
+    fn gallop(
+        &self,
+        hit: &dyn Fn(&[BigInt]) -> bool,
+        v0: &[BigInt],
+        end: u64,
+    ) -> Result<Option<Crossing>> {
+        let mut lo = (0u64, v0.to_vec());
+        let mut level = 1u64;
+        while level < end && self.check_affordable(level).is_ok() {
+            let v = self.at(level)?;
+            self.check_order((lo.0, &lo.1), (level, &v))?;
+            if hit(&v) {
+                return self.bisect(hit, lo, (level, v)).map(Some);
+            }
+            lo = (level, v);
+            level = level.saturating_mul(2);
+        }
+        Ok(None)
+    }
+
     fn bounded(
         &self,
         hit: &dyn Fn(&[BigInt]) -> bool,
         last: u64,
         v0: Vec<BigInt>,
     ) -> Result<Crossing> {
+        self.check_affordable(last)?;
         let v_last = self.at(last)?;
         if !hit(&v_last) {
             return Ok(Crossing::Never(last));
@@ -509,7 +557,9 @@ pub struct Density {
 /// # Errors
 ///
 /// [`Error::Density`] when `n_v` is zero, `radius` is not positive and finite, or `tau` is
-/// negative or not finite.
+/// negative or not finite; [`Error::OutOfFloatRange`] when the area or the scale factor is
+/// infinite or zero in floating point (a huge `n_v` or radius, a tiny radius, a huge `tau`)
+/// although its exact value is positive and finite.
 ///
 /// ```
 /// use num_bigint::BigInt;
@@ -531,10 +581,26 @@ pub fn density(n_v: &BigInt, radius: f64, tau: f64) -> Result<Density> {
     }
     let n = n_v.to_f64().unwrap_or(f64::INFINITY);
     let mean_area = 4.0 * std::f64::consts::PI * radius * radius / n;
-    Ok(Density {
-        mean_area,
-        phi: (tau / mean_area).sqrt(),
-    })
+    let out_of_range = |what: &str, value: f64| {
+        Error::OutOfFloatRange {
+        what: what.to_string(),
+        reason: format!(
+            "is {value:e} in floating point (radius {radius:e}, tau {tau:e}, V = 10^{:.1}), outside the range of a double: ask for another level or radius",
+            crate::log10_abs(n_v)
+        ),
+    }
+    };
+    if !(mean_area.is_finite() && mean_area > 0.0) {
+        return Err(out_of_range(
+            "the mean co-volume area 4 pi r^2 / V",
+            mean_area,
+        ));
+    }
+    let phi = (tau / mean_area).sqrt();
+    if !phi.is_finite() || (phi == 0.0 && tau > 0.0) {
+        return Err(out_of_range("the scale factor phi = sqrt(tau / area)", phi));
+    }
+    Ok(Density { mean_area, phi })
 }
 
 /// The smallest level whose mean co-volume area `4 pi r^2 / V` is at most `target_area`,
@@ -543,6 +609,8 @@ pub fn density(n_v: &BigInt, radius: f64, tau: f64) -> Result<Density> {
 /// # Errors
 ///
 /// [`Error::Density`] for a radius or target area that is not positive and finite,
+/// [`Error::OutOfFloatRange`] when the vertex count it needs is infinite or zero in floating
+/// point,
 /// [`Error::NeverReached`] when `V` stops growing below the needed count, and the errors of
 /// the search (see the module documentation).
 ///
@@ -573,6 +641,14 @@ pub fn level_for_area(
         });
     }
     let needed = 4.0 * std::f64::consts::PI * radius * radius / target_area;
+    if !(needed.is_finite() && needed > 0.0) {
+        return Err(Error::OutOfFloatRange {
+            what: "the vertex count needed, 4 pi r^2 / target area,".to_string(),
+            reason: format!(
+                "is {needed:e} in floating point (radius {radius:e}, target area {target_area:e}), outside the range of a double: use another radius or target area"
+            ),
+        });
+    }
     let probe = Probe {
         plan,
         x0,
@@ -606,6 +682,54 @@ mod tests {
 
     fn state(values: &[i64]) -> Vec<BigInt> {
         values.iter().map(|&v| BigInt::from(v)).collect()
+    }
+
+    /// Issue 11: a first stage of `u64::MAX` levels is searched inside (its end cannot be
+    /// computed): the same level as the scheme alone, bounded plan or not.
+    #[test]
+    fn a_crossing_inside_a_huge_first_stage_is_found() {
+        let x0 = state(&[12, 30]);
+        let alone = fit(&Plan::parse("loop").unwrap(), &x0, &max_vertices(1 << 40)).unwrap();
+        for text in [
+            "loop:18446744073709551615,sqrt3",
+            "loop:18446744073709551615",
+        ] {
+            let plan = Plan::parse(text).unwrap();
+            assert_eq!(
+                fit(&plan, &x0, &max_vertices(1 << 40)).unwrap(),
+                alone,
+                "{text}"
+            );
+        }
+    }
+
+    /// Issue 11: eq. (1)'s figures are finite and positive, or refused: a count beyond a
+    /// double, a radius whose square overflows or underflows, a `tau` whose scale factor
+    /// overflows, a target area whose vertex count does.
+    #[test]
+    fn density_figures_outside_a_double_are_refused() {
+        let out_of_range = |r: Result<Density>| matches!(r, Err(Error::OutOfFloatRange { .. }));
+        let huge = BigInt::from(10u32).pow(400u32);
+        assert!(out_of_range(density(&huge, 1.0, 0.0)));
+        assert!(out_of_range(density(&BigInt::from(12), 1e300, 0.0)));
+        assert!(out_of_range(density(&BigInt::from(12), 1e-300, 0.0)));
+        let many = BigInt::from(10_000_000_000u64);
+        assert!(out_of_range(density(&many, 1.0, f64::MAX)));
+        let near = BigInt::from(10u32).pow(300u32);
+        let d = density(&near, 1.0, 1e-300).unwrap();
+        assert!(
+            d.mean_area > 0.0 && d.phi > 0.0 && d.phi.is_finite(),
+            "{d:?}"
+        );
+        let plan = Plan::single(builtin("loop").unwrap());
+        let x0 = state(&[12, 30]);
+        for (radius, area) in [(1.0, 1e-320), (1e200, 1e-200), (1e-300, 1.0)] {
+            let r = level_for_area(&plan, &x0, radius, area);
+            assert!(
+                matches!(r, Err(Error::OutOfFloatRange { .. })),
+                "{radius} {area}: {r:?}"
+            );
+        }
     }
 
     fn max_vertices(n: u64) -> Budget {

@@ -136,7 +136,14 @@ impl Derivation {
             .fold(divisor, |g, &c| g.gcd(&c.unsigned_abs()));
         let g = g.max(1);
         Derivation {
-            coefficients: coefficients.iter().map(|&c| c / g as i64).collect(),
+            // `g` divides every nonzero `c`, so `|c / g| <= |c|` fits in `i64`; in `i128`
+            // because `g` may be 2^63 (`g as i64` turned `i64::MIN / 2^63` into `+1`).
+            coefficients: coefficients
+                .iter()
+                .map(|&c| {
+                    i64::try_from(i128::from(c) / i128::from(g)).expect("|c / g| is at most |c|")
+                })
+                .collect(),
             divisor: divisor / g,
         }
     }
@@ -673,22 +680,24 @@ impl Scheme {
             found,
             hint: hint.as_ref().map(|h| format!("use {h}")),
         };
-        if facts.manifold {
-            if let Some(v) = given[Stat::NME.index()].as_ref().filter(|v| !v.is_zero()) {
-                return Err(refuse(
-                    "every edge to have one or two faces",
-                    format!("NME={v}"),
-                    &self.hints.nonmanifold,
-                ));
-            }
-        }
-        if facts.closed {
-            if let Some(v) = given[Stat::BE.index()].as_ref().filter(|v| !v.is_zero()) {
-                return Err(refuse(
-                    "a closed mesh",
-                    format!("BE={v}"),
-                    &self.hints.boundary,
-                ));
+        let required = [
+            (
+                facts.manifold,
+                Stat::NME,
+                "every edge to have one or two faces",
+                &self.hints.nonmanifold,
+            ),
+            (
+                facts.closed,
+                Stat::BE,
+                "a closed mesh",
+                &self.hints.boundary,
+            ),
+        ];
+        for (applies, stat, needs, hint) in required {
+            let given = given[stat.index()].as_ref().filter(|v| !v.is_zero());
+            if let Some(v) = given.filter(|_| applies) {
+                return Err(refuse(needs, format!("{}={v}", stat.short_name()), hint));
             }
         }
         let solved = solve(&given, facts)?;
@@ -814,15 +823,7 @@ impl Scheme {
     ///
     /// As [`state_at`](Self::state_at) and [`vef`](Self::vef).
     pub fn level_counts(&self, x0: &[BigInt], level: u64) -> Result<LevelCounts> {
-        let state = self.state_at(x0, level)?;
-        let [vertices, edges, faces] = self.vef(&state)?;
-        Ok(LevelCounts {
-            level,
-            state,
-            vertices,
-            edges,
-            faces,
-        })
+        crate::Plan::single(self.clone()).level_counts(x0, level)
     }
 
     /// The counts of `mesh` after `level` steps: what the `halfedge` crate preallocates.
@@ -841,8 +842,7 @@ impl Scheme {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn counts_at(&self, mesh: &MeshCounts, level: u64) -> Result<LevelCounts> {
-        let x0 = self.initial_state(mesh)?;
-        self.level_counts(&x0, level)
+        crate::Plan::single(self.clone()).counts_at(mesh, level)
     }
 
     /// The phases for closed forms: one per residue class of the cycle (one phase when the
@@ -898,5 +898,25 @@ fn phase_text(p: u64, first: u64) -> String {
         format!("s = {t}")
     } else {
         format!("s = {t} + {first}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Reduction to lowest terms is exact at the ends of `i64` and `u64`: `i64::MIN x / 2^63`
+    /// is `-x` (the cast `2^63 as i64` made it `+x`).
+    #[test]
+    fn derivations_reduce_exactly_at_the_ends_of_the_integers() {
+        let d = Derivation::new(vec![i64::MIN, 0], 1 << 63);
+        assert_eq!((d.coefficients(), d.divisor()), (&[-1, 0][..], 1));
+        let d = Derivation::new(vec![i64::MIN, 1 << 62], 1 << 63);
+        assert_eq!((d.coefficients(), d.divisor()), (&[-2, 1][..], 2));
+        let d = Derivation::new(vec![0, 0], u64::MAX);
+        assert_eq!((d.coefficients(), d.divisor()), (&[0, 0][..], 1));
+        let d = Derivation::new(vec![i64::MAX, -i64::MAX], u64::MAX);
+        assert_eq!(d.coefficients(), [i64::MAX, -i64::MAX]);
+        assert_eq!(d.divisor(), u64::MAX);
     }
 }

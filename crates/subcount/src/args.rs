@@ -4,6 +4,20 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
 
+/// The most threads `--threads` may ask for. Each thread costs a stack and a start-up, and
+/// the geometry passes gain nothing past the number of cores: without a cap, `--threads
+/// 100000` spent minutes starting threads (or failed after 20 s).
+pub(crate) const MAX_THREADS: usize = 256;
+
+/// Parses `--threads`: a whole number from 0 (all cores) to [`MAX_THREADS`].
+fn parse_threads(text: &str) -> Result<usize, String> {
+    let n: usize = text.parse().map_err(|e| format!("{e}"))?;
+    if n > MAX_THREADS {
+        return Err(format!("at most {MAX_THREADS} threads (0 uses every core)"));
+    }
+    Ok(n)
+}
+
 /// How big will a subdivision surface be? Exact counts, closed forms and real subdivision.
 #[derive(Parser, Debug)]
 #[command(name = "subcount", version, about, long_about = None)]
@@ -78,7 +92,7 @@ pub(crate) struct VerifyArgs {
     #[arg(long, value_name = "N", default_value_t = 2_000_000)]
     pub(crate) max_faces: u64,
     /// Threads for the geometry passes (0: all cores).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = parse_threads)]
     pub(crate) threads: usize,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
@@ -102,7 +116,7 @@ pub(crate) struct SubdivideArgs {
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub(crate) output: Option<PathBuf>,
     /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = parse_threads)]
     pub(crate) threads: usize,
     /// Print one line `timings: {...}` on stderr.
     #[arg(long)]

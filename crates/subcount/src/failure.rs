@@ -85,7 +85,9 @@ pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
         | E::NoMeshCounts { .. }
         | E::BadFace { .. }
         | E::NothingFits { .. } => Kind::Input,
-        E::SearchTooLarge { .. } => Kind::Guard,
+        E::SearchTooLarge { .. } | E::SearchEstimateTooLarge { .. } | E::OutOfFloatRange { .. } => {
+            Kind::Guard
+        }
         _ => Kind::Usage,
     };
     Failure::new(kind, e)

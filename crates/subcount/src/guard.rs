@@ -63,14 +63,15 @@ pub(crate) fn table(
     levels: &RangeInclusive<u64>,
 ) -> Result<(), Failure> {
     digits(counter, x0, *levels.end(), false, Hint::Levels)?;
-    let rows = (*levels.end() - *levels.start()) as f64 + 1.0;
-    let cells = rows * counter.columns().len() as f64;
+    // Exact for the message (up to 2^64 rows), as a float for the estimate.
+    let rows = u128::from(*levels.end() - *levels.start()) + 1;
+    let cells = rows as f64 * counter.columns().len() as f64;
     let digits = counter.estimated_log10(x0, *levels.end())? + 1.0;
     if cells > MAX_TABLE_CELLS || cells * digits > MAX_TABLE_DIGITS {
         return Err(Failure::new(
             Kind::Guard,
             anyhow::anyhow!(
-                "levels {}..={} would make a table of {rows:.0} rows and about {:.3e} decimal digits; the limits are 10^7 cells and 10^8 digits: ask for fewer levels",
+                "levels {}..={} would make a table of {rows} rows and about {:.3e} decimal digits; the limits are 10^7 cells and 10^8 digits: ask for fewer levels",
                 levels.start(),
                 levels.end(),
                 (cells * digits).ceil()

@@ -7,7 +7,7 @@ use schemes::{Budget, Counter, Fit, MemoryBudget, Plan};
 use serde_json::Value;
 
 use crate::args::{DensityArgs, FitArgs, ReportFormat, SchemesArgs, SchemesFormat};
-use crate::failure::{input, usage, write_failure, Failure, Kind};
+use crate::failure::{input, scheme_failure, usage, write_failure, Failure, Kind};
 use crate::guard::{self, Hint};
 use crate::levels::parse_level;
 use crate::model::Input;
@@ -124,9 +124,16 @@ pub(crate) fn density(args: DensityArgs, out: &mut impl Write) -> Result<u8, Fai
         (None, Some(area)) => schemes::level_for_area(&plan, &x0, args.radius, area)?,
         (None, None) => return Err(usage!("density needs --level or --target-area")),
     };
+    if args.tau == Some(0.0) {
+        return Err(usage!(
+            "density: tau must be positive, got 0 (the scale factor phi = sqrt(tau / area) would be 0)"
+        ));
+    }
     let tau = args.tau.unwrap_or(0.0);
-    let d = schemes::density(&counts.vertices, args.radius, tau)
-        .map_err(|e| Failure::new(Kind::Usage, e))?;
+    let d = schemes::density(&counts.vertices, args.radius, tau).map_err(|e| match e {
+        schemes::Error::Density { .. } => Failure::new(Kind::Usage, e),
+        e => scheme_failure(e),
+    })?;
     let phi = args.tau.map(|_| d.phi);
     let text = match args.format {
         ReportFormat::Json => {

@@ -1280,3 +1280,295 @@ fn non_finite_points_are_refused_and_nothing_is_written() {
     );
     assert_eq!(folder_names(files.dir.path()), ["huge.obj", "origin.obj"]);
 }
+
+/// The JSON rows of `table` for `levels`.
+fn table_rows(count: &[&str], levels: &str) -> Vec<serde_json::Value> {
+    let out = ok(&[&["table"], count, &["--levels", levels, "--format", "json"]].concat());
+    serde_json::from_str(&out).expect("table writes JSON")
+}
+
+/// Issue 11: `at --scheme loop:2,sqrt3 --level 67` (and `density`, `plot`) panicked from
+/// level 67 on. Compositions, cycles (`sqrt3-boundary`) and first steps count exactly past
+/// level 64: `at` (closed form or powering) equals `table` (one step at a time) at every
+/// level around the switch, and `loop:2,sqrt3` on the icosahedron has
+/// `V(s) = 2 + 160 3^(s-2)`, `F(s) = 320 3^(s-2)` (checked in Python).
+#[test]
+fn compositions_and_cycles_count_exactly_past_level_64() {
+    let plans: [&[&str]; 5] = [
+        &["--scheme", "loop:2,sqrt3", "--counts", "V=12,E=30,F=20"],
+        &["--scheme", "sqrt3-boundary", "--counts", "V=4,E=5,F=2"],
+        &[
+            "--scheme",
+            "loop-boundary:1,sqrt3-boundary",
+            "--counts",
+            "V=4,E=5,F=2",
+        ],
+        &[
+            "--scheme",
+            "catmull-clark",
+            "--counts",
+            "V=4,IE=0,BE=4,F=1,H=4",
+        ],
+        &[
+            "--scheme",
+            "catmull-clark:3,doo-sabin",
+            "--counts",
+            "V=8,E=12,F=6,BE=0,H=24",
+        ],
+    ];
+    for count in plans {
+        let rows = table_rows(count, "0..=130");
+        for s in [63usize, 64, 65, 66, 67, 68, 128, 129, 130] {
+            let at = ok(&[
+                &["at"],
+                count,
+                &["--level", &s.to_string(), "--format", "json"],
+            ]
+            .concat());
+            let at: serde_json::Value = serde_json::from_str(&at).unwrap();
+            assert_eq!(at, rows[s], "{count:?} at level {s}");
+        }
+        let high = table_rows(count, "128..=130");
+        assert_eq!(high[..], rows[128..=130], "{count:?}");
+    }
+    let ico = ["--scheme", "loop:2,sqrt3", "--counts", "V=12,E=30,F=20"];
+    assert_eq!(
+        ok(&[&["at"], &ico[..], &["--level", "67"]].concat()),
+        "level 67\nV = 1648168233740405992635767562854882\nE = 4944504701221217977907302688564640\nF = 3296336467480811985271535125709760\n"
+    );
+    assert_eq!(
+        ok(&[&["density"], &ico[..], &["--level", "67"]].concat()),
+        "level 67\nV = 1648168233740405992635767562854882\nmean co-volume area 4 pi r^2 / V = 7.624446556551236e-33\n"
+    );
+    let files = Files::new();
+    let svg = files.path("67.svg").display().to_string();
+    ok(&[&["plot"], &ico[..], &["--levels", "60..=67", "-o", &svg]].concat());
+    assert!(std::fs::metadata(&svg).unwrap().len() > 0);
+    // 2 + 160 3^64 < 10^33 <= 2 + 160 3^65: the highest level within 10^33 vertices is 66.
+    let fit = ok(&[
+        &["fit"],
+        &ico[..],
+        &[
+            "--max-vertices",
+            "1000000000000000000000000000000000",
+            "--format",
+            "json",
+        ],
+    ]
+    .concat());
+    let fit: serde_json::Value = serde_json::from_str(&fit).unwrap();
+    assert_eq!(fit["level"], 66, "{fit}");
+}
+
+/// Huge levels of compositions and cycles are refused by the digit guard (exit 4) with the
+/// right size: log10(3) digits a level for sqrt3 (`8.801e18` at `u64::MAX`, where the
+/// estimate saturated at `log10(2) u64::MAX = 5.553e18` before), and `table` refuses
+/// ranges up to `u64::MAX` without computing a row.
+#[test]
+fn huge_levels_of_compositions_are_refused_with_the_right_size() {
+    let ico = ["--scheme", "loop:2,sqrt3", "--counts", "V=12,E=30,F=20"];
+    let cases = [
+        ("9223372036854775808", "about 4.401e18 decimal digits"),
+        ("18446744073709551615", "about 8.801e18 decimal digits"),
+    ];
+    for (level, size) in cases {
+        for cmd in ["at", "density"] {
+            fails(&[&[cmd], &ico[..], &["--level", level]].concat(), 4, size);
+        }
+    }
+    // At level 10^6 `at` prints the counts, and `density`'s area is below a double.
+    fails(
+        &[&["density"], &ico[..], &["--level", "1000000"]].concat(),
+        4,
+        "is 0e0 in floating point (radius 1e0, tau 0e0, V = 10^477122.5)",
+    );
+    fails(
+        &[
+            &["table"],
+            &ico[..],
+            &["--levels", "0..=18446744073709551615"],
+        ]
+        .concat(),
+        4,
+        "at level 18446744073709551615 would have about 8.801e18 decimal digits",
+    );
+    fails(
+        &[
+            "table",
+            "--matrix",
+            "[[1]]",
+            "--init",
+            "1",
+            "--levels",
+            "0..=18446744073709551615",
+        ],
+        4,
+        "levels 0..=18446744073709551615 would make a table of 18446744073709551616 rows",
+    );
+    fails(
+        &[
+            "at",
+            "--scheme",
+            "loop",
+            "--counts",
+            "V=12,E=30,F=20",
+            "--level",
+            "18446744073709551615",
+        ],
+        4,
+        "about 1.111e19 decimal digits",
+    );
+}
+
+/// Issue 11: `density`'s floating-point figures are refused (exit 4) when they are infinite
+/// or zero, naming the figure; `--tau 0` (a zero scale factor) is a usage error.
+#[test]
+fn density_refuses_figures_outside_the_range_of_a_double() {
+    let ico = ["--scheme", "loop", "--counts", "V=12,E=30,F=20"];
+    let area = "density: the mean co-volume area 4 pi r^2 / V is ";
+    let cases: [(&[&str], i32, &str); 7] = [
+        (&["--level", "3", "--radius", "1e300"], 4, "is inf in floating point (radius 1e300, tau 0e0, V = 10^2.8), outside the range of a double"),
+        (&["--level", "3", "--radius", "1e-300"], 4, "is 0e0 in floating point (radius 1e-300, tau 0e0, V = 10^2.8)"),
+        (&["--level", "1000"], 4, "V = 10^603.1), outside the range of a double: ask for another level or radius"),
+        (&["--level", "3", "--tau", "1e308"], 4, "density: the scale factor phi = sqrt(tau / area) is inf in floating point"),
+        (&["--level", "3", "--tau", "0"], 2, "density: tau must be positive, got 0 (the scale factor phi = sqrt(tau / area) would be 0)"),
+        (&["--target-area", "1e-320"], 4, "density: the vertex count needed, 4 pi r^2 / target area, is inf in floating point (radius 1e0, target area 1e-320)"),
+        (&["--radius", "1e-300", "--target-area", "1"], 4, "density: the vertex count needed, 4 pi r^2 / target area, is 0e0 in floating point"),
+    ];
+    for (extra, code, needle) in cases {
+        let err = fails(&[&["density"], &ico[..], extra].concat(), code, needle);
+        if extra.contains(&"--radius") && !extra.contains(&"--target-area")
+            || extra == ["--level", "1000"]
+        {
+            assert!(err.contains(area), "{err}");
+        }
+    }
+}
+
+/// Issue 11: `--threads 100000` hung starting threads. `--threads` above 256 is a usage
+/// error naming the limit; 0 (every core) and 256 still run.
+#[test]
+fn threads_are_capped() {
+    let files = Files::new();
+    let out = files.path("out.obj").display().to_string();
+    for (cmd, extra) in [("subdivide", vec!["-o", out.as_str()]), ("verify", vec![])] {
+        for n in ["257", "100000", "18446744073709551616"] {
+            let needle = if n == "18446744073709551616" {
+                "invalid value '18446744073709551616' for '--threads <N>': number too large to fit in target type"
+            } else {
+                "for '--threads <N>': at most 256 threads (0 uses every core)"
+            };
+            let args = [
+                &[
+                    cmd,
+                    "--base",
+                    "icosahedron",
+                    "--scheme",
+                    "loop",
+                    "--levels",
+                    "1",
+                    "--threads",
+                    n,
+                ],
+                &extra[..],
+            ]
+            .concat();
+            fails(&args, 2, needle);
+        }
+        for n in ["0", "256"] {
+            let args = [
+                &[
+                    cmd,
+                    "--base",
+                    "icosahedron",
+                    "--scheme",
+                    "loop",
+                    "--levels",
+                    "1",
+                    "--threads",
+                    n,
+                ],
+                &extra[..],
+            ]
+            .concat();
+            ok(&args);
+        }
+    }
+}
+
+/// Issue 11: a composition whose first stage runs for `u64::MAX` levels. `at` at level 5
+/// panicked (`attempt to add with overflow` in the size estimate); at `u64::MAX` the guard
+/// named sqrt3's growth instead of Loop's; `fit` computed Loop's state at level `u64::MAX`
+/// until memory ran out (it now finds the crossing inside the first stage). A first stage
+/// of 10^8 levels at level 1.8 10^7 has about 1.084e7-digit counts (Loop's log10(4) a
+/// level), not sqrt3's 8.6e6 that passed the guard.
+#[test]
+fn long_first_stages_are_estimated_by_their_own_growth() {
+    let ico = ["--counts", "V=12,E=30,F=20"];
+    assert_eq!(
+        ok(&[
+            &[
+                "at",
+                "--scheme",
+                "loop:18446744073709551615",
+                "--level",
+                "5"
+            ],
+            &ico[..]
+        ]
+        .concat()),
+        "level 5\nV = 10242\nE = 30720\nF = 20480\n"
+    );
+    let long = ["--scheme", "loop:18446744073709551615,sqrt3"];
+    fails(
+        &[&["at"], &long[..], &ico[..], &["--level", "18446744073709551615"]].concat(),
+        4,
+        "the counts at level 18446744073709551615 would have about 1.111e19 decimal digits (4.0 EiB per count)",
+    );
+    // The crossing lies inside the long first stage: the same answer as Loop alone.
+    for budget in ["1000000000000000000000000000000000000000", "1000000000000"] {
+        let fit = |scheme: &str| {
+            ok(&[
+                &["fit", "--scheme", scheme],
+                &ico[..],
+                &["--max-faces", budget],
+            ]
+            .concat())
+        };
+        let alone = fit("loop");
+        assert_eq!(fit("loop:18446744073709551615,sqrt3"), alone);
+        assert_eq!(fit("loop:18446744073709551615"), alone);
+    }
+    fails(
+        &[
+            "at",
+            "--scheme",
+            "loop:100000000,sqrt3",
+            "--counts",
+            "V=12,E=30,F=20",
+            "--level",
+            "18000000",
+        ],
+        4,
+        "the counts at level 18000000 would have about 1.084e7 decimal digits (4.3 MiB per count)",
+    );
+}
+
+/// The table guard names the exact number of rows (it printed `1152921504606846976` for
+/// `2^60 + 2` rows, rounded through a float).
+#[test]
+fn the_table_guard_counts_rows_exactly() {
+    fails(
+        &[
+            "table",
+            "--matrix",
+            "[[1]]",
+            "--init",
+            "1",
+            "--levels",
+            "0..=1152921504606846977",
+        ],
+        4,
+        "levels 0..=1152921504606846977 would make a table of 1152921504606846978 rows",
+    );
+}
