@@ -72,6 +72,15 @@ pub enum Error {
         /// Estimated size of the largest count, in bits.
         bits: u64,
     },
+    /// A digit count does not fit in the `u64` of a
+    /// [`DigitSummary`](crate::DigitSummary).
+    #[error("the count `{component}` at level {level} has more than 2^64 decimal digits, more than a digit summary can state")]
+    DigitsOverflow {
+        /// The component whose count it is.
+        component: String,
+        /// The requested level.
+        level: u64,
+    },
     /// Computing the closed form would cost more than the caller allowed
     /// ([`Recurrence::closed_form_cost`](crate::Recurrence::closed_form_cost)).
     #[error("the closed form of this {dim}x{dim} matrix would cost about {cost} work units, more than the limit of {limit}")]
