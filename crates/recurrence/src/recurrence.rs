@@ -249,7 +249,8 @@ impl Recurrence {
     /// # Errors
     ///
     /// [`Error::ClosedFormTooCostly`] (with the estimate) when the cost exceeds `limit`;
-    /// nothing is computed then.
+    /// nothing is computed then. [`Error::InaccurateClosedForm`] when the form's numeric
+    /// terms miss the exact counts.
     ///
     /// ```
     /// # use recurrence::{Error, IntMatrix, Recurrence};
@@ -270,7 +271,18 @@ impl Recurrence {
                 limit,
             });
         }
-        Ok(self.closed_form())
+        self.verified_closed_form()
+    }
+
+    /// The closed form, if it holds ([`ClosedForm::verify`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InaccurateClosedForm`] when numeric terms miss the exact counts.
+    pub fn verified_closed_form(&self) -> Result<ClosedForm> {
+        let form = self.closed_form();
+        form.verify()?;
+        Ok(form)
     }
 
     fn check_len(&self, got: usize) -> Result {
