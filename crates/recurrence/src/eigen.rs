@@ -16,8 +16,8 @@ use nalgebra::{Complex, DMatrix};
 
 use crate::Complex64;
 use num_bigint::BigInt;
-use num_rational::BigRational;
 use num_integer::Integer;
+use num_rational::BigRational;
 use num_traits::{FromPrimitive, One, Signed, Zero};
 
 use crate::field::{rational_to_f64, QuadraticSurd};
@@ -299,9 +299,7 @@ fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
 
 /// `f` scaled by a positive rational to a primitive integer polynomial (signs kept).
 fn primitive(f: &[BigRational]) -> Vec<BigInt> {
-    let lcm = f
-        .iter()
-        .fold(BigInt::one(), |l, c| l.lcm(c.denom()));
+    let lcm = f.iter().fold(BigInt::one(), |l, c| l.lcm(c.denom()));
     let ints: Vec<BigInt> = f.iter().map(|c| (c * &lcm).to_integer()).collect();
     let gcd = ints.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
     if gcd.is_zero() {

@@ -483,9 +483,8 @@ fn first_inaccuracy(rec: &Recurrence, form: &ClosedForm) -> Option<(usize, u64)>
     if numeric.is_empty() {
         return None;
     }
-    let basis = |j: usize| -> Vec<BigInt> {
-        (0..n).map(|k| BigInt::from(u8::from(k == j))).collect()
-    };
+    let basis =
+        |j: usize| -> Vec<BigInt> { (0..n).map(|k| BigInt::from(u8::from(k == j))).collect() };
     for &i in &numeric {
         let c = &form.components[i];
         for s in [0, 1, 2, n as u64].map(|d| c.valid_from + d) {
@@ -767,13 +766,21 @@ mod tests {
     }
 
     /// Evaluation equals exact powering at several levels, for every initial state tried.
-    fn evaluates_exactly(form: &ClosedForm, m: &IntMatrix) -> std::result::Result<(), TestCaseError> {
+    fn evaluates_exactly(
+        form: &ClosedForm,
+        m: &IntMatrix,
+    ) -> std::result::Result<(), TestCaseError> {
         let r = Recurrence::new(m.clone());
         let n = m.dim();
         for x0 in [vec![1i64; n], (0..n as i64).map(|i| 3 - 2 * i).collect()] {
             let x0: Vec<BigInt> = x0.into_iter().map(BigInt::from).collect();
             for s in [0u64, 1, 2, 3, 7, 20] {
-                prop_assert_eq!(form.evaluate(&x0, s).unwrap(), r.state_at(&x0, s).unwrap(), "level {}", s);
+                prop_assert_eq!(
+                    form.evaluate(&x0, s).unwrap(),
+                    r.state_at(&x0, s).unwrap(),
+                    "level {}",
+                    s
+                );
             }
         }
         Ok(())
@@ -785,7 +792,9 @@ mod tests {
         let m = matrix(vec![vec![9_007_199_254_740_993, 1], vec![1, 0]]);
         let form = Recurrence::new(m.clone()).closed_form();
         assert!(form.is_exact());
-        assert!(form.to_text().starts_with("x0(s) = ((1/2+9007199254740993/"));
+        assert!(form
+            .to_text()
+            .starts_with("x0(s) = ((1/2+9007199254740993/"));
         evaluates_exactly(&form, &m).unwrap();
         // An integer root next to a quadratic pair, all near i64::MAX.
         let m = matrix(vec![
@@ -802,7 +811,11 @@ mod tests {
     fn ill_conditioned_numeric_forms_are_refused() {
         // x^3 - a x^2 - a x - 1 with a = 2^63 - 1 is irreducible: numeric roots, which f64
         // cannot separate.
-        let m = matrix(vec![vec![i64::MAX, i64::MAX, 1], vec![1, 0, 0], vec![0, 1, 0]]);
+        let m = matrix(vec![
+            vec![i64::MAX, i64::MAX, 1],
+            vec![1, 0, 0],
+            vec![0, 1, 0],
+        ]);
         let r = Recurrence::new(m);
         let form = r.closed_form();
         assert!(!form.is_exact());
