@@ -260,12 +260,7 @@ fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
     let mut found = Vec::new();
     // Degree two and below are solved exactly by the caller.
     'search: while rest.len() > 3 {
-        let bound: BigInt = rest[..rest.len() - 1]
-            .iter()
-            .map(BigInt::abs)
-            .max()
-            .unwrap_or_default()
-            + 1;
+        let bound = cauchy_bound(&rest);
         let mut seeds: Vec<BigInt> = numeric_roots(&rest)
             .iter()
             .filter(|z| z.im.abs() <= 1e-6 * z.norm().max(1.0))
@@ -295,6 +290,17 @@ fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
         }
     }
     (found, rest)
+}
+
+/// `1 + max |c_i|` over the non-leading coefficients of the monic `f`: every root has a
+/// smaller modulus (Cauchy).
+fn cauchy_bound(f: &[BigInt]) -> BigInt {
+    f[..f.len().saturating_sub(1)]
+        .iter()
+        .map(BigInt::abs)
+        .max()
+        .unwrap_or_default()
+        + 1
 }
 
 /// `f` scaled by a positive rational to a primitive integer polynomial (signs kept).
@@ -350,12 +356,7 @@ fn sturm_integer_roots(f: &[BigInt]) -> Vec<BigInt> {
             .collect();
         signs.windows(2).filter(|w| w[0] != w[1]).count()
     };
-    let bound: BigInt = f[..f.len() - 1]
-        .iter()
-        .map(BigInt::abs)
-        .max()
-        .unwrap_or_default()
-        + 1;
+    let bound = cauchy_bound(f);
     let mut roots = Vec::new();
     // (lo, hi, V(lo), V(hi)): V(lo) - V(hi) roots lie in (lo, hi].
     let lo = -&bound - 1;

@@ -457,31 +457,26 @@ fn component_line(c: &ComponentForm, names: &[String], style: Style, level: &str
         component_rhs(c, names, style, level)
     );
     if c.valid_from > 0 {
-        match style {
-            Style::Text => {
-                let _ = write!(line, " for {level} >= {}", c.valid_from);
-                for l in &c.early_levels {
-                    let _ = write!(
-                        line,
-                        "; {}({}) = {}",
-                        c.name,
-                        l.level,
-                        integer_combination(&l.coefficients, names, style)
-                    );
-                }
-            }
-            Style::Latex => {
-                let _ = write!(line, " \\quad ({level} \\ge {})", c.valid_from);
-                for l in &c.early_levels {
-                    let _ = write!(
-                        line,
-                        ", \\quad {}({}) = {}",
-                        c.name.replace('_', "\\_"),
-                        l.level,
-                        integer_combination(&l.coefficients, names, style)
-                    );
-                }
-            }
+        let (range, separator, name) = match style {
+            Style::Text => (
+                format!(" for {level} >= {}", c.valid_from),
+                "; ",
+                c.name.clone(),
+            ),
+            Style::Latex => (
+                format!(" \\quad ({level} \\ge {})", c.valid_from),
+                ", \\quad ",
+                c.name.replace('_', "\\_"),
+            ),
+        };
+        line.push_str(&range);
+        for l in &c.early_levels {
+            let _ = write!(
+                line,
+                "{separator}{name}({}) = {}",
+                l.level,
+                integer_combination(&l.coefficients, names, style)
+            );
         }
     }
     line

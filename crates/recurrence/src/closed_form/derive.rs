@@ -63,6 +63,31 @@ fn spectral_parts<F: Field>(
     parts
 }
 
+/// The projector, the matrices `C_t` of [`power_coefficients`] (non-zero `lambda`) and,
+/// for `lambda = 0`, per row the least `k` with a zero row `i` of `N^k P`, all from
+/// [`spectral_parts`]: the fallback of [`exact_spectrum`] and its test reference.
+fn spectrum_from_parts<F: Field>(
+    m: &IntMatrix,
+    p: &[BigRational],
+    lambda: &F,
+    mult: usize,
+) -> (Matrix<F>, Vec<Matrix<F>>, Vec<u64>) {
+    let parts = spectral_parts::<F>(m, p, lambda, mult);
+    if lambda.is_zero() {
+        let valid = (0..m.dim())
+            .map(|i| {
+                (0..mult)
+                    .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
+                    .unwrap_or(mult) as u64
+            })
+            .collect();
+        (parts[0].clone(), Vec::new(), valid)
+    } else {
+        let coefficients = power_coefficients(&parts, lambda);
+        (parts[0].clone(), coefficients, Vec::new())
+    }
+}
+
 /// A field whose elements the fraction-free computation produces as `numerator /
 /// denominator` in `Z[sqrt d]`.
 trait ExactField: Field {
@@ -292,30 +317,7 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                     exact_spectrum::<BigRational>(m, &QuadraticSurd::rational(l.clone()), mult);
                 let (projector, coefficients, zero_valid) = match fast {
                     Some(spec) => (spec.projector, spec.coefficients, spec.valid_from),
-                    None => {
-                        let parts = spectral_parts::<BigRational>(m, &p, l, mult);
-                        let valid = if l.is_zero() {
-                            (0..n)
-                                .map(|i| {
-                                    (0..mult)
-                                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
-                                        .unwrap_or(mult) as u64
-                                })
-                                .collect()
-                        } else {
-                            Vec::new()
-                        };
-                        let coefficients = if l.is_zero() {
-                            Vec::new()
-                        } else {
-                            power_coefficients(&parts, l)
-                        };
-                        (
-                            parts.into_iter().next().expect("one part per multiplicity"),
-                            coefficients,
-                            valid,
-                        )
-                    }
+                    None => spectrum_from_parts::<BigRational>(m, &p, l, mult),
                 };
                 if any_numeric {
                     exact_sum = exact_sum.add(&projector);
@@ -559,25 +561,8 @@ mod tests {
         let p = Recurrence::new(m.clone())
             .characteristic_polynomial()
             .to_rational();
-        let parts = spectral_parts::<F>(m, &p, lambda, mult);
-        let n = m.dim();
-        let valid = if zero {
-            (0..n)
-                .map(|i| {
-                    (0..mult)
-                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
-                        .unwrap_or(mult) as u64
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let coefficients = if zero {
-            Vec::new()
-        } else {
-            power_coefficients(&parts, lambda)
-        };
-        (parts[0].clone(), coefficients, valid)
+        assert_eq!(zero, lambda.is_zero());
+        spectrum_from_parts::<F>(m, &p, lambda, mult)
     }
 
     fn same<F: Field + PartialEq>(a: &Matrix<F>, b: &Matrix<F>) -> bool {
@@ -625,6 +610,23 @@ mod tests {
         IntMatrix::try_from_rows(rows).unwrap()
     }
 
+    /// The Jordan matrix with one block of size `k` for eigenvalue `l` per `(l, k)`.
+    fn jordan(blocks: &[(i64, usize)]) -> Vec<Vec<i64>> {
+        let n: usize = blocks.iter().map(|b| b.1).sum();
+        let mut j = vec![vec![0i64; n]; n];
+        let mut o = 0;
+        for &(l, k) in blocks {
+            for a in 0..k {
+                j[o + a][o + a] = l;
+                if a + 1 < k {
+                    j[o + a][o + a + 1] = 1;
+                }
+            }
+            o += k;
+        }
+        j
+    }
+
     /// `E J E^-1` for elementary `E = I + k e_i e_j^T` applied in sequence: the same Jordan
     /// structure, dense entries.
     fn conjugated(mut m: Vec<Vec<i64>>, ops: &[(usize, usize, i64)]) -> IntMatrix {
@@ -667,19 +669,7 @@ mod tests {
             ),
         ];
         for (blocks, ops) in cases {
-            let n: usize = blocks.iter().map(|b| b.1).sum();
-            let mut j = vec![vec![0i64; n]; n];
-            let mut o = 0;
-            for (l, k) in blocks {
-                for a in 0..k {
-                    j[o + a][o + a] = l;
-                    if a + 1 < k {
-                        j[o + a][o + a + 1] = 1;
-                    }
-                }
-                o += k;
-            }
-            check(&conjugated(j, &ops)).unwrap();
+            check(&conjugated(jordan(&blocks), &ops)).unwrap();
         }
         // Quadratic eigenvalues, repeated: two Fibonacci blocks and a Pell block.
         let fib2 = matrix(vec![
@@ -737,21 +727,7 @@ mod tests {
             proptest::collection::vec((-2i64..=3, 1usize..=3), 1..=3),
             proptest::collection::vec((0usize..8, 0usize..8, -1i64..=1), 0..8),
         )
-            .prop_map(|(blocks, ops)| {
-                let n: usize = blocks.iter().map(|b| b.1).sum();
-                let mut j = vec![vec![0i64; n]; n];
-                let mut o = 0;
-                for (l, k) in blocks {
-                    for a in 0..k {
-                        j[o + a][o + a] = l;
-                        if a + 1 < k {
-                            j[o + a][o + a + 1] = 1;
-                        }
-                    }
-                    o += k;
-                }
-                conjugated(j, &ops)
-            })
+            .prop_map(|(blocks, ops)| conjugated(jordan(&blocks), &ops))
     }
 
     /// Entries near `i64::MAX` and `i64::MIN`, small ones and anything in between.
