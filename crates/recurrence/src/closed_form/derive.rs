@@ -513,8 +513,8 @@ fn first_inaccuracy(rec: &Recurrence, form: &ClosedForm) -> Option<(usize, u64)>
                     approx = approx + v;
                 }
                 let error = (approx - Complex64::new(*exact, 0.0)).norm();
-                // Written so that a NaN or an infinity fails.
-                if !(error <= 1e-6 * scale) {
+                // A NaN or an infinity fails too.
+                if !error.is_finite() || !scale.is_finite() || error > 1e-6 * scale {
                     return Some((i, s));
                 }
             }
