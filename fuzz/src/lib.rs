@@ -131,12 +131,19 @@ fn exact_or_refused(r: &Recurrence, form: &recurrence::ClosedForm) -> u64 {
     }
     let n = r.dim();
     let mut work = 0;
-    for x0 in [vec![BigInt::from(1); n], (0..n).map(|i| BigInt::from(2 - i as i64)).collect()] {
+    for x0 in [
+        vec![BigInt::from(1); n],
+        (0..n).map(|i| BigInt::from(2 - i as i64)).collect(),
+    ] {
         for level in CHECK_LEVELS {
-            let (Ok(exact), Ok(closed)) = (r.state_at(&x0, level), form.evaluate(&x0, level)) else {
+            let (Ok(exact), Ok(closed)) = (r.state_at(&x0, level), form.evaluate(&x0, level))
+            else {
                 continue;
             };
-            assert_eq!(exact, closed, "closed form differs from powering at level {level}");
+            assert_eq!(
+                exact, closed,
+                "closed form differs from powering at level {level}"
+            );
             if let Ok(sums) = form.summary_at(&x0, level, 20) {
                 for (sum, value) in sums.iter().zip(&exact) {
                     assert_eq!(*sum, recurrence::digit_summary(value, 20), "level {level}");
@@ -165,7 +172,11 @@ pub fn large_matrix(data: &[u8]) -> u64 {
     let n = 2 + usize::from(data.first().copied().unwrap_or(0) & 1);
     let level = u64::from_le_bytes(word(0));
     let rows: Vec<Vec<i64>> = (0..n)
-        .map(|i| (0..n).map(|j| i64::from_le_bytes(word(1 + n * i + j))).collect())
+        .map(|i| {
+            (0..n)
+                .map(|j| i64::from_le_bytes(word(1 + n * i + j)))
+                .collect()
+        })
         .collect();
     let Ok(m) = IntMatrix::try_from_rows(rows) else {
         return 1;
