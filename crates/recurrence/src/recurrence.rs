@@ -191,7 +191,9 @@ impl Recurrence {
     }
 
     /// The exact closed form of every component, from the spectral decomposition of the
-    /// matrix (see [`ClosedForm`]).
+    /// matrix (see [`ClosedForm`]). Components with numeric eigenvalues are checked against
+    /// exact powering; before showing such a form, call [`ClosedForm::verify`] (or use
+    /// [`verified_closed_form`](Self::verified_closed_form)).
     ///
     /// ```
     /// # use recurrence::{IntMatrix, Recurrence};
