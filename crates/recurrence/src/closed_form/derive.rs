@@ -485,19 +485,32 @@ fn first_inaccuracy(rec: &Recurrence, form: &ClosedForm) -> Option<(usize, u64)>
     if numeric.is_empty() {
         return None;
     }
-    let basis =
-        |j: usize| -> Vec<BigInt> { (0..n).map(|k| BigInt::from(u8::from(k == j))).collect() };
+    // columns[j][s] = M^s e_j for every level checked: n^2 products per level, computed once.
+    let last = numeric
+        .iter()
+        .map(|&i| form.components[i].valid_from)
+        .max()
+        .unwrap_or(0)
+        + n as u64;
+    let mut columns = Vec::with_capacity(n);
+    for j in 0..n {
+        let basis: Vec<BigInt> = (0..n).map(|k| BigInt::from(u8::from(k == j))).collect();
+        match rec.states_up_to(&basis, last) {
+            Ok(states) => columns.push(states),
+            Err(_) => return Some((numeric[0], 0)),
+        }
+    }
     for &i in &numeric {
         let c = &form.components[i];
         for s in [0, 1, 2, n as u64].map(|d| c.valid_from + d) {
-            // Row i of M^s, from the columns M^s e_j.
-            let mut row = Vec::with_capacity(n);
-            for j in 0..n {
-                let column = rec.state_at(&basis(j), s).ok()?;
-                row.push(crate::field::rational_to_f64(&BigRational::from_integer(
-                    column[i].clone(),
-                )));
-            }
+            // Row i of M^s.
+            let row: Vec<f64> = columns
+                .iter()
+                .map(|states| {
+                    let entry = BigRational::from_integer(states[s as usize][i].clone());
+                    crate::field::rational_to_f64(&entry)
+                })
+                .collect();
             let scale = row.iter().fold(1.0f64, |m, x| m.max(x.abs()));
             for (j, exact) in row.iter().enumerate() {
                 let mut approx = Complex64::new(0.0, 0.0);
