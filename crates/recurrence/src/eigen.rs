@@ -18,7 +18,7 @@ use crate::Complex64;
 use num_bigint::BigInt;
 use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, One, Signed, Zero};
+use num_traits::{FromPrimitive, One, Pow, Signed, Zero};
 
 use crate::field::{rational_to_f64, QuadraticSurd};
 use crate::poly::{derivative_int, divide_monic_exact, square_free_factors, Polynomial};
@@ -228,7 +228,7 @@ fn integer_root_from(f: &[BigInt], start: BigInt) -> Option<BigInt> {
         .map(|(k, c)| c * BigInt::from(k))
         .collect();
     let mut c = start;
-    // Newton's steps at least halve the distance to a root once close; from a Cauchy bound
+    // Newton's steps at least halve the distance to a root once close; from a root bound
     // of b bits they need about b of them (double roots are divided out beforehand).
     let steps = 64 + 2 * f.iter().map(BigInt::bits).max().unwrap_or(0);
     for _ in 0..steps {
@@ -251,16 +251,17 @@ fn integer_root_from(f: &[BigInt], start: BigInt) -> Option<BigInt> {
     None
 }
 
-/// The integer roots of the square-free monic `f`, searched from the numeric roots and from
-/// both Cauchy bounds (Newton's method started outside every root converges to the largest
-/// or smallest real root even when the `f64` estimates are poor, as for entries beyond
-/// `2^53`), and `f` with them divided out.
+/// The integer roots of the square-free monic `f`, and `f` with them divided out: searched
+/// by Newton's method from the numeric roots and from both [`root_bound`]s (started outside
+/// every root it converges to the largest or smallest real root even when the `f64`
+/// estimates are poor, as for entries beyond `2^53`), then by Sturm isolation for large
+/// coefficients.
 fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
     let mut rest = f.to_vec();
     let mut found = Vec::new();
     // Degree two and below are solved exactly by the caller.
     'search: while rest.len() > 3 {
-        let bound = cauchy_bound(&rest);
+        let bound = root_bound(&rest);
         let mut seeds: Vec<BigInt> = numeric_roots(&rest)
             .iter()
             .filter(|z| z.im.abs() <= 1e-6 * z.norm().max(1.0))
@@ -292,15 +293,26 @@ fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
     (found, rest)
 }
 
-/// `1 + max |c_i|` over the non-leading coefficients of the monic `f`: every root has a
-/// smaller modulus (Cauchy).
-fn cauchy_bound(f: &[BigInt]) -> BigInt {
-    f[..f.len().saturating_sub(1)]
-        .iter()
-        .map(BigInt::abs)
+/// A bound every root of the monic `f` stays below in modulus: Fujiwara's
+/// `2 max_k |c_(n-k)|^(1/k)`, with each root rounded up, plus one. It follows the size of the
+/// roots rather than of the coefficients (roots near `2^64` of a polynomial whose constant
+/// has 1,000 bits), which keeps the bisections short.
+fn root_bound(f: &[BigInt]) -> BigInt {
+    let n = f.len().saturating_sub(1);
+    let largest = (1..=n)
+        .map(|k| {
+            let c = f[n - k].abs();
+            // `k <= n` is a matrix dimension: it fits in `u32`.
+            let r = c.nth_root(u32::try_from(k).unwrap_or(u32::MAX));
+            if Pow::pow(&r, k) < c {
+                r + 1
+            } else {
+                r
+            }
+        })
         .max()
-        .unwrap_or_default()
-        + 1
+        .unwrap_or_default();
+    largest * 2 + 1
 }
 
 /// `f` scaled by a positive rational to a primitive integer polynomial (signs kept).
@@ -356,7 +368,7 @@ fn sturm_integer_roots(f: &[BigInt]) -> Vec<BigInt> {
             .collect();
         signs.windows(2).filter(|w| w[0] != w[1]).count()
     };
-    let bound = cauchy_bound(f);
+    let bound = root_bound(f);
     let mut roots = Vec::new();
     // (lo, hi, V(lo), V(hi)): V(lo) - V(hi) roots lie in (lo, hi].
     let lo = -&bound - 1;
