@@ -108,7 +108,93 @@ pub fn matrix(data: &[u8]) -> u64 {
     }
     let form = r.closed_form();
     let _ = (form.to_text(), form.to_latex(), form.to_rust("f"));
+    work += exact_or_refused(&r, &form);
+    for level in HUGE_LEVELS {
+        let _ = form.summary_at(&x0, level, 20);
+    }
     work + closed_form_work(&form, &x0)
+}
+
+/// Levels near `u64::MAX` at which digit summaries are asked for.
+pub const HUGE_LEVELS: [u64; 3] = [1 << 40, i64::MAX as u64, u64::MAX];
+
+/// Levels at which a closed form is checked against exact powering.
+const CHECK_LEVELS: [u64; 5] = [0, 1, 2, 3, 7];
+
+/// The closed-form contract: a form that verifies and is exact evaluates to exactly what
+/// powering gives, at every level checked, and its digit summaries match the exact values'.
+/// (A form that does not verify must be refused by its callers; nothing to check here.)
+/// Panics on a violation: that is the bug the fuzzer looks for.
+fn exact_or_refused(r: &Recurrence, form: &recurrence::ClosedForm) -> u64 {
+    if form.verify().is_err() || !form.is_exact() {
+        return 1;
+    }
+    let n = r.dim();
+    let mut work = 0;
+    for x0 in [
+        vec![BigInt::from(1); n],
+        (0..n).map(|i| BigInt::from(2 - i as i64)).collect(),
+    ] {
+        for level in CHECK_LEVELS {
+            let (Ok(exact), Ok(closed)) = (r.state_at(&x0, level), form.evaluate(&x0, level))
+            else {
+                continue;
+            };
+            assert_eq!(
+                exact, closed,
+                "closed form differs from powering at level {level}"
+            );
+            if let Ok(sums) = form.summary_at(&x0, level, 20) {
+                for (sum, value) in sums.iter().zip(&exact) {
+                    assert_eq!(*sum, recurrence::digit_summary(value, 20), "level {level}");
+                }
+            }
+            work += digits(&exact);
+        }
+    }
+    work
+}
+
+/// Bytes as a 2x2 or 3x3 matrix of raw `i64` entries (so that entries near `i64::MAX`,
+/// beyond `2^53`, are common) and a level: byte 0 picks the dimension (2 + its low bit),
+/// bytes 1..9 are the level, then 8 bytes per entry, little-endian, row by row (missing
+/// bytes read as zero). Checks the closed form against powering ([`exact_or_refused`]; a
+/// 2x2 form is always exact) and asks for digit summaries at that level and at
+/// [`HUGE_LEVELS`], which must come back as values or typed errors.
+pub fn large_matrix(data: &[u8]) -> u64 {
+    let word = |k: usize| -> [u8; 8] {
+        let mut b = [0u8; 8];
+        for (i, byte) in b.iter_mut().enumerate() {
+            *byte = data.get(1 + 8 * k + i).copied().unwrap_or(0);
+        }
+        b
+    };
+    let n = 2 + usize::from(data.first().copied().unwrap_or(0) & 1);
+    let level = u64::from_le_bytes(word(0));
+    let rows: Vec<Vec<i64>> = (0..n)
+        .map(|i| {
+            (0..n)
+                .map(|j| i64::from_le_bytes(word(1 + n * i + j)))
+                .collect()
+        })
+        .collect();
+    let Ok(m) = IntMatrix::try_from_rows(rows) else {
+        return 1;
+    };
+    let r = Recurrence::new(m);
+    let form = r.closed_form();
+    if n == 2 {
+        assert!(form.is_exact(), "a 2x2 closed form has exact eigenvalues");
+    }
+    let _ = (form.to_text(), form.to_latex(), form.to_rust("f"));
+    let mut work = n as u64 + exact_or_refused(&r, &form);
+    let x0 = vec![BigInt::from(1); n];
+    for level in std::iter::once(level).chain(HUGE_LEVELS) {
+        if let Ok(sums) = form.summary_at(&x0, level, 20) {
+            work += sums.len() as u64;
+        }
+    }
+    work
 }
 
 /// Parses text as a `--counts` argument and as a `--scheme` plan (`loop:2,catmull-clark`).

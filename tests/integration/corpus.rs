@@ -117,6 +117,13 @@ fn matrix_corpus() {
     }
 }
 
+/// Closed forms of 2x2 and 3x3 matrices with entries near `i64::MAX` (exact or refused,
+/// never wrong) and digit summaries at levels near `u64::MAX` (values or typed errors).
+#[test]
+fn large_matrix_corpus() {
+    replay("large_matrix", exercise::large_matrix);
+}
+
 #[test]
 fn counts_corpus() {
     replay("counts", exercise::counts);
@@ -220,6 +227,12 @@ fn scheme_text() -> impl Strategy<Value = String> {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    #[test]
+    fn any_bytes_as_large_matrix_are_exact_or_refused(bytes in prop::collection::vec(any::<u8>(), 0..90)) {
+        let work = exercise::large_matrix(&bytes);
+        prop_assert!(work <= WORK_BASE + WORK_PER_BYTE * bytes.len() as u64);
+    }
 
     #[test]
     fn any_bytes_as_obj_load_or_fail_typed(bytes in prop::collection::vec(any::<u8>(), 0..512)) {

@@ -16,11 +16,12 @@ use nalgebra::{Complex, DMatrix};
 
 use crate::Complex64;
 use num_bigint::BigInt;
+use num_integer::Integer;
 use num_rational::BigRational;
-use num_traits::{FromPrimitive, One, Signed, Zero};
+use num_traits::{FromPrimitive, One, Pow, Signed, Zero};
 
 use crate::field::{rational_to_f64, QuadraticSurd};
-use crate::poly::{divide_monic_exact, square_free_factors, Polynomial};
+use crate::poly::{derivative_int, divide_monic_exact, square_free_factors, Polynomial};
 
 /// An eigenvalue of a recurrence matrix, exact when possible.
 ///
@@ -217,9 +218,9 @@ fn eval_int(f: &[BigInt], x: &BigInt) -> BigInt {
     f.iter().rev().fold(BigInt::zero(), |acc, c| acc * x + c)
 }
 
-/// An integer root of `f` near the numeric root `r`, confirmed exactly.
-fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
-    let start = BigInt::from_f64(r.round())?;
+/// An integer root of `f` that exact Newton steps reach from `start` (each step rounded to
+/// an integer, every candidate confirmed by exact evaluation), if any.
+fn integer_root_from(f: &[BigInt], start: BigInt) -> Option<BigInt> {
     let df: Vec<BigInt> = f
         .iter()
         .enumerate()
@@ -227,12 +228,13 @@ fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
         .map(|(k, c)| c * BigInt::from(k))
         .collect();
     let mut c = start;
-    for _ in 0..64 {
+    // Newton's steps at least halve the distance to a root once close; from a root bound
+    // of b bits they need about b of them (double roots are divided out beforehand).
+    let steps = 64 + 2 * f.iter().map(BigInt::bits).max().unwrap_or(0);
+    for _ in 0..steps {
         for delta in [0, 1, -1] {
             let cand: BigInt = &c + delta;
-            let near = (rational_to_f64(&BigRational::from_integer(cand.clone())) - r).abs()
-                <= 1e-6 * r.abs().max(1.0);
-            if near && eval_int(f, &cand).is_zero() {
+            if eval_int(f, &cand).is_zero() {
                 return Some(cand);
             }
         }
@@ -249,41 +251,190 @@ fn confirm_integer_root(f: &[BigInt], r: f64) -> Option<BigInt> {
     None
 }
 
+/// The integer roots of the square-free monic `f`, and `f` with them divided out: searched
+/// by Newton's method from the numeric roots and from both [`root_bound`]s (started outside
+/// every root it converges to the largest or smallest real root even when the `f64`
+/// estimates are poor, as for entries beyond `2^53`), then by Sturm isolation for large
+/// coefficients.
+fn integer_roots(f: &[BigInt]) -> (Vec<BigInt>, Vec<BigInt>) {
+    let mut rest = f.to_vec();
+    let mut found = Vec::new();
+    // Degree two and below are solved exactly by the caller.
+    'search: while rest.len() > 3 {
+        let bound = root_bound(&rest);
+        let mut seeds: Vec<BigInt> = numeric_roots(&rest)
+            .iter()
+            .filter(|z| z.im.abs() <= 1e-6 * z.norm().max(1.0))
+            .filter_map(|z| BigInt::from_f64(z.re.round()))
+            .collect();
+        seeds.push(bound.clone());
+        seeds.push(-bound);
+        for seed in seeds {
+            if let Some(c) = integer_root_from(&rest, seed) {
+                if let Some(q) = divide_exact(&rest, &[-c.clone(), BigInt::one()]) {
+                    rest = q;
+                    found.push(c);
+                    continue 'search;
+                }
+            }
+        }
+        break;
+    }
+    // Beyond 2^50 the f64 estimates may miss integer roots altogether (two roots near 2^63
+    // merge into one estimate): find every remaining one exactly.
+    if rest.len() > 3 && rest.iter().any(|c| c.bits() > 50) {
+        for c in sturm_integer_roots(&rest) {
+            if let Some(q) = divide_exact(&rest, &[-c.clone(), BigInt::one()]) {
+                rest = q;
+                found.push(c);
+            }
+        }
+    }
+    (found, rest)
+}
+
+/// A bound every root of the monic `f` stays below in modulus: Fujiwara's
+/// `2 max_k |c_(n-k)|^(1/k)`, with each root rounded up, plus one. It follows the size of the
+/// roots rather than of the coefficients (roots near `2^64` of a polynomial whose constant
+/// has 1,000 bits), which keeps the bisections short.
+fn root_bound(f: &[BigInt]) -> BigInt {
+    let n = f.len().saturating_sub(1);
+    let largest = (1..=n)
+        .map(|k| {
+            let c = f[n - k].abs();
+            // `k <= n` is a matrix dimension: it fits in `u32`.
+            let r = c.nth_root(u32::try_from(k).unwrap_or(u32::MAX));
+            if Pow::pow(&r, k) < c {
+                r + 1
+            } else {
+                r
+            }
+        })
+        .max()
+        .unwrap_or_default();
+    largest * 2 + 1
+}
+
+/// `f` scaled by a positive rational to a primitive integer polynomial (signs kept).
+fn primitive(f: &[BigRational]) -> Vec<BigInt> {
+    let lcm = f.iter().fold(BigInt::one(), |l, c| l.lcm(c.denom()));
+    let ints: Vec<BigInt> = f.iter().map(|c| (c * &lcm).to_integer()).collect();
+    let gcd = ints.iter().fold(BigInt::zero(), |g, c| g.gcd(c));
+    if gcd.is_zero() {
+        return ints;
+    }
+    ints.into_iter().map(|c| c / &gcd).collect()
+}
+
+/// The remainder of `a` divided by `b` (integer coefficients, lowest first), over the
+/// rationals and made primitive by a positive factor.
+fn remainder(a: &[BigInt], b: &[BigInt]) -> Vec<BigInt> {
+    let mut r: Vec<BigRational> = a.iter().cloned().map(BigRational::from_integer).collect();
+    let lead = BigRational::from_integer(b[b.len() - 1].clone());
+    while r.len() >= b.len() {
+        let q = &r[r.len() - 1] / &lead;
+        let shift = r.len() - b.len();
+        for (k, c) in b.iter().enumerate() {
+            r[shift + k] -= &q * c;
+        }
+        r.pop();
+        while r.last().is_some_and(Zero::is_zero) {
+            r.pop();
+        }
+    }
+    primitive(&r)
+}
+
+/// Every integer root of the square-free `f`, by exact real root isolation: Sturm's chain
+/// counts the real roots in an interval, bisection over integers narrows each interval to
+/// width one, and only its integer end can be a root. About `deg f * log2(bound)`
+/// evaluations of the chain, independent of how well `f64` would do.
+fn sturm_integer_roots(f: &[BigInt]) -> Vec<BigInt> {
+    let mut chain = vec![f.to_vec(), derivative_int(f)];
+    loop {
+        let n = chain.len();
+        let r = remainder(&chain[n - 2], &chain[n - 1]);
+        if r.is_empty() {
+            break;
+        }
+        chain.push(r.into_iter().map(|c| -c).collect());
+    }
+    let changes = |x: &BigInt| -> usize {
+        let signs: Vec<bool> = chain
+            .iter()
+            .map(|p| eval_int(p, x))
+            .filter(|v| !v.is_zero())
+            .map(|v| v.is_negative())
+            .collect();
+        signs.windows(2).filter(|w| w[0] != w[1]).count()
+    };
+    let bound = root_bound(f);
+    let mut roots = Vec::new();
+    // (lo, hi, V(lo), V(hi)): V(lo) - V(hi) roots lie in (lo, hi].
+    let lo = -&bound - 1;
+    let (v_lo, v_hi) = (changes(&lo), changes(&bound));
+    let mut stack = vec![(lo, bound, v_lo, v_hi)];
+    while let Some((lo, hi, v_lo, v_hi)) = stack.pop() {
+        if v_lo <= v_hi {
+            continue;
+        }
+        if &hi - &lo <= BigInt::one() {
+            // The only integer in (lo, hi] is hi.
+            if eval_int(f, &hi).is_zero() {
+                roots.push(hi);
+            }
+            continue;
+        }
+        let mid = (&lo + &hi).div_floor(&BigInt::from(2));
+        let v_mid = changes(&mid);
+        stack.push((lo, mid.clone(), v_lo, v_mid));
+        stack.push((mid, hi, v_mid, v_hi));
+    }
+    roots
+}
+
 /// Divides `f` by the monic integer polynomial `g` if the division is exact.
 fn divide_exact(f: &[BigInt], g: &[BigInt]) -> Option<Vec<BigInt>> {
     divide_monic_exact(f, g)
 }
 
+/// The roots of a square-free monic integer polynomial: exact where they are rational or
+/// quadratic surds that the search finds, numeric otherwise.
+///
+/// A factor of degree one or two (the whole polynomial, or what is left once the integer
+/// roots are divided out) gets its roots symbolically from its coefficients, whatever their
+/// size: the `f64` roots only guide the search for integer roots (each confirmed by exact
+/// evaluation) and for quadratic factors of higher-degree polynomials (each confirmed by
+/// exact division).
 fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
+    if let Some(exact) = low_degree_roots(f) {
+        return exact;
+    }
+    let (integers, mut rest) = integer_roots(f);
+    // The numeric roots left, in the order of `f`'s roots closest to an integer first (the
+    // order in which the terms are listed), each integer root taking out its nearest one.
     let mut numeric = numeric_roots(f);
-    // Roots closest to an integer first, so that a nearby irrational root cannot claim it.
     numeric.sort_by(|a, b| {
         let da = (a.re - a.re.round()).abs() + a.im.abs();
         let db = (b.re - b.re.round()).abs() + b.im.abs();
         da.total_cmp(&db)
     });
-    let mut rest = f.to_vec();
-    let mut found = Vec::new();
-    // Integer roots.
-    let mut i = 0;
-    while i < numeric.len() {
-        let z = numeric[i];
-        let near_real = z.im.abs() <= 1e-6 * z.norm().max(1.0);
-        let root = if near_real {
-            confirm_integer_root(&rest, z.re)
-        } else {
-            None
-        };
-        let divided =
-            root.and_then(|c| Some((divide_exact(&rest, &[-c.clone(), BigInt::one()])?, c)));
-        match divided {
-            Some((q, c)) => {
-                rest = q;
-                found.push(Eigenvalue::Rational(BigRational::from_integer(c)));
-                numeric.remove(i);
-            }
-            None => i += 1,
+    let mut found = Vec::with_capacity(f.len());
+    for c in integers {
+        let x = rational_to_f64(&BigRational::from_integer(c.clone()));
+        let nearest = (0..numeric.len()).min_by(|&a, &b| {
+            let da = (numeric[a] - Complex::new(x, 0.0)).norm();
+            let db = (numeric[b] - Complex::new(x, 0.0)).norm();
+            da.total_cmp(&db)
+        });
+        if let Some(k) = nearest {
+            numeric.remove(k);
         }
+        found.push(Eigenvalue::Rational(BigRational::from_integer(c)));
+    }
+    if let Some(exact) = low_degree_roots(&rest) {
+        found.extend(exact);
+        return found;
     }
     // Quadratic factors, from pairs of the remaining roots (conjugates first).
     let mut i = 0;
@@ -324,6 +475,17 @@ fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
             .map(|z| Eigenvalue::Numeric(Complex64::from_nalgebra(z))),
     );
     found
+}
+
+/// The exact roots of a monic integer polynomial of degree at most two (none for a
+/// constant), or `None` for a higher degree.
+fn low_degree_roots(f: &[BigInt]) -> Option<Vec<Eigenvalue>> {
+    match f {
+        [_] => Some(Vec::new()),
+        [c0, _] => Some(vec![Eigenvalue::Rational(BigRational::from_integer(-c0))]),
+        [c0, c1, _] => Some(quadratic_roots(&-c1, c0)),
+        _ => None,
+    }
 }
 
 /// The two roots of `x^2 - s x + p`.

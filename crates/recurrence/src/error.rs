@@ -72,6 +72,24 @@ pub enum Error {
         /// Estimated size of the largest count, in bits.
         bits: u64,
     },
+    /// The numeric terms of a closed form miss the exact count
+    /// ([`ClosedForm::verify`](crate::ClosedForm::verify)).
+    #[error("the closed form of component `{component}` cannot be given: its numeric eigenvalues miss the exact count at level {level} (the characteristic polynomial is too ill-conditioned for floating point); use `at` or `table` for exact counts (they power the matrix)")]
+    InaccurateClosedForm {
+        /// The first component whose numeric terms fail.
+        component: String,
+        /// The first level at which they fail.
+        level: u64,
+    },
+    /// A digit count does not fit in the `u64` of a
+    /// [`DigitSummary`](crate::DigitSummary).
+    #[error("the count `{component}` at level {level} has more than 2^64 decimal digits, more than a digit summary can state")]
+    DigitsOverflow {
+        /// The component whose count it is.
+        component: String,
+        /// The requested level.
+        level: u64,
+    },
     /// Computing the closed form would cost more than the caller allowed
     /// ([`Recurrence::closed_form_cost`](crate::Recurrence::closed_form_cost)).
     #[error("the closed form of this {dim}x{dim} matrix would cost about {cost} work units, more than the limit of {limit}")]

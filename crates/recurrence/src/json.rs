@@ -33,15 +33,10 @@ impl ClosedForm {
                         .terms
                         .iter()
                         .map(|t| {
-                            let coeffs: Map<String, Value> = names
-                                .iter()
-                                .zip(&t.coefficients)
-                                .map(|(n, c)| (n.clone(), Value::String(c.to_string())))
-                                .collect();
                             json!({
                                 "eigenvalue": t.eigenvalue.to_string(),
                                 "s_power": t.s_power,
-                                "coefficients": coeffs,
+                                "coefficients": by_name(names, &t.coefficients),
                             })
                         })
                         .collect();
@@ -49,12 +44,7 @@ impl ClosedForm {
                         .early_levels
                         .iter()
                         .map(|l| {
-                            let coeffs: Map<String, Value> = names
-                                .iter()
-                                .zip(&l.coefficients)
-                                .map(|(n, c)| (n.clone(), Value::String(c.to_string())))
-                                .collect();
-                            json!({"level": l.level, "coefficients": coeffs})
+                            json!({"level": l.level, "coefficients": by_name(names, &l.coefficients)})
                         })
                         .collect();
                     json!({
@@ -68,4 +58,13 @@ impl ClosedForm {
                 .collect(),
         )
     }
+}
+
+/// `{name: "value", ...}`: one coefficient per initial component, as strings.
+fn by_name<T: std::fmt::Display>(names: &[String], values: &[T]) -> Map<String, Value> {
+    names
+        .iter()
+        .zip(values)
+        .map(|(n, c)| (n.clone(), Value::String(c.to_string())))
+        .collect()
 }

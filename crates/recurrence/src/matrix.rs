@@ -442,41 +442,34 @@ impl Parser<'_> {
     }
 
     fn matrix(&mut self) -> std::result::Result<Vec<Vec<i64>>, ParseMatrixError> {
-        self.expect('[')?;
-        let mut rows = Vec::new();
-        if self.peek() == Some(']') {
-            self.pos += 1;
-            return Ok(rows);
-        }
-        loop {
-            rows.push(self.row()?);
-            match self.peek() {
-                Some(',') => self.pos += 1,
-                Some(']') => {
-                    self.pos += 1;
-                    return Ok(rows);
-                }
-                _ => return Err(self.error("expected `,` or `]` after a row")),
-            }
-        }
+        self.list(Self::row, "a row")
     }
 
     fn row(&mut self) -> std::result::Result<Vec<i64>, ParseMatrixError> {
+        self.list(Self::integer, "an entry")
+    }
+
+    /// `[item, item, ...]` (possibly empty); `what` names an item in the error.
+    fn list<T>(
+        &mut self,
+        mut item: impl FnMut(&mut Self) -> std::result::Result<T, ParseMatrixError>,
+        what: &str,
+    ) -> std::result::Result<Vec<T>, ParseMatrixError> {
         self.expect('[')?;
-        let mut row = Vec::new();
+        let mut items = Vec::new();
         if self.peek() == Some(']') {
             self.pos += 1;
-            return Ok(row);
+            return Ok(items);
         }
         loop {
-            row.push(self.integer()?);
+            items.push(item(self)?);
             match self.peek() {
                 Some(',') => self.pos += 1,
                 Some(']') => {
                     self.pos += 1;
-                    return Ok(row);
+                    return Ok(items);
                 }
-                _ => return Err(self.error("expected `,` or `]` after an entry")),
+                _ => return Err(self.error(&format!("expected `,` or `]` after {what}"))),
             }
         }
     }

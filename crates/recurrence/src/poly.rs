@@ -152,7 +152,7 @@ fn trim_int(p: &mut Vec<BigInt>) {
     }
 }
 
-fn derivative_int(p: &[BigInt]) -> Vec<BigInt> {
+pub(crate) fn derivative_int(p: &[BigInt]) -> Vec<BigInt> {
     let mut d: Vec<BigInt> = p
         .iter()
         .enumerate()

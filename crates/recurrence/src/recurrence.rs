@@ -191,7 +191,9 @@ impl Recurrence {
     }
 
     /// The exact closed form of every component, from the spectral decomposition of the
-    /// matrix (see [`ClosedForm`]).
+    /// matrix (see [`ClosedForm`]). Components with numeric eigenvalues are checked against
+    /// exact powering; before showing such a form, call [`ClosedForm::verify`] (or use
+    /// [`verified_closed_form`](Self::verified_closed_form)).
     ///
     /// ```
     /// # use recurrence::{IntMatrix, Recurrence};
@@ -249,7 +251,8 @@ impl Recurrence {
     /// # Errors
     ///
     /// [`Error::ClosedFormTooCostly`] (with the estimate) when the cost exceeds `limit`;
-    /// nothing is computed then.
+    /// nothing is computed then. [`Error::InaccurateClosedForm`] when the form's numeric
+    /// terms miss the exact counts.
     ///
     /// ```
     /// # use recurrence::{Error, IntMatrix, Recurrence};
@@ -270,7 +273,18 @@ impl Recurrence {
                 limit,
             });
         }
-        Ok(self.closed_form())
+        self.verified_closed_form()
+    }
+
+    /// The closed form, if it holds ([`ClosedForm::verify`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InaccurateClosedForm`] when numeric terms miss the exact counts.
+    pub fn verified_closed_form(&self) -> Result<ClosedForm> {
+        let form = self.closed_form();
+        form.verify()?;
+        Ok(form)
     }
 
     fn check_len(&self, got: usize) -> Result {

@@ -42,9 +42,30 @@ impl ClosedForm {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn to_text(&self) -> String {
+        self.to_text_in("s")
+    }
+
+    /// [`to_text`](Self::to_text) with the level written `level` instead of `s`: in the
+    /// left-hand sides, the powers and the ranges (`V(t) = V0 + (4^t - 1)/3 * E0`). Phases of
+    /// periodic schemes read in `t`, the number of periods.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::with_names("[[2, 1], [0, 2]]".parse::<IntMatrix>()?, ["A", "B"])?;
+    /// assert_eq!(
+    ///     r.closed_form().to_text_in("t"),
+    ///     "A(t) = 2^t * A0 + t*2^t/2 * B0\nB(t) = 2^t * B0"
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn to_text_in(&self, level: &str) -> String {
+        self.lines(Style::Text, level)
+    }
+
+    fn lines(&self, style: Style, level: &str) -> String {
         self.components()
             .iter()
-            .map(|c| component_line(c, self.names(), Style::Text))
+            .map(|c| component_line(c, self.names(), style, level))
             .collect::<Vec<_>>()
             .join("\n")
     }
@@ -61,11 +82,22 @@ impl ClosedForm {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn to_latex(&self) -> String {
-        self.components()
-            .iter()
-            .map(|c| component_line(c, self.names(), Style::Latex))
-            .collect::<Vec<_>>()
-            .join("\n")
+        self.to_latex_in("s")
+    }
+
+    /// [`to_latex`](Self::to_latex) with the level written `level` instead of `s`.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// let r = Recurrence::with_names("[[1, 1], [0, 4]]".parse::<IntMatrix>()?, ["V", "E"])?;
+    /// assert_eq!(
+    ///     r.closed_form().to_latex_in("t"),
+    ///     "V(t) = V_0 + \\frac{4^{t} - 1}{3} E_0\nE(t) = 4^{t} E_0"
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn to_latex_in(&self, level: &str) -> String {
+        self.lines(Style::Latex, level)
     }
 
     /// A compilable Rust function `fn_name(x0: [i128; n], s: u64) -> Option<[i128; n]>`
@@ -133,15 +165,16 @@ fn variable(name: &str, style: Style) -> String {
     }
 }
 
-fn lhs(name: &str, style: Style) -> String {
+fn lhs(name: &str, style: Style, level: &str) -> String {
     match style {
-        Style::Text => format!("{name}(s)"),
-        Style::Latex => format!("{}(s)", name.replace('_', "\\_")),
+        Style::Text => format!("{name}({level})"),
+        Style::Latex => format!("{}({level})", name.replace('_', "\\_")),
     }
 }
 
-/// `s^p l^s` as text or LaTeX; empty for the constant `p = 0, l = 1`.
-fn atom(eigenvalue: &Eigenvalue, s_power: u32, style: Style) -> String {
+/// `s^p l^s` as text or LaTeX, with the level written `level`; empty for the constant
+/// `p = 0, l = 1`.
+fn atom(eigenvalue: &Eigenvalue, s_power: u32, style: Style, level: &str) -> String {
     let base = match eigenvalue {
         Eigenvalue::Rational(r) if r.is_one() => String::new(),
         Eigenvalue::Rational(r) if r.is_negative() => format!("({r})"),
@@ -156,22 +189,22 @@ fn atom(eigenvalue: &Eigenvalue, s_power: u32, style: Style) -> String {
         String::new()
     } else {
         match style {
-            Style::Text => format!("{base}^s"),
+            Style::Text => format!("{base}^{level}"),
             Style::Latex => {
                 let b = if base.starts_with('(') {
                     format!("\\left{}\\right)", &base[..base.len() - 1])
                 } else {
                     base
                 };
-                format!("{b}^{{s}}")
+                format!("{b}^{{{level}}}")
             }
         }
     };
     let sp = match (s_power, style) {
         (0, _) => String::new(),
-        (1, _) => "s".to_string(),
-        (p, Style::Text) => format!("s^{p}"),
-        (p, Style::Latex) => format!("s^{{{p}}}"),
+        (1, _) => level.to_string(),
+        (p, Style::Text) => format!("{level}^{p}"),
+        (p, Style::Latex) => format!("{level}^{{{p}}}"),
     };
     match (sp.is_empty(), lam.is_empty()) {
         (true, _) => lam,
@@ -327,7 +360,7 @@ fn general_group(items: &[(&Coefficient, String)], var: &str, style: Style) -> S
     }
 }
 
-fn component_rhs(c: &ComponentForm, names: &[String], style: Style) -> String {
+fn component_rhs(c: &ComponentForm, names: &[String], style: Style, level: &str) -> String {
     let mut groups: Vec<(bool, String)> = Vec::new();
     for (j, name) in names.iter().enumerate() {
         let var = variable(name, style);
@@ -356,14 +389,14 @@ fn component_rhs(c: &ComponentForm, names: &[String], style: Style) -> String {
                         Coefficient::Rational(r) => (r * &denominator).to_integer(),
                         _ => BigInt::zero(),
                     },
-                    atom: atom(&t.eigenvalue, t.s_power, style),
+                    atom: atom(&t.eigenvalue, t.s_power, style, level),
                 })
                 .collect();
             groups.push(group_string(monomials, &denominator, &var, style));
         } else {
             let list: Vec<(&Coefficient, String)> = items
                 .iter()
-                .map(|(coef, t)| (*coef, atom(&t.eigenvalue, t.s_power, style)))
+                .map(|(coef, t)| (*coef, atom(&t.eigenvalue, t.s_power, style, level)))
                 .collect();
             groups.push((false, general_group(&list, &var, style)));
         }
@@ -412,7 +445,7 @@ fn integer_combination(coeffs: &[BigInt], names: &[String], style: Style) -> Str
     join_groups(&groups)
 }
 
-fn component_line(c: &ComponentForm, names: &[String], style: Style) -> String {
+fn component_line(c: &ComponentForm, names: &[String], style: Style, level: &str) -> String {
     let eq = match (c.exact, style) {
         (true, _) => "=",
         (false, Style::Text) => "≈",
@@ -420,35 +453,30 @@ fn component_line(c: &ComponentForm, names: &[String], style: Style) -> String {
     };
     let mut line = format!(
         "{} {eq} {}",
-        lhs(&c.name, style),
-        component_rhs(c, names, style)
+        lhs(&c.name, style, level),
+        component_rhs(c, names, style, level)
     );
     if c.valid_from > 0 {
-        match style {
-            Style::Text => {
-                let _ = write!(line, " for s >= {}", c.valid_from);
-                for l in &c.early_levels {
-                    let _ = write!(
-                        line,
-                        "; {}({}) = {}",
-                        c.name,
-                        l.level,
-                        integer_combination(&l.coefficients, names, style)
-                    );
-                }
-            }
-            Style::Latex => {
-                let _ = write!(line, " \\quad (s \\ge {})", c.valid_from);
-                for l in &c.early_levels {
-                    let _ = write!(
-                        line,
-                        ", \\quad {}({}) = {}",
-                        c.name.replace('_', "\\_"),
-                        l.level,
-                        integer_combination(&l.coefficients, names, style)
-                    );
-                }
-            }
+        let (range, separator, name) = match style {
+            Style::Text => (
+                format!(" for {level} >= {}", c.valid_from),
+                "; ",
+                c.name.clone(),
+            ),
+            Style::Latex => (
+                format!(" \\quad ({level} \\ge {})", c.valid_from),
+                ", \\quad ",
+                c.name.replace('_', "\\_"),
+            ),
+        };
+        line.push_str(&range);
+        for l in &c.early_levels {
+            let _ = write!(
+                line,
+                "{separator}{name}({}) = {}",
+                l.level,
+                integer_combination(&l.coefficients, names, style)
+            );
         }
     }
     line

@@ -40,11 +40,31 @@ pub struct DigitSummary {
     pub trailing: String,
 }
 
+/// `log10(2)` to 60 decimal places: `LOG10_2_DIGITS / 10^LOG10_2_SCALE`, enough that the
+/// product with any exponent this module meets (below `2^128`) is off by less than `10^-20`.
+const LOG10_2_DIGITS: &str = "301029995663981195213738894724493026768189881462108541310427";
+const LOG10_2_SCALE: u32 = 60;
+
 /// A binary floating-point number `m * 2^e`.
+///
+/// The exponent is an `i128`: a mantissa of `b` bits raised to a level `s <= u64::MAX` has an
+/// exponent below `b * 2^64`, far from `i128`'s range for any mantissa that fits in memory,
+/// so no exponent arithmetic here can overflow.
 #[derive(Clone, Debug)]
 struct BigFloat {
     m: BigInt,
-    e: i64,
+    e: i128,
+}
+
+/// A bit count or shift as an `i128` (lossless: `u64` fits).
+fn wide(n: u64) -> i128 {
+    i128::from(n)
+}
+
+/// A shift between mantissas of the same computation, which is bounded by a few times the
+/// working precision; `None` if it is not (the caller then treats the case as ambiguous).
+fn shift_amount(n: i128) -> Option<usize> {
+    usize::try_from(n).ok()
 }
 
 impl BigFloat {
@@ -63,9 +83,23 @@ impl BigFloat {
             } else {
                 BigInt::from(mag)
             };
-            self.e += shift as i64;
+            self.e += wide(shift);
         }
         self
+    }
+
+    fn neg(&self) -> BigFloat {
+        BigFloat {
+            m: -&self.m,
+            e: self.e,
+        }
+    }
+
+    fn abs(&self) -> BigFloat {
+        BigFloat {
+            m: self.m.abs(),
+            e: self.e,
+        }
     }
 
     fn mul(&self, o: &BigFloat, prec: u64) -> BigFloat {
@@ -88,24 +122,30 @@ impl BigFloat {
         } else {
             (o, self)
         };
-        if hi.top() - lo.top() > prec as i64 + 64 {
+        if hi.top() - lo.top() > wide(prec) + 64 {
             return hi.clone();
         }
+        // Both mantissas have at most about `prec` bits and their tops are within
+        // `prec + 64` bits, so the alignment shifts are small.
         let e = hi.e.min(lo.e);
-        let m = (&hi.m << (hi.e - e) as usize) + (&lo.m << (lo.e - e) as usize);
+        let (Some(sh_hi), Some(sh_lo)) = (shift_amount(hi.e - e), shift_amount(lo.e - e)) else {
+            return hi.clone();
+        };
+        let m = (&hi.m << sh_hi) + (&lo.m << sh_lo);
         BigFloat { m, e }.normalize(prec)
     }
 
     fn div(&self, o: &BigFloat, prec: u64) -> BigFloat {
         let shift = prec + o.m.bits();
         BigFloat {
-            m: (&self.m << shift as usize) / &o.m,
-            e: self.e - o.e - shift as i64,
+            m: (&self.m << shift) / &o.m,
+            e: self.e - o.e - wide(shift),
         }
         .normalize(prec)
     }
 
-    /// `base^s` by squaring, truncating to `prec` bits at every step.
+    /// `base^s` by squaring, truncating to `prec` bits at every step. The relative error is
+    /// below `2 s 2^-prec`: callers give `prec` about `2 log2 s` bits of headroom.
     fn pow(base: &BigInt, mut s: u64, prec: u64) -> BigFloat {
         let mut result = BigFloat::from_int(&BigInt::one(), prec);
         let mut b = BigFloat::from_int(base, prec);
@@ -122,39 +162,65 @@ impl BigFloat {
     }
 
     /// Position of the top bit: `|value| < 2^top`.
-    fn top(&self) -> i64 {
-        self.e + self.m.bits() as i64
+    fn top(&self) -> i128 {
+        self.e + wide(self.m.bits())
     }
 
-    /// `log10 |value|`, to `f64` accuracy.
-    fn log10(&self) -> f64 {
+    /// An estimate of `floor(log10 |value|)` that is off by at most one, for any exponent.
+    ///
+    /// `log10 |value| = log10(t) + E log10(2)` with `t` the top 60 bits of the mantissa and
+    /// `E` the exponent of its lowest bit. `E log10(2)` is computed exactly in integers from
+    /// 60 decimal places of `log10(2)` (an `f64` product would be off by thousands once `E`
+    /// reaches `10^19`); only the fractional parts, in `[0, 20)`, are added in `f64`.
+    fn floor_log10_estimate(&self) -> i128 {
         let bits = self.m.bits();
         let shift = bits.saturating_sub(60);
-        let top = (self.m.magnitude() >> shift).to_f64().unwrap_or(1.0);
-        top.log10() + (self.e + shift as i64) as f64 * std::f64::consts::LOG10_2
+        let top = (self.m.magnitude() >> shift)
+            .to_f64()
+            .unwrap_or(1.0)
+            .max(1.0);
+        let exponent = BigInt::from(self.e + wide(shift));
+        let log2 = BigInt::parse_bytes(LOG10_2_DIGITS.as_bytes(), 10).unwrap_or_default();
+        let scale = BigInt::from(10).pow(LOG10_2_SCALE);
+        let (whole, frac) = (exponent * log2).div_mod_floor(&scale);
+        let frac = frac.to_f64().unwrap_or(0.0) / scale.to_f64().unwrap_or(1.0);
+        let whole = whole.to_i128().unwrap_or(0);
+        // `top.log10() + frac` lies in [0, 20): its floor fits any integer type.
+        whole + ((top.log10() + frac).floor() as i128)
     }
 
     /// `floor(|value|)` and whether the fractional part is closer than `2^-(slack)` relative
-    /// to an integer boundary.
+    /// to an integer boundary. A value too large to hold exactly counts as near a boundary.
     fn floor_abs(&self, eff_bits: u64) -> (BigInt, bool) {
         let mag = BigInt::from(self.m.magnitude().clone());
-        let (int, frac_bits) = if self.e >= 0 {
-            (&mag << self.e as usize, 0u64)
-        } else {
-            let sh = (-self.e) as u64;
-            (&mag >> sh as usize, sh)
-        };
-        if frac_bits == 0 {
-            return (int, true);
+        if self.e >= 0 {
+            return match shift_amount(self.e) {
+                Some(sh) if sh <= 1 << 24 => (&mag << sh, true),
+                _ => (BigInt::zero(), true),
+            };
         }
+        let Some(frac_bits) = shift_amount(-self.e) else {
+            return (BigInt::zero(), true);
+        };
+        let int = &mag >> frac_bits;
         // Absolute error of the value in units of 2^-frac_bits: |value| * 2^-eff_bits.
         let err_shift = self.m.bits().saturating_sub(eff_bits);
-        let err = BigInt::one() << err_shift as usize;
-        let frac = &mag - (&int << frac_bits as usize);
-        let one = BigInt::one() << frac_bits as usize;
+        let err = BigInt::one() << err_shift;
+        let frac = &mag - (&int << frac_bits);
+        let one = BigInt::one() << frac_bits;
         let near = frac <= err || (&one - &frac) <= err;
         (int, near)
     }
+}
+
+/// The outcome of settling a digit count from an approximation.
+enum Settled {
+    /// The digit count and the leading `k` digits (the whole number if it has at most `k`).
+    Known(u64, BigInt),
+    /// Too close to a decimal boundary to call at this precision.
+    Ambiguous,
+    /// The number has more than `u64::MAX` decimal digits.
+    BeyondU64,
 }
 
 fn pad(n: &BigInt, width: usize) -> String {
@@ -186,32 +252,39 @@ pub fn digit_summary(n: &BigInt, k: usize) -> DigitSummary {
             trailing: trail,
         };
     }
-    let ten_k = BigInt::from(10).pow(k as u32);
+    let ten_k = BigInt::from(10).pow(k);
     let trailing = &mag % &ten_k;
     let prec = 256u64 + 4 * k as u64;
     let approx = BigFloat::from_int(&mag, prec);
     let eff = prec - 2;
     let (digits, leading) = match digits_and_leading(&approx, eff, k, &trailing) {
-        Some(x) => x,
-        None => {
-            // Ambiguous even so: settle with exact arithmetic.
-            let est = (approx.log10().floor() as u64).max(1);
-            let mut d = est;
-            while mag >= BigInt::from(10).pow(d as u32) {
-                d += 1;
-            }
-            while d > 1 && mag < BigInt::from(10).pow((d - 1) as u32) {
-                d -= 1;
-            }
-            let lead = if d as usize <= k {
-                mag.clone()
-            } else {
-                &mag / BigInt::from(10).pow((d - k as u64) as u32)
-            };
-            (d, lead)
-        }
+        Settled::Known(digits, leading) => (digits, leading),
+        // Ambiguous even so: settle with exact arithmetic. (A number held in memory has
+        // fewer decimal digits than bits, so its count always fits in a `u64`.)
+        Settled::Ambiguous | Settled::BeyondU64 => exact_digits_and_leading(&mag, &approx, k),
     };
     summary_from(negative, digits, &leading, &trailing, k)
+}
+
+/// The digit count and leading `k` digits of `mag >= 0` by exact comparison with powers of
+/// ten, starting from `approx`'s estimate.
+fn exact_digits_and_leading(mag: &BigInt, approx: &BigFloat, k: usize) -> (u64, BigInt) {
+    let ten = BigInt::from(10);
+    let mut d = u64::try_from(approx.floor_log10_estimate())
+        .unwrap_or(0)
+        .max(1);
+    while *mag >= Pow::pow(&ten, d) {
+        d += 1;
+    }
+    while d > 1 && *mag < Pow::pow(&ten, d - 1) {
+        d -= 1;
+    }
+    let lead = if d <= k as u64 {
+        mag.clone()
+    } else {
+        mag / Pow::pow(&ten, d - k as u64)
+    };
+    (d, lead)
 }
 
 fn summary_from(
@@ -221,11 +294,11 @@ fn summary_from(
     trailing_mod: &BigInt,
     k: usize,
 ) -> DigitSummary {
-    let shown = (digits as usize).min(k);
+    let shown = usize::try_from(digits).map_or(k, |d| d.min(k));
     DigitSummary {
         negative,
         digits,
-        leading: if (digits as usize) <= k {
+        leading: if digits <= k as u64 {
             pad(trailing_mod, shown)
         } else {
             leading.to_string()
@@ -234,94 +307,81 @@ fn summary_from(
     }
 }
 
+/// The working precision for `10^q` next to a value with `eff` correct bits: powering by
+/// squaring loses up to `2 log2 q` bits, which at `q` near `u64::MAX` is 128 bits.
+fn power_precision(eff: u64, q: u64) -> u64 {
+    eff + 16 + 2 * u64::from(64 - q.leading_zeros())
+}
+
 /// The digit count and the leading `k` digits of `|v|` from an approximation with `eff`
-/// correct bits, or `None` when too close to call. `trailing` is `|v| mod 10^k`.
-fn digits_and_leading(
-    v: &BigFloat,
-    eff: u64,
-    k: usize,
-    trailing: &BigInt,
-) -> Option<(u64, BigInt)> {
+/// correct bits. `trailing` is `|v| mod 10^k`.
+fn digits_and_leading(v: &BigFloat, eff: u64, k: usize, trailing: &BigInt) -> Settled {
     if v.m.is_zero() {
-        return Some((1, BigInt::zero()));
+        return Settled::Known(1, BigInt::zero());
     }
-    let prec = eff + 8;
-    let lg = v.log10();
-    // digits = floor(log10 v) + 1; settle the floor by comparing with 10^q.
-    let mut q = lg.floor().max(0.0) as u64;
-    for _ in 0..3 {
-        let p = BigFloat::pow(&BigInt::from(10), q, prec);
-        let ratio = BigFloat {
-            m: v.m.abs(),
-            e: v.e,
-        }
-        .div(&p, prec);
+    let v = v.abs();
+    let ten = BigInt::from(10);
+    let k64 = k as u64;
+    // digits = floor(log10 v) + 1; the estimate is off by at most one, and the comparison
+    // with 10^q settles it.
+    let mut q = v.floor_log10_estimate().max(0);
+    for _ in 0..4 {
+        let Ok(q64) = u64::try_from(q) else {
+            return Settled::BeyondU64;
+        };
+        let prec = power_precision(eff, q64);
+        let ratio = v.div(&BigFloat::pow(&ten, q64, prec), prec);
         // ratio in [1, 10) means q is right.
         let (int, near) = ratio.floor_abs(eff.saturating_sub(4));
         if int.is_zero() {
-            if near {
-                return None;
+            if near || q == 0 {
+                return Settled::Ambiguous;
             }
-            q = q.checked_sub(1)?;
+            q -= 1;
             continue;
         }
-        if int >= BigInt::from(10) {
-            if int == BigInt::from(10) && near {
-                return None;
+        if int >= ten {
+            if int == ten && near {
+                return Settled::Ambiguous;
             }
             q += 1;
             continue;
         }
-        if int == BigInt::from(9) && near {
-            return None;
+        if (int == BigInt::from(9) && near) || (int.is_one() && near && ratio.top() <= 1) {
+            // Within error of exactly 10^(q+1) or 10^q.
+            return Settled::Ambiguous;
         }
-        if int == BigInt::one() && near && ratio.m.bits() as i64 + ratio.e <= 1 {
-            // Within error of exactly 10^q.
-            return None;
+        let Some(digits) = q64.checked_add(1) else {
+            return Settled::BeyondU64;
+        };
+        if digits <= k64 {
+            return Settled::Known(digits, trailing.clone());
         }
-        let digits = q + 1;
-        if digits as usize <= k {
-            return Some((digits, trailing.clone()));
-        }
-        let j = digits - k as u64;
-        let p = BigFloat::pow(&BigInt::from(10), j, prec);
-        let lead = BigFloat {
-            m: v.m.abs(),
-            e: v.e,
-        }
-        .div(&p, prec);
-        let (int, near) = lead.floor_abs(eff.saturating_sub(8 + 4 * k as u64));
+        let j = digits - k64;
+        let prec = power_precision(eff, j);
+        let ten_j = BigFloat::pow(&ten, j, prec);
+        let lead = v.div(&ten_j, prec);
+        let (int, near) = lead.floor_abs(eff.saturating_sub(8 + 4 * k64));
         if !near {
-            return Some((digits, int));
+            return Settled::Known(digits, int);
         }
         // The value sits within error of a multiple of 10^j: the trailing digits settle it
         // when they cover the whole fractional part.
-        if j as usize <= k {
-            let low = trailing % BigInt::from(10).pow(j as u32);
-            let ten_j = BigFloat::pow(&BigInt::from(10), j, prec);
+        if j <= k64 {
+            let low = trailing % Pow::pow(&ten, j);
             let frac = BigFloat::from_int(&low, prec).div(&ten_j, prec);
-            let whole = lead.add(
-                &BigFloat {
-                    m: -frac.m,
-                    e: frac.e,
-                },
-                prec,
-            );
+            let whole = lead.add(&frac.neg(), prec);
             // `whole` is within error of the integer floor(v / 10^j).
-            let (w, _) = whole
-                .add(
-                    &BigFloat {
-                        m: BigInt::one(),
-                        e: -2,
-                    },
-                    prec,
-                )
-                .floor_abs(eff);
-            return Some((digits, w));
+            let quarter = BigFloat {
+                m: BigInt::one(),
+                e: -2,
+            };
+            let (w, _) = whole.add(&quarter, prec).floor_abs(eff);
+            return Settled::Known(digits, w);
         }
-        return None;
+        return Settled::Ambiguous;
     }
-    None
+    Settled::Ambiguous
 }
 
 impl ClosedForm {
@@ -336,7 +396,9 @@ impl ClosedForm {
     /// # Errors
     ///
     /// [`Error::InitialLength`] for a wrong-length `x0`; [`Error::NotExact`] for numeric
-    /// forms; [`Error::TooLarge`] for surd forms at levels too high to compute exactly.
+    /// forms; [`Error::TooLarge`] for surd forms at levels too high to compute exactly;
+    /// [`Error::DigitsOverflow`] for a count with more than `u64::MAX` decimal digits (an
+    /// eigenvalue of 16 or more at a level near `u64::MAX`).
     ///
     /// # Panics
     ///
@@ -399,13 +461,16 @@ impl ClosedForm {
                     bits: bits as u64,
                 });
             }
-            out.push(self.rational_summary(fast, x0, s, k)?);
+            out.push(self.rational_summary(i, fast, x0, s, k)?);
         }
         Ok(out)
     }
 
+    /// The summary of component `i` (whose fast form is `fast`) from its integer
+    /// eigenvalues, without materializing it.
     fn rational_summary(
         &self,
+        i: usize,
         fast: &crate::closed_form::FastComponent,
         x0: &[BigInt],
         s: u64,
@@ -430,7 +495,7 @@ impl ClosedForm {
             .collect();
         let d = &fast.denominator;
         // Trailing digits: N mod (D 10^k) / D = v mod 10^k.
-        let ten_k = BigInt::from(10).pow(k as u32);
+        let ten_k = BigInt::from(10).pow(k);
         let modulus = d * &ten_k;
         let mut r = BigInt::zero();
         for (c, lambda) in &parts {
@@ -441,11 +506,12 @@ impl ClosedForm {
             r = (r + c * pw).mod_floor(&modulus);
         }
         let v_mod = &r / d; // v mod 10^k, in [0, 10^k)
-                            // Leading digits and sign from a floating-point sum, with escalating precision.
+
+        // Leading digits and sign from a floating-point sum, with escalating precision.
         let mut prec = 256u64 + 4 * k as u64;
         loop {
             let mut sum = BigFloat::from_int(&BigInt::zero(), prec);
-            let mut max_top = i64::MIN;
+            let mut max_top = i128::MIN;
             for (c, lambda) in &parts {
                 let mut pw = BigFloat::pow(&lambda.abs(), s, prec);
                 if lambda.is_negative() && s % 2 == 1 {
@@ -458,20 +524,30 @@ impl ClosedForm {
             let v = sum.div(&BigFloat::from_int(d, prec), prec);
             // Relative precision left after cancellation, with room for rounding errors.
             let cancel = if sum.m.is_zero() {
-                prec as i64
+                wide(prec)
             } else {
                 (max_top - sum.top()).max(0)
             };
-            let eff = prec as i64 - cancel - 16 - 2 * (64 - s.leading_zeros() as i64);
-            if eff >= 64 + 4 * k as i64 && !sum.m.is_zero() {
+            let eff = wide(prec) - cancel - 16 - 2 * wide(u64::from(64 - s.leading_zeros()));
+            let eff = u64::try_from(eff).unwrap_or(0);
+            if eff >= 64 + 4 * k as u64 && !sum.m.is_zero() {
                 let negative = v.m.is_negative();
                 let trailing = if negative {
                     (&ten_k - &v_mod).mod_floor(&ten_k)
                 } else {
                     v_mod.clone()
                 };
-                if let Some((digits, leading)) = digits_and_leading(&v, eff as u64, k, &trailing) {
-                    return Ok(summary_from(negative, digits, &leading, &trailing, k));
+                match digits_and_leading(&v, eff, k, &trailing) {
+                    Settled::Known(digits, leading) => {
+                        return Ok(summary_from(negative, digits, &leading, &trailing, k));
+                    }
+                    Settled::BeyondU64 => {
+                        return Err(Error::DigitsOverflow {
+                            component: self.names()[i].clone(),
+                            level: s,
+                        });
+                    }
+                    Settled::Ambiguous => {}
                 }
             }
             if prec > 1 << 15 {
@@ -479,11 +555,6 @@ impl ClosedForm {
                 // small compared to its terms, so compute it exactly if that is affordable.
                 let est = self.evaluate_bits_estimate(&parts, s);
                 if est <= 4_000_000 {
-                    let i = self
-                        .fast()
-                        .iter()
-                        .position(|f| f.as_ref().is_some_and(|f| std::ptr::eq(f, fast)))
-                        .unwrap_or(0);
                     return Ok(digit_summary(&self.evaluate_component(x0, s, i)?, k));
                 }
                 return Err(Error::TooLarge {
@@ -567,7 +638,7 @@ mod tests {
         let form = r.closed_form();
         let x0 = [BigInt::zero(), BigInt::from(9)];
         let f = form.fast()[0].as_ref().unwrap();
-        let d = form.rational_summary(f, &x0, 5000, 20).unwrap();
+        let d = form.rational_summary(0, f, &x0, 5000, 20).unwrap();
         assert_eq!(d.digits, 5000);
         assert_eq!(d.leading, "9".repeat(20));
         assert_eq!(d.trailing, "9".repeat(20));
@@ -613,7 +684,7 @@ mod tests {
                     got.push(if s < f.valid_from {
                         digit_summary(&exact[i], 20)
                     } else {
-                        form.rational_summary(f, &x0, s, 20).unwrap()
+                        form.rational_summary(i, f, &x0, s, 20).unwrap()
                     });
                 }
                 assert_eq!(got, want, "{m} at level {s}");
@@ -623,6 +694,128 @@ mod tests {
                     "{m} at level {s}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn levels_near_u64_max_are_exact() {
+        // Reference values from 120-digit decimal logarithms: E = 30 * 4^s, V = 10 * 4^s + 2.
+        let r = Recurrence::new("[[1,1],[0,4]]".parse::<IntMatrix>().unwrap());
+        let form = r.closed_form();
+        let x0 = [BigInt::from(12), BigInt::from(30)];
+        for (s, v, e) in [
+            (
+                u64::MAX,
+                (
+                    11_106_046_577_046_714_265,
+                    "90913747023371454768",
+                    "24151468139730698242",
+                ),
+                (
+                    11_106_046_577_046_714_266,
+                    "27274124107011436430",
+                    "72454404419192094720",
+                ),
+            ),
+            (
+                u64::MAX - 1,
+                (
+                    11_106_046_577_046_714_265,
+                    "22728436755842863692",
+                    "81037867034932674562",
+                ),
+                (
+                    11_106_046_577_046_714_265,
+                    "68185310267528591076",
+                    "43113601104798023680",
+                ),
+            ),
+            (
+                i64::MAX as u64,
+                (
+                    5_553_023_288_523_357_133,
+                    "47674350290111834613",
+                    "47519667428618403842",
+                ),
+                (
+                    5_553_023_288_523_357_134,
+                    "14302305087033550384",
+                    "42559002285855211520",
+                ),
+            ),
+        ] {
+            let at = form.summary_at(&x0, s, 20).unwrap();
+            for (got, (digits, leading, trailing)) in at.iter().zip([v, e]) {
+                let want = DigitSummary {
+                    negative: false,
+                    digits,
+                    leading: leading.into(),
+                    trailing: trailing.into(),
+                };
+                assert_eq!(*got, want, "level {s}");
+            }
+        }
+    }
+
+    #[test]
+    fn digit_counts_beyond_u64_are_refused() {
+        // 16^s has about 1.2 s digits: beyond u64::MAX at s = u64::MAX.
+        let r = Recurrence::with_names("[[16]]".parse::<IntMatrix>().unwrap(), ["F"]).unwrap();
+        let err = r
+            .closed_form()
+            .summary_at(&[BigInt::one()], u64::MAX, 20)
+            .unwrap_err();
+        assert_eq!(
+            err,
+            Error::DigitsOverflow {
+                component: "F".into(),
+                level: u64::MAX
+            }
+        );
+        assert_eq!(
+            err.to_string(),
+            "the count `F` at level 18446744073709551615 has more than 2^64 decimal digits, more than a digit summary can state"
+        );
+    }
+
+    /// `floor(n log10 2)`, from 80 decimal places of `log10 2` (an interval of width
+    /// `n 10^-80`), or `None` if an integer falls inside the interval.
+    fn floor_n_log10_2(n: u128) -> Option<BigInt> {
+        let digits =
+            "30102999566398119521373889472449302676818988146210854131042746112710818927442451";
+        let lo = BigInt::parse_bytes(digits.as_bytes(), 10).unwrap();
+        let scale = BigInt::from(10).pow(80u32);
+        let n = BigInt::from(n);
+        let a = (&n * &lo).div_floor(&scale);
+        let b = (&n * (lo + BigInt::one())).div_floor(&scale);
+        (a == b).then_some(a)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig { cases: 48, failure_persistence: None, ..Default::default() })]
+
+        #[test]
+        fn digit_counts_near_u64_max_match_exact_logarithms(
+            log_lambda in 1u32..=3,
+            a in 0u32..6,
+            b in 0u32..12,
+            s in proptest::prop_oneof![(u64::MAX - (1 << 40))..=u64::MAX, (1u64 << 62)..=u64::MAX],
+        ) {
+            // x(s) = 10^a 2^b lambda^s with lambda = 2^log_lambda: 10^a 2^(b + log_lambda s).
+            let lambda = 1i64 << log_lambda;
+            let r = Recurrence::new(IntMatrix::try_from_rows(vec![vec![lambda]]).unwrap());
+            let c = BigInt::from(10).pow(a) << b;
+            let got = r.closed_form().summary_at(std::slice::from_ref(&c), s, 20).unwrap();
+            let n = u128::from(b) + u128::from(log_lambda) * u128::from(s);
+            let Some(floor) = floor_n_log10_2(n) else {
+                return Err(proptest::test_runner::TestCaseError::reject("on a boundary"));
+            };
+            let digits = floor + 1 + a;
+            proptest::prop_assert_eq!(BigInt::from(got[0].digits), digits);
+            let m = BigInt::from(10).pow(20u32);
+            let trailing = (BigInt::from(lambda).modpow(&BigInt::from(s), &m) * &c) % &m;
+            proptest::prop_assert_eq!(&got[0].trailing, &format!("{trailing:0>20}"));
+            proptest::prop_assert_eq!(got[0].leading.len(), 20);
         }
     }
 
@@ -650,7 +843,7 @@ mod tests {
                 if s < f.valid_from {
                     continue;
                 }
-                proptest::prop_assert_eq!(form.rational_summary(f, &x0, s, k).unwrap(), brute(&exact[i], k));
+                proptest::prop_assert_eq!(form.rational_summary(i, f, &x0, s, k).unwrap(), brute(&exact[i], k));
             }
         }
     }

@@ -218,3 +218,33 @@ fn json_terms_reproduce_powering() {
         }
     }
 }
+
+#[test]
+fn forms_render_in_a_chosen_variable() {
+    // A Jordan block (powers of the level) and a nilpotent part (a range and an early level).
+    let form = rec("[[2,1,0],[0,2,0],[0,0,0]]", "E,F,G").closed_form();
+    let text = form.to_text_in("t");
+    let latex = form.to_latex_in("t");
+    for (rendered, in_s) in [(&text, form.to_text()), (&latex, form.to_latex())] {
+        assert!(!rendered.contains('s'), "{rendered}");
+        // Exactly the level is renamed: no other `t` appears in these forms.
+        assert_eq!(*rendered, in_s.replace('s', "t"));
+    }
+    assert!(text.contains("t*2^t"), "{text}");
+    assert!(latex.contains("t \\, 2^{t}"), "{latex}");
+    let late = rec("[[0,1],[0,4]]", "F,H").closed_form();
+    assert_eq!(
+        late.to_latex_in("t"),
+        late.to_latex().replace("(s", "(t").replace("{s}", "{t}")
+    );
+    assert!(
+        late.to_latex_in("t").contains("(t \\ge 1)"),
+        "{}",
+        late.to_latex_in("t")
+    );
+    assert!(
+        late.to_text_in("t").contains(" for t >= 1; F(0) = F0"),
+        "{}",
+        late.to_text_in("t")
+    );
+}

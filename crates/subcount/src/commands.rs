@@ -129,7 +129,7 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
         None
     };
     let mut text = match &counter {
-        Counter::Matrix(r) => render_form(&r.closed_form(), args.format, "counts")?,
+        Counter::Matrix(r) => render_form(&verified_form(r, args.format)?, args.format, "counts")?,
         Counter::Plan(plan) => {
             let phases = plan.phases();
             let fn_base = plan
@@ -137,7 +137,7 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
                 .replace(|c: char| !c.is_ascii_alphanumeric(), "_");
             if phases.len() == 1 && phases[0].first_level == 0 && phases[0].period == 1 {
                 render_form(
-                    &phases[0].recurrence.closed_form(),
+                    &verified_form(&phases[0].recurrence, args.format)?,
                     args.format,
                     &format!("{fn_base}_counts"),
                 )?
@@ -162,6 +162,16 @@ fn render_form(form: &ClosedForm, format: FormulaFormat, fn_name: &str) -> Resul
     })
 }
 
+/// The closed form of `r`, or exit 3 when its numeric terms miss the exact counts (the Rust
+/// rendering of a form that is not all integers powers the matrix, so it needs no terms).
+fn verified_form(r: &recurrence::Recurrence, format: FormulaFormat) -> Result<ClosedForm, Failure> {
+    let form = r.closed_form();
+    if format != FormulaFormat::Rust {
+        form.verify().map_err(|e| Failure::new(Kind::Input, e))?;
+    }
+    Ok(form)
+}
+
 fn pretty(value: &Value) -> Result<String, Failure> {
     serde_json::to_string_pretty(value).map_err(|e| Failure::new(Kind::Input, e))
 }
@@ -175,31 +185,28 @@ fn render_phases(
     fn_base: &str,
 ) -> Result<String, Failure> {
     if format == FormulaFormat::Json {
-        let forms: Vec<Value> = phases
+        let forms = phases
             .iter()
             .map(|phase| {
-                json!({
+                Ok(json!({
                     "phase": phase.description,
                     "first_level": phase.first_level,
                     "period": phase.period,
                     "last_level": phase.last_level,
                     "stage": phase.stage,
-                    "forms": phase.recurrence.closed_form().to_json(),
-                })
+                    "forms": verified_form(&phase.recurrence, format)?.to_json(),
+                }))
             })
-            .collect();
+            .collect::<Result<Vec<Value>, Failure>>()?;
         return pretty(&Value::Array(forms));
     }
     let mut text = String::new();
     for (i, phase) in phases.iter().enumerate() {
-        let form = phase.recurrence.closed_form();
+        let form = verified_form(&phase.recurrence, format)?;
         let heading = phase_heading(phase);
         let (comment, body) = match format {
             // The closed form reads in `s`; within a phase the variable is `t`.
-            FormulaFormat::Text => (
-                "#",
-                form.to_text().replace("(s)", "(t)").replace("^s", "^t"),
-            ),
+            FormulaFormat::Text => ("#", form.to_text_in("t")),
             FormulaFormat::Latex => ("%", form.to_latex()),
             _ => ("//", form.to_rust(&format!("{fn_base}_phase{i}"))),
         };

@@ -63,6 +63,31 @@ fn spectral_parts<F: Field>(
     parts
 }
 
+/// The projector, the matrices `C_t` of [`power_coefficients`] (non-zero `lambda`) and,
+/// for `lambda = 0`, per row the least `k` with a zero row `i` of `N^k P`, all from
+/// [`spectral_parts`]: the fallback of [`exact_spectrum`] and its test reference.
+fn spectrum_from_parts<F: Field>(
+    m: &IntMatrix,
+    p: &[BigRational],
+    lambda: &F,
+    mult: usize,
+) -> (Matrix<F>, Vec<Matrix<F>>, Vec<u64>) {
+    let parts = spectral_parts::<F>(m, p, lambda, mult);
+    if lambda.is_zero() {
+        let valid = (0..m.dim())
+            .map(|i| {
+                (0..mult)
+                    .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
+                    .unwrap_or(mult) as u64
+            })
+            .collect();
+        (parts[0].clone(), Vec::new(), valid)
+    } else {
+        let coefficients = power_coefficients(&parts, lambda);
+        (parts[0].clone(), coefficients, Vec::new())
+    }
+}
+
 /// A field whose elements the fraction-free computation produces as `numerator /
 /// denominator` in `Z[sqrt d]`.
 trait ExactField: Field {
@@ -292,30 +317,7 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
                     exact_spectrum::<BigRational>(m, &QuadraticSurd::rational(l.clone()), mult);
                 let (projector, coefficients, zero_valid) = match fast {
                     Some(spec) => (spec.projector, spec.coefficients, spec.valid_from),
-                    None => {
-                        let parts = spectral_parts::<BigRational>(m, &p, l, mult);
-                        let valid = if l.is_zero() {
-                            (0..n)
-                                .map(|i| {
-                                    (0..mult)
-                                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
-                                        .unwrap_or(mult) as u64
-                                })
-                                .collect()
-                        } else {
-                            Vec::new()
-                        };
-                        let coefficients = if l.is_zero() {
-                            Vec::new()
-                        } else {
-                            power_coefficients(&parts, l)
-                        };
-                        (
-                            parts.into_iter().next().expect("one part per multiplicity"),
-                            coefficients,
-                            valid,
-                        )
-                    }
+                    None => spectrum_from_parts::<BigRational>(m, &p, l, mult),
                 };
                 if any_numeric {
                     exact_sum = exact_sum.add(&projector);
@@ -447,14 +449,91 @@ pub(crate) fn closed_form(rec: &Recurrence) -> ClosedForm {
         .iter()
         .map(|c| build_fast(c, &eigenvalues))
         .collect();
-    ClosedForm {
+    let mut form = ClosedForm {
         names: rec.names().to_vec(),
         matrix: m.clone(),
         eigenvalues,
         components,
         fast,
         powers,
+        inaccurate: None,
+    };
+    form.inaccurate = first_inaccuracy(rec, &form);
+    form
+}
+
+/// The value of a coefficient as a complex `f64`.
+fn coefficient_f64(c: &Coefficient) -> Complex64 {
+    match c {
+        Coefficient::Rational(r) => Complex64::new(crate::field::rational_to_f64(r), 0.0),
+        Coefficient::Surd(q) => q.to_f64(),
+        Coefficient::Numeric(z) => *z,
     }
+}
+
+/// The first `(component, level)` at which a component with numeric terms fails to
+/// reproduce exact powering, to within `10^-6` of the largest entry of its row of `M^s`;
+/// `None` when every numeric component passes at the levels checked (`valid_from` plus 0,
+/// 1, 2 and `n`). Exact components are exact by construction and not checked.
+///
+/// The `f64` eigenvalues of a badly conditioned characteristic polynomial (entries beyond
+/// `2^53`, nearly equal large roots) can be wrong in every digit, or missing: this check is
+/// what keeps such a form from being shown as if it held.
+fn first_inaccuracy(rec: &Recurrence, form: &ClosedForm) -> Option<(usize, u64)> {
+    let n = rec.dim();
+    let numeric: Vec<usize> = (0..n).filter(|&i| !form.components[i].exact).collect();
+    if numeric.is_empty() {
+        return None;
+    }
+    // columns[j][s] = M^s e_j for every level checked: n^2 products per level, computed once.
+    let last = numeric
+        .iter()
+        .map(|&i| form.components[i].valid_from)
+        .max()
+        .unwrap_or(0)
+        + n as u64;
+    let mut columns = Vec::with_capacity(n);
+    for j in 0..n {
+        let basis: Vec<BigInt> = (0..n).map(|k| BigInt::from(u8::from(k == j))).collect();
+        match rec.states_up_to(&basis, last) {
+            Ok(states) => columns.push(states),
+            Err(_) => return Some((numeric[0], 0)),
+        }
+    }
+    for &i in &numeric {
+        let c = &form.components[i];
+        for s in [0, 1, 2, n as u64].map(|d| c.valid_from + d) {
+            // Row i of M^s.
+            let row: Vec<f64> = columns
+                .iter()
+                .map(|states| {
+                    let entry = BigRational::from_integer(states[s as usize][i].clone());
+                    crate::field::rational_to_f64(&entry)
+                })
+                .collect();
+            let scale = row.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (j, exact) in row.iter().enumerate() {
+                let mut approx = Complex64::new(0.0, 0.0);
+                for t in &c.terms {
+                    let mut v = coefficient_f64(&t.coefficients[j]);
+                    let lambda = t.eigenvalue.to_complex();
+                    for _ in 0..s {
+                        v = v * lambda;
+                    }
+                    for _ in 0..t.s_power {
+                        v = v * Complex64::new(s as f64, 0.0);
+                    }
+                    approx = approx + v;
+                }
+                let error = (approx - Complex64::new(*exact, 0.0)).norm();
+                // A NaN or an infinity fails too.
+                if !error.is_finite() || !scale.is_finite() || error > 1e-6 * scale {
+                    return Some((i, s));
+                }
+            }
+        }
+    }
+    None
 }
 
 fn push_terms<F: Field>(
@@ -495,25 +574,8 @@ mod tests {
         let p = Recurrence::new(m.clone())
             .characteristic_polynomial()
             .to_rational();
-        let parts = spectral_parts::<F>(m, &p, lambda, mult);
-        let n = m.dim();
-        let valid = if zero {
-            (0..n)
-                .map(|i| {
-                    (0..mult)
-                        .find(|&k| parts[k].row(i).iter().all(Zero::is_zero))
-                        .unwrap_or(mult) as u64
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        let coefficients = if zero {
-            Vec::new()
-        } else {
-            power_coefficients(&parts, lambda)
-        };
-        (parts[0].clone(), coefficients, valid)
+        assert_eq!(zero, lambda.is_zero());
+        spectrum_from_parts::<F>(m, &p, lambda, mult)
     }
 
     fn same<F: Field + PartialEq>(a: &Matrix<F>, b: &Matrix<F>) -> bool {
@@ -561,6 +623,23 @@ mod tests {
         IntMatrix::try_from_rows(rows).unwrap()
     }
 
+    /// The Jordan matrix with one block of size `k` for eigenvalue `l` per `(l, k)`.
+    fn jordan(blocks: &[(i64, usize)]) -> Vec<Vec<i64>> {
+        let n: usize = blocks.iter().map(|b| b.1).sum();
+        let mut j = vec![vec![0i64; n]; n];
+        let mut o = 0;
+        for &(l, k) in blocks {
+            for a in 0..k {
+                j[o + a][o + a] = l;
+                if a + 1 < k {
+                    j[o + a][o + a + 1] = 1;
+                }
+            }
+            o += k;
+        }
+        j
+    }
+
     /// `E J E^-1` for elementary `E = I + k e_i e_j^T` applied in sequence: the same Jordan
     /// structure, dense entries.
     fn conjugated(mut m: Vec<Vec<i64>>, ops: &[(usize, usize, i64)]) -> IntMatrix {
@@ -603,19 +682,7 @@ mod tests {
             ),
         ];
         for (blocks, ops) in cases {
-            let n: usize = blocks.iter().map(|b| b.1).sum();
-            let mut j = vec![vec![0i64; n]; n];
-            let mut o = 0;
-            for (l, k) in blocks {
-                for a in 0..k {
-                    j[o + a][o + a] = l;
-                    if a + 1 < k {
-                        j[o + a][o + a + 1] = 1;
-                    }
-                }
-                o += k;
-            }
-            check(&conjugated(j, &ops)).unwrap();
+            check(&conjugated(jordan(&blocks), &ops)).unwrap();
         }
         // Quadratic eigenvalues, repeated: two Fibonacci blocks and a Pell block.
         let fib2 = matrix(vec![
@@ -673,21 +740,129 @@ mod tests {
             proptest::collection::vec((-2i64..=3, 1usize..=3), 1..=3),
             proptest::collection::vec((0usize..8, 0usize..8, -1i64..=1), 0..8),
         )
-            .prop_map(|(blocks, ops)| {
-                let n: usize = blocks.iter().map(|b| b.1).sum();
-                let mut j = vec![vec![0i64; n]; n];
-                let mut o = 0;
-                for (l, k) in blocks {
-                    for a in 0..k {
-                        j[o + a][o + a] = l;
-                        if a + 1 < k {
-                            j[o + a][o + a + 1] = 1;
-                        }
-                    }
-                    o += k;
-                }
-                conjugated(j, &ops)
+            .prop_map(|(blocks, ops)| conjugated(jordan(&blocks), &ops))
+    }
+
+    /// Entries near `i64::MAX` and `i64::MIN`, small ones and anything in between.
+    fn hostile_entry() -> impl Strategy<Value = i64> {
+        prop_oneof![
+            (i64::MAX - 1000)..=i64::MAX,
+            i64::MIN..=(i64::MIN + 1000),
+            (1i64 << 53)..=(1i64 << 53) + 10,
+            -3i64..=3,
+            any::<i64>(),
+        ]
+    }
+
+    /// Evaluation equals exact powering at several levels, for every initial state tried.
+    fn evaluates_exactly(
+        form: &ClosedForm,
+        m: &IntMatrix,
+    ) -> std::result::Result<(), TestCaseError> {
+        let r = Recurrence::new(m.clone());
+        let n = m.dim();
+        for x0 in [vec![1i64; n], (0..n as i64).map(|i| 3 - 2 * i).collect()] {
+            let x0: Vec<BigInt> = x0.into_iter().map(BigInt::from).collect();
+            for s in [0u64, 1, 2, 3, 7, 20] {
+                prop_assert_eq!(
+                    form.evaluate(&x0, s).unwrap(),
+                    r.state_at(&x0, s).unwrap(),
+                    "level {}",
+                    s
+                );
+            }
+        }
+        Ok(())
+    }
+
+    #[test]
+    fn large_entries_keep_exact_quadratic_roots() {
+        // The example of the report: eigenvalues (a +- sqrt(a^2 + 4)) / 2, a = 2^53 + 1.
+        let m = matrix(vec![vec![9_007_199_254_740_993, 1], vec![1, 0]]);
+        let form = Recurrence::new(m.clone()).closed_form();
+        assert!(form.is_exact());
+        assert!(form
+            .to_text()
+            .starts_with("x0(s) = ((1/2+9007199254740993/"));
+        evaluates_exactly(&form, &m).unwrap();
+        // An integer root next to a quadratic pair, all near i64::MAX.
+        let m = matrix(vec![
+            vec![i64::MAX, 1, 0],
+            vec![1, 0, 0],
+            vec![0, 0, i64::MAX - 1],
+        ]);
+        let form = Recurrence::new(m.clone()).closed_form();
+        assert!(form.is_exact());
+        evaluates_exactly(&form, &m).unwrap();
+    }
+
+    #[test]
+    fn ill_conditioned_numeric_forms_are_refused() {
+        // x^3 - a x^2 - a x - 1 with a = 2^63 - 1 is irreducible: numeric roots, which f64
+        // cannot separate.
+        let m = matrix(vec![
+            vec![i64::MAX, i64::MAX, 1],
+            vec![1, 0, 0],
+            vec![0, 1, 0],
+        ]);
+        let r = Recurrence::new(m);
+        let form = r.closed_form();
+        assert!(!form.is_exact());
+        assert_eq!(
+            form.verify(),
+            Err(crate::Error::InaccurateClosedForm {
+                component: "x0".into(),
+                level: 0
             })
+        );
+        assert!(r.verified_closed_form().is_err());
+        assert!(r.closed_form_within(u64::MAX).is_err());
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(128))]
+
+        #[test]
+        fn two_by_two_forms_are_exact_whatever_the_entries(e in proptest::collection::vec(hostile_entry(), 4)) {
+            let m = matrix(vec![vec![e[0], e[1]], vec![e[2], e[3]]]);
+            let form = Recurrence::new(m.clone()).closed_form();
+            prop_assert!(form.is_exact());
+            prop_assert!(form.verify().is_ok());
+            evaluates_exactly(&form, &m)?;
+        }
+
+        #[test]
+        fn three_by_three_forms_with_an_integer_root_are_exact(
+            e in proptest::collection::vec(hostile_entry(), 7),
+        ) {
+            // Block triangular: the eigenvalues of the 2x2 block and e[4].
+            let m = matrix(vec![
+                vec![e[0], e[1], 0],
+                vec![e[2], e[3], 0],
+                vec![e[5], e[6], e[4]],
+            ]);
+            let form = Recurrence::new(m.clone()).closed_form();
+            prop_assert!(form.is_exact(), "{:?}", form.eigenvalues());
+            evaluates_exactly(&form, &m)?;
+        }
+
+        #[test]
+        fn three_by_three_forms_are_exact_or_refused(e in proptest::collection::vec(hostile_entry(), 9)) {
+            let m = matrix(e.chunks(3).map(<[i64]>::to_vec).collect());
+            let form = Recurrence::new(m.clone()).closed_form();
+            if form.is_exact() {
+                prop_assert!(form.verify().is_ok());
+                evaluates_exactly(&form, &m)?;
+            } else if form.verify().is_ok() {
+                // A numeric form that passed the check: its exact components still evaluate
+                // exactly, and the rest are marked numeric.
+                let r = Recurrence::new(m.clone());
+                let x0 = vec![BigInt::one(); 3];
+                for s in [0u64, 1, 5] {
+                    prop_assert_eq!(form.state_at(&x0, s).unwrap(), r.state_at(&x0, s).unwrap());
+                }
+            }
+        }
     }
 
     proptest! {

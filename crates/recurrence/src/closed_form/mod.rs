@@ -8,7 +8,7 @@ use num_traits::Zero;
 
 use crate::eigen::{Eigenvalue, EigenvalueInfo};
 use crate::field::QuadraticSurd;
-use crate::{Complex64, IntMatrix};
+use crate::{Complex64, Error, IntMatrix, Result};
 
 mod derive;
 mod eval;
@@ -99,6 +99,9 @@ pub struct ClosedForm {
     components: Vec<ComponentForm>,
     fast: Vec<Option<FastComponent>>,
     powers: Vec<FastEigenvalue>,
+    /// The first component and level at which the numeric terms fail to reproduce exact
+    /// powering ([`ClosedForm::verify`]).
+    inaccurate: Option<(usize, u64)>,
 }
 
 /// Precomputed integer data for evaluating one exact component quickly.
@@ -127,6 +130,35 @@ pub(crate) enum FastEigenvalue {
 }
 
 impl ClosedForm {
+    /// Whether the form holds: exact components always do; a component with numeric terms
+    /// was checked against exact powering at a few levels when the form was derived.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InaccurateClosedForm`] naming the first component and level where the
+    /// numeric terms miss the exact count (ill-conditioned eigenvalues, such as those of
+    /// irreducible cubics with entries beyond `2^53`); such a form must not be shown or
+    /// evaluated: power the matrix instead.
+    ///
+    /// ```
+    /// # use recurrence::{Error, IntMatrix, Recurrence};
+    /// let cycle = "[[0,0,0,0,1],[1,0,0,0,0],[0,1,0,0,0],[0,0,1,0,0],[0,0,0,1,0]]";
+    /// assert!(Recurrence::new(cycle.parse::<IntMatrix>()?).closed_form().verify().is_ok());
+    /// let big = "[[9223372036854775807,9223372036854775807,1],[1,0,0],[0,1,0]]";
+    /// let form = Recurrence::new(big.parse::<IntMatrix>()?).closed_form();
+    /// assert!(matches!(form.verify(), Err(Error::InaccurateClosedForm { .. })));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn verify(&self) -> Result<()> {
+        match self.inaccurate {
+            None => Ok(()),
+            Some((i, level)) => Err(Error::InaccurateClosedForm {
+                component: self.names[i].clone(),
+                level,
+            }),
+        }
+    }
+
     /// The component names, in state order.
     pub fn names(&self) -> &[String] {
         &self.names

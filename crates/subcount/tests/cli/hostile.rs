@@ -1572,3 +1572,97 @@ fn the_table_guard_counts_rows_exactly() {
         "levels 0..=1152921504606846977 would make a table of 1152921504606846978 rows",
     );
 }
+
+/// Digit summaries at levels near `u64::MAX` are exact (reference values from 120-digit
+/// decimal logarithms: E = 30 * 4^s has floor(log10 30 + 2 s log10 2) + 1 digits), and a
+/// count with more than 2^64 digits is refused, not printed as one digit.
+#[test]
+fn summaries_at_levels_near_u64_max_are_exact() {
+    let out = ok(&[
+        "at",
+        "--scheme",
+        "loop",
+        "--counts",
+        "V=12,E=30,F=20",
+        "--level",
+        "18446744073709551615",
+        "--summary",
+    ]);
+    assert_eq!(
+        out,
+        "level 18446744073709551615\n\
+         V: 11106046577046714265 digits: 90913747023371454768...24151468139730698242\n\
+         E: 11106046577046714266 digits: 27274124107011436430...72454404419192094720\n\
+         F: 11106046577046714266 digits: 18182749404674290953...48302936279461396480\n"
+    );
+    let out = ok(&[
+        "at",
+        "--scheme",
+        "loop",
+        "--counts",
+        "V=12,E=30,F=20",
+        "--level",
+        "9223372036854775807",
+        "--summary",
+    ]);
+    assert!(
+        out.contains(
+            "E: 5553023288523357134 digits: 14302305087033550384...42559002285855211520\n"
+        ),
+        "{out}"
+    );
+    fails(
+        &[
+            "at",
+            "--matrix",
+            "[[16]]",
+            "--init",
+            "1",
+            "--level",
+            "18446744073709551615",
+            "--summary",
+        ],
+        4,
+        "the counts at level 18446744073709551615 would have about",
+    );
+}
+
+/// Entries from 2^53 on keep their exact quadratic-surd eigenvalues; a numeric form that
+/// floating point cannot get right is refused (exit 3) where its terms would be shown, and
+/// `at` powers the matrix instead.
+#[test]
+fn closed_forms_of_large_entries_are_exact_or_refused() {
+    let out = ok(&["formula", "--matrix", "[[9007199254740993,1],[1,0]]"]);
+    assert!(
+        out.starts_with("x0(s) = ((1/2+9007199254740993/162259276829213399420375029252106*sqrt(81129638414606699710187514626053))*"),
+        "{out}"
+    );
+    assert!(!out.contains('≈'), "{out}");
+    let json = ok(&[
+        "formula",
+        "--matrix",
+        "[[9007199254740993,1],[1,0]]",
+        "--format",
+        "json",
+    ]);
+    assert!(!json.contains("\"terms\": []"), "{json}");
+    let cubic = "[[9223372036854775807,9223372036854775807,1],[1,0,0],[0,1,0]]";
+    for format in ["text", "json", "latex"] {
+        fails(
+            &["formula", "--matrix", cubic, "--format", format],
+            3,
+            "the closed form of component `x0` cannot be given: its numeric eigenvalues miss the exact count at level 0 (the characteristic polynomial is too ill-conditioned for floating point); use `at` or `table` for exact counts (they power the matrix)",
+        );
+    }
+    // The Rust rendering of such a form powers the matrix: it needs no eigenvalues.
+    let code = ok(&["formula", "--matrix", cubic, "--format", "rust"]);
+    assert!(code.contains("fn mul(a: &Mat, b: &Mat)"), "{code}");
+    let out = ok(&["at", "--matrix", cubic, "--init", "1,2,3", "--level", "3"]);
+    assert_eq!(
+        out,
+        "level 3\n\
+         x0 = 2353913150770005286268279850242405674306695987958128836608\n\
+         x1 = 255211775190703847579084211500116606977\n\
+         x2 = 27670116110564327424\n"
+    );
+}
