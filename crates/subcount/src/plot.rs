@@ -19,13 +19,15 @@ use std::io::Write;
 use std::ops::RangeInclusive;
 use std::path::Path;
 
+use ab_glyph::{Font, ScaleFont};
 use num_bigint::{BigInt, Sign};
 use num_traits::ToPrimitive;
 use plotters::coord::Shift;
 use plotters::element::{DashedPathElement, Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters_backend::{BackendCoord, DrawingErrorKind};
+use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle};
+use plotters_backend::{DrawingErrorKind, FontTransform};
 
 use crate::args::{PlotArgs, Source};
 use crate::failure::{input, usage, write_failure, Failure};
@@ -376,6 +378,113 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
     }
 }
 
+/// plotters' bitmap back end with text placed char by char: plotters 0.3.7's `ab_glyph` text
+/// drops each glyph's left side bearing, so each char goes to the inner back end at the pen
+/// position (Noto Sans' advances and kerning) plus its bearing. All else is forwarded.
+struct Glyphs<DB>(DB, ab_glyph::FontRef<'static>);
+
+/// A text style anchored at its top left: [`Glyphs`] anchors the whole text, not each char.
+struct TopLeft<'a, T>(&'a T);
+
+impl<T: BackendTextStyle> BackendTextStyle for TopLeft<'_, T> {
+    type FontError = T::FontError;
+    fn color(&self) -> BackendColor {
+        self.0.color()
+    }
+    fn transform(&self) -> FontTransform {
+        self.0.transform()
+    }
+    fn family(&self) -> FontFamily<'_> {
+        self.0.family()
+    }
+    fn layout_box(&self, text: &str) -> Result<((i32, i32), (i32, i32)), T::FontError> {
+        self.0.layout_box(text)
+    }
+    fn draw<E, F: FnMut(i32, i32, BackendColor) -> Result<(), E>>(
+        &self,
+        text: &str,
+        pos: BackendCoord,
+        draw: F,
+    ) -> Result<Result<(), E>, T::FontError> {
+        self.0.draw(text, pos, draw)
+    }
+}
+
+type Drawn<DB> = Result<(), DrawingErrorKind<<DB as DrawingBackend>::ErrorType>>;
+
+impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
+    type ErrorType = DB::ErrorType;
+    fn get_size(&self) -> (u32, u32) {
+        self.0.get_size()
+    }
+    fn ensure_prepared(&mut self) -> Drawn<DB> {
+        self.0.ensure_prepared()
+    }
+    fn present(&mut self) -> Drawn<DB> {
+        self.0.present()
+    }
+    fn draw_pixel(&mut self, at: BackendCoord, color: BackendColor) -> Drawn<DB> {
+        self.0.draw_pixel(at, color)
+    }
+    fn draw_line<S: plotters_backend::BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        s: &S,
+    ) -> Drawn<DB> {
+        self.0.draw_line(a, b, s)
+    }
+    fn draw_rect<S: plotters_backend::BackendStyle>(
+        &mut self,
+        a: BackendCoord,
+        b: BackendCoord,
+        s: &S,
+        fill: bool,
+    ) -> Drawn<DB> {
+        self.0.draw_rect(a, b, s, fill)
+    }
+    fn blit_bitmap(&mut self, at: BackendCoord, size: (u32, u32), src: &[u8]) -> Drawn<DB> {
+        self.0.blit_bitmap(at, size, src)
+    }
+    fn draw_text<T: BackendTextStyle>(
+        &mut self,
+        text: &str,
+        style: &T,
+        at: BackendCoord,
+    ) -> Drawn<DB> {
+        let layout = style.layout_box(text);
+        let ((x0, y0), (x1, y1)) = layout.map_err(|e| DrawingErrorKind::FontError(Box::new(e)))?;
+        // Where plotters' own `draw_text` puts the whole text's top left.
+        let anchor = style.anchor();
+        let dx = match anchor.h_pos {
+            HPos::Left => 0,
+            HPos::Center => -(x1 - x0) / 2,
+            HPos::Right => -(x1 - x0),
+        };
+        let dy = match anchor.v_pos {
+            VPos::Top => 0,
+            VPos::Center => -(y1 - y0) / 2,
+            VPos::Bottom => -(y1 - y0),
+        };
+        let font = self.1.as_scaled(style.size() as f32);
+        let (mut pen, mut prev) = (0.0, None);
+        for c in text.chars() {
+            let id = font.glyph_id(c);
+            pen += prev.map_or(0.0, |p| font.kern(p, id));
+            prev = Some(id);
+            let glyph = font.outline_glyph(font.scaled_glyph(c));
+            let x = pen + glyph.map_or(0.0, |g| g.px_bounds().min.x);
+            let (x, y) = style
+                .transform()
+                .transform(dx - x0 + x.round() as i32, dy - y0);
+            let c = &c.to_string();
+            self.0.draw_text(c, &TopLeft(style), (at.0 + x, at.1 + y))?;
+            pen += font.h_advance(id);
+        }
+        Ok(())
+    }
+}
+
 /// What to draw: the title and the series.
 struct Chart {
     title: String,
@@ -409,7 +518,10 @@ impl Chart {
         let (w, h) = (WIDTH * SUPERSAMPLE, HEIGHT * SUPERSAMPLE);
         let mut big = vec![0u8; w as usize * h as usize * 3];
         {
-            let root = BitMapBackend::with_buffer(&mut big, (w, h)).into_drawing_area();
+            let font = ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF)
+                .map_err(|_| input!("the embedded font cannot be read"))?;
+            let bitmap = BitMapBackend::with_buffer(&mut big, (w, h));
+            let root = Glyphs(bitmap, font).into_drawing_area();
             self.draw(&root, Scale::BITMAP)
                 .and_then(|()| root.present())
                 .map_err(|e| input!("cannot draw the plot: {e}"))?;
