@@ -26,8 +26,8 @@ use plotters::coord::Shift;
 use plotters::element::{DashedPathElement, Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters_backend::{BackendColor, BackendCoord, BackendTextStyle};
-use plotters_backend::{DrawingErrorKind, FontTransform};
+use plotters_backend::DrawingErrorKind;
+use plotters_backend::{BackendColor, BackendCoord, BackendStyle, BackendTextStyle};
 
 use crate::args::{PlotArgs, Source};
 use crate::failure::{input, usage, write_failure, Failure};
@@ -316,7 +316,7 @@ impl Scale {
     }
 
     fn stroke(self, color: RGBColor, width: f64) -> ShapeStyle {
-        color.stroke_width(self.px(width).max(1) as u32)
+        Color::stroke_width(&color, self.px(width).max(1) as u32)
     }
 
     fn font(self, em: f64, color: RGBColor) -> TextStyle<'static> {
@@ -380,35 +380,9 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
 
 /// plotters' bitmap back end with text placed char by char: plotters 0.3.7's `ab_glyph` text
 /// drops each glyph's left side bearing, so each char goes to the inner back end at the pen
-/// position (Noto Sans' advances and kerning) plus its bearing. All else is forwarded.
+/// position (Noto Sans' advances and kerning) plus its bearing. The rest is forwarded (what
+/// the bitmap back end draws itself) or left to `DrawingBackend`'s pixel by pixel defaults.
 struct Glyphs<DB>(DB, ab_glyph::FontRef<'static>);
-
-/// A text style anchored at its top left: [`Glyphs`] anchors the whole text, not each char.
-struct TopLeft<'a, T>(&'a T);
-
-impl<T: BackendTextStyle> BackendTextStyle for TopLeft<'_, T> {
-    type FontError = T::FontError;
-    fn color(&self) -> BackendColor {
-        self.0.color()
-    }
-    fn transform(&self) -> FontTransform {
-        self.0.transform()
-    }
-    fn family(&self) -> FontFamily<'_> {
-        self.0.family()
-    }
-    fn layout_box(&self, text: &str) -> Result<((i32, i32), (i32, i32)), T::FontError> {
-        self.0.layout_box(text)
-    }
-    fn draw<E, F: FnMut(i32, i32, BackendColor) -> Result<(), E>>(
-        &self,
-        text: &str,
-        pos: BackendCoord,
-        draw: F,
-    ) -> Result<Result<(), E>, T::FontError> {
-        self.0.draw(text, pos, draw)
-    }
-}
 
 type Drawn<DB> = Result<(), DrawingErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
@@ -426,15 +400,10 @@ impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
     fn draw_pixel(&mut self, at: BackendCoord, color: BackendColor) -> Drawn<DB> {
         self.0.draw_pixel(at, color)
     }
-    fn draw_line<S: plotters_backend::BackendStyle>(
-        &mut self,
-        a: BackendCoord,
-        b: BackendCoord,
-        s: &S,
-    ) -> Drawn<DB> {
+    fn draw_line<S: BackendStyle>(&mut self, a: BackendCoord, b: BackendCoord, s: &S) -> Drawn<DB> {
         self.0.draw_line(a, b, s)
     }
-    fn draw_rect<S: plotters_backend::BackendStyle>(
+    fn draw_rect<S: BackendStyle>(
         &mut self,
         a: BackendCoord,
         b: BackendCoord,
@@ -443,42 +412,35 @@ impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
     ) -> Drawn<DB> {
         self.0.draw_rect(a, b, s, fill)
     }
-    fn blit_bitmap(&mut self, at: BackendCoord, size: (u32, u32), src: &[u8]) -> Drawn<DB> {
-        self.0.blit_bitmap(at, size, src)
-    }
     fn draw_text<T: BackendTextStyle>(
         &mut self,
         text: &str,
         style: &T,
         at: BackendCoord,
     ) -> Drawn<DB> {
-        let layout = style.layout_box(text);
-        let ((x0, y0), (x1, y1)) = layout.map_err(|e| DrawingErrorKind::FontError(Box::new(e)))?;
-        // Where plotters' own `draw_text` puts the whole text's top left.
-        let anchor = style.anchor();
-        let dx = match anchor.h_pos {
-            HPos::Left => 0,
-            HPos::Center => -(x1 - x0) / 2,
-            HPos::Right => -(x1 - x0),
+        // plotters shifts a text left by its anchor (its box's width, whole or half; the box's
+        // height is the font's for any text): the whole text's shift, not each char's.
+        let shift = |text: &str| {
+            let ((x0, _), (x1, _)) = style
+                .layout_box(text)
+                .map_err(|e| DrawingErrorKind::FontError(Box::new(e)))?;
+            Ok::<_, DrawingErrorKind<DB::ErrorType>>(match style.anchor().h_pos {
+                HPos::Left => 0,
+                HPos::Center => -(x1 - x0) / 2,
+                HPos::Right => -(x1 - x0),
+            })
         };
-        let dy = match anchor.v_pos {
-            VPos::Top => 0,
-            VPos::Center => -(y1 - y0) / 2,
-            VPos::Bottom => -(y1 - y0),
-        };
-        let font = self.1.as_scaled(style.size() as f32);
+        let (font, whole) = (self.1.as_scaled(style.size() as f32), shift(text)?);
         let (mut pen, mut prev) = (0.0, None);
         for c in text.chars() {
             let id = font.glyph_id(c);
             pen += prev.map_or(0.0, |p| font.kern(p, id));
             prev = Some(id);
             let glyph = font.outline_glyph(font.scaled_glyph(c));
-            let x = pen + glyph.map_or(0.0, |g| g.px_bounds().min.x);
-            let (x, y) = style
-                .transform()
-                .transform(dx - x0 + x.round() as i32, dy - y0);
+            let x = (pen + glyph.map_or(0.0, |g| g.px_bounds().min.x)).round() as i32;
             let c = &c.to_string();
-            self.0.draw_text(c, &TopLeft(style), (at.0 + x, at.1 + y))?;
+            let (x, y) = style.transform().transform(whole - shift(c)? + x, 0);
+            self.0.draw_text(c, style, (at.0 + x, at.1 + y))?;
             pen += font.h_advance(id);
         }
         Ok(())
