@@ -1,19 +1,15 @@
 //! `plot`: V, E, F and the state components versus level on a log10 scale, as SVG or PNG.
 //!
 //! The counts come from [`Dynamics`] exactly as `table` computes them; only the drawing is
-//! approximate. Each count is turned into log10 from its bit length and its leading 64 bits, so
-//! counts of any size (thousands of digits) map to finite plot positions without overflow. The
-//! y axis is therefore linear in log10 and labelled 10^k (plotters' own log-scale coordinates
-//! take the counts themselves as `f64`, which ends at about 10^308).
+//! approximate. log10 of a count comes from its bit length and leading 64 bits, so counts of
+//! any size map to finite positions (plotters' log coordinates take `f64` counts, which end at
+//! about 10^308): the y axis is linear in log10 and labelled 10^k.
 //!
-//! `plotters` draws the picture, once for either back end: its chart builder and mesh lay out
-//! the axes, its line, dashed-line and element series draw the counts, its series labels the
-//! legend. The SVG comes from its SVG back end, the PNG from its bitmap back end at
-//! [`SUPERSAMPLE`] times the size (plotters fills wide lines and polygons without
-//! anti-aliasing), averaged down and encoded by `image`. Text is drawn with an embedded Noto
-//! Sans (the `notosans` crate) registered with plotters' `ab_glyph` font table, so the image
-//! does not depend on the fonts of the machine. The file is written atomically by `halfedge`'s
-//! writer.
+//! `plotters` lays out and draws the chart (mesh, line and element series, legend) on its SVG
+//! back end, or on its bitmap back end at [`SUPERSAMPLE`] times the size (it fills without
+//! anti-aliasing), averaged down and encoded by `image`. Text uses an embedded Noto Sans
+//! (`notosans`) registered with plotters' `ab_glyph` font table, placed in the PNG by
+//! [`Glyphs`].
 
 use std::io::Write;
 use std::ops::RangeInclusive;
@@ -66,8 +62,9 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         .cloned()
         .collect();
     if series.is_empty() {
-        let why = format!("no count is positive at levels {first}..={last}");
-        return Err(usage!("nothing to plot: {why}"));
+        return Err(usage!(
+            "nothing to plot: no count is positive at levels {first}..={last}"
+        ));
     }
     let chart = Chart {
         title: title(&dynamics, &args.source),
@@ -75,11 +72,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         series,
         hidden,
     };
-    let bytes = if svg {
-        chart.to_svg()?.into()
-    } else {
-        chart.to_png()?
-    };
+    let bytes = if svg { chart.to_svg() } else { chart.to_png() }?;
     halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(
         |e| match e {
             halfedge::Error::Io { path, source } => {
@@ -95,12 +88,15 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
 
 /// Whether `-o` names an SVG (else a PNG), by its extension in any case.
 fn is_svg(path: &Path) -> Result<bool, Failure> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some(ext) if ext.eq_ignore_ascii_case("svg") => Ok(true),
-        Some(ext) if ext.eq_ignore_ascii_case("png") => Ok(false),
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match ext.as_deref() {
+        Some("svg") => Ok(true),
+        Some("png") => Ok(false),
         Some(other) => Err(usage!(
-            "unknown image format `.{}` in -o {}: use a .svg or .png file name",
-            other.to_ascii_lowercase(),
+            "unknown image format `.{other}` in -o {}: use a .svg or .png file name",
             path.display()
         )),
         None => Err(usage!(
@@ -170,10 +166,10 @@ fn title(dynamics: &Dynamics, source: &Source) -> String {
         Dynamics::Plan(plan) => plan.name().to_string(),
     };
     let start = if let Some(path) = &source.mesh.mesh {
-        path.file_name().map_or_else(
-            || path.display().to_string(),
-            |n| n.to_string_lossy().into_owned(),
-        )
+        path.file_name()
+            .unwrap_or(path.as_os_str())
+            .to_string_lossy()
+            .into_owned()
     } else if let Some(base) = &source.mesh.base {
         base.clone()
     } else if let Some(counts) = &source.counts {
@@ -203,11 +199,9 @@ fn nice_step(span: i64, max_parts: i64) -> i64 {
 /// The decades of the count axis, `(lo, hi, step)` as exponents: `[min, max]` (log10 values)
 /// covered in at most about 8 steps of a 1-2-5 number of decades, so labels read 10^0, 10^5...
 fn decades(min: f64, max: f64) -> (i64, i64, i64) {
-    let (min, max) = if min.is_finite() && max.is_finite() && min <= max {
-        (min, max)
-    } else {
-        (0.0, 1.0)
-    };
+    if !(min.is_finite() && max.is_finite() && min <= max) {
+        return decades(0.0, 1.0);
+    }
     let lo = min.floor() as i64;
     let hi = (max.ceil() as i64).max(lo + 1);
     let step = nice_step(hi - lo, 8);
@@ -218,16 +212,11 @@ fn decades(min: f64, max: f64) -> (i64, i64, i64) {
 /// The label of 10^k: `1`, `10`, then 10 with a superscript exponent (`10¹²`).
 fn power_label(k: i64) -> String {
     const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let digit = |c: char| c.to_digit(10).map_or('⁻', |d| SUPERSCRIPTS[d as usize]);
     match k {
         0 => "1".to_string(),
         1 => "10".to_string(),
-        _ => "10"
-            .chars()
-            .chain(k.to_string().chars().map(|c| match c.to_digit(10) {
-                Some(d) => SUPERSCRIPTS[d as usize],
-                None => '⁻',
-            }))
-            .collect(),
+        _ => format!("10{}", k.to_string().chars().map(digit).collect::<String>()),
     }
 }
 
@@ -265,11 +254,8 @@ struct Look {
     dash: Option<(f64, f64)>,
 }
 
-impl Look {
-    /// Dash patterns of the series that run on earlier ones, cycled: two such series on the
-    /// same line still differ.
-    const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
-}
+/// Dash patterns of the series that run on earlier ones, cycled: two on one line still differ.
+const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
 
 /// The font family plotters' `ab_glyph` table knows the embedded font by; the SVG back end
 /// writes it as the `font-family`, so viewers without Noto Sans fall back to a similar sans.
@@ -278,12 +264,6 @@ const FONT_FAMILY: &str = "'Noto Sans', 'DejaVu Sans', Arial, sans-serif";
 /// Noto Sans' height (ascent 2189 to descent 600 units) per em of 2048 units: plotters'
 /// bitmap text scales this height to the font size, its SVG back end writes the size / 1.24.
 const NOTO_HEIGHT_PER_EM: f64 = 1.362;
-
-/// Registers the embedded Noto Sans with plotters' `ab_glyph` font table.
-fn register_font() -> Result<(), Failure> {
-    plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, notosans::REGULAR_TTF)
-        .map_err(|_| input!("the embedded font cannot be read"))
-}
 
 /// One back end's units. The chart is laid out in image pixels (960 x 600) and drawn at `px`
 /// device pixels per image pixel; a font of `em` image pixels is asked of plotters as
@@ -385,6 +365,7 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
 struct Glyphs<DB>(DB, ab_glyph::FontRef<'static>);
 
 type Drawn<DB> = Result<(), DrawingErrorKind<<DB as DrawingBackend>::ErrorType>>;
+type At = BackendCoord;
 
 impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
     type ErrorType = DB::ErrorType;
@@ -397,27 +378,16 @@ impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
     fn present(&mut self) -> Drawn<DB> {
         self.0.present()
     }
-    fn draw_pixel(&mut self, at: BackendCoord, color: BackendColor) -> Drawn<DB> {
+    fn draw_pixel(&mut self, at: At, color: BackendColor) -> Drawn<DB> {
         self.0.draw_pixel(at, color)
     }
-    fn draw_line<S: BackendStyle>(&mut self, a: BackendCoord, b: BackendCoord, s: &S) -> Drawn<DB> {
+    fn draw_line<S: BackendStyle>(&mut self, a: At, b: At, s: &S) -> Drawn<DB> {
         self.0.draw_line(a, b, s)
     }
-    fn draw_rect<S: BackendStyle>(
-        &mut self,
-        a: BackendCoord,
-        b: BackendCoord,
-        s: &S,
-        fill: bool,
-    ) -> Drawn<DB> {
+    fn draw_rect<S: BackendStyle>(&mut self, a: At, b: At, s: &S, fill: bool) -> Drawn<DB> {
         self.0.draw_rect(a, b, s, fill)
     }
-    fn draw_text<T: BackendTextStyle>(
-        &mut self,
-        text: &str,
-        style: &T,
-        at: BackendCoord,
-    ) -> Drawn<DB> {
+    fn draw_text<T: BackendTextStyle>(&mut self, text: &str, style: &T, at: At) -> Drawn<DB> {
         // plotters shifts a text left by its anchor (its box's width, whole or half; the box's
         // height is the font's for any text): the whole text's shift, not each char's.
         let shift = |text: &str| {
@@ -460,34 +430,34 @@ struct Chart {
 const PAD: f64 = 12.0;
 
 impl Chart {
+    /// Draws the chart on `backend`, with the embedded Noto Sans registered with plotters.
+    fn render(&self, backend: impl DrawingBackend, scale: Scale) -> Result<(), Failure> {
+        plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, notosans::REGULAR_TTF)
+            .map_err(|_| input!("the embedded font cannot be read"))?;
+        let root = backend.into_drawing_area();
+        let drawn = self.draw(&root, scale).and_then(|()| root.present());
+        drawn.map_err(|e| input!("cannot draw the plot: {e}"))
+    }
+
     /// The chart as an SVG document.
-    fn to_svg(&self) -> Result<String, Failure> {
-        register_font()?;
+    fn to_svg(&self) -> Result<Vec<u8>, Failure> {
         let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)).into_drawing_area();
-            self.draw(&root, Scale::SVG)
-                .and_then(|()| root.present())
-                .map_err(|e| input!("cannot draw the plot: {e}"))?;
-        }
-        Ok(svg)
+        self.render(
+            SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)),
+            Scale::SVG,
+        )?;
+        Ok(svg.into_bytes())
     }
 
     /// The chart as PNG bytes: drawn at `SUPERSAMPLE` times the size, each block of
     /// `SUPERSAMPLE` x `SUPERSAMPLE` pixels averaged into one (`image`'s thumbnail filter).
     fn to_png(&self) -> Result<Vec<u8>, Failure> {
-        register_font()?;
         let (w, h) = (WIDTH * SUPERSAMPLE, HEIGHT * SUPERSAMPLE);
         let mut big = vec![0u8; w as usize * h as usize * 3];
-        {
-            let font = ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF)
-                .map_err(|_| input!("the embedded font cannot be read"))?;
-            let bitmap = BitMapBackend::with_buffer(&mut big, (w, h));
-            let root = Glyphs(bitmap, font).into_drawing_area();
-            self.draw(&root, Scale::BITMAP)
-                .and_then(|()| root.present())
-                .map_err(|e| input!("cannot draw the plot: {e}"))?;
-        }
+        let font = ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF)
+            .map_err(|_| input!("the embedded font cannot be read"))?;
+        let bitmap = BitMapBackend::with_buffer(&mut big, (w, h));
+        self.render(Glyphs(bitmap, font), Scale::BITMAP)?;
         let big = image::RgbImage::from_raw(w, h, big)
             .ok_or_else(|| input!("the plot's {w} x {h} pixels do not fill its buffer"))?;
         let mut bytes = std::io::Cursor::new(Vec::new());
@@ -520,7 +490,7 @@ impl Chart {
                 });
                 let dash = over.then(|| {
                     dashed += 1;
-                    Look::DASHES[(dashed - 1) % Look::DASHES.len()]
+                    DASHES[(dashed - 1) % DASHES.len()]
                 });
                 Look {
                     color: {
@@ -597,22 +567,22 @@ impl Chart {
         // decades; each with PAD pixels of room inside the frame. Plotters picks the ticks: the
         // finest 1-2-5 step with at most the number asked for, so at most 12 level steps (never
         // a fraction of a level) and the step of `decades` (never a fraction of a decade).
-        let ys = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1));
-        let (min, max) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
-            (a.min(y), b.max(y))
-        });
+        let ys = || {
+            self.series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.1))
+        };
+        let (min, max) = (
+            ys().fold(f64::INFINITY, f64::min),
+            ys().fold(-f64::INFINITY, f64::max),
+        );
         let (lo, hi, step) = decades(min, max);
         let base = first - first % 1000;
-        let (x_lo, x_hi) = ((first - base) as f64, (last - base) as f64);
-        let span = x_hi - x_lo;
+        let span = (last - first) as f64;
         let room = if span > 0.0 { 0.0 } else { 1.0 };
-        let (x_lo, x_hi) = (x_lo - room, x_hi + room);
-        let x_pad = (x_hi - x_lo) * PAD / (right - left - 2.0 * PAD);
+        let x_pad = room + (span + 2.0 * room) * PAD / (right - left - 2.0 * PAD);
+        let (x_lo, x_hi) = ((first - base) as f64 - x_pad, (last - base) as f64 + x_pad);
         let y_pad = (hi - lo) as f64 * PAD / (bottom - top - 2.0 * PAD);
-        let (x_lo, x_hi) = (x_lo - x_pad, x_hi + x_pad);
         // The plot left of the legend's strip, the legend in it (a chart without axes).
         let (main, side) = root.split_horizontally(s.px(right + 18.0));
         let mut legend = ChartBuilder::on(&side)
@@ -752,8 +722,7 @@ mod tests {
     }
 
     fn chart(series: Vec<Series>) -> Chart {
-        let hidden = vec!["BE".into()];
-        let (title, levels) = ("t".into(), 0..=5);
+        let (title, levels, hidden) = ("t".into(), 0..=5, vec!["BE".into()]);
         Chart {
             title,
             levels,
@@ -780,7 +749,7 @@ mod tests {
         ];
         let chart = chart(lines.into_iter().chain([e]).collect());
         let dashes: Vec<_> = chart.looks(0.02).iter().map(|l| l.dash).collect();
-        let d = Look::DASHES;
+        let d = DASHES;
         assert_eq!(dashes, [None, Some(d[0]), None, Some(d[1]), None]);
     }
 
@@ -796,14 +765,7 @@ mod tests {
         };
         let columns = ["A", "B", "C"].map(String::from);
         let s = series_of(&columns, &[row(0, [0, 10]), row(1, [100, -1])]);
-        assert_eq!(s.len(), 2);
-        assert_eq!(
-            (s[0].name.as_str(), s[0].points.as_slice()),
-            ("A", &[(1, 2.0)][..])
-        );
-        assert_eq!(
-            (s[1].name.as_str(), s[1].points.as_slice()),
-            ("B", &[(0, 1.0)][..])
-        );
+        let got: Vec<_> = s.iter().map(|s| (s.name.as_str(), &s.points[..])).collect();
+        assert_eq!(got, [("A", &[(1, 2.0)][..]), ("B", &[(0, 1.0)][..])]);
     }
 }
