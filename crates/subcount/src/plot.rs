@@ -73,14 +73,11 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         hidden,
     };
     let bytes = if svg { chart.to_svg() } else { chart.to_png() }?;
-    halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(
-        |e| match e {
-            halfedge::Error::Io { path, source } => {
-                input!("cannot write {}: {source}", path.display())
-            }
-            other => input!("cannot write {}: {other}", args.output.display()),
-        },
-    )?;
+    let written = halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes));
+    written.map_err(|e| match e {
+        halfedge::Error::Io { path, source } => input!("cannot write {}: {source}", path.display()),
+        other => input!("cannot write {}: {other}", args.output.display()),
+    })?;
     let (path, n) = (args.output.display(), chart.series.len());
     writeln!(out, "wrote {path} ({n} series, levels {first}..={last})").map_err(write_failure)?;
     Ok(0)
@@ -88,11 +85,8 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
 
 /// Whether `-o` names an SVG (else a PNG), by its extension in any case.
 fn is_svg(path: &Path) -> Result<bool, Failure> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match ext.as_deref() {
+    let ext = path.extension().and_then(|e| e.to_str());
+    match ext.map(str::to_ascii_lowercase).as_deref() {
         Some("svg") => Ok(true),
         Some("png") => Ok(false),
         Some(other) => Err(usage!(
@@ -265,9 +259,8 @@ const FONT_FAMILY: &str = "'Noto Sans', 'DejaVu Sans', Arial, sans-serif";
 /// bitmap text scales this height to the font size, its SVG back end writes the size / 1.24.
 const NOTO_HEIGHT_PER_EM: f64 = 1.362;
 
-/// One back end's units. The chart is laid out in image pixels (960 x 600) and drawn at `px`
-/// device pixels per image pixel; a font of `em` image pixels is asked of plotters as
-/// `em * text`.
+/// One back end's units: the chart is laid out in image pixels and drawn at `px` device pixels
+/// per image pixel; a font of `em` image pixels is asked of plotters as `em * text`.
 #[derive(Clone, Copy, Debug)]
 struct Scale {
     px: f64,
@@ -286,39 +279,30 @@ impl Scale {
         px: SUPERSAMPLE as f64,
         text: SUPERSAMPLE as f64 * NOTO_HEIGHT_PER_EM,
     };
-
     fn px(self, v: f64) -> i32 {
         (v * self.px).round() as i32
     }
-
     fn at(self, x: f64, y: f64) -> BackendCoord {
         (self.px(x), self.px(y))
     }
-
     fn stroke(self, color: RGBColor, width: f64) -> ShapeStyle {
         Color::stroke_width(&color, self.px(width).max(1) as u32)
     }
-
     fn font(self, em: f64, color: RGBColor) -> TextStyle<'static> {
         (FONT_FAMILY, em * self.text).into_font().color(&color)
     }
 }
 
-/// A plotters element: the marker of a series at `at`, a filled shape on a white halo, or a
-/// larger outline when the series lies on an earlier one.
+/// A plotters element: the marker of a series at `.0` as its look `.1` says at scale `.2`, a
+/// filled shape on a white halo, or a larger outline when the series lies on an earlier one.
 #[derive(Clone, Copy)]
-struct Marker<C> {
-    at: C,
-    look: Look,
-    scale: Scale,
-}
+struct Marker<C>(C, Look, Scale);
 
 impl<'a, C> PointCollection<'a, C> for &'a Marker<C> {
     type Point = &'a C;
     type IntoIter = std::iter::Once<&'a C>;
-
     fn point_iter(self) -> Self::IntoIter {
-        std::iter::once(&self.at)
+        std::iter::once(&self.0)
     }
 }
 
@@ -329,17 +313,15 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
         backend: &mut DB,
         _: (u32, u32),
     ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
-        let (Some(c), s, look) = (at.next(), self.scale, self.look) else {
+        let (Some(c), s, look) = (at.next(), self.2, self.1) else {
             return Ok(());
         };
         let (corners, turn, reach) = MARKERS[look.marker];
         let shape = |r: f64| {
             (0..=corners).map(move |i| {
                 let a = (turn + 360.0 * f64::from(i) / f64::from(corners)).to_radians();
-                (
-                    c.0 + s.px(reach * r * a.cos()),
-                    c.1 + s.px(reach * r * a.sin()),
-                )
+                let (dx, dy) = s.at(reach * r * a.cos(), reach * r * a.sin());
+                (c.0 + dx, c.1 + dy)
             })
         };
         let (color, outline) = (look.color, s.stroke(look.color, 1.5));
@@ -442,10 +424,8 @@ impl Chart {
     /// The chart as an SVG document.
     fn to_svg(&self) -> Result<Vec<u8>, Failure> {
         let mut svg = String::new();
-        self.render(
-            SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)),
-            Scale::SVG,
-        )?;
+        let backend = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT));
+        self.render(backend, Scale::SVG)?;
         Ok(svg.into_bytes())
     }
 
@@ -535,18 +515,12 @@ impl Chart {
 
         // The legend sits right of the plot frame, so it never hides a line. A line hidden
         // under an earlier identical one says so in its label.
-        let labels: Vec<String> = self
-            .series
-            .iter()
-            .enumerate()
-            .map(|(i, s)| {
-                let mut label = legend_label(&s.name);
-                if let Some(same) = self.series[..i].iter().find(|e| e.points == s.points) {
-                    label.push_str(&format!(" = {}", same.name));
-                }
-                label
-            })
-            .collect();
+        let mut labels: Vec<String> = self.series.iter().map(|s| legend_label(&s.name)).collect();
+        for (i, s) in self.series.iter().enumerate() {
+            if let Some(same) = self.series[..i].iter().find(|e| e.points == s.points) {
+                labels[i] += &format!(" = {}", same.name);
+            }
+        }
         let notes = self
             .hidden
             .iter()
@@ -562,20 +536,14 @@ impl Chart {
         let legend_w = (label_w + extra + 62.0).max(110.0);
         let (left, top, right, bottom) = (92.0, 78.0, w - legend_w - 36.0, h - 66.0);
 
-        // Axes: levels as offsets from a multiple of 1000 below the first (exact in f64 for
-        // any u64 level, and plotters' round ticks stay round levels), log10 counts over whole
-        // decades; each with PAD pixels of room inside the frame. Plotters picks the ticks: the
-        // finest 1-2-5 step with at most the number asked for, so at most 12 level steps (never
-        // a fraction of a level) and the step of `decades` (never a fraction of a decade).
-        let ys = || {
-            self.series
-                .iter()
-                .flat_map(|s| s.points.iter().map(|p| p.1))
-        };
-        let (min, max) = (
-            ys().fold(f64::INFINITY, f64::min),
-            ys().fold(-f64::INFINITY, f64::max),
-        );
+        // Axes: levels as offsets from a multiple of 1000 below the first (exact in f64, and
+        // round ticks stay round levels), log10 counts over whole decades, PAD pixels of room
+        // inside the frame. Plotters picks the finest 1-2-5 tick step within the number asked
+        // for: at most 12 level steps, and the step of `decades` (never a fraction of either).
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(_, y) in self.series.iter().flat_map(|s| &s.points) {
+            (min, max) = (min.min(y), max.max(y));
+        }
         let (lo, hi, step) = decades(min, max);
         let base = first - first % 1000;
         let span = (last - first) as f64;
@@ -598,9 +566,8 @@ impl Chart {
             .build_cartesian_2d(x_lo..x_hi, (lo as f64 - y_pad)..(hi as f64 + y_pad))?;
         // Minor lines at 2..=9 times each decade, when decades are one step and few.
         let minor = |k| (2..=9).map(move |m| k as f64 + f64::from(m).log10());
-        let minors = (lo..hi)
-            .filter(|_| step == 1 && hi - lo <= 4)
-            .flat_map(minor);
+        let few = step == 1 && hi - lo <= 4;
+        let minors = (lo..hi).filter(|_| few).flat_map(minor);
         chart.draw_series(
             minors.map(|y| PathElement::new(vec![(x_lo, y), (x_hi, y)], s.stroke(GRID_MINOR, 1.0))),
         )?;
@@ -622,10 +589,8 @@ impl Chart {
             .axis_desc_style(s.font(15.0, TEXT))
             .draw()?;
         let (xs, ys) = chart.plotting_area().get_pixel_range();
-        root.draw(&Rectangle::new(
-            [(xs.start, ys.start), (xs.end, ys.end)],
-            s.stroke(AXIS, 1.0),
-        ))?;
+        let frame = [(xs.start, ys.start), (xs.end, ys.end)];
+        root.draw(&Rectangle::new(frame, s.stroke(AXIS, 1.0)))?;
 
         // The series, each with its legend entry, then the columns that cannot be drawn.
         let looks = self.looks(5.0 * y_pad / PAD);
@@ -643,15 +608,10 @@ impl Chart {
             }
             // Markers only while they stay apart.
             let markers = series.points.iter().filter(|_| span <= 40.0);
-            chart.draw_series(markers.map(|&(l, y)| Marker {
-                at: ((l - base) as f64, y),
-                look,
-                scale: s,
-            }))?;
+            chart.draw_series(markers.map(|&(l, y)| Marker(((l - base) as f64, y), look, s)))?;
             // The legend's sample: a piece of the line with a marker.
             let ends = vec![(0, 0), (s.px(28.0), 0)];
-            let at = (s.px(14.0), 0);
-            let marker = Marker { at, look, scale: s };
+            let marker = Marker((s.px(14.0), 0), look, s);
             legend
                 .draw_series(no_points())?
                 .label(label)
