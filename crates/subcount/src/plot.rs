@@ -62,9 +62,8 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         .cloned()
         .collect();
     if series.is_empty() {
-        return Err(usage!(
-            "nothing to plot: no count is positive at levels {first}..={last}"
-        ));
+        let why = format!("no count is positive at levels {first}..={last}");
+        return Err(usage!("nothing to plot: {why}"));
     }
     let chart = Chart {
         title: title(&dynamics, &args.source),
@@ -160,10 +159,10 @@ fn title(dynamics: &Dynamics, source: &Source) -> String {
         Dynamics::Plan(plan) => plan.name().to_string(),
     };
     let start = if let Some(path) = &source.mesh.mesh {
-        path.file_name()
-            .unwrap_or(path.as_os_str())
-            .to_string_lossy()
-            .into_owned()
+        path.file_name().map_or_else(
+            || path.display().to_string(),
+            |n| n.to_string_lossy().into_owned(),
+        )
     } else if let Some(base) = &source.mesh.base {
         base.clone()
     } else if let Some(counts) = &source.counts {
@@ -342,10 +341,11 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
 
 /// plotters' bitmap back end with text placed char by char: plotters 0.3.7's `ab_glyph` text
 /// drops each glyph's left side bearing, so each char goes to the inner back end at the pen
-/// position (Noto Sans' advances and kerning) plus its bearing. The rest is forwarded (what
-/// the bitmap back end draws itself) or left to `DrawingBackend`'s pixel by pixel defaults.
+/// position (Noto Sans' advances and kerning) plus its bearing. The rest is forwarded, or left
+/// to `DrawingBackend`'s defaults (as the bitmap back end does), which draw through these.
 struct Glyphs<DB>(DB, ab_glyph::FontRef<'static>);
 
+// Shorthands for the forwarding signatures.
 type Drawn<DB> = Result<(), DrawingErrorKind<<DB as DrawingBackend>::ErrorType>>;
 type At = BackendCoord;
 
