@@ -1,31 +1,29 @@
 //! `plot`: V, E, F and the state components versus level on a log10 scale, as SVG or PNG.
 //!
 //! The counts come from [`Dynamics`] exactly as `table` computes them; only the drawing is
-//! approximate. Each count is turned into log10 from its bit length and its leading 64 bits, so
-//! counts of any size (thousands of digits) map to finite plot positions without overflow. The
-//! y axis is therefore linear in log10 and labelled 10^k (plotters' own log-scale coordinates
-//! take the counts themselves as `f64`, which ends at about 10^308).
+//! approximate. log10 of a count comes from its bit length and leading 64 bits, so counts of
+//! any size map to finite positions (plotters' log coordinates take `f64` counts, which end at
+//! about 10^308): the y axis is linear in log10 and labelled 10^k.
 //!
-//! `plotters` draws the picture, once for either back end: its chart builder and mesh lay out
-//! the axes, its line, dashed-line and element series draw the counts, its series labels the
-//! legend. The SVG comes from its SVG back end, the PNG from its bitmap back end at
-//! [`SUPERSAMPLE`] times the size (plotters fills wide lines and polygons without
-//! anti-aliasing), averaged down and encoded by `image`. Text is drawn with an embedded Noto
-//! Sans (the `notosans` crate) registered with plotters' `ab_glyph` font table, so the image
-//! does not depend on the fonts of the machine. The file is written atomically by `halfedge`'s
-//! writer.
+//! `plotters` lays out and draws the chart (mesh, line and element series, legend) on its SVG
+//! back end, or on its bitmap back end at [`SUPERSAMPLE`] times the size (it fills without
+//! anti-aliasing), averaged down and encoded by `image`. Text uses an embedded Noto Sans
+//! (`notosans`) registered with plotters' `ab_glyph` font table, placed in the PNG by
+//! [`Glyphs`].
 
 use std::io::Write;
 use std::ops::RangeInclusive;
 use std::path::Path;
 
+use ab_glyph::{Font, ScaleFont};
 use num_bigint::{BigInt, Sign};
 use num_traits::ToPrimitive;
 use plotters::coord::Shift;
 use plotters::element::{DashedPathElement, Drawable, PointCollection};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use plotters_backend::{BackendCoord, DrawingErrorKind};
+use plotters_backend::DrawingErrorKind;
+use plotters_backend::{BackendColor, BackendCoord, BackendStyle, BackendTextStyle};
 
 use crate::args::{PlotArgs, Source};
 use crate::failure::{input, usage, write_failure, Failure};
@@ -73,19 +71,12 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         series,
         hidden,
     };
-    let bytes = if svg {
-        chart.to_svg()?.into()
-    } else {
-        chart.to_png()?
-    };
-    halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes)).map_err(
-        |e| match e {
-            halfedge::Error::Io { path, source } => {
-                input!("cannot write {}: {source}", path.display())
-            }
-            other => input!("cannot write {}: {other}", args.output.display()),
-        },
-    )?;
+    let bytes = if svg { chart.to_svg() } else { chart.to_png() }?;
+    let written = halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes));
+    written.map_err(|e| match e {
+        halfedge::Error::Io { path, source } => input!("cannot write {}: {source}", path.display()),
+        other => input!("cannot write {}: {other}", args.output.display()),
+    })?;
     let (path, n) = (args.output.display(), chart.series.len());
     writeln!(out, "wrote {path} ({n} series, levels {first}..={last})").map_err(write_failure)?;
     Ok(0)
@@ -93,12 +84,12 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
 
 /// Whether `-o` names an SVG (else a PNG), by its extension in any case.
 fn is_svg(path: &Path) -> Result<bool, Failure> {
-    match path.extension().and_then(|e| e.to_str()) {
-        Some(ext) if ext.eq_ignore_ascii_case("svg") => Ok(true),
-        Some(ext) if ext.eq_ignore_ascii_case("png") => Ok(false),
+    let ext = path.extension().and_then(|e| e.to_str());
+    match ext.map(str::to_ascii_lowercase).as_deref() {
+        Some("svg") => Ok(true),
+        Some("png") => Ok(false),
         Some(other) => Err(usage!(
-            "unknown image format `.{}` in -o {}: use a .svg or .png file name",
-            other.to_ascii_lowercase(),
+            "unknown image format `.{other}` in -o {}: use a .svg or .png file name",
             path.display()
         )),
         None => Err(usage!(
@@ -201,11 +192,9 @@ fn nice_step(span: i64, max_parts: i64) -> i64 {
 /// The decades of the count axis, `(lo, hi, step)` as exponents: `[min, max]` (log10 values)
 /// covered in at most about 8 steps of a 1-2-5 number of decades, so labels read 10^0, 10^5...
 fn decades(min: f64, max: f64) -> (i64, i64, i64) {
-    let (min, max) = if min.is_finite() && max.is_finite() && min <= max {
-        (min, max)
-    } else {
-        (0.0, 1.0)
-    };
+    if !(min.is_finite() && max.is_finite() && min <= max) {
+        return decades(0.0, 1.0);
+    }
     let lo = min.floor() as i64;
     let hi = (max.ceil() as i64).max(lo + 1);
     let step = nice_step(hi - lo, 8);
@@ -216,16 +205,11 @@ fn decades(min: f64, max: f64) -> (i64, i64, i64) {
 /// The label of 10^k: `1`, `10`, then 10 with a superscript exponent (`10¹²`).
 fn power_label(k: i64) -> String {
     const SUPERSCRIPTS: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let digit = |c: char| c.to_digit(10).map_or('⁻', |d| SUPERSCRIPTS[d as usize]);
     match k {
         0 => "1".to_string(),
         1 => "10".to_string(),
-        _ => "10"
-            .chars()
-            .chain(k.to_string().chars().map(|c| match c.to_digit(10) {
-                Some(d) => SUPERSCRIPTS[d as usize],
-                None => '⁻',
-            }))
-            .collect(),
+        _ => format!("10{}", k.to_string().chars().map(digit).collect::<String>()),
     }
 }
 
@@ -263,11 +247,8 @@ struct Look {
     dash: Option<(f64, f64)>,
 }
 
-impl Look {
-    /// Dash patterns of the series that run on earlier ones, cycled: two such series on the
-    /// same line still differ.
-    const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
-}
+/// Dash patterns of the series that run on earlier ones, cycled: two on one line still differ.
+const DASHES: [(f64, f64); 3] = [(7.0, 5.0), (3.0, 3.0), (12.0, 4.0)];
 
 /// The font family plotters' `ab_glyph` table knows the embedded font by; the SVG back end
 /// writes it as the `font-family`, so viewers without Noto Sans fall back to a similar sans.
@@ -277,15 +258,8 @@ const FONT_FAMILY: &str = "'Noto Sans', 'DejaVu Sans', Arial, sans-serif";
 /// bitmap text scales this height to the font size, its SVG back end writes the size / 1.24.
 const NOTO_HEIGHT_PER_EM: f64 = 1.362;
 
-/// Registers the embedded Noto Sans with plotters' `ab_glyph` font table.
-fn register_font() -> Result<(), Failure> {
-    plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, notosans::REGULAR_TTF)
-        .map_err(|_| input!("the embedded font cannot be read"))
-}
-
-/// One back end's units. The chart is laid out in image pixels (960 x 600) and drawn at `px`
-/// device pixels per image pixel; a font of `em` image pixels is asked of plotters as
-/// `em * text`.
+/// One back end's units: the chart is laid out in image pixels and drawn at `px` device pixels
+/// per image pixel; a font of `em` image pixels is asked of plotters as `em * text`.
 #[derive(Clone, Copy, Debug)]
 struct Scale {
     px: f64,
@@ -304,39 +278,30 @@ impl Scale {
         px: SUPERSAMPLE as f64,
         text: SUPERSAMPLE as f64 * NOTO_HEIGHT_PER_EM,
     };
-
     fn px(self, v: f64) -> i32 {
         (v * self.px).round() as i32
     }
-
     fn at(self, x: f64, y: f64) -> BackendCoord {
         (self.px(x), self.px(y))
     }
-
     fn stroke(self, color: RGBColor, width: f64) -> ShapeStyle {
-        color.stroke_width(self.px(width).max(1) as u32)
+        Color::stroke_width(&color, self.px(width).max(1) as u32)
     }
-
     fn font(self, em: f64, color: RGBColor) -> TextStyle<'static> {
         (FONT_FAMILY, em * self.text).into_font().color(&color)
     }
 }
 
-/// A plotters element: the marker of a series at `at`, a filled shape on a white halo, or a
-/// larger outline when the series lies on an earlier one.
+/// A plotters element: the marker of a series at `.0` as its look `.1` says at scale `.2`, a
+/// filled shape on a white halo, or a larger outline when the series lies on an earlier one.
 #[derive(Clone, Copy)]
-struct Marker<C> {
-    at: C,
-    look: Look,
-    scale: Scale,
-}
+struct Marker<C>(C, Look, Scale);
 
 impl<'a, C> PointCollection<'a, C> for &'a Marker<C> {
     type Point = &'a C;
     type IntoIter = std::iter::Once<&'a C>;
-
     fn point_iter(self) -> Self::IntoIter {
-        std::iter::once(&self.at)
+        std::iter::once(&self.0)
     }
 }
 
@@ -347,17 +312,15 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
         backend: &mut DB,
         _: (u32, u32),
     ) -> Result<(), DrawingErrorKind<DB::ErrorType>> {
-        let (Some(c), s, look) = (at.next(), self.scale, self.look) else {
+        let (Some(c), s, look) = (at.next(), self.2, self.1) else {
             return Ok(());
         };
         let (corners, turn, reach) = MARKERS[look.marker];
         let shape = |r: f64| {
             (0..=corners).map(move |i| {
                 let a = (turn + 360.0 * f64::from(i) / f64::from(corners)).to_radians();
-                (
-                    c.0 + s.px(reach * r * a.cos()),
-                    c.1 + s.px(reach * r * a.sin()),
-                )
+                let (dx, dy) = s.at(reach * r * a.cos(), reach * r * a.sin());
+                (c.0 + dx, c.1 + dy)
             })
         };
         let (color, outline) = (look.color, s.stroke(look.color, 1.5));
@@ -376,6 +339,66 @@ impl<C, DB: DrawingBackend> Drawable<DB> for Marker<C> {
     }
 }
 
+/// plotters' bitmap back end with text placed char by char: plotters 0.3.7's `ab_glyph` text
+/// drops each glyph's left side bearing, so each char goes to the inner back end at the pen
+/// position (Noto Sans' advances and kerning) plus its bearing. The rest is forwarded, or left
+/// to `DrawingBackend`'s defaults (as the bitmap back end does), which draw through these.
+struct Glyphs<DB>(DB, ab_glyph::FontRef<'static>);
+
+// Shorthands for the forwarding signatures.
+type Drawn<DB> = Result<(), DrawingErrorKind<<DB as DrawingBackend>::ErrorType>>;
+type At = BackendCoord;
+
+impl<DB: DrawingBackend> DrawingBackend for Glyphs<DB> {
+    type ErrorType = DB::ErrorType;
+    fn get_size(&self) -> (u32, u32) {
+        self.0.get_size()
+    }
+    fn ensure_prepared(&mut self) -> Drawn<DB> {
+        self.0.ensure_prepared()
+    }
+    fn present(&mut self) -> Drawn<DB> {
+        self.0.present()
+    }
+    fn draw_pixel(&mut self, at: At, color: BackendColor) -> Drawn<DB> {
+        self.0.draw_pixel(at, color)
+    }
+    fn draw_line<S: BackendStyle>(&mut self, a: At, b: At, s: &S) -> Drawn<DB> {
+        self.0.draw_line(a, b, s)
+    }
+    fn draw_rect<S: BackendStyle>(&mut self, a: At, b: At, s: &S, fill: bool) -> Drawn<DB> {
+        self.0.draw_rect(a, b, s, fill)
+    }
+    fn draw_text<T: BackendTextStyle>(&mut self, text: &str, style: &T, at: At) -> Drawn<DB> {
+        // plotters shifts a text left by its anchor (its box's width, whole or half; the box's
+        // height is the font's for any text): the whole text's shift, not each char's.
+        let shift = |text: &str| {
+            let ((x0, _), (x1, _)) = style
+                .layout_box(text)
+                .map_err(|e| DrawingErrorKind::FontError(Box::new(e)))?;
+            Ok::<_, DrawingErrorKind<DB::ErrorType>>(match style.anchor().h_pos {
+                HPos::Left => 0,
+                HPos::Center => -(x1 - x0) / 2,
+                HPos::Right => -(x1 - x0),
+            })
+        };
+        let (font, whole) = (self.1.as_scaled(style.size() as f32), shift(text)?);
+        let (mut pen, mut prev) = (0.0, None);
+        for c in text.chars() {
+            let id = font.glyph_id(c);
+            pen += prev.map_or(0.0, |p| font.kern(p, id));
+            prev = Some(id);
+            let glyph = font.outline_glyph(font.scaled_glyph(c));
+            let x = (pen + glyph.map_or(0.0, |g| g.px_bounds().min.x)).round() as i32;
+            let c = &c.to_string();
+            let (x, y) = style.transform().transform(whole - shift(c)? + x, 0);
+            self.0.draw_text(c, style, (at.0 + x, at.1 + y))?;
+            pen += font.h_advance(id);
+        }
+        Ok(())
+    }
+}
+
 /// What to draw: the title and the series.
 struct Chart {
     title: String,
@@ -389,31 +412,32 @@ struct Chart {
 const PAD: f64 = 12.0;
 
 impl Chart {
+    /// Draws the chart on `backend`, with the embedded Noto Sans registered with plotters.
+    fn render(&self, backend: impl DrawingBackend, scale: Scale) -> Result<(), Failure> {
+        plotters::style::register_font(FONT_FAMILY, FontStyle::Normal, notosans::REGULAR_TTF)
+            .map_err(|_| input!("the embedded font cannot be read"))?;
+        let root = backend.into_drawing_area();
+        let drawn = self.draw(&root, scale).and_then(|()| root.present());
+        drawn.map_err(|e| input!("cannot draw the plot: {e}"))
+    }
+
     /// The chart as an SVG document.
-    fn to_svg(&self) -> Result<String, Failure> {
-        register_font()?;
+    fn to_svg(&self) -> Result<Vec<u8>, Failure> {
         let mut svg = String::new();
-        {
-            let root = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT)).into_drawing_area();
-            self.draw(&root, Scale::SVG)
-                .and_then(|()| root.present())
-                .map_err(|e| input!("cannot draw the plot: {e}"))?;
-        }
-        Ok(svg)
+        let backend = SVGBackend::with_string(&mut svg, (WIDTH, HEIGHT));
+        self.render(backend, Scale::SVG)?;
+        Ok(svg.into_bytes())
     }
 
     /// The chart as PNG bytes: drawn at `SUPERSAMPLE` times the size, each block of
     /// `SUPERSAMPLE` x `SUPERSAMPLE` pixels averaged into one (`image`'s thumbnail filter).
     fn to_png(&self) -> Result<Vec<u8>, Failure> {
-        register_font()?;
         let (w, h) = (WIDTH * SUPERSAMPLE, HEIGHT * SUPERSAMPLE);
         let mut big = vec![0u8; w as usize * h as usize * 3];
-        {
-            let root = BitMapBackend::with_buffer(&mut big, (w, h)).into_drawing_area();
-            self.draw(&root, Scale::BITMAP)
-                .and_then(|()| root.present())
-                .map_err(|e| input!("cannot draw the plot: {e}"))?;
-        }
+        let font = ab_glyph::FontRef::try_from_slice(notosans::REGULAR_TTF)
+            .map_err(|_| input!("the embedded font cannot be read"))?;
+        let bitmap = BitMapBackend::with_buffer(&mut big, (w, h));
+        self.render(Glyphs(bitmap, font), Scale::BITMAP)?;
         let big = image::RgbImage::from_raw(w, h, big)
             .ok_or_else(|| input!("the plot's {w} x {h} pixels do not fill its buffer"))?;
         let mut bytes = std::io::Cursor::new(Vec::new());
@@ -446,7 +470,7 @@ impl Chart {
                 });
                 let dash = over.then(|| {
                     dashed += 1;
-                    Look::DASHES[(dashed - 1) % Look::DASHES.len()]
+                    DASHES[(dashed - 1) % DASHES.len()]
                 });
                 Look {
                     color: {
@@ -491,18 +515,12 @@ impl Chart {
 
         // The legend sits right of the plot frame, so it never hides a line. A line hidden
         // under an earlier identical one says so in its label.
-        let labels: Vec<String> = self
-            .series
-            .iter()
-            .enumerate()
-            .map(|(i, s)| {
-                let mut label = legend_label(&s.name);
-                if let Some(same) = self.series[..i].iter().find(|e| e.points == s.points) {
-                    label.push_str(&format!(" = {}", same.name));
-                }
-                label
-            })
-            .collect();
+        let mut labels: Vec<String> = self.series.iter().map(|s| legend_label(&s.name)).collect();
+        for (i, s) in self.series.iter().enumerate() {
+            if let Some(same) = self.series[..i].iter().find(|e| e.points == s.points) {
+                labels[i] += &format!(" = {}", same.name);
+            }
+        }
         let notes = self
             .hidden
             .iter()
@@ -518,27 +536,21 @@ impl Chart {
         let legend_w = (label_w + extra + 62.0).max(110.0);
         let (left, top, right, bottom) = (92.0, 78.0, w - legend_w - 36.0, h - 66.0);
 
-        // Axes: levels as offsets from a multiple of 1000 below the first (exact in f64 for
-        // any u64 level, and plotters' round ticks stay round levels), log10 counts over whole
-        // decades; each with PAD pixels of room inside the frame. Plotters picks the ticks: the
-        // finest 1-2-5 step with at most the number asked for, so at most 12 level steps (never
-        // a fraction of a level) and the step of `decades` (never a fraction of a decade).
-        let ys = self
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1));
-        let (min, max) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
-            (a.min(y), b.max(y))
-        });
+        // Axes: levels as offsets from a multiple of 1000 below the first (exact in f64, and
+        // round ticks stay round levels), log10 counts over whole decades, PAD pixels of room
+        // inside the frame. Plotters picks the finest 1-2-5 tick step within the number asked
+        // for: at most 12 level steps, and the step of `decades` (never a fraction of either).
+        let (mut min, mut max) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &(_, y) in self.series.iter().flat_map(|s| &s.points) {
+            (min, max) = (min.min(y), max.max(y));
+        }
         let (lo, hi, step) = decades(min, max);
         let base = first - first % 1000;
-        let (x_lo, x_hi) = ((first - base) as f64, (last - base) as f64);
-        let span = x_hi - x_lo;
+        let span = (last - first) as f64;
         let room = if span > 0.0 { 0.0 } else { 1.0 };
-        let (x_lo, x_hi) = (x_lo - room, x_hi + room);
-        let x_pad = (x_hi - x_lo) * PAD / (right - left - 2.0 * PAD);
+        let x_pad = room + (span + 2.0 * room) * PAD / (right - left - 2.0 * PAD);
+        let (x_lo, x_hi) = ((first - base) as f64 - x_pad, (last - base) as f64 + x_pad);
         let y_pad = (hi - lo) as f64 * PAD / (bottom - top - 2.0 * PAD);
-        let (x_lo, x_hi) = (x_lo - x_pad, x_hi + x_pad);
         // The plot left of the legend's strip, the legend in it (a chart without axes).
         let (main, side) = root.split_horizontally(s.px(right + 18.0));
         let mut legend = ChartBuilder::on(&side)
@@ -554,9 +566,8 @@ impl Chart {
             .build_cartesian_2d(x_lo..x_hi, (lo as f64 - y_pad)..(hi as f64 + y_pad))?;
         // Minor lines at 2..=9 times each decade, when decades are one step and few.
         let minor = |k| (2..=9).map(move |m| k as f64 + f64::from(m).log10());
-        let minors = (lo..hi)
-            .filter(|_| step == 1 && hi - lo <= 4)
-            .flat_map(minor);
+        let few = step == 1 && hi - lo <= 4;
+        let minors = (lo..hi).filter(|_| few).flat_map(minor);
         chart.draw_series(
             minors.map(|y| PathElement::new(vec![(x_lo, y), (x_hi, y)], s.stroke(GRID_MINOR, 1.0))),
         )?;
@@ -578,10 +589,8 @@ impl Chart {
             .axis_desc_style(s.font(15.0, TEXT))
             .draw()?;
         let (xs, ys) = chart.plotting_area().get_pixel_range();
-        root.draw(&Rectangle::new(
-            [(xs.start, ys.start), (xs.end, ys.end)],
-            s.stroke(AXIS, 1.0),
-        ))?;
+        let frame = [(xs.start, ys.start), (xs.end, ys.end)];
+        root.draw(&Rectangle::new(frame, s.stroke(AXIS, 1.0)))?;
 
         // The series, each with its legend entry, then the columns that cannot be drawn.
         let looks = self.looks(5.0 * y_pad / PAD);
@@ -599,15 +608,10 @@ impl Chart {
             }
             // Markers only while they stay apart.
             let markers = series.points.iter().filter(|_| span <= 40.0);
-            chart.draw_series(markers.map(|&(l, y)| Marker {
-                at: ((l - base) as f64, y),
-                look,
-                scale: s,
-            }))?;
+            chart.draw_series(markers.map(|&(l, y)| Marker(((l - base) as f64, y), look, s)))?;
             // The legend's sample: a piece of the line with a marker.
             let ends = vec![(0, 0), (s.px(28.0), 0)];
-            let at = (s.px(14.0), 0);
-            let marker = Marker { at, look, scale: s };
+            let marker = Marker((s.px(14.0), 0), look, s);
             legend
                 .draw_series(no_points())?
                 .label(label)
@@ -678,8 +682,7 @@ mod tests {
     }
 
     fn chart(series: Vec<Series>) -> Chart {
-        let hidden = vec!["BE".into()];
-        let (title, levels) = ("t".into(), 0..=5);
+        let (title, levels, hidden) = ("t".into(), 0..=5, vec!["BE".into()]);
         Chart {
             title,
             levels,
@@ -706,7 +709,7 @@ mod tests {
         ];
         let chart = chart(lines.into_iter().chain([e]).collect());
         let dashes: Vec<_> = chart.looks(0.02).iter().map(|l| l.dash).collect();
-        let d = Look::DASHES;
+        let d = DASHES;
         assert_eq!(dashes, [None, Some(d[0]), None, Some(d[1]), None]);
     }
 
@@ -722,14 +725,7 @@ mod tests {
         };
         let columns = ["A", "B", "C"].map(String::from);
         let s = series_of(&columns, &[row(0, [0, 10]), row(1, [100, -1])]);
-        assert_eq!(s.len(), 2);
-        assert_eq!(
-            (s[0].name.as_str(), s[0].points.as_slice()),
-            ("A", &[(1, 2.0)][..])
-        );
-        assert_eq!(
-            (s[1].name.as_str(), s[1].points.as_slice()),
-            ("B", &[(0, 1.0)][..])
-        );
+        let got: Vec<_> = s.iter().map(|s| (s.name.as_str(), &s.points[..])).collect();
+        assert_eq!(got, [("A", &[(1, 2.0)][..]), ("B", &[(0, 1.0)][..])]);
     }
 }
