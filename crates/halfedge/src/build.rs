@@ -255,15 +255,9 @@ pub(crate) fn build(
         }
     }
 
-    let mut mesh = HalfEdgeMesh::from_raw_parts(
-        new_positions,
-        vertex_halfedge,
-        halfedge_vertex,
-        halfedge_face,
-        halfedge_next,
-        halfedge_prev,
-        face_halfedge,
-    );
+    let halfedges = [halfedge_vertex, halfedge_face, halfedge_next, halfedge_prev];
+    let mut mesh =
+        HalfEdgeMesh::from_raw_parts(new_positions, vertex_halfedge, halfedges, face_halfedge);
     mesh.unreferenced_vertices = unreferenced;
     Ok(mesh)
 }

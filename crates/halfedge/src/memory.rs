@@ -1,6 +1,10 @@
 //! Memory for the resource guards: how many bytes a [`HalfEdgeMesh`] occupies, exactly and from
-//! predicted counts, and how many bytes this process may still allocate ([`available_bytes`]), so
-//! that a subdivision, a base mesh or a mesh file is refused before it is built.
+//! predicted counts, the peak a subdivision will need ([`predicted_peak_bytes`]), and how many
+//! bytes this process may still allocate ([`available_bytes`]), so that a subdivision, a base
+//! mesh or a mesh file is refused before it is built.
+
+use num_bigint::BigInt;
+use schemes::{MeshCounts, Scheme};
 
 use crate::{HalfEdgeMesh, PolygonMesh};
 
@@ -65,6 +69,63 @@ impl PolygonMesh {
             + std::mem::size_of_val(self.face_indices())
             + self.face_lines_len() * std::mem::size_of::<u64>()
     }
+}
+
+/// The bytes a subdivision of a mesh with `counts` by `scheme` to level `levels` needs at its
+/// peak, from the scheme's exact counts: the input mesh plus the two levels alive at once at the
+/// end (levels `levels - 1` and `levels`, the largest two; only level 1 when `levels = 1`; only
+/// the input when `levels = 0`). With `last_faces = Some(d)` the last level is a face list of
+/// `d`-gons as [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list) builds it
+/// ([`PolygonMesh::bytes_for`]), else a half-edge mesh ([`HalfEdgeMesh::bytes_for`]). Computed
+/// on big integers, so a level far beyond any memory is a number, not an overflow.
+///
+/// # Errors
+///
+/// The scheme's error when `counts` are outside its class ([`Scheme::counts_at`]).
+///
+/// ```
+/// use halfedge::memory::predicted_peak_bytes;
+/// use halfedge::HalfEdgeMesh;
+/// let ico = HalfEdgeMesh::try_from(&halfedge::shapes::icosahedron())?;
+/// let loop_ = schemes::builtin("loop")?;
+/// let peak = predicted_peak_bytes(&loop_, &ico.counts(), 2, None)?;
+/// let levels = [(12, 30, 20), (42, 120, 80), (162, 480, 320)];
+/// let sum: u128 = levels.iter().map(|&(v, e, f)| HalfEdgeMesh::bytes_for(v, e, f)).sum();
+/// assert_eq!(peak, sum.into());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn predicted_peak_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+    last_faces: Option<usize>,
+) -> Result<BigInt, schemes::Error> {
+    let bytes = |s: u64| -> Result<BigInt, schemes::Error> {
+        let c = scheme.counts_at(counts, s)?;
+        Ok(BigInt::from(BYTES_PER_VERTEX) * &c.vertices
+            + BigInt::from(BYTES_PER_EDGE) * &c.edges
+            + BigInt::from(BYTES_PER_FACE) * &c.faces)
+    };
+    let input = bytes(0)?;
+    if levels == 0 {
+        return Ok(input);
+    }
+    let last = match last_faces {
+        Some(degree) => {
+            // PolygonMesh::bytes_for on big integers: 24 per position, one `usize` per face
+            // offset (one more than the faces), 4 per corner.
+            let c = scheme.counts_at(counts, u64::from(levels))?;
+            BigInt::from(24) * &c.vertices
+                + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+                + BigInt::from(4 * degree) * &c.faces
+        }
+        None => bytes(u64::from(levels))?,
+    };
+    Ok(if levels == 1 {
+        input + last
+    } else {
+        input + bytes(u64::from(levels) - 1)? + last
+    })
 }
 
 /// The bytes this process may still allocate, as far as Linux tells without `unsafe`: the
@@ -181,6 +242,40 @@ fn cgroup_room(cgroups: &str, read: &dyn Fn(&str) -> Option<String>) -> Option<u
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_predicted_peak_is_what_subdivision_allocates() {
+        use crate::subdivide::{subdivide, subdivide_to_face_list, SubdivideOptions};
+        let cube = HalfEdgeMesh::try_from(&crate::shapes::cube()).expect("cube");
+        let cc = schemes::builtin("catmull-clark").expect("catmull-clark");
+        let opts = SubdivideOptions::default();
+        let bytes = |m: &HalfEdgeMesh| BigInt::from(m.heap_bytes());
+        let peak = |levels, last| predicted_peak_bytes(&cc, &cube.counts(), levels, last);
+        let l1 = subdivide(&cube, "catmull-clark", 1, &opts).expect("level 1");
+        let l2 = subdivide(&cube, "catmull-clark", 2, &opts).expect("level 2");
+        assert_eq!(peak(0, None).expect("0"), bytes(&cube));
+        assert_eq!(peak(1, None).expect("1"), bytes(&cube) + bytes(&l1));
+        assert_eq!(
+            peak(2, None).expect("2"),
+            bytes(&cube) + bytes(&l1) + bytes(&l2)
+        );
+        // The last level as a face list of quads: no face lines, so heap_bytes is exact.
+        let faces = subdivide_to_face_list(&cube, "catmull-clark", 2, &opts).expect("faces");
+        assert_eq!(
+            peak(2, Some(4)).expect("2 as faces"),
+            bytes(&cube) + bytes(&l1) + BigInt::from(faces.mesh.heap_bytes())
+        );
+        // Far beyond any memory: a number, not an overflow.
+        assert!(peak(60, None).expect("60") > BigInt::from(u128::MAX));
+    }
+
+    #[test]
+    fn the_predicted_peak_refuses_counts_outside_the_scheme() {
+        let cube = HalfEdgeMesh::try_from(&crate::shapes::cube()).expect("cube");
+        let loop_ = schemes::builtin("loop").expect("loop");
+        let err = predicted_peak_bytes(&loop_, &cube.counts(), 1, None).unwrap_err();
+        assert!(err.to_string().contains("triangle"), "{err}");
+    }
 
     #[test]
     fn proc_files_are_parsed() {

@@ -121,19 +121,18 @@ impl HalfEdgeMesh {
     /// Assembles a mesh from its arrays without validating them (for subdivision output, which
     /// is correct by construction). Debug builds check [`HalfEdgeMesh::check_invariants`].
     ///
+    /// `halfedges` holds the four half-edge arrays: target vertex, face, next, prev.
+    ///
     /// # Panics
     ///
     /// In debug builds, when the arrays break an invariant (a bug in the caller).
-    #[allow(clippy::too_many_arguments)]
     pub(crate) fn from_raw_parts(
         positions: Vec<DVec3>,
         vertex_halfedge: Vec<u32>,
-        halfedge_vertex: Vec<u32>,
-        halfedge_face: Vec<u32>,
-        halfedge_next: Vec<u32>,
-        halfedge_prev: Vec<u32>,
+        halfedges: [Vec<u32>; 4],
         face_halfedge: Vec<u32>,
     ) -> HalfEdgeMesh {
+        let [halfedge_vertex, halfedge_face, halfedge_next, halfedge_prev] = halfedges;
         let mesh = HalfEdgeMesh {
             positions,
             vertex_halfedge,

@@ -326,16 +326,40 @@ fn guard_memory(name: String, vertices: u64, faces: u64, corners: u64) -> Result
     Ok(())
 }
 
-/// Grid vertices `(i, j)` for `0 <= i <= w`, `0 <= j <= h` in the plane `z = 0`, with unit
-/// spacing, row by row.
-fn grid_positions(w: u32, h: u32) -> Vec<DVec3> {
-    let mut positions = Vec::with_capacity((w as usize + 1) * (h as usize + 1));
+/// The grid `kind:WxH` of `w` x `h` unit cells in the plane `z = 0`, checked
+/// ([`check_cells`], [`guard_memory`] for `faces_per_cell` faces of `corners` corners each per
+/// cell): vertices `(i, j)` for `0 <= i <= w`, `0 <= j <= h` row by row, then the faces of each
+/// cell, row by row, from `cell(mesh, [a, b, c, d])` (its corners counterclockwise from
+/// `(i, j)`).
+fn grid_of(
+    kind: &str,
+    (w, h): (u32, u32),
+    (faces_per_cell, corners): (u64, u64),
+    cell: impl Fn(&mut PolygonMesh, [u32; 4]),
+) -> Result<PolygonMesh> {
+    let (w64, h64) = (u64::from(w), u64::from(h));
+    check_cells(format!("{kind}:{w}x{h}"), w64, h64)?;
+    let faces = faces_per_cell * w64 * h64;
+    let vertices = (w64 + 1) * (h64 + 1);
+    guard_memory(format!("{kind}:{w}x{h}"), vertices, faces, corners * faces)?;
+    let mut positions = Vec::with_capacity(vertices as usize);
     for j in 0..=h {
         for i in 0..=w {
             positions.push(DVec3::new(f64::from(i), f64::from(j), 0.0));
         }
     }
-    positions
+    let mut mesh = PolygonMesh::with_positions(positions);
+    mesh.reserve_faces(faces as usize, (corners * faces) as usize);
+    let id = |i: u32, j: u32| j * (w + 1) + i;
+    for j in 0..h {
+        for i in 0..w {
+            cell(
+                &mut mesh,
+                [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)],
+            );
+        }
+    }
+    Ok(mesh)
 }
 
 /// A `w` x `h` grid of squares in the plane `z = 0`, each split into two triangles, facing
@@ -347,25 +371,10 @@ fn grid_positions(w: u32, h: u32) -> Vec<DVec3> {
 /// [`Error::ShapeTooLarge`] when the mesh would need more than half the memory available to
 /// the process ([`crate::memory::available_bytes`]).
 pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    let (w64, h64) = (u64::from(w), u64::from(h));
-    check_cells(format!("grid:{w}x{h}"), w64, h64)?;
-    guard_memory(
-        format!("grid:{w}x{h}"),
-        (w64 + 1) * (h64 + 1),
-        2 * w64 * h64,
-        6 * w64 * h64,
-    )?;
-    let mut mesh = PolygonMesh::with_positions(grid_positions(w, h));
-    mesh.reserve_faces(2 * w as usize * h as usize, 6 * w as usize * h as usize);
-    let id = |i: u32, j: u32| j * (w + 1) + i;
-    for j in 0..h {
-        for i in 0..w {
-            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-            mesh.push_face(&[a, b, c]);
-            mesh.push_face(&[a, c, d]);
-        }
-    }
-    Ok(mesh)
+    grid_of("grid", (w, h), (2, 3), |mesh, [a, b, c, d]| {
+        mesh.push_face(&[a, b, c]);
+        mesh.push_face(&[a, c, d]);
+    })
 }
 
 /// A `w` x `h` grid of unit squares (quads) in the plane `z = 0`, facing `+z`.
@@ -374,23 +383,9 @@ pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
 ///
 /// As [`grid`].
 pub fn quad_grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    let (w64, h64) = (u64::from(w), u64::from(h));
-    check_cells(format!("quad-grid:{w}x{h}"), w64, h64)?;
-    guard_memory(
-        format!("quad-grid:{w}x{h}"),
-        (w64 + 1) * (h64 + 1),
-        w64 * h64,
-        4 * w64 * h64,
-    )?;
-    let mut mesh = PolygonMesh::with_positions(grid_positions(w, h));
-    mesh.reserve_faces(w as usize * h as usize, 4 * w as usize * h as usize);
-    let id = |i: u32, j: u32| j * (w + 1) + i;
-    for j in 0..h {
-        for i in 0..w {
-            mesh.push_face(&[id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-        }
-    }
-    Ok(mesh)
+    grid_of("quad-grid", (w, h), (1, 4), |mesh, cell| {
+        mesh.push_face(&cell)
+    })
 }
 
 /// A closed triangle surface of genus `genus` (`>= 1`): a flat slab with `genus` square holes

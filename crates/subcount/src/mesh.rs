@@ -169,45 +169,6 @@ fn memory_limit() -> u128 {
     u128::from(halfedge::memory::available_bytes().unwrap_or(8 << 30)) / 2
 }
 
-/// The predicted bytes of the largest two consecutive levels up to `levels`, plus the input.
-/// With `last_faces = Some(d)` the last level is a face list of `d`-gons
-/// ([`sub::subdivide_to_face_list`]), else a half-edge mesh.
-fn predicted_peak_bytes(
-    scheme: &Scheme,
-    counts: &MeshCounts,
-    levels: u32,
-    last_faces: Option<usize>,
-) -> Result<BigInt, Failure> {
-    let counts_at = |s: u64| scheme.counts_at(counts, s).map_err(scheme_failure);
-    let bytes = |s: u64| -> Result<BigInt, Failure> {
-        let c = counts_at(s)?;
-        Ok(BigInt::from(halfedge::BYTES_PER_VERTEX) * &c.vertices
-            + BigInt::from(halfedge::BYTES_PER_EDGE) * &c.edges
-            + BigInt::from(halfedge::BYTES_PER_FACE) * &c.faces)
-    };
-    let input = bytes(0)?;
-    if levels == 0 {
-        return Ok(input);
-    }
-    let last = match last_faces {
-        Some(degree) => {
-            // PolygonMesh::bytes_for on big integers: 24 per position, 8 per face offset
-            // (one more than the faces), 4 per corner.
-            let c = counts_at(u64::from(levels))?;
-            BigInt::from(24) * &c.vertices
-                + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
-                + BigInt::from(4 * degree) * &c.faces
-        }
-        None => bytes(u64::from(levels))?,
-    };
-    let before = bytes(u64::from(levels) - 1)?;
-    Ok(if levels == 1 {
-        input + last
-    } else {
-        input + before + last
-    })
-}
-
 fn guard_memory(
     scheme: &Scheme,
     counts: &MeshCounts,
@@ -215,7 +176,8 @@ fn guard_memory(
     last_faces: Option<usize>,
     allow_large: bool,
 ) -> Result<BigInt, Failure> {
-    let need = predicted_peak_bytes(scheme, counts, levels, last_faces)?;
+    let need = halfedge::memory::predicted_peak_bytes(scheme, counts, levels, last_faces)
+        .map_err(scheme_failure)?;
     let limit = memory_limit();
     if !allow_large && need > BigInt::from(limit) {
         let need_f = need.to_f64().unwrap_or(f64::INFINITY);

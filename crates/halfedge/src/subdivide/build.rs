@@ -24,14 +24,53 @@ pub(crate) struct Sizes {
     pub(crate) faces: usize,
 }
 
-/// Where a subdivision step is, for error messages.
+/// One subdivision step: where it is (for error messages), the sizes the scheme predicts for
+/// its output, and whether its passes may run in parallel.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct StepContext<'a> {
     pub(crate) scheme: &'a str,
     pub(crate) level: u32,
+    /// The output's predicted sizes.
+    pub(crate) expected: Sizes,
+    /// Whether the passes may run in parallel (rayon).
+    pub(crate) parallel: bool,
 }
 
 impl StepContext<'_> {
+    /// `Ok` when the count `actual` of `what` is the predicted `predicted`; else
+    /// [`Error::PredictionMismatch`] (a bug, and a debug assertion).
+    pub(crate) fn expect(&self, what: &'static str, predicted: usize, actual: usize) -> Result<()> {
+        if predicted == actual {
+            return Ok(());
+        }
+        debug_assert!(
+            false,
+            "{} level {}: predicted {what} {predicted}, built {actual}",
+            self.scheme, self.level
+        );
+        Err(self.mismatch(what, predicted, actual))
+    }
+
+    /// `Ok` when an array of length `len` and capacity `capacity` has exactly the predicted
+    /// length and never grew; else as [`StepContext::expect`].
+    pub(crate) fn expect_exact(
+        &self,
+        what: &'static str,
+        predicted: usize,
+        len: usize,
+        capacity: usize,
+    ) -> Result<()> {
+        if len == predicted && capacity == predicted {
+            return Ok(());
+        }
+        debug_assert!(
+            false,
+            "{} level {}: predicted {what} {predicted}, built {len} (capacity {capacity})",
+            self.scheme, self.level
+        );
+        Err(self.mismatch(what, predicted, len.max(capacity)))
+    }
+
     pub(crate) fn mismatch(&self, what: &'static str, predicted: usize, actual: usize) -> Error {
         Error::PredictionMismatch {
             scheme: self.scheme.to_owned(),
@@ -145,18 +184,7 @@ impl<const GROW: bool> Builder<GROW> {
         ctx: &StepContext<'_>,
     ) -> Result<HalfEdgeMesh> {
         let e = self.expected;
-        let check = |what, predicted: usize, actual: usize| {
-            if predicted == actual {
-                Ok(())
-            } else {
-                debug_assert!(
-                    false,
-                    "{} level {}: predicted {what} {predicted}, built {actual}",
-                    ctx.scheme, ctx.level
-                );
-                Err(ctx.mismatch(what, predicted, actual))
-            }
-        };
+        let check = |what, predicted, actual| ctx.expect(what, predicted, actual);
         check(
             "vertices",
             e.vertices,
@@ -214,13 +242,16 @@ impl<const GROW: bool> Builder<GROW> {
                 self.halfedge_prev[n as usize] = h as u32;
             }
         }
-        Ok(HalfEdgeMesh::from_raw_parts(
-            positions,
-            self.vertex_halfedge,
+        let halfedges = [
             self.halfedge_vertex,
             self.halfedge_face,
             self.halfedge_next,
             self.halfedge_prev,
+        ];
+        Ok(HalfEdgeMesh::from_raw_parts(
+            positions,
+            self.vertex_halfedge,
+            halfedges,
             self.face_halfedge,
         ))
     }

@@ -17,22 +17,21 @@
 
 use glam::DVec3;
 
-use super::build::{Builder, Sizes, StepContext};
+use super::build::{Builder, StepContext};
 use super::par;
 use super::topo::Topo;
+use super::trisplit::boundary_vertex;
 use crate::{HalfEdgeMesh, Result};
 
 /// One Catmull-Clark step.
 pub(crate) fn catmull_clark<const GROW: bool>(
     mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let offsets = t.corner_offsets();
-    let mut b = Builder::<GROW>::new(expected)?;
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
     let mut quad = [(0u32, 0u32); 4];
     for f in 0..nf {
         let fp = nv + ne + f;
@@ -54,8 +53,8 @@ pub(crate) fn catmull_clark<const GROW: bool>(
         }
     }
 
-    let positions = cc_positions(&t, (!GROW).then_some(expected.vertices), parallel)?;
-    b.finish(positions, ctx)
+    let capacity = (!GROW).then_some(ctx.expected.vertices);
+    b.finish(cc_positions(&t, capacity, ctx.parallel)?, ctx)
 }
 
 /// The positions of a Catmull-Clark step: moved old vertices, edge points, face points.
@@ -71,30 +70,29 @@ pub(crate) fn cc_positions(
 ) -> crate::Result<Vec<DVec3>> {
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut positions = match capacity {
-        Some(n) => super::alloc::with_capacity(n, "positions")?,
-        None => Vec::new(),
-    };
+    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
     // Face points first: the vertex and edge rules use them.
-    let mut face_points = super::alloc::with_capacity(nf as usize, "face points")?;
-    par::extend(&mut face_points, nf as usize, parallel, |f| {
-        let mut sum = DVec3::ZERO;
-        let mut n = 0u32;
-        t.for_face(f as u32, |h| {
-            sum += t.pos(t.source(h));
-            n += 1;
-        });
-        sum / f64::from(n)
-    });
+    let face_points = par::collect(
+        Some(nf as usize),
+        nf as usize,
+        parallel,
+        "face points",
+        |f| {
+            let mut sum = DVec3::ZERO;
+            let mut n = 0u32;
+            t.for_face(f as u32, |h| {
+                sum += t.pos(t.source(h));
+                n += 1;
+            });
+            sum / f64::from(n)
+        },
+    )?;
     let face_point = |f: u32| face_points[f as usize];
     par::extend(&mut positions, nv as usize, parallel, |v| {
         let v = v as u32;
         let p = t.pos(v);
         if t.is_boundary_vertex(v) {
-            let h = t.vertex_halfedge(v);
-            let right = t.pos(t.target(h));
-            let left = t.pos(t.source(t.prev(h)));
-            return p * 0.75 + (left + right) * 0.125;
+            return boundary_vertex(&t, v);
         }
         let (mut q, mut r, mut n) = (DVec3::ZERO, DVec3::ZERO, 0u32);
         t.for_outgoing(v, |h| {

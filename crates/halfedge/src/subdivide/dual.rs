@@ -25,7 +25,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::build::{Builder, Sizes, StepContext};
+use super::build::{Builder, StepContext};
 use super::par;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
@@ -33,19 +33,12 @@ use crate::{HalfEdgeMesh, Result};
 /// One Doo-Sabin step (closed mesh, every valence >= 3: checked by the caller).
 pub(crate) fn doo_sabin<const GROW: bool>(
     mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut b = Builder::<GROW>::new(expected)?;
-    let mut corners: Vec<(u32, u32)> = Vec::new();
-    for f in 0..nf {
-        corners.clear();
-        t.for_face(f, |h| corners.push((h, 2 * h)));
-        b.face(&corners);
-    }
+    let ne = t.ne() as u32;
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    face_faces(&t, &mut b, |h| (h, 2 * h));
     for e in 0..ne {
         let (h, tw) = (2 * e, 2 * e + 1);
         b.face(&[
@@ -55,32 +48,86 @@ pub(crate) fn doo_sabin<const GROW: bool>(
             (tw, 2 * (2 * ne + tw)),
         ]);
     }
-    let mut ring: Vec<u32> = Vec::new();
-    for v in 0..nv {
+    vertex_faces(&t, &mut b, |h, next| (next, 2 * (2 * ne + h) + 1));
+    let capacity = (!GROW).then_some(ctx.expected.vertices);
+    b.finish(doo_sabin_positions(&t, capacity, ctx.parallel)?, ctx)
+}
+
+/// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).
+pub(crate) fn mid_edge<const GROW: bool>(
+    mesh: &HalfEdgeMesh,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = Topo::new(mesh);
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
+    vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
+    let capacity = (!GROW).then_some(ctx.expected.vertices);
+    b.finish(mid_edge_positions(&t, capacity, ctx.parallel)?, ctx)
+}
+
+/// Emits the face of each old face, in order: its corner at old half-edge `h` is the
+/// `(vertex, half-edge)` pair `corner(h)`.
+fn face_faces<const GROW: bool>(
+    t: &Topo<'_>,
+    b: &mut Builder<GROW>,
+    corner: impl Fn(u32) -> (u32, u32),
+) {
+    let mut corners: Vec<(u32, u32)> = Vec::new();
+    for f in 0..t.nf() as u32 {
+        corners.clear();
+        t.for_face(f, |h| corners.push(corner(h)));
+        b.face(&corners);
+    }
+}
+
+/// Emits the face of each old vertex, in order, its corners running against the outgoing
+/// half-edges: `corner(h, next)` for each outgoing `h` and the outgoing `next` after it.
+fn vertex_faces<const GROW: bool>(
+    t: &Topo<'_>,
+    b: &mut Builder<GROW>,
+    corner: impl Fn(u32, u32) -> (u32, u32),
+) {
+    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
+    for v in 0..t.nv() as u32 {
         ring.clear();
         t.for_outgoing(v, |h| ring.push(h));
         corners.clear();
         let n = ring.len();
         for k in (0..n).rev() {
-            let next = ring[(k + 1) % n];
-            corners.push((next, 2 * (2 * ne + ring[k]) + 1));
+            corners.push(corner(ring[k], ring[(k + 1) % n]));
         }
         b.face(&corners);
     }
+}
 
-    let mut positions = if GROW {
-        Vec::new()
-    } else {
-        super::alloc::with_capacity(expected.vertices, "positions")?
-    };
-    par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
-        doo_sabin_point(&t, h as u32)
-    });
-    b.finish(positions, ctx)
+/// The positions of a Doo-Sabin step: the corner point of each old half-edge
+/// ([`doo_sabin_point`]). `capacity`: allocate exactly this many up front (else grow).
+pub(crate) fn doo_sabin_positions(
+    t: &Topo<'_>,
+    capacity: Option<usize>,
+    parallel: bool,
+) -> Result<Vec<DVec3>> {
+    par::collect(capacity, 2 * t.ne(), parallel, "positions", |h| {
+        doo_sabin_point(t, h as u32)
+    })
+}
+
+/// The positions of a mid-edge step: the midpoint of each old edge. `capacity`: allocate
+/// exactly this many up front (else grow).
+pub(crate) fn mid_edge_positions(
+    t: &Topo<'_>,
+    capacity: Option<usize>,
+    parallel: bool,
+) -> Result<Vec<DVec3>> {
+    par::collect(capacity, t.ne(), parallel, "positions", |e| {
+        let h = 2 * e as u32;
+        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
+    })
 }
 
 /// The Doo-Sabin point of the corner at the source of `h` in its face.
-pub(crate) fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
+fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
     let n = t.face_degree(t.face(h));
     let nf = n as f64;
     let mut sum = DVec3::ZERO;
@@ -95,44 +142,4 @@ pub(crate) fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
         g = t.next(g);
     }
     sum
-}
-
-/// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).
-pub(crate) fn mid_edge<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let mut b = Builder::<GROW>::new(expected)?;
-    let mut corners: Vec<(u32, u32)> = Vec::new();
-    for f in 0..nf {
-        corners.clear();
-        t.for_face(f, |h| corners.push((h >> 1, 2 * h)));
-        b.face(&corners);
-    }
-    let mut ring: Vec<u32> = Vec::new();
-    for v in 0..nv {
-        ring.clear();
-        t.for_outgoing(v, |h| ring.push(h));
-        corners.clear();
-        let n = ring.len();
-        for k in (0..n).rev() {
-            let next = ring[(k + 1) % n];
-            corners.push((next >> 1, 2 * (ring[k] ^ 1) + 1));
-        }
-        b.face(&corners);
-    }
-    let mut positions = if GROW {
-        Vec::new()
-    } else {
-        super::alloc::with_capacity(expected.vertices, "positions")?
-    };
-    par::extend(&mut positions, ne as usize, parallel, |e| {
-        let h = 2 * e as u32;
-        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
-    });
-    b.finish(positions, ctx)
 }

@@ -309,20 +309,12 @@ pub(super) fn run_levels(
         let ctx = StepContext {
             scheme: name,
             level: s,
+            expected: *e,
+            parallel: false,
         };
-        for (what, predicted, actual) in [
-            ("vertices", e.vertices, next.positions.len()),
-            ("faces", e.faces, next.n_faces()),
-            ("position capacity", e.vertices, next.positions.capacity()),
-        ] {
-            if predicted != actual {
-                debug_assert!(
-                    false,
-                    "{name} level {s}: predicted {what} {predicted}, built {actual}"
-                );
-                return Err(ctx.mismatch(what, predicted, actual));
-            }
-        }
+        ctx.expect("vertices", e.vertices, next.positions.len())?;
+        ctx.expect("faces", e.faces, next.n_faces())?;
+        ctx.expect("position capacity", e.vertices, next.positions.capacity())?;
         let before = super::finite::Before::Counts {
             vertices: ix.positions.len(),
             edges: ix.edge_low.len(),

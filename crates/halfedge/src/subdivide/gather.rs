@@ -20,9 +20,11 @@
 //! prediction ([`Error::PredictionMismatch`](crate::Error::PredictionMismatch) on a
 //! difference: a bug); the arrays then have exactly the predicted lengths by construction.
 
+use glam::DVec3;
+
 use super::build::{Sizes, StepContext};
 use super::catmull_clark::cc_positions;
-use super::dual::doo_sabin_point;
+use super::dual::{doo_sabin_positions, mid_edge_positions};
 use super::par;
 use super::sqrt3::{centroid, interior_vertex};
 use super::topo::Topo;
@@ -31,22 +33,33 @@ use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
 /// Checks the structural counts of a step against the prediction.
-pub(super) fn check(ctx: &StepContext<'_>, expected: Sizes, built: Sizes) -> Result<()> {
-    for (what, p, b) in [
-        ("vertices", expected.vertices, built.vertices),
-        ("edges", expected.halfedges / 2, built.halfedges / 2),
-        ("faces", expected.faces, built.faces),
-    ] {
-        if p != b {
-            debug_assert!(
-                false,
-                "{} level {}: predicted {what} {p}, built {b}",
-                ctx.scheme, ctx.level
-            );
-            return Err(ctx.mismatch(what, p, b));
-        }
+pub(super) fn check(ctx: &StepContext<'_>, built: Sizes) -> Result<()> {
+    let expected = ctx.expected;
+    ctx.expect("vertices", expected.vertices, built.vertices)?;
+    ctx.expect("edges", expected.halfedges / 2, built.halfedges / 2)?;
+    ctx.expect("faces", expected.faces, built.faces)
+}
+
+/// The sizes of a 4:1 step on `t`: `V + E` vertices, `2E + 3F` edges, `4F` faces.
+pub(super) fn four_to_one_sizes(t: &Topo<'_>) -> Sizes {
+    let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+    Sizes {
+        vertices: nv + ne,
+        halfedges: 2 * (2 * ne + 3 * nf),
+        faces: 4 * nf,
     }
-    Ok(())
+}
+
+/// The sizes of a Catmull-Clark step on `t`: `V + E + F` vertices, `2E + H` edges and `H`
+/// faces, `H` the face corners (the half-edges that are not on the boundary).
+pub(super) fn catmull_clark_sizes(t: &Topo<'_>) -> Sizes {
+    let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+    let n_corners = 2 * ne - t.boundary_edges();
+    Sizes {
+        vertices: nv + ne + nf,
+        halfedges: 2 * (2 * ne + n_corners),
+        faces: n_corners,
+    }
 }
 
 /// The source piece of old half-edge `h`: from its source to its midpoint.
@@ -111,20 +124,13 @@ pub(crate) fn four_to_one(
     mesh: &HalfEdgeMesh,
     template: &Template,
     rule: TriRule,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let built = Sizes {
-        vertices: (nv + ne) as usize,
-        halfedges: 2 * (2 * ne as usize + 3 * nf as usize),
-        faces: 4 * nf as usize,
-    };
-    check(ctx, expected, built)?;
+    check(ctx, four_to_one_sizes(&t))?;
+    let (nv, ne) = (t.nv() as u32, t.ne() as u32);
     let inner = 4 * ne; // first inner half-edge
-    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+    let halfedge = |q| {
         if q < inner {
             let (h, source) = piece(q);
             let f = t.face(h);
@@ -193,65 +199,50 @@ pub(crate) fn four_to_one(
                 ]
             }
         }
-    })?;
-    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
-    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
-        let v = v as u32;
+    };
+    let vertex = |v| {
         if v < nv {
             source_piece(t.vertex_halfedge(v))
         } else {
             midpoint_halfedge(&t, v - nv)
         }
-    });
-    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
-    par::extend(&mut face_halfedge, built.faces, parallel, |g| {
-        let (f, k) = (g as u32 / 4, g as u32 % 4);
+    };
+    let face = |g| {
+        let (f, k) = (g / 4, g % 4);
         if k == 0 {
             inner + 2 * (3 * f)
         } else {
             inner + 2 * (3 * f + k - 1) + 1
         }
-    });
-    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel)?;
-    finish(
-        ctx,
-        expected,
-        positions,
-        vertex_halfedge,
-        [hv, hf, hn, hp],
-        face_halfedge,
-    )
+    };
+    assemble(ctx, halfedge, vertex, face, || {
+        tri_positions(
+            &t,
+            template,
+            rule,
+            Some(ctx.expected.vertices),
+            ctx.parallel,
+        )
+    })
 }
 
 /// One Catmull-Clark step.
-pub(crate) fn catmull_clark(
-    mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
+pub(crate) fn catmull_clark(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    let built = catmull_clark_sizes(&t);
+    check(ctx, built)?;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    // Every half-edge that is not on the boundary is one face corner.
-    let n_corners = 2 * ne - t.boundary_edges() as u32;
-    let built = Sizes {
-        vertices: (nv + ne + nf) as usize,
-        halfedges: 2 * (2 * ne as usize + n_corners as usize),
-        faces: n_corners as usize,
-    };
-    check(ctx, expected, built)?;
+    let n_corners = built.faces;
     // Positions first, so that their temporary face points are freed before the corner tables
     // and the half-edge arrays are allocated (a lower peak).
-    let positions = cc_positions(&t, Some(expected.vertices), parallel)?;
+    let positions = cc_positions(&t, Some(ctx.expected.vertices), ctx.parallel)?;
     // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse. On a
     // quad mesh (every level after the first) corner k is the (k % 4)-th half-edge of face
     // k / 4, so the inverse table is skipped (one u32 per corner less at the peak).
     let quads = mesh.is_quad_mesh();
     let mut corner_of = super::alloc::filled(INVALID, 2 * ne as usize, "corner of")?;
-    let mut corner_halfedge = super::alloc::with_capacity(
-        if quads { 0 } else { n_corners as usize },
-        "corner halfedge",
-    )?;
+    let mut corner_halfedge =
+        super::alloc::with_capacity(if quads { 0 } else { n_corners }, "corner halfedge")?;
     let mut corners = 0u32;
     for f in 0..nf {
         t.for_face(f, |h| {
@@ -262,14 +253,7 @@ pub(crate) fn catmull_clark(
             corners += 1;
         });
     }
-    check(
-        ctx,
-        expected,
-        Sizes {
-            faces: corners as usize,
-            ..built
-        },
-    )?;
+    ctx.expect("faces", n_corners, corners as usize)?;
     let corner_h = |k: u32| -> u32 {
         if quads {
             let mut h = t.face_halfedge(k / 4);
@@ -283,7 +267,7 @@ pub(crate) fn catmull_clark(
     };
     let inner = 4 * ne;
     let corner = |h: u32| corner_of[h as usize];
-    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+    let halfedge = |q| {
         if q < inner {
             let (h, source) = piece(q);
             if t.is_boundary(h) {
@@ -327,10 +311,8 @@ pub(crate) fn catmull_clark(
                 ]
             }
         }
-    })?;
-    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
-    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
-        let v = v as u32;
+    };
+    let vertex = |v| {
         if v < nv {
             source_piece(t.vertex_halfedge(v))
         } else if v < nv + ne {
@@ -339,31 +321,16 @@ pub(crate) fn catmull_clark(
             // The first corner of the face is the one of its first half-edge.
             inner + 2 * corner(t.face_halfedge(v - nv - ne)) + 1
         }
-    });
-    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
-    par::extend(&mut face_halfedge, built.faces, parallel, |k| {
-        source_piece(corner_h(k as u32))
-    });
-    finish(
-        ctx,
-        expected,
-        positions,
-        vertex_halfedge,
-        [hv, hf, hn, hp],
-        face_halfedge,
-    )
+    };
+    let face = |k| source_piece(corner_h(k));
+    assemble(ctx, halfedge, vertex, face, || Ok(positions))
 }
 
 /// One √3 step on a closed triangle mesh. Half-edge `g` of the old mesh keeps its id (the
 /// flipped edge, from the centroid of `g`'s face to the centroid across); the spoke of corner
 /// `c = 3f + k` is edge `E + c`, half 0 from the corner to the centroid; the triangle of face
 /// half-edge `g` is face `corner(g)`.
-pub(crate) fn sqrt3_closed(
-    mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
+pub(crate) fn sqrt3_closed(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
@@ -371,7 +338,7 @@ pub(crate) fn sqrt3_closed(
         halfedges: 2 * (ne as usize + 3 * nf as usize),
         faces: 3 * nf as usize,
     };
-    check(ctx, expected, built)?;
+    check(ctx, built)?;
     // The position of g in its face from prev(g), next to g in memory (no second random load
     // through the face's first half-edge).
     let corner = |g: u32| {
@@ -388,7 +355,7 @@ pub(crate) fn sqrt3_closed(
     };
     let spoke = |g: u32| 2 * (ne + corner(g));
     let first_spoke = 2 * ne;
-    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+    let halfedge = |q| {
         if q < first_spoke {
             // The flipped edge: centroid of face(g) -> centroid of face(g ^ 1), in T(g).
             let g = q;
@@ -416,52 +383,43 @@ pub(crate) fn sqrt3_closed(
                 [t.source(g), corner(g ^ 1), spoke(t.next(g ^ 1)), g ^ 1]
             }
         }
-    })?;
-    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
-    par::extend(&mut vertex_halfedge, built.vertices, parallel, |v| {
-        let v = v as u32;
+    };
+    let vertex = |v| {
         if v < nv {
             spoke(t.vertex_halfedge(v))
         } else {
             spoke(t.face_halfedge(v - nv)) + 1
         }
-    });
-    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
-    par::extend(&mut face_halfedge, built.faces, parallel, |c| {
-        let (f, k) = (c as u32 / 3, c as u32 % 3);
+    };
+    let face = |c| {
+        let (f, k) = (c / 3, c % 3);
         let h0 = t.face_halfedge(f);
         match k {
             0 => h0,
             1 => t.next(h0),
             _ => t.prev(h0),
         }
-    });
-    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
-    par::extend(&mut positions, nv as usize, parallel, |v| {
-        interior_vertex(&t, v as u32)
-    });
-    par::extend(&mut positions, nf as usize, parallel, |f| {
-        centroid(&t, f as u32)
-    });
-    finish(
-        ctx,
-        expected,
-        positions,
-        vertex_halfedge,
-        [hv, hf, hn, hp],
-        face_halfedge,
-    )
+    };
+    assemble(ctx, halfedge, vertex, face, || {
+        let parallel = ctx.parallel;
+        let mut positions = par::collect(
+            Some(ctx.expected.vertices),
+            nv as usize,
+            parallel,
+            "positions",
+            |v| interior_vertex(&t, v as u32),
+        )?;
+        par::extend(&mut positions, nf as usize, parallel, |f| {
+            centroid(&t, f as u32)
+        });
+        Ok(positions)
+    })
 }
 
 /// One Doo-Sabin step on a closed mesh (vertex `h` is the corner at the source of old
 /// half-edge `h`; edge `h` is the side of the shrunken face, edge `2E + h` joins corner `h`
 /// to corner `next(twin(h))`).
-pub(crate) fn doo_sabin(
-    mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
+pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
@@ -469,9 +427,9 @@ pub(crate) fn doo_sabin(
         halfedges: 8 * ne as usize,
         faces: (nf + ne + nv) as usize,
     };
-    check(ctx, expected, built)?;
+    check(ctx, built)?;
     let b0 = 4 * ne;
-    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+    let halfedge = |q| {
         if q < b0 {
             let g = q >> 1;
             if q & 1 == 0 {
@@ -497,14 +455,8 @@ pub(crate) fn doo_sabin(
                 ]
             }
         }
-    })?;
-    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
-    par::extend(&mut vertex_halfedge, built.vertices, parallel, |h| {
-        2 * h as u32
-    });
-    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
-    par::extend(&mut face_halfedge, built.faces, parallel, |f| {
-        let f = f as u32;
+    };
+    let face = |f| {
         if f < nf {
             2 * t.face_halfedge(f)
         } else if f < nf + ne {
@@ -512,30 +464,20 @@ pub(crate) fn doo_sabin(
         } else {
             b0 + 2 * t.vertex_halfedge(f - nf - ne) + 1
         }
-    });
-    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
-    par::extend(&mut positions, 2 * ne as usize, parallel, |h| {
-        doo_sabin_point(&t, h as u32)
-    });
-    finish(
+    };
+    assemble(
         ctx,
-        expected,
-        positions,
-        vertex_halfedge,
-        [hv, hf, hn, hp],
-        face_halfedge,
+        halfedge,
+        |h| 2 * h,
+        face,
+        || doo_sabin_positions(&t, Some(ctx.expected.vertices), ctx.parallel),
     )
 }
 
 /// One mid-edge step on a closed mesh (vertex `e` is the midpoint of old edge `e`; edge `h`
 /// joins the midpoints of `h` and `next(h)`, half 0 in the shrunken old face, half 1 in the
 /// face of the old vertex `target(h)`).
-pub(crate) fn mid_edge(
-    mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
+pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
@@ -543,8 +485,8 @@ pub(crate) fn mid_edge(
         halfedges: 4 * ne as usize,
         faces: (nf + nv) as usize,
     };
-    check(ctx, expected, built)?;
-    let [hv, hf, hn, hp] = par::halfedge_arrays(built.halfedges, parallel, |q| {
+    check(ctx, built)?;
+    let halfedge = |q: u32| {
         let h = q >> 1;
         if q & 1 == 0 {
             [t.next(h) >> 1, t.face(h), 2 * t.next(h), 2 * t.prev(h)]
@@ -556,82 +498,81 @@ pub(crate) fn mid_edge(
                 2 * (t.next(h) ^ 1) + 1,
             ]
         }
-    })?;
-    let mut vertex_halfedge = super::alloc::with_capacity(built.vertices, "vertex halfedge")?;
-    par::extend(&mut vertex_halfedge, built.vertices, parallel, |e| {
-        4 * e as u32
-    });
-    let mut face_halfedge = super::alloc::with_capacity(built.faces, "face halfedge")?;
-    par::extend(&mut face_halfedge, built.faces, parallel, |f| {
-        let f = f as u32;
+    };
+    let face = |f| {
         if f < nf {
             2 * t.face_halfedge(f)
         } else {
             2 * (t.vertex_halfedge(f - nf) ^ 1) + 1
         }
-    });
-    let mut positions = super::alloc::with_capacity(expected.vertices, "positions")?;
-    par::extend(&mut positions, ne as usize, parallel, |e| {
-        let h = 2 * e as u32;
-        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
-    });
-    finish(
+    };
+    assemble(
         ctx,
-        expected,
-        positions,
-        vertex_halfedge,
-        [hv, hf, hn, hp],
-        face_halfedge,
+        halfedge,
+        |e| 4 * e,
+        face,
+        || mid_edge_positions(&t, Some(ctx.expected.vertices), ctx.parallel),
     )
 }
 
-/// Checks the final lengths and capacities against the prediction and assembles the mesh.
-fn finish(
+/// The output mesh of a step whose counts [`check`] accepted, every array written front to
+/// back from its index formula (in parallel chunks when the step is parallel):
+/// `halfedge(q)` is `[vertex, face, next, prev]` of output half-edge `q`, `vertex(v)` the
+/// half-edge of output vertex `v`, `face(f)` the half-edge of output face `f`. `positions`
+/// runs last (after the topology arrays are written); every length and capacity is checked
+/// against the prediction.
+fn assemble(
     ctx: &StepContext<'_>,
-    expected: Sizes,
-    positions: Vec<glam::DVec3>,
-    vertex_halfedge: Vec<u32>,
-    halfedges: [Vec<u32>; 4],
-    face_halfedge: Vec<u32>,
+    halfedge: impl Fn(u32) -> [u32; 4] + Sync + Send,
+    vertex: impl Fn(u32) -> u32 + Sync + Send,
+    face: impl Fn(u32) -> u32 + Sync + Send,
+    positions: impl FnOnce() -> Result<Vec<DVec3>>,
 ) -> Result<HalfEdgeMesh> {
-    let [hv, hf, hn, hp] = halfedges;
-    for (what, predicted, len, cap) in [
+    let (e, parallel) = (ctx.expected, ctx.parallel);
+    let halfedges = par::halfedge_arrays(e.halfedges, parallel, halfedge)?;
+    let vertex_halfedge = par::collect(
+        Some(e.vertices),
+        e.vertices,
+        parallel,
+        "vertex halfedge",
+        |v| vertex(v as u32),
+    )?;
+    let face_halfedge = par::collect(Some(e.faces), e.faces, parallel, "face halfedge", |f| {
+        face(f as u32)
+    })?;
+    let positions = positions()?;
+    for (what, predicted, len, capacity) in [
         (
             "vertex positions",
-            expected.vertices,
+            e.vertices,
             positions.len(),
             positions.capacity(),
         ),
         (
             "vertices",
-            expected.vertices,
+            e.vertices,
             vertex_halfedge.len(),
             vertex_halfedge.capacity(),
         ),
-        ("half-edges", expected.halfedges, hv.len(), hv.capacity()),
+        (
+            "half-edges",
+            e.halfedges,
+            halfedges[0].len(),
+            halfedges[0].capacity(),
+        ),
         (
             "faces",
-            expected.faces,
+            e.faces,
             face_halfedge.len(),
             face_halfedge.capacity(),
         ),
     ] {
-        if len != predicted || cap != predicted {
-            debug_assert!(
-                false,
-                "{} level {}: predicted {what} {predicted}, built {len} (capacity {cap})",
-                ctx.scheme, ctx.level
-            );
-            return Err(ctx.mismatch(what, predicted, len.max(cap)));
-        }
+        ctx.expect_exact(what, predicted, len, capacity)?;
     }
     Ok(HalfEdgeMesh::from_raw_parts(
         positions,
         vertex_halfedge,
-        hv,
-        hf,
-        hn,
-        hp,
+        halfedges,
         face_halfedge,
     ))
 }

@@ -382,44 +382,39 @@ fn step(
     let ctx = StepContext {
         scheme: &plan.name,
         level,
+        expected,
+        parallel: opts.threads != 1,
     };
-    let parallel = opts.threads != 1;
-    macro_rules! run {
-        ($grow:literal) => {
-            match (plan.rule, template) {
-                (Rule::Tri(rule, _), Some(t)) => {
-                    trisplit::tri_split::<$grow>(mesh, t, rule, expected, parallel, &ctx)
-                }
-                (Rule::Tri(..), None) => Err(ctx.invalid("no split template".into())),
-                (Rule::CatmullClark, _) => {
-                    catmull_clark::catmull_clark::<$grow>(mesh, expected, parallel, &ctx)
-                }
-                (Rule::Sqrt3 { boundary }, _) => sqrt3::sqrt3::<$grow>(
-                    mesh,
-                    boundary && level % 2 == 0,
-                    expected,
-                    parallel,
-                    &ctx,
-                ),
-                (Rule::DooSabin, _) => dual::doo_sabin::<$grow>(mesh, expected, parallel, &ctx),
-                (Rule::MidEdge, _) => dual::mid_edge::<$grow>(mesh, expected, parallel, &ctx),
-            }
-        };
-    }
     if !opts.preallocate {
-        return run!(true);
+        return built_by_faces::<true>(plan, template, mesh, &ctx);
     }
     match (plan.rule, template) {
-        (Rule::Tri(rule, 2), Some(t)) => {
-            gather::four_to_one(mesh, t, rule, expected, parallel, &ctx)
+        (Rule::Tri(rule, 2), Some(t)) => gather::four_to_one(mesh, t, rule, &ctx),
+        (Rule::CatmullClark, _) => gather::catmull_clark(mesh, &ctx),
+        (Rule::Sqrt3 { .. }, _) if mesh.is_closed() => gather::sqrt3_closed(mesh, &ctx),
+        (Rule::DooSabin, _) => gather::doo_sabin(mesh, &ctx),
+        (Rule::MidEdge, _) => gather::mid_edge(mesh, &ctx),
+        _ => built_by_faces::<false>(plan, template, mesh, &ctx),
+    }
+}
+
+/// One level built face by face ([`build::Builder`]): into arrays of the predicted lengths,
+/// or growing ones with `GROW`.
+fn built_by_faces<const GROW: bool>(
+    plan: &Plan,
+    template: Option<&Template>,
+    mesh: &HalfEdgeMesh,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    match (plan.rule, template) {
+        (Rule::Tri(rule, _), Some(t)) => trisplit::tri_split::<GROW>(mesh, t, rule, ctx),
+        (Rule::Tri(..), None) => Err(ctx.invalid("no split template".into())),
+        (Rule::CatmullClark, _) => catmull_clark::catmull_clark::<GROW>(mesh, ctx),
+        (Rule::Sqrt3 { boundary }, _) => {
+            sqrt3::sqrt3::<GROW>(mesh, boundary && ctx.level % 2 == 0, ctx)
         }
-        (Rule::CatmullClark, _) => gather::catmull_clark(mesh, expected, parallel, &ctx),
-        (Rule::Sqrt3 { .. }, _) if mesh.is_closed() => {
-            gather::sqrt3_closed(mesh, expected, parallel, &ctx)
-        }
-        (Rule::DooSabin, _) => gather::doo_sabin(mesh, expected, parallel, &ctx),
-        (Rule::MidEdge, _) => gather::mid_edge(mesh, expected, parallel, &ctx),
-        _ => run!(false),
+        (Rule::DooSabin, _) => dual::doo_sabin::<GROW>(mesh, ctx),
+        (Rule::MidEdge, _) => dual::mid_edge::<GROW>(mesh, ctx),
     }
 }
 
@@ -558,16 +553,13 @@ pub fn subdivide_to_face_list(
             let ctx = StepContext {
                 scheme: &plan.name,
                 level: s,
+                expected: sizes,
+                parallel: opts.threads != 1,
             };
-            let parallel = opts.threads != 1;
             let direct = match (plan.rule, template) {
                 _ if !opts.preallocate => None,
-                (Rule::Tri(rule, 2), Some(t)) => Some(to_faces::four_to_one(
-                    input, t, rule, sizes, parallel, &ctx,
-                )?),
-                (Rule::CatmullClark, _) => {
-                    Some(to_faces::catmull_clark(input, sizes, parallel, &ctx)?)
-                }
+                (Rule::Tri(rule, 2), Some(t)) => Some(to_faces::four_to_one(input, t, rule, &ctx)?),
+                (Rule::CatmullClark, _) => Some(to_faces::catmull_clark(input, &ctx)?),
                 _ => None,
             };
             match direct {
@@ -579,71 +571,72 @@ pub fn subdivide_to_face_list(
     )
 }
 
-/// Loop subdivision (`loop`, or `loop-boundary` when the mesh has a boundary): Loop's
-/// weights, boundary curves as cubic B-splines.
-///
-/// # Errors
-///
-/// As [`subdivide`] (e.g. a face that is not a triangle).
-///
-/// ```
-/// use halfedge::subdivide::{loop_subdivide, SubdivideOptions};
-/// let grid = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::grid(2, 2)?)?;
-/// let out = loop_subdivide(&grid, 2, &SubdivideOptions::default())?;
-/// assert_eq!(out.n_faces(), 8 * 16);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn loop_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    let name = if mesh.is_closed() {
-        "loop"
-    } else {
-        "loop-boundary"
-    };
-    subdivide(mesh, name, levels, opts)
+/// Defines the public shorthands for [`subdivide`] with one scheme: `name => "scheme"`, or
+/// `name => "closed" or "open"` for a scheme on closed meshes and its variant for meshes with a
+/// boundary; the string before the name completes the "As [`subdivide`]" of the errors.
+/// (A macro: functions cannot define functions.)
+macro_rules! shorthands {
+    ($($(#[doc = $doc:literal])* $errors:literal $fn:ident => $closed:literal $(or $open:literal)?;)*) => {$(
+        $(#[doc = $doc])*
+        ///
+        /// # Errors
+        ///
+        #[doc = concat!("As [`subdivide`]", $errors, ".")]
+        pub fn $fn(
+            mesh: &HalfEdgeMesh,
+            levels: u32,
+            opts: &SubdivideOptions<'_>,
+        ) -> Result<HalfEdgeMesh> {
+            let name = $closed;
+            $(let name = if mesh.is_closed() { name } else { $open };)?
+            subdivide(mesh, name, levels, opts)
+        }
+    )*};
 }
 
-/// Plain 4:1 split with edge midpoints (`midpoint`), old vertices kept.
-///
-/// # Errors
-///
-/// As [`subdivide`].
-pub fn midpoint_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "midpoint", levels, opts)
-}
+shorthands! {
+    /// Loop subdivision (`loop`, or `loop-boundary` when the mesh has a boundary): Loop's
+    /// weights, boundary curves as cubic B-splines.
+    ///
+    /// ```
+    /// use halfedge::subdivide::{loop_subdivide, SubdivideOptions};
+    /// let grid = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::grid(2, 2)?)?;
+    /// let out = loop_subdivide(&grid, 2, &SubdivideOptions::default())?;
+    /// assert_eq!(out.n_faces(), 8 * 16);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    " (e.g. a face that is not a triangle)" loop_subdivide => "loop" or "loop-boundary";
 
-/// 4:1 split with the edge midpoints projected onto the unit sphere (`icosphere`).
-///
-/// # Errors
-///
-/// As [`subdivide`].
-pub fn icosphere_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "icosphere", levels, opts)
-}
+    /// Plain 4:1 split with edge midpoints (`midpoint`), old vertices kept.
+    "" midpoint_subdivide => "midpoint";
 
-/// The modified butterfly scheme (`butterfly`, interpolating; boundary rules in the module
-/// docs of the implementation).
-///
-/// # Errors
-///
-/// As [`subdivide`].
-pub fn butterfly_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "butterfly", levels, opts)
+    /// 4:1 split with the edge midpoints projected onto the unit sphere (`icosphere`).
+    "" icosphere_subdivide => "icosphere";
+
+    /// The modified butterfly scheme (`butterfly`, interpolating; boundary rules in the module
+    /// docs of the implementation).
+    "" butterfly_subdivide => "butterfly";
+
+    /// Catmull-Clark subdivision on any polygon mesh, with boundary rules (`catmull-clark`).
+    ///
+    /// ```
+    /// use halfedge::subdivide::{catmull_clark_subdivide, SubdivideOptions};
+    /// let mixed = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::mixed())?;
+    /// let out = catmull_clark_subdivide(&mixed, 1, &SubdivideOptions::default())?;
+    /// assert!(out.is_quad_mesh());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    "" catmull_clark_subdivide => "catmull-clark";
+
+    /// Kobbelt's √3 subdivision (`sqrt3`, or `sqrt3-boundary` with Kobbelt's boundary rule when
+    /// the mesh has a boundary).
+    "" sqrt3_subdivide => "sqrt3" or "sqrt3-boundary";
+
+    /// Doo-Sabin subdivision on closed polygon meshes (`doo-sabin`).
+    " (a boundary, or a vertex of valence below 3)" doo_sabin_subdivide => "doo-sabin";
+
+    /// Peters-Reif mid-edge subdivision on closed polygon meshes (`mid-edge`).
+    " (a boundary, or a vertex of valence below 3)" mid_edge_subdivide => "mid-edge";
 }
 
 /// The 1:N² triangle split (`tri-split-N`) with points on the flat triangles.
@@ -658,72 +651,6 @@ pub fn tri_split_subdivide(
     opts: &SubdivideOptions<'_>,
 ) -> Result<HalfEdgeMesh> {
     subdivide(mesh, &format!("tri-split-{n}"), levels, opts)
-}
-
-/// Catmull-Clark subdivision on any polygon mesh, with boundary rules (`catmull-clark`).
-///
-/// # Errors
-///
-/// As [`subdivide`].
-///
-/// ```
-/// use halfedge::subdivide::{catmull_clark_subdivide, SubdivideOptions};
-/// let mixed = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::mixed())?;
-/// let out = catmull_clark_subdivide(&mixed, 1, &SubdivideOptions::default())?;
-/// assert!(out.is_quad_mesh());
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn catmull_clark_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "catmull-clark", levels, opts)
-}
-
-/// Kobbelt's √3 subdivision (`sqrt3`, or `sqrt3-boundary` with Kobbelt's boundary rule when
-/// the mesh has a boundary).
-///
-/// # Errors
-///
-/// As [`subdivide`].
-pub fn sqrt3_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    let name = if mesh.is_closed() {
-        "sqrt3"
-    } else {
-        "sqrt3-boundary"
-    };
-    subdivide(mesh, name, levels, opts)
-}
-
-/// Doo-Sabin subdivision on closed polygon meshes (`doo-sabin`).
-///
-/// # Errors
-///
-/// As [`subdivide`] (a boundary, or a vertex of valence below 3).
-pub fn doo_sabin_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "doo-sabin", levels, opts)
-}
-
-/// Peters-Reif mid-edge subdivision on closed polygon meshes (`mid-edge`).
-///
-/// # Errors
-///
-/// As [`subdivide`] (a boundary, or a vertex of valence below 3).
-pub fn mid_edge_subdivide(
-    mesh: &HalfEdgeMesh,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, "mid-edge", levels, opts)
 }
 
 /// The level loop shared by [`subdivide`] and [`verify`]; `visit(level, mesh)` sees every

@@ -25,6 +25,41 @@ pub(crate) fn extend<T: Send>(
     }
 }
 
+/// `f(0), ..., f(n - 1)` in a new vector with room for exactly `capacity` elements (growing
+/// on demand when `None`); `what` names it in an allocation error.
+///
+/// # Errors
+///
+/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
+pub(crate) fn collect<T: Send>(
+    capacity: Option<usize>,
+    n: usize,
+    parallel: bool,
+    what: &str,
+    f: impl Fn(usize) -> T + Sync + Send,
+) -> crate::Result<Vec<T>> {
+    let mut out = super::alloc::with_capacity_or_grow(capacity, what)?;
+    extend(&mut out, n, parallel, f);
+    Ok(out)
+}
+
+/// Calls `fill((i, chunk))` on the consecutive chunks of `len` elements of `out` (the last
+/// may be shorter), in parallel when `parallel` and `out` has at least `parallel_min`
+/// elements; on one thread the whole of `out` is one chunk.
+pub(crate) fn for_each_chunk<T: Send>(
+    out: &mut [T],
+    len: usize,
+    parallel: bool,
+    parallel_min: usize,
+    fill: impl Fn((usize, &mut [T])) + Sync + Send,
+) {
+    if parallel && out.len() >= parallel_min {
+        out.par_chunks_mut(len).enumerate().for_each(fill);
+    } else {
+        fill((0, out));
+    }
+}
+
 /// One chunk of each of the four half-edge arrays, as zipped by rayon.
 type Chunks<'a> = (
     ((&'a mut [u32], &'a mut [u32]), &'a mut [u32]),
@@ -66,13 +101,8 @@ pub(crate) fn halfedge_arrays(
             .enumerate()
             .for_each(fill);
     } else {
-        vertex
-            .chunks_mut(CHUNK)
-            .zip(face.chunks_mut(CHUNK))
-            .zip(next.chunks_mut(CHUNK))
-            .zip(prev.chunks_mut(CHUNK))
-            .enumerate()
-            .for_each(fill);
+        // One thread: the whole arrays are one chunk.
+        fill((0, (((&mut vertex, &mut face), &mut next), &mut prev)));
     }
     Ok([vertex, face, next, prev])
 }

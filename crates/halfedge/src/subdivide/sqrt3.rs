@@ -37,7 +37,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::build::{Builder, Sizes, StepContext};
+use super::build::{Builder, StepContext};
 use super::par;
 use super::topo::Topo;
 use crate::mesh::INVALID;
@@ -47,8 +47,6 @@ use crate::{HalfEdgeMesh, Result};
 pub(crate) fn sqrt3<const GROW: bool>(
     mesh: &HalfEdgeMesh,
     step_b: bool,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
@@ -129,7 +127,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
         _ => 2 * spoke(k) + 1,
     };
 
-    let mut b = Builder::<GROW>::new(expected)?;
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
     for f in 0..nf {
         let g0 = t.face_halfedge(f);
         for g in [g0, t.next(g0), t.prev(g0)] {
@@ -158,12 +156,9 @@ pub(crate) fn sqrt3<const GROW: bool>(
         }
     }
 
-    let mut positions = if GROW {
-        Vec::new()
-    } else {
-        super::alloc::with_capacity(expected.vertices, "positions")?
-    };
-    par::extend(&mut positions, nv as usize, parallel, |v| {
+    let parallel = ctx.parallel;
+    let capacity = (!GROW).then_some(ctx.expected.vertices);
+    let mut positions = par::collect(capacity, nv as usize, parallel, "positions", |v| {
         let v = v as u32;
         let p = t.pos(v);
         if t.is_boundary_vertex(v) {
@@ -176,7 +171,7 @@ pub(crate) fn sqrt3<const GROW: bool>(
             return (left * 4.0 + p * 19.0 + right * 4.0) / 27.0;
         }
         interior_vertex(&t, v)
-    });
+    })?;
     // Boundary points: g runs a -> b inside the mesh, its twin b -> a on the boundary.
     let p1 = |g: u32| {
         let before = t.pos(t.target(t.next(g ^ 1)));

@@ -18,11 +18,10 @@
 //!   from each face's first half-edge), `p = prev(h)`: face `k` is
 //!   `[source(h), V + (h >> 1), V + E + f, V + (p >> 1)]`.
 
-use rayon::prelude::*;
-
-use super::build::{Sizes, StepContext};
+use super::build::StepContext;
 use super::catmull_clark::cc_positions;
-use super::gather::check;
+use super::gather::{catmull_clark_sizes, check, four_to_one_sizes};
+use super::par;
 use super::topo::Topo;
 use super::trisplit::{tri_positions, Template, TriRule};
 use crate::{HalfEdgeMesh, PolygonMesh, Result};
@@ -38,50 +37,41 @@ pub(crate) fn four_to_one(
     mesh: &HalfEdgeMesh,
     template: &Template,
     rule: TriRule,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<(PolygonMesh, usize)> {
     let t = Topo::new(mesh);
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf());
-    let built = Sizes {
-        vertices: (nv + ne) as usize,
-        halfedges: 2 * (2 * ne as usize + 3 * nf),
-        faces: 4 * nf,
-    };
-    check(ctx, expected, built)?;
-    let positions = tri_positions(&t, template, rule, Some(expected.vertices), parallel)?;
+    let built = four_to_one_sizes(&t);
+    check(ctx, built)?;
+    let positions = tri_positions(
+        &t,
+        template,
+        rule,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    let nv = t.nv() as u32;
     let mut corners = super::alloc::filled(0u32, 3 * built.faces, "corners")?;
-    let fill = |(chunk, out): (usize, &mut [u32])| {
-        let first = chunk * FACES_PER_TASK;
-        for (f, tris) in (first as u32..).zip(out.chunks_exact_mut(12)) {
-            let h0 = t.face_halfedge(f);
-            let h1 = t.next(h0);
-            let h2 = t.next(h1);
-            let [m0, m1, m2] = [nv + (h0 >> 1), nv + (h1 >> 1), nv + (h2 >> 1)];
-            tris.copy_from_slice(&[
-                m0,
-                m1,
-                m2,
-                m1,
-                m0,
-                t.target(h0),
-                m2,
-                m1,
-                t.target(h1),
-                m0,
-                m2,
-                t.target(h2),
-            ]);
-        }
-    };
-    let per_task = 12 * FACES_PER_TASK;
-    if parallel && nf >= PARALLEL_MIN_FACES {
-        corners.par_chunks_mut(per_task).enumerate().for_each(fill);
-    } else {
-        corners.chunks_mut(per_task).enumerate().for_each(fill);
-    }
-    let faces = finish(ctx, expected, positions, corners, 3, parallel)?;
+    for_each_face::<12>(&mut corners, ctx.parallel, |f, tris| {
+        let h0 = t.face_halfedge(f);
+        let h1 = t.next(h0);
+        let h2 = t.next(h1);
+        let [m0, m1, m2] = [nv + (h0 >> 1), nv + (h1 >> 1), nv + (h2 >> 1)];
+        tris.copy_from_slice(&[
+            m0,
+            m1,
+            m2,
+            m1,
+            m0,
+            t.target(h0),
+            m2,
+            m1,
+            t.target(h1),
+            m0,
+            m2,
+            t.target(h2),
+        ]);
+    });
+    let faces = finish(ctx, positions, corners, 3)?;
     Ok((faces, built.halfedges / 2))
 }
 
@@ -89,21 +79,13 @@ pub(crate) fn four_to_one(
 /// edges.
 pub(crate) fn catmull_clark(
     mesh: &HalfEdgeMesh,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<(PolygonMesh, usize)> {
     let t = Topo::new(mesh);
+    let built = catmull_clark_sizes(&t);
+    check(ctx, built)?;
+    let positions = cc_positions(&t, Some(ctx.expected.vertices), ctx.parallel)?;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf());
-    // Every half-edge that is not on the boundary is one face corner.
-    let n_corners = 2 * ne as usize - t.boundary_edges();
-    let built = Sizes {
-        vertices: (nv + ne) as usize + nf,
-        halfedges: 2 * (2 * ne as usize + n_corners),
-        faces: n_corners,
-    };
-    check(ctx, expected, built)?;
-    let positions = cc_positions(&t, Some(expected.vertices), parallel)?;
     let quad = |f: u32, h: u32| -> [u32; 4] {
         let p = t.prev(h);
         [t.target(p), nv + (h >> 1), nv + ne + f, nv + (p >> 1)]
@@ -113,28 +95,19 @@ pub(crate) fn catmull_clark(
         // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
         // and their targets are loaded once (prev(h_k) = h_(k-1), so `quad` is inlined here
         // without its prev lookup).
-        let fill = |(chunk, out): (usize, &mut [u32])| {
-            let first = chunk * FACES_PER_TASK;
-            for (f, quads) in (first as u32..).zip(out.chunks_exact_mut(16)) {
-                let h0 = t.face_halfedge(f);
-                let h1 = t.next(h0);
-                let h2 = t.next(h1);
-                let h3 = t.next(h2);
-                let hs = [h0, h1, h2, h3];
-                let targets = hs.map(|h| t.target(h));
-                let center = nv + ne + f;
-                for (k, q) in quads.chunks_exact_mut(4).enumerate() {
-                    let p = (k + 3) % 4;
-                    q.copy_from_slice(&[targets[p], nv + (hs[k] >> 1), center, nv + (hs[p] >> 1)]);
-                }
+        for_each_face::<16>(&mut corners, ctx.parallel, |f, quads| {
+            let h0 = t.face_halfedge(f);
+            let h1 = t.next(h0);
+            let h2 = t.next(h1);
+            let h3 = t.next(h2);
+            let hs = [h0, h1, h2, h3];
+            let targets = hs.map(|h| t.target(h));
+            let center = nv + ne + f;
+            for (k, q) in quads.chunks_exact_mut(4).enumerate() {
+                let p = (k + 3) % 4;
+                q.copy_from_slice(&[targets[p], nv + (hs[k] >> 1), center, nv + (hs[p] >> 1)]);
             }
-        };
-        let per_task = 16 * FACES_PER_TASK;
-        if parallel && nf >= PARALLEL_MIN_FACES {
-            corners.par_chunks_mut(per_task).enumerate().for_each(fill);
-        } else {
-            corners.chunks_mut(per_task).enumerate().for_each(fill);
-        }
+        });
     } else {
         // Faces of any degree (the first level): corners face by face.
         let mut slots = corners.chunks_exact_mut(4);
@@ -151,44 +124,48 @@ pub(crate) fn catmull_clark(
             return Err(ctx.mismatch("faces", built.faces, written));
         }
     }
-    let faces = finish(ctx, expected, positions, corners, 4, parallel)?;
+    let faces = finish(ctx, positions, corners, 4)?;
     Ok((faces, built.halfedges / 2))
+}
+
+/// Calls `write(f, out)` for every old face `f` in order, `out` the `K` corners it owns at
+/// `f * K` in `corners`; in parallel tasks of [`FACES_PER_TASK`] old faces when `parallel`
+/// and there are at least [`PARALLEL_MIN_FACES`].
+#[inline]
+fn for_each_face<const K: usize>(
+    corners: &mut [u32],
+    parallel: bool,
+    write: impl Fn(u32, &mut [u32]) + Sync + Send,
+) {
+    let fill = |(chunk, out): (usize, &mut [u32])| {
+        let first = chunk * FACES_PER_TASK;
+        for (f, out) in (first as u32..).zip(out.chunks_exact_mut(K)) {
+            write(f, out);
+        }
+    };
+    let (per_task, min) = (K * FACES_PER_TASK, K * PARALLEL_MIN_FACES);
+    par::for_each_chunk(corners, per_task, parallel, min, fill);
 }
 
 /// Checks the lengths against the prediction (a mismatch is a bug) and assembles the mesh of
 /// faces of `degree` corners each.
 fn finish(
     ctx: &StepContext<'_>,
-    expected: Sizes,
     positions: Vec<glam::DVec3>,
     corners: Vec<u32>,
     degree: usize,
-    parallel: bool,
 ) -> Result<PolygonMesh> {
-    for (what, predicted, len, cap) in [
-        (
-            "vertex positions",
-            expected.vertices,
-            positions.len(),
-            positions.capacity(),
-        ),
-        (
-            "face corners",
-            degree * expected.faces,
-            corners.len(),
-            corners.capacity(),
-        ),
-    ] {
-        if len != predicted || cap != predicted {
-            debug_assert!(
-                false,
-                "{} level {}: predicted {what} {predicted}, built {len} (capacity {cap})",
-                ctx.scheme, ctx.level
-            );
-            return Err(ctx.mismatch(what, predicted, len.max(cap)));
-        }
-    }
-    let mut offsets = super::alloc::with_capacity(expected.faces + 1, "offsets")?;
-    super::par::extend(&mut offsets, expected.faces + 1, parallel, |f| degree * f);
+    let e = ctx.expected;
+    let (n, capacity) = (positions.len(), positions.capacity());
+    ctx.expect_exact("vertex positions", e.vertices, n, capacity)?;
+    let (n, capacity) = (corners.len(), corners.capacity());
+    ctx.expect_exact("face corners", degree * e.faces, n, capacity)?;
+    let offsets = par::collect(
+        Some(e.faces + 1),
+        e.faces + 1,
+        ctx.parallel,
+        "offsets",
+        |f| degree * f,
+    )?;
     Ok(PolygonMesh::from_raw_parts(positions, offsets, corners))
 }

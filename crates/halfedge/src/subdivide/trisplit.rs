@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::build::{Builder, Sizes, StepContext};
+use super::build::{Builder, StepContext};
 use super::par;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
@@ -166,8 +166,6 @@ pub(crate) fn tri_split<const GROW: bool>(
     mesh: &HalfEdgeMesh,
     template: &Template,
     rule: TriRule,
-    expected: Sizes,
-    parallel: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
@@ -177,7 +175,7 @@ pub(crate) fn tri_split<const GROW: bool>(
     let interior_base = nv + (n - 1) * ne;
     let edge_base = n * ne;
 
-    let mut b = Builder::<GROW>::new(expected)?;
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
     let mut corners = [(0u32, 0u32); 3];
     for f in 0..nf {
         let h0 = t.face_halfedge(f);
@@ -217,14 +215,11 @@ pub(crate) fn tri_split<const GROW: bool>(
         }
     }
 
-    let positions = tri_positions(
-        &t,
-        template,
-        rule,
-        (!GROW).then_some(expected.vertices),
-        parallel,
-    )?;
-    b.finish(positions, ctx)
+    let capacity = (!GROW).then_some(ctx.expected.vertices);
+    b.finish(
+        tri_positions(&t, template, rule, capacity, ctx.parallel)?,
+        ctx,
+    )
 }
 
 /// The positions of a 1:N² step: old vertices (moved by Loop's rule or kept), edge points,
@@ -240,10 +235,7 @@ pub(crate) fn tri_positions(
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let points_per_face = template.interior_points.len() as u32;
     let t = *t;
-    let mut positions = match capacity {
-        Some(n) => super::alloc::with_capacity(n, "positions")?,
-        None => Vec::new(),
-    };
+    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
     // Old vertices.
     if rule == TriRule::Loop {
         par::extend(&mut positions, nv as usize, parallel, |v| {
@@ -310,10 +302,7 @@ fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {
 pub(crate) fn loop_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
     let p = t.pos(v);
     if t.is_boundary_vertex(v) {
-        let h = t.vertex_halfedge(v);
-        let right = t.pos(t.target(h));
-        let left = t.pos(t.source(t.prev(h)));
-        return p * 0.75 + (left + right) * 0.125;
+        return boundary_vertex(t, v);
     }
     let mut sum = DVec3::ZERO;
     let mut n = 0usize;
@@ -329,6 +318,16 @@ pub(crate) fn loop_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
     let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / nf).cos();
     let beta = (5.0 / 8.0 - c * c) / nf;
     p * (1.0 - nf * beta) + sum * beta
+}
+
+/// The cubic B-spline rule of a boundary vertex `v` (Loop and Catmull-Clark):
+/// `3/4 v + 1/8 (left + right)`, its neighbours along the boundary.
+#[inline]
+pub(crate) fn boundary_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
+    let h = t.vertex_halfedge(v);
+    let right = t.pos(t.target(h));
+    let left = t.pos(t.source(t.prev(h)));
+    t.pos(v) * 0.75 + (left + right) * 0.125
 }
 
 /// Loop's edge rule: `3/8 (a + b) + 1/8 (c + d)`; boundary edges: midpoints.
