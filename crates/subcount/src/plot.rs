@@ -1,6 +1,6 @@
 //! `plot`: V, E, F and the state components versus level on a log10 scale, as SVG or PNG.
 //!
-//! The counts come from [`Dynamics`] exactly as `table` computes them; only the drawing is
+//! The counts come from [`Counter`] exactly as `table` computes them; only the drawing is
 //! approximate. log10 of a count comes from its bit length and leading 64 bits, so counts of
 //! any size map to finite positions (plotters' log coordinates take `f64` counts, which end at
 //! about 10^308): the y axis is linear in log10 and labelled 10^k.
@@ -30,7 +30,7 @@ use crate::failure::{input, usage, write_failure, Failure};
 use crate::levels::parse_levels;
 use crate::model::{Input, DEFAULT_COUNTS};
 use crate::output::Row;
-use schemes::Counter as Dynamics;
+use schemes::Counter;
 
 /// The most levels one plot draws (each is a point on every line).
 const MAX_LEVELS: u64 = 1000;
@@ -50,11 +50,11 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         ));
     }
     let input = Input::new(&args.source);
-    let dynamics = input.counter()?;
-    let x0 = input.initial_state(&dynamics)?;
-    crate::guard::table(&dynamics, &x0, &levels)?;
-    let rows = dynamics.rows(&x0, levels.clone())?;
-    let columns = dynamics.columns();
+    let counter = input.counter()?;
+    let x0 = input.initial_state(&counter)?;
+    crate::guard::table(&counter, &x0, &levels)?;
+    let rows = counter.rows(&x0, levels.clone())?;
+    let columns = counter.columns();
     let series = series_of(&columns, &rows);
     let hidden: Vec<String> = columns
         .iter()
@@ -66,7 +66,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         return Err(usage!("nothing to plot: {why}"));
     }
     let chart = Chart {
-        title: title(&dynamics, &args.source),
+        title: title(&counter, &args.source),
         levels: levels.clone(),
         series,
         hidden,
@@ -153,10 +153,10 @@ fn legend_label(name: &str) -> String {
 }
 
 /// "loop on icosahedron"-style title naming the rule and the initial mesh or state.
-fn title(dynamics: &Dynamics, source: &Source) -> String {
-    let rule = match dynamics {
-        Dynamics::Matrix(_) => format!("matrix {}", source.matrix.as_deref().unwrap_or("")),
-        Dynamics::Plan(plan) => plan.name().to_string(),
+fn title(counter: &Counter, source: &Source) -> String {
+    let rule = match counter {
+        Counter::Matrix(_) => format!("matrix {}", source.matrix.as_deref().unwrap_or("")),
+        Counter::Plan(plan) => plan.name().to_string(),
     };
     let start = if let Some(path) = &source.mesh.mesh {
         path.file_name().map_or_else(
