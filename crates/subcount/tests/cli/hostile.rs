@@ -1452,46 +1452,39 @@ fn threads_are_capped() {
     let files = Files::new();
     let out = files.path("out.obj").display().to_string();
     for (cmd, extra) in [("subdivide", vec!["-o", out.as_str()]), ("verify", vec![])] {
+        let with_threads = |n: &str| -> Vec<String> {
+            [
+                cmd,
+                "--base",
+                "icosahedron",
+                "--scheme",
+                "loop",
+                "--levels",
+                "1",
+                "--threads",
+                n,
+            ]
+            .iter()
+            .chain(&extra)
+            .map(|a| a.to_string())
+            .collect()
+        };
         for n in ["257", "100000", "18446744073709551616"] {
             let needle = if n == "18446744073709551616" {
                 "invalid value '18446744073709551616' for '--threads <N>': number too large to fit in target type"
             } else {
                 "for '--threads <N>': at most 256 threads (0 uses every core)"
             };
-            let args = [
-                &[
-                    cmd,
-                    "--base",
-                    "icosahedron",
-                    "--scheme",
-                    "loop",
-                    "--levels",
-                    "1",
-                    "--threads",
-                    n,
-                ],
-                &extra[..],
-            ]
-            .concat();
-            fails(&args, 2, needle);
+            let args = with_threads(n);
+            fails(
+                &args.iter().map(String::as_str).collect::<Vec<_>>(),
+                2,
+                needle,
+            );
         }
         for n in ["0", "256"] {
-            let args = [
-                &[
-                    cmd,
-                    "--base",
-                    "icosahedron",
-                    "--scheme",
-                    "loop",
-                    "--levels",
-                    "1",
-                    "--threads",
-                    n,
-                ],
-                &extra[..],
-            ]
-            .concat();
-            ok(&args);
+            let args = with_threads(n);
+            ok(&args.iter().map(String::as_str).collect::<Vec<_>>());
         }
     }
 }
