@@ -13,7 +13,7 @@ use recurrence::IntMatrix;
 
 use crate::class::Hints;
 use crate::scheme::{Component, Derivation, SchemeSpec, StepRule};
-use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Scheme, Stat};
+use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Rule, Scheme, Stat};
 
 /// Aliases of `loop`: the same topology (4:1 split), different geometry in `halfedge`.
 pub const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
@@ -115,34 +115,54 @@ pub fn builtin(name: &str) -> Result<Scheme> {
             }
         },
     };
-    Ok(scheme.renamed(name))
+    let rule = match scheme.canonical_name() {
+        _ if name == "midpoint" => Rule::Midpoint,
+        _ if name == "butterfly" => Rule::Butterfly,
+        _ if name == "icosphere" => Rule::Icosphere,
+        "loop" | "loop-boundary" | "loop-general" => Rule::Loop,
+        "catmull-clark-quad" | "catmull-clark" | "catmull-clark-general" => Rule::CatmullClark,
+        "sqrt3" | "sqrt3-boundary" => Rule::Sqrt3,
+        "doo-sabin" => Rule::DooSabin,
+        "mid-edge" => Rule::MidEdge,
+        split => match split.strip_prefix("tri-split-").map(str::parse::<u32>) {
+            Some(Ok(n)) => Rule::TriSplit(n),
+            // Split factors beyond u32 make more faces than any level can hold: counted only.
+            _ => return Ok(scheme.renamed(name)),
+        },
+    };
+    let mut scheme = scheme.renamed(name).with_subdivision_rule(rule);
+    scheme.boundary_variant = scheme.canonical_name() == "loop";
+    Ok(scheme)
 }
 
-/// # Aliases on meshes with boundary
+/// # `loop` and its aliases on meshes with boundary
 ///
-/// The 4:1 aliases `midpoint`, `butterfly` and `icosphere` count as `loop` on closed meshes.
-/// Their geometry (in `halfedge`) also handles boundaries, so on a mesh with boundary edges
-/// and no non-manifold edge they count as `loop-boundary`, the same 4:1 topology: these
-/// methods pick the scheme that counts them for the mesh at hand, as `halfedge`'s subdivision
-/// does. `loop` itself, like every other scheme, is returned unchanged: it refuses a boundary
-/// ([`Scheme::initial_state`] says to use `loop-boundary`).
+/// `loop` and the 4:1 aliases `midpoint`, `butterfly` and `icosphere` count as `loop` on closed
+/// meshes. Their geometry (in `halfedge`) also handles boundaries, so on a mesh with boundary
+/// edges and no non-manifold edge they count as `loop-boundary`, the same 4:1 topology, as
+/// every peer (OpenSubdiv, OpenMesh, libigl) subdivides a mesh with boundary when asked for
+/// Loop: these methods pick the scheme that counts them for the mesh at hand, as `halfedge`'s
+/// subdivision does. Every other scheme is returned unchanged (`sqrt3` refuses a boundary and
+/// says to use `sqrt3-boundary`).
 impl Scheme {
     /// Whether [`for_mesh`](Self::for_mesh) and [`for_counts`](Self::for_counts) may return
-    /// another scheme: true for the 4:1 aliases `midpoint`, `butterfly` and `icosphere`.
+    /// another scheme: true for the built-in `loop` and its 4:1 aliases `midpoint`, `butterfly`
+    /// and `icosphere`.
     ///
     /// ```
     /// assert!(schemes::builtin("butterfly")?.has_boundary_variant());
-    /// assert!(!schemes::builtin("loop")?.has_boundary_variant());
+    /// assert!(schemes::builtin("loop")?.has_boundary_variant());
+    /// assert!(!schemes::builtin("loop-boundary")?.has_boundary_variant());
     /// # Ok::<(), schemes::Error>(())
     /// ```
     pub fn has_boundary_variant(&self) -> bool {
-        self.canonical_name() == "loop" && LOOP_ALIASES.contains(&self.name())
+        self.boundary_variant
     }
 
-    /// The scheme that counts this one on a mesh with `counts`: for a 4:1 alias on a mesh
-    /// with boundary edges and no non-manifold edge, `loop-boundary` under the alias's name
-    /// ([`canonical_name`](Self::canonical_name) says `loop-boundary`); otherwise a copy of
-    /// this scheme.
+    /// The scheme that counts this one on a mesh with `counts`: for `loop` or a 4:1 alias on
+    /// a mesh with boundary edges and no non-manifold edge, `loop-boundary` under the name
+    /// asked for ([`canonical_name`](Self::canonical_name) says `loop-boundary`); otherwise a
+    /// copy of this scheme.
     ///
     /// ```
     /// use schemes::{builtin, MeshCounts};
@@ -152,18 +172,18 @@ impl Scheme {
     /// assert_eq!((butterfly.name(), butterfly.canonical_name()), ("butterfly", "loop-boundary"));
     /// let c = butterfly.counts_at(&open_square, 1)?;
     /// assert_eq!((c.vertices, c.edges, c.faces), (9.into(), 16.into(), 8.into()));
+    /// let lp = builtin("loop")?.for_mesh(&open_square);
+    /// assert_eq!((lp.name(), lp.canonical_name()), ("loop", "loop-boundary"));
     ///
-    /// // On a closed mesh it stays `loop`; `loop` itself still refuses the boundary.
+    /// // On a closed mesh it stays `loop`.
     /// let tetra = MeshCounts::from_polygons(&[[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]])?;
     /// assert_eq!(builtin("butterfly")?.for_mesh(&tetra).canonical_name(), "loop");
-    /// let lp = builtin("loop")?.for_mesh(&open_square);
-    /// assert!(lp.initial_state(&open_square).unwrap_err().to_string().ends_with("use loop-boundary"));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn for_mesh(&self, counts: &MeshCounts) -> Scheme {
         if self.has_boundary_variant() && counts.boundary_edges > 0 && counts.nonmanifold_edges == 0
         {
-            return loop_boundary().renamed(self.name());
+            return self.boundary_twin();
         }
         self.clone()
     }
@@ -200,9 +220,20 @@ impl Scheme {
             .position(|n| n == Stat::BE.short_name());
         match (boundary.state_from_input(input), be) {
             (Ok(state), Some(i)) if state[i].sign() == num_bigint::Sign::Plus => {
-                boundary.renamed(self.name())
+                self.boundary_twin()
             }
             _ => self.clone(),
+        }
+    }
+}
+
+impl Scheme {
+    /// `loop-boundary` under this scheme's name, with its rule.
+    fn boundary_twin(&self) -> Scheme {
+        let twin = loop_boundary().renamed(self.name());
+        match self.subdivision_rule() {
+            Some(rule) => twin.with_subdivision_rule(rule),
+            None => twin,
         }
     }
 }
@@ -724,9 +755,9 @@ mod tests {
         MeshCounts::from_polygons(faces).expect("valid faces")
     }
 
-    /// The rule of `halfedge`'s subdivision: an alias counts as `loop-boundary` exactly when
-    /// the mesh has boundary edges and no non-manifold edge; the refusals keep the alias's
-    /// name and say what to use.
+    /// The rule of `halfedge`'s subdivision: `loop` and its aliases count as `loop-boundary`
+    /// exactly when the mesh has boundary edges and no non-manifold edge; the refusals keep the
+    /// name asked for and say what to use.
     #[test]
     fn aliases_follow_the_mesh() {
         let open = counts(&[&[0, 1, 2], &[0, 2, 3]]);
@@ -734,9 +765,10 @@ mod tests {
         // Three triangles on one edge (NME = 1) and boundary edges.
         let fin = counts(&[&[0, 1, 2], &[1, 0, 3], &[0, 1, 4]]);
         let open_quads = counts(&[&[0, 1, 2, 3]]);
-        for alias in LOOP_ALIASES {
+        for alias in ["loop"].into_iter().chain(LOOP_ALIASES) {
             let s = builtin(alias).expect("built-in");
             assert_eq!(s.for_mesh(&open).canonical_name(), "loop-boundary");
+            assert_eq!(s.for_mesh(&open).subdivision_rule(), s.subdivision_rule());
             assert_eq!(s.for_mesh(&open).name(), alias);
             assert_eq!(s.for_mesh(&closed).canonical_name(), "loop");
             let err = s.for_mesh(&fin).initial_state(&fin).unwrap_err();
@@ -755,7 +787,6 @@ mod tests {
             );
         }
         for name in [
-            "loop",
             "loop-boundary",
             "loop-general",
             "tri-split-2",

@@ -13,6 +13,7 @@
 //! | `derive` | optional table giving `V`, `E` or `F` as integer combinations of the state, e.g. `E = { IE = 1, BE = 1 }`; the reserved key `divide_by` divides the combination exactly, e.g. `F = { E = 2, divide_by = 3 }` |
 //! | `requires` | optional list of `triangles`, `quads`, `closed`, `manifold` |
 //! | `produces` | optional face kind after a step: `triangles`, `quads` or `polygons` (lets a [`Plan`](crate::Plan) chain the scheme) |
+//! | `topology` | optional built-in scheme whose real subdivision this matrix counts: `loop`, `loop-boundary`, `midpoint`, `butterfly`, `icosphere`, `catmull-clark`, `sqrt3`, `doo-sabin`, `mid-edge`, `tri-split-N`, ... (its [`Rule`](crate::Rule): `subdivide` runs it, `verify` compares the matrix's counts with it) |
 //!
 //! Every mistake is an [`Error::SchemeFile`] naming the line and column in the text.
 //!
@@ -64,6 +65,7 @@ struct RawScheme {
     derive: Option<DeriveTable>,
     requires: Option<Vec<Spanned<String>>>,
     produces: Option<Spanned<String>>,
+    topology: Option<Spanned<String>>,
 }
 
 /// The reserved key of a `derive` entry that divides the combination.
@@ -344,7 +346,28 @@ impl Scheme {
             produces,
             derive,
         };
-        Scheme::try_from_spec(spec).map_err(|e| at.error(raw.name.span(), e.to_string()))
+        let scheme =
+            Scheme::try_from_spec(spec).map_err(|e| at.error(raw.name.span(), e.to_string()))?;
+        match &raw.topology {
+            None => Ok(scheme),
+            Some(topology) => {
+                let rule = crate::builtin(topology.get_ref())
+                    .ok()
+                    .and_then(|b| b.subdivision_rule())
+                    .ok_or_else(|| {
+                        at.error(
+                            topology.span(),
+                            format!(
+                                "topology `{}` is not a built-in scheme with a real subdivision \
+                                 (use one of: loop, loop-boundary, midpoint, butterfly, icosphere, \
+                                 tri-split-N, catmull-clark, sqrt3, sqrt3-boundary, doo-sabin, mid-edge)",
+                                topology.get_ref()
+                            ),
+                        )
+                    })?;
+                Ok(scheme.with_subdivision_rule(rule))
+            }
+        }
     }
 
     /// The scheme in the TOML format read by [`Scheme::from_toml`] (a template for custom
@@ -355,8 +378,10 @@ impl Scheme {
     /// let text = lb.to_toml();
     /// assert!(text.contains("state = [\"V\", \"IE\", \"BE\"]"));
     /// assert!(text.contains("F = { IE = 2, BE = 1, divide_by = 3 }"));
+    /// assert!(text.contains("topology = \"loop\""));
     /// let again = schemes::Scheme::from_toml(&text)?;
     /// assert_eq!(again.matrix(), lb.matrix());
+    /// assert_eq!(again.subdivision_rule(), Some(schemes::Rule::Loop));
     /// # Ok::<(), schemes::Error>(())
     /// ```
     pub fn to_toml(&self) -> String {
@@ -379,6 +404,9 @@ impl Scheme {
         }
         if let Some(p) = self.produces() {
             let _ = writeln!(out, "produces = {}", quote(p.keyword()));
+        }
+        if let Some(rule) = self.subdivision_rule() {
+            let _ = writeln!(out, "topology = {}", quote(&rule.to_string()));
         }
         let rows = |m: &IntMatrix, indent: &str| -> String {
             let mut s = String::from("[\n");
@@ -455,5 +483,21 @@ mod tests {
             Scheme::from_toml(&text).map(|s| s.dim()).ok(),
             Some(MAX_STATE_COMPONENTS)
         );
+    }
+
+    #[test]
+    fn topology_names_a_rule_or_is_refused_where_it_stands() {
+        let text = "name = \"q\"\nstate = [\"V\", \"E\"]\nmatrix = [[1, 1], [0, 4]]\ntopology = \"butterfly\"\n";
+        let s = Scheme::from_toml(text).expect("valid");
+        assert_eq!(s.subdivision_rule(), Some(crate::Rule::Butterfly));
+        assert!(s.to_toml().contains("topology = \"butterfly\"\n"));
+        let bad = text.replace("butterfly", "loopy");
+        let err = Scheme::from_toml(&bad).unwrap_err().to_string();
+        assert!(
+            err.starts_with("line 4, column 12: topology `loopy` is not a built-in scheme with a real subdivision"),
+            "{err}"
+        );
+        let none = text.replace("topology = \"butterfly\"\n", "");
+        assert_eq!(Scheme::from_toml(&none).expect("valid").subdivision_rule(), None);
     }
 }

@@ -76,6 +76,7 @@ mod error;
 mod fit;
 pub mod input;
 mod plan;
+mod rule;
 mod scheme;
 
 pub use crate::catalog::{builtin, builtins};
@@ -90,5 +91,7 @@ pub use crate::fit::{
 };
 pub use crate::input::{parse_init, CountsInput, Facts};
 pub use crate::plan::{Plan, Stage};
+pub use crate::rule::Rule;
 pub use crate::scheme::{Component, Derivation, LevelCounts, Phase, Scheme, SchemeSpec, StepRule};
+pub use num_bigint::{self, BigInt};
 pub use recurrence;

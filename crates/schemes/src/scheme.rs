@@ -8,7 +8,7 @@ use recurrence::{ClosedForm, IntMatrix, Recurrence};
 
 use crate::class::{check_counts, Hints};
 use crate::input::{linear_text, solve, Facts};
-use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Stat};
+use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Rule, Stat};
 
 /// One component of a scheme's state.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -248,6 +248,11 @@ pub struct Scheme {
     produces: Option<FaceKind>,
     vef: [Source; 3],
     pub(crate) hints: Hints,
+    /// The real subdivision this scheme counts, when it has one.
+    geometry: Option<Rule>,
+    /// A built-in 4:1 name (`loop` and its aliases) that counts as `loop-boundary` on a mesh
+    /// with boundary ([`Scheme::for_mesh`]).
+    pub(crate) boundary_variant: bool,
 }
 
 /// The counts at one level.
@@ -386,7 +391,32 @@ impl Scheme {
             produces: spec.produces,
             vef,
             hints: Hints::default(),
+            geometry: None,
+            boundary_variant: false,
         })
+    }
+
+    /// This scheme with the real subdivision it counts: what `halfedge` runs for it
+    /// (`subdivide`) and checks its counts against (`verify`). Built-in schemes have theirs; a
+    /// scheme file sets it with `topology = "NAME"`.
+    ///
+    /// ```
+    /// use schemes::{Rule, Scheme};
+    ///
+    /// let text = "name = \"tri\"\nstate = [\"F\"]\nmatrix = [[4]]\n";
+    /// let tri = Scheme::from_toml(text)?.with_subdivision_rule(Rule::Midpoint);
+    /// assert_eq!(tri.subdivision_rule(), Some(Rule::Midpoint));
+    /// # Ok::<(), schemes::Error>(())
+    /// ```
+    pub fn with_subdivision_rule(mut self, rule: Rule) -> Scheme {
+        self.geometry = Some(rule);
+        self
+    }
+
+    /// The real subdivision this scheme counts (see
+    /// [`with_subdivision_rule`](Self::with_subdivision_rule)); `None` for a matrix without one.
+    pub fn subdivision_rule(&self) -> Option<Rule> {
+        self.geometry
     }
 
     pub(crate) fn with_hints(mut self, hints: Hints) -> Scheme {

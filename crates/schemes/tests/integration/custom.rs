@@ -133,6 +133,7 @@ fn every_builtin_round_trips_through_toml() {
         assert_eq!(again.mesh_class(), s.mesh_class());
         assert_eq!(again.produces(), s.produces());
         assert_eq!(again.derived(), s.derived());
+        assert_eq!(again.subdivision_rule(), s.subdivision_rule());
         assert_eq!(again.to_toml(), text);
     }
     let text = builtin("loop").unwrap().to_toml();
@@ -144,6 +145,7 @@ fn every_builtin_round_trips_through_toml() {
          state = [\"V\", \"E\"]\n\
          requires = [\"triangles\", \"closed\"]\n\
          produces = \"triangles\"\n\
+         topology = \"loop\"\n\
          matrix = [\n  [1, 1],\n  [0, 4],\n]\n\
          \n[derive]\nF = { E = 2, divide_by = 3 }\n"
     );
@@ -162,7 +164,7 @@ fn broken_files() {
         (format!("{head}matrix = [[1, 1], [0, 9223372036854775808]]\n"),
          "line 3, column 23: number too large to fit in target type"),
         (format!("{head}matrix = [[1, 1], [0, 4]]\ncolour = \"red\"\n"),
-         "line 4, column 1: unknown field `colour`, expected one of `name`, `description`, `state`, `matrix`, `cycle`, `first_step`, `derive`, `requires`, `produces`"),
+         "line 4, column 1: unknown field `colour`, expected one of `name`, `description`, `state`, `matrix`, `cycle`, `first_step`, `derive`, `requires`, `produces`, `topology`"),
         ("name = \"x\"\nstate = [\"V\", \"V\"]\nmatrix = [[1, 1], [0, 4]]\n".into(),
          "line 2, column 15: state name `V` is used twice"),
         ("name = \"x\"\nstate = []\nmatrix = [[1]]\n".into(), "line 2, column 9: the state is empty"),

@@ -181,7 +181,7 @@ fn custom_schemes_in_plans() {
     let text = builtin("catmull-clark")
         .unwrap()
         .to_toml()
-        .replace("\"catmull-clark\"", "\"my-cc\"");
+        .replace("name = \"catmull-clark\"", "name = \"my-cc\"");
     let mine = Scheme::from_toml(&text).unwrap();
     let resolve = |name: &str| {
         if name == "my-cc" {
