@@ -301,13 +301,14 @@ pub enum Error {
     /// the scheme's class, impossible counts.
     #[error(transparent)]
     Scheme(#[from] schemes::Error),
-    /// A built-in scheme that has no real subdivision here.
-    #[error("no real subdivision for scheme `{name}` (supported: {supported})")]
-    UnsupportedScheme {
-        /// The name as given.
-        name: String,
-        /// The supported names.
-        supported: String,
+    /// A scheme without a real subdivision: a matrix whose file names no `topology`, or a
+    /// rule that cannot run on this input (√3, Doo-Sabin and mid-edge on a raw face list).
+    #[error("no real subdivision for scheme `{scheme}`: {reason}")]
+    NoSubdivision {
+        /// The scheme.
+        scheme: String,
+        /// Why, and what to do.
+        reason: String,
     },
     /// The mesh is in the scheme's class for counting but the subdivision itself cannot run
     /// on it (e.g. a vertex of valence 2 for a dual scheme).

@@ -79,3 +79,11 @@ pub use crate::mesh::{
     EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,
 };
 pub use crate::polygon::{PolygonFaces, PolygonMesh};
+pub use crate::subdivide::Rule;
+
+/// The vector types of the public API (`DVec3` positions).
+pub use glam;
+/// The exact counts of the public API.
+pub use num_bigint::{self, BigInt};
+/// The counting side: schemes, their matrices and predictions.
+pub use schemes;

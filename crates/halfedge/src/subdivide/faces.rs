@@ -16,7 +16,7 @@ use glam::DVec3;
 
 use super::build::StepContext;
 use super::trisplit::PointRef;
-use super::{sizes, LevelDone, Plan, Rule, SubdivideOptions, Template};
+use super::{sizes, Algorithm, LevelDone, Plan, SubdivideOptions, Template};
 use crate::error::FaceVertices;
 use crate::mesh::INVALID;
 use crate::{Error, PolygonMesh, Result};
@@ -259,13 +259,15 @@ pub(super) fn run_levels(
     mut visit: impl FnMut(u32, &PolygonMesh) -> Result<()>,
 ) -> Result<PolygonMesh> {
     let name = plan.name.as_str();
-    let template = match plan.rule {
-        Rule::Tri(_, n) => Some(n),
-        Rule::CatmullClark => None,
+    let template = match plan.algorithm {
+        Algorithm::Tri(_, n) => Some(n),
+        Algorithm::CatmullClark => None,
         _ => {
-            return Err(Error::UnsupportedScheme {
-                name: name.to_owned(),
-                supported: "the 4:1 (loop, loop-general, ...), tri-split-N and catmull-clark schemes on face lists".into(),
+            return Err(Error::NoSubdivision {
+                scheme: name.to_owned(),
+                reason: "on a raw face list only the rules that refine each face on its own run \
+                         (the 4:1 family, tri-split-N, catmull-clark)"
+                    .into(),
             })
         }
     };
@@ -319,7 +321,7 @@ pub(super) fn run_levels(
             vertices: ix.positions.len(),
             edges: ix.edge_low.len(),
         };
-        super::finite::check_positions(name, plan.rule, s, &before, &next.positions)?;
+        super::finite::check_positions(name, plan.algorithm, s, &before, &next.positions)?;
         drop(ix);
         visit(s, &next)?;
         if let Some(progress) = opts.progress {

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use super::topo::Topo;
-use super::Rule;
+use super::Algorithm;
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
 
@@ -21,7 +21,7 @@ pub(super) enum Before<'a> {
 /// Refuses the first non-finite position of level `level`.
 pub(super) fn check_positions(
     scheme: &str,
-    rule: Rule,
+    rule: Algorithm,
     level: u32,
     before: &Before<'_>,
     positions: &[DVec3],
@@ -44,7 +44,7 @@ pub(super) fn check_positions(
 /// What vertex `v` of level `level` is computed from, in the numbering each module documents
 /// (old vertices first, then edge points, then face points; one point per half-edge for
 /// Doo-Sabin, per edge for mid-edge).
-fn origin(rule: Rule, level: u32, before: &Before<'_>, v: usize) -> String {
+fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String {
     let of = if level == 1 {
         "of the input".to_string()
     } else {
@@ -63,16 +63,16 @@ fn origin(rule: Rule, level: u32, before: &Before<'_>, v: usize) -> String {
         Before::Counts { .. } => format!("edge {e} {of}"),
     };
     match rule {
-        Rule::Tri(..) | Rule::CatmullClark if v < nv => format!("from vertex {v} {of}"),
-        Rule::Tri(_, n) if v < nv + (n as usize - 1) * ne => {
+        Algorithm::Tri(..) | Algorithm::CatmullClark if v < nv => format!("from vertex {v} {of}"),
+        Algorithm::Tri(_, n) if v < nv + (n as usize - 1) * ne => {
             format!("on {}", edge((v - nv) / (n as usize - 1)))
         }
-        Rule::CatmullClark if v < nv + ne => format!("on {}", edge(v - nv)),
-        Rule::CatmullClark => format!("the point of face {} {of}", v - nv - ne),
-        Rule::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
-        Rule::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
-        Rule::MidEdge => format!("the midpoint of {}", edge(v)),
-        Rule::DooSabin => match before {
+        Algorithm::CatmullClark if v < nv + ne => format!("on {}", edge(v - nv)),
+        Algorithm::CatmullClark => format!("the point of face {} {of}", v - nv - ne),
+        Algorithm::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
+        Algorithm::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
+        Algorithm::MidEdge => format!("the midpoint of {}", edge(v)),
+        Algorithm::DooSabin => match before {
             Before::Mesh(m) => {
                 let t = Topo::new(m);
                 let h = v as u32;

@@ -1,31 +1,34 @@
-//! Real subdivision for every built-in scheme, with output buffers allocated once from the
-//! scheme's predicted counts.
+//! Real subdivision by every built-in rule, with output buffers allocated once from the
+//! predicted counts.
 //!
-//! [`subdivide`] runs any built-in scheme of the `schemes` crate (aliases and `tri-split-N`
-//! included) on a [`HalfEdgeMesh`]: it checks that the scheme applies, asks the scheme for the
-//! counts of each level ([`schemes::Scheme::counts_at`]), allocates the output arrays once with
-//! exactly those lengths, builds the new topology by index arithmetic (each scheme module
-//! documents its numbering) and the standard geometry, and checks that every array came out
-//! exactly as long as predicted without growing: a mismatch is a bug, reported as
-//! [`Error::PredictionMismatch`] (and a debug assertion). Multi-level subdivision keeps only
-//! levels `s - 1` and `s` alive.
+//! A [`Rule`] (defined in `schemes`, next to the matrices that count it, and re-exported
+//! here) names what to run: [`subdivide`] runs it on a [`HalfEdgeMesh`]. The rule's counting
+//! scheme for the mesh ([`Rule::scheme_for`]: Loop on a mesh with boundary is counted by
+//! `loop-boundary`) gives the counts of each level ([`schemes::Scheme::counts_at`]); the output
+//! arrays are allocated once with exactly those lengths, the new topology is built by index
+//! arithmetic (each module documents its numbering) and the geometry by the rule, and every
+//! array is checked to come out exactly as long as predicted without growing: a mismatch is a
+//! bug, reported as [`Error::PredictionMismatch`] (and a debug assertion). Multi-level
+//! subdivision keeps only levels `s - 1` and `s` alive.
 //!
 //! [`subdivide_polygons`] does the same on raw face lists ([`PolygonMesh`]), including
-//! non-manifold ones, for the schemes whose topology is a per-face refinement (4:1, 1:N²,
-//! Catmull-Clark); [`verify`] and [`verify_polygons`] compare, level by level, every state
-//! component the scheme predicts with the real mesh.
+//! non-manifold ones, for the rules whose topology is a per-face refinement (4:1, 1:N²,
+//! Catmull-Clark); [`verify`] and [`verify_polygons`] take a [`Scheme`] (a built-in, or a
+//! custom matrix whose file names its `topology`), really subdivide by its rule and compare,
+//! level by level, every state component the scheme predicts with the real mesh.
+//! [`checked_rule`] is the bridge from a scheme the user named to the rule to run.
 //!
-//! | scheme | topology | geometry |
-//! |---|---|---|
-//! | `loop`, `loop-boundary`, `loop-general` | 4:1 | Loop's weights, cubic B-spline boundary |
-//! | `midpoint` | 4:1 | midpoints, old vertices kept |
-//! | `icosphere` | 4:1 | midpoints projected on the unit sphere |
-//! | `butterfly` | 4:1 | modified butterfly (interpolating) |
-//! | `tri-split-N`, `ternary` | 1:N² | linear (points on the flat triangles) |
-//! | `catmull-clark`, `catmull-clark-quad`, `catmull-clark-general` | quads | Catmull-Clark, boundary rules |
-//! | `sqrt3`, `sqrt3-boundary` | √3 | Kobbelt's, with his boundary rule |
-//! | `doo-sabin` | dual | Doo-Sabin weights |
-//! | `mid-edge` | dual | edge midpoints (Peters-Reif) |
+//! | rule | scheme names | topology | geometry |
+//! |---|---|---|---|
+//! | [`Rule::Loop`] | `loop`, `loop-boundary`, `loop-general` | 4:1 | Loop's weights, cubic B-spline boundary |
+//! | [`Rule::Midpoint`] | `midpoint` | 4:1 | midpoints, old vertices kept |
+//! | [`Rule::Icosphere`] | `icosphere` | 4:1 | midpoints projected on the unit sphere |
+//! | [`Rule::Butterfly`] | `butterfly` | 4:1 | modified butterfly (interpolating) |
+//! | [`Rule::TriSplit`] | `tri-split-N`, `ternary` | 1:N² | linear (points on the flat triangles) |
+//! | [`Rule::CatmullClark`] | `catmull-clark`, `catmull-clark-quad`, `catmull-clark-general` | quads | Catmull-Clark, boundary rules |
+//! | [`Rule::Sqrt3`] | `sqrt3`, `sqrt3-boundary` | √3 | Kobbelt's, with his boundary rule |
+//! | [`Rule::DooSabin`] | `doo-sabin` | dual | Doo-Sabin weights |
+//! | [`Rule::MidEdge`] | `mid-edge` | dual | edge midpoints (Peters-Reif) |
 //!
 //! # Geometry and scheme notes
 //!
@@ -37,9 +40,9 @@
 //!   extraordinary), the 4-point rule `-1/16, 9/16, 9/16, -1/16` on boundary edges.
 //!   Simplifications: an interior edge with one boundary end uses the one-ring stencil of its
 //!   interior end; an interior edge with both ends on the boundary takes the midpoint.
-//! - `midpoint`, `icosphere` and `butterfly` are `loop` (closed meshes) in the `schemes`
-//!   crate; their geometry also handles boundaries, so on a mesh with boundary edges they are
-//!   counted (and checked) as `loop-boundary`, the same 4:1 topology.
+//! - Loop, midpoint, icosphere and butterfly are counted by `loop` on closed meshes; their
+//!   geometry also handles boundaries, so on a mesh with boundary edges they are counted (and
+//!   checked) as `loop-boundary`, the same 4:1 topology.
 //! - `sqrt3-boundary` alternates Kobbelt's steps as the `schemes` crate defines them: step A
 //!   at odd step numbers (boundary edges kept, boundary vertices fixed), step B at even ones
 //!   (boundary edges trisected with the ternary cubic B-spline rule `1, 16, 10 / 27` and
@@ -55,15 +58,16 @@
 //! # Example
 //!
 //! ```
-//! use halfedge::subdivide::{subdivide, verify, SubdivideOptions};
+//! use halfedge::subdivide::{subdivide, verify, Rule, SubdivideOptions};
 //! use halfedge::{shapes, HalfEdgeMesh};
 //!
 //! let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
-//! let sphere = subdivide(&ico, "icosphere", 2, &SubdivideOptions::default())?;
+//! let sphere = subdivide(&ico, Rule::Icosphere, 2, &SubdivideOptions::default())?;
 //! assert_eq!((sphere.n_vertices(), sphere.n_edges(), sphere.n_faces()), (162, 480, 320));
 //! assert!(sphere.positions().iter().all(|p| (p.length() - 1.0).abs() < 1e-12));
 //!
-//! for report in verify(&ico, "loop", 3, &SubdivideOptions::default())? {
+//! let lp = schemes::builtin("loop")?;
+//! for report in verify(&ico, &lp, 3, &SubdivideOptions::default())? {
 //!     assert!(report.is_match(), "{report:?}");
 //! }
 //! # Ok::<(), Box<dyn std::error::Error>>(())
@@ -84,6 +88,7 @@ mod trisplit;
 
 use glam::DVec3;
 use num_bigint::BigInt;
+pub use schemes::Rule;
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
 use self::build::{Sizes, StepContext};
@@ -208,9 +213,9 @@ impl LevelReport {
     }
 }
 
-/// The rule a scheme name stands for.
+/// The algorithm a [`Rule`] runs (with the step variant the mesh needs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Rule {
+pub(crate) enum Algorithm {
     /// 1:N² triangle split (N = 2 for the 4:1 family).
     Tri(TriRule, u32),
     CatmullClark,
@@ -222,92 +227,76 @@ enum Rule {
     MidEdge,
 }
 
-struct Plan {
-    /// The name as given (for messages).
-    name: String,
-    /// The scheme whose counts are predicted and checked.
-    scheme: Scheme,
-    rule: Rule,
+pub(crate) struct Plan {
+    /// The name for messages: the scheme asked for, or the rule's name.
+    pub(crate) name: String,
+    /// The scheme whose counts size the output arrays: the rule's own built-in scheme for the
+    /// mesh ([`Rule::scheme_for`]).
+    pub(crate) scheme: Scheme,
+    pub(crate) algorithm: Algorithm,
 }
 
-impl Plan {
-    /// The face degree when the last level can be written straight into a face list.
-    fn direct_face_degree(&self) -> Option<usize> {
-        match self.rule {
-            Rule::Tri(_, 2) => Some(3),
-            Rule::CatmullClark => Some(4),
-            _ => None,
-        }
-    }
-
-    /// The scheme that counts this plan on a mesh with `counts` ([`Scheme::for_mesh`]): the
-    /// 4:1 aliases `midpoint`, `icosphere` and `butterfly` count as `loop`, which needs a
-    /// closed mesh; their geometry handles boundaries, so on a mesh with boundary they are
-    /// counted as `loop-boundary` (the same 4:1 topology), under their own name.
-    fn for_mesh(mut self, counts: &MeshCounts) -> Plan {
-        self.scheme = self.scheme.for_mesh(counts);
-        self
-    }
-}
-
-/// The names [`supports`] accepts, for messages.
-const SUPPORTED: &str = "loop, loop-boundary, loop-general, midpoint, icosphere, butterfly, \
-tri-split-N, ternary, catmull-clark, catmull-clark-quad, catmull-clark-general, sqrt3, \
-sqrt3-boundary, doo-sabin, mid-edge";
-
-fn plan(name: &str) -> Result<Plan> {
-    let scheme = schemes::builtin(name)?;
-    let rule = match (scheme.name(), scheme.canonical_name()) {
-        ("midpoint", _) => Rule::Tri(TriRule::Midpoint, 2),
-        ("icosphere", _) => Rule::Tri(TriRule::Icosphere, 2),
-        ("butterfly", _) => Rule::Tri(TriRule::Butterfly, 2),
-        (_, "loop" | "loop-boundary" | "loop-general") => Rule::Tri(TriRule::Loop, 2),
-        (_, "catmull-clark" | "catmull-clark-quad" | "catmull-clark-general") => Rule::CatmullClark,
-        (_, "sqrt3") => Rule::Sqrt3 { boundary: false },
-        (_, "sqrt3-boundary") => Rule::Sqrt3 { boundary: true },
-        (_, "doo-sabin") => Rule::DooSabin,
-        (_, "mid-edge") => Rule::MidEdge,
-        (_, canonical) => match canonical
-            .strip_prefix("tri-split-")
-            .and_then(|n| n.parse::<u32>().ok())
-        {
-            Some(n) if n >= 2 => Rule::Tri(TriRule::Linear, n),
-            _ => {
-                return Err(Error::UnsupportedScheme {
-                    name: name.to_owned(),
-                    supported: SUPPORTED.to_owned(),
-                })
-            }
+/// The plan of `rule` on a mesh with `counts`: its counting scheme and its algorithm.
+pub(crate) fn plan(rule: Rule, counts: &MeshCounts) -> Result<Plan> {
+    let scheme = rule.scheme_for(counts)?;
+    let algorithm = match rule {
+        Rule::Loop => Algorithm::Tri(TriRule::Loop, 2),
+        Rule::Midpoint => Algorithm::Tri(TriRule::Midpoint, 2),
+        Rule::Butterfly => Algorithm::Tri(TriRule::Butterfly, 2),
+        Rule::Icosphere => Algorithm::Tri(TriRule::Icosphere, 2),
+        Rule::TriSplit(n) => Algorithm::Tri(TriRule::Linear, n),
+        Rule::CatmullClark => Algorithm::CatmullClark,
+        Rule::Sqrt3 => Algorithm::Sqrt3 {
+            boundary: scheme.canonical_name() == "sqrt3-boundary",
         },
+        Rule::DooSabin => Algorithm::DooSabin,
+        Rule::MidEdge => Algorithm::MidEdge,
     };
     Ok(Plan {
-        name: name.to_owned(),
+        name: rule.to_string(),
         scheme,
-        rule,
+        algorithm,
     })
 }
 
-/// Whether [`subdivide`] can run the scheme `name` (a built-in name, alias or `tri-split-N`).
+/// The rule that really subdivides `scheme` on a mesh with `counts`, once the scheme itself
+/// accepts the mesh: what `subcount subdivide --scheme NAME` runs. The scheme decides the
+/// class of meshes (`catmull-clark-quad` refuses a triangle, `loop` on a mesh with boundary
+/// counts as `loop-boundary`), its [`Scheme::subdivision_rule`] the algorithm.
+///
+/// # Errors
+///
+/// [`Error::Scheme`] when the scheme refuses the mesh (with its suggestion);
+/// [`Error::NoSubdivision`] for a scheme without a rule (a scheme file without `topology`).
 ///
 /// ```
-/// use halfedge::subdivide::supports;
-/// assert!(supports("loop") && supports("ternary") && supports("tri-split-7"));
-/// assert!(!supports("tri-split-1") && !supports("no-such-scheme"));
+/// use halfedge::subdivide::{checked_rule, Rule};
+/// use schemes::{builtin, MeshCounts, Scheme};
+///
+/// let open_square = MeshCounts::from_polygons(&[[0, 1, 2], [0, 2, 3]])?;
+/// assert_eq!(checked_rule(&builtin("loop")?, &open_square)?, Rule::Loop);
+/// assert!(checked_rule(&builtin("catmull-clark-quad")?, &open_square).is_err());
+/// let bare = Scheme::from_toml("name = \"m\"\nstate = [\"F\"]\nmatrix = [[4]]\n")?;
+/// let err = checked_rule(&bare, &open_square).unwrap_err();
+/// assert!(err.to_string().contains("topology = "), "{err}");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn supports(name: &str) -> bool {
-    plan(name).is_ok()
+pub fn checked_rule(scheme: &Scheme, counts: &MeshCounts) -> Result<Rule> {
+    let Some(rule) = scheme.subdivision_rule() else {
+        return Err(no_rule(scheme));
+    };
+    scheme.for_mesh(counts).initial_state(counts)?;
+    Ok(rule)
 }
 
-/// Whether [`subdivide_polygons`] can run the scheme `name` on raw face lists: the schemes
-/// with 4:1, 1:N² or Catmull-Clark topology.
-///
-/// ```
-/// use halfedge::subdivide::supports_polygons;
-/// assert!(supports_polygons("loop-general") && supports_polygons("catmull-clark-general"));
-/// assert!(supports_polygons("tri-split-4") && !supports_polygons("sqrt3"));
-/// ```
-pub fn supports_polygons(name: &str) -> bool {
-    plan(name).is_ok_and(|p| matches!(p.rule, Rule::Tri(..) | Rule::CatmullClark))
+fn no_rule(scheme: &Scheme) -> Error {
+    Error::NoSubdivision {
+        scheme: scheme.name().to_owned(),
+        reason: "its matrix names no rule; add `topology = \"NAME\"` to the scheme file, \
+                 NAME the built-in scheme whose subdivision it counts (loop, catmull-clark, \
+                 sqrt3, ...)"
+            .into(),
+    }
 }
 
 /// Checks what the scheme's class cannot see: structural needs of the algorithm.
@@ -320,18 +309,18 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
             reason,
         })
     };
-    match plan.rule {
-        Rule::Tri(..) | Rule::Sqrt3 { .. } => {
+    match plan.algorithm {
+        Algorithm::Tri(..) | Algorithm::Sqrt3 { .. } => {
             if let Some((f, d)) = t.first_non_triangle() {
                 return refuse(format!(
                     "face {f} has {d} vertices, the scheme needs triangles"
                 ));
             }
-            if plan.rule == (Rule::Sqrt3 { boundary: false }) && t.boundary_edges() > 0 {
+            if plan.algorithm == (Algorithm::Sqrt3 { boundary: false }) && t.boundary_edges() > 0 {
                 return refuse("the mesh has a boundary; use sqrt3-boundary".into());
             }
         }
-        Rule::DooSabin | Rule::MidEdge => {
+        Algorithm::DooSabin | Algorithm::MidEdge => {
             if t.boundary_edges() > 0 {
                 return refuse("the mesh has a boundary, the scheme needs a closed mesh".into());
             }
@@ -342,7 +331,7 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
                 ));
             }
         }
-        Rule::CatmullClark => {}
+        Algorithm::CatmullClark => {}
     }
     Ok(())
 }
@@ -388,12 +377,12 @@ fn step(
     if !opts.preallocate {
         return built_by_faces::<true>(plan, template, mesh, &ctx);
     }
-    match (plan.rule, template) {
-        (Rule::Tri(rule, 2), Some(t)) => gather::four_to_one(mesh, t, rule, &ctx),
-        (Rule::CatmullClark, _) => gather::catmull_clark(mesh, &ctx),
-        (Rule::Sqrt3 { .. }, _) if mesh.is_closed() => gather::sqrt3_closed(mesh, &ctx),
-        (Rule::DooSabin, _) => gather::doo_sabin(mesh, &ctx),
-        (Rule::MidEdge, _) => gather::mid_edge(mesh, &ctx),
+    match (plan.algorithm, template) {
+        (Algorithm::Tri(rule, 2), Some(t)) => gather::four_to_one(mesh, t, rule, &ctx),
+        (Algorithm::CatmullClark, _) => gather::catmull_clark(mesh, &ctx),
+        (Algorithm::Sqrt3 { .. }, _) if mesh.is_closed() => gather::sqrt3_closed(mesh, &ctx),
+        (Algorithm::DooSabin, _) => gather::doo_sabin(mesh, &ctx),
+        (Algorithm::MidEdge, _) => gather::mid_edge(mesh, &ctx),
         _ => built_by_faces::<false>(plan, template, mesh, &ctx),
     }
 }
@@ -406,15 +395,15 @@ fn built_by_faces<const GROW: bool>(
     mesh: &HalfEdgeMesh,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    match (plan.rule, template) {
-        (Rule::Tri(rule, _), Some(t)) => trisplit::tri_split::<GROW>(mesh, t, rule, ctx),
-        (Rule::Tri(..), None) => Err(ctx.invalid("no split template".into())),
-        (Rule::CatmullClark, _) => catmull_clark::catmull_clark::<GROW>(mesh, ctx),
-        (Rule::Sqrt3 { boundary }, _) => {
+    match (plan.algorithm, template) {
+        (Algorithm::Tri(rule, _), Some(t)) => trisplit::tri_split::<GROW>(mesh, t, rule, ctx),
+        (Algorithm::Tri(..), None) => Err(ctx.invalid("no split template".into())),
+        (Algorithm::CatmullClark, _) => catmull_clark::catmull_clark::<GROW>(mesh, ctx),
+        (Algorithm::Sqrt3 { boundary }, _) => {
             sqrt3::sqrt3::<GROW>(mesh, boundary && ctx.level % 2 == 0, ctx)
         }
-        (Rule::DooSabin, _) => dual::doo_sabin::<GROW>(mesh, ctx),
-        (Rule::MidEdge, _) => dual::mid_edge::<GROW>(mesh, ctx),
+        (Algorithm::DooSabin, _) => dual::doo_sabin::<GROW>(mesh, ctx),
+        (Algorithm::MidEdge, _) => dual::mid_edge::<GROW>(mesh, ctx),
     }
 }
 
@@ -433,43 +422,48 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> Result<T> + Send) -
     pool.install(f)
 }
 
-/// Subdivides `mesh` `levels` times with the built-in scheme `scheme` (a canonical name, an
-/// alias such as `midpoint` or `ternary`, or `tri-split-N`).
+/// Subdivides `mesh` `levels` times by `rule`.
 ///
-/// Each level's arrays are allocated once with the lengths the scheme predicts
-/// ([`schemes::Scheme::counts_at`]) and checked afterwards; only levels `s - 1` and `s` are
-/// alive at a time. `levels = 0` returns a copy of the input.
+/// Each level's arrays are allocated once with the lengths the rule's counting scheme
+/// predicts ([`Rule::scheme_for`], [`schemes::Scheme::counts_at`]) and checked afterwards;
+/// only levels `s - 1` and `s` are alive at a time. `levels = 0` returns a copy of the input.
+/// On a mesh with boundary, Loop and its 4:1 relatives use their boundary rules (counted by
+/// `loop-boundary`) and √3 alternates Kobbelt's boundary steps (`sqrt3-boundary`).
 ///
 /// # Errors
 ///
-/// - [`Error::Scheme`] for an unknown name or a mesh outside the scheme's class (e.g. a quad
-///   under `loop`, a boundary under `sqrt3`), with the scheme crate's suggestion;
-/// - [`Error::UnsupportedScheme`] for a scheme without real subdivision;
-/// - [`Error::SchemeNotApplicable`] when the algorithm cannot run (a vertex of valence 2 under
-///   a dual scheme);
+/// - [`Error::Scheme`] for a mesh outside the rule's class (e.g. a quad under Loop), with the
+///   scheme crate's suggestion;
+/// - [`Error::SchemeNotApplicable`] when the algorithm cannot run (a boundary or a vertex of
+///   valence 2 under a dual scheme);
 /// - [`Error::TooLarge`] when a level would not fit 32-bit handles;
 /// - [`Error::ThreadPool`] when the requested threads cannot be started;
 /// - [`Error::PredictionMismatch`] / [`Error::InvalidOutput`]: bugs.
 ///
 /// ```
-/// use halfedge::subdivide::{subdivide, SubdivideOptions};
+/// use halfedge::subdivide::{subdivide, Rule, SubdivideOptions};
 /// use halfedge::{shapes, HalfEdgeMesh};
 ///
 /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
-/// let smooth = subdivide(&cube, "catmull-clark", 2, &SubdivideOptions::default())?;
+/// let smooth = subdivide(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
 /// assert_eq!((smooth.n_vertices(), smooth.n_edges(), smooth.n_faces()), (98, 192, 96));
-/// let err = subdivide(&cube, "loop", 1, &SubdivideOptions::default()).unwrap_err();
+/// let err = subdivide(&cube, Rule::Loop, 1, &SubdivideOptions::default()).unwrap_err();
 /// assert!(err.to_string().contains("triangle"));
+///
+/// // Loop on a mesh with boundary: Loop's boundary rules.
+/// let grid = HalfEdgeMesh::try_from(&shapes::grid(2, 2)?)?;
+/// let out = subdivide(&grid, Rule::Loop, 2, &SubdivideOptions::default())?;
+/// assert_eq!(out.n_faces(), 8 * 16);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn subdivide(
     mesh: &HalfEdgeMesh,
-    scheme: &str,
+    rule: Rule,
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<HalfEdgeMesh> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts);
+    let plan = plan(rule, &counts)?;
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
 
@@ -487,22 +481,26 @@ pub struct FaceListLevel {
     pub edges: usize,
 }
 
-/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `name` straight into a
+/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `rule` straight into a
 /// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
-/// the schemes whose last level is built as a half-edge mesh and converted (and for unknown
-/// names).
+/// the rules whose last level is built as a half-edge mesh and converted.
 ///
 /// ```
-/// use halfedge::subdivide::direct_face_degree;
-/// assert_eq!(direct_face_degree("loop"), Some(3));
-/// assert_eq!(direct_face_degree("butterfly"), Some(3));
-/// assert_eq!(direct_face_degree("catmull-clark-quad"), Some(4));
-/// assert_eq!(direct_face_degree("sqrt3"), None);
-/// assert_eq!(direct_face_degree("tri-split-3"), None);
-/// assert_eq!(direct_face_degree("no-such-scheme"), None);
+/// use halfedge::subdivide::{direct_face_degree, Rule};
+/// assert_eq!(direct_face_degree(Rule::Loop), Some(3));
+/// assert_eq!(direct_face_degree(Rule::Butterfly), Some(3));
+/// assert_eq!(direct_face_degree(Rule::CatmullClark), Some(4));
+/// assert_eq!(direct_face_degree(Rule::Sqrt3), None);
+/// assert_eq!(direct_face_degree(Rule::TriSplit(3)), None);
 /// ```
-pub fn direct_face_degree(name: &str) -> Option<usize> {
-    plan(name).ok().and_then(|p| p.direct_face_degree())
+pub fn direct_face_degree(rule: Rule) -> Option<usize> {
+    match rule {
+        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere | Rule::TriSplit(2) => {
+            Some(3)
+        }
+        Rule::CatmullClark => Some(4),
+        _ => None,
+    }
 }
 
 /// Subdivides like [`subdivide`], with the last level written as a face list
@@ -520,24 +518,24 @@ pub fn direct_face_degree(name: &str) -> Option<usize> {
 /// As [`subdivide`].
 ///
 /// ```
-/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, SubdivideOptions};
+/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, Rule, SubdivideOptions};
 /// use halfedge::{shapes, HalfEdgeMesh};
 ///
 /// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
 /// let opts = SubdivideOptions::default();
-/// let level = subdivide_to_face_list(&ico, "loop", 2, &opts)?;
+/// let level = subdivide_to_face_list(&ico, Rule::Loop, 2, &opts)?;
 /// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
-/// assert_eq!(level.mesh, subdivide(&ico, "loop", 2, &opts)?.to_polygon_mesh());
+/// assert_eq!(level.mesh, subdivide(&ico, Rule::Loop, 2, &opts)?.to_polygon_mesh());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn subdivide_to_face_list(
     mesh: &HalfEdgeMesh,
-    scheme: &str,
+    rule: Rule,
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<FaceListLevel> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts);
+    let plan = plan(rule, &counts)?;
     let convert = |m: &HalfEdgeMesh| FaceListLevel {
         mesh: m.to_polygon_mesh(),
         edges: m.n_edges(),
@@ -556,10 +554,12 @@ pub fn subdivide_to_face_list(
                 expected: sizes,
                 parallel: opts.threads != 1,
             };
-            let direct = match (plan.rule, template) {
+            let direct = match (plan.algorithm, template) {
                 _ if !opts.preallocate => None,
-                (Rule::Tri(rule, 2), Some(t)) => Some(to_faces::four_to_one(input, t, rule, &ctx)?),
-                (Rule::CatmullClark, _) => Some(to_faces::catmull_clark(input, &ctx)?),
+                (Algorithm::Tri(rule, 2), Some(t)) => {
+                    Some(to_faces::four_to_one(input, t, rule, &ctx)?)
+                }
+                (Algorithm::CatmullClark, _) => Some(to_faces::catmull_clark(input, &ctx)?),
                 _ => None,
             };
             match direct {
@@ -571,12 +571,11 @@ pub fn subdivide_to_face_list(
     )
 }
 
-/// Defines the public shorthands for [`subdivide`] with one scheme: `name => "scheme"`, or
-/// `name => "closed" or "open"` for a scheme on closed meshes and its variant for meshes with a
-/// boundary; the string before the name completes the "As [`subdivide`]" of the errors.
-/// (A macro: functions cannot define functions.)
+/// Defines the public shorthands for [`subdivide`] with one rule; the string before the name
+/// completes the "As [`subdivide`]" of the errors. (A macro: functions cannot define
+/// functions.)
 macro_rules! shorthands {
-    ($($(#[doc = $doc:literal])* $errors:literal $fn:ident => $closed:literal $(or $open:literal)?;)*) => {$(
+    ($($(#[doc = $doc:literal])* $errors:literal $fn:ident => $rule:expr;)*) => {$(
         $(#[doc = $doc])*
         ///
         /// # Errors
@@ -587,16 +586,13 @@ macro_rules! shorthands {
             levels: u32,
             opts: &SubdivideOptions<'_>,
         ) -> Result<HalfEdgeMesh> {
-            let name = $closed;
-            $(let name = if mesh.is_closed() { name } else { $open };)?
-            subdivide(mesh, name, levels, opts)
+            subdivide(mesh, $rule, levels, opts)
         }
     )*};
 }
 
 shorthands! {
-    /// Loop subdivision (`loop`, or `loop-boundary` when the mesh has a boundary): Loop's
-    /// weights, boundary curves as cubic B-splines.
+    /// Loop subdivision ([`Rule::Loop`]): Loop's weights, boundary curves as cubic B-splines.
     ///
     /// ```
     /// use halfedge::subdivide::{loop_subdivide, SubdivideOptions};
@@ -605,19 +601,20 @@ shorthands! {
     /// assert_eq!(out.n_faces(), 8 * 16);
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    " (e.g. a face that is not a triangle)" loop_subdivide => "loop" or "loop-boundary";
+    " (e.g. a face that is not a triangle)" loop_subdivide => Rule::Loop;
 
-    /// Plain 4:1 split with edge midpoints (`midpoint`), old vertices kept.
-    "" midpoint_subdivide => "midpoint";
+    /// Plain 4:1 split with edge midpoints ([`Rule::Midpoint`]), old vertices kept.
+    "" midpoint_subdivide => Rule::Midpoint;
 
-    /// 4:1 split with the edge midpoints projected onto the unit sphere (`icosphere`).
-    "" icosphere_subdivide => "icosphere";
+    /// 4:1 split with the edge midpoints projected onto the unit sphere ([`Rule::Icosphere`]).
+    "" icosphere_subdivide => Rule::Icosphere;
 
-    /// The modified butterfly scheme (`butterfly`, interpolating; boundary rules in the module
-    /// docs of the implementation).
-    "" butterfly_subdivide => "butterfly";
+    /// The modified butterfly scheme ([`Rule::Butterfly`], interpolating; boundary rules in
+    /// the module docs).
+    "" butterfly_subdivide => Rule::Butterfly;
 
-    /// Catmull-Clark subdivision on any polygon mesh, with boundary rules (`catmull-clark`).
+    /// Catmull-Clark subdivision on any polygon mesh, with boundary rules
+    /// ([`Rule::CatmullClark`]).
     ///
     /// ```
     /// use halfedge::subdivide::{catmull_clark_subdivide, SubdivideOptions};
@@ -626,20 +623,20 @@ shorthands! {
     /// assert!(out.is_quad_mesh());
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    "" catmull_clark_subdivide => "catmull-clark";
+    "" catmull_clark_subdivide => Rule::CatmullClark;
 
-    /// Kobbelt's √3 subdivision (`sqrt3`, or `sqrt3-boundary` with Kobbelt's boundary rule when
-    /// the mesh has a boundary).
-    "" sqrt3_subdivide => "sqrt3" or "sqrt3-boundary";
+    /// Kobbelt's √3 subdivision ([`Rule::Sqrt3`]), with Kobbelt's boundary rule when the mesh
+    /// has a boundary.
+    "" sqrt3_subdivide => Rule::Sqrt3;
 
-    /// Doo-Sabin subdivision on closed polygon meshes (`doo-sabin`).
-    " (a boundary, or a vertex of valence below 3)" doo_sabin_subdivide => "doo-sabin";
+    /// Doo-Sabin subdivision on closed polygon meshes ([`Rule::DooSabin`]).
+    " (a boundary, or a vertex of valence below 3)" doo_sabin_subdivide => Rule::DooSabin;
 
-    /// Peters-Reif mid-edge subdivision on closed polygon meshes (`mid-edge`).
-    " (a boundary, or a vertex of valence below 3)" mid_edge_subdivide => "mid-edge";
+    /// Peters-Reif mid-edge subdivision on closed polygon meshes ([`Rule::MidEdge`]).
+    " (a boundary, or a vertex of valence below 3)" mid_edge_subdivide => Rule::MidEdge;
 }
 
-/// The 1:N² triangle split (`tri-split-N`) with points on the flat triangles.
+/// The 1:N² triangle split ([`Rule::TriSplit`]) with points on the flat triangles.
 ///
 /// # Errors
 ///
@@ -650,7 +647,7 @@ pub fn tri_split_subdivide(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<HalfEdgeMesh> {
-    subdivide(mesh, &format!("tri-split-{n}"), levels, opts)
+    subdivide(mesh, Rule::TriSplit(n), levels, opts)
 }
 
 /// The level loop shared by [`subdivide`] and [`verify`]; `visit(level, mesh)` sees every
@@ -735,8 +732,8 @@ fn drive<T: LastLevel>(
     let Some(&last_sizes) = expected.last() else {
         return Ok(level0(mesh));
     };
-    let template = match plan.rule {
-        Rule::Tri(_, n) => Some(Template::new(n)),
+    let template = match plan.algorithm {
+        Algorithm::Tri(_, n) => Some(Template::new(n)),
         _ => None,
     };
     let report = |level: u32, [vertices, edges, faces]: [usize; 3]| {
@@ -756,7 +753,7 @@ fn drive<T: LastLevel>(
             let input = current.as_ref().unwrap_or(mesh);
             let next = step(plan, template.as_ref(), input, s, sizes, opts)?;
             let before = finite::Before::Mesh(input);
-            finite::check_positions(name, plan.rule, s, &before, next.positions())?;
+            finite::check_positions(name, plan.algorithm, s, &before, next.positions())?;
             visit(s, &next)?;
             report(s, next.vef());
             // Level s - 1 is dropped here.
@@ -765,7 +762,7 @@ fn drive<T: LastLevel>(
         let input = current.as_ref().unwrap_or(mesh);
         let out = last(input, levels, last_sizes, template.as_ref())?;
         let before = finite::Before::Mesh(input);
-        finite::check_positions(name, plan.rule, levels, &before, out.positions())?;
+        finite::check_positions(name, plan.algorithm, levels, &before, out.positions())?;
         drop(current);
         if let Some(m) = out.as_halfedge() {
             visit(levels, m)?;
@@ -821,81 +818,99 @@ fn report(
     })
 }
 
-/// Really subdivides `mesh` level by level up to `levels` and reports, for level 0 (the input)
-/// to `levels`, every state component of the scheme (and `V`, `E`, `F`) as predicted and as
-/// counted on the mesh.
+/// Really subdivides `mesh` level by level up to `levels` by the scheme's rule
+/// ([`Scheme::subdivision_rule`]) and reports, for level 0 (the input) to `levels`, every
+/// state component of the scheme (and `V`, `E`, `F`) as predicted by its matrix and as
+/// counted on the mesh. The output arrays are sized by the rule's own counting scheme, so a
+/// custom matrix that predicts wrongly shows up as a mismatch in the reports, not as an error.
 ///
 /// # Errors
 ///
-/// As [`subdivide`].
+/// As [`subdivide`], and [`Error::NoSubdivision`] for a scheme without a rule (a scheme file
+/// without `topology`).
 ///
 /// ```
 /// use halfedge::subdivide::{verify, SubdivideOptions};
 /// use halfedge::{shapes, HalfEdgeMesh};
+/// use schemes::{builtin, Scheme};
 ///
 /// let grid = HalfEdgeMesh::try_from(&shapes::grid(3, 2)?)?;
-/// let reports = verify(&grid, "loop-boundary", 2, &SubdivideOptions::default())?;
+/// let reports = verify(&grid, &builtin("loop-boundary")?, 2, &SubdivideOptions::default())?;
 /// assert_eq!(reports.len(), 3);
 /// assert!(reports.iter().all(|r| r.is_match()));
+///
+/// // A wrong matrix for Loop's topology (F' = 3F): the real subdivision says otherwise.
+/// let wrong = "name = \"wrong\"\nstate = [\"F\"]\nmatrix = [[3]]\ntopology = \"loop\"\n";
+/// let reports = verify(&grid, &Scheme::from_toml(wrong)?, 1, &SubdivideOptions::default())?;
+/// assert_eq!(reports[1].mismatches(), ["F"]);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn verify(
     mesh: &HalfEdgeMesh,
-    scheme: &str,
+    scheme: &Scheme,
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = mesh.counts();
-    let plan = plan(scheme)?.for_mesh(&counts);
-    let mut reports = vec![report(&plan.scheme, &counts, 0, &counts)?];
+    let (plan, predictor) = verify_plan(scheme, &counts)?;
+    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
-        reports.push(report(&plan.scheme, &counts, s, &m.counts())?);
+        reports.push(report(&predictor, &counts, s, &m.counts())?);
         Ok(())
     })?;
     Ok(reports)
 }
 
-/// Subdivides a raw face list (non-manifold allowed) `levels` times with a scheme whose
-/// topology is a per-face refinement: 4:1 (`loop-general` and the other Loop names), 1:N²
-/// (`tri-split-N`, `ternary`) or Catmull-Clark (`catmull-clark-general`, ...). Topology only:
-/// new points are placed linearly (edge points at the midpoint or on the edge, face points at
-/// the centroid or on the flat triangle), old vertices stay.
+/// The plan that really subdivides `scheme` (named as the scheme) and the scheme whose
+/// predictions are checked, for a mesh with `counts`.
+fn verify_plan(scheme: &Scheme, counts: &MeshCounts) -> Result<(Plan, Scheme)> {
+    let rule = checked_rule(scheme, counts)?;
+    let mut plan = plan(rule, counts)?;
+    plan.name = scheme.name().to_owned();
+    Ok((plan, scheme.for_mesh(counts)))
+}
+
+/// Subdivides a raw face list (non-manifold allowed) `levels` times by a rule whose topology
+/// is a per-face refinement ([`Rule::refines_faces`]): 4:1 (the Loop family, counted by
+/// `loop-general` on non-manifold edges), 1:N² ([`Rule::TriSplit`]) or Catmull-Clark.
+/// Topology only: new points are placed linearly (edge points at the midpoint or on the edge,
+/// face points at the centroid or on the flat triangle), old vertices stay.
 ///
 /// From level 1 on, vertices no face uses are dropped (level 0 is a copy of the input).
 ///
 /// # Errors
 ///
-/// As [`subdivide`] ([`Error::Scheme`] when the face list is outside the scheme's class, e.g.
-/// non-manifold edges under `loop`), and [`Error::UnsupportedScheme`] for the other schemes.
+/// As [`subdivide`] ([`Error::Scheme`] when the face list is outside the rule's class), and
+/// [`Error::NoSubdivision`] for the other rules.
 ///
 /// ```
 /// use glam::DVec3;
-/// use halfedge::subdivide::{subdivide_polygons, SubdivideOptions};
+/// use halfedge::subdivide::{subdivide_polygons, Rule, SubdivideOptions};
 /// use halfedge::PolygonMesh;
 ///
 /// // Three triangles on one edge: a non-manifold "book".
 /// let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y];
 /// let book = PolygonMesh::from_faces(p, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
-/// let out = subdivide_polygons(&book, "loop-general", 1, &SubdivideOptions::default())?;
+/// let out = subdivide_polygons(&book, Rule::Loop, 1, &SubdivideOptions::default())?;
 /// assert_eq!((out.n_vertices(), out.n_faces()), (5 + 7, 12));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn subdivide_polygons(
     mesh: &PolygonMesh,
-    scheme: &str,
+    rule: Rule,
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<PolygonMesh> {
-    let plan = plan(scheme)?.for_mesh(&crate::stats::face_list_counts(mesh));
+    let plan = plan(rule, &crate::stats::face_list_counts(mesh))?;
     faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))
 }
 
 /// [`verify`] for raw face lists: really subdivides with [`subdivide_polygons`] and compares
-/// every predicted component with the face-list statistics of each level.
+/// every component the scheme predicts with the face-list statistics of each level.
 ///
 /// # Errors
 ///
-/// As [`subdivide_polygons`].
+/// As [`subdivide_polygons`] and [`verify`].
 ///
 /// ```
 /// use glam::DVec3;
@@ -904,22 +919,23 @@ pub fn subdivide_polygons(
 ///
 /// let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y];
 /// let book = PolygonMesh::from_faces(p, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
-/// let reports = verify_polygons(&book, "tri-split-3", 2, &SubdivideOptions::default())?;
+/// let ternary = schemes::builtin("tri-split-3")?;
+/// let reports = verify_polygons(&book, &ternary, 2, &SubdivideOptions::default())?;
 /// assert!(reports.iter().all(|r| r.is_match()));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn verify_polygons(
     mesh: &PolygonMesh,
-    scheme: &str,
+    scheme: &Scheme,
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = crate::stats::face_list_counts(mesh);
-    let plan = plan(scheme)?.for_mesh(&counts);
-    let mut reports = vec![report(&plan.scheme, &counts, 0, &counts)?];
+    let (plan, predictor) = verify_plan(scheme, &counts)?;
+    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     faces::run_levels(&plan, mesh, levels, opts, |s, m| {
         let measured = crate::stats::face_list_counts(m);
-        reports.push(report(&plan.scheme, &counts, s, &measured)?);
+        reports.push(report(&predictor, &counts, s, &measured)?);
         Ok(())
     })?;
     Ok(reports)
