@@ -772,12 +772,15 @@ fn drive<T: LastLevel>(
     })
 }
 
-/// The components a report lists: the state, then `V`, `E`, `F` when not in the state.
+/// The components a report lists: the state, then `V`, `E`, `F` when not in the state (and
+/// the scheme derives them).
 fn report_names(scheme: &Scheme) -> Vec<String> {
     let mut names: Vec<String> = scheme.state_names().to_vec();
-    for extra in ["V", "E", "F"] {
-        if !names.iter().any(|n| n == extra) {
-            names.push(extra.to_owned());
+    if scheme.has_mesh_counts() {
+        for extra in ["V", "E", "F"] {
+            if !names.iter().any(|n| n == extra) {
+                names.push(extra.to_owned());
+            }
         }
     }
     names
@@ -789,21 +792,30 @@ fn report(
     level: u32,
     measured: &MeshCounts,
 ) -> Result<LevelReport> {
-    let c = scheme.counts_at(counts0, u64::from(level))?;
     let names = report_names(scheme);
-    let predicted_value = |name: &str| -> BigInt {
+    let (state, vef) = if scheme.has_mesh_counts() {
+        let c = scheme.counts_at(counts0, u64::from(level))?;
+        (c.state, Some([c.vertices, c.edges, c.faces]))
+    } else {
+        let x0 = scheme.initial_state(counts0)?;
+        (scheme.state_at(&x0, u64::from(level))?, None)
+    };
+    let predicted_value = |name: &str| -> Option<BigInt> {
         match scheme.state_names().iter().position(|n| n == name) {
-            Some(i) => c.state[i].clone(),
-            None => match name {
-                "V" => c.vertices.clone(),
-                "E" => c.edges.clone(),
-                _ => c.faces.clone(),
-            },
+            Some(i) => Some(state[i].clone()),
+            None => {
+                let [v, e, f] = vef.as_ref()?;
+                Some(match name {
+                    "V" => v.clone(),
+                    "E" => e.clone(),
+                    _ => f.clone(),
+                })
+            }
         }
     };
     let predicted = names
         .iter()
-        .map(|n| (n.clone(), predicted_value(n)))
+        .filter_map(|n| predicted_value(n).map(|v| (n.clone(), v)))
         .collect();
     let measured = names
         .iter()
