@@ -157,6 +157,19 @@ pub fn available_bytes() -> Option<u64> {
     [meminfo, rlimit, cgroup].into_iter().flatten().min()
 }
 
+/// The peak resident set size of this process (`VmHWM` of `/proc/self/status`), when the
+/// system tells it: what `subcount subdivide --timings` reports as `peak_bytes`.
+///
+/// ```
+/// if let Some(peak) = halfedge::memory::peak_resident_bytes() {
+///     assert!(peak > 0);
+/// }
+/// ```
+pub fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    kilobytes_field(&status, "VmHWM:")
+}
+
 /// `MemAvailable` of `/proc/meminfo` text, in bytes.
 fn mem_available(meminfo: &str) -> Option<u64> {
     kilobytes_field(meminfo, "MemAvailable:")

@@ -53,17 +53,6 @@ fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) ->
     halfedge_failure(e)
 }
 
-/// The schemes whose counts apply to the mesh and whose subdivision can run on it.
-fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<String> {
-    schemes::builtins()
-        .into_iter()
-        .filter(|s| {
-            s.initial_state(counts).is_ok() && (manifold || !s.mesh_class().needs_manifold())
-        })
-        .map(|s| s.name().to_string())
-        .collect()
-}
-
 pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let poly = required_mesh(&args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
@@ -73,7 +62,10 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()
     } else {
-        applicable_schemes(&counts, validation.is_none())
+        sub::applicable_schemes(&counts, validation.is_none())
+            .iter()
+            .map(|s| s.name().to_owned())
+            .collect()
     };
     let genus = if validation.is_none() {
         halfedge::stats::genus(&counts)
@@ -325,19 +317,6 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     }
 }
 
-/// The peak resident set size of this process (VmHWM), when /proc tells it.
-fn peak_rss_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: u64 = status
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))?
-        .split_whitespace()
-        .nth(1)?
-        .parse()
-        .ok()?;
-    Some(kb * 1024)
-}
-
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = parse_levels_count(&args.levels)?;
     let start = Instant::now();
@@ -437,7 +416,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         writeln!(out, "{message}").map_err(write_failure)?;
     }
     if args.timings {
-        let peak = peak_rss_bytes().map_or_else(|| "null".to_string(), |b| b.to_string());
+        let peak = halfedge::memory::peak_resident_bytes()
+            .map_or_else(|| "null".to_string(), |b| b.to_string());
         eprintln!(
             "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}}}"
         );

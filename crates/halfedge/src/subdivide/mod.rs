@@ -289,6 +289,30 @@ pub fn checked_rule(scheme: &Scheme, counts: &MeshCounts) -> Result<Rule> {
     Ok(rule)
 }
 
+/// The built-in schemes ([`schemes::builtins`]) whose counts apply to a mesh with `counts`
+/// and whose subdivision can run on it: on a `manifold` mesh (a valid [`HalfEdgeMesh`]) every
+/// scheme whose class admits it, otherwise the ones that run on raw face lists
+/// ([`Rule::refines_faces`] and a class without the manifold requirement). What
+/// `subcount stats` lists as `applicable schemes`.
+///
+/// ```
+/// use halfedge::subdivide::applicable_schemes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let names: Vec<String> = applicable_schemes(&cube, true).iter().map(|s| s.name().to_owned()).collect();
+/// assert!(names.contains(&"catmull-clark".to_owned()) && !names.contains(&"loop".to_owned()));
+/// ```
+pub fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<Scheme> {
+    schemes::builtins()
+        .into_iter()
+        .filter(|s| {
+            let runs = s.subdivision_rule().is_some_and(|rule| {
+                manifold || (rule.refines_faces() && !s.mesh_class().needs_manifold())
+            });
+            runs && s.initial_state(counts).is_ok()
+        })
+        .collect()
+}
+
 fn no_rule(scheme: &Scheme) -> Error {
     Error::NoSubdivision {
         scheme: scheme.name().to_owned(),
