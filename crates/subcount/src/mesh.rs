@@ -13,7 +13,6 @@ use crate::args::{MeshSource, ReportFormat, SchemeChoice, StatsArgs, SubdivideAr
 use serde_json::{json, Value};
 
 use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
-use crate::guard::human_bytes;
 use crate::levels::parse_levels_count;
 use crate::model::{
     face_place, load_mesh, load_scheme_file, mesh_label, not_applicable, refuse_degenerate_faces,
@@ -184,13 +183,7 @@ fn on_face_list(scheme: &Scheme, rule: Rule, counts: &MeshCounts, custom: bool) 
     general && rule.refines_faces()
 }
 
-/// Bytes available to this process: half of [`halfedge::memory::available_bytes`] (the least
-/// of MemAvailable, the address-space limit and the cgroup limit), or of 8 GiB when none of
-/// them can be read.
-fn memory_limit() -> u128 {
-    u128::from(halfedge::memory::available_bytes().unwrap_or(8 << 30)) / 2
-}
-
+/// [`halfedge::memory::check_peak`] against half the available memory, unless lifted.
 fn guard_memory(
     scheme: &Scheme,
     counts: &MeshCounts,
@@ -198,23 +191,20 @@ fn guard_memory(
     last_faces: Option<usize>,
     allow_large: bool,
 ) -> Result<BigInt, Failure> {
-    let need = halfedge::memory::predicted_peak_bytes(scheme, counts, levels, last_faces)
-        .map_err(scheme_failure)?;
-    let limit = memory_limit();
-    if !allow_large && need > BigInt::from(limit) {
-        let need_f = need.to_f64().unwrap_or(f64::INFINITY);
-        return Err(Failure::new(
-            Kind::Guard,
-            anyhow::anyhow!(
-                "{} to level {levels} needs about {} of memory (levels {} and {levels} with the input), more than the limit of {} (half the available memory); use fewer levels, or --allow-large to try anyway",
-                scheme.name(),
-                human_bytes(need_f),
-                levels.saturating_sub(1),
-                human_bytes(limit as f64)
-            ),
-        ));
-    }
-    Ok(need)
+    let limit = if allow_large {
+        u128::MAX
+    } else {
+        halfedge::memory::peak_limit()
+    };
+    halfedge::memory::check_peak(scheme, counts, levels, last_faces, limit).map_err(|e| {
+        let hint = "; use fewer levels, or --allow-large to try anyway";
+        match e {
+            halfedge::Error::OverMemoryLimit { .. } => {
+                Failure::new(Kind::Guard, anyhow::anyhow!("{e}{hint}"))
+            }
+            e => halfedge_failure(e),
+        }
+    })
 }
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
