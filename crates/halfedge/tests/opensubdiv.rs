@@ -15,7 +15,7 @@
 //! ```text
 //! tools/osd-driver/build.sh
 //! SUBCOUNT_OSD_DRIVER=target/osd-driver/osd_driver SUBCOUNT_MESHES=../shared/meshes \
-//!     cargo test --release -p halfedge --test opensubdiv -- --ignored
+//!     cargo test -p halfedge --test opensubdiv -- --ignored
 //! ```
 //!
 //! Run with `--ignored` but without either variable, they fail saying what is missing; they
