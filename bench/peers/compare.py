@@ -527,6 +527,16 @@ def main():
             rows.append((label, tool, "%.3f" % med, spread, "%d / %s" % (r["faces"], rate), peak, ratio))
             if tool.startswith("opensubdiv"):
                 rows.extend(osd_rows(label, tool, r, sub_frames))
+        if sub_frames:
+            # subcount's own figures of the --frames run, the ones the opensubdiv rows cite.
+            for key, what in (("refine_topology_s", "refine_topology_s"),
+                              ("evaluate_s", "evaluate_s (per frame)")):
+                ts = sub_frames[key]
+                med = statistics.median(ts)
+                rate = "%.1f M/s" % (ours["faces"] / med / 1e6) if med > 0 else "-"
+                rows.append((label, "subcount-1t --frames %d %s" % (a.frames, what), "%.3f" % med,
+                             "%.3f-%.3f" % (min(ts), max(ts)), "%d / %s" % (ours["faces"], rate),
+                             "", ""))
 
     if python is not None and (not a.only or a.only in "cc-quad counts flint"):
         print("running exact counts ...", file=sys.stderr)
