@@ -132,8 +132,12 @@ fn create(mesh: &Mesh, scheme: sdc::SchemeType, path: &str) -> Result<TopologyRe
     let descriptor = TopologyDescriptor::new(mesh.points.len(), &mesh.sizes, &mesh.corners);
     let options = sdc::Options::default()
         .with_vtx_boundary_interpolation(sdc::VtxBoundaryInterpolation::EdgeOnly);
-    TopologyRefinerFactory::create(descriptor, scheme, options)
-        .map_err(|e| Failure(1, format!("{path}: opensubdiv-rs refused the topology: {e}")))
+    TopologyRefinerFactory::create(descriptor, scheme, options).map_err(|e| {
+        Failure(
+            1,
+            format!("{path}: opensubdiv-rs refused the topology: {e}"),
+        )
+    })
 }
 
 /// Every level's positions, level 0 the base, each interpolated from the one before.
@@ -377,7 +381,10 @@ impl<'a> Grid<'a> {
         let mut cells: std::collections::HashMap<[i64; 3], Vec<u32>> =
             std::collections::HashMap::with_capacity(points.len());
         for (i, p) in points.iter().enumerate() {
-            cells.entry(Self::key(p, radius)).or_default().push(i as u32);
+            cells
+                .entry(Self::key(p, radius))
+                .or_default()
+                .push(i as u32);
         }
         Grid {
             points,
@@ -397,7 +404,12 @@ impl<'a> Grid<'a> {
         for dx in -1..=1 {
             for dy in -1..=1 {
                 for dz in -1..=1 {
-                    for &i in self.cells.get(&[x + dx, y + dy, z + dz]).into_iter().flatten() {
+                    for &i in self
+                        .cells
+                        .get(&[x + dx, y + dy, z + dz])
+                        .into_iter()
+                        .flatten()
+                    {
                         let d = distance(&self.points[i as usize], q);
                         if d <= self.radius && best.is_none_or(|(_, b)| d < b) {
                             best = Some((i as usize, d));
