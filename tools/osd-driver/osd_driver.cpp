@@ -7,8 +7,8 @@
 // Far::PrimvarRefiner in double precision.
 //
 // Usage: osd_driver SCHEME LEVEL FILE.obj [BOUNDARY]
-//   writes the last level to stdout as OBJ: `v x y z` with %.17g (every double round-trips)
-//   and `f` lines with 1-based indices, in OpenSubdiv's own vertex and face order.
+//   writes the last level to stdout as OBJ: `v x y z`, each the shortest text that reads back
+//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's own vertex and face order.
 //   SCHEME    loop | catmark | bilinear
 //   LEVEL     0..10 (0 writes the base mesh as OpenSubdiv read it)
 //   BOUNDARY  edge-only (default) | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
@@ -30,6 +30,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -219,21 +220,31 @@ int reference(int argc, char** argv) {
     std::copy(mesh.points.begin(), mesh.points.end(), points.begin());
     Point const* src = interpolate(*refiner, points.data());
 
+    // std::to_chars writes the shortest text that reads back as the same double (and is much
+    // faster than printf's %.17g, which the differential tests would otherwise wait for).
     Far::TopologyLevel const& last = refiner->GetLevel(level);
     std::string out;
     out.reserve(static_cast<size_t>(last.GetNumVertices()) * 64);
     char buffer[96];
+    auto put = [&](auto value) {
+        std::to_chars_result r = std::to_chars(buffer, buffer + sizeof buffer, value);
+        out.append(buffer, r.ptr);
+    };
     for (int v = 0; v < last.GetNumVertices(); ++v) {
         Point const& p = src[v];
-        std::snprintf(buffer, sizeof buffer, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-        out += buffer;
+        out += 'v';
+        for (double c : {p.x, p.y, p.z}) {
+            out += ' ';
+            put(c);
+        }
+        out += '\n';
     }
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         Far::ConstIndexArray face = last.GetFaceVertices(f);
         out += 'f';
         for (int i = 0; i < face.size(); ++i) {
-            std::snprintf(buffer, sizeof buffer, " %d", face[i] + 1);
-            out += buffer;
+            out += ' ';
+            put(face[i] + 1);
         }
         out += '\n';
     }
