@@ -2,8 +2,10 @@
 """Times subcount's subdivision and exact counts against peers (not part of CI).
 
 Usage:
-    python3 bench/peers/compare.py [--subcount PATH] [--openmesh PATH] [--meshes DIR]
-                                   [--venv DIR] [--reps N] [--json FILE]
+    python3 bench/peers/compare.py [--subcount PATH] [--openmesh PATH] [--osd PATH]
+                                   [--opensubdiv-rs PATH] [--frames N] [--no-accuracy]
+                                   [--no-python] [--meshes DIR] [--venv DIR] [--reps N]
+                                   [--json FILE]
 
 What it does:
   1. creates a virtualenv (default /tmp/subcount-peers-venv) and pip-installs libigl,
@@ -14,9 +16,10 @@ What it does:
      (once when a run takes more than 10 s): subcount through `subcount subdivide --timings`
      (the median of "subdivide_s", peak_bytes and predicted_peak_bytes; "subcount" with the
      default threads, i.e. every core, "subcount-1t" with --threads 1), OpenMesh through the
-     driver built by bench/peers/openmesh/build.sh (skipped when it is missing), and the Python
-     peers in-process in the virtualenv (wall time of the call only, loading excluded; peak RSS
-     of the worker process, Python and numpy included);
+     driver built by bench/peers/openmesh/build.sh (skipped when it is missing), OpenSubdiv
+     and opensubdiv-rs through their drivers (below), and the Python peers in-process in the
+     virtualenv (wall time of the call only, loading excluded; peak RSS of the worker process,
+     Python and numpy included);
   4. times python-flint's fmpz_mat power of the Catmull-Clark quad matrix at s = 10^6 and
      str() of the resulting count (~602,062 digits), next to the whole `subcount at` process
      and, in-process, `decimal::to_decimal` and num-bigint's `to_string` on the same number
@@ -24,6 +27,28 @@ What it does:
      skipped with --no-cargo-bench);
   5. prints one table: median seconds, output faces per second, peak memory, and the ratio of
      each peer's median to subcount's median on the same job, all measured in the same run.
+
+OpenSubdiv 3.5 (Debian's libosd-dev) runs through tools/osd-driver/osd_driver.cpp (built by
+tools/osd-driver/build.sh when --osd is missing), the reference of the differential tests, in
+its `--time` mode: Far::TopologyRefinerFactory::Create, RefineUniform with
+fullTopologyInLastLevel = false, and Far::PrimvarRefinerReal<double>::Interpolate level by
+level into a fresh buffer, each timed, VTX_BOUNDARY_EDGE_ONLY, single-threaded. Its main row is
+RefineUniform + Interpolate (Create, the base level's topology, is in --json only); the rows
+below it are RefineUniform alone, Interpolate in the one-shot run, and Interpolate per frame
+(the median of --frames evaluations on a refiner built once, the base positions perturbed
+before each, the buffer reused: the per-frame cost of animation). Peak memory is ru_maxrss.
+
+opensubdiv-rs 0.5.0 (the Rust port on crates.io) runs through bench/peers/opensubdiv-rs, its own
+cargo project (built with `cargo build --release` into TARGET/peers when --opensubdiv-rs is
+missing), with the same rows; its refiner always builds full topology (it has no
+fullTopologyInLastLevel) and its primvar weights are f32 (positions [f64; 3]). Unless
+--no-accuracy, each of its jobs also writes OpenSubdiv's last level and reports the largest
+distance between the two positions of a vertex (matched by position, faces checked as vertex
+cycles), as a fraction of the bounding-box diagonal.
+
+When `subcount subdivide --help` lists --frames, subcount also runs with --frames N --threads 1
+and its "refine_topology_s" and "evaluate_s" are reported next to OpenSubdiv's RefineUniform and
+per-frame Interpolate (ratios to them: above 1, subcount is faster).
 
 The load average at the start and the end is printed with the table: on a shared machine wall
 times are only comparable within one run.
@@ -46,12 +71,12 @@ REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 # other names are files of --meshes. trimesh's subdivide is the plain 4:1 midpoint split, so
 # it is compared with subcount's `midpoint` on the same input.
 JOBS = [
-    ("loop L3 icosphere", "loop", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "igl", "pymeshlab"]),
+    ("loop L3 icosphere", "loop", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "opensubdiv", "opensubdiv-rs", "igl", "pymeshlab"]),
     ("midpoint L3 icosphere", "midpoint", 3, "icosphere", ["subcount-1t", "trimesh"]),
-    ("catmull-clark L3 icosphere", "catmull-clark", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "pymeshlab"]),
+    ("catmull-clark L3 icosphere", "catmull-clark", 3, "icosphere", ["subcount-1t", "subcount-thp", "openmesh", "opensubdiv", "opensubdiv-rs", "pymeshlab"]),
     ("sqrt3 L2 icosphere", "sqrt3", 2, "icosphere", ["subcount-1t", "openmesh"]),
-    ("loop L2 armadillo", "loop", 2, "armadillo", ["subcount-1t", "openmesh", "igl", "pymeshlab"]),
-    ("catmull-clark L2 armadillo", "catmull-clark", 2, "armadillo", ["subcount-1t", "openmesh", "pymeshlab"]),
+    ("loop L2 armadillo", "loop", 2, "armadillo", ["subcount-1t", "openmesh", "opensubdiv", "opensubdiv-rs", "igl", "pymeshlab"]),
+    ("catmull-clark L2 armadillo", "catmull-clark", 2, "armadillo", ["subcount-1t", "openmesh", "opensubdiv", "opensubdiv-rs", "pymeshlab"]),
     ("sqrt3 L2 armadillo", "sqrt3", 2, "armadillo", ["subcount-1t", "openmesh"]),
 ]
 
@@ -228,6 +253,83 @@ def run_openmesh(binary, scheme, levels, path, reps):
     return {"times": r["wall_s"], "faces": r["faces"], "peak_bytes": r["peak_rss_bytes"]}
 
 
+# OpenSubdiv's name for each scheme compare.py gives both drivers.
+OSD_SCHEMES = {"loop": "loop", "catmull-clark": "catmark"}
+
+
+def run_osd_timing(command, scheme, levels, path, reps, frames):
+    """`osd_driver --time` or `opensubdiv-rs-peer time` (`command`): one process, REPS one-shot
+    runs, then FRAMES evaluations on the last run's refiner."""
+    args = list(command)
+    try:
+        p = subprocess.run(args + [OSD_SCHEMES[scheme], str(levels), path, str(reps), str(frames)],
+                           capture_output=True, text=True, timeout=WORKER_TIMEOUT_S)
+    except subprocess.TimeoutExpired:
+        return {"error": "no result within %d s" % WORKER_TIMEOUT_S}
+    if p.returncode != 0:
+        return {"error": (p.stderr.strip().splitlines() or ["failed"])[-1]}
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    # The main row: RefineUniform + Interpolate of each one-shot run.
+    r["times"] = [a + b for a, b in zip(r["refine_s"], r["interpolate_s"])]
+    r["peak_bytes"] = r["peak_rss_bytes"]
+    return r
+
+
+def run_osdrs_accuracy(osd, osdrs, scheme, levels, path, tmp):
+    """The largest distance between opensubdiv-rs's and OpenSubdiv's positions of a vertex, as
+    a fraction of the base mesh's bounding-box diagonal (opensubdiv-rs-peer compare)."""
+    reference = os.path.join(tmp, "opensubdiv-reference.obj")
+    try:
+        with open(reference, "w") as out:
+            p = subprocess.run([osd, OSD_SCHEMES[scheme], str(levels), path], stdout=out,
+                               stderr=subprocess.PIPE, text=True)
+        if p.returncode != 0:
+            return {"error": p.stderr.strip()}
+        p = subprocess.run([osdrs, "compare", OSD_SCHEMES[scheme], str(levels), path, reference],
+                           capture_output=True, text=True)
+        if p.returncode != 0:
+            return {"error": p.stderr.strip()}
+        return json.loads(p.stdout.strip().splitlines()[-1])
+    finally:
+        if os.path.exists(reference):
+            os.remove(reference)
+
+
+def subcount_has_frames(subcount):
+    """Whether this subcount's `subdivide` takes --frames (refine_topology_s, evaluate_s)."""
+    p = subprocess.run([subcount, "subdivide", "--help"], capture_output=True, text=True)
+    return p.returncode == 0 and "--frames" in p.stdout
+
+
+def run_subcount_frames(subcount, args, reps, frames):
+    """Medians over REPS processes of `subcount subdivide --timings --frames N`: its
+    refine_topology_s and evaluate_s (the median of its N evaluations)."""
+    refine, evaluate = [], []
+    for _ in range(reps):
+        p = subprocess.run([subcount, "subdivide", "--timings", "--frames", str(frames)] + args,
+                           capture_output=True, text=True)
+        if p.returncode != 0:
+            return {"error": p.stderr.strip()}
+        line = next(l for l in p.stderr.splitlines() if l.startswith("timings: "))
+        t = json.loads(line[len("timings: "):])
+        refine.append(t["refine_topology_s"])
+        evaluate.append(t["evaluate_s"])
+    return {"refine_topology_s": refine, "evaluate_s": evaluate}
+
+
+def ensure_built(path, build, what):
+    """`path` when it exists, else the path `build()` prints (None when that fails)."""
+    if os.path.exists(path):
+        return path
+    print("building %s ..." % what, file=sys.stderr)
+    try:
+        built = build()
+    except (OSError, subprocess.CalledProcessError) as e:
+        print("skipping %s: cannot build it (%s)" % (what, e), file=sys.stderr)
+        return None
+    return built if built and os.path.exists(built) else None
+
+
 def criterion_rendering():
     """Seconds per call of decimal::to_decimal and num-bigint's to_string on the 602,062-digit
     count, one figure per criterion sample (group `decimal` of the decimal crate's to_decimal
@@ -250,6 +352,48 @@ def criterion_rendering():
     return out
 
 
+def osd_rows(label, tool, r, sub_frames):
+    """The rows under an OpenSubdiv or opensubdiv-rs main row: its RefineUniform, its one-shot
+    Interpolate and its per-frame Interpolate, each next to subcount's refine_topology_s and
+    evaluate_s (`--frames`, single thread) when this subcount has them, and opensubdiv-rs's
+    deviation from OpenSubdiv."""
+    out = []
+
+    def row(what, ts, ours=None, ours_name=None):
+        if not ts:
+            return
+        med = statistics.median(ts)
+        rate = "%d / %.1f M/s" % (r["faces"], r["faces"] / med / 1e6) if med > 0 else ""
+        ratio = ""
+        if ours:
+            ratio = "%.2fx (%s %.3f)" % (med / statistics.median(ours), ours_name,
+                                         statistics.median(ours))
+        out.append((label, "%s %s" % (tool, what), "%.3f" % med,
+                    "%.3f-%.3f" % (min(ts), max(ts)), rate, "", ratio))
+
+    sf = sub_frames or {}
+    row("RefineUniform", r["refine_s"], sf.get("refine_topology_s"), "refine_topology_s")
+    row("Interpolate (one-shot)", r["interpolate_s"])
+    row("Interpolate per frame", r.get("frame_interpolate_s"), sf.get("evaluate_s"), "evaluate_s")
+    acc = r.get("accuracy")
+    if acc:
+        if "error" in acc:
+            out.append((label, "%s positions vs opensubdiv" % tool, "error: " + acc["error"][:60],
+                        "", "", "", ""))
+        else:
+            out.append((label, "%s positions vs opensubdiv" % tool,
+                        "max %.2g of the diagonal" % acc["max_deviation"], "",
+                        "%d vertices, same faces" % acc["vertices"], "", ""))
+    return out
+
+
+def osd_version():
+    """Debian's libosd-dev version, when dpkg knows it."""
+    p = subprocess.run(["dpkg-query", "-W", "-f", "${Version}", "libosd-dev"],
+                       capture_output=True, text=True)
+    return p.stdout.strip() if p.returncode == 0 and p.stdout.strip() else "(libosdCPU)"
+
+
 def mib(b):
     return "-" if not b else "%.0f MiB" % (b / 2**20)
 
@@ -259,6 +403,19 @@ def main():
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(REPO, "target"))
     ap.add_argument("--subcount", default=os.path.join(target, "release", "subcount"))
     ap.add_argument("--openmesh", default="/tmp/subcount-openmesh/subdivide_openmesh")
+    ap.add_argument("--osd", default=os.path.join(target, "osd-driver", "osd_driver"),
+                    help="OpenSubdiv's driver (built by tools/osd-driver/build.sh when missing)")
+    ap.add_argument("--opensubdiv-rs", dest="osdrs",
+                    default=os.path.join(target, "peers", "release", "opensubdiv-rs-peer"),
+                    help="bench/peers/opensubdiv-rs's binary (built with cargo when missing)")
+    ap.add_argument("--frames", type=int, default=10,
+                    help="per-frame evaluations timed on one refinement (OpenSubdiv, "
+                         "opensubdiv-rs, subcount --frames)")
+    ap.add_argument("--no-python", action="store_true",
+                    help="skip the virtualenv and the Python peers (libigl, pymeshlab, trimesh, "
+                         "python-flint and the exact counts)")
+    ap.add_argument("--no-accuracy", action="store_true",
+                    help="skip comparing opensubdiv-rs's positions with OpenSubdiv's")
     ap.add_argument("--meshes", default=os.environ.get("SUBCOUNT_MESHES", os.path.join(REPO, "..", "shared", "meshes")))
     ap.add_argument("--venv", default=os.environ.get("SUBCOUNT_PEERS_VENV", "/tmp/subcount-peers-venv"))
     ap.add_argument("--reps", type=int, default=3)
@@ -278,8 +435,24 @@ def main():
         raise SystemExit(
             "no subcount binary at %s: cargo build --release -p subcount (or --subcount PATH)" % a.subcount
         )
-    python, versions = ensure_venv(a.venv)
+    python, versions = (None, {}) if a.no_python else ensure_venv(a.venv)
     have_openmesh = os.path.exists(a.openmesh)
+    wanted = {t for job in JOBS if not a.only or a.only in job[0] for t in job[4]}
+    osd = osdrs = None
+    if "opensubdiv" in wanted:
+        osd = ensure_built(a.osd, lambda: subprocess.run(
+            [os.path.join(REPO, "tools", "osd-driver", "build.sh"), a.osd],
+            check=True, capture_output=True, text=True).stdout.strip(), "the OpenSubdiv driver")
+    if "opensubdiv-rs" in wanted:
+        def build_osdrs():
+            # Cargo's own layout: TARGET/release/NAME for --target-dir TARGET.
+            target_dir = os.path.dirname(os.path.dirname(a.osdrs))
+            subprocess.run(["cargo", "build", "--release", "--quiet", "--manifest-path",
+                            os.path.join(REPO, "bench", "peers", "opensubdiv-rs", "Cargo.toml"),
+                            "--target-dir", target_dir], check=True)
+            return a.osdrs
+        osdrs = ensure_built(a.osdrs, build_osdrs, "opensubdiv-rs-peer")
+    frames_flag = subcount_has_frames(a.subcount)
     start_load = load_average()
     started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     tmp = tempfile.mkdtemp(prefix="subcount-peers-")
@@ -316,9 +489,29 @@ def main():
                 if not have_openmesh:
                     continue
                 r = run_openmesh(a.openmesh, scheme, levels, path, a.reps)
+            elif tool in ("opensubdiv", "opensubdiv-rs"):
+                binary = osd if tool == "opensubdiv" else osdrs
+                if binary is None:
+                    continue
+                command = [binary, "--time"] if tool == "opensubdiv" else [binary, "time"]
+                r = run_osd_timing(command, scheme, levels, path, a.reps, a.frames)
+                if tool == "opensubdiv-rs" and osd and not a.no_accuracy and "error" not in r:
+                    r["accuracy"] = run_osdrs_accuracy(osd, osdrs, scheme, levels, path, tmp)
+            elif python is None:
+                continue
             else:
                 r = run_worker(python, tool, scheme, levels, path, a.reps)
             results.append((tool, r))
+        sub_frames = None
+        if frames_flag and any(t.startswith("opensubdiv") for t, _ in results):
+            sub_frames = run_subcount_frames(
+                a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels),
+                             "--threads", "1"], a.reps, a.frames)
+            raw.append({"job": label, "tool": "subcount-1t --frames", **sub_frames})
+            if "error" in sub_frames:
+                rows.append((label, "subcount-1t --frames", "error: " + sub_frames["error"][:60],
+                             "", "", "", ""))
+                sub_frames = None
         for tool, r in results:
             raw.append({"job": label, "tool": tool, **r})
             if "error" in r:
@@ -332,8 +525,20 @@ def main():
                 peak += " (pred. %s)" % mib(r["predicted"])
             ratio = "1" if tool == "subcount" else "%.2fx" % (med / ours_med)
             rows.append((label, tool, "%.3f" % med, spread, "%d / %s" % (r["faces"], rate), peak, ratio))
+            if tool.startswith("opensubdiv"):
+                rows.extend(osd_rows(label, tool, r, sub_frames))
+        if sub_frames:
+            # subcount's own figures of the --frames run, the ones the opensubdiv rows cite.
+            for key, what in (("refine_topology_s", "refine_topology_s"),
+                              ("evaluate_s", "evaluate_s (per frame)")):
+                ts = sub_frames[key]
+                med = statistics.median(ts)
+                rate = "%.1f M/s" % (ours["faces"] / med / 1e6) if med > 0 else "-"
+                rows.append((label, "subcount-1t --frames %d %s" % (a.frames, what), "%.3f" % med,
+                             "%.3f-%.3f" % (min(ts), max(ts)), "%d / %s" % (ours["faces"], rate),
+                             "", ""))
 
-    if not a.only or a.only in "cc-quad counts flint":
+    if python is not None and (not a.only or a.only in "cc-quad counts flint"):
         print("running exact counts ...", file=sys.stderr)
         p = subprocess.run([python, os.path.abspath(__file__), "--worker", "flint", str(max(a.reps, 5))],
                            capture_output=True, text=True)
@@ -380,8 +585,12 @@ def main():
     head = ("job", "tool", "median s", "min-max s", "faces / rate", "peak memory", "vs subcount")
     widths = [max(len(str(r[i])) for r in rows + [head]) for i in range(len(head))]
     print("started %s; load average at start %s, at end %s; reps %d" % (started, start_load, load_average(), a.reps))
-    print("peers: " + ", ".join("%s %s" % kv for kv in sorted(versions.items()))
-          + (", OpenMesh (sdist) C++ driver" if have_openmesh else ", OpenMesh driver missing"))
+    peers = ["%s %s" % kv for kv in sorted(versions.items())]
+    peers.append("OpenMesh (sdist) C++ driver" if have_openmesh else "OpenMesh driver missing")
+    peers.append("OpenSubdiv %s driver" % osd_version() if osd else "OpenSubdiv driver missing")
+    peers.append("opensubdiv-rs 0.5.0" if osdrs else "opensubdiv-rs missing")
+    print("peers: " + ", ".join(peers)
+          + ("; subcount --frames %d" % a.frames if frames_flag else "; subcount has no --frames"))
     print("| " + " | ".join(h.ljust(w) for h, w in zip(head, widths)) + " |")
     print("|" + "|".join("-" * (w + 2) for w in widths) + "|")
     for r in rows:

@@ -1,15 +1,24 @@
-// osd_driver: the OpenSubdiv reference for subcount's differential tests.
+// osd_driver: the OpenSubdiv reference for subcount's differential tests and its peer in
+// bench/peers.
 //
 // Reads an OBJ mesh (only `v` and `f` lines; texture and normal indices, groups, materials and
-// crease tags are ignored), refines it uniformly with OpenSubdiv's Far::TopologyRefiner, moves
-// the positions down every level with Far::PrimvarRefiner in double precision, and writes the
-// last level to stdout as OBJ: `v x y z` with %.17g (every double round-trips) and `f` lines
-// with 1-based indices, in OpenSubdiv's own vertex and face order.
+// crease tags are ignored), refines it uniformly with OpenSubdiv's Far::TopologyRefiner
+// (fullTopologyInLastLevel = false) and moves the positions down every level with
+// Far::PrimvarRefiner in double precision.
 //
 // Usage: osd_driver SCHEME LEVEL FILE.obj [BOUNDARY]
+//   writes the last level to stdout as OBJ: `v x y z`, each the shortest text that reads back
+//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's own vertex and face order.
 //   SCHEME    loop | catmark | bilinear
 //   LEVEL     0..10 (0 writes the base mesh as OpenSubdiv read it)
 //   BOUNDARY  edge-only (default) | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
+//
+// Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
+//   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
+//   REPS (default 3) one-shot runs, each timing TopologyRefinerFactory::Create, RefineUniform
+//   and the level-by-level Interpolate into a fresh buffer separately, then FRAMES (default 0)
+//   evaluations of the positions on the last run's refiner, the base positions perturbed
+//   before each (untimed), the buffer reused.
 //
 // Errors go to stderr, one line, with exit status 1 (bad input) or 2 (usage).
 
@@ -18,7 +27,13 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <charconv>
 #include <cerrno>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -136,32 +151,20 @@ int parseLevel(std::string const& text) {
     return static_cast<int>(level);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    if (argc < 4 || argc > 5) {
-        fail(2, "usage: osd_driver loop|catmark|bilinear LEVEL FILE.obj "
-                "[edge-only|edge-and-corner|none]");
-    }
-    Sdc::SchemeType scheme = parseScheme(argv[1]);
-    int level = parseLevel(argv[2]);
-    Sdc::Options::VtxBoundaryInterpolation boundary =
-        parseBoundary(argc == 5 ? argv[4] : "edge-only");
-    Mesh mesh = readObj(argv[3]);
-
-    if (scheme == Sdc::SCHEME_LOOP) {
-        for (size_t f = 0; f < mesh.faceSizes.size(); ++f) {
-            if (mesh.faceSizes[f] != 3) {
-                fail(1, std::string(argv[3]) + ": face " + std::to_string(f) + " has " +
-                            std::to_string(mesh.faceSizes[f]) +
-                            " vertices: Loop needs triangles");
-            }
+// Rejects a non-triangle under Loop, naming the face.
+void requireTriangles(Mesh const& mesh, char const* path) {
+    for (size_t f = 0; f < mesh.faceSizes.size(); ++f) {
+        if (mesh.faceSizes[f] != 3) {
+            fail(1, std::string(path) + ": face " + std::to_string(f) + " has " +
+                        std::to_string(mesh.faceSizes[f]) + " vertices: Loop needs triangles");
         }
     }
+}
 
-    Far::SetErrorCallback(reportError);
-    Far::SetWarningCallback(reportWarning);
-
+// The refiner of the mesh's base level; the mesh's arrays must outlive the call only.
+std::unique_ptr<Far::TopologyRefiner> createRefiner(Mesh const& mesh, Sdc::SchemeType scheme,
+                                                    Sdc::Options::VtxBoundaryInterpolation boundary,
+                                                    char const* path) {
     Far::TopologyDescriptor desc;
     desc.numVertices = static_cast<int>(mesh.points.size());
     desc.numFaces = static_cast<int>(mesh.faceSizes.size());
@@ -173,39 +176,75 @@ int main(int argc, char** argv) {
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     std::unique_ptr<Far::TopologyRefiner> refiner(
         Factory::Create(desc, Factory::Options(scheme, sdcOptions)));
-    if (!refiner) fail(1, std::string(argv[3]) + ": OpenSubdiv refused the topology");
+    if (!refiner) fail(1, std::string(path) + ": OpenSubdiv refused the topology");
+    return refiner;
+}
 
+// Uniform refinement to `level`; the last level's face-vertex lists are all either mode reads.
+void refine(Far::TopologyRefiner& refiner, int level) {
     Far::TopologyRefiner::UniformOptions uniform(level);
-    // The last level's face-vertex lists are all this driver reads.
     uniform.fullTopologyInLastLevel = false;
-    refiner->RefineUniform(uniform);
+    refiner.RefineUniform(uniform);
+}
 
-    // Level 0 first, then each level right after the one before: one buffer for all levels.
-    std::vector<Point> points(refiner->GetNumVerticesTotal());
-    std::copy(mesh.points.begin(), mesh.points.end(), points.begin());
-    Far::PrimvarRefinerReal<double> primvar(*refiner);
-    Point* src = points.data();
-    for (int l = 1; l <= level; ++l) {
-        Point* dst = src + refiner->GetLevel(l - 1).GetNumVertices();
+// Moves the positions down level by level: `points` holds every level, level 0 first (already
+// filled), each level right after the one before. Returns the last level's first vertex.
+Point* interpolate(Far::TopologyRefiner const& refiner, Point* points) {
+    Far::PrimvarRefinerReal<double> primvar(refiner);
+    Point* src = points;
+    for (int l = 1; l <= refiner.GetMaxLevel(); ++l) {
+        Point* dst = src + refiner.GetLevel(l - 1).GetNumVertices();
         primvar.Interpolate(l, src, dst);
         src = dst;
     }
+    return src;
+}
 
+int reference(int argc, char** argv) {
+    if (argc < 4 || argc > 5) {
+        fail(2, "usage: osd_driver loop|catmark|bilinear LEVEL FILE.obj "
+                "[edge-only|edge-and-corner|none]\n"
+                "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
+    }
+    Sdc::SchemeType scheme = parseScheme(argv[1]);
+    int level = parseLevel(argv[2]);
+    Sdc::Options::VtxBoundaryInterpolation boundary =
+        parseBoundary(argc == 5 ? argv[4] : "edge-only");
+    Mesh mesh = readObj(argv[3]);
+    if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, argv[3]);
+
+    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, boundary, argv[3]);
+    refine(*refiner, level);
+
+    std::vector<Point> points(refiner->GetNumVerticesTotal());
+    std::copy(mesh.points.begin(), mesh.points.end(), points.begin());
+    Point const* src = interpolate(*refiner, points.data());
+
+    // std::to_chars writes the shortest text that reads back as the same double (and is much
+    // faster than printf's %.17g, which the differential tests would otherwise wait for).
     Far::TopologyLevel const& last = refiner->GetLevel(level);
     std::string out;
     out.reserve(static_cast<size_t>(last.GetNumVertices()) * 64);
     char buffer[96];
+    auto put = [&](auto value) {
+        std::to_chars_result r = std::to_chars(buffer, buffer + sizeof buffer, value);
+        out.append(buffer, r.ptr);
+    };
     for (int v = 0; v < last.GetNumVertices(); ++v) {
         Point const& p = src[v];
-        std::snprintf(buffer, sizeof buffer, "v %.17g %.17g %.17g\n", p.x, p.y, p.z);
-        out += buffer;
+        out += 'v';
+        for (double c : {p.x, p.y, p.z}) {
+            out += ' ';
+            put(c);
+        }
+        out += '\n';
     }
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         Far::ConstIndexArray face = last.GetFaceVertices(f);
         out += 'f';
         for (int i = 0; i < face.size(); ++i) {
-            std::snprintf(buffer, sizeof buffer, " %d", face[i] + 1);
-            out += buffer;
+            out += ' ';
+            put(face[i] + 1);
         }
         out += '\n';
     }
@@ -213,4 +252,112 @@ int main(int argc, char** argv) {
         fail(1, "cannot write to stdout");
     }
     return 0;
+}
+
+int parseCount(char const* text, char const* what, int max) {
+    char* end = nullptr;
+    errno = 0;
+    long value = std::strtol(text, &end, 10);
+    if (errno != 0 || *text == '\0' || *end != '\0' || value < 0 || value > max) {
+        fail(2, std::string(what) + " must be an integer from 0 to " + std::to_string(max) +
+                    ", got '" + text + "'");
+    }
+    return static_cast<int>(value);
+}
+
+double since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void printList(char const* key, std::vector<double> const& values) {
+    std::printf(", \"%s\": [", key);
+    for (size_t i = 0; i < values.size(); ++i) std::printf("%s%.6f", i ? ", " : "", values[i]);
+    std::printf("]");
+}
+
+// --time: the peer of `subcount subdivide --timings [--frames N]` in bench/peers/compare.py.
+int timing(int argc, char** argv) {
+    if (argc < 5 || argc > 7) {
+        fail(2, "usage: osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
+    }
+    Sdc::SchemeType scheme = parseScheme(argv[2]);
+    int level = parseLevel(argv[3]);
+    char const* path = argv[4];
+    int reps = argc > 5 ? parseCount(argv[5], "REPS", 1000) : 3;
+    int frames = argc > 6 ? parseCount(argv[6], "FRAMES", 100000) : 0;
+    if (reps < 1) fail(2, "REPS must be at least 1");
+    Mesh mesh = readObj(path);
+    if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, path);
+
+    using Clock = std::chrono::steady_clock;
+    std::vector<double> createS, refineS, interpolateS, frameS;
+    int vertices = 0, faces = 0;
+    double checksum = 0.0;
+    for (int rep = 0; rep < reps; ++rep) {
+        Clock::time_point start = Clock::now();
+        std::unique_ptr<Far::TopologyRefiner> refiner =
+            createRefiner(mesh, scheme, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, path);
+        createS.push_back(since(start));
+
+        start = Clock::now();
+        refine(*refiner, level);
+        refineS.push_back(since(start));
+
+        // A fresh buffer, as a caller's: `new Point[n]` leaves the pages untouched, so the first
+        // Interpolate pays their faults, as any one-shot run does.
+        size_t total = static_cast<size_t>(refiner->GetNumVerticesTotal());
+        std::unique_ptr<Point[]> points(new Point[total]);
+        std::copy(mesh.points.begin(), mesh.points.end(), points.get());
+        start = Clock::now();
+        Point const* last = interpolate(*refiner, points.get());
+        interpolateS.push_back(since(start));
+
+        Far::TopologyLevel const& top = refiner->GetLevel(level);
+        vertices = top.GetNumVertices();
+        faces = top.GetNumFaces();
+        checksum = 0.0;
+        for (int v = 0; v < vertices; ++v) checksum += last[v].x + last[v].y + last[v].z;
+
+        bool lastRep = rep + 1 == reps || createS.back() + refineS.back() + interpolateS.back() > 10;
+        if (lastRep) {
+            // Per-frame evaluation on the refiner built once: the base positions moved by a
+            // small deterministic amount (not timed), then every level interpolated again.
+            for (int frame = 0; frame < frames; ++frame) {
+                double amount = 1e-6 * static_cast<double>(frame + 1);
+                for (size_t v = 0; v < mesh.points.size(); ++v) {
+                    Point p = mesh.points[v];
+                    double s = amount * std::sin(static_cast<double>(v));
+                    points[v] = Point{p.x + s, p.y - s, p.z + 0.5 * s};
+                }
+                start = Clock::now();
+                last = interpolate(*refiner, points.get());
+                frameS.push_back(since(start));
+                checksum += last[0].x;
+            }
+            break;
+        }
+    }
+
+    struct rusage usage;
+    getrusage(RUSAGE_SELF, &usage);
+    std::printf("{\"tool\": \"opensubdiv\", \"scheme\": \"%s\", \"levels\": %d, "
+                "\"input_faces\": %zu, \"vertices\": %d, \"faces\": %d",
+                argv[2], level, mesh.faceSizes.size(), vertices, faces);
+    printList("create_s", createS);
+    printList("refine_s", refineS);
+    printList("interpolate_s", interpolateS);
+    printList("frame_interpolate_s", frameS);
+    std::printf(", \"peak_rss_bytes\": %ld, \"checksum\": %.17g}\n", long(usage.ru_maxrss) * 1024L,
+                checksum);
+    if (std::fflush(stdout) != 0) fail(1, "cannot write to stdout");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Far::SetErrorCallback(reportError);
+    Far::SetWarningCallback(reportWarning);
+    if (argc > 1 && std::strcmp(argv[1], "--time") == 0) return timing(argc, argv);
+    return reference(argc, argv);
 }
