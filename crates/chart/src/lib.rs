@@ -278,7 +278,8 @@ mod tests {
             "series `A`: the value at level 3 is not finite"
         );
         let mut empty = chart(vec![]);
-        empty.levels = 5..=2;
+        let (first, last) = (5, 2);
+        empty.levels = first..=last;
         assert_eq!(refused(&empty), "the chart's levels 5..=2 are empty");
         assert!(matches!(
             render_png(&empty),
