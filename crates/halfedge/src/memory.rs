@@ -136,11 +136,11 @@ pub fn peak_limit() -> u128 {
 }
 
 /// The memory guard of real subdivision: [`predicted_peak_bytes`] of `scheme` to `levels`,
-/// refused with [`Error::OverMemoryLimit`] when it exceeds `limit` (e.g. [`peak_limit`]).
+/// refused with [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit) when it exceeds `limit` (e.g. [`peak_limit`]).
 ///
 /// # Errors
 ///
-/// [`Error::OverMemoryLimit`], or [`Error::Scheme`] when the scheme does not apply.
+/// [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit), or [`Error::Scheme`](crate::Error::Scheme) when the scheme does not apply.
 ///
 /// ```
 /// use halfedge::memory::check_peak;
