@@ -5,8 +5,13 @@
 //! value is taken from the workspace root, so the README's full-suite command works as written:
 //!
 //! ```text
-//! SUBCOUNT_MESHES=../shared/meshes cargo test --workspace -- --ignored
+//! tools/osd-driver/build.sh
+//! SUBCOUNT_MESHES=../shared/meshes SUBCOUNT_OSD_DRIVER=target/osd-driver/osd_driver \
+//!   cargo test --workspace -- --ignored
 //! ```
+//!
+//! (`SUBCOUNT_OSD_DRIVER` names the OpenSubdiv driver of the differential tests in
+//! `crates/halfedge/tests/opensubdiv.rs`, which need it as these need the meshes.)
 //!
 //! A test that reads them is marked `#[ignore = "needs SUBCOUNT_MESHES"]` (so the plain
 //! `cargo test --workspace` lists it as ignored, with the reason) and calls [`meshes_dir`] or
