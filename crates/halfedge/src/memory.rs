@@ -251,8 +251,8 @@ mod tests {
         let opts = SubdivideOptions::default();
         let bytes = |m: &HalfEdgeMesh| BigInt::from(m.heap_bytes());
         let peak = |levels, last| predicted_peak_bytes(&cc, &cube.counts(), levels, last);
-        let l1 = subdivide(&cube, "catmull-clark", 1, &opts).expect("level 1");
-        let l2 = subdivide(&cube, "catmull-clark", 2, &opts).expect("level 2");
+        let l1 = subdivide(&cube, crate::Rule::CatmullClark, 1, &opts).expect("level 1");
+        let l2 = subdivide(&cube, crate::Rule::CatmullClark, 2, &opts).expect("level 2");
         assert_eq!(peak(0, None).expect("0"), bytes(&cube));
         assert_eq!(peak(1, None).expect("1"), bytes(&cube) + bytes(&l1));
         assert_eq!(
@@ -260,7 +260,7 @@ mod tests {
             bytes(&cube) + bytes(&l1) + bytes(&l2)
         );
         // The last level as a face list of quads: no face lines, so heap_bytes is exact.
-        let faces = subdivide_to_face_list(&cube, "catmull-clark", 2, &opts).expect("faces");
+        let faces = subdivide_to_face_list(&cube, crate::Rule::CatmullClark, 2, &opts).expect("faces");
         assert_eq!(
             peak(2, Some(4)).expect("2 as faces"),
             bytes(&cube) + bytes(&l1) + BigInt::from(faces.mesh.heap_bytes())

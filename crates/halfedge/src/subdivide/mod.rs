@@ -81,6 +81,7 @@ mod faces;
 mod finite;
 mod gather;
 mod par;
+pub mod refine;
 mod sqrt3;
 mod to_faces;
 mod topo;
@@ -251,6 +252,12 @@ pub(crate) fn plan(rule: Rule, counts: &MeshCounts) -> Result<Plan> {
         },
         Rule::DooSabin => Algorithm::DooSabin,
         Rule::MidEdge => Algorithm::MidEdge,
+        _ => {
+            return Err(Error::NoSubdivision {
+                scheme: rule.to_string(),
+                reason: "this version of halfedge has no algorithm for the rule".into(),
+            })
+        }
     };
     Ok(Plan {
         name: rule.to_string(),

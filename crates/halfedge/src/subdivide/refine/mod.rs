@@ -1,0 +1,5 @@
+//! Refine once, evaluate many.
+
+pub(crate) mod data;
+
+pub use data::Scalar;
