@@ -17,7 +17,7 @@
 
 use super::build::{Builder, StepContext};
 use super::par::{self, Sink, Slots};
-use super::refine::data::Vector;
+use super::refine::Vector;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 use crate::{HalfEdgeMesh, Result};

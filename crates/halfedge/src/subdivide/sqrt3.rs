@@ -39,7 +39,7 @@ use glam::DVec3;
 
 use super::build::{Builder, StepContext};
 use super::par::Sink;
-use super::refine::data::Vector;
+use super::refine::Vector;
 use super::topo::Topo;
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};

@@ -19,7 +19,7 @@ use std::f64::consts::PI;
 
 use super::build::{Builder, StepContext};
 use super::par::Sink;
-use super::refine::data::Vector;
+use super::refine::Vector;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
 
