@@ -400,10 +400,14 @@ fn progress_and_memory() {
         *seen.lock().expect("lock"),
         [(1, 42, 120, 80), (2, 162, 480, 320), (3, 642, 1920, 1280)]
     );
-    // Levels 0-2: 4 bytes per vertex and face, 32 per edge.
-    let expected: usize = [(12, 30, 20), (42, 120, 80), (162, 480, 320)]
-        .iter()
-        .map(|(v, e, f)| 4 * v + 32 * e + 4 * f)
-        .sum();
-    assert_eq!(r.heap_bytes(), expected);
+    // Loop keeps levels 0-2 flattened (24 bytes per edge, 5 per vertex, 4 more), and the
+    // connectivity of level 2 (4 bytes per vertex and face, 32 per edge).
+    let sizes = [(12, 30, 20), (42, 120, 80), (162, 480, 320)];
+    let flat: usize = sizes.iter().map(|(v, e, _)| 24 * e + 5 * v + 4).sum();
+    let connectivity = |(v, e, f): (usize, usize, usize)| 4 * v + 32 * e + 4 * f;
+    assert_eq!(r.heap_bytes(), flat + connectivity(sizes[2]));
+    // Other rules keep the connectivity of levels 0-2.
+    let mid = Refinement::new(&ico, Rule::Midpoint, 3, &opts(1)).expect("midpoint");
+    let expected: usize = sizes.iter().map(|&s| connectivity(s)).sum();
+    assert_eq!(mid.heap_bytes(), expected);
 }

@@ -54,6 +54,7 @@
 
 mod data;
 mod stencil;
+mod tables;
 
 use std::sync::Arc;
 
@@ -68,7 +69,8 @@ use super::build::{Sizes, StepContext};
 use super::par::Slots;
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
-use super::trisplit::Template;
+use super::trisplit::{Template, TriRule};
+use self::tables::LoopTables;
 use super::{Algorithm, LevelDone, Plan, Rule, SubdivideOptions};
 use crate::{Error, HalfEdgeMesh, Result};
 
@@ -85,9 +87,13 @@ struct LevelSize {
 /// A level whose topology the refinement keeps: what the next level is evaluated from.
 #[derive(Debug)]
 struct Level {
-    topology: Connectivity,
+    /// The connectivity (dropped for the levels before the last kept one when `fast` has
+    /// all an evaluation needs).
+    topology: Option<Connectivity>,
     /// The boundary tables of a √3 step B built from this level.
     step_b: Option<StepB>,
+    /// The flattened tables of a Loop level.
+    fast: Option<LoopTables>,
 }
 
 /// The faces of the last level, when they are kept as a list (rules whose last level is
@@ -294,8 +300,9 @@ impl Refinement {
             corners: corners_of(&base),
         });
         refinement.topology.push(Level {
-            topology: Connectivity::of_mesh(mesh),
+            topology: Some(Connectivity::of_mesh(mesh)),
             step_b: None,
+            fast: None,
         });
         refinement.install(|r| r.build(&planned, opts))?;
         Ok(refinement)
@@ -317,7 +324,7 @@ impl Refinement {
             }
         };
         for (s, &(sizes, [vertices, edges, faces])) in (1..=levels).zip(planned) {
-            let before = self.topology.last().map(|l| &l.topology);
+            let before = self.topology.last().and_then(|l| l.topology.as_ref());
             let Some(before) = before else {
                 return Err(Error::InvalidOutput {
                     scheme: self.name.clone(),
@@ -351,7 +358,7 @@ impl Refinement {
                 }
                 report(s, &size);
                 self.sizes.push(size);
-                return Ok(());
+                break;
             };
             let ctx = self.context(s, expected, parallel);
             let next = self.step(&t, &ctx)?;
@@ -373,15 +380,31 @@ impl Refinement {
                 self.polygons = Some(polygons);
             } else {
                 self.topology.push(Level {
-                    topology: next,
+                    topology: Some(next),
                     step_b: None,
+                    fast: None,
                 });
             }
         }
         if levels == 0 {
-            let polygons = polygons_of(&self.topology[0].topology.topo())?;
-            self.face_degree = common_degree(&polygons);
-            self.polygons = Some(polygons);
+            if let Some(base) = &self.topology[0].topology {
+                let polygons = polygons_of(&base.topo())?;
+                self.face_degree = common_degree(&polygons);
+                self.polygons = Some(polygons);
+            }
+        }
+        if self.algorithm == Algorithm::Tri(TriRule::Loop, 2) && levels > 0 {
+            // Loop levels flattened; only the last kept level (for the index buffers) keeps
+            // its connectivity.
+            let last = self.topology.len() - 1;
+            for (i, level) in self.topology.iter_mut().enumerate() {
+                if let Some(c) = &level.topology {
+                    level.fast = Some(LoopTables::new(&c.topo(), parallel)?);
+                }
+                if i < last {
+                    level.topology = None;
+                }
+            }
         }
         Ok(())
     }
@@ -478,7 +501,11 @@ impl Refinement {
         let levels: usize = self
             .topology
             .iter()
-            .map(|l| l.topology.bytes() + l.step_b.as_ref().map_or(0, StepB::bytes))
+            .map(|l| {
+                l.topology.as_ref().map_or(0, Connectivity::bytes)
+                    + l.step_b.as_ref().map_or(0, StepB::bytes)
+                    + l.fast.as_ref().map_or(0, LoopTables::bytes)
+            })
             .sum();
         let polygons = self
             .polygons
@@ -615,7 +642,13 @@ impl Refinement {
         let Some(before) = self.topology.get(level as usize - 1) else {
             return;
         };
-        let t = before.topology.topo();
+        if let Some(fast) = &before.fast {
+            fast.points(src, &mut Slots::new(dst), parallel);
+            return;
+        }
+        let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
+            return;
+        };
         if self.algorithm == Algorithm::CatmullClark {
             catmull_clark::cc_fill(&t, src, dst, parallel);
             return;
@@ -643,8 +676,14 @@ impl Refinement {
         let Some(before) = self.topology.get(level as usize - 1) else {
             return Ok(Vec::new());
         };
-        let t = before.topology.topo();
         let mut out = super::alloc::with_capacity(n, "stencils")?;
+        if let Some(fast) = &before.fast {
+            fast.points(src, &mut out, parallel);
+            return Ok(out);
+        }
+        let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
+            return Ok(out);
+        };
         match (self.algorithm, &self.template) {
             (Algorithm::Tri(rule, _), Some(template)) => {
                 trisplit::tri_points(&t, src, template, rule, &mut out, parallel);
@@ -727,10 +766,14 @@ impl Refinement {
             return Ok(());
         }
         let parallel = self.threads != 1;
-        let Some(before) = self.topology.last() else {
+        let Some(t) = self
+            .topology
+            .last()
+            .and_then(|l| l.topology.as_ref())
+            .map(Connectivity::topo)
+        else {
             return Ok(());
         };
-        let t = before.topology.topo();
         let expected = self.n_faces(self.levels);
         let written = self.run(|| match self.algorithm {
             Algorithm::CatmullClark => super::to_faces::catmull_clark_corners(&t, out, parallel),
