@@ -411,3 +411,41 @@ fn progress_and_memory() {
     let expected: usize = sizes.iter().map(|&s| connectivity(s)).sum();
     assert_eq!(mid.heap_bytes(), expected);
 }
+
+#[test]
+fn large_meshes_take_the_parallel_paths_with_the_same_bits() {
+    // Above the sizes where the passes split into parallel chunks.
+    let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("icosahedron");
+    let sphere = subdivide(&ico, Rule::Icosphere, 5, &opts(1)).expect("sphere");
+    let sphere = jittered(sphere.to_polygon_mesh());
+    let grid = jittered(shapes::grid(90, 90).expect("grid"));
+    let cases = [
+        (&sphere, Rule::Loop),
+        (&sphere, Rule::Butterfly),
+        (&sphere, Rule::CatmullClark),
+        (&sphere, Rule::Sqrt3),
+        (&sphere, Rule::DooSabin),
+        (&grid, Rule::Loop),
+        (&grid, Rule::CatmullClark),
+        (&grid, Rule::Sqrt3),
+    ];
+    for (mesh, rule) in cases {
+        let base = base_of(mesh);
+        let expected = subdivide(mesh, rule, 2, &opts(1)).expect("one-shot");
+        let expected: Vec<[f64; 3]> = expected.positions().iter().map(|p| p.to_array()).collect();
+        let one_shot_2t = subdivide(mesh, rule, 2, &opts(2)).expect("one-shot, 2 threads");
+        let faces = subdivide_to_face_list(mesh, rule, 2, &opts(1)).expect("faces");
+        for threads in [1, 2] {
+            let r = Refinement::new(mesh, rule, 2, &opts(threads)).expect("refinement");
+            let mut out = vec![[0.0; 3]; r.n_vertices(2)];
+            r.evaluate(&base, &mut out).expect("evaluate");
+            assert!(out == expected, "{rule} {threads}t");
+            let mut offsets = vec![0u32; r.n_faces(2) + 1];
+            let mut indices = vec![0u32; r.n_corners(2)];
+            r.write_polygons(&mut offsets, &mut indices).expect("polygons");
+            assert_eq!(indices, faces.mesh.face_indices(), "{rule} {threads}t");
+        }
+        let got: Vec<[f64; 3]> = one_shot_2t.positions().iter().map(|p| p.to_array()).collect();
+        assert!(got == expected, "{rule}: one-shot in 2 threads");
+    }
+}

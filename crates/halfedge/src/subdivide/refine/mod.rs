@@ -939,3 +939,46 @@ const _: () = {
     const fn assert_send_sync<T: Send + Sync>() {}
     assert_send_sync::<Refinement>();
 };
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 60 x 60 torus of triangles: the counts of 3holes.obj under Loop (7,200 faces, 10,800
+    /// edges; the genus does not change E or F).
+    fn torus_counts() -> MeshCounts {
+        let n = 60u32;
+        let id = |i: u32, j: u32| (i % n) * n + (j % n);
+        let mut faces = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                faces.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                faces.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        MeshCounts::from_polygons(&faces).expect("a valid torus")
+    }
+
+    #[test]
+    fn the_last_level_is_bounded_by_its_indices_not_by_half_edges() {
+        let counts = torus_counts();
+        assert_eq!((counts.faces, counts.edges), (7200, 10800));
+        let plan = super::super::plan(Rule::Loop, &counts).expect("plan");
+        // Level 9: 2,831,155,200 edges (5.7e9 half-edges) but 943,718,400 vertices.
+        let sizes = plan_sizes(&plan, &counts, 9).expect("level 9 fits u32 indices");
+        let (last, [vertices, edges, faces]) = sizes[8];
+        assert!(last.is_none());
+        assert_eq!((vertices, edges, faces), (943_718_400, 2_831_155_200, 1_887_436_800));
+        assert!(sizes[7].0.is_some(), "level 8 is built as a half-edge mesh");
+        // Level 10 builds level 9 as a half-edge mesh: refused, naming its edges.
+        let err = plan_sizes(&plan, &counts, 10).unwrap_err();
+        assert!(
+            matches!(err, Error::TooLarge { level: 9, what: "edges", .. }),
+            "{err}"
+        );
+        // A rule whose last level is a half-edge mesh is bounded by its handles.
+        let plan = super::super::plan(Rule::Sqrt3, &counts).expect("plan");
+        assert!(plan_sizes(&plan, &counts, 11).is_ok());
+        assert!(plan_sizes(&plan, &counts, 12).is_err());
+    }
+}
