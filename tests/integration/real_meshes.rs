@@ -45,7 +45,7 @@ fn level_one_of_every_shared_mesh() -> Result<(), Box<dyn std::error::Error>> {
                 ran = true;
                 continue;
             }
-            let reports = verify(&mesh, name, 1, &opts)?;
+            let reports = verify(&mesh, &scheme, 1, &opts)?;
             assert_eq!(reports.len(), 2);
             assert!(
                 reports[1].is_match(),

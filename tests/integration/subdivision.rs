@@ -4,7 +4,7 @@
 //! phase's first level, gives the measured state of the later levels.
 
 use glam::DVec3;
-use halfedge::subdivide::{self, verify, verify_polygons, LevelReport, SubdivideOptions};
+use halfedge::subdivide::{verify, verify_polygons, LevelReport, SubdivideOptions};
 use halfedge::{shapes, stats, HalfEdgeMesh, PolygonMesh};
 use num_bigint::BigInt;
 use schemes::Scheme;
@@ -86,7 +86,7 @@ fn every_scheme_on_every_base_mesh() -> Result<(), Box<dyn std::error::Error>> {
                 continue;
             }
             let mesh = HalfEdgeMesh::try_from(&polygons)?;
-            let reports = verify(&mesh, scheme.name(), LEVELS, &opts)?;
+            let reports = verify(&mesh, &scheme, LEVELS, &opts)?;
             check_reports(&scheme, mesh_name, &reports)?;
             runs.push((scheme.name().to_string(), mesh_name));
         }
@@ -134,11 +134,11 @@ fn face_list_schemes_on_non_manifold_meshes() -> Result<(), Box<dyn std::error::
         for scheme in schemes::builtins() {
             let usable = applies(&scheme, &counts)
                 && !scheme.mesh_class().needs_manifold()
-                && subdivide::supports_polygons(scheme.name());
+                && scheme.subdivision_rule().is_some_and(|r| r.refines_faces());
             if !usable {
                 continue;
             }
-            let reports = verify_polygons(&polygons, scheme.name(), LEVELS, &opts)?;
+            let reports = verify_polygons(&polygons, &scheme, LEVELS, &opts)?;
             check_reports(&scheme, mesh_name, &reports)?;
             runs += 1;
         }

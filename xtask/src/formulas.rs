@@ -73,8 +73,10 @@ pub(crate) fn render() -> anyhow::Result<String> {
     let ternary = schemes::builtin("ternary")?;
     let _ = writeln!(
         out,
-        "Aliases: {} count as `loop` (same topology, other geometry), and as `loop-boundary` \
-         on a mesh with boundary edges (and no non-manifold edge); `ternary` is `{}`.\n",
+        "Aliases: {} count as `loop` (same topology, other geometry); on a mesh with boundary \
+         edges (and no non-manifold edge) `loop` and its aliases count as `loop-boundary`; \
+         `ternary` is `{}`. The last column names the rule that really subdivides each scheme (its \
+         `topology` in a scheme file).\n",
         schemes::catalog::LOOP_ALIASES
             .iter()
             .map(|a| format!("`{a}`"))
@@ -83,11 +85,14 @@ pub(crate) fn render() -> anyhow::Result<String> {
         ternary.canonical_name()
     );
     let schemes = schemes::builtins();
-    out.push_str("| scheme | state | mesh class |\n|---|---|---|\n");
+    out.push_str("| scheme | state | mesh class | subdivision rule |\n|---|---|---|---|\n");
     for s in &schemes {
+        let rule = s
+            .subdivision_rule()
+            .map_or_else(|| "none".to_owned(), |r| format!("`{r}`"));
         let _ = writeln!(
             out,
-            "| [`{0}`](#{0}) | {1} | {2} |",
+            "| [`{0}`](#{0}) | {1} | {2} | {rule} |",
             s.name(),
             s.state_names().join(", "),
             s.mesh_class()

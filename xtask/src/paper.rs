@@ -282,7 +282,7 @@ fn theorem_section(out: &mut String, t: &Theorem) -> anyhow::Result<Vec<Verdict>
     let counts = stats::face_list_counts(&polygons);
     let initial = Initial::of(&counts);
     let mesh = HalfEdgeMesh::try_from(&polygons).with_context(|| t.mesh.to_string())?;
-    let reports = verify(&mesh, t.scheme, LEVELS as u32, &SubdivideOptions::default())
+    let reports = verify(&mesh, &scheme, LEVELS as u32, &SubdivideOptions::default())
         .with_context(|| format!("{} on {}", t.scheme, t.mesh))?;
     let names = scheme.state_names().to_vec();
     let _ = writeln!(

@@ -255,11 +255,10 @@ fn verify_file(path: &Path, broken: bool, options: &Options) -> Vec<Row> {
     for scheme in candidate_schemes(options) {
         let name = scheme.name().to_string();
         let applies = scheme.initial_state(&counts).is_ok()
-            && match &mesh {
-                Some(_) => subdivide::supports(&name),
-                None => {
-                    !scheme.mesh_class().needs_manifold() && subdivide::supports_polygons(&name)
-                }
+            && match (&mesh, scheme.subdivision_rule()) {
+                (_, None) => false,
+                (Some(_), Some(_)) => true,
+                (None, Some(rule)) => !scheme.mesh_class().needs_manifold() && rule.refines_faces(),
             };
         if !applies {
             continue;
@@ -292,10 +291,9 @@ fn check_scheme(
         Err(e) => return Ok(Outcome::Fail(format!("prediction failed: {e:#}"))),
     };
     let opts = SubdivideOptions::default();
-    let name = scheme.name();
     let result = match mesh {
-        Some(m) => subdivide::verify(m, name, levels, &opts),
-        None => subdivide::verify_polygons(polygons, name, levels, &opts),
+        Some(m) => subdivide::verify(m, scheme, levels, &opts),
+        None => subdivide::verify_polygons(polygons, scheme, levels, &opts),
     };
     Ok(judge(&result?, levels))
 }

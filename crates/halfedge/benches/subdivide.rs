@@ -27,7 +27,7 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput};
 use halfedge::subdivide::{
-    direct_face_degree, subdivide, subdivide_to_face_list, SubdivideOptions,
+    direct_face_degree, subdivide, subdivide_to_face_list, Rule, SubdivideOptions,
 };
 use halfedge::{shapes, HalfEdgeMesh};
 
@@ -41,19 +41,19 @@ const MESHES: [&str; 5] = [
 ];
 
 /// `(scheme, level)` jobs on every input.
-const JOBS: [(&str, u32); 8] = [
-    ("loop", 1),
-    ("loop", 2),
-    ("catmull-clark", 1),
-    ("catmull-clark", 2),
-    ("sqrt3", 1),
-    ("sqrt3", 2),
-    ("doo-sabin", 1),
-    ("doo-sabin", 2),
+const JOBS: [(Rule, u32); 8] = [
+    (Rule::Loop, 1),
+    (Rule::Loop, 2),
+    (Rule::CatmullClark, 1),
+    (Rule::CatmullClark, 2),
+    (Rule::Sqrt3, 1),
+    (Rule::Sqrt3, 2),
+    (Rule::DooSabin, 1),
+    (Rule::DooSabin, 2),
 ];
 
 /// Level-3 jobs, on the inputs named in [`LEVEL3_INPUTS`].
-const JOBS_L3: [(&str, u32); 2] = [("loop", 3), ("catmull-clark", 3)];
+const JOBS_L3: [(Rule, u32); 2] = [(Rule::Loop, 3), (Rule::CatmullClark, 3)];
 const LEVEL3_INPUTS: [&str; 2] = ["icosphere", "armadillo"];
 
 /// `(variant name, threads, preallocate, last level as a face list)`.
@@ -67,7 +67,7 @@ const VARIANTS: [(&str, usize, bool, bool); 5] = [
 
 fn icosphere() -> HalfEdgeMesh {
     let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("the icosahedron is valid");
-    let sphere = subdivide(&ico, "icosphere", 6, &SubdivideOptions::default())
+    let sphere = subdivide(&ico, Rule::Icosphere, 6, &SubdivideOptions::default())
         .expect("the icosahedron subdivides");
     assert_eq!(sphere.n_faces(), 81_920);
     sphere

@@ -17,7 +17,7 @@
 use std::time::Instant;
 
 use halfedge::subdivide::{
-    direct_face_degree, subdivide, subdivide_to_face_list, SubdivideOptions,
+    direct_face_degree, subdivide, subdivide_to_face_list, Rule, SubdivideOptions,
 };
 use halfedge::{shapes, HalfEdgeMesh};
 
@@ -60,7 +60,7 @@ fn main() {
         .and_then(|r| r.parse().ok())
         .unwrap_or(5);
     let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("the icosahedron is valid");
-    let sphere = subdivide(&ico, "icosphere", 6, &SubdivideOptions::default())
+    let sphere = subdivide(&ico, Rule::Icosphere, 6, &SubdivideOptions::default())
         .expect("the icosahedron subdivides");
     let mut inputs = vec![("icosphere".to_owned(), sphere)];
     match std::env::var_os(testdata::VAR) {
@@ -75,12 +75,12 @@ fn main() {
         None => eprintln!("SUBCOUNT_MESHES is unset: the generated icosphere only"),
     }
     let jobs = [
-        ("loop", 3),
-        ("catmull-clark", 3),
-        ("loop", 2),
-        ("catmull-clark", 2),
-        ("sqrt3", 2),
-        ("doo-sabin", 2),
+        (Rule::Loop, 3),
+        (Rule::CatmullClark, 3),
+        (Rule::Loop, 2),
+        (Rule::CatmullClark, 2),
+        (Rule::Sqrt3, 2),
+        (Rule::DooSabin, 2),
     ];
     // (name, threads, preallocate, last level as a face list); with 2 threads the thread
     // CPU column is the calling thread only, the process user/sys columns count both workers.

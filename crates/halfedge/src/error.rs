@@ -301,6 +301,19 @@ pub enum Error {
     /// the scheme's class, impossible counts.
     #[error(transparent)]
     Scheme(#[from] schemes::Error),
+    /// The memory guard: the two largest levels of a subdivision would need more than the
+    /// limit ([`crate::memory::check_peak`]).
+    #[error("{scheme} to level {levels} needs about {need} of memory (levels {prev} and {levels} with the input), more than the limit of {limit} (half the available memory)", prev = levels.saturating_sub(1))]
+    OverMemoryLimit {
+        /// The scheme.
+        scheme: String,
+        /// The last level.
+        levels: u32,
+        /// The predicted peak, e.g. `19.3 GiB`.
+        need: String,
+        /// The limit, e.g. `1.0 GiB`.
+        limit: String,
+    },
     /// A scheme without a real subdivision: a matrix whose file names no `topology`, or a
     /// rule that cannot run on this input (√3, Doo-Sabin and mid-edge on a raw face list).
     #[error("no real subdivision for scheme `{scheme}`: {reason}")]
@@ -481,6 +494,7 @@ impl Error {
                 | Error::MeshTooLarge { .. }
                 | Error::ShapeTooLarge { .. }
                 | Error::AllocationFailed { .. }
+                | Error::OverMemoryLimit { .. }
                 | Error::TooLarge { .. }
                 | Error::TooManyElements { .. }
         )

@@ -4,6 +4,7 @@
 //! mesh or a mesh file is refused before it is built.
 
 use num_bigint::BigInt;
+use num_traits::ToPrimitive;
 use schemes::{MeshCounts, Scheme};
 
 use crate::{HalfEdgeMesh, PolygonMesh};
@@ -128,6 +129,78 @@ pub fn predicted_peak_bytes(
     })
 }
 
+/// Half the memory this process may still allocate ([`available_bytes`]), or half of 8 GiB
+/// when nothing tells: the budget of [`check_peak`].
+pub fn peak_limit() -> u128 {
+    u128::from(available_bytes().unwrap_or(8 << 30)) / 2
+}
+
+/// The memory guard of real subdivision: [`predicted_peak_bytes`] of `scheme` to `levels`,
+/// refused with [`Error::OverMemoryLimit`] when it exceeds `limit` (e.g. [`peak_limit`]).
+///
+/// # Errors
+///
+/// [`Error::OverMemoryLimit`], or [`Error::Scheme`] when the scheme does not apply.
+///
+/// ```
+/// use halfedge::memory::check_peak;
+/// let ico = halfedge::stats::face_list_counts(&halfedge::shapes::icosahedron());
+/// let lp = schemes::builtin("loop")?;
+/// assert!(check_peak(&lp, &ico, 5, None, 1 << 30).is_ok());
+/// let err = check_peak(&lp, &ico, 12, None, 1 << 30).unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "loop to level 12 needs about 25.8 GiB of memory (levels 11 and 12 with the input), more than the limit of 1.0 GiB (half the available memory)"
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn check_peak(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+    last_faces: Option<usize>,
+    limit: u128,
+) -> crate::Result<BigInt> {
+    let need = predicted_peak_bytes(scheme, counts, levels, last_faces)?;
+    if need > BigInt::from(limit) {
+        return Err(crate::Error::OverMemoryLimit {
+            scheme: scheme.name().to_owned(),
+            levels,
+            need: human_bytes(need.to_f64().unwrap_or(f64::INFINITY)),
+            limit: human_bytes(limit as f64),
+        });
+    }
+    Ok(need)
+}
+
+/// `1.5 GiB`-style rendering of a byte count (binary units, one decimal).
+///
+/// ```
+/// use halfedge::memory::human_bytes;
+/// assert_eq!(human_bytes(512.0), "512 bytes");
+/// assert_eq!(human_bytes(1536.0), "1.5 KiB");
+/// assert_eq!(human_bytes(f64::INFINITY), "10^30+ bytes");
+/// ```
+pub fn human_bytes(bytes: f64) -> String {
+    if !bytes.is_finite() || bytes > 1e30 {
+        return "10^30+ bytes".to_string();
+    }
+    const UNITS: [&str; 7] = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut v = bytes;
+    let mut unit = 0;
+    while v >= 1024.0 && unit + 1 < UNITS.len() {
+        v /= 1024.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{v:.0} bytes")
+    } else if v >= 1024.0 {
+        format!("{:.3e} {}", v, UNITS[unit])
+    } else {
+        format!("{v:.1} {}", UNITS[unit])
+    }
+}
+
 /// The bytes this process may still allocate, as far as Linux tells without `unsafe`: the
 /// least of
 ///
@@ -155,6 +228,19 @@ pub fn available_bytes() -> Option<u64> {
     let rlimit = address_space.map(|limit| limit.saturating_sub(in_use.unwrap_or(0)));
     let cgroup = read("/proc/self/cgroup").and_then(|t| cgroup_room(&t, &|p| read(p)));
     [meminfo, rlimit, cgroup].into_iter().flatten().min()
+}
+
+/// The peak resident set size of this process (`VmHWM` of `/proc/self/status`), when the
+/// system tells it: what `subcount subdivide --timings` reports as `peak_bytes`.
+///
+/// ```
+/// if let Some(peak) = halfedge::memory::peak_resident_bytes() {
+///     assert!(peak > 0);
+/// }
+/// ```
+pub fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    kilobytes_field(&status, "VmHWM:")
 }
 
 /// `MemAvailable` of `/proc/meminfo` text, in bytes.
@@ -260,7 +346,8 @@ mod tests {
             bytes(&cube) + bytes(&l1) + bytes(&l2)
         );
         // The last level as a face list of quads: no face lines, so heap_bytes is exact.
-        let faces = subdivide_to_face_list(&cube, crate::Rule::CatmullClark, 2, &opts).expect("faces");
+        let faces =
+            subdivide_to_face_list(&cube, crate::Rule::CatmullClark, 2, &opts).expect("faces");
         assert_eq!(
             peak(2, Some(4)).expect("2 as faces"),
             bytes(&cube) + bytes(&l1) + BigInt::from(faces.mesh.heap_bytes())

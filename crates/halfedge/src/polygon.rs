@@ -197,6 +197,19 @@ impl PolygonMesh {
     pub fn face_offsets(&self) -> &[usize] {
         &self.face_offsets
     }
+
+    /// The mesh's arrays, without a copy: `(positions, face_offsets, face_indices)` as
+    /// [`PolygonMesh::face_offsets`] and [`PolygonMesh::face_indices`] describe them (e.g. to
+    /// hand a subdivided level to a renderer).
+    ///
+    /// ```
+    /// use halfedge::{shapes, PolygonMesh};
+    /// let (positions, offsets, indices) = shapes::cube().into_parts();
+    /// assert_eq!((positions.len(), offsets.len(), indices.len()), (8, 7, 24));
+    /// ```
+    pub fn into_parts(self) -> (Vec<DVec3>, Vec<usize>, Vec<u32>) {
+        (self.positions, self.face_offsets, self.face_indices)
+    }
 }
 
 /// Iterator over the faces of a [`PolygonMesh`]; see [`PolygonMesh::faces`].

@@ -23,7 +23,7 @@ use std::process::Command;
 use std::sync::OnceLock;
 
 use glam::DVec3;
-use halfedge::subdivide::{subdivide_to_face_list, SubdivideOptions};
+use halfedge::subdivide::{subdivide_to_face_list, Rule, SubdivideOptions};
 use halfedge::{io, HalfEdgeMesh, PolygonMesh};
 
 /// Positions must agree to this fraction of the base mesh's bounding-box diagonal.
@@ -44,13 +44,11 @@ impl Osd {
         }
     }
 
-    /// `halfedge`'s scheme for this mesh: Loop's closed rule or its boundary rule (what
-    /// `loop_subdivide` picks), Catmull-Clark with its boundary rules.
-    fn halfedge_name(self, mesh: &HalfEdgeMesh) -> &'static str {
+    /// `halfedge`'s rule: Loop (its boundary rules on a boundary), Catmull-Clark.
+    fn rule(self) -> Rule {
         match self {
-            Osd::Loop if mesh.is_closed() => "loop",
-            Osd::Loop => "loop-boundary",
-            Osd::Catmark => "catmull-clark",
+            Osd::Loop => Rule::Loop,
+            Osd::Catmark => Rule::CatmullClark,
         }
     }
 }
@@ -327,7 +325,7 @@ fn compare(file: &str, scheme: Osd, level: u32, reference: Reference) -> Result<
     let path = meshes_dir().join(file);
     let base = io::read_mesh(&path).map_err(|e| format!("{file}: {e}"))?;
     let mesh = HalfEdgeMesh::try_from(&base).map_err(|e| format!("{file}: {e}"))?;
-    let name = scheme.halfedge_name(&mesh);
+    let name = scheme.rule();
     let ours = subdivide_to_face_list(&mesh, name, level, &SubdivideOptions::default())
         .map_err(|e| format!("{file}: halfedge {name} level {level}: {e}"))?
         .mesh;

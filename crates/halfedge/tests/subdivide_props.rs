@@ -4,8 +4,11 @@
 use std::collections::HashMap;
 
 use glam::DVec3;
-use halfedge::subdivide::{subdivide, verify, verify_polygons, SubdivideOptions};
+mod named;
+
+use halfedge::subdivide::SubdivideOptions;
 use halfedge::{shapes, HalfEdgeMesh, PolygonMesh};
+use named::{subdivide, verify, verify_polygons};
 use proptest::prelude::*;
 
 const HALF_EDGE_SCHEMES: [&str; 11] = [
@@ -26,12 +29,12 @@ fn opts() -> SubdivideOptions<'static> {
     SubdivideOptions::default()
 }
 
-/// Mirrors what `subdivide` accepts: the scheme's class (the 4:1 aliases count as
+/// Mirrors what `subdivide` accepts: the scheme's class (`loop` and the 4:1 aliases count as
 /// `loop-boundary` on a boundary).
 fn admits(scheme: &str, mesh: &HalfEdgeMesh) -> bool {
     let counts = mesh.counts();
     let counted_as = match scheme {
-        "butterfly" if counts.boundary_edges > 0 => "loop-boundary",
+        "loop" | "butterfly" if counts.boundary_edges > 0 => "loop-boundary",
         _ => scheme,
     };
     let class_ok = schemes::builtin(counted_as)
@@ -315,8 +318,8 @@ proptest! {
 /// or the subdivision is refused with `Error::NonFinitePosition` naming a vertex; never a
 /// non-finite point. Far from the extremes every scheme gives finite points.
 mod non_finite {
+    use super::named::{subdivide_polygons, subdivide_to_face_list};
     use super::*;
-    use halfedge::subdivide::{subdivide_polygons, subdivide_to_face_list};
     use halfedge::Error;
 
     const SCHEMES: [&str; 13] = [

@@ -248,20 +248,14 @@ fn known_names() -> String {
 
 /// One scheme per canonical name, with `tri-split-2` and `tri-split-3` for the family.
 pub fn builtins() -> Vec<Scheme> {
-    let mut out = vec![
-        loop_scheme(),
-        loop_boundary(),
-        loop_general(),
-        catmull_clark_quad(),
-        catmull_clark(),
-        catmull_clark_general(),
-        sqrt3(),
-        sqrt3_boundary(),
-        doo_sabin(),
-        mid_edge(),
-    ];
-    out.extend([2, 3].into_iter().filter_map(|n| tri_split(n).ok()));
-    out
+    // Through `builtin`, so every scheme carries its rule exactly as a lookup by name does.
+    BUILTIN_NAMES
+        .iter()
+        .filter(|n| **n != "tri-split-N")
+        .copied()
+        .chain(["tri-split-2", "tri-split-3"])
+        .filter_map(|name| builtin(name).ok())
+        .collect()
 }
 
 struct Def<'a> {
@@ -786,12 +780,7 @@ mod tests {
                 format!("{alias} needs a triangle mesh, but this mesh has 1 face of degree 4; use catmull-clark")
             );
         }
-        for name in [
-            "loop-boundary",
-            "loop-general",
-            "tri-split-2",
-            "ternary",
-        ] {
+        for name in ["loop-boundary", "loop-general", "tri-split-2", "ternary"] {
             let s = builtin(name).expect("built-in");
             assert!(!s.has_boundary_variant(), "{name}");
             assert_eq!(s.for_mesh(&open), s, "{name}");

@@ -498,6 +498,9 @@ mod tests {
             "{err}"
         );
         let none = text.replace("topology = \"butterfly\"\n", "");
-        assert_eq!(Scheme::from_toml(&none).expect("valid").subdivision_rule(), None);
+        assert_eq!(
+            Scheme::from_toml(&none).expect("valid").subdivision_rule(),
+            None
+        );
     }
 }

@@ -277,6 +277,21 @@ pub enum Error {
         /// The level from which it is constant.
         level: u64,
     },
+    /// A predicted count does not fit the integer type asked for ([`LevelCounts`]'s
+    /// accessors, e.g. `vertices_usize`).
+    ///
+    /// [`LevelCounts`]: crate::LevelCounts
+    #[error("level {level} has {count} {what}: more than {target} can hold")]
+    CountDoesNotFit {
+        /// `vertices`, `edges` or `faces`.
+        what: &'static str,
+        /// The level.
+        level: u64,
+        /// The exact count.
+        count: num_bigint::BigInt,
+        /// The type, e.g. `usize`.
+        target: &'static str,
+    },
     /// An error of the underlying recurrence (names, dimensions).
     #[error(transparent)]
     Recurrence(#[from] recurrence::Error),

@@ -29,8 +29,8 @@ use crate::{builtin, MeshCounts, Result, Scheme};
 /// assert_eq!(Rule::Loop.scheme_for(&open_square)?.canonical_name(), "loop-boundary");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+/// Not `non_exhaustive`: `halfedge` matches every rule, so a new one cannot be forgotten.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-#[non_exhaustive]
 pub enum Rule {
     /// Loop: 4:1 triangle split, Loop's weights; on a boundary the cubic B-spline of the
     /// boundary polygon (edges sharp, corners smooth: OpenSubdiv's `VTX_BOUNDARY_EDGE_ONLY`).
@@ -150,7 +150,9 @@ mod tests {
             .chain(["midpoint", "butterfly", "icosphere", "ternary"].map(String::from));
         for name in names {
             let scheme = builtin(&name).expect("built-in");
-            let rule = scheme.subdivision_rule().unwrap_or_else(|| panic!("{name}"));
+            let rule = scheme
+                .subdivision_rule()
+                .unwrap_or_else(|| panic!("{name}"));
             assert_eq!(
                 builtin(&rule.to_string())
                     .expect("rule name")
@@ -159,9 +161,14 @@ mod tests {
                 "{name}"
             );
         }
+        for scheme in crate::builtins() {
+            assert!(scheme.subdivision_rule().is_some(), "{}", scheme.name());
+        }
         for rule in Rule::ALL {
             assert_eq!(
-                builtin(&rule.to_string()).expect("built-in").subdivision_rule(),
+                builtin(&rule.to_string())
+                    .expect("built-in")
+                    .subdivision_rule(),
                 Some(rule)
             );
         }
@@ -182,10 +189,16 @@ mod tests {
         assert_eq!(canonical(Rule::Butterfly, &closed), "loop");
         assert_eq!(canonical(Rule::Loop, &open), "loop-boundary");
         assert_eq!(canonical(Rule::Midpoint, &book), "loop-general");
-        assert_eq!(canonical(Rule::CatmullClark, &book), "catmull-clark-general");
+        assert_eq!(
+            canonical(Rule::CatmullClark, &book),
+            "catmull-clark-general"
+        );
         assert_eq!(canonical(Rule::Sqrt3, &open), "sqrt3-boundary");
         assert_eq!(canonical(Rule::TriSplit(4), &open), "tri-split-4");
-        assert_eq!(Rule::Icosphere.scheme_for(&open).expect("scheme").name(), "icosphere");
+        assert_eq!(
+            Rule::Icosphere.scheme_for(&open).expect("scheme").name(),
+            "icosphere"
+        );
         assert!(Rule::TriSplit(1).scheme_for(&open).is_err());
     }
 }

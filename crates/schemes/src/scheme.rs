@@ -270,6 +270,65 @@ pub struct LevelCounts {
     pub faces: BigInt,
 }
 
+/// Defines `NAME_u64` and `NAME_usize` for the counts of [`LevelCounts`].
+macro_rules! fitting_accessors {
+    ($($field:ident: $u64:ident, $usize:ident;)*) => {$(
+        #[doc = concat!("`", stringify!($field), "` as a `u64`.")]
+        ///
+        /// # Errors
+        ///
+        /// [`Error::CountDoesNotFit`] when the count does not fit.
+        pub fn $u64(&self) -> Result<u64> {
+            self.fitting(stringify!($field), &self.$field, "u64")
+        }
+
+        #[doc = concat!("`", stringify!($field), "` as a `usize`: an array length.")]
+        ///
+        /// # Errors
+        ///
+        /// [`Error::CountDoesNotFit`] when the count does not fit.
+        pub fn $usize(&self) -> Result<usize> {
+            self.fitting(stringify!($field), &self.$field, "usize")
+        }
+    )*};
+}
+
+/// Checked conversions of the exact counts into machine integers, for sizing buffers.
+///
+/// ```
+/// let lp = schemes::builtin("loop")?;
+/// let ico: schemes::CountsInput = "V=12,E=30,F=20".parse()?;
+/// let x0 = lp.state_from_input(&ico)?;
+/// assert_eq!(lp.level_counts(&x0, 3)?.faces_usize()?, 1280);
+/// let huge = lp.level_counts(&x0, 40)?;
+/// assert_eq!(
+///     huge.faces_u64().unwrap_err().to_string(),
+///     "level 40 has 24178516392292583494123520 faces: more than u64 can hold"
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+impl LevelCounts {
+    fitting_accessors! {
+        vertices: vertices_u64, vertices_usize;
+        edges: edges_u64, edges_usize;
+        faces: faces_u64, faces_usize;
+    }
+
+    fn fitting<T: TryFrom<BigInt>>(
+        &self,
+        what: &'static str,
+        count: &BigInt,
+        target: &'static str,
+    ) -> Result<T> {
+        T::try_from(count.clone()).map_err(|_| Error::CountDoesNotFit {
+            what,
+            level: self.level,
+            count: count.clone(),
+            target,
+        })
+    }
+}
+
 /// One phase of a periodic or composed scheme, for closed forms.
 ///
 /// For `s = first_level + period * t` (`t >= 0`, and `s <= last_level` when bounded), the

@@ -82,9 +82,8 @@ pub(crate) struct StatsArgs {
 pub(crate) struct VerifyArgs {
     #[command(flatten)]
     pub(crate) mesh: MeshSource,
-    /// A built-in scheme (aliases and tri-split-N included).
-    #[arg(long, value_name = "NAME")]
-    pub(crate) scheme: String,
+    #[command(flatten)]
+    pub(crate) scheme: SchemeChoice,
     /// The last level to build (default: the highest whose face count stays within --max-faces).
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub(crate) levels: Option<String>,
@@ -102,13 +101,24 @@ pub(crate) struct VerifyArgs {
     pub(crate) allow_large: bool,
 }
 
+/// The scheme of `verify` and `subdivide`: a built-in name, or a scheme file.
+#[derive(Args, Debug)]
+#[group(required = true, multiple = true)]
+pub(crate) struct SchemeChoice {
+    /// A built-in scheme (aliases and tri-split-N included), or the --scheme-file scheme's name.
+    #[arg(long, value_name = "NAME")]
+    pub(crate) scheme: Option<String>,
+    /// A custom scheme from a TOML file; its `topology` key names the rule that subdivides it.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) scheme_file: Option<PathBuf>,
+}
+
 #[derive(Args, Debug)]
 pub(crate) struct SubdivideArgs {
     #[command(flatten)]
     pub(crate) mesh: MeshSource,
-    /// A built-in scheme (aliases and tri-split-N included).
-    #[arg(long, value_name = "NAME")]
-    pub(crate) scheme: String,
+    #[command(flatten)]
+    pub(crate) scheme: SchemeChoice,
     /// The final level N.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub(crate) levels: String,

@@ -48,7 +48,7 @@ pub(crate) fn digits(
             anyhow::anyhow!(
                 "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: {hint}",
                 worst.ceil(),
-                human_bytes(bytes)
+                halfedge::memory::human_bytes(bytes)
             ),
         ));
     }
@@ -108,27 +108,6 @@ pub(crate) fn closed_forms(counter: &Counter, allow_large: bool) -> Result<(), F
     Ok(())
 }
 
-/// `1.5 GiB`-style rendering of a byte count.
-pub(crate) fn human_bytes(bytes: f64) -> String {
-    if !bytes.is_finite() || bytes > 1e30 {
-        return "10^30+ bytes".to_string();
-    }
-    const UNITS: [&str; 7] = ["bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    let mut v = bytes;
-    let mut unit = 0;
-    while v >= 1024.0 && unit + 1 < UNITS.len() {
-        v /= 1024.0;
-        unit += 1;
-    }
-    if unit == 0 {
-        format!("{v:.0} bytes")
-    } else if v >= 1024.0 {
-        format!("{:.3e} {}", v, UNITS[unit])
-    } else {
-        format!("{v:.1} {}", UNITS[unit])
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -156,12 +135,5 @@ mod tests {
         let refused = closed_forms(&dense(21), false).unwrap_err();
         assert_eq!(refused.kind.exit_code(), 4);
         assert!(closed_forms(&dense(21), true).is_ok());
-    }
-
-    #[test]
-    fn bytes_read_as_binary_units() {
-        assert_eq!(human_bytes(512.0), "512 bytes");
-        assert_eq!(human_bytes(1536.0), "1.5 KiB");
-        assert_eq!(human_bytes(f64::INFINITY), "10^30+ bytes");
     }
 }

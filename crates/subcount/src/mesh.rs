@@ -4,19 +4,19 @@ use std::io::Write;
 use std::time::Instant;
 
 use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
-use halfedge::{HalfEdgeMesh, PolygonMesh};
+use halfedge::{HalfEdgeMesh, PolygonMesh, Rule};
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
 use schemes::{Budget, MeshCounts, Plan, Scheme};
 
-use crate::args::{MeshSource, ReportFormat, StatsArgs, SubdivideArgs, VerifyArgs};
+use crate::args::{MeshSource, ReportFormat, SchemeChoice, StatsArgs, SubdivideArgs, VerifyArgs};
 use serde_json::{json, Value};
 
 use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
-use crate::guard::human_bytes;
 use crate::levels::parse_levels_count;
 use crate::model::{
-    face_place, load_mesh, mesh_label, not_applicable, refuse_degenerate_faces, validate,
+    face_place, load_mesh, load_scheme_file, mesh_label, not_applicable, refuse_degenerate_faces,
+    validate,
 };
 use crate::output::json_text;
 
@@ -32,7 +32,7 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
     use halfedge::Error as E;
     let kind = match &e {
         E::Scheme(inner) => return scheme_failure(inner.clone()),
-        E::UnsupportedScheme { .. } => Kind::Usage,
+        E::NoSubdivision { .. } => Kind::Usage,
         _ if e.is_resource_limit() => Kind::Guard,
         E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
             Kind::Mismatch
@@ -52,17 +52,6 @@ fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) ->
     halfedge_failure(e)
 }
 
-/// The schemes whose counts apply to the mesh and whose subdivision can run on it.
-fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<String> {
-    schemes::builtins()
-        .into_iter()
-        .filter(|s| {
-            s.initial_state(counts).is_ok() && (manifold || !s.mesh_class().needs_manifold())
-        })
-        .map(|s| s.name().to_string())
-        .collect()
-}
-
 pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let poly = required_mesh(&args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
@@ -72,7 +61,10 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()
     } else {
-        applicable_schemes(&counts, validation.is_none())
+        sub::applicable_schemes(&counts, validation.is_none())
+            .iter()
+            .map(|s| s.name().to_owned())
+            .collect()
     };
     let genus = if validation.is_none() {
         halfedge::stats::genus(&counts)
@@ -148,27 +140,50 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     Ok(0)
 }
 
-/// The scheme whose counts `halfedge` will check for this mesh: the 4:1 geometry aliases
-/// count as `loop`, or as `loop-boundary` on a mesh with boundary and no non-manifold edge
-/// ([`Scheme::for_mesh`], the rule `table` and the other predicting commands use too).
-fn counting_scheme(name: &str, counts: &MeshCounts) -> Result<Scheme, Failure> {
-    Ok(schemes::builtin(name)
-        .map_err(scheme_failure)?
-        .for_mesh(counts))
+/// The scheme of `--scheme` (built-in) or `--scheme-file` as it counts this mesh (`loop` and
+/// its aliases count as `loop-boundary` on a mesh with boundary: [`Scheme::for_mesh`]), and
+/// the rule that really subdivides it ([`sub::checked_rule`]).
+fn chosen_scheme(
+    choice: &SchemeChoice,
+    counts: &MeshCounts,
+    mesh: &MeshSource,
+) -> Result<(Scheme, Rule), Failure> {
+    let scheme = match (&choice.scheme_file, &choice.scheme) {
+        (Some(path), name) => {
+            let custom = load_scheme_file(path)?;
+            if let Some(name) = name.as_deref().filter(|n| *n != custom.name()) {
+                return Err(usage!(
+                    "--scheme {name} is not the scheme of {} (`{}`)",
+                    path.display(),
+                    custom.name()
+                ));
+            }
+            custom
+        }
+        (None, Some(name)) => schemes::builtin(name).map_err(scheme_failure)?,
+        (None, None) => return Err(usage!("give --scheme NAME or --scheme-file FILE")),
+    }
+    .for_mesh(counts);
+    scheme
+        .initial_state(counts)
+        .map_err(|e| not_applicable(mesh, e))?;
+    let rule = sub::checked_rule(&scheme, counts).map_err(halfedge_failure)?;
+    Ok((scheme, rule))
 }
 
-/// Whether to run on the raw face list (the schemes that allow non-manifold input).
-fn on_face_list(scheme: &Scheme) -> bool {
-    !scheme.mesh_class().needs_manifold() && sub::supports_polygons(scheme.name())
+/// Whether to run on the raw face list: a built-in scheme that allows non-manifold input
+/// (`loop-general`, `catmull-clark-general`, `tri-split-N`), or a custom one on a mesh with
+/// non-manifold edges, when its rule refines each face on its own.
+fn on_face_list(scheme: &Scheme, rule: Rule, counts: &MeshCounts, custom: bool) -> bool {
+    let general = if custom {
+        counts.nonmanifold_edges > 0
+    } else {
+        !scheme.mesh_class().needs_manifold()
+    };
+    general && rule.refines_faces()
 }
 
-/// Bytes available to this process: half of [`halfedge::memory::available_bytes`] (the least
-/// of MemAvailable, the address-space limit and the cgroup limit), or of 8 GiB when none of
-/// them can be read.
-fn memory_limit() -> u128 {
-    u128::from(halfedge::memory::available_bytes().unwrap_or(8 << 30)) / 2
-}
-
+/// [`halfedge::memory::check_peak`] against half the available memory, unless lifted.
 fn guard_memory(
     scheme: &Scheme,
     counts: &MeshCounts,
@@ -176,31 +191,30 @@ fn guard_memory(
     last_faces: Option<usize>,
     allow_large: bool,
 ) -> Result<BigInt, Failure> {
-    let need = halfedge::memory::predicted_peak_bytes(scheme, counts, levels, last_faces)
-        .map_err(scheme_failure)?;
-    let limit = memory_limit();
-    if !allow_large && need > BigInt::from(limit) {
-        let need_f = need.to_f64().unwrap_or(f64::INFINITY);
-        return Err(Failure::new(
-            Kind::Guard,
-            anyhow::anyhow!(
-                "{} to level {levels} needs about {} of memory (levels {} and {levels} with the input), more than the limit of {} (half the available memory); use fewer levels, or --allow-large to try anyway",
-                scheme.name(),
-                human_bytes(need_f),
-                levels.saturating_sub(1),
-                human_bytes(limit as f64)
-            ),
-        ));
-    }
-    Ok(need)
+    let limit = if allow_large {
+        u128::MAX
+    } else {
+        halfedge::memory::peak_limit()
+    };
+    halfedge::memory::check_peak(scheme, counts, levels, last_faces, limit).map_err(|e| {
+        let hint = "; use fewer levels, or --allow-large to try anyway";
+        match e {
+            halfedge::Error::OverMemoryLimit { .. } => {
+                Failure::new(Kind::Guard, anyhow::anyhow!("{e}{hint}"))
+            }
+            e => halfedge_failure(e),
+        }
+    })
 }
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let poly = required_mesh(&args.mesh)?;
     refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
-    let scheme = counting_scheme(&args.scheme, &counts)?;
-    let x0 = scheme
+    let (scheme, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    // The rule's own scheme sizes the real subdivision (a custom matrix may be wrong).
+    let sizing = rule.scheme_for(&counts).map_err(scheme_failure)?;
+    let x0 = sizing
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
     let levels = match &args.levels {
@@ -211,17 +225,18 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
                 max_faces: Some(BigInt::from(args.max_faces)),
                 ..Budget::default()
             };
-            let fit = schemes::fit(&Plan::single(scheme.clone()), &x0, &budget)?;
+            let fit = schemes::fit(&Plan::single(sizing.clone()), &x0, &budget)?;
             fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
         }
     };
-    guard_memory(&scheme, &counts, levels, None, args.allow_large)?;
+    guard_memory(&sizing, &counts, levels, None, args.allow_large)?;
     let opts = SubdivideOptions::default().with_threads(args.threads);
-    let reports = if on_face_list(&scheme) {
-        sub::verify_polygons(&poly, &args.scheme, levels, &opts)
+    let custom = args.scheme.scheme_file.is_some();
+    let reports = if on_face_list(&scheme, rule, &counts, custom) {
+        sub::verify_polygons(&poly, &scheme, levels, &opts)
     } else {
         let mesh = validate(&poly, &args.mesh)?;
-        sub::verify(&mesh, &args.scheme, levels, &opts)
+        sub::verify(&mesh, &scheme, levels, &opts)
     }
     .map_err(|e| located_failure(e, &poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
@@ -254,7 +269,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         ReportFormat::Text => {
             let mut t = format!(
                 "{} on {} levels 0..={levels}\n",
-                args.scheme,
+                scheme.name(),
                 args.mesh.mesh.as_ref().map_or_else(
                     || args.mesh.base.clone().unwrap_or_default(),
                     |p| p.display().to_string()
@@ -286,23 +301,10 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             Kind::Mismatch,
             anyhow::anyhow!(
                 "{}: real subdivision disagrees with the prediction",
-                args.scheme
+                scheme.name()
             ),
         ))
     }
-}
-
-/// The peak resident set size of this process (VmHWM), when /proc tells it.
-fn peak_rss_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let kb: u64 = status
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))?
-        .split_whitespace()
-        .nth(1)?
-        .parse()
-        .ok()?;
-    Some(kb * 1024)
 }
 
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
@@ -311,15 +313,14 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let poly = required_mesh(&args.mesh)?;
     refuse_degenerate_faces(&poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(&poly);
-    let scheme = counting_scheme(&args.scheme, &counts)?;
-    scheme
-        .initial_state(&counts)
-        .map_err(|e| not_applicable(&args.mesh, e))?;
-    let face_list = on_face_list(&scheme);
+    let (chosen, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    // The rule's own scheme sizes the output (a custom matrix may be wrong).
+    let scheme = rule.scheme_for(&counts).map_err(scheme_failure)?;
     // Manifold input, preallocated: the 4:1 family and Catmull-Clark write the last level
     // straight into a face list (half the peak memory of a half-edge last level).
     let last_faces = (!face_list && !args.no_preallocate)
-        .then(|| sub::direct_face_degree(&args.scheme))
+        .then(|| sub::direct_face_degree(rule))
         .flatten();
     let predicted = guard_memory(&scheme, &counts, levels, last_faces, args.allow_large)?;
     if let Some(path) = &args.output {
@@ -346,7 +347,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             )
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
         );
-        bar.set_message(format!("subdividing with {}", args.scheme));
+        bar.set_message(format!("subdividing with {}", chosen.name()));
         bar
     });
     let progress = |done: &LevelDone| {
@@ -361,10 +362,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let t1 = Instant::now();
     let result = match &mesh {
         Some(mesh) if last_faces.is_some() => {
-            sub::subdivide_to_face_list(mesh, &args.scheme, levels, &opts).map(Output::Faces)
+            sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
         }
-        Some(mesh) => sub::subdivide(mesh, &args.scheme, levels, &opts).map(Output::Mesh),
-        None => sub::subdivide_polygons(&poly, &args.scheme, levels, &opts).map(Output::Polygons),
+        Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),
+        None => sub::subdivide_polygons(&poly, rule, levels, &opts).map(Output::Polygons),
     }
     .map_err(|e| located_failure(e, &poly, &args.mesh))?;
     let subdivide_s = t1.elapsed().as_secs_f64();
@@ -405,7 +406,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         writeln!(out, "{message}").map_err(write_failure)?;
     }
     if args.timings {
-        let peak = peak_rss_bytes().map_or_else(|| "null".to_string(), |b| b.to_string());
+        let peak = halfedge::memory::peak_resident_bytes()
+            .map_or_else(|| "null".to_string(), |b| b.to_string());
         eprintln!(
             "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}}}"
         );

@@ -49,8 +49,8 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, write_atomically, write_obj, write_obj_file, write_polygon_obj,
-    write_polygon_obj_file,
+    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file, write_obj,
+    write_obj_file, write_polygon_obj, write_polygon_obj_file, FaceBuffers,
 };
 
 use std::io::{BufRead, Read};

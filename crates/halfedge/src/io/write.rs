@@ -76,14 +76,125 @@ pub fn write_polygon_obj_file(mesh: &PolygonMesh, path: impl AsRef<Path>) -> Res
     write_atomically(path.as_ref(), |file| write_polygon_obj(mesh, file))
 }
 
+/// The faces of caller-owned index buffers (what a
+/// [`Refinement`](crate::Refinement) writes): every face with `degree` corners, or polygons
+/// given by offsets (`n_faces + 1` of them, starting at 0) into the indices.
+#[derive(Clone, Copy, Debug)]
+pub enum FaceBuffers<'a> {
+    /// `indices.len() / degree` faces of `degree` corners each (triangles: 3, quads: 4).
+    Uniform {
+        /// Corners per face.
+        degree: usize,
+        /// The corners, face after face.
+        indices: &'a [u32],
+    },
+    /// Face `f` is `indices[offsets[f]..offsets[f + 1]]`.
+    Polygons {
+        /// `n_faces + 1` offsets.
+        offsets: &'a [u32],
+        /// The corners.
+        indices: &'a [u32],
+    },
+}
+
+impl FaceBuffers<'_> {
+    /// The faces as slices; `None` when the buffers do not describe faces (a degree of 0 or
+    /// not dividing the length, offsets that decrease or leave the indices).
+    fn faces(&self) -> Option<Vec<&[u32]>> {
+        match *self {
+            FaceBuffers::Uniform { degree, indices } => (degree > 0 && indices.len() % degree == 0)
+                .then(|| indices.chunks_exact(degree).collect()),
+            FaceBuffers::Polygons { offsets, indices } => offsets
+                .windows(2)
+                .map(|w| indices.get(w[0] as usize..w[1] as usize))
+                .collect(),
+        }
+    }
+}
+
+/// Writes positions and faces from caller-owned buffers as OBJ text, like
+/// [`write_polygon_obj`]: coordinates in `f32` or `f64` are written with the shortest text
+/// that reads back as the same value of that type.
+///
+/// # Errors
+///
+/// [`std::io::ErrorKind::InvalidInput`] when the face buffers are inconsistent or a corner
+/// names a vertex beyond `positions`; any error of the writer.
+///
+/// ```
+/// use halfedge::io::{write_buffers_obj, FaceBuffers};
+/// let positions: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.1, 1.0, 0.0]];
+/// let faces = FaceBuffers::Uniform { degree: 3, indices: &[0, 1, 2] };
+/// let mut out = Vec::new();
+/// write_buffers_obj(&positions, faces, &mut out)?;
+/// assert_eq!(String::from_utf8(out)?, "v 0.0 0.0 0.0\nv 1.0 0.0 0.0\nv 0.1 1.0 0.0\nf 1 2 3\n");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_buffers_obj<T: std::fmt::Debug>(
+    positions: &[[T; 3]],
+    faces: FaceBuffers<'_>,
+    writer: impl Write,
+) -> std::io::Result<()> {
+    let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    let list = faces
+        .faces()
+        .ok_or_else(|| invalid(format!("inconsistent face buffers: {faces:?}")))?;
+    if let Some(&v) = list
+        .iter()
+        .flat_map(|f| f.iter())
+        .find(|&&v| v as usize >= positions.len())
+    {
+        return Err(invalid(format!(
+            "a face uses vertex {v}, but there are {} positions",
+            positions.len()
+        )));
+    }
+    write_coordinates(
+        positions.iter().map(|[x, y, z]| [x, y, z]),
+        list.into_iter().map(|f| f.iter().copied()),
+        writer,
+    )
+}
+
+/// [`write_buffers_obj`] into a file, atomically ([`write_atomically`]).
+///
+/// # Errors
+///
+/// As [`write_obj_file`], and [`Error::Io`] for inconsistent buffers.
+pub fn write_buffers_obj_file<T: std::fmt::Debug>(
+    positions: &[[T; 3]],
+    faces: FaceBuffers<'_>,
+    path: impl AsRef<Path>,
+) -> Result<()> {
+    write_atomically(path.as_ref(), |file| {
+        write_buffers_obj(positions, faces, file)
+    })
+}
+
 fn write_faces<F, I>(positions: &[DVec3], faces: F, writer: impl Write) -> std::io::Result<()>
 where
     F: Iterator<Item = I>,
     I: Iterator<Item = u32>,
 {
+    write_coordinates(positions.iter().map(|p| [&p.x, &p.y, &p.z]), faces, writer)
+}
+
+/// The one OBJ text writer: `v` lines with each coordinate's shortest round-trip text
+/// (`Debug` of `f32`/`f64`), then 1-based `f` lines.
+fn write_coordinates<'p, T, P, F, I>(
+    positions: P,
+    faces: F,
+    writer: impl Write,
+) -> std::io::Result<()>
+where
+    T: std::fmt::Debug + 'p,
+    P: Iterator<Item = [&'p T; 3]>,
+    F: Iterator<Item = I>,
+    I: Iterator<Item = u32>,
+{
     let mut w = BufWriter::with_capacity(1 << 16, writer);
-    for p in positions {
-        writeln!(w, "v {:?} {:?} {:?}", p.x, p.y, p.z)?;
+    for [x, y, z] in positions {
+        writeln!(w, "v {x:?} {y:?} {z:?}")?;
     }
     for face in faces {
         w.write_all(b"f")?;
@@ -579,5 +690,69 @@ mod tests {
             format!("{}: is a directory", dir.display())
         );
         fs::remove_dir_all(&dir).expect("cleanup");
+    }
+
+    /// `f32` coordinates come back as the same `f32` from the text, and inconsistent buffers
+    /// are refused before anything is written.
+    #[test]
+    fn buffers_round_trip_in_f32_and_bad_buffers_are_refused() {
+        let mut x = 0x2545_f491_u32;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            f32::from_bits(x & 0x7f7f_ffff) * if x & 1 == 0 { 1.0 } else { -1.0 }
+        };
+        let positions: Vec<[f32; 3]> = (0..300).map(|_| [next(), next(), next()]).collect();
+        let indices: Vec<u32> = (0..300).collect();
+        let mut out = Vec::new();
+        let faces = FaceBuffers::Uniform {
+            degree: 3,
+            indices: &indices,
+        };
+        write_buffers_obj(&positions, faces, &mut out).expect("written");
+        let text = String::from_utf8(out).expect("text");
+        let read: Vec<[f32; 3]> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("v "))
+            .map(|l| {
+                let c: Vec<f32> = l.split(' ').map(|t| t.parse().expect("f32")).collect();
+                [c[0], c[1], c[2]]
+            })
+            .collect();
+        assert_eq!(read, positions);
+        assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 100);
+        let polygons = FaceBuffers::Polygons {
+            offsets: &[0, 3, 7],
+            indices: &indices[..7],
+        };
+        let mut out = Vec::new();
+        write_buffers_obj(&positions, polygons, &mut out).expect("written");
+        assert!(String::from_utf8(out)
+            .expect("text")
+            .ends_with("f 1 2 3\nf 4 5 6 7\n"));
+        for bad in [
+            FaceBuffers::Uniform {
+                degree: 4,
+                indices: &indices[..6],
+            },
+            FaceBuffers::Uniform {
+                degree: 0,
+                indices: &[],
+            },
+            FaceBuffers::Polygons {
+                offsets: &[0, 5, 3],
+                indices: &indices[..6],
+            },
+            FaceBuffers::Uniform {
+                degree: 3,
+                indices: &[0, 1, 300],
+            },
+        ] {
+            let mut out = Vec::new();
+            let err = write_buffers_obj(&positions, bad, &mut out).unwrap_err();
+            assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput, "{bad:?}");
+            assert!(out.is_empty());
+        }
     }
 }

@@ -291,7 +291,7 @@ pub(super) fn run_levels(
     let mut expected = Vec::with_capacity(levels as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(&counts, u64::from(s))?;
-        expected.push(sizes(&c, name, s)?);
+        expected.push(sizes(&c, name, s, true)?);
     }
     let template = match template {
         Some(n) if levels > 0 => Some(Template::new(n)),

@@ -252,12 +252,6 @@ pub(crate) fn plan(rule: Rule, counts: &MeshCounts) -> Result<Plan> {
         },
         Rule::DooSabin => Algorithm::DooSabin,
         Rule::MidEdge => Algorithm::MidEdge,
-        _ => {
-            return Err(Error::NoSubdivision {
-                scheme: rule.to_string(),
-                reason: "this version of halfedge has no algorithm for the rule".into(),
-            })
-        }
     };
     Ok(Plan {
         name: rule.to_string(),
@@ -294,6 +288,30 @@ pub fn checked_rule(scheme: &Scheme, counts: &MeshCounts) -> Result<Rule> {
     };
     scheme.for_mesh(counts).initial_state(counts)?;
     Ok(rule)
+}
+
+/// The built-in schemes ([`schemes::builtins`]) whose counts apply to a mesh with `counts`
+/// and whose subdivision can run on it: on a `manifold` mesh (a valid [`HalfEdgeMesh`]) every
+/// scheme whose class admits it, otherwise the ones that run on raw face lists
+/// ([`Rule::refines_faces`] and a class without the manifold requirement). What
+/// `subcount stats` lists as `applicable schemes`.
+///
+/// ```
+/// use halfedge::subdivide::applicable_schemes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let names: Vec<String> = applicable_schemes(&cube, true).iter().map(|s| s.name().to_owned()).collect();
+/// assert!(names.contains(&"catmull-clark".to_owned()) && !names.contains(&"loop".to_owned()));
+/// ```
+pub fn applicable_schemes(counts: &MeshCounts, manifold: bool) -> Vec<Scheme> {
+    schemes::builtins()
+        .into_iter()
+        .filter(|s| {
+            let runs = s.subdivision_rule().is_some_and(|rule| {
+                manifold || (rule.refines_faces() && !s.mesh_class().needs_manifold())
+            });
+            runs && s.initial_state(counts).is_ok()
+        })
+        .collect()
 }
 
 fn no_rule(scheme: &Scheme) -> Error {
@@ -343,26 +361,28 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
     Ok(())
 }
 
-/// Array sizes of a predicted level, refused when they do not fit 32-bit handles.
-fn sizes(c: &LevelCounts, scheme: &str, level: u32) -> Result<Sizes> {
-    let limit = BigInt::from(u32::MAX);
-    let fits = |what: &'static str, count: &BigInt, factor: u32| -> Result<usize> {
+/// Array sizes of a predicted level, refused when they do not fit 32-bit handles. With
+/// `handles` false (a last level written straight into a face list, which has no half-edges)
+/// only the vertex indices must fit `u32`: edges and faces are counted in `usize`.
+fn sizes(c: &LevelCounts, scheme: &str, level: u32, handles: bool) -> Result<Sizes> {
+    let too_large = |what: &'static str, count: &BigInt| Error::TooLarge {
+        scheme: scheme.to_owned(),
+        level,
+        what,
+        count: count.clone(),
+    };
+    let fits = |what: &'static str, count: &BigInt, factor: u32, indexed: bool| {
         let scaled = count * factor;
-        if scaled.sign() == num_bigint::Sign::Minus || scaled >= limit {
-            return Err(Error::TooLarge {
-                scheme: scheme.to_owned(),
-                level,
-                what,
-                count: count.clone(),
-            });
+        if scaled.sign() == num_bigint::Sign::Minus || (indexed && scaled >= BigInt::from(u32::MAX))
+        {
+            return Err(too_large(what, count));
         }
-        // Below u32::MAX, so it fits usize.
-        Ok(u32::try_from(&scaled).map_or(0, |v| v as usize))
+        usize::try_from(&scaled).map_err(|_| too_large(what, count))
     };
     Ok(Sizes {
-        vertices: fits("vertices", &c.vertices, 1)?,
-        halfedges: fits("edges", &c.edges, 2)?,
-        faces: fits("faces", &c.faces, 1)?,
+        vertices: fits("vertices", &c.vertices, 1, true)?,
+        halfedges: fits("edges", &c.edges, 2, handles)?,
+        faces: fits("faces", &c.faces, 1, handles)?,
     })
 }
 
@@ -547,11 +567,17 @@ pub fn subdivide_to_face_list(
         mesh: m.to_polygon_mesh(),
         edges: m.n_edges(),
     };
+    let direct = opts.preallocate
+        && matches!(
+            plan.algorithm,
+            Algorithm::Tri(_, 2) | Algorithm::CatmullClark
+        );
     drive(
         &plan,
         mesh,
         &counts,
         levels,
+        direct,
         opts,
         |_, _| Ok(()),
         |input, s, sizes, template| {
@@ -562,7 +588,7 @@ pub fn subdivide_to_face_list(
                 parallel: opts.threads != 1,
             };
             let direct = match (plan.algorithm, template) {
-                _ if !opts.preallocate => None,
+                _ if !direct => None,
                 (Algorithm::Tri(rule, 2), Some(t)) => {
                     Some(to_faces::four_to_one(input, t, rule, &ctx)?)
                 }
@@ -672,6 +698,7 @@ fn run_levels(
         mesh,
         counts,
         levels,
+        false,
         opts,
         visit,
         |input, s, sizes, template| step(plan, template, input, s, sizes, opts),
@@ -715,13 +742,16 @@ impl LastLevel for FaceListLevel {
 
 /// Checks the scheme and every level's size, builds levels `1..levels` as half-edge meshes
 /// (only two alive at a time) and the last one with `last`; `level0` answers `levels = 0`.
-/// `visit` sees every half-edge level, the progress callback every level.
+/// `visit` sees every half-edge level, the progress callback every level. `last_as_faces`:
+/// `last` writes a face list without half-edges, so that level's edges and faces need not
+/// fit 32-bit handles (its vertex indices must).
 #[allow(clippy::too_many_arguments)]
 fn drive<T: LastLevel>(
     plan: &Plan,
     mesh: &HalfEdgeMesh,
     counts: &MeshCounts,
     levels: u32,
+    last_as_faces: bool,
     opts: &SubdivideOptions<'_>,
     mut visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
     last: impl FnOnce(&HalfEdgeMesh, u32, Sizes, Option<&Template>) -> Result<T> + Send,
@@ -734,7 +764,7 @@ fn drive<T: LastLevel>(
     let mut expected = Vec::with_capacity(levels as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
-        expected.push(sizes(&c, name, s)?);
+        expected.push(sizes(&c, name, s, s < levels || !last_as_faces)?);
     }
     let Some(&last_sizes) = expected.last() else {
         return Ok(level0(mesh));
@@ -779,12 +809,15 @@ fn drive<T: LastLevel>(
     })
 }
 
-/// The components a report lists: the state, then `V`, `E`, `F` when not in the state.
+/// The components a report lists: the state, then `V`, `E`, `F` when not in the state (and
+/// the scheme derives them).
 fn report_names(scheme: &Scheme) -> Vec<String> {
     let mut names: Vec<String> = scheme.state_names().to_vec();
-    for extra in ["V", "E", "F"] {
-        if !names.iter().any(|n| n == extra) {
-            names.push(extra.to_owned());
+    if scheme.has_mesh_counts() {
+        for extra in ["V", "E", "F"] {
+            if !names.iter().any(|n| n == extra) {
+                names.push(extra.to_owned());
+            }
         }
     }
     names
@@ -796,21 +829,30 @@ fn report(
     level: u32,
     measured: &MeshCounts,
 ) -> Result<LevelReport> {
-    let c = scheme.counts_at(counts0, u64::from(level))?;
     let names = report_names(scheme);
-    let predicted_value = |name: &str| -> BigInt {
+    let (state, vef) = if scheme.has_mesh_counts() {
+        let c = scheme.counts_at(counts0, u64::from(level))?;
+        (c.state, Some([c.vertices, c.edges, c.faces]))
+    } else {
+        let x0 = scheme.initial_state(counts0)?;
+        (scheme.state_at(&x0, u64::from(level))?, None)
+    };
+    let predicted_value = |name: &str| -> Option<BigInt> {
         match scheme.state_names().iter().position(|n| n == name) {
-            Some(i) => c.state[i].clone(),
-            None => match name {
-                "V" => c.vertices.clone(),
-                "E" => c.edges.clone(),
-                _ => c.faces.clone(),
-            },
+            Some(i) => Some(state[i].clone()),
+            None => {
+                let [v, e, f] = vef.as_ref()?;
+                Some(match name {
+                    "V" => v.clone(),
+                    "E" => e.clone(),
+                    _ => f.clone(),
+                })
+            }
         }
     };
     let predicted = names
         .iter()
-        .map(|n| (n.clone(), predicted_value(n)))
+        .filter_map(|n| predicted_value(n).map(|v| (n.clone(), v)))
         .collect();
     let measured = names
         .iter()
@@ -946,4 +988,39 @@ pub fn verify_polygons(
         Ok(())
     })?;
     Ok(reports)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 3holes.obj (7,200 faces, genus 3) under Loop at level 9: 2,831,155,200 edges, more than
+    /// 32-bit half-edge handles address, but the vertex indices of a face list fit `u32`.
+    #[test]
+    fn a_face_list_last_level_needs_only_its_vertex_indices_to_fit_u32() {
+        let faces = BigInt::from(7200u64 << 18);
+        let edges = &faces * 3 / 2;
+        let c = LevelCounts {
+            level: 9,
+            state: vec![],
+            vertices: &edges - &faces - 4,
+            edges,
+            faces,
+        };
+        let err = sizes(&c, "loop", 9, true).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "loop level 9 would have 2831155200 edges: more than 32-bit handles can address"
+        );
+        let s = sizes(&c, "loop", 9, false).expect("a face list holds it");
+        assert_eq!(
+            (s.vertices, s.halfedges, s.faces),
+            (943_718_396, 5_662_310_400, 1_887_436_800)
+        );
+        let too_many_vertices = LevelCounts {
+            vertices: BigInt::from(u32::MAX),
+            ..c
+        };
+        assert!(sizes(&too_many_vertices, "loop", 9, false).is_err());
+    }
 }

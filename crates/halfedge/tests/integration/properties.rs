@@ -93,7 +93,11 @@ fn parametrized_shape() -> impl Strategy<Value = PolygonMesh> {
         let base = shapes::from_name(&name).expect("shape");
         let mesh = HalfEdgeMesh::try_from(&base).expect("valid shape");
         let opts = halfedge::subdivide::SubdivideOptions::default();
-        halfedge::subdivide::subdivide(&mesh, scheme, levels, &opts)
+        let rule = halfedge::schemes::builtin(scheme)
+            .ok()
+            .and_then(|s| s.subdivision_rule())
+            .expect("a built-in rule");
+        halfedge::subdivide::subdivide(&mesh, rule, levels, &opts)
             .map_or(base, |m| m.to_polygon_mesh())
     })
 }

@@ -1276,7 +1276,7 @@ fn non_finite_points_are_refused_and_nothing_is_written() {
             &out,
         ],
         3,
-        "loop-boundary level 1: vertex 4 (on edge (0, 1) of the input) would be at (inf, ",
+        "loop level 1: vertex 4 (on edge (0, 1) of the input) would be at (inf, ",
     );
     assert_eq!(folder_names(files.dir.path()), ["huge.obj", "origin.obj"]);
 }

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use crate::util::{data, example_scheme, fails, ok};
+use crate::util::{data, example_scheme, fails, ok, subcount};
 
 const BUILTINS: [&str; 12] = [
     "loop",
@@ -84,7 +84,7 @@ fn schemes_json_is_an_array_of_objects_in_the_same_order() {
 fn schemes_toml_exports_a_template() {
     assert_eq!(
         ok(&["schemes", "--format", "toml", "loop"]),
-        "# subdivision scheme `loop`\nname = \"loop\"\ndescription = \"4:1 triangle split (Loop topology) on closed triangle meshes, paper Theorem 5.1\"\nstate = [\"V\", \"E\"]\nrequires = [\"triangles\", \"closed\"]\nproduces = \"triangles\"\nmatrix = [\n  [1, 1],\n  [0, 4],\n]\n\n[derive]\nF = { E = 2, divide_by = 3 }\n"
+        "# subdivision scheme `loop`\nname = \"loop\"\ndescription = \"4:1 triangle split (Loop topology) on closed triangle meshes, paper Theorem 5.1\"\nstate = [\"V\", \"E\"]\nrequires = [\"triangles\", \"closed\"]\nproduces = \"triangles\"\ntopology = \"loop\"\nmatrix = [\n  [1, 1],\n  [0, 4],\n]\n\n[derive]\nF = { E = 2, divide_by = 3 }\n"
     );
     fails(&["schemes", "--format", "toml"], 2, "name it");
     fails(
@@ -616,9 +616,36 @@ fn counts_errors_are_usage_errors() {
     );
     // A closed-mesh scheme on counts with boundary does not apply: exit 3, with the fix.
     fails(
-        &["table", "--scheme", "loop", "--counts", "V=9,E=16,F=8,BE=8"],
+        &[
+            "table",
+            "--scheme",
+            "sqrt3",
+            "--counts",
+            "V=9,E=16,F=8,BE=8",
+        ],
         3,
-        "loop needs a closed mesh, but BE=8; use loop-boundary",
+        "sqrt3 needs a closed mesh, but BE=8; use sqrt3-boundary",
+    );
+    // `loop` counts as `loop-boundary` on counts with BE > 0 (issue 12).
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "loop",
+            "--counts",
+            "V=9,E=16,F=8,BE=8",
+            "--levels",
+            "1"
+        ]),
+        ok(&[
+            "table",
+            "--scheme",
+            "loop-boundary",
+            "--counts",
+            "V=9,E=16,F=8,BE=8",
+            "--levels",
+            "1"
+        ])
     );
 }
 
@@ -869,9 +896,11 @@ fn fit_reports_the_level_from_which_the_counts_never_change() {
     );
 }
 
-// ---- the 4:1 aliases on meshes with boundary ----
+// ---- `loop` and the 4:1 aliases on meshes with boundary ----
 
-const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
+/// `loop` and its 4:1 aliases: on a mesh with boundary all count as `loop-boundary` and
+/// subdivide with Loop's boundary rules (issue 12; `loop` used to refuse the boundary).
+const LOOP_ALIASES: [&str; 4] = ["loop", "midpoint", "butterfly", "icosphere"];
 
 fn json(args: &[&str]) -> serde_json::Value {
     let out = ok(args);
@@ -1018,29 +1047,20 @@ fn check_alias_on_boundary(mesh: &[&str], levels: u64, plot_dir: &Path) {
             expected
         );
     }
-    // `loop` itself refuses the boundary in every command, naming loop-boundary (issue 3).
-    let be = count(0, "BE");
-    let needle = format!(
-        "loop needs a closed mesh, but this mesh has {be} boundary edges; use loop-boundary"
-    );
-    let svg = plot_dir.join("loop.svg");
-    for args in [
-        with(&["table"], "loop", &[]),
-        with(&["at"], "loop", &["--level", "2"]),
-        with(&["formula"], "loop", &[]),
-        with(&["fit"], "loop", &["--max-faces", "1000"]),
-        with(&["density"], "loop", &["--level", "2", "--radius", "1"]),
-        with(&["plot"], "loop", &["-o", svg.to_str().unwrap()]),
-        with(&["verify"], "loop", &["--levels", "1"]),
-        with(&["subdivide"], "loop", &["--levels", "1"]),
-    ] {
-        fails(
-            &args.iter().map(String::as_str).collect::<Vec<_>>(),
-            3,
-            &needle,
-        );
-    }
-    assert!(!svg.exists(), "a refused plot writes nothing");
+    // `loop` subdivides the boundary with Loop's boundary rules: the very output of
+    // `loop-boundary` (issue 12), and `verify` agrees.
+    let out = |scheme: &str| {
+        let file = plot_dir.join(format!("{scheme}.obj"));
+        run(with(
+            &["subdivide"],
+            scheme,
+            &["--levels", "1", "-o", file.to_str().unwrap()],
+        ));
+        std::fs::read(&file).unwrap()
+    };
+    assert_eq!(out("loop"), out("loop-boundary"));
+    let verified = run(with(&["verify"], "loop", &["--levels", "1"]));
+    assert!(!verified.contains("MISMATCH"), "{verified}");
 }
 
 /// `--scheme butterfly` (or `midpoint`, `icosphere`) on a mesh with boundary predicts what
@@ -1065,8 +1085,8 @@ fn aliases_count_as_loop_boundary_on_generated_meshes_with_boundary() {
     }
 }
 
-/// In a composition every alias stage counts as `loop-boundary` on a mesh with boundary;
-/// a `loop` stage still refuses the boundary it meets.
+/// In a composition every `loop` or alias stage counts as `loop-boundary` on a mesh with
+/// boundary.
 #[test]
 fn aliases_in_compositions_on_a_mesh_with_boundary() {
     let expected = ok(&[
@@ -1082,6 +1102,8 @@ fn aliases_in_compositions_on_a_mesh_with_boundary() {
         "butterfly:1,loop-boundary",
         "loop-boundary:2,icosphere",
         "midpoint:1,butterfly",
+        "butterfly:1,loop",
+        "loop:1,loop-boundary",
     ] {
         assert_eq!(
             ok(&["table", "--scheme", plan, "--base", "grid:3x3", "--levels", "3"]),
@@ -1089,19 +1111,6 @@ fn aliases_in_compositions_on_a_mesh_with_boundary() {
             "{plan}"
         );
     }
-    fails(
-        &[
-            "table",
-            "--scheme",
-            "butterfly:1,loop",
-            "--base",
-            "grid:3x3",
-            "--levels",
-            "3",
-        ],
-        3,
-        "loop needs a closed mesh, but after 1 level of butterfly BE = 24; use loop-boundary",
-    );
 }
 
 /// With a non-manifold edge next to the boundary an alias stays `loop` (as in `halfedge`'s
@@ -1209,4 +1218,101 @@ fn aliases_on_shared_meshes_with_boundary() {
             );
         }
     }
+}
+
+fn strs(v: &[String]) -> Vec<&str> {
+    v.iter().map(String::as_str).collect()
+}
+
+/// A scheme file's `topology` key names the rule that really subdivides it (issue 12):
+/// `subdivide` runs that rule, `verify` compares the file's matrix with it (exit 1 on a wrong
+/// matrix), and without the key both refuse, naming the key.
+#[test]
+fn custom_schemes_are_subdivided_by_their_topology() {
+    let dir = tempfile::tempdir().unwrap();
+    let template = ok(&["schemes", "--format", "toml", "loop-boundary"]);
+    assert!(template.contains("\ntopology = \"loop\"\n"), "{template}");
+    let write = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_owned()
+    };
+    let good = write(
+        "good.toml",
+        &template.replace("\"loop-boundary\"", "\"mine\""),
+    );
+    // IE' = 4 IE + 2 BE instead of 4 IE + BE: wrong on a mesh with boundary.
+    let wrong = write(
+        "wrong.toml",
+        &template
+            .replace("[0, 4, 1]", "[0, 4, 2]")
+            .replace("\"loop-boundary\"", "\"wrong\""),
+    );
+    let bare = write(
+        "bare.toml",
+        &template
+            .replace("topology = \"loop\"\n", "")
+            .replace("\"loop-boundary\"", "\"bare\""),
+    );
+    let grid = ["--base", "grid:3x3"];
+    let run = |head: &[&str], file: &str, tail: &[&str]| -> Vec<String> {
+        let mut args: Vec<&str> = head.to_vec();
+        args.extend(["--scheme-file", file]);
+        args.extend(grid);
+        args.extend(tail);
+        args.iter().map(|s| s.to_string()).collect()
+    };
+    let verified = ok(&strs(&run(&["verify"], &good, &["--levels", "2"])));
+    assert!(
+        verified.starts_with("mine on grid:3x3 levels 0..=2\n"),
+        "{verified}"
+    );
+    assert!(
+        verified.ends_with("all counts match the prediction\n"),
+        "{verified}"
+    );
+    let args = run(&["verify"], &wrong, &["--levels", "2"]);
+    let mismatch = subcount(&strs(&args));
+    assert_eq!(mismatch.code, 1, "{}", mismatch.stderr);
+    assert!(
+        mismatch
+            .stdout
+            .contains("    1         IE        108        96  MISMATCH\n"),
+        "{}",
+        mismatch.stdout
+    );
+    assert_eq!(
+        mismatch.stderr,
+        "error: wrong: real subdivision disagrees with the prediction\n"
+    );
+    // `subdivide` runs Loop's rule: the same file as the built-in.
+    let out = |scheme_args: &[&str], name: &str| {
+        let file = dir.path().join(name);
+        let mut args = vec!["subdivide"];
+        args.extend(scheme_args);
+        args.extend(grid);
+        args.extend(["--levels", "2", "-o", file.to_str().unwrap()]);
+        ok(&args);
+        std::fs::read(&file).unwrap()
+    };
+    assert_eq!(
+        out(&["--scheme-file", &good], "mine.obj"),
+        out(&["--scheme", "loop-boundary"], "builtin.obj")
+    );
+    for command in ["verify", "subdivide"] {
+        fails(
+            &strs(&run(&[command], &bare, &["--levels", "1"])),
+            2,
+            "no real subdivision for scheme `bare`: its matrix names no rule; add `topology = \"NAME\"`",
+        );
+    }
+    fails(
+        &strs(&run(
+            &["verify", "--scheme", "other"],
+            &good,
+            &["--levels", "1"],
+        )),
+        2,
+        "--scheme other is not the scheme of",
+    );
 }

@@ -58,7 +58,6 @@ mod tables;
 
 use std::sync::Arc;
 
-use num_bigint::BigInt;
 use schemes::MeshCounts;
 
 pub use self::data::Scalar;
@@ -156,31 +155,6 @@ fn direct(algorithm: Algorithm) -> bool {
     matches!(algorithm, Algorithm::Tri(_, 2) | Algorithm::CatmullClark)
 }
 
-/// `count` as `usize` when it is below `u32::MAX` (the half-edge limit of a built level is
-/// checked by [`super::sizes`]; this is the last level's index limit).
-fn index_count(plan: &Plan, level: u32, what: &'static str, count: &BigInt) -> Result<usize> {
-    u32::try_from(count)
-        .ok()
-        .filter(|&c| c < u32::MAX)
-        .map(|c| c as usize)
-        .ok_or_else(|| Error::TooLarge {
-            scheme: plan.name.clone(),
-            level,
-            what,
-            count: count.clone(),
-        })
-}
-
-/// `count` as `usize`.
-fn usize_count(plan: &Plan, level: u32, what: &'static str, count: &BigInt) -> Result<usize> {
-    usize::try_from(count).map_err(|_| Error::TooLarge {
-        scheme: plan.name.clone(),
-        level,
-        what,
-        count: count.clone(),
-    })
-}
-
 /// The half-edge sizes of levels `1..levels` (and of the last level when it is built as a
 /// half-edge mesh), and the index sizes of the last level otherwise: what
 /// [`Refinement::new`] checks before it allocates. Entry `s - 1` is level `s`; the last one
@@ -189,15 +163,10 @@ fn plan_sizes(plan: &Plan, counts: &MeshCounts, levels: u32) -> Result<Vec<(Opti
     let mut out = Vec::with_capacity(levels as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
-        if s < levels || !direct(plan.algorithm) {
-            let sizes = super::sizes(&c, &plan.name, s)?;
-            out.push((Some(sizes), [sizes.vertices, sizes.halfedges / 2, sizes.faces]));
-        } else {
-            let vertices = index_count(plan, s, "vertices", &c.vertices)?;
-            let edges = usize_count(plan, s, "edges", &c.edges)?;
-            let faces = usize_count(plan, s, "faces", &c.faces)?;
-            out.push((None, [vertices, edges, faces]));
-        }
+        let built = s < levels || !direct(plan.algorithm);
+        let sizes = super::sizes(&c, &plan.name, s, built)?;
+        let vef = [sizes.vertices, sizes.halfedges / 2, sizes.faces];
+        out.push((built.then_some(sizes), vef));
     }
     Ok(out)
 }
