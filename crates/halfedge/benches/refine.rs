@@ -24,7 +24,10 @@ use halfedge::refine::{Refinement, Scalar};
 use halfedge::subdivide::{subdivide, SubdivideOptions};
 use halfedge::{shapes, HalfEdgeMesh, Rule};
 
-const JOBS: [(&str, Rule, u32); 2] = [("loop", Rule::Loop, 3), ("catmull-clark", Rule::CatmullClark, 3)];
+const JOBS: [(&str, Rule, u32); 2] = [
+    ("loop", Rule::Loop, 3),
+    ("catmull-clark", Rule::CatmullClark, 3),
+];
 const THREADS: [usize; 2] = [1, 2];
 
 fn icosphere() -> HalfEdgeMesh {

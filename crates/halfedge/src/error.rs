@@ -434,7 +434,9 @@ pub enum Error {
     },
     /// An index buffer of fixed face degree asked of a level with other faces (triangles of a
     /// quad mesh, quads of a mixed one).
-    #[error("{what} need faces of {wanted} vertices, but face {face} of the last level has {degree}")]
+    #[error(
+        "{what} need faces of {wanted} vertices, but face {face} of the last level has {degree}"
+    )]
     FaceDegreeMismatch {
         /// What was asked (`triangles`, `quads`).
         what: &'static str,

@@ -42,7 +42,10 @@ fn meshes() -> Vec<(&'static str, HalfEdgeMesh)> {
         ("cube", jittered(shapes::cube())),
         ("torus", jittered(shapes::torus(1).expect("torus"))),
         ("grid", jittered(shapes::grid(3, 2).expect("grid"))),
-        ("quad grid", jittered(shapes::quad_grid(3, 2).expect("quad grid"))),
+        (
+            "quad grid",
+            jittered(shapes::quad_grid(3, 2).expect("quad grid")),
+        ),
         (
             "icosahedron with holes",
             jittered(shapes::icosahedron_holes(2).expect("holes")),
@@ -115,7 +118,8 @@ fn evaluate_is_the_one_shot_subdivision_to_the_bit() {
         assert_eq!(r.n_corners(levels), polygon.face_indices().len(), "{what}");
         let mut offsets = vec![0u32; r.n_faces(levels) + 1];
         let mut indices = vec![0u32; r.n_corners(levels)];
-        r.write_polygons(&mut offsets, &mut indices).expect("polygons");
+        r.write_polygons(&mut offsets, &mut indices)
+            .expect("polygons");
         assert_eq!(
             offsets.iter().map(|&o| o as usize).collect::<Vec<_>>(),
             polygon.face_offsets(),
@@ -161,7 +165,8 @@ fn results_do_not_depend_on_the_threads() {
             r.evaluate(&base, &mut out).expect("evaluate");
             let mut offsets = vec![0u32; r.n_faces(levels) + 1];
             let mut indices = vec![0u32; r.n_corners(levels)];
-            r.write_polygons(&mut offsets, &mut indices).expect("polygons");
+            r.write_polygons(&mut offsets, &mut indices)
+                .expect("polygons");
             (out, offsets, indices)
         };
         let one = eval(1);
@@ -183,7 +188,9 @@ fn levels_chain_to_the_last_level_and_evaluators_reuse_their_buffers() {
         let mut direct = vec![[0.0; 3]; r.n_vertices(levels)];
         let mut evaluator = r.evaluator::<f64, 3>();
         for _ in 0..2 {
-            evaluator.evaluate(&base_of(&mesh), &mut direct).expect("evaluate");
+            evaluator
+                .evaluate(&base_of(&mesh), &mut direct)
+                .expect("evaluate");
             assert!(direct == data, "{name} {rule}");
         }
         // The same refinement, other data: a moved base.
@@ -192,7 +199,10 @@ fn levels_chain_to_the_last_level_and_evaluators_reuse_their_buffers() {
             .map(|p| [p[0] + 1.0, 2.0 * p[1], p[2]])
             .collect();
         evaluator.evaluate(&moved, &mut direct).expect("evaluate");
-        assert!(direct != data, "{name} {rule}: the moved base changed nothing");
+        assert!(
+            direct != data,
+            "{name} {rule}: the moved base changed nothing"
+        );
     }
 }
 
@@ -215,19 +225,26 @@ fn any_width_and_strided_data() {
         let xs: Vec<[f64; 1]> = base.iter().map(|p| [p[0]]).collect();
         let mut out1 = vec![[0.0; 1]; r.n_vertices(levels)];
         r.evaluate(&xs, &mut out1).expect("width 1");
-        assert!(out1.iter().zip(&xyz).all(|(a, b)| a[0] == b[0]), "{name} {rule}");
+        assert!(
+            out1.iter().zip(&xyz).all(|(a, b)| a[0] == b[0]),
+            "{name} {rule}"
+        );
         // A stride of 20 (component by component).
         let wide: Vec<f64> = base
             .iter()
             .flat_map(|p| (0..20).map(move |c| p[c % 3] * (1 + c / 3) as f64))
             .collect();
         let mut out20 = vec![0.0; 20 * r.n_vertices(levels)];
-        r.evaluate_strided(&wide, 20, &mut out20).expect("stride 20");
+        r.evaluate_strided(&wide, 20, &mut out20)
+            .expect("stride 20");
         for (v, p) in xyz.iter().enumerate() {
             for c in 0..20 {
                 let expected = p[c % 3] * (1 + c / 3) as f64;
                 let got = out20[20 * v + c];
-                assert!((got - expected).abs() <= 1e-12 * (1.0 + expected.abs()), "{name} {rule}");
+                assert!(
+                    (got - expected).abs() <= 1e-12 * (1.0 + expected.abs()),
+                    "{name} {rule}"
+                );
             }
         }
     }
@@ -245,7 +262,10 @@ fn f32_follows_f64() {
         r.evaluate(&base32, &mut out32).expect("f32");
         for (a, b) in out64.iter().zip(&out32) {
             for c in 0..3 {
-                assert!((a[c] - f64::from(b[c])).abs() < 1e-5, "{name} {rule}: {a:?} {b:?}");
+                assert!(
+                    (a[c] - f64::from(b[c])).abs() < 1e-5,
+                    "{name} {rule}: {a:?} {b:?}"
+                );
             }
         }
     }
@@ -261,7 +281,8 @@ fn stencils_reproduce_the_evaluation() {
                 assert_eq!(rule, Rule::Icosphere, "{name}: {e}");
                 assert!(matches!(e, Error::NotLinear { .. }));
                 assert!(
-                    e.to_string().contains("rule is not linear: the sphere projection"),
+                    e.to_string()
+                        .contains("rule is not linear: the sphere projection"),
                     "{e}"
                 );
                 continue;
@@ -279,9 +300,15 @@ fn stencils_reproduce_the_evaluation() {
         table.apply(&base, &mut applied).expect("apply");
         for (i, (a, b)) in evaluated.iter().zip(&applied).enumerate() {
             let (rows, weights) = table.row(i);
-            assert!(rows.windows(2).all(|w| w[0] < w[1]), "{name} {rule}: sorted row");
+            assert!(
+                rows.windows(2).all(|w| w[0] < w[1]),
+                "{name} {rule}: sorted row"
+            );
             let sum: f64 = weights.iter().sum();
-            assert!((sum - 1.0).abs() < 1e-12, "{name} {rule}: row {i} sums to {sum}");
+            assert!(
+                (sum - 1.0).abs() < 1e-12,
+                "{name} {rule}: row {i} sums to {sum}"
+            );
             for c in 0..3 {
                 assert!(
                     (a[c] - b[c]).abs() <= 1e-12 * (1.0 + a[c].abs()),
@@ -392,7 +419,9 @@ fn progress_and_memory() {
     let ico = jittered(shapes::icosahedron());
     let seen = std::sync::Mutex::new(Vec::new());
     let progress = |d: &halfedge::subdivide::LevelDone| {
-        seen.lock().expect("lock").push((d.level, d.vertices, d.edges, d.faces));
+        seen.lock()
+            .expect("lock")
+            .push((d.level, d.vertices, d.edges, d.faces));
     };
     let o = SubdivideOptions::default().with_progress(&progress);
     let r = Refinement::new(&ico, Rule::Loop, 3, &o).expect("refinement");
@@ -442,10 +471,15 @@ fn large_meshes_take_the_parallel_paths_with_the_same_bits() {
             assert!(out == expected, "{rule} {threads}t");
             let mut offsets = vec![0u32; r.n_faces(2) + 1];
             let mut indices = vec![0u32; r.n_corners(2)];
-            r.write_polygons(&mut offsets, &mut indices).expect("polygons");
+            r.write_polygons(&mut offsets, &mut indices)
+                .expect("polygons");
             assert_eq!(indices, faces.mesh.face_indices(), "{rule} {threads}t");
         }
-        let got: Vec<[f64; 3]> = one_shot_2t.positions().iter().map(|p| p.to_array()).collect();
+        let got: Vec<[f64; 3]> = one_shot_2t
+            .positions()
+            .iter()
+            .map(|p| p.to_array())
+            .collect();
         assert!(got == expected, "{rule}: one-shot in 2 threads");
     }
 }

@@ -261,7 +261,11 @@ pub(crate) fn sqrt3_points<V: Vector>(
         _ => centroid(&t, src, f as u32),
     });
     if let Some(b) = step_b {
-        out.append(b.boundary_faces.len(), parallel, |i| p2(b.boundary_faces[i]));
+        out.append(
+            b.boundary_faces.len(),
+            parallel,
+            |i| p2(b.boundary_faces[i]),
+        );
     }
 }
 

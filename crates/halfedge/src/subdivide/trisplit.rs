@@ -312,7 +312,10 @@ pub(crate) fn tri_points<V: Vector>(
 
 fn midpoint<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
     let (a, b) = (t.source(2 * e), t.target(2 * e));
-    src[a as usize].clone().add(src[b as usize].clone()).scale(0.5)
+    src[a as usize]
+        .clone()
+        .add(src[b as usize].clone())
+        .scale(0.5)
 }
 
 /// Loop's vertex rule: `(1 - n β) v + β Σ neighbours` with Loop's original
@@ -364,7 +367,10 @@ pub(crate) fn boundary_rule<V: Vector>(v: V, left: V, right: V) -> V {
 #[inline]
 pub(crate) fn loop_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
     let h = 2 * e;
-    let (a, b) = (src[t.source(h) as usize].clone(), src[t.target(h) as usize].clone());
+    let (a, b) = (
+        src[t.source(h) as usize].clone(),
+        src[t.target(h) as usize].clone(),
+    );
     if t.is_boundary_edge(e) {
         return a.add(b).scale(0.5);
     }

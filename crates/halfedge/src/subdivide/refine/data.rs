@@ -279,8 +279,16 @@ mod tests {
         let (a, b) = (p.to_array(), q.to_array());
         assert_eq!(p.add(q).scale(0.375).to_array(), a.add(b).scale(0.375));
         assert_eq!(p.sub(q).div(3.0).to_array(), a.sub(b).div(3.0));
-        for x in [p, q, DVec3::new(3e200, -1e200, 0.0), DVec3::new(1e-300, 0.0, 2e-301)] {
-            assert_eq!(x.project_to_sphere().to_array(), x.to_array().project_to_sphere());
+        for x in [
+            p,
+            q,
+            DVec3::new(3e200, -1e200, 0.0),
+            DVec3::new(1e-300, 0.0, 2e-301),
+        ] {
+            assert_eq!(
+                x.project_to_sphere().to_array(),
+                x.to_array().project_to_sphere()
+            );
         }
         let f = [1e30f32, 0.0, -2e30];
         let s = f.project_to_sphere();

@@ -64,12 +64,12 @@ pub use self::data::Scalar;
 pub(crate) use self::data::{Sparse, Vector};
 pub use self::stencil::StencilTable;
 
+use self::tables::LoopTables;
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
 use super::trisplit::{Template, TriRule};
-use self::tables::LoopTables;
 use super::{Algorithm, LevelDone, Plan, Rule, SubdivideOptions};
 use crate::{Error, HalfEdgeMesh, Result};
 
@@ -159,7 +159,11 @@ fn direct(algorithm: Algorithm) -> bool {
 /// half-edge mesh), and the index sizes of the last level otherwise: what
 /// [`Refinement::new`] checks before it allocates. Entry `s - 1` is level `s`; the last one
 /// is `None` when the last level is written from the one before.
-fn plan_sizes(plan: &Plan, counts: &MeshCounts, levels: u32) -> Result<Vec<(Option<Sizes>, [usize; 3])>> {
+fn plan_sizes(
+    plan: &Plan,
+    counts: &MeshCounts,
+    levels: u32,
+) -> Result<Vec<(Option<Sizes>, [usize; 3])>> {
     let mut out = Vec::with_capacity(levels as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
@@ -278,7 +282,11 @@ impl Refinement {
     }
 
     /// Builds levels `1..=levels` (the topology `new` keeps).
-    fn build(&mut self, planned: &[(Option<Sizes>, [usize; 3])], opts: &SubdivideOptions<'_>) -> Result<()> {
+    fn build(
+        &mut self,
+        planned: &[(Option<Sizes>, [usize; 3])],
+        opts: &SubdivideOptions<'_>,
+    ) -> Result<()> {
         let levels = self.levels;
         let parallel = self.threads != 1;
         let report = |level: u32, size: &LevelSize| {
@@ -545,7 +553,12 @@ impl Refinement {
     ///
     /// [`Error::BufferSize`]; [`Error::UnsupportedStride`] for a stride of 0, or above 16
     /// under the icosphere rule (its projection couples the components).
-    pub fn evaluate_strided<T: Scalar>(&self, base: &[T], stride: usize, out: &mut [T]) -> Result<()> {
+    pub fn evaluate_strided<T: Scalar>(
+        &self,
+        base: &[T],
+        stride: usize,
+        out: &mut [T],
+    ) -> Result<()> {
         if stride == 0 {
             return Err(Error::UnsupportedStride {
                 rule: self.name.clone(),
@@ -937,12 +950,22 @@ mod tests {
         let sizes = plan_sizes(&plan, &counts, 9).expect("level 9 fits u32 indices");
         let (last, [vertices, edges, faces]) = sizes[8];
         assert!(last.is_none());
-        assert_eq!((vertices, edges, faces), (943_718_400, 2_831_155_200, 1_887_436_800));
+        assert_eq!(
+            (vertices, edges, faces),
+            (943_718_400, 2_831_155_200, 1_887_436_800)
+        );
         assert!(sizes[7].0.is_some(), "level 8 is built as a half-edge mesh");
         // Level 10 builds level 9 as a half-edge mesh: refused, naming its edges.
         let err = plan_sizes(&plan, &counts, 10).unwrap_err();
         assert!(
-            matches!(err, Error::TooLarge { level: 9, what: "edges", .. }),
+            matches!(
+                err,
+                Error::TooLarge {
+                    level: 9,
+                    what: "edges",
+                    ..
+                }
+            ),
             "{err}"
         );
         // A rule whose last level is a half-edge mesh is bounded by its handles.

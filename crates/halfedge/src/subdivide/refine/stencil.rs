@@ -46,7 +46,8 @@ impl StencilTable {
                 count: total as u128,
             });
         }
-        let mut offsets = crate::subdivide::alloc::with_capacity(rows.len() + 1, "stencil offsets")?;
+        let mut offsets =
+            crate::subdivide::alloc::with_capacity(rows.len() + 1, "stencil offsets")?;
         let mut indices = crate::subdivide::alloc::with_capacity(total, "stencil indices")?;
         let mut weights = crate::subdivide::alloc::with_capacity(total, "stencil weights")?;
         offsets.push(0u32);
@@ -118,7 +119,11 @@ impl StencilTable {
     ///
     /// [`Error::BufferSize`] when `base` does not have [`StencilTable::base_vertices`]
     /// entries or `out` [`StencilTable::len`].
-    pub fn apply<T: Scalar, const N: usize>(&self, base: &[[T; N]], out: &mut [[T; N]]) -> Result<()> {
+    pub fn apply<T: Scalar, const N: usize>(
+        &self,
+        base: &[[T; N]],
+        out: &mut [[T; N]],
+    ) -> Result<()> {
         use rayon::prelude::*;
         check_len("base", self.base_vertices, base.len())?;
         check_len("out", self.len(), out.len())?;

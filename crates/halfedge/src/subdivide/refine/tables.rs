@@ -94,7 +94,9 @@ impl LoopTables {
 
     /// Bytes held.
     pub(super) fn bytes(&self) -> usize {
-        16 * self.edges.len() + 4 * (self.ring_offsets.len() + self.ring.len()) + self.boundary.len()
+        16 * self.edges.len()
+            + 4 * (self.ring_offsets.len() + self.ring.len())
+            + self.boundary.len()
     }
 
     /// The points of the next Loop level from `src`, appended to `out`: the moved old
@@ -103,7 +105,10 @@ impl LoopTables {
         let nv = self.boundary.len();
         let pos = |v: u32| src[v as usize].clone();
         out.append(nv, parallel, |v| {
-            let (a, b) = (self.ring_offsets[v] as usize, self.ring_offsets[v + 1] as usize);
+            let (a, b) = (
+                self.ring_offsets[v] as usize,
+                self.ring_offsets[v + 1] as usize,
+            );
             let ring = &self.ring[a..b];
             let p = src[v].clone();
             if self.boundary[v] {
