@@ -64,7 +64,7 @@ pub use self::data::Scalar;
 pub(crate) use self::data::{Sparse, Vector};
 pub use self::stencil::StencilTable;
 
-use self::tables::LoopTables;
+use self::tables::{CcTables, LoopTables};
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
 use super::sqrt3::StepB;
@@ -91,8 +91,24 @@ struct Level {
     topology: Option<Connectivity>,
     /// The boundary tables of a √3 step B built from this level.
     step_b: Option<StepB>,
-    /// The flattened tables of a Loop level.
-    fast: Option<LoopTables>,
+    /// The flattened tables of a Loop or Catmull-Clark level.
+    fast: Option<Fast>,
+}
+
+/// A level flattened for its rule.
+#[derive(Debug)]
+enum Fast {
+    Loop(LoopTables),
+    CatmullClark(CcTables),
+}
+
+impl Fast {
+    fn bytes(&self) -> usize {
+        match self {
+            Fast::Loop(t) => t.bytes(),
+            Fast::CatmullClark(t) => t.bytes(),
+        }
+    }
 }
 
 /// The faces of the last level, when they are kept as a list (rules whose last level is
@@ -108,19 +124,24 @@ struct Polygons {
 ///
 /// # Memory
 ///
-/// A refinement keeps the connectivity of levels `0..levels` (each level is evaluated from
-/// the one before): per level 4 bytes per vertex, 32 per edge (two half-edges of target,
-/// face, next and prev) and 4 per face, [`Refinement::heap_bytes`] in all. The last level,
-/// the largest, is not built as a half-edge mesh for the 4:1 rules and Catmull-Clark: its
-/// index buffers are written from level `levels - 1`. For the other rules (1:N² with
-/// `N >= 3`, √3, Doo-Sabin, mid-edge) the last level is built and its face list kept (4
-/// bytes per face corner and per face). A √3 refinement on a mesh with boundary keeps 8 bytes
-/// per face of its trisecting levels. [`Refinement::evaluate`] allocates the intermediate
-/// levels' data (`n_vertices(s)` entries for `s < levels`, two levels at a time) on every
-/// call; an [`Evaluator`] keeps them between calls.
+/// A refinement keeps, for each level `0..levels` (each level is evaluated from the one
+/// before), either its connectivity (4 bytes per vertex, 32 per edge: two half-edges of
+/// target, face, next and prev, and 4 per face) or, for Loop and Catmull-Clark, its flattened
+/// tables: Loop 24 bytes per edge (an edge stencil of 16 and the vertex rings, 8 per edge)
+/// and 5 per vertex; Catmull-Clark 32 per edge (edge stencils and rings of (neighbour, face)
+/// pairs), 4 per face corner and per face, 5 per vertex. Level `levels - 1` keeps its
+/// connectivity too: the last level, the largest, is not built as a half-edge mesh for the
+/// 4:1 rules and Catmull-Clark, its index buffers are written from level `levels - 1`. For
+/// the other rules (1:N² with `N >= 3`, √3, Doo-Sabin, mid-edge) the last level is built
+/// and its face list kept (4 bytes per face corner and per face). A √3 refinement on a mesh
+/// with boundary keeps 8 bytes per face of its trisecting levels. [`Refinement::heap_bytes`]
+/// is the total. [`Refinement::evaluate`] allocates the intermediate levels' data
+/// (`n_vertices(s)` entries for `s < levels`, two buffers in all) on every call; an
+/// [`Evaluator`] keeps them between calls.
 ///
-/// For Loop at 3 levels on the 81,920-face icosphere the refinement holds about 96 MB
-/// (levels 0-2), less than the 5.2 M triangles of the output as a half-edge mesh (250 MB).
+/// For Loop at 3 levels on the 81,920-face icosphere the refinement holds 137 MB (a
+/// half-edge mesh of the 5.2 M output triangles alone would take 250 MB), for Catmull-Clark
+/// 185 MB.
 pub struct Refinement {
     rule: Rule,
     name: String,
@@ -370,13 +391,23 @@ impl Refinement {
                 self.polygons = Some(polygons);
             }
         }
-        if self.algorithm == Algorithm::Tri(TriRule::Loop, 2) && levels > 0 {
-            // Loop levels flattened; only the last kept level (for the index buffers) keeps
-            // its connectivity.
+        let flatten = matches!(
+            self.algorithm,
+            Algorithm::Tri(TriRule::Loop, 2) | Algorithm::CatmullClark
+        );
+        if flatten && levels > 0 {
+            // Loop and Catmull-Clark levels flattened; only the last kept level (for the
+            // index buffers) keeps its connectivity.
             let last = self.topology.len() - 1;
+            let algorithm = self.algorithm;
             for (i, level) in self.topology.iter_mut().enumerate() {
                 if let Some(c) = &level.topology {
-                    level.fast = Some(LoopTables::new(&c.topo(), parallel)?);
+                    level.fast = Some(match algorithm {
+                        Algorithm::CatmullClark => {
+                            Fast::CatmullClark(CcTables::new(&c.topo(), parallel)?)
+                        }
+                        _ => Fast::Loop(LoopTables::new(&c.topo(), parallel)?),
+                    });
                 }
                 if i < last {
                     level.topology = None;
@@ -481,7 +512,7 @@ impl Refinement {
             .map(|l| {
                 l.topology.as_ref().map_or(0, Connectivity::bytes)
                     + l.step_b.as_ref().map_or(0, StepB::bytes)
-                    + l.fast.as_ref().map_or(0, LoopTables::bytes)
+                    + l.fast.as_ref().map_or(0, Fast::bytes)
             })
             .sum();
         let polygons = self
@@ -624,9 +655,10 @@ impl Refinement {
         let Some(before) = self.topology.get(level as usize - 1) else {
             return;
         };
-        if let Some(fast) = &before.fast {
-            fast.points(src, &mut Slots::new(dst), parallel);
-            return;
+        match &before.fast {
+            Some(Fast::Loop(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
+            Some(Fast::CatmullClark(fast)) => return fast.fill(src, dst, parallel),
+            None => {}
         }
         let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
             return;
@@ -659,9 +691,17 @@ impl Refinement {
             return Ok(Vec::new());
         };
         let mut out = super::alloc::with_capacity(n, "stencils")?;
-        if let Some(fast) = &before.fast {
-            fast.points(src, &mut out, parallel);
-            return Ok(out);
+        match &before.fast {
+            Some(Fast::Loop(fast)) => {
+                fast.points(src, &mut out, parallel);
+                return Ok(out);
+            }
+            Some(Fast::CatmullClark(fast)) => {
+                out.resize(n, V::zero());
+                fast.fill(src, &mut out, parallel);
+                return Ok(out);
+            }
+            None => {}
         }
         let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
             return Ok(out);
