@@ -412,6 +412,8 @@ fn level_zero_is_the_base() {
     assert_eq!(quads, cube.to_polygon_mesh().face_indices());
     let table = r.stencils().expect("stencils");
     assert_eq!(table.n_entries(), 8);
+    let predicted = Refinement::predicted_bytes(Rule::CatmullClark, &cube.counts(), 0);
+    assert_eq!(predicted.expect("predicted"), r.heap_bytes().into());
 }
 
 #[test]
@@ -481,5 +483,27 @@ fn large_meshes_take_the_parallel_paths_with_the_same_bits() {
             .map(|p| p.to_array())
             .collect();
         assert!(got == expected, "{rule}: one-shot in 2 threads");
+    }
+}
+
+#[test]
+fn predicted_bytes_bound_what_a_refinement_keeps() {
+    for (name, mesh, rule, levels) in cases() {
+        let r = Refinement::new(&mesh, rule, levels, &opts(1)).expect("refinement");
+        let predicted =
+            Refinement::predicted_bytes(rule, &mesh.counts(), levels).expect("predicted");
+        let kept = halfedge::BigInt::from(r.heap_bytes());
+        if mesh.is_closed() {
+            assert_eq!(predicted, kept, "{name} {rule} L{levels}");
+        } else {
+            assert!(
+                predicted >= kept,
+                "{name} {rule} L{levels}: {predicted} < {kept}"
+            );
+            assert!(
+                predicted.clone() * 10u32 <= kept.clone() * 11u32,
+                "{name} {rule} L{levels}: {predicted} vs {kept}"
+            );
+        }
     }
 }

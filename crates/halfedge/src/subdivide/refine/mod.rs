@@ -522,6 +522,82 @@ impl Refinement {
         levels + polygons
     }
 
+    /// The bytes [`Refinement::new`] would keep for `rule` at `levels` on a mesh with
+    /// `counts`, before building anything: exact on closed meshes, an upper bound (within a
+    /// few percent) with a boundary, where a boundary vertex's ring holds 2 entries instead of
+    /// its valence and boundary half-edges have no face corner.
+    ///
+    /// ```
+    /// use halfedge::refine::Refinement;
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Rule};
+    ///
+    /// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
+    /// let predicted = Refinement::predicted_bytes(Rule::Loop, &ico.counts(), 4)?;
+    /// let r = Refinement::new(&ico, Rule::Loop, 4, &SubdivideOptions::default())?;
+    /// assert_eq!(predicted, r.heap_bytes().into());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// As the scheme lookup of [`Refinement::new`] ([`Error::Scheme`]).
+    pub fn predicted_bytes(
+        rule: Rule,
+        counts: &MeshCounts,
+        levels: u32,
+    ) -> Result<num_bigint::BigInt> {
+        use num_bigint::BigInt;
+        let plan = super::plan(rule, counts)?;
+        let mut level = Vec::with_capacity(levels as usize + 1);
+        for s in 0..=levels {
+            let c = plan.scheme.counts_at(counts, u64::from(s))?;
+            let corners = match plan.algorithm {
+                _ if s == 0 => BigInt::from(counts.corners),
+                Algorithm::Tri(..) | Algorithm::Sqrt3 { .. } => &c.faces * 3u32,
+                Algorithm::CatmullClark => &c.faces * 4u32,
+                _ => &c.edges * 2u32,
+            };
+            level.push((c.vertices, c.edges, c.faces, corners));
+        }
+        let connectivity =
+            |(v, e, f, _): &(BigInt, BigInt, BigInt, BigInt)| v * 4u32 + e * 32u32 + f * 4u32;
+        let kept = &level[..levels.max(1) as usize];
+        let mut bytes = BigInt::from(0u32);
+        match plan.algorithm {
+            Algorithm::Tri(TriRule::Loop, 2) if levels > 0 => {
+                for (v, e, _, _) in kept {
+                    bytes += e * 24u32 + v * 5u32 + 4u32;
+                }
+                bytes += connectivity(&level[levels as usize - 1]);
+            }
+            Algorithm::CatmullClark if levels > 0 => {
+                for (v, e, f, h) in kept {
+                    bytes += e * 32u32 + v * 5u32 + f * 4u32 + h * 4u32 + 8u32;
+                }
+                bytes += connectivity(&level[levels as usize - 1]);
+            }
+            algorithm => {
+                for l in kept {
+                    bytes += connectivity(l);
+                }
+                if levels == 0 || !direct(algorithm) {
+                    let (_, _, f, h) = &level[levels as usize];
+                    bytes += f * 4u32 + h * 4u32 + 4u32;
+                }
+                if algorithm == (Algorithm::Sqrt3 { boundary: true }) {
+                    for (s, (_, _, f, _)) in kept.iter().enumerate() {
+                        // Level s is refined by step B when s + 1 is even.
+                        if (s + 1) % 2 == 0 {
+                            bytes += f * 12u32;
+                        }
+                    }
+                }
+            }
+        }
+        Ok(bytes)
+    }
+
     /// Refines `base` (one entry per vertex of level 0) straight to the last level, into
     /// `out` (one entry per vertex of the last level), in the refinement's threads. The
     /// intermediate levels are allocated for the call; an [`Evaluator`] keeps them.
