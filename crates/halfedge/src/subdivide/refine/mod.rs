@@ -382,6 +382,8 @@ impl Refinement {
                     step_b: None,
                     fast: None,
                 });
+                // Level s - 1 is not needed as connectivity any more (a lower peak).
+                self.flatten(s as usize - 1, false, parallel)?;
             }
         }
         if levels == 0 {
@@ -391,28 +393,41 @@ impl Refinement {
                 self.polygons = Some(polygons);
             }
         }
-        let flatten = matches!(
-            self.algorithm,
-            Algorithm::Tri(TriRule::Loop, 2) | Algorithm::CatmullClark
-        );
-        if flatten && levels > 0 {
-            // Loop and Catmull-Clark levels flattened; only the last kept level (for the
-            // index buffers) keeps its connectivity.
-            let last = self.topology.len() - 1;
-            let algorithm = self.algorithm;
-            for (i, level) in self.topology.iter_mut().enumerate() {
-                if let Some(c) = &level.topology {
-                    level.fast = Some(match algorithm {
-                        Algorithm::CatmullClark => {
-                            Fast::CatmullClark(CcTables::new(&c.topo(), parallel)?)
-                        }
-                        _ => Fast::Loop(LoopTables::new(&c.topo(), parallel)?),
-                    });
-                }
-                if i < last {
-                    level.topology = None;
-                }
+        // Flatten the levels still holding their connectivity (level `levels - 1` keeps it for
+        // the index buffers; the others were flattened as soon as the next level was built).
+        for i in 0..self.topology.len() {
+            self.flatten(i, true, parallel)?;
+        }
+        Ok(())
+    }
+
+    /// Flattens level `i` for the Loop and Catmull-Clark rules (a no-op for the others and
+    /// for a level already flattened), dropping its connectivity unless `keep`.
+    fn flatten(&mut self, i: usize, keep: bool, parallel: bool) -> Result<()> {
+        let algorithm = self.algorithm;
+        if self.levels == 0
+            || !matches!(
+                algorithm,
+                Algorithm::Tri(TriRule::Loop, 2) | Algorithm::CatmullClark
+            )
+        {
+            return Ok(());
+        }
+        let Some(level) = self.topology.get_mut(i) else {
+            return Ok(());
+        };
+        if level.fast.is_none() {
+            if let Some(c) = &level.topology {
+                level.fast = Some(match algorithm {
+                    Algorithm::CatmullClark => {
+                        Fast::CatmullClark(CcTables::new(&c.topo(), parallel)?)
+                    }
+                    _ => Fast::Loop(LoopTables::new(&c.topo(), parallel)?),
+                });
             }
+        }
+        if !keep {
+            level.topology = None;
         }
         Ok(())
     }
