@@ -411,6 +411,69 @@ pub enum Error {
         /// Its z coordinate.
         z: f64,
     },
+    /// A caller's buffer of the wrong length for a refinement
+    /// ([`crate::refine::Refinement`]): nothing is written.
+    #[error("{what} buffer has {given} entries, expected {expected}")]
+    BufferSize {
+        /// Which buffer (`base`, `out`, `src`, `dst`, `triangle indices`, ...).
+        what: &'static str,
+        /// The length it must have.
+        expected: usize,
+        /// The length given.
+        given: usize,
+    },
+    /// A refinement level outside `1..=levels` (or `0..=levels` for the sizes).
+    #[error("level {level} is out of range: the refinement has levels {first}..={levels}")]
+    LevelOutOfRange {
+        /// The level asked for.
+        level: u32,
+        /// The first valid level.
+        first: u32,
+        /// The last level of the refinement.
+        levels: u32,
+    },
+    /// An index buffer of fixed face degree asked of a level with other faces (triangles of a
+    /// quad mesh, quads of a mixed one).
+    #[error(
+        "{what} need faces of {wanted} vertices, but face {face} of the last level has {degree}"
+    )]
+    FaceDegreeMismatch {
+        /// What was asked (`triangles`, `quads`).
+        what: &'static str,
+        /// The face degree that buffer holds.
+        wanted: usize,
+        /// The first face of another degree.
+        face: usize,
+        /// Its degree.
+        degree: usize,
+    },
+    /// An index buffer whose entries would not fit `u32`.
+    #[error("{count} {what} do not fit 32-bit indices")]
+    IndexOverflow {
+        /// What the indices count (`face corners`, `vertices`).
+        what: &'static str,
+        /// How many there are.
+        count: u128,
+    },
+    /// Stencils asked of a rule that is not a fixed linear combination of the base vertices.
+    #[error("no stencils for {rule}: rule is not linear: {reason}")]
+    NotLinear {
+        /// The rule.
+        rule: String,
+        /// What makes it non-linear.
+        reason: &'static str,
+    },
+    /// A stride that a rule coupling the components cannot evaluate (the sphere projection
+    /// needs the whole vector in one `[T; N]`, N up to 16).
+    #[error("{rule} cannot evaluate data of stride {stride}: {reason}")]
+    UnsupportedStride {
+        /// The rule.
+        rule: String,
+        /// The stride given.
+        stride: usize,
+        /// Why.
+        reason: &'static str,
+    },
     /// The thread pool for parallel subdivision could not be created.
     #[error("cannot start {threads} threads for subdivision: {reason}")]
     ThreadPool {

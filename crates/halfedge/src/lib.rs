@@ -79,6 +79,7 @@ pub use crate::mesh::{
     EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,
 };
 pub use crate::polygon::{PolygonFaces, PolygonMesh};
+pub use crate::subdivide::refine::{self, Evaluator, Refinement, Scalar, StencilTable};
 pub use crate::subdivide::Rule;
 
 /// The vector types of the public API (`DVec3` positions).

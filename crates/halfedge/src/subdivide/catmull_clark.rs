@@ -15,10 +15,9 @@
 //! vertices `(Q + 2R + (n - 3) S) / n` (Q the average of the adjacent face points, R of the edge
 //! midpoints); boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
 
-use glam::DVec3;
-
 use super::build::{Builder, StepContext};
-use super::par;
+use super::par::{self, Sink, Slots};
+use super::refine::Vector;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 use crate::{HalfEdgeMesh, Result};
@@ -54,64 +53,110 @@ pub(crate) fn catmull_clark<const GROW: bool>(
     }
 
     let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(cc_positions(&t, capacity, ctx.parallel)?, ctx)
+    b.finish(
+        cc_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
+        ctx,
+    )
 }
 
-/// The positions of a Catmull-Clark step: moved old vertices, edge points, face points.
-/// `capacity`: allocate exactly this many up front (else grow).
+/// The positions of a Catmull-Clark step from the values `src` of the level before: moved
+/// old vertices, edge points, face points. `capacity`: allocate exactly this many up front
+/// (else grow).
 ///
 /// # Errors
 ///
 /// [`crate::Error::AllocationFailed`] when the system refuses the memory.
-pub(crate) fn cc_positions(
+pub(crate) fn cc_positions<V: Vector>(
     t: &Topo<'_>,
+    src: &[V],
     capacity: Option<usize>,
     parallel: bool,
-) -> crate::Result<Vec<DVec3>> {
+) -> crate::Result<Vec<V>> {
     let t = *t;
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
+    let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
     let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
     // Face points first: the vertex and edge rules use them.
-    let face_points = par::collect(
-        Some(nf as usize),
-        nf as usize,
-        parallel,
-        "face points",
-        |f| {
-            let mut sum = DVec3::ZERO;
-            let mut n = 0u32;
-            t.for_face(f as u32, |h| {
-                sum += t.pos(t.source(h));
-                n += 1;
-            });
-            sum / f64::from(n)
-        },
-    )?;
-    let face_point = |f: u32| face_points[f as usize];
-    par::extend(&mut positions, nv as usize, parallel, |v| {
-        let v = v as u32;
-        let p = t.pos(v);
-        if t.is_boundary_vertex(v) {
-            return boundary_vertex(&t, v);
-        }
-        let (mut q, mut r, mut n) = (DVec3::ZERO, DVec3::ZERO, 0u32);
-        t.for_outgoing(v, |h| {
-            q += face_point(t.face(h));
-            r += (p + t.pos(t.target(h))) * 0.5;
-            n += 1;
-        });
-        let nf = n as f64;
-        (q / nf + r * (2.0 / nf) + p * (nf - 3.0)) / nf
+    let face_points = par::collect(Some(nf), nf, parallel, "face points", |f| {
+        cc_face_point(&t, src, f as u32)
+    })?;
+    par::extend(&mut positions, nv, parallel, |v| {
+        cc_vertex(&t, src, &face_points, v as u32)
     });
-    par::extend(&mut positions, ne as usize, parallel, |e| {
-        let h = 2 * e as u32;
-        let mid = t.pos(t.source(h)) + t.pos(t.target(h));
-        if t.is_boundary(h) || t.is_boundary(h ^ 1) {
-            mid * 0.5
-        } else {
-            (mid + face_point(t.face(h)) + face_point(t.face(h ^ 1))) * 0.25
-        }
+    par::extend(&mut positions, ne, parallel, |e| {
+        cc_edge(&t, src, &face_points, e as u32)
     });
     positions.extend_from_slice(&face_points);
     Ok(positions)
+}
+
+/// [`cc_positions`] into `dst` (exactly `V + E + F` values): the face points are written
+/// first, at the end of `dst`, and read from there.
+pub(crate) fn cc_fill<V: Vector>(t: &Topo<'_>, src: &[V], dst: &mut [V], parallel: bool) {
+    let t = *t;
+    let (nv, ne) = (t.nv(), t.ne());
+    let (head, face_points) = dst.split_at_mut((nv + ne).min(dst.len()));
+    let mut out = Slots::new(face_points);
+    out.append(t.nf(), parallel, |f| cc_face_point(&t, src, f as u32));
+    let face_points: &[V] = face_points;
+    let mut out = Slots::new(head);
+    out.append(nv, parallel, |v| cc_vertex(&t, src, face_points, v as u32));
+    out.append(ne, parallel, |e| cc_edge(&t, src, face_points, e as u32));
+}
+
+/// The centroid of face `f`.
+#[inline]
+pub(crate) fn cc_face_point<V: Vector>(t: &Topo<'_>, src: &[V], f: u32) -> V {
+    let mut sum = V::zero();
+    let mut n = 0u32;
+    t.for_face(f, |h| {
+        sum = sum.clone().add(src[t.source(h) as usize].clone());
+        n += 1;
+    });
+    sum.div(f64::from(n))
+}
+
+/// The moved old vertex `v`: `(Q + 2R + (n - 3) S) / n` inside, the boundary rule on the
+/// boundary.
+#[inline]
+pub(crate) fn cc_vertex<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], v: u32) -> V {
+    if t.is_boundary_vertex(v) {
+        return boundary_vertex(t, src, v);
+    }
+    let p = src[v as usize].clone();
+    let (mut q, mut r, mut n) = (V::zero(), V::zero(), 0u32);
+    t.for_outgoing(v, |h| {
+        q = q.clone().add(face_points[t.face(h) as usize].clone());
+        r = r
+            .clone()
+            .add(p.clone().add(src[t.target(h) as usize].clone()).scale(0.5));
+        n += 1;
+    });
+    cc_interior(p, q, r, n)
+}
+
+/// `(q / n + r (2 / n) + p (n - 3)) / n`: `q` the sum of the `n` face points, `r` of the edge
+/// midpoints around `p`.
+#[inline(always)]
+pub(crate) fn cc_interior<V: Vector>(p: V, q: V, r: V, n: u32) -> V {
+    let nf = f64::from(n);
+    q.div(nf)
+        .add(r.scale(2.0 / nf))
+        .add(p.scale(nf - 3.0))
+        .div(nf)
+}
+
+/// The point of edge `e`: `(a + b + f1 + f2) / 4` inside, the midpoint on the boundary.
+#[inline]
+pub(crate) fn cc_edge<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], e: u32) -> V {
+    let h = 2 * e;
+    let mid = src[t.source(h) as usize]
+        .clone()
+        .add(src[t.target(h) as usize].clone());
+    if t.is_boundary(h) || t.is_boundary(h ^ 1) {
+        mid.scale(0.5)
+    } else {
+        mid.add(face_points[t.face(h) as usize].clone())
+            .add(face_points[t.face(h ^ 1) as usize].clone())
+            .scale(0.25)
+    }
 }

@@ -23,10 +23,9 @@
 
 use std::f64::consts::PI;
 
-use glam::DVec3;
-
 use super::build::{Builder, StepContext};
-use super::par;
+use super::par::Sink;
+use super::refine::Vector;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
 
@@ -50,7 +49,10 @@ pub(crate) fn doo_sabin<const GROW: bool>(
     }
     vertex_faces(&t, &mut b, |h, next| (next, 2 * (2 * ne + h) + 1));
     let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(doo_sabin_positions(&t, capacity, ctx.parallel)?, ctx)
+    b.finish(
+        doo_sabin_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
+        ctx,
+    )
 }
 
 /// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).
@@ -63,7 +65,10 @@ pub(crate) fn mid_edge<const GROW: bool>(
     face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
     vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
     let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(mid_edge_positions(&t, capacity, ctx.parallel)?, ctx)
+    b.finish(
+        mid_edge_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
+        ctx,
+    )
 }
 
 /// Emits the face of each old face, in order: its corner at old half-edge `h` is the
@@ -103,34 +108,61 @@ fn vertex_faces<const GROW: bool>(
 
 /// The positions of a Doo-Sabin step: the corner point of each old half-edge
 /// ([`doo_sabin_point`]). `capacity`: allocate exactly this many up front (else grow).
-pub(crate) fn doo_sabin_positions(
+pub(crate) fn doo_sabin_positions<V: Vector>(
     t: &Topo<'_>,
+    src: &[V],
     capacity: Option<usize>,
     parallel: bool,
-) -> Result<Vec<DVec3>> {
-    par::collect(capacity, 2 * t.ne(), parallel, "positions", |h| {
-        doo_sabin_point(t, h as u32)
-    })
+) -> Result<Vec<V>> {
+    let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+    doo_sabin_points(t, src, &mut out, parallel);
+    Ok(out)
+}
+
+/// The Doo-Sabin points of a step, appended to `out`.
+pub(crate) fn doo_sabin_points<V: Vector>(
+    t: &Topo<'_>,
+    src: &[V],
+    out: &mut impl Sink<V>,
+    parallel: bool,
+) {
+    out.append(2 * t.ne(), parallel, |h| doo_sabin_point(t, src, h as u32));
 }
 
 /// The positions of a mid-edge step: the midpoint of each old edge. `capacity`: allocate
 /// exactly this many up front (else grow).
-pub(crate) fn mid_edge_positions(
+pub(crate) fn mid_edge_positions<V: Vector>(
     t: &Topo<'_>,
+    src: &[V],
     capacity: Option<usize>,
     parallel: bool,
-) -> Result<Vec<DVec3>> {
-    par::collect(capacity, t.ne(), parallel, "positions", |e| {
+) -> Result<Vec<V>> {
+    let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+    mid_edge_points(t, src, &mut out, parallel);
+    Ok(out)
+}
+
+/// The mid-edge points of a step, appended to `out`.
+pub(crate) fn mid_edge_points<V: Vector>(
+    t: &Topo<'_>,
+    src: &[V],
+    out: &mut impl Sink<V>,
+    parallel: bool,
+) {
+    out.append(t.ne(), parallel, |e| {
         let h = 2 * e as u32;
-        (t.pos(t.source(h)) + t.pos(t.target(h))) * 0.5
-    })
+        src[t.source(h) as usize]
+            .clone()
+            .add(src[t.target(h) as usize].clone())
+            .scale(0.5)
+    });
 }
 
 /// The Doo-Sabin point of the corner at the source of `h` in its face.
-fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
+fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
     let n = t.face_degree(t.face(h));
     let nf = n as f64;
-    let mut sum = DVec3::ZERO;
+    let mut sum = V::zero();
     let mut g = h;
     for j in 0..n {
         let w = if j == 0 {
@@ -138,7 +170,7 @@ fn doo_sabin_point(t: &Topo<'_>, h: u32) -> DVec3 {
         } else {
             (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
         };
-        sum += t.pos(t.source(g)) * w;
+        sum = sum.add(src[t.source(g) as usize].clone().scale(w));
         g = t.next(g);
     }
     sum

@@ -26,8 +26,8 @@ use super::build::{Sizes, StepContext};
 use super::catmull_clark::cc_positions;
 use super::dual::{doo_sabin_positions, mid_edge_positions};
 use super::par;
-use super::sqrt3::{centroid, interior_vertex};
-use super::topo::Topo;
+use super::sqrt3::sqrt3_points;
+use super::topo::{Connectivity, Topo};
 use super::trisplit::{tri_positions, Template, TriRule};
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
@@ -127,6 +127,21 @@ pub(crate) fn four_to_one(
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    let topology = four_to_one_topology(&t, ctx)?;
+    let positions = tri_positions(
+        &t,
+        &mesh.positions,
+        template,
+        rule,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    finish(ctx, topology, positions)
+}
+
+/// The connectivity of one 4:1 step on the triangle mesh `t`.
+pub(crate) fn four_to_one_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    let t = *t;
     check(ctx, four_to_one_sizes(&t))?;
     let (nv, ne) = (t.nv() as u32, t.ne() as u32);
     let inner = 4 * ne; // first inner half-edge
@@ -215,31 +230,36 @@ pub(crate) fn four_to_one(
             inner + 2 * (3 * f + k - 1) + 1
         }
     };
-    assemble(ctx, halfedge, vertex, face, || {
-        tri_positions(
-            &t,
-            template,
-            rule,
-            Some(ctx.expected.vertices),
-            ctx.parallel,
-        )
-    })
+    assemble(ctx, halfedge, vertex, face)
 }
 
 /// One Catmull-Clark step.
 pub(crate) fn catmull_clark(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    check(ctx, catmull_clark_sizes(&t))?;
+    // Positions first, so that their temporary face points are freed before the corner tables
+    // and the half-edge arrays are allocated (a lower peak).
+    let positions = cc_positions(
+        &t,
+        &mesh.positions,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    let topology = catmull_clark_topology(&t, ctx)?;
+    finish(ctx, topology, positions)
+}
+
+/// The connectivity of one Catmull-Clark step on `t`.
+pub(crate) fn catmull_clark_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    let t = *t;
     let built = catmull_clark_sizes(&t);
     check(ctx, built)?;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let n_corners = built.faces;
-    // Positions first, so that their temporary face points are freed before the corner tables
-    // and the half-edge arrays are allocated (a lower peak).
-    let positions = cc_positions(&t, Some(ctx.expected.vertices), ctx.parallel)?;
     // Corners numbered face by face: corner_of[h] for face half-edges, and the inverse. On a
     // quad mesh (every level after the first) corner k is the (k % 4)-th half-edge of face
     // k / 4, so the inverse table is skipped (one u32 per corner less at the peak).
-    let quads = mesh.is_quad_mesh();
+    let quads = t.is_quad_mesh();
     let mut corner_of = super::alloc::filled(INVALID, 2 * ne as usize, "corner of")?;
     let mut corner_halfedge =
         super::alloc::with_capacity(if quads { 0 } else { n_corners }, "corner halfedge")?;
@@ -323,7 +343,7 @@ pub(crate) fn catmull_clark(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Resul
         }
     };
     let face = |k| source_piece(corner_h(k));
-    assemble(ctx, halfedge, vertex, face, || Ok(positions))
+    assemble(ctx, halfedge, vertex, face)
 }
 
 /// One √3 step on a closed triangle mesh. Half-edge `g` of the old mesh keeps its id (the
@@ -332,6 +352,15 @@ pub(crate) fn catmull_clark(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Resul
 /// half-edge `g` is face `corner(g)`.
 pub(crate) fn sqrt3_closed(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    let topology = sqrt3_closed_topology(&t, ctx)?;
+    let mut positions = super::alloc::with_capacity(ctx.expected.vertices, "positions")?;
+    sqrt3_points(&t, &mesh.positions, None, &mut positions, ctx.parallel);
+    finish(ctx, topology, positions)
+}
+
+/// The connectivity of one √3 step on the closed triangle mesh `t`.
+pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
         vertices: (nv + nf) as usize,
@@ -400,20 +429,7 @@ pub(crate) fn sqrt3_closed(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result
             _ => t.prev(h0),
         }
     };
-    assemble(ctx, halfedge, vertex, face, || {
-        let parallel = ctx.parallel;
-        let mut positions = par::collect(
-            Some(ctx.expected.vertices),
-            nv as usize,
-            parallel,
-            "positions",
-            |v| interior_vertex(&t, v as u32),
-        )?;
-        par::extend(&mut positions, nf as usize, parallel, |f| {
-            centroid(&t, f as u32)
-        });
-        Ok(positions)
-    })
+    assemble(ctx, halfedge, vertex, face)
 }
 
 /// One Doo-Sabin step on a closed mesh (vertex `h` is the corner at the source of old
@@ -421,6 +437,19 @@ pub(crate) fn sqrt3_closed(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result
 /// to corner `next(twin(h))`).
 pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    let topology = doo_sabin_topology(&t, ctx)?;
+    let positions = doo_sabin_positions(
+        &t,
+        &mesh.positions,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    finish(ctx, topology, positions)
+}
+
+/// The connectivity of one Doo-Sabin step on the closed mesh `t`.
+pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
         vertices: 2 * ne as usize,
@@ -465,13 +494,7 @@ pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<Ha
             b0 + 2 * t.vertex_halfedge(f - nf - ne) + 1
         }
     };
-    assemble(
-        ctx,
-        halfedge,
-        |h| 2 * h,
-        face,
-        || doo_sabin_positions(&t, Some(ctx.expected.vertices), ctx.parallel),
-    )
+    assemble(ctx, halfedge, |h| 2 * h, face)
 }
 
 /// One mid-edge step on a closed mesh (vertex `e` is the midpoint of old edge `e`; edge `h`
@@ -479,6 +502,19 @@ pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<Ha
 /// face of the old vertex `target(h)`).
 pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    let topology = mid_edge_topology(&t, ctx)?;
+    let positions = mid_edge_positions(
+        &t,
+        &mesh.positions,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    finish(ctx, topology, positions)
+}
+
+/// The connectivity of one mid-edge step on the closed mesh `t`.
+pub(crate) fn mid_edge_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
         vertices: ne as usize,
@@ -506,28 +542,20 @@ pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<Hal
             2 * (t.vertex_halfedge(f - nf) ^ 1) + 1
         }
     };
-    assemble(
-        ctx,
-        halfedge,
-        |e| 4 * e,
-        face,
-        || mid_edge_positions(&t, Some(ctx.expected.vertices), ctx.parallel),
-    )
+    assemble(ctx, halfedge, |e| 4 * e, face)
 }
 
-/// The output mesh of a step whose counts [`check`] accepted, every array written front to
+/// The connectivity of a step whose counts [`check`] accepted, every array written front to
 /// back from its index formula (in parallel chunks when the step is parallel):
 /// `halfedge(q)` is `[vertex, face, next, prev]` of output half-edge `q`, `vertex(v)` the
-/// half-edge of output vertex `v`, `face(f)` the half-edge of output face `f`. `positions`
-/// runs last (after the topology arrays are written); every length and capacity is checked
-/// against the prediction.
+/// half-edge of output vertex `v`, `face(f)` the half-edge of output face `f`; every length
+/// and capacity is checked against the prediction.
 fn assemble(
     ctx: &StepContext<'_>,
     halfedge: impl Fn(u32) -> [u32; 4] + Sync + Send,
     vertex: impl Fn(u32) -> u32 + Sync + Send,
     face: impl Fn(u32) -> u32 + Sync + Send,
-    positions: impl FnOnce() -> Result<Vec<DVec3>>,
-) -> Result<HalfEdgeMesh> {
+) -> Result<Connectivity> {
     let (e, parallel) = (ctx.expected, ctx.parallel);
     let halfedges = par::halfedge_arrays(e.halfedges, parallel, halfedge)?;
     let vertex_halfedge = par::collect(
@@ -540,14 +568,7 @@ fn assemble(
     let face_halfedge = par::collect(Some(e.faces), e.faces, parallel, "face halfedge", |f| {
         face(f as u32)
     })?;
-    let positions = positions()?;
     for (what, predicted, len, capacity) in [
-        (
-            "vertex positions",
-            e.vertices,
-            positions.len(),
-            positions.capacity(),
-        ),
         (
             "vertices",
             e.vertices,
@@ -569,10 +590,25 @@ fn assemble(
     ] {
         ctx.expect_exact(what, predicted, len, capacity)?;
     }
-    Ok(HalfEdgeMesh::from_raw_parts(
-        positions,
+    Ok(Connectivity::from_parts(
         vertex_halfedge,
         halfedges,
         face_halfedge,
     ))
+}
+
+/// The mesh of a step: its connectivity and its positions (checked against the prediction).
+fn finish(
+    ctx: &StepContext<'_>,
+    topology: Connectivity,
+    positions: Vec<DVec3>,
+) -> Result<HalfEdgeMesh> {
+    let e = ctx.expected;
+    ctx.expect_exact(
+        "vertex positions",
+        e.vertices,
+        positions.len(),
+        positions.capacity(),
+    )?;
+    Ok(topology.with_positions(positions))
 }

@@ -81,6 +81,7 @@ mod faces;
 mod finite;
 mod gather;
 mod par;
+pub mod refine;
 mod sqrt3;
 mod to_faces;
 mod topo;

@@ -106,3 +106,54 @@ pub(crate) fn halfedge_arrays(
     }
     Ok([vertex, face, next, prev])
 }
+
+/// Where a geometry pass writes its values, in output order: a growing `Vec` (the one-shot
+/// subdivision) or a caller's slice ([`Slots`], a refinement's evaluation).
+pub(crate) trait Sink<T: Send> {
+    /// Appends `f(0), ..., f(n - 1)`, in parallel when `parallel` and `n` is large.
+    fn append(&mut self, n: usize, parallel: bool, f: impl Fn(usize) -> T + Sync + Send);
+}
+
+impl<T: Send> Sink<T> for Vec<T> {
+    #[inline]
+    fn append(&mut self, n: usize, parallel: bool, f: impl Fn(usize) -> T + Sync + Send) {
+        extend(self, n, parallel, f);
+    }
+}
+
+/// A slice filled front to back (its length is checked by the caller; values past its end
+/// are not computed).
+pub(crate) struct Slots<'a, T> {
+    out: &'a mut [T],
+    at: usize,
+}
+
+impl<'a, T> Slots<'a, T> {
+    pub(crate) fn new(out: &'a mut [T]) -> Self {
+        Slots { out, at: 0 }
+    }
+}
+
+impl<T: Send> Sink<T> for Slots<'_, T> {
+    #[inline]
+    fn append(&mut self, n: usize, parallel: bool, f: impl Fn(usize) -> T + Sync + Send) {
+        let start = self.at.min(self.out.len());
+        let end = (start + n).min(self.out.len());
+        let dst = &mut self.out[start..end];
+        if parallel && dst.len() >= PARALLEL_MIN {
+            dst.par_chunks_mut(CHUNK)
+                .enumerate()
+                .for_each(|(c, chunk)| {
+                    let base = c * CHUNK;
+                    for (i, x) in chunk.iter_mut().enumerate() {
+                        *x = f(base + i);
+                    }
+                });
+        } else {
+            for (i, x) in dst.iter_mut().enumerate() {
+                *x = f(i);
+            }
+        }
+        self.at += n;
+    }
+}

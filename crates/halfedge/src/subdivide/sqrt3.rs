@@ -38,7 +38,8 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::build::{Builder, StepContext};
-use super::par;
+use super::par::Sink;
+use super::refine::Vector;
 use super::topo::Topo;
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
@@ -49,7 +50,18 @@ pub(crate) fn sqrt3<const GROW: bool>(
     step_b: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
+    sqrt3_step::<GROW>(&Topo::new(mesh), Some(&mesh.positions), step_b, ctx)
+}
+
+/// One √3 step on the triangle mesh `t`; the positions from `positions`, the values of the
+/// level before (zeros without: a refinement keeps only the topology).
+pub(crate) fn sqrt3_step<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Option<&[DVec3]>,
+    step_b: bool,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     // corner[g] = 3f + k for face half-edges.
     let mut corner = super::alloc::filled(INVALID, 2 * ne as usize, "corner")?;
@@ -60,34 +72,12 @@ pub(crate) fn sqrt3<const GROW: bool>(
             k += 1;
         });
     }
-    // Step B: per face, its boundary half-edge and its number among the boundary faces.
-    let mut boundary_of = Vec::new();
-    let mut number_of = Vec::new();
-    let mut boundary_faces = Vec::new();
-    if step_b {
-        boundary_of = super::alloc::filled(INVALID, nf as usize, "boundary faces")?;
-        number_of = super::alloc::filled(INVALID, nf as usize, "boundary face numbers")?;
-        for f in 0..nf {
-            let mut found = INVALID;
-            let mut count = 0;
-            t.for_face(f, |g| {
-                if t.is_boundary(g ^ 1) {
-                    found = g;
-                    count += 1;
-                }
-            });
-            if count > 1 {
-                return Err(ctx.invalid(format!(
-                    "face {f} has {count} boundary edges in a trisecting step (step A leaves at most one)"
-                )));
-            }
-            if count == 1 {
-                boundary_of[f as usize] = found;
-                number_of[f as usize] = boundary_faces.len() as u32;
-                boundary_faces.push(found);
-            }
-        }
-    }
+    let tables = if step_b {
+        StepB::new(&t, ctx)?
+    } else {
+        StepB::default()
+    };
+    let (boundary_of, number_of) = (&tables.boundary_of, &tables.number_of);
     let spoke = |k: u32| ne + corner[k as usize];
     // The role of half-edge g in a step-B boundary face: 0 = the boundary half-edge,
     // 1 = next of it (b -> c), 2 = prev of it (c -> a); None on an ordinary face.
@@ -156,62 +146,150 @@ pub(crate) fn sqrt3<const GROW: bool>(
         }
     }
 
-    let parallel = ctx.parallel;
     let capacity = (!GROW).then_some(ctx.expected.vertices);
-    let mut positions = par::collect(capacity, nv as usize, parallel, "positions", |v| {
+    let positions = match positions {
+        Some(src) => {
+            let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+            let b = step_b.then_some(&tables);
+            sqrt3_points(&t, src, b, &mut out, ctx.parallel);
+            out
+        }
+        None => super::alloc::filled(DVec3::ZERO, ctx.expected.vertices, "positions")?,
+    };
+    b.finish(positions, ctx)
+}
+
+/// The faces of a step-B √3 step that have a boundary edge: per face its boundary half-edge
+/// (`INVALID` for the others) and its number among them, and the list of those half-edges.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StepB {
+    boundary_of: Vec<u32>,
+    number_of: Vec<u32>,
+    boundary_faces: Vec<u32>,
+}
+
+impl StepB {
+    /// The tables of `t` (after step A every face has at most one boundary edge: more is an
+    /// [`crate::Error::InvalidOutput`]).
+    pub(crate) fn new(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<StepB> {
+        let nf = t.nf() as u32;
+        let mut boundary_of = super::alloc::filled(INVALID, nf as usize, "boundary faces")?;
+        let mut number_of = super::alloc::filled(INVALID, nf as usize, "boundary face numbers")?;
+        let mut boundary_faces = Vec::new();
+        for f in 0..nf {
+            let mut found = INVALID;
+            let mut count = 0;
+            t.for_face(f, |g| {
+                if t.is_boundary(g ^ 1) {
+                    found = g;
+                    count += 1;
+                }
+            });
+            if count > 1 {
+                return Err(ctx.invalid(format!(
+                    "face {f} has {count} boundary edges in a trisecting step (step A leaves at most one)"
+                )));
+            }
+            if count == 1 {
+                boundary_of[f as usize] = found;
+                number_of[f as usize] = boundary_faces.len() as u32;
+                boundary_faces.push(found);
+            }
+        }
+        Ok(StepB {
+            boundary_of,
+            number_of,
+            boundary_faces,
+        })
+    }
+
+    /// Bytes held by the tables.
+    pub(crate) fn bytes(&self) -> usize {
+        4 * (self.boundary_of.len() + self.number_of.len() + self.boundary_faces.len())
+    }
+}
+
+/// The points of a √3 step from the values `src` of the level before, appended to `out`:
+/// old vertices, then one per face (centroid, or `p1` of a step-B boundary face), then the
+/// `p2` of the step-B boundary faces. `step_b`: the tables of a step B.
+pub(crate) fn sqrt3_points<V: Vector>(
+    t: &Topo<'_>,
+    src: &[V],
+    step_b: Option<&StepB>,
+    out: &mut impl Sink<V>,
+    parallel: bool,
+) {
+    let t = *t;
+    let (nv, nf) = (t.nv(), t.nf());
+    let pos = |v: u32| src[v as usize].clone();
+    out.append(nv, parallel, |v| {
         let v = v as u32;
-        let p = t.pos(v);
         if t.is_boundary_vertex(v) {
-            if !step_b {
+            let p = pos(v);
+            if step_b.is_none() {
                 return p;
             }
             let h = t.vertex_halfedge(v);
-            let right = t.pos(t.target(h));
-            let left = t.pos(t.source(t.prev(h)));
-            return (left * 4.0 + p * 19.0 + right * 4.0) / 27.0;
+            let right = pos(t.target(h));
+            let left = pos(t.source(t.prev(h)));
+            return left
+                .scale(4.0)
+                .add(p.scale(19.0))
+                .add(right.scale(4.0))
+                .div(27.0);
         }
-        interior_vertex(&t, v)
-    })?;
+        interior_vertex(&t, src, v)
+    });
     // Boundary points: g runs a -> b inside the mesh, its twin b -> a on the boundary.
     let p1 = |g: u32| {
-        let before = t.pos(t.target(t.next(g ^ 1)));
-        (before + t.pos(t.source(g)) * 16.0 + t.pos(t.target(g)) * 10.0) / 27.0
+        let before = pos(t.target(t.next(g ^ 1)));
+        before
+            .add(pos(t.source(g)).scale(16.0))
+            .add(pos(t.target(g)).scale(10.0))
+            .div(27.0)
     };
     let p2 = |g: u32| {
-        let after = t.pos(t.source(t.prev(g ^ 1)));
-        (t.pos(t.source(g)) * 10.0 + t.pos(t.target(g)) * 16.0 + after) / 27.0
+        let after = pos(t.source(t.prev(g ^ 1)));
+        pos(t.source(g))
+            .scale(10.0)
+            .add(pos(t.target(g)).scale(16.0))
+            .add(after)
+            .div(27.0)
     };
-    par::extend(&mut positions, nf as usize, parallel, |f| {
-        if step_b && boundary_of[f] != INVALID {
-            return p1(boundary_of[f]);
-        }
-        centroid(&t, f as u32)
+    out.append(nf, parallel, |f| match step_b {
+        Some(b) if b.boundary_of[f] != INVALID => p1(b.boundary_of[f]),
+        _ => centroid(&t, src, f as u32),
     });
-    if step_b {
-        par::extend(&mut positions, boundary_faces.len(), parallel, |i| {
-            p2(boundary_faces[i])
-        });
+    if let Some(b) = step_b {
+        out.append(
+            b.boundary_faces.len(),
+            parallel,
+            |i| p2(b.boundary_faces[i]),
+        );
     }
-    b.finish(positions, ctx)
 }
 
 /// Kobbelt's smoothing of an interior vertex: `(1 - α) v + α/n Σ neighbours`,
 /// `α = (4 - 2 cos(2π/n)) / 9`.
-pub(crate) fn interior_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
-    let p = t.pos(v);
-    let mut sum = DVec3::ZERO;
+pub(crate) fn interior_vertex<V: Vector>(t: &Topo<'_>, src: &[V], v: u32) -> V {
+    let p = src[v as usize].clone();
+    let mut sum = V::zero();
     let mut n = 0u32;
     t.for_outgoing(v, |h| {
-        sum += t.pos(t.target(h));
+        sum = sum.clone().add(src[t.target(h) as usize].clone());
         n += 1;
     });
     let nf = f64::from(n);
     let alpha = (4.0 - 2.0 * (2.0 * PI / nf).cos()) / 9.0;
-    p * (1.0 - alpha) + sum * (alpha / nf)
+    p.scale(1.0 - alpha).add(sum.scale(alpha / nf))
 }
 
 /// The centroid of triangle `f`.
-pub(crate) fn centroid(t: &Topo<'_>, f: u32) -> DVec3 {
+pub(crate) fn centroid<V: Vector>(t: &Topo<'_>, src: &[V], f: u32) -> V {
     let g = t.face_halfedge(f);
-    (t.pos(t.source(g)) + t.pos(t.target(g)) + t.pos(t.target(t.next(g)))) / 3.0
+    src[t.source(g) as usize]
+        .clone()
+        .add(src[t.target(g) as usize].clone())
+        .add(src[t.target(t.next(g)) as usize].clone())
+        .div(3.0)
 }

@@ -44,14 +44,24 @@ pub(crate) fn four_to_one(
     check(ctx, built)?;
     let positions = tri_positions(
         &t,
+        &mesh.positions,
         template,
         rule,
         Some(ctx.expected.vertices),
         ctx.parallel,
     )?;
-    let nv = t.nv() as u32;
     let mut corners = super::alloc::filled(0u32, 3 * built.faces, "corners")?;
-    for_each_face::<12>(&mut corners, ctx.parallel, |f, tris| {
+    four_to_one_corners(&t, &mut corners, ctx.parallel);
+    let faces = finish(ctx, positions, corners, 3)?;
+    Ok((faces, built.halfedges / 2))
+}
+
+/// The corners of the faces of a 4:1 step on `t`, three per face, into `corners` (exactly
+/// `12 F` entries).
+pub(crate) fn four_to_one_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) {
+    let t = *t;
+    let nv = t.nv() as u32;
+    for_each_face::<12>(corners, parallel, |f, tris| {
         let h0 = t.face_halfedge(f);
         let h1 = t.next(h0);
         let h2 = t.next(h1);
@@ -71,8 +81,6 @@ pub(crate) fn four_to_one(
             t.target(h2),
         ]);
     });
-    let faces = finish(ctx, positions, corners, 3)?;
-    Ok((faces, built.halfedges / 2))
 }
 
 /// One Catmull-Clark step whose output is a face list; also returns the number of output
@@ -84,18 +92,35 @@ pub(crate) fn catmull_clark(
     let t = Topo::new(mesh);
     let built = catmull_clark_sizes(&t);
     check(ctx, built)?;
-    let positions = cc_positions(&t, Some(ctx.expected.vertices), ctx.parallel)?;
+    let positions = cc_positions(
+        &t,
+        &mesh.positions,
+        Some(ctx.expected.vertices),
+        ctx.parallel,
+    )?;
+    let mut corners = super::alloc::filled(0u32, 4 * built.faces, "corners")?;
+    let written = catmull_clark_corners(&t, &mut corners, ctx.parallel);
+    if written != built.faces {
+        return Err(ctx.mismatch("faces", built.faces, written));
+    }
+    let faces = finish(ctx, positions, corners, 4)?;
+    Ok((faces, built.halfedges / 2))
+}
+
+/// The corners of the quads of a Catmull-Clark step on `t`, four per quad, into `corners`
+/// (`4 H` entries, `H` the face corners of `t`); returns the number of quads written.
+pub(crate) fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) -> usize {
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf());
     let quad = |f: u32, h: u32| -> [u32; 4] {
         let p = t.prev(h);
         [t.target(p), nv + (h >> 1), nv + ne + f, nv + (p >> 1)]
     };
-    let mut corners = super::alloc::filled(0u32, 4 * built.faces, "corners")?;
-    if mesh.is_quad_mesh() {
+    if t.is_quad_mesh() && corners.len() == 16 * nf {
         // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
         // and their targets are loaded once (prev(h_k) = h_(k-1), so `quad` is inlined here
         // without its prev lookup).
-        for_each_face::<16>(&mut corners, ctx.parallel, |f, quads| {
+        for_each_face::<16>(corners, parallel, |f, quads| {
             let h0 = t.face_halfedge(f);
             let h1 = t.next(h0);
             let h2 = t.next(h1);
@@ -108,24 +133,20 @@ pub(crate) fn catmull_clark(
                 q.copy_from_slice(&[targets[p], nv + (hs[k] >> 1), center, nv + (hs[p] >> 1)]);
             }
         });
-    } else {
-        // Faces of any degree (the first level): corners face by face.
-        let mut slots = corners.chunks_exact_mut(4);
-        let mut written = 0usize;
-        for f in 0..nf as u32 {
-            t.for_face(f, |h| {
-                if let Some(slot) = slots.next() {
-                    slot.copy_from_slice(&quad(f, h));
-                    written += 1;
-                }
-            });
-        }
-        if written != built.faces {
-            return Err(ctx.mismatch("faces", built.faces, written));
-        }
+        return 4 * nf;
     }
-    let faces = finish(ctx, positions, corners, 4)?;
-    Ok((faces, built.halfedges / 2))
+    // Faces of any degree (the first level): corners face by face.
+    let mut slots = corners.chunks_exact_mut(4);
+    let mut written = 0usize;
+    for f in 0..nf as u32 {
+        t.for_face(f, |h| {
+            if let Some(slot) = slots.next() {
+                slot.copy_from_slice(&quad(f, h));
+                written += 1;
+            }
+        });
+    }
+    written
 }
 
 /// Calls `write(f, out)` for every old face `f` in order, `out` the `K` corners it owns at

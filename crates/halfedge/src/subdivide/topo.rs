@@ -1,58 +1,153 @@
-//! Raw-index helpers on the input mesh (the hot loops work on `u32` ids, not typed handles).
-
-use glam::DVec3;
+//! Raw-index helpers on a level's connectivity (the hot loops work on `u32` ids, not typed
+//! handles), for a [`HalfEdgeMesh`] or for the positionless [`Connectivity`] a refinement
+//! keeps.
 
 use crate::mesh::{HalfEdgeMesh, INVALID};
 
-/// Read-only raw view of a [`HalfEdgeMesh`].
+/// The half-edge arrays of a level without its positions (what a refinement keeps per level;
+/// the layout of [`HalfEdgeMesh`]).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Connectivity {
+    pub(crate) vertex_halfedge: Vec<u32>,
+    pub(crate) halfedge_vertex: Vec<u32>,
+    pub(crate) halfedge_face: Vec<u32>,
+    pub(crate) halfedge_next: Vec<u32>,
+    pub(crate) halfedge_prev: Vec<u32>,
+    pub(crate) face_halfedge: Vec<u32>,
+}
+
+impl Connectivity {
+    /// The arrays of `vertex_halfedge`, the four half-edge arrays (target vertex, face, next,
+    /// prev) and `face_halfedge`.
+    pub(crate) fn from_parts(
+        vertex_halfedge: Vec<u32>,
+        halfedges: [Vec<u32>; 4],
+        face_halfedge: Vec<u32>,
+    ) -> Connectivity {
+        let [halfedge_vertex, halfedge_face, halfedge_next, halfedge_prev] = halfedges;
+        Connectivity {
+            vertex_halfedge,
+            halfedge_vertex,
+            halfedge_face,
+            halfedge_next,
+            halfedge_prev,
+            face_halfedge,
+        }
+    }
+
+    /// The connectivity of `mesh` (its positions dropped).
+    pub(crate) fn from_mesh(mesh: HalfEdgeMesh) -> Connectivity {
+        Connectivity {
+            vertex_halfedge: mesh.vertex_halfedge,
+            halfedge_vertex: mesh.halfedge_vertex,
+            halfedge_face: mesh.halfedge_face,
+            halfedge_next: mesh.halfedge_next,
+            halfedge_prev: mesh.halfedge_prev,
+            face_halfedge: mesh.face_halfedge,
+        }
+    }
+
+    /// A copy of the connectivity of `mesh`.
+    pub(crate) fn of_mesh(mesh: &HalfEdgeMesh) -> Connectivity {
+        Connectivity {
+            vertex_halfedge: mesh.vertex_halfedge.clone(),
+            halfedge_vertex: mesh.halfedge_vertex.clone(),
+            halfedge_face: mesh.halfedge_face.clone(),
+            halfedge_next: mesh.halfedge_next.clone(),
+            halfedge_prev: mesh.halfedge_prev.clone(),
+            face_halfedge: mesh.face_halfedge.clone(),
+        }
+    }
+
+    /// The mesh with these arrays and `positions` (one per vertex, checked in debug builds).
+    pub(crate) fn with_positions(self, positions: Vec<glam::DVec3>) -> HalfEdgeMesh {
+        HalfEdgeMesh::from_raw_parts(
+            positions,
+            self.vertex_halfedge,
+            [
+                self.halfedge_vertex,
+                self.halfedge_face,
+                self.halfedge_next,
+                self.halfedge_prev,
+            ],
+            self.face_halfedge,
+        )
+    }
+
+    /// Bytes held by the arrays.
+    pub(crate) fn bytes(&self) -> usize {
+        4 * (self.vertex_halfedge.len() + 4 * self.halfedge_vertex.len() + self.face_halfedge.len())
+    }
+
+    pub(crate) fn topo(&self) -> Topo<'_> {
+        Topo {
+            vertex_halfedge: &self.vertex_halfedge,
+            halfedge_vertex: &self.halfedge_vertex,
+            halfedge_face: &self.halfedge_face,
+            halfedge_next: &self.halfedge_next,
+            halfedge_prev: &self.halfedge_prev,
+            face_halfedge: &self.face_halfedge,
+        }
+    }
+}
+
+/// Read-only raw view of a level's connectivity.
 #[derive(Clone, Copy)]
 pub(crate) struct Topo<'a> {
-    pub(crate) m: &'a HalfEdgeMesh,
+    vertex_halfedge: &'a [u32],
+    halfedge_vertex: &'a [u32],
+    halfedge_face: &'a [u32],
+    halfedge_next: &'a [u32],
+    halfedge_prev: &'a [u32],
+    face_halfedge: &'a [u32],
 }
 
 impl<'a> Topo<'a> {
     pub(crate) fn new(m: &'a HalfEdgeMesh) -> Self {
-        Topo { m }
+        Topo {
+            vertex_halfedge: &m.vertex_halfedge,
+            halfedge_vertex: &m.halfedge_vertex,
+            halfedge_face: &m.halfedge_face,
+            halfedge_next: &m.halfedge_next,
+            halfedge_prev: &m.halfedge_prev,
+            face_halfedge: &m.face_halfedge,
+        }
     }
     #[inline]
     pub(crate) fn nv(&self) -> usize {
-        self.m.positions.len()
+        self.vertex_halfedge.len()
     }
     #[inline]
     pub(crate) fn ne(&self) -> usize {
-        self.m.halfedge_vertex.len() / 2
+        self.halfedge_vertex.len() / 2
     }
     #[inline]
     pub(crate) fn nf(&self) -> usize {
-        self.m.face_halfedge.len()
-    }
-    #[inline]
-    pub(crate) fn pos(&self, v: u32) -> DVec3 {
-        self.m.positions[v as usize]
+        self.face_halfedge.len()
     }
     #[inline]
     pub(crate) fn target(&self, h: u32) -> u32 {
-        self.m.halfedge_vertex[h as usize]
+        self.halfedge_vertex[h as usize]
     }
     #[inline]
     pub(crate) fn source(&self, h: u32) -> u32 {
-        self.m.halfedge_vertex[(h ^ 1) as usize]
+        self.halfedge_vertex[(h ^ 1) as usize]
     }
     #[inline]
     pub(crate) fn next(&self, h: u32) -> u32 {
-        self.m.halfedge_next[h as usize]
+        self.halfedge_next[h as usize]
     }
     #[inline]
     pub(crate) fn prev(&self, h: u32) -> u32 {
-        self.m.halfedge_prev[h as usize]
+        self.halfedge_prev[h as usize]
     }
     #[inline]
     pub(crate) fn face(&self, h: u32) -> u32 {
-        self.m.halfedge_face[h as usize]
+        self.halfedge_face[h as usize]
     }
     #[inline]
     pub(crate) fn is_boundary(&self, h: u32) -> bool {
-        self.m.halfedge_face[h as usize] == INVALID
+        self.halfedge_face[h as usize] == INVALID
     }
     #[inline]
     pub(crate) fn is_boundary_edge(&self, e: u32) -> bool {
@@ -60,11 +155,11 @@ impl<'a> Topo<'a> {
     }
     #[inline]
     pub(crate) fn face_halfedge(&self, f: u32) -> u32 {
-        self.m.face_halfedge[f as usize]
+        self.face_halfedge[f as usize]
     }
     #[inline]
     pub(crate) fn vertex_halfedge(&self, v: u32) -> u32 {
-        self.m.vertex_halfedge[v as usize]
+        self.vertex_halfedge[v as usize]
     }
     /// Whether vertex `v` is on the boundary (its half-edge is the outgoing boundary one).
     #[inline]
@@ -110,11 +205,15 @@ impl<'a> Topo<'a> {
     }
     /// Number of boundary half-edges (= boundary edges).
     pub(crate) fn boundary_edges(&self) -> usize {
-        self.m
-            .halfedge_face
-            .iter()
-            .filter(|&&f| f == INVALID)
-            .count()
+        self.halfedge_face.iter().filter(|&&f| f == INVALID).count()
+    }
+    /// Whether the level has no boundary.
+    pub(crate) fn is_closed(&self) -> bool {
+        self.halfedge_face.iter().all(|&f| f != INVALID)
+    }
+    /// Whether every face is a quad.
+    pub(crate) fn is_quad_mesh(&self) -> bool {
+        (0..self.nf() as u32).all(|f| self.face_degree(f) == 4)
     }
     /// The first face that is not a triangle, with its degree.
     pub(crate) fn first_non_triangle(&self) -> Option<(u32, usize)> {

@@ -17,10 +17,9 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-use glam::DVec3;
-
 use super::build::{Builder, StepContext};
-use super::par;
+use super::par::Sink;
+use super::refine::Vector;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
 
@@ -168,7 +167,19 @@ pub(crate) fn tri_split<const GROW: bool>(
     rule: TriRule,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
+    tri_split_step::<GROW>(&Topo::new(mesh), Some(&mesh.positions), template, rule, ctx)
+}
+
+/// One 1:N² step on the triangle mesh `t`; the positions from `positions`, the values of the
+/// level before (zeros without: a refinement keeps only the topology).
+pub(crate) fn tri_split_step<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Option<&[glam::DVec3]>,
+    template: &Template,
+    rule: TriRule,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = *t;
     let n = template.n;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let points_per_face = template.interior_points.len() as u32;
@@ -216,130 +227,162 @@ pub(crate) fn tri_split<const GROW: bool>(
     }
 
     let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(
-        tri_positions(&t, template, rule, capacity, ctx.parallel)?,
-        ctx,
-    )
+    let positions = match positions {
+        Some(src) => tri_positions(&t, src, template, rule, capacity, ctx.parallel)?,
+        None => super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions")?,
+    };
+    b.finish(positions, ctx)
 }
 
-/// The positions of a 1:N² step: old vertices (moved by Loop's rule or kept), edge points,
-/// interior face points. `capacity`: allocate exactly this many up front (else grow).
-pub(crate) fn tri_positions(
+/// The positions of a 1:N² step (see [`tri_points`]) in a new vector; `capacity`: allocate
+/// exactly this many up front (else grow).
+///
+/// # Errors
+///
+/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
+pub(crate) fn tri_positions<V: Vector>(
     t: &Topo<'_>,
+    src: &[V],
     template: &Template,
     rule: TriRule,
     capacity: Option<usize>,
     parallel: bool,
-) -> crate::Result<Vec<DVec3>> {
+) -> crate::Result<Vec<V>> {
+    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+    tri_points(t, src, template, rule, &mut positions, parallel);
+    Ok(positions)
+}
+
+/// The points of a 1:N² step from the values `src` of the level before, appended to `out`:
+/// old vertices (moved by Loop's rule or kept), edge points, interior face points.
+pub(crate) fn tri_points<V: Vector>(
+    t: &Topo<'_>,
+    src: &[V],
+    template: &Template,
+    rule: TriRule,
+    out: &mut impl Sink<V>,
+    parallel: bool,
+) {
     let n = template.n;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let points_per_face = template.interior_points.len() as u32;
     let t = *t;
-    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+    let pos = |v: u32| src[v as usize].clone();
     // Old vertices.
     if rule == TriRule::Loop {
-        par::extend(&mut positions, nv as usize, parallel, |v| {
-            loop_vertex(&t, v as u32)
-        });
+        out.append(nv as usize, parallel, |v| loop_vertex(&t, src, v as u32));
     } else {
-        positions.extend_from_slice(&t.m.positions);
+        out.append(nv as usize, parallel, |v| pos(v as u32));
     }
     // Edge points.
     let per_edge = (n - 1) as usize;
-    par::extend(&mut positions, ne as usize * per_edge, parallel, |i| {
+    out.append(ne as usize * per_edge, parallel, |i| {
         let e = (i / per_edge) as u32;
         match rule {
-            TriRule::Loop => loop_edge(&t, e),
-            TriRule::Midpoint => midpoint(&t, e),
-            TriRule::Icosphere => project_to_sphere(midpoint(&t, e)),
-            TriRule::Butterfly => butterfly_edge(&t, e),
+            TriRule::Loop => loop_edge(&t, src, e),
+            TriRule::Midpoint => midpoint(&t, src, e),
+            TriRule::Icosphere => midpoint(&t, src, e).project_to_sphere(),
+            TriRule::Butterfly => butterfly_edge(&t, src, e),
             TriRule::Linear => {
                 let k = (i % per_edge) as f64 + 1.0;
-                let a = t.pos(t.source(2 * e));
-                let z = t.pos(t.target(2 * e));
-                a + (z - a) * (k / n as f64)
+                let a = pos(t.source(2 * e));
+                let z = pos(t.target(2 * e));
+                a.clone().add(z.sub(a).scale(k / n as f64))
             }
         }
     });
     // Interior face points (only for N >= 3: linear).
     let ppf = points_per_face as usize;
     if ppf > 0 {
-        par::extend(&mut positions, nf as usize * ppf, parallel, |i| {
+        out.append(nf as usize * ppf, parallel, |i| {
             let f = (i / ppf) as u32;
             let (a, bb) = template.interior_points[i % ppf];
             let h0 = t.face_halfedge(f);
             let h1 = t.next(h0);
-            let p0 = t.pos(t.source(h0));
-            let p1 = t.pos(t.target(h0));
-            let p2 = t.pos(t.target(h1));
+            let p0 = pos(t.source(h0));
+            let p1 = pos(t.target(h0));
+            let p2 = pos(t.target(h1));
             let nn = n as f64;
-            p0 + (p1 - p0) * (a as f64 / nn) + (p2 - p0) * (bb as f64 / nn)
+            p0.clone()
+                .add(p1.sub(p0.clone()).scale(a as f64 / nn))
+                .add(p2.sub(p0).scale(bb as f64 / nn))
         });
     }
-    Ok(positions)
 }
 
-/// `p` on the unit sphere. Where `p`'s squared length would overflow (coordinates beyond
-/// about 1e154) or vanish (below about 1e-154, subnormals included), it is first divided by
-/// its largest coordinate, so the direction stays exact; other points take glam's
-/// `normalize` unchanged. A point at the origin has no direction: NaN, which the level's
-/// finiteness check refuses, naming the edge.
-fn project_to_sphere(p: DVec3) -> DVec3 {
-    let largest = p.abs().max_element();
-    if largest > 1e150 || (largest < 1e-150 && largest > 0.0) {
-        (p / largest).normalize()
-    } else {
-        p.normalize()
-    }
-}
-
-fn midpoint(t: &Topo<'_>, e: u32) -> DVec3 {
-    (t.pos(t.source(2 * e)) + t.pos(t.target(2 * e))) * 0.5
+fn midpoint<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
+    let (a, b) = (t.source(2 * e), t.target(2 * e));
+    src[a as usize]
+        .clone()
+        .add(src[b as usize].clone())
+        .scale(0.5)
 }
 
 /// Loop's vertex rule: `(1 - n β) v + β Σ neighbours` with Loop's original
 /// `β = (5/8 - (3/8 + 1/4 cos(2π/n))²) / n`; on the boundary `3/4 v + 1/8 (left + right)`.
-pub(crate) fn loop_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
-    let p = t.pos(v);
+#[inline]
+pub(crate) fn loop_vertex<V: Vector>(t: &Topo<'_>, src: &[V], v: u32) -> V {
     if t.is_boundary_vertex(v) {
-        return boundary_vertex(t, v);
+        return boundary_vertex(t, src, v);
     }
-    let mut sum = DVec3::ZERO;
+    let mut sum = V::zero();
     let mut n = 0usize;
     t.for_outgoing(v, |h| {
-        sum += t.pos(t.target(h));
+        sum = sum.clone().add(src[t.target(h) as usize].clone());
         n += 1;
     });
+    loop_interior(src[v as usize].clone(), sum, n)
+}
+
+/// Loop's interior vertex rule on the vertex `p` and the sum of its `n` neighbours.
+#[inline(always)]
+pub(crate) fn loop_interior<V: Vector>(p: V, sum: V, n: usize) -> V {
     // Valence 6 (almost every vertex after a few levels): β = 1/16 exactly, no cosine.
     if n == 6 {
-        return p * 0.625 + sum * 0.0625;
+        return p.scale(0.625).add(sum.scale(0.0625));
     }
     let nf = n as f64;
     let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / nf).cos();
     let beta = (5.0 / 8.0 - c * c) / nf;
-    p * (1.0 - nf * beta) + sum * beta
+    p.scale(1.0 - nf * beta).add(sum.scale(beta))
 }
 
 /// The cubic B-spline rule of a boundary vertex `v` (Loop and Catmull-Clark):
 /// `3/4 v + 1/8 (left + right)`, its neighbours along the boundary.
 #[inline]
-pub(crate) fn boundary_vertex(t: &Topo<'_>, v: u32) -> DVec3 {
+pub(crate) fn boundary_vertex<V: Vector>(t: &Topo<'_>, src: &[V], v: u32) -> V {
     let h = t.vertex_halfedge(v);
-    let right = t.pos(t.target(h));
-    let left = t.pos(t.source(t.prev(h)));
-    t.pos(v) * 0.75 + (left + right) * 0.125
+    let right = src[t.target(h) as usize].clone();
+    let left = src[t.source(t.prev(h)) as usize].clone();
+    boundary_rule(src[v as usize].clone(), left, right)
+}
+
+/// `3/4 v + 1/8 (left + right)`.
+#[inline(always)]
+pub(crate) fn boundary_rule<V: Vector>(v: V, left: V, right: V) -> V {
+    v.scale(0.75).add(left.add(right).scale(0.125))
 }
 
 /// Loop's edge rule: `3/8 (a + b) + 1/8 (c + d)`; boundary edges: midpoints.
-pub(crate) fn loop_edge(t: &Topo<'_>, e: u32) -> DVec3 {
+#[inline]
+pub(crate) fn loop_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
     let h = 2 * e;
-    let (a, b) = (t.pos(t.source(h)), t.pos(t.target(h)));
+    let (a, b) = (
+        src[t.source(h) as usize].clone(),
+        src[t.target(h) as usize].clone(),
+    );
     if t.is_boundary_edge(e) {
-        return (a + b) * 0.5;
+        return a.add(b).scale(0.5);
     }
-    let c = t.pos(t.target(t.next(h)));
-    let d = t.pos(t.target(t.next(h ^ 1)));
-    (a + b) * 0.375 + (c + d) * 0.125
+    let c = src[t.target(t.next(h)) as usize].clone();
+    let d = src[t.target(t.next(h ^ 1)) as usize].clone();
+    loop_interior_edge(a, b, c, d)
+}
+
+/// `3/8 (a + b) + 1/8 (c + d)`.
+#[inline(always)]
+pub(crate) fn loop_interior_edge<V: Vector>(a: V, b: V, c: V, d: V) -> V {
+    a.add(b).scale(0.375).add(c.add(d).scale(0.125))
 }
 
 /// The modified butterfly edge rule (Zorin, Schröder, Sweldens 1996).
@@ -352,16 +395,20 @@ pub(crate) fn loop_edge(t: &Topo<'_>, e: u32) -> DVec3 {
 /// - Simplifications (documented): an interior edge with exactly one boundary end uses the
 ///   one-ring stencil of its interior end (regular or not); an interior edge whose two ends
 ///   are both on the boundary takes the midpoint.
-pub(crate) fn butterfly_edge(t: &Topo<'_>, e: u32) -> DVec3 {
+pub(crate) fn butterfly_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
+    let pos = |v: u32| src[v as usize].clone();
     let h = 2 * e;
     let (va, vb) = (t.source(h), t.target(h));
-    let (a, b) = (t.pos(va), t.pos(vb));
+    let (a, b) = (pos(va), pos(vb));
     if t.is_boundary_edge(e) {
         // Orient along the boundary loop: g is the boundary half-edge of e.
         let g = if t.is_boundary(h) { h } else { h ^ 1 };
-        let before = t.pos(t.source(t.prev(g)));
-        let after = t.pos(t.target(t.next(g)));
-        return (a + b) * (9.0 / 16.0) - (before + after) * (1.0 / 16.0);
+        let before = pos(t.source(t.prev(g)));
+        let after = pos(t.target(t.next(g)));
+        return a
+            .add(b)
+            .scale(9.0 / 16.0)
+            .sub(before.add(after).scale(1.0 / 16.0));
     }
     let a_in = !t.is_boundary_vertex(va);
     let b_in = !t.is_boundary_vertex(vb);
@@ -371,33 +418,38 @@ pub(crate) fn butterfly_edge(t: &Topo<'_>, e: u32) -> DVec3 {
             let kb = t.valence(vb);
             match (ka == 6, kb == 6) {
                 (true, true) => {
-                    let c = t.pos(t.target(t.next(h)));
-                    let d = t.pos(t.target(t.next(h ^ 1)));
-                    let wing = |g: u32| t.pos(t.target(t.next(g ^ 1)));
+                    let c = pos(t.target(t.next(h)));
+                    let d = pos(t.target(t.next(h ^ 1)));
+                    let wing = |g: u32| pos(t.target(t.next(g ^ 1)));
                     let w = wing(t.next(h))
-                        + wing(t.prev(h))
-                        + wing(t.next(h ^ 1))
-                        + wing(t.prev(h ^ 1));
-                    (a + b) * 0.5 + (c + d) * 0.125 - w * (1.0 / 16.0)
+                        .add(wing(t.prev(h)))
+                        .add(wing(t.next(h ^ 1)))
+                        .add(wing(t.prev(h ^ 1)));
+                    a.add(b)
+                        .scale(0.5)
+                        .add(c.add(d).scale(0.125))
+                        .sub(w.scale(1.0 / 16.0))
                 }
-                (false, true) => one_ring_stencil(t, h),
-                (true, false) => one_ring_stencil(t, h ^ 1),
-                (false, false) => (one_ring_stencil(t, h) + one_ring_stencil(t, h ^ 1)) * 0.5,
+                (false, true) => one_ring_stencil(t, src, h),
+                (true, false) => one_ring_stencil(t, src, h ^ 1),
+                (false, false) => one_ring_stencil(t, src, h)
+                    .add(one_ring_stencil(t, src, h ^ 1))
+                    .scale(0.5),
             }
         }
-        (true, false) => one_ring_stencil(t, h),
-        (false, true) => one_ring_stencil(t, h ^ 1),
-        (false, false) => (a + b) * 0.5,
+        (true, false) => one_ring_stencil(t, src, h),
+        (false, true) => one_ring_stencil(t, src, h ^ 1),
+        (false, false) => a.add(b).scale(0.5),
     }
 }
 
 /// Zorin's stencil around the (interior) source `x` of `g`, valence `k`: `3/4 x + Σ s_j p_j`,
 /// `p_0` the target of `g`; `k = 3`: `5/12, -1/12, -1/12`; `k = 4`: `3/8, 0, -1/8, 0`;
 /// `k >= 5`: `s_j = (1/4 + cos(2πj/k) + 1/2 cos(4πj/k)) / k`.
-fn one_ring_stencil(t: &Topo<'_>, g: u32) -> DVec3 {
-    let x = t.pos(t.source(g));
+fn one_ring_stencil<V: Vector>(t: &Topo<'_>, src: &[V], g: u32) -> V {
+    let x = src[t.source(g) as usize].clone();
     let k = t.valence(t.source(g));
-    let mut sum = DVec3::ZERO;
+    let mut sum = V::zero();
     let mut h = g;
     for j in 0..k {
         let s = match (k, j) {
@@ -412,8 +464,8 @@ fn one_ring_stencil(t: &Topo<'_>, g: u32) -> DVec3 {
                 (0.25 + th.cos() + 0.5 * (2.0 * th).cos()) / kf
             }
         };
-        sum += t.pos(t.target(h)) * s;
+        sum = sum.add(src[t.target(h) as usize].clone().scale(s));
         h = t.next(h ^ 1);
     }
-    x * 0.75 + sum
+    x.scale(0.75).add(sum)
 }

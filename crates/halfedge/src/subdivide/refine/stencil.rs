@@ -1,0 +1,149 @@
+//! Stencil tables: every vertex of the last level as a weighted sum of base vertices.
+
+use super::{check_len, Scalar, Sparse};
+use crate::{Error, Result};
+
+/// Each vertex of a refinement's last level as a weighted sum of the base vertices
+/// ([`Refinement::stencils`](super::Refinement::stencils)), in compressed rows: vertex `i` is
+/// `Σ weights[k] * base[indices[k]]` for `k` in `offsets[i]..offsets[i + 1]`, the indices of
+/// a row ascending. OpenSubdiv's `Far::StencilTable` (sizes, offsets, indices, weights).
+///
+/// ```
+/// use halfedge::refine::Refinement;
+/// use halfedge::subdivide::SubdivideOptions;
+/// use halfedge::{shapes, HalfEdgeMesh, Rule};
+///
+/// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+/// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+/// let table = r.stencils()?;
+/// assert_eq!(table.len(), r.n_vertices(2));
+/// // Affine: every row sums to 1.
+/// for i in 0..table.len() {
+///     let (_, weights) = table.row(i);
+///     assert!((weights.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+/// }
+/// let base: Vec<[f64; 3]> = cube.positions().iter().map(|p| p.to_array()).collect();
+/// let mut out = vec![[0.0; 3]; table.len()];
+/// table.apply(&base, &mut out)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct StencilTable {
+    base_vertices: usize,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f64>,
+}
+
+impl StencilTable {
+    /// The table of the sparse sums `rows` over `base_vertices` vertices: the entries are
+    /// counted first, then the arrays allocated exactly and filled.
+    pub(super) fn from_sums(rows: &[Sparse], base_vertices: usize) -> Result<StencilTable> {
+        let total: usize = rows.iter().map(|r| r.0.len()).sum();
+        if u32::try_from(total).is_err() {
+            return Err(Error::IndexOverflow {
+                what: "stencil entries",
+                count: total as u128,
+            });
+        }
+        let mut offsets =
+            crate::subdivide::alloc::with_capacity(rows.len() + 1, "stencil offsets")?;
+        let mut indices = crate::subdivide::alloc::with_capacity(total, "stencil indices")?;
+        let mut weights = crate::subdivide::alloc::with_capacity(total, "stencil weights")?;
+        offsets.push(0u32);
+        for row in rows {
+            for &(v, w) in &row.0 {
+                indices.push(v);
+                weights.push(w);
+            }
+            // At most `total`, which fits u32.
+            offsets.push(indices.len() as u32);
+        }
+        Ok(StencilTable {
+            base_vertices,
+            offsets,
+            indices,
+            weights,
+        })
+    }
+
+    /// The number of stencils (vertices of the last level).
+    pub fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Whether the table has no stencils.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The number of base vertices the stencils read.
+    pub fn base_vertices(&self) -> usize {
+        self.base_vertices
+    }
+
+    /// The total number of (index, weight) entries.
+    pub fn n_entries(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Row starts: `len() + 1` entries.
+    pub fn offsets(&self) -> &[u32] {
+        &self.offsets
+    }
+
+    /// The base vertex of each entry.
+    pub fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// The weight of each entry.
+    pub fn weights(&self) -> &[f64] {
+        &self.weights
+    }
+
+    /// The base vertices and weights of stencil `i`.
+    ///
+    /// # Panics
+    ///
+    /// If `i >= len()`.
+    pub fn row(&self, i: usize) -> (&[u32], &[f64]) {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+
+    /// `out[i] = Σ weights[k] * base[indices[k]]` over row `i` (weights rounded to `T`, sums
+    /// in `T`, in row order), in parallel on rayon's current pool for large tables.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::BufferSize`] when `base` does not have [`StencilTable::base_vertices`]
+    /// entries or `out` [`StencilTable::len`].
+    pub fn apply<T: Scalar, const N: usize>(
+        &self,
+        base: &[[T; N]],
+        out: &mut [[T; N]],
+    ) -> Result<()> {
+        use rayon::prelude::*;
+        check_len("base", self.base_vertices, base.len())?;
+        check_len("out", self.len(), out.len())?;
+        let row = |(i, o): (usize, &mut [T; N])| {
+            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            let mut acc = [T::ZERO; N];
+            for (&v, &w) in self.indices[a..b].iter().zip(&self.weights[a..b]) {
+                let w = T::from_f64(w);
+                let p = &base[v as usize];
+                for c in 0..N {
+                    acc[c] = acc[c] + p[c] * w;
+                }
+            }
+            *o = acc;
+        };
+        if out.len() >= 1 << 14 {
+            out.par_iter_mut().enumerate().for_each(row);
+        } else {
+            out.iter_mut().enumerate().for_each(row);
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,282 @@
+//! Flattened per-level tables for the hot rules: a Loop or Catmull-Clark level as index
+//! arrays (edge stencils, vertex rings, face corners), so an evaluation streams through them
+//! with no half-edge walk.
+//!
+//! The values are combined by the same kernel functions, in the same order, as the half-edge
+//! paths of `trisplit` (`loop_interior`, `boundary_rule`, `loop_interior_edge`) and
+//! `catmull_clark` (`cc_interior`, and the face and edge sums written out in its order), so
+//! both give the same bits.
+
+use crate::mesh::INVALID;
+use crate::subdivide::catmull_clark::cc_interior;
+use crate::subdivide::par::{self, Sink, Slots};
+use crate::subdivide::topo::Topo;
+use crate::subdivide::trisplit::{boundary_rule, loop_interior, loop_interior_edge};
+use crate::Result;
+
+use super::Vector;
+
+/// Vertices per task when the rings are built in parallel.
+const RING_CHUNK: usize = 1 << 14;
+
+/// A Loop level flattened: what the next level's points are computed from.
+#[derive(Debug)]
+pub(super) struct LoopTables {
+    /// Per edge `[a, b, c, d]`: its ends (source and target of half-edge `2e`) and the
+    /// opposite vertices of its two faces; `c = INVALID` on a boundary edge.
+    edges: Vec<[u32; 4]>,
+    /// Start of each vertex's ring in `ring` (`V + 1` entries).
+    ring_offsets: Vec<u32>,
+    /// Each interior vertex's neighbours in the order of its outgoing half-edges; a boundary
+    /// vertex's two neighbours along the boundary: `[right, left]`.
+    ring: Vec<u32>,
+    /// Whether each vertex is on the boundary.
+    boundary: Vec<bool>,
+}
+
+impl LoopTables {
+    /// The tables of the level `t`.
+    pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<LoopTables> {
+        let t = *t;
+        let (nv, ne) = (t.nv(), t.ne());
+        let edges = par::collect(Some(ne), ne, parallel, "Loop edge table", |e| {
+            let h = 2 * e as u32;
+            let (a, b) = (t.source(h), t.target(h));
+            if t.is_boundary_edge(e as u32) {
+                [a, b, INVALID, INVALID]
+            } else {
+                [a, b, t.target(t.next(h)), t.target(t.next(h ^ 1))]
+            }
+        })?;
+        let boundary = par::collect(Some(nv), nv, parallel, "Loop boundary flags", |v| {
+            t.is_boundary_vertex(v as u32)
+        })?;
+        // One walk per vertex, in chunks of vertices (in parallel when asked), concatenated.
+        let ring_of = |range: std::ops::Range<usize>| {
+            let mut ring = Vec::with_capacity(6 * range.len());
+            let mut ends = Vec::with_capacity(range.len());
+            for v in range {
+                let v = v as u32;
+                if boundary[v as usize] {
+                    let h = t.vertex_halfedge(v);
+                    ring.push(t.target(h));
+                    ring.push(t.source(t.prev(h)));
+                } else {
+                    t.for_outgoing(v, |h| ring.push(t.target(h)));
+                }
+                ends.push(ring.len() as u32);
+            }
+            (ring, ends)
+        };
+        let (ring, ring_offsets) = concat(nv, parallel, ring_of, "Loop rings")?;
+        Ok(LoopTables {
+            edges,
+            ring_offsets,
+            ring,
+            boundary,
+        })
+    }
+
+    /// Bytes held.
+    pub(super) fn bytes(&self) -> usize {
+        16 * self.edges.len()
+            + 4 * (self.ring_offsets.len() + self.ring.len())
+            + self.boundary.len()
+    }
+
+    /// The points of the next Loop level from `src`, appended to `out`: the moved old
+    /// vertices, then the edge points.
+    pub(super) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
+        let nv = self.boundary.len();
+        let pos = |v: u32| src[v as usize].clone();
+        out.append(nv, parallel, |v| {
+            let (a, b) = (
+                self.ring_offsets[v] as usize,
+                self.ring_offsets[v + 1] as usize,
+            );
+            let ring = &self.ring[a..b];
+            let p = src[v].clone();
+            if self.boundary[v] {
+                return boundary_rule(p, pos(ring[1]), pos(ring[0]));
+            }
+            let mut sum = V::zero();
+            for &w in ring {
+                sum = sum.add(pos(w));
+            }
+            loop_interior(p, sum, ring.len())
+        });
+        out.append(self.edges.len(), parallel, |e| {
+            let [a, b, c, d] = self.edges[e];
+            if c == INVALID {
+                pos(a).add(pos(b)).scale(0.5)
+            } else {
+                loop_interior_edge(pos(a), pos(b), pos(c), pos(d))
+            }
+        });
+    }
+}
+
+/// A Catmull-Clark level flattened: what the next level's points are computed from.
+#[derive(Debug)]
+pub(super) struct CcTables {
+    /// Per edge `[a, b, f1, f2]`: its ends (source and target of half-edge `2e`) and the faces
+    /// of its half-edges; `f1 = INVALID` on a boundary edge.
+    edges: Vec<[u32; 4]>,
+    /// Start of each vertex's ring in `ring` (`V + 1` entries).
+    ring_offsets: Vec<u32>,
+    /// Each interior vertex's `(neighbour, face)` pairs in the order of its outgoing
+    /// half-edges; a boundary vertex's two neighbours along the boundary, `right` then `left`
+    /// (faces `INVALID`).
+    ring: Vec<[u32; 2]>,
+    /// Whether each vertex is on the boundary.
+    boundary: Vec<bool>,
+    /// Start of each face's corners in `corners` (`F + 1` entries).
+    face_offsets: Vec<u32>,
+    /// The vertices of each face, from its half-edge's source.
+    corners: Vec<u32>,
+}
+
+impl CcTables {
+    /// The tables of the level `t`.
+    pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<CcTables> {
+        let t = *t;
+        let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+        let edges = par::collect(Some(ne), ne, parallel, "Catmull-Clark edge table", |e| {
+            let h = 2 * e as u32;
+            let (a, b) = (t.source(h), t.target(h));
+            if t.is_boundary(h) || t.is_boundary(h ^ 1) {
+                [a, b, INVALID, INVALID]
+            } else {
+                [a, b, t.face(h), t.face(h ^ 1)]
+            }
+        })?;
+        let boundary = par::collect(Some(nv), nv, parallel, "boundary flags", |v| {
+            t.is_boundary_vertex(v as u32)
+        })?;
+        let ring_of = |range: std::ops::Range<usize>| {
+            let mut ring = Vec::with_capacity(4 * range.len());
+            let mut ends = Vec::with_capacity(range.len());
+            for v in range {
+                let v = v as u32;
+                if boundary[v as usize] {
+                    let h = t.vertex_halfedge(v);
+                    ring.push([t.target(h), INVALID]);
+                    ring.push([t.source(t.prev(h)), INVALID]);
+                } else {
+                    t.for_outgoing(v, |h| ring.push([t.target(h), t.face(h)]));
+                }
+                ends.push(ring.len() as u32);
+            }
+            (ring, ends)
+        };
+        let (ring, ring_offsets) = concat(nv, parallel, ring_of, "Catmull-Clark rings")?;
+        let face_of = |range: std::ops::Range<usize>| {
+            let mut corners = Vec::with_capacity(4 * range.len());
+            let mut ends = Vec::with_capacity(range.len());
+            for f in range {
+                t.for_face(f as u32, |h| corners.push(t.source(h)));
+                ends.push(corners.len() as u32);
+            }
+            (corners, ends)
+        };
+        let (corners, face_offsets) = concat(nf, parallel, face_of, "face corners")?;
+        Ok(CcTables {
+            edges,
+            ring_offsets,
+            ring,
+            boundary,
+            face_offsets,
+            corners,
+        })
+    }
+
+    /// Bytes held.
+    pub(super) fn bytes(&self) -> usize {
+        16 * self.edges.len()
+            + 4 * (self.ring_offsets.len() + self.face_offsets.len() + self.corners.len())
+            + 8 * self.ring.len()
+            + self.boundary.len()
+    }
+
+    /// The points of the next Catmull-Clark level from `src` into `dst` (exactly
+    /// `V + E + F` values): the face points first, at the end, then the moved vertices and
+    /// the edge points, as `catmull_clark::cc_fill`.
+    pub(super) fn fill<V: Vector>(&self, src: &[V], dst: &mut [V], parallel: bool) {
+        let (nv, ne) = (self.boundary.len(), self.edges.len());
+        let pos = |v: u32| src[v as usize].clone();
+        let (head, face_points) = dst.split_at_mut((nv + ne).min(dst.len()));
+        let mut out = Slots::new(face_points);
+        out.append(self.face_offsets.len() - 1, parallel, |f| {
+            let (a, b) = (
+                self.face_offsets[f] as usize,
+                self.face_offsets[f + 1] as usize,
+            );
+            let mut sum = V::zero();
+            for &v in &self.corners[a..b] {
+                sum = sum.add(pos(v));
+            }
+            sum.div(f64::from((b - a) as u32))
+        });
+        let fp: &[V] = face_points;
+        let mut out = Slots::new(head);
+        out.append(nv, parallel, |v| {
+            let (a, b) = (
+                self.ring_offsets[v] as usize,
+                self.ring_offsets[v + 1] as usize,
+            );
+            let ring = &self.ring[a..b];
+            let p = src[v].clone();
+            if self.boundary[v] {
+                return boundary_rule(p, pos(ring[1][0]), pos(ring[0][0]));
+            }
+            let (mut q, mut r) = (V::zero(), V::zero());
+            for &[w, f] in ring {
+                q = q.add(fp[f as usize].clone());
+                r = r.add(p.clone().add(pos(w)).scale(0.5));
+            }
+            cc_interior(p, q, r, ring.len() as u32)
+        });
+        out.append(ne, parallel, |e| {
+            let [a, b, f1, f2] = self.edges[e];
+            let mid = pos(a).add(pos(b));
+            if f1 == INVALID {
+                mid.scale(0.5)
+            } else {
+                mid.add(fp[f1 as usize].clone())
+                    .add(fp[f2 as usize].clone())
+                    .scale(0.25)
+            }
+        });
+    }
+}
+
+/// The lists `part(range)` of `n` elements (each with the running end of every element's
+/// entries) concatenated, in chunks in parallel when asked: the entries and the `n + 1`
+/// offsets.
+fn concat<T: Copy + Send>(
+    n: usize,
+    parallel: bool,
+    part: impl Fn(std::ops::Range<usize>) -> (Vec<T>, Vec<u32>) + Sync + Send,
+    what: &str,
+) -> Result<(Vec<T>, Vec<u32>)> {
+    let chunks: Vec<(Vec<T>, Vec<u32>)> = if parallel && n >= RING_CHUNK {
+        use rayon::prelude::*;
+        (0..n.div_ceil(RING_CHUNK))
+            .into_par_iter()
+            .map(|c| part(c * RING_CHUNK..((c + 1) * RING_CHUNK).min(n)))
+            .collect()
+    } else {
+        vec![part(0..n)]
+    };
+    let total: usize = chunks.iter().map(|(r, _)| r.len()).sum();
+    let mut entries = crate::subdivide::alloc::with_capacity(total, what)?;
+    let mut offsets = crate::subdivide::alloc::with_capacity(n + 1, what)?;
+    offsets.push(0u32);
+    for (r, ends) in &chunks {
+        // Below the half-edge count of the level, which fits u32.
+        let start = entries.len() as u32;
+        entries.extend_from_slice(r);
+        offsets.extend(ends.iter().map(|&e| start + e));
+    }
+    Ok((entries, offsets))
+}
