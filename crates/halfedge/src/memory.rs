@@ -162,9 +162,47 @@ pub fn check_peak(
     limit: u128,
 ) -> crate::Result<BigInt> {
     let need = predicted_peak_bytes(scheme, counts, levels, last_faces)?;
+    within_limit(need, scheme.name(), levels, limit)
+}
+
+/// The peak of refining once ([`crate::Refinement`]) by `rule` to `levels` and evaluating
+/// positions of `scalar_bytes` per coordinate into caller buffers: the one-shot peak of
+/// building the levels ([`predicted_peak_bytes`], last level as a face list), the refinement
+/// kept ([`crate::Refinement::predicted_bytes`]), and the output positions and indices; with
+/// `frames`, a moved copy of the base and a second output buffer.
+///
+/// # Errors
+///
+/// [`Error::Scheme`](crate::Error::Scheme) when the rule does not apply.
+pub fn predicted_refinement_peak_bytes(
+    rule: crate::Rule,
+    counts: &MeshCounts,
+    levels: u32,
+    scalar_bytes: usize,
+    frames: bool,
+) -> crate::Result<BigInt> {
+    let scheme = rule.scheme_for(counts)?;
+    let building = predicted_peak_bytes(&scheme, counts, levels, Some(4))?;
+    let kept = crate::Refinement::predicted_bytes(rule, counts, levels)?;
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    let point = BigInt::from(3 * scalar_bytes);
+    let copies = if frames { 2 } else { 1 };
+    let buffers = &point * &c.vertices * copies
+        + BigInt::from(4 * 4) * &c.faces
+        + &point * counts.vertices * u32::from(frames);
+    Ok(building + kept + buffers)
+}
+
+/// `need` if it is at most `limit`, else [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit)
+/// naming `scheme` and `levels` (the test of [`check_peak`], for any prediction).
+///
+/// # Errors
+///
+/// [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit).
+pub fn within_limit(need: BigInt, scheme: &str, levels: u32, limit: u128) -> crate::Result<BigInt> {
     if need > BigInt::from(limit) {
         return Err(crate::Error::OverMemoryLimit {
-            scheme: scheme.name().to_owned(),
+            scheme: scheme.to_owned(),
             levels,
             need: human_bytes(need.to_f64().unwrap_or(f64::INFINITY)),
             limit: human_bytes(limit as f64),

@@ -137,6 +137,24 @@ pub(crate) struct SubdivideArgs {
     /// Lift the memory guard (default limit: half the available memory).
     #[arg(long)]
     pub(crate) allow_large: bool,
+    /// The floating-point type the geometry is computed and written in.
+    #[arg(long, value_enum, default_value_t)]
+    pub(crate) precision: Precision,
+    /// Refine the topology once, then evaluate the positions N times from slightly moved base
+    /// positions (timed: `--timings` adds refine_topology_s and evaluate_s); -o writes the
+    /// unmoved result.
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub(crate) frames: u32,
+}
+
+/// `subdivide --precision`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub(crate) enum Precision {
+    /// 32-bit floats (written with the shortest text that reads back as the same f32).
+    F32,
+    /// 64-bit floats.
+    #[default]
+    F64,
 }
 
 /// Output formats of `fit` and `density`.

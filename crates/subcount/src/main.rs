@@ -13,6 +13,7 @@ mod mesh;
 mod model;
 mod output;
 mod plot;
+mod refined;
 mod report;
 
 use std::io::{self, Write};

@@ -9,7 +9,10 @@ use num_bigint::BigInt;
 use num_traits::ToPrimitive;
 use schemes::{Budget, MeshCounts, Plan, Scheme};
 
-use crate::args::{MeshSource, ReportFormat, SchemeChoice, StatsArgs, SubdivideArgs, VerifyArgs};
+use crate::args::{
+    MeshSource, Precision, ReportFormat, SchemeChoice, StatsArgs, SubdivideArgs, VerifyArgs,
+};
+use crate::refined;
 use serde_json::{json, Value};
 
 use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
@@ -183,12 +186,12 @@ fn on_face_list(scheme: &Scheme, rule: Rule, counts: &MeshCounts, custom: bool) 
     general && rule.refines_faces()
 }
 
-/// [`halfedge::memory::check_peak`] against half the available memory, unless lifted.
+/// The memory guard: `need` (a [`halfedge::memory`] prediction) against half the available
+/// memory, unless lifted.
 fn guard_memory(
-    scheme: &Scheme,
-    counts: &MeshCounts,
+    need: halfedge::Result<BigInt>,
+    scheme: &str,
     levels: u32,
-    last_faces: Option<usize>,
     allow_large: bool,
 ) -> Result<BigInt, Failure> {
     let limit = if allow_large {
@@ -196,15 +199,14 @@ fn guard_memory(
     } else {
         halfedge::memory::peak_limit()
     };
-    halfedge::memory::check_peak(scheme, counts, levels, last_faces, limit).map_err(|e| {
-        let hint = "; use fewer levels, or --allow-large to try anyway";
-        match e {
-            halfedge::Error::OverMemoryLimit { .. } => {
-                Failure::new(Kind::Guard, anyhow::anyhow!("{e}{hint}"))
-            }
+    need.and_then(|need| halfedge::memory::within_limit(need, scheme, levels, limit))
+        .map_err(|e| match e {
+            halfedge::Error::OverMemoryLimit { .. } => Failure::new(
+                Kind::Guard,
+                anyhow::anyhow!("{e}; use fewer levels, or --allow-large to try anyway"),
+            ),
             e => halfedge_failure(e),
-        }
-    })
+        })
 }
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
@@ -229,7 +231,13 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
         }
     };
-    guard_memory(&sizing, &counts, levels, None, args.allow_large)?;
+    let need = halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None);
+    guard_memory(
+        need.map_err(Into::into),
+        sizing.name(),
+        levels,
+        args.allow_large,
+    )?;
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let custom = args.scheme.scheme_file.is_some();
     let reports = if on_face_list(&scheme, rule, &counts, custom) {
@@ -315,6 +323,18 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let counts = halfedge::stats::face_list_counts(&poly);
     let (chosen, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
     let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    let refine_once = args.frames > 0 || args.precision == Precision::F32;
+    if refine_once && (face_list || args.no_preallocate) {
+        return Err(usage!(
+            "--precision f32 and --frames refine a manifold mesh once: {}",
+            if face_list {
+                "this scheme runs on the raw face list (loop-general, catmull-clark-general, \
+                 tri-split-N or a non-manifold mesh); use loop, catmull-clark or --precision f64"
+            } else {
+                "not with --no-preallocate"
+            }
+        ));
+    }
     // The rule's own scheme sizes the output (a custom matrix may be wrong).
     let scheme = rule.scheme_for(&counts).map_err(scheme_failure)?;
     // Manifold input, preallocated: the 4:1 family and Catmull-Clark write the last level
@@ -322,7 +342,23 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let last_faces = (!face_list && !args.no_preallocate)
         .then(|| sub::direct_face_degree(rule))
         .flatten();
-    let predicted = guard_memory(&scheme, &counts, levels, last_faces, args.allow_large)?;
+    let need = if refine_once {
+        let bytes = match args.precision {
+            Precision::F32 => 4,
+            Precision::F64 => 8,
+        };
+        halfedge::memory::predicted_refinement_peak_bytes(
+            rule,
+            &counts,
+            levels,
+            bytes,
+            args.frames > 0,
+        )
+    } else {
+        halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
+            .map_err(Into::into)
+    };
+    let predicted = guard_memory(need, scheme.name(), levels, args.allow_large)?;
     if let Some(path) = &args.output {
         halfedge::io::check_output(path).map_err(|e| Failure::new(Kind::Input, e))?;
     }
@@ -361,6 +397,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         .with_progress(&progress);
     let t1 = Instant::now();
     let result = match &mesh {
+        Some(mesh) if refine_once => {
+            refined::run(mesh, rule, levels, args.precision, args.frames, &opts)
+                .map(Output::Refined)
+        }
         Some(mesh) if last_faces.is_some() => {
             sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
         }
@@ -368,7 +408,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         None => sub::subdivide_polygons(&poly, rule, levels, &opts).map(Output::Polygons),
     }
     .map_err(|e| located_failure(e, &poly, &args.mesh))?;
-    let subdivide_s = t1.elapsed().as_secs_f64();
+    let subdivide_s = match &result {
+        Output::Refined(r) => (r.refine_topology + r.first_evaluation).as_secs_f64(),
+        _ => t1.elapsed().as_secs_f64(),
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -380,6 +423,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             Output::Mesh(m) => halfedge::io::write_obj_file(m, path),
             Output::Polygons(p) => halfedge::io::write_polygon_obj_file(p, path),
             Output::Faces(level) => halfedge::io::write_polygon_obj_file(&level.mesh, path),
+            Output::Refined(r) => r.write(path),
         }
         .map_err(|e| Failure::new(Kind::Input, e))?;
     }
@@ -387,6 +431,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let (v, e, f) = match &result {
         Output::Mesh(m) => (m.n_vertices(), m.n_edges(), m.n_faces()),
         Output::Faces(level) => (level.mesh.n_vertices(), level.edges, level.mesh.n_faces()),
+        Output::Refined(r) => (r.vef[0], r.vef[1], r.vef[2]),
         Output::Polygons(p) => {
             let c = halfedge::stats::face_list_counts(p);
             (c.vertices as usize, c.edges as usize, c.faces as usize)
@@ -408,8 +453,16 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     if args.timings {
         let peak = halfedge::memory::peak_resident_bytes()
             .map_or_else(|| "null".to_string(), |b| b.to_string());
+        let frames = match &result {
+            Output::Refined(r) if args.frames > 0 => format!(
+                ", \"refine_topology_s\": {:.6}, \"evaluate_s\": {:.6}",
+                r.refine_topology.as_secs_f64(),
+                r.evaluate_median.unwrap_or_default().as_secs_f64()
+            ),
+            _ => String::new(),
+        };
         eprintln!(
-            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}}}"
+            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}{frames}}}"
         );
     }
     Ok(0)
@@ -422,4 +475,6 @@ enum Output {
     Faces(sub::FaceListLevel),
     /// The face-list subdividers' result (non-manifold input).
     Polygons(PolygonMesh),
+    /// Refined once, evaluated into buffers (`--precision f32`, `--frames`).
+    Refined(crate::refined::Refined),
 }

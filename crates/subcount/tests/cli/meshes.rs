@@ -1005,3 +1005,123 @@ fn stats_of_identical_faces_and_a_huge_face_is_not_quadratic() {
     let row: Vec<&str> = row.split_whitespace().collect();
     assert_eq!(row[..2], ["1", &(2 * n + 1).to_string()], "{table}");
 }
+
+/// `--frames N` (issue 12): the topology refined once, positions evaluated N more times; `-o`
+/// writes exactly what the one-shot run writes, for every rule, and `--timings` keeps its five
+/// keys and adds `refine_topology_s` and `evaluate_s`.
+#[test]
+fn frames_write_the_one_shot_result_and_time_the_evaluations() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("icosahedron", "loop"),
+        ("grid:3x3", "loop"),
+        ("icosahedron", "butterfly"),
+        ("icosahedron", "icosphere"),
+        ("grid:3x3", "midpoint"),
+        ("mixed", "catmull-clark"),
+        ("grid:3x3", "sqrt3-boundary"),
+        ("icosahedron", "sqrt3"),
+        ("cube", "doo-sabin"),
+        ("cube", "mid-edge"),
+    ];
+    for (base, scheme) in cases {
+        let write = |name: &str, extra: &[&str]| {
+            let path = dir.path().join(name);
+            let mut args = vec![
+                "subdivide",
+                "--base",
+                base,
+                "--scheme",
+                scheme,
+                "--levels",
+                "2",
+            ];
+            args.extend(["-o", path.to_str().unwrap()]);
+            args.extend(extra);
+            let run = subcount(&args);
+            assert_eq!(run.code, 0, "{base} {scheme} {extra:?}: {}", run.stderr);
+            (std::fs::read(&path).unwrap(), run.stderr)
+        };
+        let (one_shot, _) = write("one.obj", &[]);
+        let (framed, stderr) = write("frames.obj", &["--frames", "3", "--timings"]);
+        assert!(
+            one_shot == framed,
+            "{base} {scheme}: --frames changed the output"
+        );
+        let json = stderr
+            .strip_prefix("timings: ")
+            .expect("a timings line")
+            .trim_end();
+        let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+        let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
+        assert_eq!(
+            keys,
+            [
+                "load_s",
+                "subdivide_s",
+                "write_s",
+                "peak_bytes",
+                "predicted_peak_bytes",
+                "refine_topology_s",
+                "evaluate_s"
+            ],
+            "{base} {scheme}"
+        );
+        // f32: the same faces, positions within f32 rounding of the f64 ones.
+        let (single, _) = write("f32.obj", &["--precision", "f32"]);
+        let text = |b: &[u8]| String::from_utf8(b.to_vec()).unwrap();
+        let (a, b) = (text(&one_shot), text(&single));
+        let faces = |t: &str| {
+            t.lines()
+                .filter(|l| l.starts_with("f "))
+                .map(String::from)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(faces(&a), faces(&b), "{base} {scheme}");
+        for (la, lb) in a
+            .lines()
+            .zip(b.lines())
+            .filter(|(l, _)| l.starts_with("v "))
+        {
+            for (x, y) in la.split(' ').skip(1).zip(lb.split(' ').skip(1)) {
+                let (x, y): (f64, f32) = (x.parse().unwrap(), y.parse().unwrap());
+                assert!(
+                    (x - f64::from(y)).abs() <= 1e-5 * (1.0 + x.abs()),
+                    "{base} {scheme}: {la} / {lb}"
+                );
+                assert_eq!(y.to_string().parse::<f32>().unwrap(), y);
+            }
+        }
+    }
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "cube",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "--frames",
+            "2",
+            "--no-preallocate",
+        ],
+        2,
+        "--precision f32 and --frames refine a manifold mesh once: not with --no-preallocate",
+    );
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "grid:3x3",
+            "--scheme",
+            "tri-split-3",
+            "--levels",
+            "1",
+            "--precision",
+            "f32",
+        ],
+        2,
+        "this scheme runs on the raw face list",
+    );
+}

@@ -1,0 +1,176 @@
+//! `subdivide --precision f32` and `--frames N`: the topology refined once
+//! ([`halfedge::Refinement`]), positions evaluated into caller-owned buffers, in `f32` or
+//! `f64`, once or once per frame.
+
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+use halfedge::glam::DVec3;
+use halfedge::io::FaceBuffers;
+use halfedge::subdivide::SubdivideOptions;
+use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
+
+use crate::args::Precision;
+
+/// Writes a level to a path.
+type Writer = dyn Fn(&Path) -> halfedge::Result<()>;
+
+/// What a refine-once run produced and measured.
+pub(crate) struct Refined {
+    /// `[V, E, F]` of the last level.
+    pub(crate) vef: [usize; 3],
+    /// Building the topology.
+    pub(crate) refine_topology: Duration,
+    /// The first evaluation (of the unmoved base positions: what `-o` writes).
+    pub(crate) first_evaluation: Duration,
+    /// The median of the per-frame evaluations (`None` without frames).
+    pub(crate) evaluate_median: Option<Duration>,
+    /// Writes the last level as OBJ.
+    write: Box<Writer>,
+}
+
+impl Refined {
+    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]).
+    pub(crate) fn write(&self, path: &Path) -> halfedge::Result<()> {
+        (self.write)(path)
+    }
+}
+
+/// Refines `mesh` by `rule` to `levels` once, evaluates its positions in `precision`, then
+/// `frames` more times from moved base positions (timed; the output keeps the first,
+/// unmoved evaluation).
+pub(crate) fn run(
+    mesh: &HalfEdgeMesh,
+    rule: Rule,
+    levels: u32,
+    precision: Precision,
+    frames: u32,
+    opts: &SubdivideOptions<'_>,
+) -> halfedge::Result<Refined> {
+    match precision {
+        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts),
+        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts),
+    }
+}
+
+fn run_in<T: Scalar>(
+    mesh: &HalfEdgeMesh,
+    rule: Rule,
+    levels: u32,
+    frames: u32,
+    opts: &SubdivideOptions<'_>,
+) -> halfedge::Result<Refined> {
+    let t0 = Instant::now();
+    let refinement = Refinement::new(mesh, rule, levels, opts)?;
+    let refine_topology = t0.elapsed();
+    let (n, faces, corners) = (
+        refinement.n_vertices(levels),
+        refinement.n_faces(levels),
+        refinement.n_corners(levels),
+    );
+    let degree = refinement.face_degree().filter(|d| matches!(d, 3 | 4));
+    let mut indices = vec![0u32; corners];
+    let mut offsets = Vec::new();
+    match degree {
+        Some(3) => refinement.write_triangles(&mut indices)?,
+        Some(_) => refinement.write_quads(&mut indices)?,
+        None => {
+            offsets = vec![0u32; faces + 1];
+            refinement.write_polygons(&mut offsets, &mut indices)?;
+        }
+    }
+    let base: Vec<[T; 3]> = mesh
+        .positions()
+        .iter()
+        .map(|p| p.to_array().map(T::from_f64))
+        .collect();
+    let mut evaluator = refinement.evaluator::<T, 3>();
+    let mut out = vec![[T::ZERO; 3]; n];
+    let t = Instant::now();
+    evaluator.evaluate(&base, &mut out)?;
+    let first_evaluation = t.elapsed();
+    refuse_non_finite(&out, rule, levels)?;
+    let evaluate_median = (frames > 0).then(|| -> halfedge::Result<Duration> {
+        let (mut moved, mut scratch) = (base.clone(), vec![[T::ZERO; 3]; n]);
+        let step = perturbation_step(mesh);
+        let mut times = Vec::with_capacity(frames as usize);
+        for frame in 1..=frames {
+            perturb(&base, &mut moved, step * f64::from(frame));
+            let t = Instant::now();
+            evaluator.evaluate(&moved, &mut scratch)?;
+            times.push(t.elapsed());
+        }
+        times.sort();
+        Ok(times[times.len() / 2])
+    });
+    let evaluate_median = evaluate_median.transpose()?;
+    let write = Box::new(move |path: &Path| {
+        let faces = match degree {
+            Some(degree) => FaceBuffers::Uniform {
+                degree,
+                indices: &indices,
+            },
+            None => FaceBuffers::Polygons {
+                offsets: &offsets,
+                indices: &indices,
+            },
+        };
+        halfedge::io::write_buffers_obj_file(&out, faces, path)
+    });
+    Ok(Refined {
+        vef: [n, refinement.n_edges(levels), faces],
+        refine_topology,
+        first_evaluation,
+        evaluate_median,
+        write,
+    })
+}
+
+/// The refinement does not check finiteness (the one-shot path does): an `f32` evaluation
+/// near `f32::MAX` overflows. Refused as the one-shot path refuses it, naming the vertex.
+fn refuse_non_finite<T: Scalar>(out: &[[T; 3]], rule: Rule, levels: u32) -> halfedge::Result<()> {
+    match out
+        .iter()
+        .position(|p| p.iter().any(|x| !x.to_f64().is_finite()))
+    {
+        None => Ok(()),
+        Some(v) => {
+            let [x, y, z] = out[v].map(T::to_f64);
+            Err(halfedge::Error::NonFinitePosition {
+                scheme: rule.to_string(),
+                level: levels,
+                vertex: v as u32,
+                origin: format!("(computed in {})", std::any::type_name::<T>()),
+                x,
+                y,
+                z,
+            })
+        }
+    }
+}
+
+/// A millionth of the base mesh's bounding-box diagonal: small, but it changes every
+/// coordinate, so no frame can reuse another's result.
+fn perturbation_step(mesh: &HalfEdgeMesh) -> f64 {
+    let (lo, hi) = mesh.positions().iter().fold(
+        (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN)),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let diagonal = (hi - lo).length();
+    if diagonal.is_finite() && diagonal > 0.0 {
+        diagonal * 1e-6
+    } else {
+        1e-6
+    }
+}
+
+/// `moved[i] = base[i] + amount * d(i)`, `d(i)` a fixed pseudo-random vector in `[-1/2, 1/2)^3`.
+fn perturb<T: Scalar>(base: &[[T; 3]], moved: &mut [[T; 3]], amount: f64) {
+    for (i, (b, m)) in base.iter().zip(moved.iter_mut()).enumerate() {
+        for (k, (b, m)) in b.iter().zip(m.iter_mut()).enumerate() {
+            let hash = (i as u64 * 3 + k as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15) >> 40;
+            let d = hash as f64 / (1u64 << 24) as f64 - 0.5;
+            *m = T::from_f64(b.to_f64() + amount * d);
+        }
+    }
+}
