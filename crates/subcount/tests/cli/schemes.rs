@@ -1316,3 +1316,30 @@ fn custom_schemes_are_subdivided_by_their_topology() {
         "--scheme other is not the scheme of",
     );
 }
+
+/// Every example scheme file that names a `topology` is right: `verify` checks its matrix
+/// against the real subdivision by that rule on meshes with boundary (exit 0).
+#[test]
+fn example_schemes_verify_against_their_topology() {
+    for (file, base, levels) in [
+        ("loop-boundary.toml", "grid:3x3", "3"),
+        ("loop-boundary.toml", "icosahedron-holes:2", "3"),
+        ("sqrt3-boundary.toml", "grid:3x3", "4"),
+        ("catmull-clark-triangles.toml", "icosahedron-holes:1", "3"),
+    ] {
+        let path = example_scheme(file);
+        let out = ok(&[
+            "verify",
+            "--scheme-file",
+            &path,
+            "--base",
+            base,
+            "--levels",
+            levels,
+        ]);
+        assert!(
+            out.ends_with("all counts match the prediction\n"),
+            "{file} on {base}: {out}"
+        );
+    }
+}
