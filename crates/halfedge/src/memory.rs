@@ -166,10 +166,10 @@ pub fn check_peak(
 }
 
 /// The peak of refining once ([`crate::Refinement`]) by `rule` to `levels` and evaluating
-/// positions of `scalar_bytes` per coordinate into caller buffers: the one-shot peak of
-/// building the levels ([`predicted_peak_bytes`], last level as a face list), the refinement
-/// kept ([`crate::Refinement::predicted_bytes`]), and the output positions and indices; with
-/// `frames`, a moved copy of the base and a second output buffer.
+/// positions of `scalar_bytes` per coordinate into caller buffers: the larger of the one-shot
+/// peak of building the levels ([`predicted_peak_bytes`], last level as a face list) and the
+/// input, the refinement kept ([`crate::Refinement::predicted_bytes`]) and the output
+/// positions and indices (with `frames`, a moved copy of the base and a second output buffer).
 ///
 /// # Errors
 ///
@@ -190,7 +190,10 @@ pub fn predicted_refinement_peak_bytes(
     let buffers = &point * &c.vertices * copies
         + BigInt::from(4 * 4) * &c.faces
         + &point * counts.vertices * u32::from(frames);
-    Ok(building + kept + buffers)
+    // While levels are built the refinement's tables are filled level by level; afterwards
+    // the refinement and the buffers are alive with the input: the larger of the two.
+    let input = predicted_peak_bytes(&scheme, counts, 0, None)?;
+    Ok(building.max(kept + buffers + input))
 }
 
 /// `need` if it is at most `limit`, else [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit)

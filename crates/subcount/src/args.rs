@@ -142,8 +142,9 @@ pub(crate) struct SubdivideArgs {
     pub(crate) precision: Precision,
     /// Refine the topology once, then evaluate the positions N times from slightly moved base
     /// positions (timed: `--timings` adds refine_topology_s and evaluate_s); -o writes the
-    /// unmoved result.
-    #[arg(long, value_name = "N", default_value_t = 0)]
+    /// unmoved result (N at most 1,000,000).
+    #[arg(long, value_name = "N", default_value_t = 0,
+          value_parser = clap::value_parser!(u32).range(0..=1_000_000))]
     pub(crate) frames: u32,
 }
 

@@ -186,6 +186,22 @@ fn on_face_list(scheme: &Scheme, rule: Rule, counts: &MeshCounts, custom: bool) 
     general && rule.refines_faces()
 }
 
+/// The last level of a real subdivision: at most 64, refused (exit 4) before any count is
+/// computed, since every rule at least doubles the faces per level and level 65 could not be
+/// indexed by 32-bit integers (and its exact counts would take long to compute).
+fn real_levels(text: &str) -> Result<u32, Failure> {
+    let levels = parse_levels_count(text)?;
+    if levels > 64 {
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "--levels {levels}: real subdivision stops at level 64 (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
+            ),
+        ));
+    }
+    Ok(levels)
+}
+
 /// The memory guard: `need` (a [`halfedge::memory`] prediction) against half the available
 /// memory, unless lifted.
 fn guard_memory(
@@ -220,7 +236,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
     let levels = match &args.levels {
-        Some(t) => parse_levels_count(t)?,
+        Some(t) => real_levels(t)?,
         None => {
             // The highest level whose predicted face count stays within the cap (at most 64).
             let budget = Budget {
@@ -316,7 +332,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
 }
 
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let levels = parse_levels_count(&args.levels)?;
+    let levels = real_levels(&args.levels)?;
     let start = Instant::now();
     let poly = required_mesh(&args.mesh)?;
     refuse_degenerate_faces(&poly, &args.mesh)?;

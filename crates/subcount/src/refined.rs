@@ -84,6 +84,24 @@ fn run_in<T: Scalar>(
         .iter()
         .map(|p| p.to_array().map(T::from_f64))
         .collect();
+    if let Some(v) = base
+        .iter()
+        .position(|p| p.iter().any(|x| !x.to_f64().is_finite()))
+    {
+        let p = mesh.positions()[v];
+        return Err(halfedge::Error::NonFinitePosition {
+            scheme: rule.to_string(),
+            level: 0,
+            vertex: v as u32,
+            origin: format!(
+                "the input vertex, beyond the range of {}",
+                std::any::type_name::<T>()
+            ),
+            x: p.x,
+            y: p.y,
+            z: p.z,
+        });
+    }
     let mut evaluator = refinement.evaluator::<T, 3>();
     let mut out = vec![[T::ZERO; 3]; n];
     let t = Instant::now();
@@ -95,7 +113,8 @@ fn run_in<T: Scalar>(
         let step = perturbation_step(mesh);
         let mut times = Vec::with_capacity(frames as usize);
         for frame in 1..=frames {
-            perturb(&base, &mut moved, step * f64::from(frame));
+            // Cycled, so the base never drifts more than 64 steps from where it was.
+            perturb(&base, &mut moved, step * f64::from(frame % 64 + 1));
             let t = Instant::now();
             evaluator.evaluate(&moved, &mut scratch)?;
             times.push(t.elapsed());
@@ -140,7 +159,7 @@ fn refuse_non_finite<T: Scalar>(out: &[[T; 3]], rule: Rule, levels: u32) -> half
                 scheme: rule.to_string(),
                 level: levels,
                 vertex: v as u32,
-                origin: format!("(computed in {})", std::any::type_name::<T>()),
+                origin: format!("computed in {}", std::any::type_name::<T>()),
                 x,
                 y,
                 z,

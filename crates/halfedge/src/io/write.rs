@@ -104,10 +104,15 @@ impl FaceBuffers<'_> {
         match *self {
             FaceBuffers::Uniform { degree, indices } => (degree > 0 && indices.len() % degree == 0)
                 .then(|| indices.chunks_exact(degree).collect()),
-            FaceBuffers::Polygons { offsets, indices } => offsets
-                .windows(2)
-                .map(|w| indices.get(w[0] as usize..w[1] as usize))
-                .collect(),
+            FaceBuffers::Polygons { offsets, indices } => {
+                let whole = offsets.first() == Some(&0)
+                    && offsets.last().map(|&l| l as usize) == Some(indices.len());
+                let faces: Option<Vec<&[u32]>> = offsets
+                    .windows(2)
+                    .map(|w| indices.get(w[0] as usize..w[1] as usize))
+                    .collect();
+                faces.filter(|f| whole && f.iter().all(|f| !f.is_empty()))
+            }
         }
     }
 }
@@ -118,7 +123,8 @@ impl FaceBuffers<'_> {
 ///
 /// # Errors
 ///
-/// [`std::io::ErrorKind::InvalidInput`] when the face buffers are inconsistent or a corner
+/// [`std::io::ErrorKind::InvalidInput`] when the face buffers are inconsistent (offsets that
+/// do not start at 0, end at the last index, or give an empty face) or a corner
 /// names a vertex beyond `positions`; any error of the writer.
 ///
 /// ```
@@ -130,7 +136,7 @@ impl FaceBuffers<'_> {
 /// assert_eq!(String::from_utf8(out)?, "v 0.0 0.0 0.0\nv 1.0 0.0 0.0\nv 0.1 1.0 0.0\nf 1 2 3\n");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_buffers_obj<T: std::fmt::Debug>(
+pub fn write_buffers_obj<T: crate::Scalar>(
     positions: &[[T; 3]],
     faces: FaceBuffers<'_>,
     writer: impl Write,
@@ -161,7 +167,7 @@ pub fn write_buffers_obj<T: std::fmt::Debug>(
 /// # Errors
 ///
 /// As [`write_obj_file`], and [`Error::Io`] for inconsistent buffers.
-pub fn write_buffers_obj_file<T: std::fmt::Debug>(
+pub fn write_buffers_obj_file<T: crate::Scalar>(
     positions: &[[T; 3]],
     faces: FaceBuffers<'_>,
     path: impl AsRef<Path>,

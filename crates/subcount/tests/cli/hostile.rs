@@ -522,6 +522,20 @@ fn the_resource_guard_holds_for_every_command() {
         "decimal digits",
     );
     fails(&["density", "--level", "1000000000000"], 4, digits);
+    // Level 40 passes the level cap; the memory guard refuses it.
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop",
+            "--levels",
+            "40",
+        ],
+        4,
+        "loop to level 40 needs about",
+    );
     fails(
         &[
             "verify",
@@ -533,7 +547,7 @@ fn the_resource_guard_holds_for_every_command() {
             "1000",
         ],
         4,
-        "loop to level 1000 needs about",
+        "--levels 1000: real subdivision stops at level 64",
     );
     fails(
         &[
@@ -546,7 +560,7 @@ fn the_resource_guard_holds_for_every_command() {
             "1000",
         ],
         4,
-        "loop to level 1000 needs about",
+        "--levels 1000: real subdivision stops at level 64",
     );
     fails(
         &[

@@ -185,7 +185,8 @@ fn plan_sizes(
     counts: &MeshCounts,
     levels: u32,
 ) -> Result<Vec<(Option<Sizes>, [usize; 3])>> {
-    let mut out = Vec::with_capacity(levels as usize);
+    // Capped: a level count beyond 64 is refused by the size check long before.
+    let mut out = Vec::with_capacity(levels.min(64) as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
         let built = s < levels || !direct(plan.algorithm);
@@ -281,7 +282,7 @@ impl Refinement {
             threads: opts.threads,
             pool,
             template,
-            topology: Vec::with_capacity(levels.max(1) as usize),
+            topology: Vec::with_capacity(levels.clamp(1, 64) as usize),
             sizes: Vec::with_capacity(levels as usize + 1),
             polygons: None,
             face_degree: None,
@@ -690,8 +691,9 @@ impl Refinement {
         }
         let n0 = self.n_vertices(0);
         let nl = self.n_vertices(self.levels);
-        check_len("base", stride * n0, base.len())?;
-        check_len("out", stride * nl, out.len())?;
+        let entries = |n: usize| stride.saturating_mul(n);
+        check_len("base", entries(n0), base.len())?;
+        check_len("out", entries(nl), out.len())?;
         macro_rules! widths {
             ($($n:literal)*) => {
                 match stride {
