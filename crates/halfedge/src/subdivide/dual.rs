@@ -50,7 +50,9 @@ pub(crate) fn doo_sabin<const GROW: bool>(
     vertex_faces(&t, &mut b, |h, next| (next, 2 * (2 * ne + h) + 1));
     let capacity = (!GROW).then_some(ctx.expected.vertices);
     b.finish(
-        doo_sabin_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
+        super::alloc::positions_by(capacity, |out| {
+            doo_sabin_points(&t, &mesh.positions, out, ctx.parallel)
+        })?,
         ctx,
     )
 }
@@ -66,7 +68,9 @@ pub(crate) fn mid_edge<const GROW: bool>(
     vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
     let capacity = (!GROW).then_some(ctx.expected.vertices);
     b.finish(
-        mid_edge_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
+        super::alloc::positions_by(capacity, |out| {
+            mid_edge_points(&t, &mesh.positions, out, ctx.parallel)
+        })?,
         ctx,
     )
 }
@@ -106,19 +110,6 @@ fn vertex_faces<const GROW: bool>(
     }
 }
 
-/// The positions of a Doo-Sabin step: the corner point of each old half-edge
-/// ([`doo_sabin_point`]). `capacity`: allocate exactly this many up front (else grow).
-pub(crate) fn doo_sabin_positions<V: Vector>(
-    t: &Topo<'_>,
-    src: &[V],
-    capacity: Option<usize>,
-    parallel: bool,
-) -> Result<Vec<V>> {
-    let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
-    doo_sabin_points(t, src, &mut out, parallel);
-    Ok(out)
-}
-
 /// The Doo-Sabin points of a step, appended to `out`.
 pub(crate) fn doo_sabin_points<V: Vector>(
     t: &Topo<'_>,
@@ -127,19 +118,6 @@ pub(crate) fn doo_sabin_points<V: Vector>(
     parallel: bool,
 ) {
     out.append(2 * t.ne(), parallel, |h| doo_sabin_point(t, src, h as u32));
-}
-
-/// The positions of a mid-edge step: the midpoint of each old edge. `capacity`: allocate
-/// exactly this many up front (else grow).
-pub(crate) fn mid_edge_positions<V: Vector>(
-    t: &Topo<'_>,
-    src: &[V],
-    capacity: Option<usize>,
-    parallel: bool,
-) -> Result<Vec<V>> {
-    let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
-    mid_edge_points(t, src, &mut out, parallel);
-    Ok(out)
 }
 
 /// The mid-edge points of a step, appended to `out`.

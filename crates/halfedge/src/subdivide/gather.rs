@@ -24,7 +24,7 @@ use glam::DVec3;
 
 use super::build::{Sizes, StepContext};
 use super::catmull_clark::cc_positions;
-use super::dual::{doo_sabin_positions, mid_edge_positions};
+use super::dual::{doo_sabin_points, mid_edge_points};
 use super::par;
 use super::sqrt3::sqrt3_points;
 use super::topo::{Connectivity, Topo};
@@ -438,12 +438,9 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
 pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let topology = doo_sabin_topology(&t, ctx)?;
-    let positions = doo_sabin_positions(
-        &t,
-        &mesh.positions,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
+    let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
+        doo_sabin_points(&t, &mesh.positions, out, ctx.parallel)
+    })?;
     finish(ctx, topology, positions)
 }
 
@@ -503,12 +500,9 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
 pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
     let topology = mid_edge_topology(&t, ctx)?;
-    let positions = mid_edge_positions(
-        &t,
-        &mesh.positions,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
+    let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
+        mid_edge_points(&t, &mesh.positions, out, ctx.parallel)
+    })?;
     finish(ctx, topology, positions)
 }
 

@@ -148,12 +148,9 @@ pub(crate) fn sqrt3_step<const GROW: bool>(
 
     let capacity = (!GROW).then_some(ctx.expected.vertices);
     let positions = match positions {
-        Some(src) => {
-            let mut out = super::alloc::with_capacity_or_grow(capacity, "positions")?;
-            let b = step_b.then_some(&tables);
-            sqrt3_points(&t, src, b, &mut out, ctx.parallel);
-            out
-        }
+        Some(src) => super::alloc::positions_by(capacity, |out| {
+            sqrt3_points(&t, src, step_b.then_some(&tables), out, ctx.parallel)
+        })?,
         None => super::alloc::filled(DVec3::ZERO, ctx.expected.vertices, "positions")?,
     };
     b.finish(positions, ctx)

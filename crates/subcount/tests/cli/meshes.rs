@@ -698,6 +698,15 @@ fn output_errors_name_the_file_and_cause_once() {
     assert_eq!(err.matches("No such file or directory").count(), 1, "{err}");
 }
 
+/// The JSON object of a `timings: {...}` stderr line.
+fn timings(stderr: &str) -> serde_json::Value {
+    let json = stderr
+        .strip_prefix("timings: ")
+        .expect("a timings line")
+        .trim_end();
+    serde_json::from_str(json).expect("timings are JSON")
+}
+
 #[test]
 fn timings_print_one_line_with_five_keys() {
     let dir = tempfile::tempdir().unwrap();
@@ -716,12 +725,7 @@ fn timings_print_one_line_with_five_keys() {
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert_eq!(run.stderr.lines().count(), 1, "{:?}", run.stderr);
-    let json = run
-        .stderr
-        .strip_prefix("timings: ")
-        .expect("a timings line")
-        .trim_end();
-    let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+    let v = timings(&run.stderr);
     let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
     assert_eq!(
         keys,
@@ -760,8 +764,7 @@ fn timings_print_one_line_with_five_keys() {
         "--timings",
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let json = run.stderr.strip_prefix("timings: ").unwrap().trim_end();
-    let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+    let v = timings(&run.stderr);
     assert_eq!(
         v["predicted_peak_bytes"].as_u64(),
         Some(half_edge(12, 30, 20) + half_edge(162, 480, 320) + half_edge(642, 1920, 1280))
@@ -1048,11 +1051,7 @@ fn frames_write_the_one_shot_result_and_time_the_evaluations() {
             one_shot == framed,
             "{base} {scheme}: --frames changed the output"
         );
-        let json = stderr
-            .strip_prefix("timings: ")
-            .expect("a timings line")
-            .trim_end();
-        let v: serde_json::Value = serde_json::from_str(json).expect("timings are JSON");
+        let v = timings(&stderr);
         let keys: Vec<&String> = v.as_object().unwrap().keys().collect();
         assert_eq!(
             keys,
