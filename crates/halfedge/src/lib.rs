@@ -15,6 +15,7 @@
 //!   [`schemes::MeshCounts::from_face_list`], and counts every defect of a face list.
 //! - [`shapes`] generates base meshes in code (platonic solids, cube, tori of any genus,
 //!   icosahedron with holes, grids, a mixed-polygon disk), also by name (`torus:3`).
+//! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed.
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output
 //!   exactly from the predicted counts.
 //!
@@ -71,6 +72,7 @@ mod polygon;
 pub mod shapes;
 pub mod stats;
 pub mod subdivide;
+pub mod tags;
 
 pub use crate::memory::{BYTES_PER_EDGE, BYTES_PER_FACE, BYTES_PER_VERTEX};
 
