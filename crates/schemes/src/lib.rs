@@ -74,6 +74,7 @@ mod counts;
 pub mod custom;
 mod error;
 mod fit;
+pub mod holes;
 pub mod input;
 mod plan;
 mod rule;
