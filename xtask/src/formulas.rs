@@ -102,6 +102,7 @@ pub(crate) fn render() -> anyhow::Result<String> {
     for s in &schemes {
         scheme_section(&mut out, s)?;
     }
+    holes_section(&mut out)?;
     crate::paper::section(&mut out)?;
     Ok(out)
 }
@@ -188,6 +189,115 @@ fn scheme_section(out: &mut String, s: &Scheme) -> anyhow::Result<()> {
         phase_forms(out, phase);
     }
     counts_table(out, s)?;
+    Ok(())
+}
+
+/// The section on holes: the hole statistics' recurrence per nesting rule, its closed forms,
+/// and a reference mesh counted both ways.
+fn holes_section(out: &mut String) -> anyhow::Result<()> {
+    use schemes::holes::{hole_recurrence, HoleCounts};
+    use schemes::{MeshCounts, Rule};
+
+    out.push_str(
+        "## Holes
+
+",
+    );
+    out.push_str(
+        "A face tagged as a hole (`t hole` in OBJ) is not written, nor are its descendants or the \
+         vertices and edges that only holes use; the surface around it is computed as if the \
+         face were there. Holes apply to the rules whose faces nest: the 4:1 family (`loop` and \
+         its aliases), `tri-split-N` and `catmull-clark`.\n\n\
+         **What is written counts like a mesh of its own.** The children of a written face are \
+         its own and the children of a hole are holes, so level `s` of what is written is level \
+         `s` of the written faces alone: every count (`table`, `at`, `verify`, `subdivide`) \
+         applies the usual scheme to the statistics of the faces that are not holes, and a \
+         closed mesh with holes counts with the boundary-aware state (`loop-boundary`, \
+         `catmull-clark`).\n\n\
+         **The statistics holes add.** The same counts follow as the whole mesh's minus the \
+         holes': `HV` vertices all of whose faces are holes, `HE` edges all of whose faces are \
+         holes, `HF` hole faces, `HH` their corners, with `V - HV`, `E - HE`, `F - HF` written. \
+         This set closes: a child element is a hole's exactly when the parent element it lies on \
+         (vertex, edge or face) is one (`schemes::holes`).\n\n",
+    );
+    for (rule, title) in [
+        (
+            Rule::Loop,
+            "4:1 split (`loop`, `midpoint`, `butterfly`, `icosphere`, `tri-split-2`)",
+        ),
+        (Rule::TriSplit(3), "1:9 split (`tri-split-3`)"),
+        (Rule::CatmullClark, "Catmull-Clark"),
+    ] {
+        let r = hole_recurrence(rule).context("a nesting rule has a hole recurrence")?;
+        let _ = writeln!(out, "### {title}\n");
+        math_block(out, &step_equation(r.names(), r.matrix()));
+        let form = r.closed_form();
+        let mut lines = Vec::new();
+        for line in form.to_latex_in("s").lines() {
+            lines.push(match line.split_once(" = ") {
+                Some((lhs, rhs)) => format!("{lhs} &= {rhs}"),
+                None => line.to_string(),
+            });
+        }
+        math_block(
+            out,
+            &format!(
+                "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
+                lines.join(" \\\\\n")
+            ),
+        );
+        validity(out, &form, "s");
+    }
+
+    // The reference: a 4x4 quad grid whose faces 5 and 6 (side by side) are holes.
+    let grid = shapes::quad_grid(4, 4)?;
+    let holes = [5usize, 6];
+    let faces: Vec<&[u32]> = (0..grid.n_faces()).map(|f| grid.face(f)).collect();
+    let kept: Vec<&[u32]> = (0..faces.len())
+        .filter(|f| !holes.contains(f))
+        .map(|f| faces[f])
+        .collect();
+    let full = MeshCounts::from_face_list(faces.iter().copied(), 0);
+    let written = MeshCounts::from_face_list(kept.iter().copied(), 0);
+    let h = HoleCounts::between(&full, &written);
+    let cc = schemes::builtin("catmull-clark")?;
+    let r = hole_recurrence(Rule::CatmullClark).context("Catmull-Clark nests")?;
+    let _ = writeln!(
+        out,
+        "Reference: the 4x4 quad grid with faces 5 and 6 (side by side) as holes under \
+         `catmull-clark`: whole mesh, holes, and the written faces counted on their own \
+         (`HV = {}`, `HE = {}`, `HF = {}`, `HH = {}` at level 0).\n",
+        h.vertices, h.edges, h.faces, h.corners
+    );
+    out.push_str(
+        "| s | V | E | F | HV | HE | HF | written V | written E | written F |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for s in 0..TABLE_LEVELS {
+        let whole = cc.counts_at(&full, s)?;
+        let gone = r.state_at(&h.state(), s)?;
+        let kept = cc.counts_at(&written, s)?;
+        anyhow::ensure!(
+            whole.vertices.clone() - &gone[0] == kept.vertices
+                && whole.edges.clone() - &gone[1] == kept.edges
+                && whole.faces.clone() - &gone[2] == kept.faces,
+            "the hole recurrence disagrees with the written mesh at level {s}"
+        );
+        let _ = writeln!(
+            out,
+            "| {s} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            whole.vertices,
+            whole.edges,
+            whole.faces,
+            gone[0],
+            gone[1],
+            gone[2],
+            kept.vertices,
+            kept.edges,
+            kept.faces
+        );
+    }
+    out.push('\n');
     Ok(())
 }
 
