@@ -323,6 +323,20 @@ pub enum Error {
         /// Why, and what to do.
         reason: String,
     },
+    /// A hole names a face the mesh does not have.
+    #[error("hole face {face} is out of range (the mesh has {n_faces} faces)")]
+    HoleOutOfRange {
+        /// The face index (0-based).
+        face: u32,
+        /// The number of faces.
+        n_faces: usize,
+    },
+    /// Holes under a rule whose faces do not nest, so that a hole has no descendants.
+    #[error("holes need a rule whose faces nest (the 4:1 family, tri-split-N, Catmull-Clark); {rule} does not")]
+    HolesNeedNestedFaces {
+        /// The rule.
+        rule: schemes::Rule,
+    },
     /// The mesh is in the scheme's class for counting but the subdivision itself cannot run
     /// on it (e.g. a vertex of valence 2 for a dual scheme).
     #[error("{scheme} cannot subdivide this mesh: {reason}")]

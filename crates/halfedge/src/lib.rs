@@ -15,6 +15,7 @@
 //!   [`schemes::MeshCounts::from_face_list`], and counts every defect of a face list.
 //! - [`shapes`] generates base meshes in code (platonic solids, cube, tori of any genus,
 //!   icosahedron with holes, grids, a mixed-polygon disk), also by name (`torus:3`).
+//! - [`holes`] finds the faces that are holes and what is written around them.
 //! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed.
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output
 //!   exactly from the predicted counts.
@@ -65,6 +66,7 @@
 
 mod build;
 mod error;
+pub mod holes;
 pub mod io;
 pub mod memory;
 mod mesh;

@@ -1,0 +1,231 @@
+//! Holes in a face list: which faces are holes (tagged, or made so by
+//! [`BoundaryInterpolation::None`]), the statistics of what is written, and which faces of a
+//! subdivided level descend from holes.
+//!
+//! A hole is not a deleted face: the subdivided surface around it is what it would be with
+//! the face there (OpenSubdiv's holes), but the face, its descendants and the vertices only
+//! they use are not written. Counting follows [`schemes::holes`]: what is written at level
+//! `s` is level `s` of the written faces alone.
+//!
+//! ```
+//! use halfedge::holes::{boundary_faces, HoleSet};
+//! use halfedge::shapes;
+//!
+//! // OpenSubdiv's VTX_BOUNDARY_NONE makes every face with a boundary vertex a hole: on a
+//! // 3x3 grid only the centre face stays.
+//! let grid = shapes::quad_grid(3, 3)?;
+//! assert_eq!(boundary_faces(&grid), [0, 1, 2, 3, 5, 6, 7, 8]);
+//!
+//! let holes = HoleSet::new(grid.n_faces(), [4, 4, 0])?;
+//! assert_eq!(holes.faces(), [0, 4]);
+//! let written = holes.written_counts(&grid);
+//! assert_eq!((written.vertices, written.faces), (16 - 1, 7));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! [`BoundaryInterpolation::None`]: crate::tags::BoundaryInterpolation::None
+
+use schemes::holes::{nests_faces, HoleCounts};
+use schemes::{MeshCounts, Rule};
+
+use crate::{Error, PolygonMesh, Result};
+
+/// The faces of `mesh` that have a vertex on a boundary edge (an edge of exactly one face), in
+/// order: the faces OpenSubdiv makes holes under `VTX_BOUNDARY_NONE` (Loop and Catmull-Clark).
+pub fn boundary_faces(mesh: &PolygonMesh) -> Vec<u32> {
+    let n = mesh.positions.len().max(
+        (0..mesh.n_faces())
+            .flat_map(|f| mesh.face(f).iter().map(|&v| v as usize + 1))
+            .max()
+            .unwrap_or(0),
+    );
+    // Each undirected side, as (smaller, larger); an edge of one face appears once.
+    let mut sides: Vec<(u32, u32)> = Vec::new();
+    for f in 0..mesh.n_faces() {
+        let face = mesh.face(f);
+        for (i, &a) in face.iter().enumerate() {
+            let b = face[(i + 1) % face.len()];
+            if a != b {
+                sides.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    sides.sort_unstable();
+    let mut on_boundary = vec![false; n];
+    let mut i = 0;
+    while i < sides.len() {
+        let mut j = i + 1;
+        while j < sides.len() && sides[j] == sides[i] {
+            j += 1;
+        }
+        if j - i == 1 {
+            on_boundary[sides[i].0 as usize] = true;
+            on_boundary[sides[i].1 as usize] = true;
+        }
+        i = j;
+    }
+    (0..mesh.n_faces())
+        .filter(|&f| mesh.face(f).iter().any(|&v| on_boundary[v as usize]))
+        .map(|f| f as u32)
+        .collect()
+}
+
+/// A set of hole faces of a mesh with a known number of faces: sorted, without repeats.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct HoleSet {
+    faces: Vec<u32>,
+    n_faces: usize,
+}
+
+impl HoleSet {
+    /// The holes among `n_faces` faces (repeats allowed, any order).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::HoleOutOfRange`] for a face index `>= n_faces`.
+    pub fn new(n_faces: usize, faces: impl IntoIterator<Item = u32>) -> Result<HoleSet> {
+        let mut faces: Vec<u32> = faces.into_iter().collect();
+        if let Some(&face) = faces.iter().find(|&&f| f as usize >= n_faces) {
+            return Err(Error::HoleOutOfRange { face, n_faces });
+        }
+        faces.sort_unstable();
+        faces.dedup();
+        Ok(HoleSet { faces, n_faces })
+    }
+
+    /// The hole faces, ascending.
+    pub fn faces(&self) -> &[u32] {
+        &self.faces
+    }
+
+    /// `true` when there is no hole.
+    pub fn is_empty(&self) -> bool {
+        self.faces.is_empty()
+    }
+
+    /// Whether face `f` is a hole.
+    pub fn contains(&self, f: u32) -> bool {
+        self.faces.binary_search(&f).is_ok()
+    }
+
+    /// The statistics of the written faces of `mesh` (every face that is not a hole), counted
+    /// as [`MeshCounts::from_face_list`] counts a file: vertices only holes use are
+    /// unreferenced.
+    pub fn written_counts(&self, mesh: &PolygonMesh) -> MeshCounts {
+        let written = (0..mesh.n_faces())
+            .filter(|&f| !self.contains(f as u32))
+            .map(|f| mesh.face(f));
+        MeshCounts::from_face_list(written, mesh.positions.len())
+    }
+
+    /// What the holes remove from `mesh` ([`schemes::holes::HoleCounts`]).
+    pub fn hole_counts(&self, mesh: &PolygonMesh) -> HoleCounts {
+        let full = crate::stats::face_list_counts(mesh);
+        HoleCounts::between(&full, &self.written_counts(mesh))
+    }
+
+    /// Which faces of level `level` of `rule` are written (`true`) or descend from a hole,
+    /// for a level numbered as [`crate::subdivide`] numbers it: the children of a face are
+    /// contiguous and in the order of their parents (1:N² splits: `N²` per face; Catmull-Clark:
+    /// one per corner). `degrees` are the base faces' degrees.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::HolesNeedNestedFaces`] for a rule whose faces do not nest (√3, Doo-Sabin,
+    /// mid-edge); [`Error::TooLarge`] when the level's faces do not fit `usize`.
+    pub fn written_at(&self, rule: Rule, degrees: &[usize], level: u32) -> Result<Vec<bool>> {
+        if !nests_faces(rule) {
+            return Err(Error::HolesNeedNestedFaces { rule });
+        }
+        let mut written: Vec<bool> = (0..degrees.len())
+            .map(|f| !self.contains(f as u32))
+            .collect();
+        let split = match rule {
+            Rule::TriSplit(n) => n as usize * n as usize,
+            _ => 4,
+        };
+        for s in 1..=level {
+            let first = s == 1 && rule == Rule::CatmullClark;
+            let total = if first {
+                Some(degrees.iter().sum::<usize>())
+            } else {
+                written.len().checked_mul(split)
+            };
+            let Some(total) = total else {
+                return Err(Error::TooLarge {
+                    what: "faces",
+                    scheme: rule.to_string(),
+                    level: s,
+                    count: num_bigint::BigInt::from(written.len()) * split,
+                });
+            };
+            let mut next = Vec::with_capacity(total);
+            for (f, &w) in written.iter().enumerate() {
+                let children = if first { degrees[f] } else { split };
+                next.extend(std::iter::repeat(w).take(children));
+            }
+            written = next;
+        }
+        Ok(written)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes;
+
+    #[test]
+    fn boundary_faces_of_closed_meshes_are_none() {
+        assert!(boundary_faces(&shapes::cube()).is_empty());
+        let grid = shapes::grid(2, 2).unwrap();
+        assert_eq!(boundary_faces(&grid).len(), grid.n_faces());
+    }
+
+    #[test]
+    fn out_of_range_holes_are_refused_naming_the_face() {
+        let err = HoleSet::new(6, [2, 6]).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "hole face 6 is out of range (the mesh has 6 faces)"
+        );
+    }
+
+    #[test]
+    fn descendants_of_holes_follow_their_parents() {
+        let cube = shapes::cube();
+        let holes = HoleSet::new(6, [1]).unwrap();
+        let degrees = vec![4; 6];
+        let l1 = holes.written_at(Rule::CatmullClark, &degrees, 1).unwrap();
+        assert_eq!(l1.len(), 24);
+        assert_eq!(l1.iter().filter(|w| !**w).count(), 4);
+        assert!(!l1[4] && !l1[7] && l1[3] && l1[8]);
+        let l2 = holes.written_at(Rule::CatmullClark, &degrees, 2).unwrap();
+        assert_eq!(l2.iter().filter(|w| !**w).count(), 16);
+        let tri = HoleSet::new(8, [0, 7]).unwrap();
+        let l2 = tri.written_at(Rule::TriSplit(3), &[3; 8], 2).unwrap();
+        assert_eq!(
+            (l2.len(), l2.iter().filter(|w| !**w).count()),
+            (8 * 81, 2 * 81)
+        );
+        assert!(matches!(
+            tri.written_at(Rule::Sqrt3, &[3; 8], 1),
+            Err(Error::HolesNeedNestedFaces { .. })
+        ));
+        let _ = cube;
+    }
+
+    #[test]
+    fn written_counts_drop_what_only_holes_use() {
+        // A 2x2 quad grid with its corner face 0 a hole: vertex 0 is used by no other face.
+        let grid = shapes::quad_grid(2, 2).unwrap();
+        let holes = HoleSet::new(4, [0]).unwrap();
+        let w = holes.written_counts(&grid);
+        assert_eq!(
+            (w.vertices, w.edges, w.faces, w.unreferenced_vertices),
+            (8, 10, 3, 1)
+        );
+        let h = holes.hole_counts(&grid);
+        assert_eq!((h.vertices, h.edges, h.faces, h.corners), (1, 2, 1, 4));
+    }
+}
