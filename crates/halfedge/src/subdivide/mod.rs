@@ -80,6 +80,8 @@ mod dual;
 mod faces;
 mod finite;
 mod gather;
+#[cfg(test)]
+mod oneshot_hashes;
 mod par;
 pub mod refine;
 mod sqrt3;
