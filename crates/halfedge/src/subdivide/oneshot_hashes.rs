@@ -7,6 +7,7 @@
 
 use super::*;
 use crate::shapes;
+use glam::DVec3;
 
 /// FNV-1a, 64 bits (stable across Rust versions, unlike `DefaultHasher`).
 struct Fnv(u64);
@@ -85,7 +86,10 @@ fn meshes() -> Vec<(&'static str, HalfEdgeMesh)> {
         ("cube", he(shapes::cube())),
         ("torus", he(shapes::torus(1).expect("a torus"))),
         ("grid", he(shapes::grid(3, 2).expect("a grid"))),
-        ("quad_grid", he(shapes::quad_grid(2, 3).expect("a quad grid"))),
+        (
+            "quad_grid",
+            he(shapes::quad_grid(2, 3).expect("a quad grid")),
+        ),
         ("holes", he(shapes::icosahedron_holes(2).expect("holes"))),
         ("mixed", he(shapes::mixed())),
     ]
