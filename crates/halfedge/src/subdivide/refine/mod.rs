@@ -62,9 +62,9 @@ use std::sync::Arc;
 use schemes::MeshCounts;
 
 pub use self::data::Scalar;
-pub(crate) use self::data::{Sparse, Vector};
+pub(crate) use self::data::{Sparse, Support, Vector};
 pub(crate) use self::oneshot::{one_shot, OneShot};
-pub use self::stencil::StencilTable;
+pub use self::stencil::{StencilSizes, StencilTable};
 
 use self::tables::{CcTables, LoopTables};
 use super::build::{Sizes, StepContext};
@@ -1055,13 +1055,44 @@ impl Refinement {
     /// The last level's vertices as weighted sums of the base vertices, for the linear rules
     /// (every rule but [`Rule::Icosphere`]): the form GPU evaluators consume (OpenSubdiv's
     /// `Far::StencilTable`). Computed by running the rules' kernels level by level on sparse
-    /// sums; the table's arrays are then counted and filled exactly.
+    /// sums, after the table's sizes are counted ([`Refinement::stencil_sizes`]); its arrays
+    /// are allocated once, exactly, and filled.
     ///
     /// # Errors
     ///
     /// [`Error::NotLinear`] for [`Rule::Icosphere`]; [`Error::IndexOverflow`] beyond `u32`
     /// entries; [`Error::AllocationFailed`].
     pub fn stencils(&self) -> Result<StencilTable> {
+        let sizes = self.stencil_sizes()?;
+        let n0 = self.n_vertices(0) as u32;
+        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
+        for s in 1..=self.levels {
+            current = self.run(|| self.collect_level(s, &current))?;
+        }
+        StencilTable::from_sums(&current, n0 as usize, sizes, &self.name, self.levels)
+    }
+
+    /// The sizes of [`Refinement::stencils`]' table before anything of it is allocated: its
+    /// rows (the last level's vertices) and its entries, counted by running the rules' kernels
+    /// level by level on the supports of the sums (their base vertices, without weights).
+    ///
+    /// ```
+    /// use halfedge::refine::Refinement;
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Rule};
+    ///
+    /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+    /// let sizes = r.stencil_sizes()?;
+    /// assert_eq!(sizes.rows, r.n_vertices(2));
+    /// assert_eq!(sizes, r.stencils()?.sizes());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotLinear`] for [`Rule::Icosphere`]; [`Error::AllocationFailed`].
+    pub fn stencil_sizes(&self) -> Result<StencilSizes> {
         if !self.rule.is_linear() {
             return Err(Error::NotLinear {
                 rule: self.name.clone(),
@@ -1069,11 +1100,14 @@ impl Refinement {
             });
         }
         let n0 = self.n_vertices(0) as u32;
-        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
+        let mut current: Vec<Support> = (0..n0).map(Support::unit).collect();
         for s in 1..=self.levels {
             current = self.run(|| self.collect_level(s, &current))?;
         }
-        StencilTable::from_sums(&current, n0 as usize)
+        Ok(StencilSizes {
+            rows: current.len(),
+            entries: current.iter().map(|r| r.0.len()).sum(),
+        })
     }
 }
 
