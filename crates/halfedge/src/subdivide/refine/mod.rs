@@ -39,6 +39,14 @@
 //!
 //! # Same results as the one-shot subdivision
 //!
+//! The one-shot subdivision is a refinement: [`subdivide`](super::subdivide),
+//! [`subdivide_to_face_list`](super::subdivide_to_face_list) and
+//! [`verify`](super::verify) run a private streaming mode of [`Refinement`] that checks the
+//! same sizes, builds each level by the same topology step, computes its positions by the
+//! same evaluation dispatch as [`Refinement::stencils`] and writes the last level's faces
+//! with the same index buffers as [`Refinement::write_triangles`], keeping only two levels
+//! alive and no flattened tables (it evaluates once).
+//!
 //! The geometry is one implementation: every rule's kernels are generic over the data they
 //! combine (`DVec3` for [`subdivide`](super::subdivide), `[T; N]` here, a sparse weighted sum
 //! for [`Refinement::stencils`]) and run the same operations in the same order, so in `f64`
