@@ -272,6 +272,37 @@ fn f32_follows_f64() {
 }
 
 #[test]
+fn stencil_sizes_are_the_sizes_of_the_built_table() {
+    let mut checked = 0;
+    for (name, mesh, rule, levels) in cases() {
+        let what = format!("{name} {rule} L{levels}");
+        for threads in [1, 2] {
+            let r = Refinement::new(&mesh, rule, levels, &opts(threads)).expect("refinement");
+            let sizes = match r.stencil_sizes() {
+                Ok(sizes) => sizes,
+                Err(e) => {
+                    assert_eq!(rule, Rule::Icosphere, "{what}: {e}");
+                    assert!(matches!(e, Error::NotLinear { .. }), "{what}: {e}");
+                    continue;
+                }
+            };
+            let table = r.stencils().expect("stencils");
+            assert_eq!(sizes, table.sizes(), "{what}");
+            assert_eq!(sizes.rows, r.n_vertices(levels), "{what}");
+            assert_eq!(sizes.entries, table.indices().len(), "{what}");
+            assert_eq!(sizes.entries, table.weights().len(), "{what}");
+            assert_eq!(
+                sizes.bytes(),
+                4 * table.offsets().len() as u128 + 12 * table.n_entries() as u128,
+                "{what}"
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 100, "{checked} tables");
+}
+
+#[test]
 fn stencils_reproduce_the_evaluation() {
     for (name, mesh, rule, levels) in cases() {
         let r = Refinement::new(&mesh, rule, levels, &opts(1)).expect("refinement");

@@ -43,17 +43,6 @@ pub(crate) fn with_capacity_or_grow<T>(capacity: Option<usize>, what: &str) -> R
     }
 }
 
-/// The positions a step appends with `fill`, in a vector of exactly `capacity` entries (or
-/// growing on demand when `None`).
-pub(crate) fn positions_by<V>(
-    capacity: Option<usize>,
-    fill: impl FnOnce(&mut Vec<V>),
-) -> Result<Vec<V>> {
-    let mut out = with_capacity_or_grow(capacity, "positions")?;
-    fill(&mut out);
-    Ok(out)
-}
-
 /// A vector of `n` copies of `value`, allocated exactly.
 pub(crate) fn filled<T: Clone>(value: T, n: usize, what: &str) -> Result<Vec<T>> {
     let mut v = with_capacity(n, what)?;

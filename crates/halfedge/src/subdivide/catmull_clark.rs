@@ -22,12 +22,14 @@ use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 use crate::{HalfEdgeMesh, Result};
 
-/// One Catmull-Clark step.
-pub(crate) fn catmull_clark<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
+/// One Catmull-Clark step on `t`, face by face, with the new level's `positions` computed by
+/// the caller (the refinement's evaluation, [`cc_positions`]).
+pub(crate) fn catmull_clark_step<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Vec<glam::DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
+    let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let offsets = t.corner_offsets();
     let mut b = Builder::<GROW>::new(ctx.expected)?;
@@ -52,11 +54,7 @@ pub(crate) fn catmull_clark<const GROW: bool>(
         }
     }
 
-    let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(
-        cc_positions(&t, &mesh.positions, capacity, ctx.parallel)?,
-        ctx,
-    )
+    b.finish(positions, ctx)
 }
 
 /// The positions of a Catmull-Clark step from the values `src` of the level before: moved

@@ -29,12 +29,14 @@ use super::refine::Vector;
 use super::topo::Topo;
 use crate::{HalfEdgeMesh, Result};
 
-/// One Doo-Sabin step (closed mesh, every valence >= 3: checked by the caller).
-pub(crate) fn doo_sabin<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
+/// One Doo-Sabin step on `t` (closed, every valence >= 3: checked by the caller), face by
+/// face, with the new level's `positions` computed by the caller ([`doo_sabin_points`]).
+pub(crate) fn doo_sabin_step<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Vec<glam::DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
+    let t = *t;
     let ne = t.ne() as u32;
     let mut b = Builder::<GROW>::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h, 2 * h));
@@ -48,31 +50,21 @@ pub(crate) fn doo_sabin<const GROW: bool>(
         ]);
     }
     vertex_faces(&t, &mut b, |h, next| (next, 2 * (2 * ne + h) + 1));
-    let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(
-        super::alloc::positions_by(capacity, |out| {
-            doo_sabin_points(&t, &mesh.positions, out, ctx.parallel)
-        })?,
-        ctx,
-    )
+    b.finish(positions, ctx)
 }
 
-/// One mid-edge step (closed mesh, every valence >= 3: checked by the caller).
-pub(crate) fn mid_edge<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
+/// One mid-edge step on `t` (closed, every valence >= 3: checked by the caller), face by
+/// face, with the new level's `positions` computed by the caller ([`mid_edge_points`]).
+pub(crate) fn mid_edge_step<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Vec<glam::DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
+    let t = *t;
     let mut b = Builder::<GROW>::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
     vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
-    let capacity = (!GROW).then_some(ctx.expected.vertices);
-    b.finish(
-        super::alloc::positions_by(capacity, |out| {
-            mid_edge_points(&t, &mesh.positions, out, ctx.parallel)
-        })?,
-        ctx,
-    )
+    b.finish(positions, ctx)
 }
 
 /// Emits the face of each old face, in order: its corner at old half-edge `h` is the

@@ -20,17 +20,11 @@
 //! prediction ([`Error::PredictionMismatch`](crate::Error::PredictionMismatch) on a
 //! difference: a bug); the arrays then have exactly the predicted lengths by construction.
 
-use glam::DVec3;
-
 use super::build::{Sizes, StepContext};
-use super::catmull_clark::cc_positions;
-use super::dual::{doo_sabin_points, mid_edge_points};
 use super::par;
-use super::sqrt3::sqrt3_points;
 use super::topo::{Connectivity, Topo};
-use super::trisplit::{tri_positions, Template, TriRule};
 use crate::mesh::INVALID;
-use crate::{HalfEdgeMesh, Result};
+use crate::Result;
 
 /// Checks the structural counts of a step against the prediction.
 pub(super) fn check(ctx: &StepContext<'_>, built: Sizes) -> Result<()> {
@@ -117,26 +111,6 @@ fn midpoint_halfedge(t: &Topo<'_>, e: u32) -> u32 {
     } else {
         target_piece(h)
     }
-}
-
-/// One 4:1 step on a triangle mesh.
-pub(crate) fn four_to_one(
-    mesh: &HalfEdgeMesh,
-    template: &Template,
-    rule: TriRule,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    let topology = four_to_one_topology(&t, ctx)?;
-    let positions = tri_positions(
-        &t,
-        &mesh.positions,
-        template,
-        rule,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
-    finish(ctx, topology, positions)
 }
 
 /// The connectivity of one 4:1 step on the triangle mesh `t`.
@@ -231,22 +205,6 @@ pub(crate) fn four_to_one_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resul
         }
     };
     assemble(ctx, halfedge, vertex, face)
-}
-
-/// One Catmull-Clark step.
-pub(crate) fn catmull_clark(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    check(ctx, catmull_clark_sizes(&t))?;
-    // Positions first, so that their temporary face points are freed before the corner tables
-    // and the half-edge arrays are allocated (a lower peak).
-    let positions = cc_positions(
-        &t,
-        &mesh.positions,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
-    let topology = catmull_clark_topology(&t, ctx)?;
-    finish(ctx, topology, positions)
 }
 
 /// The connectivity of one Catmull-Clark step on `t`.
@@ -346,18 +304,6 @@ pub(crate) fn catmull_clark_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Res
     assemble(ctx, halfedge, vertex, face)
 }
 
-/// One √3 step on a closed triangle mesh. Half-edge `g` of the old mesh keeps its id (the
-/// flipped edge, from the centroid of `g`'s face to the centroid across); the spoke of corner
-/// `c = 3f + k` is edge `E + c`, half 0 from the corner to the centroid; the triangle of face
-/// half-edge `g` is face `corner(g)`.
-pub(crate) fn sqrt3_closed(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    let topology = sqrt3_closed_topology(&t, ctx)?;
-    let mut positions = super::alloc::with_capacity(ctx.expected.vertices, "positions")?;
-    sqrt3_points(&t, &mesh.positions, None, &mut positions, ctx.parallel);
-    finish(ctx, topology, positions)
-}
-
 /// The connectivity of one √3 step on the closed triangle mesh `t`.
 pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     let t = *t;
@@ -432,18 +378,6 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
     assemble(ctx, halfedge, vertex, face)
 }
 
-/// One Doo-Sabin step on a closed mesh (vertex `h` is the corner at the source of old
-/// half-edge `h`; edge `h` is the side of the shrunken face, edge `2E + h` joins corner `h`
-/// to corner `next(twin(h))`).
-pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    let topology = doo_sabin_topology(&t, ctx)?;
-    let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
-        doo_sabin_points(&t, &mesh.positions, out, ctx.parallel)
-    })?;
-    finish(ctx, topology, positions)
-}
-
 /// The connectivity of one Doo-Sabin step on the closed mesh `t`.
 pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     let t = *t;
@@ -492,18 +426,6 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
         }
     };
     assemble(ctx, halfedge, |h| 2 * h, face)
-}
-
-/// One mid-edge step on a closed mesh (vertex `e` is the midpoint of old edge `e`; edge `h`
-/// joins the midpoints of `h` and `next(h)`, half 0 in the shrunken old face, half 1 in the
-/// face of the old vertex `target(h)`).
-pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
-    let t = Topo::new(mesh);
-    let topology = mid_edge_topology(&t, ctx)?;
-    let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
-        mid_edge_points(&t, &mesh.positions, out, ctx.parallel)
-    })?;
-    finish(ctx, topology, positions)
 }
 
 /// The connectivity of one mid-edge step on the closed mesh `t`.
@@ -589,20 +511,4 @@ fn assemble(
         halfedges,
         face_halfedge,
     ))
-}
-
-/// The mesh of a step: its connectivity and its positions (checked against the prediction).
-fn finish(
-    ctx: &StepContext<'_>,
-    topology: Connectivity,
-    positions: Vec<DVec3>,
-) -> Result<HalfEdgeMesh> {
-    let e = ctx.expected;
-    ctx.expect_exact(
-        "vertex positions",
-        e.vertices,
-        positions.len(),
-        positions.capacity(),
-    )?;
-    Ok(topology.with_positions(positions))
 }

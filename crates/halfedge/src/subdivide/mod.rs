@@ -80,6 +80,8 @@ mod dual;
 mod faces;
 mod finite;
 mod gather;
+#[cfg(test)]
+mod oneshot_hashes;
 mod par;
 pub mod refine;
 mod sqrt3;
@@ -87,12 +89,11 @@ mod to_faces;
 mod topo;
 mod trisplit;
 
-use glam::DVec3;
 use num_bigint::BigInt;
 pub use schemes::Rule;
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
-use self::build::{Sizes, StepContext};
+use self::build::Sizes;
 use self::topo::Topo;
 use self::trisplit::{Template, TriRule};
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
@@ -229,6 +230,8 @@ pub(crate) enum Algorithm {
 }
 
 pub(crate) struct Plan {
+    /// The rule.
+    pub(crate) rule: Rule,
     /// The name for messages: the scheme asked for, or the rule's name.
     pub(crate) name: String,
     /// The scheme whose counts size the output arrays: the rule's own built-in scheme for the
@@ -254,6 +257,7 @@ pub(crate) fn plan(rule: Rule, counts: &MeshCounts) -> Result<Plan> {
         Rule::MidEdge => Algorithm::MidEdge,
     };
     Ok(Plan {
+        rule,
         name: rule.to_string(),
         scheme,
         algorithm,
@@ -386,54 +390,6 @@ fn sizes(c: &LevelCounts, scheme: &str, level: u32, handles: bool) -> Result<Siz
     })
 }
 
-/// One level: `level` is the level being built (1-based).
-fn step(
-    plan: &Plan,
-    template: Option<&Template>,
-    mesh: &HalfEdgeMesh,
-    level: u32,
-    expected: Sizes,
-    opts: &SubdivideOptions<'_>,
-) -> Result<HalfEdgeMesh> {
-    let ctx = StepContext {
-        scheme: &plan.name,
-        level,
-        expected,
-        parallel: opts.threads != 1,
-    };
-    if !opts.preallocate {
-        return built_by_faces::<true>(plan, template, mesh, &ctx);
-    }
-    match (plan.algorithm, template) {
-        (Algorithm::Tri(rule, 2), Some(t)) => gather::four_to_one(mesh, t, rule, &ctx),
-        (Algorithm::CatmullClark, _) => gather::catmull_clark(mesh, &ctx),
-        (Algorithm::Sqrt3 { .. }, _) if mesh.is_closed() => gather::sqrt3_closed(mesh, &ctx),
-        (Algorithm::DooSabin, _) => gather::doo_sabin(mesh, &ctx),
-        (Algorithm::MidEdge, _) => gather::mid_edge(mesh, &ctx),
-        _ => built_by_faces::<false>(plan, template, mesh, &ctx),
-    }
-}
-
-/// One level built face by face ([`build::Builder`]): into arrays of the predicted lengths,
-/// or growing ones with `GROW`.
-fn built_by_faces<const GROW: bool>(
-    plan: &Plan,
-    template: Option<&Template>,
-    mesh: &HalfEdgeMesh,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    match (plan.algorithm, template) {
-        (Algorithm::Tri(rule, _), Some(t)) => trisplit::tri_split::<GROW>(mesh, t, rule, ctx),
-        (Algorithm::Tri(..), None) => Err(ctx.invalid("no split template".into())),
-        (Algorithm::CatmullClark, _) => catmull_clark::catmull_clark::<GROW>(mesh, ctx),
-        (Algorithm::Sqrt3 { boundary }, _) => {
-            sqrt3::sqrt3::<GROW>(mesh, boundary && ctx.level % 2 == 0, ctx)
-        }
-        (Algorithm::DooSabin, _) => dual::doo_sabin::<GROW>(mesh, ctx),
-        (Algorithm::MidEdge, _) => dual::mid_edge::<GROW>(mesh, ctx),
-    }
-}
-
 /// Runs `f` on the calling thread (`threads` 0 or 1) or inside a pool of `threads` threads.
 fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> Result<T> + Send) -> Result<T> {
     if threads <= 1 {
@@ -563,44 +519,15 @@ pub fn subdivide_to_face_list(
 ) -> Result<FaceListLevel> {
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
-    let convert = |m: &HalfEdgeMesh| FaceListLevel {
-        mesh: m.to_polygon_mesh(),
-        edges: m.n_edges(),
-    };
-    let direct = opts.preallocate
-        && matches!(
-            plan.algorithm,
-            Algorithm::Tri(_, 2) | Algorithm::CatmullClark
-        );
-    drive(
-        &plan,
-        mesh,
-        &counts,
-        levels,
-        direct,
-        opts,
-        |_, _| Ok(()),
-        |input, s, sizes, template| {
-            let ctx = StepContext {
-                scheme: &plan.name,
-                level: s,
-                expected: sizes,
-                parallel: opts.threads != 1,
-            };
-            let direct = match (plan.algorithm, template) {
-                _ if !direct => None,
-                (Algorithm::Tri(rule, 2), Some(t)) => {
-                    Some(to_faces::four_to_one(input, t, rule, &ctx)?)
-                }
-                (Algorithm::CatmullClark, _) => Some(to_faces::catmull_clark(input, &ctx)?),
-                _ => None,
-            };
-            match direct {
-                Some((mesh, edges)) => Ok(FaceListLevel { mesh, edges }),
-                None => Ok(convert(&step(&plan, template, input, s, sizes, opts)?)),
-            }
+    let noop = |_: u32, _: &HalfEdgeMesh| Ok(());
+    Ok(
+        match refine::one_shot(&plan, mesh, &counts, levels, true, opts, noop)? {
+            refine::OneShot::Mesh(m) => FaceListLevel {
+                mesh: m.to_polygon_mesh(),
+                edges: m.n_edges(),
+            },
+            refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh, edges },
         },
-        convert,
     )
 }
 
@@ -683,8 +610,8 @@ pub fn tri_split_subdivide(
     subdivide(mesh, Rule::TriSplit(n), levels, opts)
 }
 
-/// The level loop shared by [`subdivide`] and [`verify`]; `visit(level, mesh)` sees every
-/// level built.
+/// The level loop shared by [`subdivide`] and [`verify`] (the refinement's one-shot mode,
+/// [`refine::one_shot`]); `visit(level, mesh)` sees every level built.
 fn run_levels(
     plan: &Plan,
     mesh: &HalfEdgeMesh,
@@ -693,120 +620,14 @@ fn run_levels(
     opts: &SubdivideOptions<'_>,
     visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
 ) -> Result<HalfEdgeMesh> {
-    drive(
-        plan,
-        mesh,
-        counts,
-        levels,
-        false,
-        opts,
-        visit,
-        |input, s, sizes, template| step(plan, template, input, s, sizes, opts),
-        HalfEdgeMesh::clone,
-    )
-}
-
-/// What the last level of [`drive`] is built as.
-trait LastLevel: Send {
-    /// Vertices, edges and faces.
-    fn vef(&self) -> [usize; 3];
-    /// The vertex positions.
-    fn positions(&self) -> &[DVec3];
-    /// The half-edge mesh, when the level is one (for the level visitor).
-    fn as_halfedge(&self) -> Option<&HalfEdgeMesh>;
-}
-
-impl LastLevel for HalfEdgeMesh {
-    fn vef(&self) -> [usize; 3] {
-        [self.n_vertices(), self.n_edges(), self.n_faces()]
+    match refine::one_shot(plan, mesh, counts, levels, false, opts, visit)? {
+        refine::OneShot::Mesh(m) => Ok(m),
+        refine::OneShot::Faces(..) => Err(Error::InvalidOutput {
+            scheme: plan.name.clone(),
+            level: levels,
+            what: "a face list where a half-edge mesh was asked for".into(),
+        }),
     }
-    fn positions(&self) -> &[DVec3] {
-        HalfEdgeMesh::positions(self)
-    }
-    fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
-        Some(self)
-    }
-}
-
-impl LastLevel for FaceListLevel {
-    fn vef(&self) -> [usize; 3] {
-        [self.mesh.n_vertices(), self.edges, self.mesh.n_faces()]
-    }
-    fn positions(&self) -> &[DVec3] {
-        &self.mesh.positions
-    }
-    fn as_halfedge(&self) -> Option<&HalfEdgeMesh> {
-        None
-    }
-}
-
-/// Checks the scheme and every level's size, builds levels `1..levels` as half-edge meshes
-/// (only two alive at a time) and the last one with `last`; `level0` answers `levels = 0`.
-/// `visit` sees every half-edge level, the progress callback every level. `last_as_faces`:
-/// `last` writes a face list without half-edges, so that level's edges and faces need not
-/// fit 32-bit handles (its vertex indices must).
-#[allow(clippy::too_many_arguments)]
-fn drive<T: LastLevel>(
-    plan: &Plan,
-    mesh: &HalfEdgeMesh,
-    counts: &MeshCounts,
-    levels: u32,
-    last_as_faces: bool,
-    opts: &SubdivideOptions<'_>,
-    mut visit: impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send,
-    last: impl FnOnce(&HalfEdgeMesh, u32, Sizes, Option<&Template>) -> Result<T> + Send,
-    level0: impl FnOnce(&HalfEdgeMesh) -> T + Send,
-) -> Result<T> {
-    plan.scheme.initial_state(counts)?;
-    check_mesh(plan, mesh)?;
-    let name = &plan.name;
-    // Check every level's size before building anything.
-    let mut expected = Vec::with_capacity(levels as usize);
-    for s in 1..=levels {
-        let c = plan.scheme.counts_at(counts, u64::from(s))?;
-        expected.push(sizes(&c, name, s, s < levels || !last_as_faces)?);
-    }
-    let Some(&last_sizes) = expected.last() else {
-        return Ok(level0(mesh));
-    };
-    let template = match plan.algorithm {
-        Algorithm::Tri(_, n) => Some(Template::new(n)),
-        _ => None,
-    };
-    let report = |level: u32, [vertices, edges, faces]: [usize; 3]| {
-        if let Some(progress) = opts.progress {
-            progress(&LevelDone {
-                level,
-                levels,
-                vertices,
-                edges,
-                faces,
-            });
-        }
-    };
-    with_threads(opts.threads, || {
-        let mut current: Option<HalfEdgeMesh> = None;
-        for (s, &sizes) in (1..levels).zip(&expected) {
-            let input = current.as_ref().unwrap_or(mesh);
-            let next = step(plan, template.as_ref(), input, s, sizes, opts)?;
-            let before = finite::Before::Mesh(input);
-            finite::check_positions(name, plan.algorithm, s, &before, next.positions())?;
-            visit(s, &next)?;
-            report(s, next.vef());
-            // Level s - 1 is dropped here.
-            current = Some(next);
-        }
-        let input = current.as_ref().unwrap_or(mesh);
-        let out = last(input, levels, last_sizes, template.as_ref())?;
-        let before = finite::Before::Mesh(input);
-        finite::check_positions(name, plan.algorithm, levels, &before, out.positions())?;
-        drop(current);
-        if let Some(m) = out.as_halfedge() {
-            visit(levels, m)?;
-        }
-        report(levels, out.vef());
-        Ok(out)
-    })
 }
 
 /// The components a report lists: the state, then `V`, `E`, `F` when not in the state (and

@@ -44,20 +44,12 @@ use super::topo::Topo;
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
-/// One √3 step on a triangle mesh; `step_b` selects Kobbelt's boundary trisection.
-pub(crate) fn sqrt3<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
-    step_b: bool,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    sqrt3_step::<GROW>(&Topo::new(mesh), Some(&mesh.positions), step_b, ctx)
-}
-
-/// One √3 step on the triangle mesh `t`; the positions from `positions`, the values of the
-/// level before (zeros without: a refinement keeps only the topology).
+/// One √3 step on the triangle mesh `t`, face by face; `step_b` selects Kobbelt's boundary
+/// trisection. The new level's `positions` computed by the caller (the refinement's
+/// evaluation, [`sqrt3_points`]), zeros without (a refinement keeps only the topology).
 pub(crate) fn sqrt3_step<const GROW: bool>(
     t: &Topo<'_>,
-    positions: Option<&[DVec3]>,
+    positions: Option<Vec<DVec3>>,
     step_b: bool,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
@@ -146,11 +138,8 @@ pub(crate) fn sqrt3_step<const GROW: bool>(
         }
     }
 
-    let capacity = (!GROW).then_some(ctx.expected.vertices);
     let positions = match positions {
-        Some(src) => super::alloc::positions_by(capacity, |out| {
-            sqrt3_points(&t, src, step_b.then_some(&tables), out, ctx.parallel)
-        })?,
+        Some(positions) => positions,
         None => super::alloc::filled(DVec3::ZERO, ctx.expected.vertices, "positions")?,
     };
     b.finish(positions, ctx)

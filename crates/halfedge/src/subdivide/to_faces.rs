@@ -19,12 +19,10 @@
 //!   `[source(h), V + (h >> 1), V + E + f, V + (p >> 1)]`.
 
 use super::build::StepContext;
-use super::catmull_clark::cc_positions;
 use super::gather::{catmull_clark_sizes, check, four_to_one_sizes};
 use super::par;
 use super::topo::Topo;
-use super::trisplit::{tri_positions, Template, TriRule};
-use crate::{HalfEdgeMesh, PolygonMesh, Result};
+use crate::{PolygonMesh, Result};
 
 /// Old faces per parallel task.
 const FACES_PER_TASK: usize = 1 << 12;
@@ -32,27 +30,32 @@ const FACES_PER_TASK: usize = 1 << 12;
 /// Below this many old faces the corners are written on the calling thread.
 const PARALLEL_MIN_FACES: usize = 1 << 12;
 
-/// One 4:1 step whose output is a face list; also returns the number of output edges.
-pub(crate) fn four_to_one(
-    mesh: &HalfEdgeMesh,
-    template: &Template,
-    rule: TriRule,
+/// The last level of a 4:1 step (`quads` false) or a Catmull-Clark step (`quads`) on `t` as a
+/// face list, with its `positions` computed by the caller (the refinement's evaluation); also
+/// returns the number of output edges.
+pub(crate) fn faces_after(
+    t: &Topo<'_>,
+    positions: Vec<glam::DVec3>,
+    quads: bool,
     ctx: &StepContext<'_>,
 ) -> Result<(PolygonMesh, usize)> {
-    let t = Topo::new(mesh);
-    let built = four_to_one_sizes(&t);
+    let built = if quads {
+        catmull_clark_sizes(t)
+    } else {
+        four_to_one_sizes(t)
+    };
     check(ctx, built)?;
-    let positions = tri_positions(
-        &t,
-        &mesh.positions,
-        template,
-        rule,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
-    let mut corners = super::alloc::filled(0u32, 3 * built.faces, "corners")?;
-    four_to_one_corners(&t, &mut corners, ctx.parallel);
-    let faces = finish(ctx, positions, corners, 3)?;
+    let degree = if quads { 4 } else { 3 };
+    let mut corners = super::alloc::filled(0u32, degree * built.faces, "corners")?;
+    if quads {
+        let written = catmull_clark_corners(t, &mut corners, ctx.parallel);
+        if written != built.faces {
+            return Err(ctx.mismatch("faces", built.faces, written));
+        }
+    } else {
+        four_to_one_corners(t, &mut corners, ctx.parallel);
+    }
+    let faces = finish(ctx, positions, corners, degree)?;
     Ok((faces, built.halfedges / 2))
 }
 
@@ -81,30 +84,6 @@ pub(crate) fn four_to_one_corners(t: &Topo<'_>, corners: &mut [u32], parallel: b
             t.target(h2),
         ]);
     });
-}
-
-/// One Catmull-Clark step whose output is a face list; also returns the number of output
-/// edges.
-pub(crate) fn catmull_clark(
-    mesh: &HalfEdgeMesh,
-    ctx: &StepContext<'_>,
-) -> Result<(PolygonMesh, usize)> {
-    let t = Topo::new(mesh);
-    let built = catmull_clark_sizes(&t);
-    check(ctx, built)?;
-    let positions = cc_positions(
-        &t,
-        &mesh.positions,
-        Some(ctx.expected.vertices),
-        ctx.parallel,
-    )?;
-    let mut corners = super::alloc::filled(0u32, 4 * built.faces, "corners")?;
-    let written = catmull_clark_corners(&t, &mut corners, ctx.parallel);
-    if written != built.faces {
-        return Err(ctx.mismatch("faces", built.faces, written));
-    }
-    let faces = finish(ctx, positions, corners, 4)?;
-    Ok((faces, built.halfedges / 2))
 }
 
 /// The corners of the quads of a Catmull-Clark step on `t`, four per quad, into `corners`

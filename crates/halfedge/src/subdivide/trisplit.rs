@@ -160,23 +160,13 @@ impl Template {
     }
 }
 
-/// One 1:N² step on a triangle mesh (checked by the caller).
-pub(crate) fn tri_split<const GROW: bool>(
-    mesh: &HalfEdgeMesh,
-    template: &Template,
-    rule: TriRule,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    tri_split_step::<GROW>(&Topo::new(mesh), Some(&mesh.positions), template, rule, ctx)
-}
-
-/// One 1:N² step on the triangle mesh `t`; the positions from `positions`, the values of the
-/// level before (zeros without: a refinement keeps only the topology).
+/// One 1:N² step on the triangle mesh `t` (checked by the caller), face by face; the new
+/// level's `positions` computed by the caller (the refinement's evaluation, [`tri_points`]),
+/// zeros without (a refinement keeps only the topology).
 pub(crate) fn tri_split_step<const GROW: bool>(
     t: &Topo<'_>,
-    positions: Option<&[glam::DVec3]>,
+    positions: Option<Vec<glam::DVec3>>,
     template: &Template,
-    rule: TriRule,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
     let t = *t;
@@ -226,31 +216,11 @@ pub(crate) fn tri_split_step<const GROW: bool>(
         }
     }
 
-    let capacity = (!GROW).then_some(ctx.expected.vertices);
     let positions = match positions {
-        Some(src) => tri_positions(&t, src, template, rule, capacity, ctx.parallel)?,
+        Some(positions) => positions,
         None => super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions")?,
     };
     b.finish(positions, ctx)
-}
-
-/// The positions of a 1:N² step (see [`tri_points`]) in a new vector; `capacity`: allocate
-/// exactly this many up front (else grow).
-///
-/// # Errors
-///
-/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
-pub(crate) fn tri_positions<V: Vector>(
-    t: &Topo<'_>,
-    src: &[V],
-    template: &Template,
-    rule: TriRule,
-    capacity: Option<usize>,
-    parallel: bool,
-) -> crate::Result<Vec<V>> {
-    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
-    tri_points(t, src, template, rule, &mut positions, parallel);
-    Ok(positions)
 }
 
 /// The points of a 1:N² step from the values `src` of the level before, appended to `out`:

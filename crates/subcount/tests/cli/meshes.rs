@@ -744,12 +744,15 @@ fn timings_print_one_line_with_five_keys() {
     assert!(v["peak_bytes"].as_u64().unwrap() > 0);
     // Loop writes its last level straight into a face list: the input (12, 30, 20) and level
     // 2 (162, 480, 320) as half-edge meshes (28 bytes per vertex, 32 per edge, 4 per face),
-    // level 3 as positions (642 x 24), face offsets (1,281 x 8) and corners (3,840 x 4).
+    // level 3 as positions (642 x 24), face offsets (1,281 x 8) and corners (3,840 x 4); with
+    // the process (6 MiB), the input face list (12 positions, 21 offsets, 60 corners) and
+    // level 1 (42, 120, 80), freed but still resident.
     let half_edge = |v: u64, e: u64, f: u64| 28 * v + 32 * e + 4 * f;
     let face_list = 24 * 642 + 8 * 1281 + 4 * 3 * 1280;
+    let process = (6 << 20) + (24 * 12 + 8 * 21 + 4 * 60) + half_edge(42, 120, 80);
     assert_eq!(
         v["predicted_peak_bytes"].as_u64(),
-        Some(half_edge(12, 30, 20) + half_edge(162, 480, 320) + face_list)
+        Some(process + half_edge(12, 30, 20) + half_edge(162, 480, 320) + face_list)
     );
     // Growing buffers build every level, the last one too, as a half-edge mesh.
     let run = subcount(&[
@@ -767,7 +770,9 @@ fn timings_print_one_line_with_five_keys() {
     let v = timings(&run.stderr);
     assert_eq!(
         v["predicted_peak_bytes"].as_u64(),
-        Some(half_edge(12, 30, 20) + half_edge(162, 480, 320) + half_edge(642, 1920, 1280))
+        Some(
+            process + half_edge(12, 30, 20) + half_edge(162, 480, 320) + half_edge(642, 1920, 1280)
+        )
     );
     // Without --timings, stderr stays empty.
     let run = subcount(&[

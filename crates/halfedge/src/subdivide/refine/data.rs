@@ -268,6 +268,75 @@ impl Vector for Sparse {
     }
 }
 
+/// The base vertices a [`Sparse`] sum reads, without its weights: the kernels run on it to
+/// count a stencil table's entries before the table is allocated
+/// ([`Refinement::stencil_sizes`](super::Refinement::stencil_sizes)). `add` and `sub` unite
+/// the sorted vertex lists, as [`Sparse`] merges them (it keeps every vertex of either
+/// operand, a weight that cancels to zero included); `scale` and `div` keep the list.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Support(pub(crate) Vec<u32>);
+
+impl Support {
+    /// Base vertex `v`.
+    pub(crate) fn unit(v: u32) -> Support {
+        Support(vec![v])
+    }
+
+    fn unite(self, o: Support) -> Support {
+        if o.0.is_empty() {
+            return self;
+        }
+        if self.0.is_empty() {
+            return o;
+        }
+        let mut out = Vec::with_capacity(self.0.len() + o.0.len());
+        let (mut i, mut j) = (0, 0);
+        let (a, b) = (&self.0, &o.0);
+        while i < a.len() && j < b.len() {
+            match a[i].cmp(&b[j]) {
+                std::cmp::Ordering::Less => {
+                    out.push(a[i]);
+                    i += 1;
+                }
+                std::cmp::Ordering::Greater => {
+                    out.push(b[j]);
+                    j += 1;
+                }
+                std::cmp::Ordering::Equal => {
+                    out.push(a[i]);
+                    i += 1;
+                    j += 1;
+                }
+            }
+        }
+        out.extend_from_slice(&a[i..]);
+        out.extend_from_slice(&b[j..]);
+        Support(out)
+    }
+}
+
+impl Vector for Support {
+    fn zero() -> Self {
+        Support(Vec::new())
+    }
+    fn add(self, o: Self) -> Self {
+        self.unite(o)
+    }
+    fn sub(self, o: Self) -> Self {
+        self.unite(o)
+    }
+    fn scale(self, _: f64) -> Self {
+        self
+    }
+    fn div(self, _: f64) -> Self {
+        self
+    }
+    fn project_to_sphere(self) -> Self {
+        // Not linear: `Refinement::stencil_sizes` refuses the icosphere rule first.
+        self
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -301,5 +370,20 @@ mod tests {
             .add(Sparse::unit(1).scale(2.0))
             .sub(Sparse::unit(3).div(4.0));
         assert_eq!(s.0, [(1, 2.0), (3, 0.75)]);
+    }
+
+    #[test]
+    fn supports_unite_as_sparse_sums_merge() {
+        // A weight that cancels stays an entry of the sparse sum, and of its support.
+        let s = Sparse::unit(3)
+            .add(Sparse::unit(1).scale(2.0))
+            .sub(Sparse::unit(3))
+            .add(Sparse::zero().sub(Sparse::unit(0)));
+        assert_eq!(s.0, [(0, -1.0), (1, 2.0), (3, 0.0)]);
+        let support = Support::unit(3)
+            .add(Support::unit(1).scale(2.0))
+            .sub(Support::unit(3))
+            .add(Support::zero().sub(Support::unit(0)));
+        assert_eq!(support.0, [0, 1, 3]);
     }
 }

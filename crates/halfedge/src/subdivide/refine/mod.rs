@@ -39,6 +39,14 @@
 //!
 //! # Same results as the one-shot subdivision
 //!
+//! The one-shot subdivision is a refinement: [`subdivide`](super::subdivide),
+//! [`subdivide_to_face_list`](super::subdivide_to_face_list) and
+//! [`verify`](super::verify) run a private streaming mode of [`Refinement`] that checks the
+//! same sizes, builds each level by the same topology step, computes its positions by the
+//! same evaluation dispatch as [`Refinement::stencils`] and writes the last level's faces
+//! with the same index buffers as [`Refinement::write_triangles`], keeping only two levels
+//! alive and no flattened tables (it evaluates once).
+//!
 //! The geometry is one implementation: every rule's kernels are generic over the data they
 //! combine (`DVec3` for [`subdivide`](super::subdivide), `[T; N]` here, a sparse weighted sum
 //! for [`Refinement::stencils`]) and run the same operations in the same order, so in `f64`
@@ -53,6 +61,7 @@
 //! data near the overflow limit of `T` can give infinities.
 
 mod data;
+mod oneshot;
 mod stencil;
 mod tables;
 
@@ -61,8 +70,9 @@ use std::sync::Arc;
 use schemes::MeshCounts;
 
 pub use self::data::Scalar;
-pub(crate) use self::data::{Sparse, Vector};
-pub use self::stencil::StencilTable;
+pub(crate) use self::data::{Sparse, Support, Vector};
+pub(crate) use self::oneshot::{one_shot, OneShot};
+pub use self::stencil::{StencilSizes, StencilTable};
 
 use self::tables::{CcTables, LoopTables};
 use super::build::{Sizes, StepContext};
@@ -93,6 +103,22 @@ struct Level {
     step_b: Option<StepB>,
     /// The flattened tables of a Loop or Catmull-Clark level.
     fast: Option<Fast>,
+}
+
+/// A level as the evaluation reads it: borrowed from a [`Level`] the refinement keeps, or
+/// from the half-edge mesh of the level the one-shot subdivision holds.
+struct LevelRef<'a> {
+    topology: Option<Topo<'a>>,
+    step_b: Option<&'a StepB>,
+    fast: Option<&'a Fast>,
+}
+
+/// The level [`Refinement::next_level`] built.
+enum Next {
+    /// Its connectivity, and the positions it was given back.
+    Topology(Connectivity, Option<Vec<glam::DVec3>>),
+    /// Built face by face with its positions.
+    Mesh(HalfEdgeMesh),
 }
 
 /// A level flattened for its rule.
@@ -179,17 +205,19 @@ fn direct(algorithm: Algorithm) -> bool {
 /// The half-edge sizes of levels `1..levels` (and of the last level when it is built as a
 /// half-edge mesh), and the index sizes of the last level otherwise: what
 /// [`Refinement::new`] checks before it allocates. Entry `s - 1` is level `s`; the last one
-/// is `None` when the last level is written from the one before.
+/// is `None` when the last level is written from the one before (`last_built` false: for
+/// [`Refinement::new`] the rules of [`direct`], for the one-shot face list too).
 fn plan_sizes(
     plan: &Plan,
     counts: &MeshCounts,
     levels: u32,
+    last_built: bool,
 ) -> Result<Vec<(Option<Sizes>, [usize; 3])>> {
     // Capped: a level count beyond 64 is refused by the size check long before.
     let mut out = Vec::with_capacity(levels.min(64) as usize);
     for s in 1..=levels {
         let c = plan.scheme.counts_at(counts, u64::from(s))?;
-        let built = s < levels || !direct(plan.algorithm);
+        let built = s < levels || last_built;
         let sizes = super::sizes(&c, &plan.name, s, built)?;
         let vef = [sizes.vertices, sizes.halfedges / 2, sizes.faces];
         out.push((built.then_some(sizes), vef));
@@ -257,7 +285,7 @@ impl Refinement {
         let plan = super::plan(rule, &counts)?;
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
-        let planned = plan_sizes(&plan, &counts, levels)?;
+        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.algorithm))?;
         let pool = match opts.threads {
             0 | 1 => None,
             n => Some(Arc::new(
@@ -332,13 +360,7 @@ impl Refinement {
                 });
             };
             let t = before.topo();
-            let step_b = match (self.algorithm, sizes) {
-                (Algorithm::Sqrt3 { boundary: true }, Some(expected)) if s % 2 == 0 => {
-                    let ctx = self.context(s, expected, parallel);
-                    Some(StepB::new(&t, &ctx)?)
-                }
-                _ => None,
-            };
+            let step_b = self.step_b(&t, s, sizes, parallel)?;
             let Some(expected) = sizes else {
                 // The last level of a direct rule: its faces are written from level s - 1.
                 let corners = match self.algorithm {
@@ -433,6 +455,24 @@ impl Refinement {
         Ok(())
     }
 
+    /// The boundary tables of a √3 step B refining `t` into level `level` (built as a half-edge
+    /// mesh with `sizes`), `None` for the other steps.
+    fn step_b(
+        &self,
+        t: &Topo<'_>,
+        level: u32,
+        sizes: Option<Sizes>,
+        parallel: bool,
+    ) -> Result<Option<StepB>> {
+        match (self.algorithm, sizes) {
+            (Algorithm::Sqrt3 { boundary: true }, Some(expected)) if level % 2 == 0 => {
+                let ctx = self.context(level, expected, parallel);
+                Ok(Some(StepB::new(t, &ctx)?))
+            }
+            _ => Ok(None),
+        }
+    }
+
     fn context(&self, level: u32, expected: Sizes, parallel: bool) -> StepContext<'_> {
         StepContext {
             scheme: &self.name,
@@ -444,23 +484,69 @@ impl Refinement {
 
     /// The connectivity of the level after `t` (`ctx.level`).
     fn step(&self, t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
-        use super::{gather, sqrt3, trisplit};
-        match (self.algorithm, &self.template) {
-            (Algorithm::Tri(_, 2), _) => gather::four_to_one_topology(t, ctx),
-            (Algorithm::Tri(rule, _), Some(template)) => {
-                trisplit::tri_split_step::<false>(t, None, template, rule, ctx)
-                    .map(Connectivity::from_mesh)
+        Ok(match self.next_level(t, ctx, false, None)? {
+            Next::Topology(c, _) => c,
+            Next::Mesh(m) => Connectivity::from_mesh(m),
+        })
+    }
+
+    /// The level after `t` (`ctx.level`): the topology of every refinement and of the one-shot
+    /// subdivision. By index formulas into arrays of the predicted lengths (the 4:1 family,
+    /// Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge), else face by face into
+    /// index-addressed arrays; with `grow`, always face by face into arrays that grow on
+    /// demand. `positions`, the new level's (from [`Refinement::values_after`]), are handed back
+    /// with a connectivity or become the mesh's; the face-by-face steps fill zeros without
+    /// them.
+    fn next_level(
+        &self,
+        t: &Topo<'_>,
+        ctx: &StepContext<'_>,
+        grow: bool,
+        positions: Option<Vec<glam::DVec3>>,
+    ) -> Result<Next> {
+        use super::{catmull_clark, dual, gather, sqrt3, trisplit};
+        let zeros = |p: Option<Vec<glam::DVec3>>| match p {
+            Some(p) => Ok(p),
+            None => super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions"),
+        };
+        if grow {
+            let mesh = match (self.algorithm, &self.template) {
+                (Algorithm::Tri(_, _), Some(template)) => {
+                    trisplit::tri_split_step::<true>(t, positions, template, ctx)?
+                }
+                (Algorithm::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
+                (Algorithm::CatmullClark, _) => {
+                    catmull_clark::catmull_clark_step::<true>(t, zeros(positions)?, ctx)?
+                }
+                (Algorithm::Sqrt3 { boundary }, _) => {
+                    let step_b = boundary && ctx.level % 2 == 0;
+                    sqrt3::sqrt3_step::<true>(t, positions, step_b, ctx)?
+                }
+                (Algorithm::DooSabin, _) => {
+                    dual::doo_sabin_step::<true>(t, zeros(positions)?, ctx)?
+                }
+                (Algorithm::MidEdge, _) => dual::mid_edge_step::<true>(t, zeros(positions)?, ctx)?,
+            };
+            return Ok(Next::Mesh(mesh));
+        }
+        let topology = match (self.algorithm, &self.template) {
+            (Algorithm::Tri(_, 2), _) => gather::four_to_one_topology(t, ctx)?,
+            (Algorithm::Tri(_, _), Some(template)) => {
+                let mesh = trisplit::tri_split_step::<false>(t, positions, template, ctx)?;
+                return Ok(Next::Mesh(mesh));
             }
-            (Algorithm::Tri(..), None) => Err(ctx.invalid("no split template".into())),
-            (Algorithm::CatmullClark, _) => gather::catmull_clark_topology(t, ctx),
-            (Algorithm::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx),
+            (Algorithm::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
+            (Algorithm::CatmullClark, _) => gather::catmull_clark_topology(t, ctx)?,
+            (Algorithm::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx)?,
             (Algorithm::Sqrt3 { boundary }, _) => {
                 let step_b = boundary && ctx.level % 2 == 0;
-                sqrt3::sqrt3_step::<false>(t, None, step_b, ctx).map(Connectivity::from_mesh)
+                let mesh = sqrt3::sqrt3_step::<false>(t, positions, step_b, ctx)?;
+                return Ok(Next::Mesh(mesh));
             }
-            (Algorithm::DooSabin, _) => gather::doo_sabin_topology(t, ctx),
-            (Algorithm::MidEdge, _) => gather::mid_edge_topology(t, ctx),
-        }
+            (Algorithm::DooSabin, _) => gather::doo_sabin_topology(t, ctx)?,
+            (Algorithm::MidEdge, _) => gather::mid_edge_topology(t, ctx)?,
+        };
+        Ok(Next::Topology(topology, positions))
     }
 
     /// Runs `f` in the refinement's pool (or on the calling thread / the global pool).
@@ -741,19 +827,33 @@ impl Refinement {
         Ok(())
     }
 
+    /// The level before `level` (1-based), as the evaluation reads it.
+    fn before(&self, level: u32) -> Option<LevelRef<'_>> {
+        let before = self.topology.get(level as usize - 1)?;
+        Some(LevelRef {
+            topology: before.topology.as_ref().map(Connectivity::topo),
+            step_b: before.step_b.as_ref(),
+            fast: before.fast.as_ref(),
+        })
+    }
+
     /// Level `level` from `src` (the level before) into `dst`; lengths checked by the caller.
     fn fill_level<V: Vector>(&self, level: u32, src: &[V], dst: &mut [V]) {
+        if let Some(before) = self.before(level) {
+            self.fill_from(&before, src, dst);
+        }
+    }
+
+    /// The level after `before` from its values `src` into `dst` (exactly its vertices).
+    fn fill_from<V: Vector>(&self, before: &LevelRef<'_>, src: &[V], dst: &mut [V]) {
         use super::{catmull_clark, dual, sqrt3, trisplit};
         let parallel = self.threads != 1;
-        let Some(before) = self.topology.get(level as usize - 1) else {
-            return;
-        };
-        match &before.fast {
+        match before.fast {
             Some(Fast::Loop(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
             Some(Fast::CatmullClark(fast)) => return fast.fill(src, dst, parallel),
             None => {}
         }
-        let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
+        let Some(t) = before.topology else {
             return;
         };
         if self.algorithm == Algorithm::CatmullClark {
@@ -768,7 +868,7 @@ impl Refinement {
             (Algorithm::Tri(..), None) => {}
             (Algorithm::CatmullClark, _) => {}
             (Algorithm::Sqrt3 { .. }, _) => {
-                sqrt3::sqrt3_points(&t, src, before.step_b.as_ref(), &mut out, parallel);
+                sqrt3::sqrt3_points(&t, src, before.step_b, &mut out, parallel);
             }
             (Algorithm::DooSabin, _) => dual::doo_sabin_points(&t, src, &mut out, parallel),
             (Algorithm::MidEdge, _) => dual::mid_edge_points(&t, src, &mut out, parallel),
@@ -777,38 +877,58 @@ impl Refinement {
 
     /// Level `level` from `src` into a new vector (the stencils' sparse sums).
     fn collect_level<V: Vector>(&self, level: u32, src: &[V]) -> Result<Vec<V>> {
+        match self.before(level) {
+            Some(before) => {
+                self.values_after(&before, src, self.n_vertices(level), false, "stencils")
+            }
+            None => Ok(Vec::new()),
+        }
+    }
+
+    /// The `n` values of the level after `before` from its values `src`, in a new vector:
+    /// allocated exactly, or growing on demand with `grow` (the one-shot baseline). The
+    /// geometry of the stencils and of the one-shot subdivision; `what` names the vector in an
+    /// allocation failure.
+    fn values_after<V: Vector>(
+        &self,
+        before: &LevelRef<'_>,
+        src: &[V],
+        n: usize,
+        grow: bool,
+        what: &str,
+    ) -> Result<Vec<V>> {
         use super::{catmull_clark, dual, sqrt3, trisplit};
         let parallel = self.threads != 1;
-        let n = self.n_vertices(level);
-        let Some(before) = self.topology.get(level as usize - 1) else {
-            return Ok(Vec::new());
-        };
-        let mut out = super::alloc::with_capacity(n, "stencils")?;
-        match &before.fast {
+        let capacity = (!grow).then_some(n);
+        let out = || super::alloc::with_capacity_or_grow(capacity, what);
+        match before.fast {
             Some(Fast::Loop(fast)) => {
+                let mut out = out()?;
                 fast.points(src, &mut out, parallel);
                 return Ok(out);
             }
             Some(Fast::CatmullClark(fast)) => {
+                let mut out = out()?;
                 out.resize(n, V::zero());
                 fast.fill(src, &mut out, parallel);
                 return Ok(out);
             }
             None => {}
         }
-        let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
-            return Ok(out);
+        let Some(t) = before.topology else {
+            return out();
         };
+        if let Algorithm::CatmullClark = self.algorithm {
+            return catmull_clark::cc_positions(&t, src, capacity, parallel);
+        }
+        let mut out = out()?;
         match (self.algorithm, &self.template) {
             (Algorithm::Tri(rule, _), Some(template)) => {
                 trisplit::tri_points(&t, src, template, rule, &mut out, parallel);
             }
-            (Algorithm::Tri(..), None) => {}
-            (Algorithm::CatmullClark, _) => {
-                out = catmull_clark::cc_positions(&t, src, Some(n), parallel)?;
-            }
+            (Algorithm::Tri(..), None) | (Algorithm::CatmullClark, _) => {}
             (Algorithm::Sqrt3 { .. }, _) => {
-                sqrt3::sqrt3_points(&t, src, before.step_b.as_ref(), &mut out, parallel);
+                sqrt3::sqrt3_points(&t, src, before.step_b, &mut out, parallel);
             }
             (Algorithm::DooSabin, _) => dual::doo_sabin_points(&t, src, &mut out, parallel),
             (Algorithm::MidEdge, _) => dual::mid_edge_points(&t, src, &mut out, parallel),
@@ -943,13 +1063,44 @@ impl Refinement {
     /// The last level's vertices as weighted sums of the base vertices, for the linear rules
     /// (every rule but [`Rule::Icosphere`]): the form GPU evaluators consume (OpenSubdiv's
     /// `Far::StencilTable`). Computed by running the rules' kernels level by level on sparse
-    /// sums; the table's arrays are then counted and filled exactly.
+    /// sums, after the table's sizes are counted ([`Refinement::stencil_sizes`]); its arrays
+    /// are allocated once, exactly, and filled.
     ///
     /// # Errors
     ///
     /// [`Error::NotLinear`] for [`Rule::Icosphere`]; [`Error::IndexOverflow`] beyond `u32`
     /// entries; [`Error::AllocationFailed`].
     pub fn stencils(&self) -> Result<StencilTable> {
+        let sizes = self.stencil_sizes()?;
+        let n0 = self.n_vertices(0) as u32;
+        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
+        for s in 1..=self.levels {
+            current = self.run(|| self.collect_level(s, &current))?;
+        }
+        StencilTable::from_sums(&current, n0 as usize, sizes, &self.name, self.levels)
+    }
+
+    /// The sizes of [`Refinement::stencils`]' table before anything of it is allocated: its
+    /// rows (the last level's vertices) and its entries, counted by running the rules' kernels
+    /// level by level on the supports of the sums (their base vertices, without weights).
+    ///
+    /// ```
+    /// use halfedge::refine::Refinement;
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Rule};
+    ///
+    /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+    /// let sizes = r.stencil_sizes()?;
+    /// assert_eq!(sizes.rows, r.n_vertices(2));
+    /// assert_eq!(sizes, r.stencils()?.sizes());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotLinear`] for [`Rule::Icosphere`]; [`Error::AllocationFailed`].
+    pub fn stencil_sizes(&self) -> Result<StencilSizes> {
         if !self.rule.is_linear() {
             return Err(Error::NotLinear {
                 rule: self.name.clone(),
@@ -957,11 +1108,14 @@ impl Refinement {
             });
         }
         let n0 = self.n_vertices(0) as u32;
-        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
+        let mut current: Vec<Support> = (0..n0).map(Support::unit).collect();
         for s in 1..=self.levels {
             current = self.run(|| self.collect_level(s, &current))?;
         }
-        StencilTable::from_sums(&current, n0 as usize)
+        Ok(StencilSizes {
+            rows: current.len(),
+            entries: current.iter().map(|r| r.0.len()).sum(),
+        })
     }
 }
 
@@ -1080,7 +1234,7 @@ mod tests {
         assert_eq!((counts.faces, counts.edges), (7200, 10800));
         let plan = super::super::plan(Rule::Loop, &counts).expect("plan");
         // Level 9: 2,831,155,200 edges (5.7e9 half-edges) but 943,718,400 vertices.
-        let sizes = plan_sizes(&plan, &counts, 9).expect("level 9 fits u32 indices");
+        let sizes = plan_sizes(&plan, &counts, 9, false).expect("level 9 fits u32 indices");
         let (last, [vertices, edges, faces]) = sizes[8];
         assert!(last.is_none());
         assert_eq!(
@@ -1089,7 +1243,7 @@ mod tests {
         );
         assert!(sizes[7].0.is_some(), "level 8 is built as a half-edge mesh");
         // Level 10 builds level 9 as a half-edge mesh: refused, naming its edges.
-        let err = plan_sizes(&plan, &counts, 10).unwrap_err();
+        let err = plan_sizes(&plan, &counts, 10, false).unwrap_err();
         assert!(
             matches!(
                 err,
@@ -1103,7 +1257,7 @@ mod tests {
         );
         // A rule whose last level is a half-edge mesh is bounded by its handles.
         let plan = super::super::plan(Rule::Sqrt3, &counts).expect("plan");
-        assert!(plan_sizes(&plan, &counts, 11).is_ok());
-        assert!(plan_sizes(&plan, &counts, 12).is_err());
+        assert!(plan_sizes(&plan, &counts, 11, true).is_ok());
+        assert!(plan_sizes(&plan, &counts, 12, true).is_err());
     }
 }

@@ -3,6 +3,41 @@
 use super::{check_len, Scalar, Sparse};
 use crate::{Error, Result};
 
+/// The sizes of a [`StencilTable`], known before it is allocated
+/// ([`Refinement::stencil_sizes`](super::Refinement::stencil_sizes)): `rows` stencils (the
+/// last level's vertices) of `entries` (index, weight) pairs in all.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct StencilSizes {
+    /// The number of stencils: `offsets` has one more entry.
+    pub rows: usize,
+    /// The number of (index, weight) entries: the length of `indices` and `weights`.
+    pub entries: usize,
+}
+
+impl StencilSizes {
+    /// The bytes of the table's arrays: 4 per offset (`rows + 1` of them), 4 + 8 per entry.
+    pub fn bytes(&self) -> u128 {
+        4 * (self.rows as u128 + 1) + 12 * self.entries as u128
+    }
+
+    /// The table's arrays, empty with exactly these capacities.
+    fn allocate(&self) -> Result<(Vec<u32>, Vec<u32>, Vec<f64>)> {
+        if u32::try_from(self.entries).is_err() {
+            return Err(Error::IndexOverflow {
+                what: "stencil entries",
+                count: self.entries as u128,
+            });
+        }
+        use crate::subdivide::alloc::with_capacity;
+        Ok((
+            with_capacity(self.rows + 1, "stencil offsets")?,
+            with_capacity(self.entries, "stencil indices")?,
+            with_capacity(self.entries, "stencil weights")?,
+        ))
+    }
+}
+
 /// Each vertex of a refinement's last level as a weighted sum of the base vertices
 /// ([`Refinement::stencils`](super::Refinement::stencils)), in compressed rows: vertex `i` is
 /// `Σ weights[k] * base[indices[k]]` for `k` in `offsets[i]..offsets[i + 1]`, the indices of
@@ -36,27 +71,40 @@ pub struct StencilTable {
 }
 
 impl StencilTable {
-    /// The table of the sparse sums `rows` over `base_vertices` vertices: the entries are
-    /// counted first, then the arrays allocated exactly and filled.
-    pub(super) fn from_sums(rows: &[Sparse], base_vertices: usize) -> Result<StencilTable> {
-        let total: usize = rows.iter().map(|r| r.0.len()).sum();
-        if u32::try_from(total).is_err() {
-            return Err(Error::IndexOverflow {
-                what: "stencil entries",
-                count: total as u128,
-            });
+    /// The table of the sparse sums `rows` over `base_vertices` vertices into arrays
+    /// allocated once with the sizes counted beforehand (`sizes`, from the supports); a row
+    /// count or an entry count that differs is a bug ([`Error::PredictionMismatch`] under
+    /// `scheme`, `level`).
+    pub(super) fn from_sums(
+        rows: &[Sparse],
+        base_vertices: usize,
+        sizes: StencilSizes,
+        scheme: &str,
+        level: u32,
+    ) -> Result<StencilTable> {
+        let mismatch =
+            |what: &'static str, predicted: usize, actual: usize| Error::PredictionMismatch {
+                scheme: scheme.to_owned(),
+                level,
+                what,
+                predicted: predicted.into(),
+                actual: actual as u64,
+            };
+        if rows.len() != sizes.rows {
+            return Err(mismatch("stencils", sizes.rows, rows.len()));
         }
-        let mut offsets =
-            crate::subdivide::alloc::with_capacity(rows.len() + 1, "stencil offsets")?;
-        let mut indices = crate::subdivide::alloc::with_capacity(total, "stencil indices")?;
-        let mut weights = crate::subdivide::alloc::with_capacity(total, "stencil weights")?;
+        let entries: usize = rows.iter().map(|r| r.0.len()).sum();
+        if entries != sizes.entries {
+            return Err(mismatch("stencil entries", sizes.entries, entries));
+        }
+        let (mut offsets, mut indices, mut weights) = sizes.allocate()?;
         offsets.push(0u32);
         for row in rows {
             for &(v, w) in &row.0 {
                 indices.push(v);
                 weights.push(w);
             }
-            // At most `total`, which fits u32.
+            // At most `entries`, which fits u32 (checked by `allocate`).
             offsets.push(indices.len() as u32);
         }
         Ok(StencilTable {
@@ -65,6 +113,14 @@ impl StencilTable {
             indices,
             weights,
         })
+    }
+
+    /// The sizes of the table ([`StencilSizes`]).
+    pub fn sizes(&self) -> StencilSizes {
+        StencilSizes {
+            rows: self.len(),
+            entries: self.n_entries(),
+        }
     }
 
     /// The number of stencils (vertices of the last level).
