@@ -434,9 +434,14 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
 
 /// One Doo-Sabin step on a closed mesh (vertex `h` is the corner at the source of old
 /// half-edge `h`; edge `h` is the side of the shrunken face, edge `2E + h` joins corner `h`
-/// to corner `next(twin(h))`).
+/// to corner `next(twin(h))`). A mesh with boundary is built face by face into the arrays of
+/// the predicted lengths (`dual`'s numbering, whose boundary entries are not a pure function of
+/// their index).
 pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    if !t.is_closed() {
+        return super::dual::doo_sabin::<false>(mesh, ctx);
+    }
     let topology = doo_sabin_topology(&t, ctx)?;
     let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
         doo_sabin_points(&t, &mesh.positions, out, ctx.parallel)
@@ -444,8 +449,12 @@ pub(crate) fn doo_sabin(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<Ha
     finish(ctx, topology, positions)
 }
 
-/// The connectivity of one Doo-Sabin step on the closed mesh `t`.
+/// The connectivity of one Doo-Sabin step on `t` (with boundary: built face by face).
 pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    if !t.is_closed() {
+        return super::dual::doo_sabin_with_boundary::<false>(t, None, ctx)
+            .map(Connectivity::from_mesh);
+    }
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
@@ -496,9 +505,13 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
 
 /// One mid-edge step on a closed mesh (vertex `e` is the midpoint of old edge `e`; edge `h`
 /// joins the midpoints of `h` and `next(h)`, half 0 in the shrunken old face, half 1 in the
-/// face of the old vertex `target(h)`).
+/// face of the old vertex `target(h)`). A mesh with boundary is built face by face, as in
+/// [`doo_sabin`].
 pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<HalfEdgeMesh> {
     let t = Topo::new(mesh);
+    if !t.is_closed() {
+        return super::dual::mid_edge::<false>(mesh, ctx);
+    }
     let topology = mid_edge_topology(&t, ctx)?;
     let positions = super::alloc::positions_by(Some(ctx.expected.vertices), |out| {
         mid_edge_points(&t, &mesh.positions, out, ctx.parallel)
@@ -506,8 +519,12 @@ pub(crate) fn mid_edge(mesh: &HalfEdgeMesh, ctx: &StepContext<'_>) -> Result<Hal
     finish(ctx, topology, positions)
 }
 
-/// The connectivity of one mid-edge step on the closed mesh `t`.
+/// The connectivity of one mid-edge step on `t` (with boundary: built face by face).
 pub(crate) fn mid_edge_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    if !t.is_closed() {
+        return super::dual::mid_edge_with_boundary::<false>(t, None, ctx)
+            .map(Connectivity::from_mesh);
+    }
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {

@@ -346,10 +346,10 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
             }
         }
         Algorithm::DooSabin | Algorithm::MidEdge => {
-            if t.boundary_edges() > 0 {
-                return refuse("the mesh has a boundary, the scheme needs a closed mesh".into());
-            }
-            if let Some(v) = (0..t.nv() as u32).find(|&v| t.valence(v) < 3) {
+            // A boundary vertex of valence 2 (a corner with one face) gets a triangle.
+            if let Some(v) =
+                (0..t.nv() as u32).find(|&v| t.valence(v) < 3 && !t.is_boundary_vertex(v))
+            {
                 return refuse(format!(
                     "vertex {v} has valence {}, the scheme needs at least 3 (its vertex face would have fewer than 3 sides)",
                     t.valence(v)
