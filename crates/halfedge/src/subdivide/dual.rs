@@ -306,7 +306,9 @@ pub(crate) fn doo_sabin_points<V: Vector>(
 
 /// The boundary half-edges in increasing order.
 fn boundary_halfedges(t: &Topo<'_>) -> Vec<u32> {
-    (0..2 * t.ne() as u32).filter(|&h| t.is_boundary(h)).collect()
+    (0..2 * t.ne() as u32)
+        .filter(|&h| t.is_boundary(h))
+        .collect()
 }
 
 /// Chaikin's point of the edge `(a, b)` near `a`: `(3a + b) / 4`.
