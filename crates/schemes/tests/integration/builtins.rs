@@ -301,20 +301,45 @@ fn doo_sabin_and_mid_edge_on_the_cube() {
 fn doo_sabin_and_mid_edge_with_boundary() {
     // One quad under Doo-Sabin: 4 corners + 8 Chaikin points; edges 4 + 4 * 3 + 4;
     // faces: the quad, 4 boundary quads, 4 corner triangles. State (V, IE, BE, F).
-    check("doo-sabin-boundary", &quad(), 1, &[12, 12, 8, 9], [12, 20, 9]);
+    check(
+        "doo-sabin-boundary",
+        &quad(),
+        1,
+        &[12, 12, 8, 9],
+        [12, 20, 9],
+    );
     // The strip of three quads (V 8, IE 2, BE 8, F 3): V' = 2*2 + 3*8, F' = 3 + 10 + 8.
-    check("doo-sabin-boundary", &quad_strip(), 1, &[28, 32, 16, 21], [28, 48, 21]);
+    check(
+        "doo-sabin-boundary",
+        &quad_strip(),
+        1,
+        &[28, 32, 16, 21],
+        [28, 48, 21],
+    );
     // Mid-edge on one quad: 4 midpoints + 4 kept corners; the midpoint quad and 4 triangles.
     check("mid-edge-boundary", &quad(), 1, &[8, 4, 8, 5], [8, 12, 5]);
-    check("mid-edge-boundary", &quad(), 2, &[20, 16, 16, 13], [20, 32, 13]);
+    check(
+        "mid-edge-boundary",
+        &quad(),
+        2,
+        &[20, 16, 16, 13],
+        [20, 32, 13],
+    );
     // `doo-sabin` and `mid-edge` count as their twins on a boundary, keep their state closed.
-    for (name, twin) in [("doo-sabin", "doo-sabin-boundary"), ("mid-edge", "mid-edge-boundary")] {
+    for (name, twin) in [
+        ("doo-sabin", "doo-sabin-boundary"),
+        ("mid-edge", "mid-edge-boundary"),
+    ] {
         let s = builtin(name).unwrap();
         assert_eq!(s.for_mesh(&quad_strip()).canonical_name(), twin);
         assert_eq!(s.for_mesh(&quad_strip()).name(), name);
         assert_eq!(s.for_mesh(&cube()).canonical_name(), name);
         assert_eq!(s.for_mesh(&cube()).state_names(), ["V", "E", "F"]);
-        let typed = |t: &str| s.for_counts(&t.parse().unwrap()).canonical_name().to_owned();
+        let typed = |t: &str| {
+            s.for_counts(&t.parse().unwrap())
+                .canonical_name()
+                .to_owned()
+        };
         assert_eq!(typed("V=8,IE=2,BE=8,F=3"), twin);
         assert_eq!(typed("V=8,E=10,F=3"), name);
         assert_eq!(typed("V=8,E=12,F=6"), name);
