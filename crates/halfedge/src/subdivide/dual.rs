@@ -106,17 +106,17 @@ pub(crate) fn mid_edge<const GROW: bool>(
 }
 
 /// The rank of each boundary half-edge among the boundary half-edges in increasing order
-/// (`INVALID` on the others), and the boundary half-edges in that order.
-fn boundary_ranks(t: &Topo<'_>) -> Result<(Vec<u32>, Vec<u32>)> {
+/// (`INVALID` on the others).
+fn boundary_ranks(t: &Topo<'_>) -> Result<Vec<u32>> {
     let mut rank = super::alloc::filled(INVALID, 2 * t.ne(), "boundary ranks")?;
-    let mut list = super::alloc::with_capacity(t.boundary_edges(), "boundary half-edges")?;
+    let mut next = 0u32;
     for h in 0..2 * t.ne() as u32 {
         if t.is_boundary(h) {
-            rank[h as usize] = list.len() as u32;
-            list.push(h);
+            rank[h as usize] = next;
+            next += 1;
         }
     }
-    Ok((rank, list))
+    Ok(rank)
 }
 
 /// The positions of a step built from `t` with `n` vertices: `points` of `positions`, or
@@ -142,7 +142,7 @@ pub(crate) fn doo_sabin_with_boundary<const GROW: bool>(
 ) -> Result<HalfEdgeMesh> {
     let t = *t;
     let ne = t.ne() as u32;
-    let (rank, _) = boundary_ranks(&t)?;
+    let rank = boundary_ranks(&t)?;
     // The Chaikin point near the target of boundary half-edge h.
     let near_target = |h: u32| 2 * ne + rank[h as usize];
     let mut b = Builder::<GROW>::new(ctx.expected)?;
@@ -207,7 +207,7 @@ pub(crate) fn mid_edge_with_boundary<const GROW: bool>(
 ) -> Result<HalfEdgeMesh> {
     let t = *t;
     let ne = t.ne() as u32;
-    let (rank, _) = boundary_ranks(&t)?;
+    let rank = boundary_ranks(&t)?;
     let mut b = Builder::<GROW>::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
     let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
