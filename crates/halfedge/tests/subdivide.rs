@@ -958,3 +958,26 @@ fn dual_schemes_on_the_shared_meshes_with_boundary() {
     }
     assert!(ran >= 5, "only {ran} meshes with boundary");
 }
+
+/// A non-finite boundary point names its origin: mid-edge's kept boundary vertex, Doo-Sabin's
+/// Chaikin point.
+#[test]
+fn dual_schemes_name_non_finite_boundary_points() {
+    let quad = PolygonMesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.5e308, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.5e308, 1.0, 0.0),
+        ],
+        [[0u32, 1, 2, 3]],
+    );
+    let quad = HalfEdgeMesh::try_from(&quad).expect("quad");
+    match subdivide(&quad, "mid-edge", 1, &opts()) {
+        Err(Error::NonFinitePosition { vertex, origin, .. }) => {
+            assert_eq!(vertex, 5);
+            assert_eq!(origin, "from boundary vertex 0 of the input");
+        }
+        other => panic!("expected a non-finite point, got {other:?}"),
+    }
+}

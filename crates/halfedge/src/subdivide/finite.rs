@@ -88,6 +88,25 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
             }
             Before::Counts { .. } => format!("from half-edge {v} {of}"),
         },
+        // The kept boundary vertices (mid-edge) and the second Chaikin point of each boundary
+        // edge (Doo-Sabin), numbered by the rank of their boundary half-edge.
+        Algorithm::MidEdge | Algorithm::DooSabin => match before {
+            Before::Mesh(m) => {
+                let t = Topo::new(m);
+                let first = if rule == Algorithm::MidEdge { ne } else { 2 * ne };
+                let h = (0..2 * ne as u32)
+                    .filter(|&h| t.is_boundary(h))
+                    .nth(v - first);
+                match h {
+                    Some(h) if rule == Algorithm::MidEdge => {
+                        format!("from boundary vertex {} {of}", t.source(h))
+                    }
+                    Some(h) => format!("on {}", edge(h as usize / 2)),
+                    None => format!("computed from {}", of.trim_start_matches("of ")),
+                }
+            }
+            Before::Counts { .. } => format!("computed from {}", of.trim_start_matches("of ")),
+        },
         _ => format!("computed from {}", of.trim_start_matches("of ")),
     }
 }
