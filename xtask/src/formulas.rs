@@ -74,8 +74,10 @@ pub(crate) fn render() -> anyhow::Result<String> {
     let _ = writeln!(
         out,
         "Aliases: {} count as `loop` (same topology, other geometry); on a mesh with boundary \
-         edges (and no non-manifold edge) `loop` and its aliases count as `loop-boundary`; \
-         `ternary` is `{}`. The last column names the rule that really subdivides each scheme (its \
+         edges (and no non-manifold edge) `loop` and its aliases count as `loop-boundary`, \
+         `doo-sabin` as `doo-sabin-boundary` and `mid-edge` as `mid-edge-boundary` (their \
+         boundary rules and the derivations of their matrices are in the rustdoc of \
+         `schemes::catalog`); `ternary` is `{}`. The last column names the rule that really subdivides each scheme (its \
          `topology` in a scheme file).\n",
         schemes::catalog::LOOP_ALIASES
             .iter()

@@ -51,6 +51,22 @@ fn meshes() -> Vec<(&'static str, HalfEdgeMesh)> {
             jittered(shapes::icosahedron_holes(2).expect("holes")),
         ),
         ("mixed", jittered(shapes::mixed())),
+        // Boundary corners of valence 2 (one face), a pentagon and a triangle fan.
+        (
+            "polygons with corners",
+            jittered(PolygonMesh::from_faces(
+                vec![
+                    DVec3::new(0.0, 0.0, 0.0),
+                    DVec3::new(1.0, 0.0, 0.1),
+                    DVec3::new(2.0, 0.2, 0.0),
+                    DVec3::new(2.1, 1.0, 0.3),
+                    DVec3::new(1.0, 1.1, 0.0),
+                    DVec3::new(0.0, 1.0, 0.2),
+                    DVec3::new(1.5, 2.0, 0.1),
+                ],
+                [&[0, 1, 4, 5][..], &[1, 2, 3, 6, 4], &[4, 6, 5]],
+            )),
+        ),
     ]
 }
 
@@ -490,6 +506,8 @@ fn large_meshes_take_the_parallel_paths_with_the_same_bits() {
         (&grid, Rule::Loop),
         (&grid, Rule::CatmullClark),
         (&grid, Rule::Sqrt3),
+        (&grid, Rule::DooSabin),
+        (&grid, Rule::MidEdge),
     ];
     for (mesh, rule) in cases {
         let base = base_of(mesh);

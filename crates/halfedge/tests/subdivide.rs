@@ -11,7 +11,7 @@ use named::{
 };
 
 /// Every scheme name with a real subdivision (aliases included).
-const SCHEMES: [&str; 17] = [
+const SCHEMES: [&str; 19] = [
     "loop",
     "loop-boundary",
     "loop-general",
@@ -27,7 +27,9 @@ const SCHEMES: [&str; 17] = [
     "sqrt3",
     "sqrt3-boundary",
     "doo-sabin",
+    "doo-sabin-boundary",
     "mid-edge",
+    "mid-edge-boundary",
     "tri-split-5",
 ];
 
@@ -62,7 +64,7 @@ fn levels_for(mesh_faces: usize, scheme: &str, max_levels: u32) -> u32 {
         "ternary" => 9,
         "tri-split-4" => 16,
         "tri-split-5" => 25,
-        "doo-sabin" | "mid-edge" => 4,
+        "doo-sabin" | "mid-edge" | "doo-sabin-boundary" | "mid-edge-boundary" => 4,
         _ => 4,
     };
     let mut faces = mesh_faces.max(1) * 4;
@@ -87,12 +89,15 @@ fn assert_reports(what: &str, reports: &[LevelReport]) {
 }
 
 /// Whether the scheme's class admits the mesh (what `subdivide` must accept): `loop` and its
-/// aliases count as `loop-boundary` on a mesh with boundary.
+/// aliases count as `loop-boundary` on a mesh with boundary, `doo-sabin` and `mid-edge` as
+/// their boundary twins.
 fn admits(scheme: &str, mesh: &HalfEdgeMesh) -> bool {
     let counted_as = match scheme {
         "loop" | "midpoint" | "icosphere" | "butterfly" if mesh.counts().boundary_edges > 0 => {
             "loop-boundary"
         }
+        "doo-sabin" if mesh.counts().boundary_edges > 0 => "doo-sabin-boundary",
+        "mid-edge" if mesh.counts().boundary_edges > 0 => "mid-edge-boundary",
         _ => scheme,
     };
     schemes::builtin(counted_as)
@@ -384,10 +389,6 @@ fn refusals_are_typed() {
     let grid = base("grid:2x2");
     assert!(matches!(
         subdivide(&grid, "sqrt3", 1, &opts()),
-        Err(Error::Scheme(_))
-    ));
-    assert!(matches!(
-        subdivide(&grid, "doo-sabin", 1, &opts()),
         Err(Error::Scheme(_))
     ));
     assert!(matches!(
@@ -694,7 +695,16 @@ fn named_functions_pick_the_boundary_variant() {
         mid_edge_subdivide(&ico, 1, &o).expect("me").n_faces(),
         20 + 12
     );
-    assert!(doo_sabin_subdivide(&grid, 1, &o).is_err());
+    // On the 2x2 triangle grid (V 9, E 16, F 8): Doo-Sabin F' = F + E + V,
+    // mid-edge F' = F + V, both by their boundary rules.
+    assert_eq!(
+        doo_sabin_subdivide(&grid, 1, &o).expect("ds").n_faces(),
+        8 + 16 + 9
+    );
+    assert_eq!(
+        mid_edge_subdivide(&grid, 1, &o).expect("me").n_faces(),
+        8 + 9
+    );
 }
 
 /// Big enough for the parallel passes (more than 2^14 elements per array).
@@ -769,5 +779,205 @@ fn dual_schemes_refuse_a_valence_two_vertex() {
             }
             other => panic!("{scheme}: expected a refusal, got {other:?}"),
         }
+    }
+}
+
+/// Meshes with boundary for the dual schemes: a triangle fan (a disk), one pentagon (every
+/// vertex a corner of valence 2), mixed polygons with valence-2 corners, an open box of quads,
+/// the icosahedron with three holes.
+fn dual_boundary_meshes() -> Vec<(&'static str, HalfEdgeMesh)> {
+    let disk = {
+        let n = 7u32;
+        let mut positions = vec![DVec3::ZERO];
+        positions.extend((0..n).map(|k| {
+            let a = f64::from(k) * std::f64::consts::TAU / f64::from(n);
+            DVec3::new(a.cos(), a.sin(), 0.1 * f64::from(k % 2))
+        }));
+        let faces: Vec<[u32; 3]> = (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect();
+        PolygonMesh::from_faces(positions, faces)
+    };
+    let pentagon = PolygonMesh::from_faces(
+        (0..5)
+            .map(|k| {
+                let a = f64::from(k) * std::f64::consts::TAU / 5.0;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect(),
+        [[0u32, 1, 2, 3, 4]],
+    );
+    let corners = PolygonMesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.1),
+            DVec3::new(2.0, 0.2, 0.0),
+            DVec3::new(2.1, 1.0, 0.3),
+            DVec3::new(1.0, 1.1, 0.0),
+            DVec3::new(0.0, 1.0, 0.2),
+            DVec3::new(1.5, 2.0, 0.1),
+        ],
+        [&[0u32, 1, 4, 5][..], &[1, 2, 3, 6, 4], &[4, 6, 5]],
+    );
+    let open_box = {
+        let cube = shapes::cube();
+        let faces: Vec<Vec<u32>> = cube.faces().skip(1).map(<[u32]>::to_vec).collect();
+        PolygonMesh::from_faces(cube.positions.clone(), faces)
+    };
+    let valid = |name: &str, p: &PolygonMesh| {
+        HalfEdgeMesh::try_from(p).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    vec![
+        ("disk", valid("disk", &disk)),
+        ("pentagon", valid("pentagon", &pentagon)),
+        ("polygons with corners", valid("corners", &corners)),
+        ("open box", valid("open box", &open_box)),
+        ("icosahedron-holes:3", base("icosahedron-holes:3")),
+        ("grid:4x3", base("grid:4x3")),
+    ]
+}
+
+/// Issue 13, item 5: `doo-sabin` and `mid-edge` accept meshes with boundary, count by their
+/// boundary twins, and every level matches its prediction, on the preallocated, the growing
+/// and the face-list paths.
+#[test]
+fn dual_schemes_with_boundary_match_their_predictions() {
+    for (name, mesh) in dual_boundary_meshes() {
+        assert!(!mesh.is_closed(), "{name}");
+        for scheme in [
+            "doo-sabin",
+            "mid-edge",
+            "doo-sabin-boundary",
+            "mid-edge-boundary",
+        ] {
+            let what = format!("{scheme} on {name}");
+            let reports =
+                verify(&mesh, scheme, 3, &opts()).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert_reports(&what, &reports);
+            assert!(
+                reports[0].predicted.iter().any(|(n, _)| n == "BE"),
+                "{what}: counted by the boundary state"
+            );
+            let out = subdivide(&mesh, scheme, 3, &opts()).expect(&what);
+            out.check_invariants()
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let grown = subdivide(&mesh, scheme, 3, &opts().with_preallocate(false)).expect(&what);
+            assert_eq!(grown.to_polygon_mesh(), out.to_polygon_mesh(), "{what}");
+            let faces = subdivide_to_face_list(&mesh, scheme, 3, &opts()).expect(&what);
+            assert_eq!(faces.mesh, out.to_polygon_mesh(), "{what}");
+            // One boundary loop per input loop, twice as many boundary edges per level.
+            let (c0, c3) = (mesh.counts(), out.counts());
+            assert_eq!(c3.boundary_edges, 8 * c0.boundary_edges, "{what}");
+            assert_eq!(c3.euler_characteristic, c0.euler_characteristic, "{what}");
+        }
+    }
+}
+
+/// The boundary geometry: Doo-Sabin's boundary points are Chaikin's `(3a + b)/4`, mid-edge keeps
+/// the boundary vertices with the cubic B-spline rule `(a + 6v + b)/8` and the midpoints; a
+/// corner of valence 2 becomes a triangle under both.
+#[test]
+fn dual_schemes_boundary_geometry() {
+    let quad = PolygonMesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(4.0, 0.0, 0.0),
+            DVec3::new(4.0, 4.0, 0.0),
+            DVec3::new(0.0, 4.0, 0.0),
+        ],
+        [[0u32, 1, 2, 3]],
+    );
+    let quad = HalfEdgeMesh::try_from(&quad).expect("quad");
+    let has = |m: &HalfEdgeMesh, p: DVec3| m.positions().iter().any(|q| q.distance(p) < 1e-12);
+    let ds = subdivide(&quad, "doo-sabin", 1, &opts()).expect("doo-sabin");
+    let sizes: Vec<usize> = ds.to_polygon_mesh().faces().map(<[u32]>::len).collect();
+    assert_eq!(sizes, [4, 4, 4, 4, 4, 3, 3, 3, 3]);
+    for p in [
+        // The corners of the shrunken quad (weights 9/16, 3/16, 3/16, 1/16).
+        (1.0, 1.0),
+        (3.0, 3.0),
+        // Chaikin's points on the four sides.
+        (1.0, 0.0),
+        (3.0, 0.0),
+        (4.0, 1.0),
+        (0.0, 3.0),
+    ] {
+        assert!(has(&ds, DVec3::new(p.0, p.1, 0.0)), "doo-sabin {p:?}");
+    }
+    let me = subdivide(&quad, "mid-edge", 1, &opts()).expect("mid-edge");
+    let sizes: Vec<usize> = me.to_polygon_mesh().faces().map(<[u32]>::len).collect();
+    assert_eq!(sizes, [4, 3, 3, 3, 3]);
+    assert_eq!(me.n_vertices(), 8);
+    for p in [(2.0, 0.0), (4.0, 2.0), (0.5, 0.5), (3.5, 3.5)] {
+        assert!(has(&me, DVec3::new(p.0, p.1, 0.0)), "mid-edge {p:?}");
+    }
+    // Closed meshes are unchanged: the cube's Doo-Sabin level has no Chaikin point.
+    let cube = base("cube");
+    let closed = subdivide(&cube, "doo-sabin", 1, &opts()).expect("cube");
+    assert_eq!(closed.n_vertices(), 24);
+    assert!(closed.is_closed());
+}
+
+/// Every shared mesh with boundary under both dual schemes, levels as large as a debug build
+/// handles quickly (at least 1).
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn dual_schemes_on_the_shared_meshes_with_boundary() {
+    let dir = testdata::meshes_dir();
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("meshes dir")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "obj" || x == "off"))
+        .collect();
+    files.sort();
+    let mut ran = 0;
+    for file in files {
+        let Ok(polygons) = halfedge::io::read_mesh(&file) else {
+            continue;
+        };
+        let Ok(mesh) = HalfEdgeMesh::try_from(&polygons) else {
+            continue;
+        };
+        if mesh.is_closed() {
+            continue;
+        }
+        let mut levels = 1;
+        while levels < 3 && mesh.n_faces() << (2 * (levels + 1)) <= 2_000_000 {
+            levels += 1;
+        }
+        for scheme in ["doo-sabin", "mid-edge"] {
+            let what = format!("{scheme} on {}", file.display());
+            match verify(&mesh, scheme, levels, &opts()) {
+                Ok(reports) => assert_reports(&what, &reports),
+                // Only an interior vertex of valence 2 may refuse.
+                Err(Error::SchemeNotApplicable { reason, .. }) => {
+                    assert!(reason.contains("valence 2"), "{what}: {reason}");
+                }
+                Err(e) => panic!("{what}: {e}"),
+            }
+        }
+        ran += 1;
+    }
+    assert!(ran >= 5, "only {ran} meshes with boundary");
+}
+
+/// A non-finite boundary point names its origin: mid-edge's kept boundary vertex, Doo-Sabin's
+/// Chaikin point.
+#[test]
+fn dual_schemes_name_non_finite_boundary_points() {
+    let quad = PolygonMesh::from_faces(
+        vec![
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.5e308, 0.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(1.5e308, 1.0, 0.0),
+        ],
+        [[0u32, 1, 2, 3]],
+    );
+    let quad = HalfEdgeMesh::try_from(&quad).expect("quad");
+    match subdivide(&quad, "mid-edge", 1, &opts()) {
+        Err(Error::NonFinitePosition { vertex, origin, .. }) => {
+            assert_eq!(vertex, 5);
+            assert_eq!(origin, "from boundary vertex 0 of the input");
+        }
+        other => panic!("expected a non-finite point, got {other:?}"),
     }
 }

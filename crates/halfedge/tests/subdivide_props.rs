@@ -11,7 +11,7 @@ use halfedge::{shapes, HalfEdgeMesh, PolygonMesh};
 use named::{subdivide, verify, verify_polygons};
 use proptest::prelude::*;
 
-const HALF_EDGE_SCHEMES: [&str; 11] = [
+const HALF_EDGE_SCHEMES: [&str; 13] = [
     "loop",
     "loop-boundary",
     "butterfly",
@@ -21,7 +21,9 @@ const HALF_EDGE_SCHEMES: [&str; 11] = [
     "sqrt3",
     "sqrt3-boundary",
     "doo-sabin",
+    "doo-sabin-boundary",
     "mid-edge",
+    "mid-edge-boundary",
     "tri-split-2",
 ];
 
@@ -30,18 +32,26 @@ fn opts() -> SubdivideOptions<'static> {
 }
 
 /// Mirrors what `subdivide` accepts: the scheme's class (`loop` and the 4:1 aliases count as
-/// `loop-boundary` on a boundary).
+/// `loop-boundary` on a boundary, `doo-sabin` and `mid-edge` as their boundary twins) and,
+/// for the dual schemes, no interior vertex of valence 2 (a boundary corner with one face is
+/// fine).
 fn admits(scheme: &str, mesh: &HalfEdgeMesh) -> bool {
     let counts = mesh.counts();
+    let boundary = counts.boundary_edges > 0;
     let counted_as = match scheme {
-        "loop" | "butterfly" if counts.boundary_edges > 0 => "loop-boundary",
+        "loop" | "butterfly" if boundary => "loop-boundary",
+        "doo-sabin" if boundary => "doo-sabin-boundary",
+        "mid-edge" if boundary => "mid-edge-boundary",
         _ => scheme,
     };
     let class_ok = schemes::builtin(counted_as)
         .and_then(|s| s.initial_state(&counts))
         .is_ok();
-    let valence_ok = !matches!(scheme, "doo-sabin" | "mid-edge")
-        || mesh.vertices().all(|v| mesh.valence(v) >= 3);
+    let dual = scheme.starts_with("doo-sabin") || scheme.starts_with("mid-edge");
+    let valence_ok = !dual
+        || mesh
+            .vertices()
+            .all(|v| mesh.valence(v) >= 3 || mesh.is_boundary_vertex(v));
     class_ok && valence_ok
 }
 

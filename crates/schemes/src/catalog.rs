@@ -19,7 +19,7 @@ use crate::{CountsInput, Error, FaceKind, MeshClass, MeshCounts, Result, Rule, S
 pub const LOOP_ALIASES: [&str; 3] = ["midpoint", "butterfly", "icosphere"];
 
 /// The canonical built-in names (with `tri-split-N` written for the family).
-pub const BUILTIN_NAMES: [&str; 11] = [
+pub const BUILTIN_NAMES: [&str; 13] = [
     "loop",
     "loop-boundary",
     "loop-general",
@@ -29,7 +29,9 @@ pub const BUILTIN_NAMES: [&str; 11] = [
     "sqrt3",
     "sqrt3-boundary",
     "doo-sabin",
+    "doo-sabin-boundary",
     "mid-edge",
+    "mid-edge-boundary",
     "tri-split-N",
 ];
 
@@ -42,30 +44,6 @@ pub const BUILTIN_NAMES: [&str; 11] = [
 /// # Errors
 ///
 /// [`Error::UnknownScheme`] listing the built-ins, [`Error::InvalidSplitFactor`] for
-/// A scheme over the state `(V, E, F)` of closed manifold polygon meshes that produces
-/// polygons (Doo-Sabin, mid-edge), pointing to Catmull-Clark for boundaries and to
-/// `catmull-clark-general` for non-manifold edges.
-fn closed_polygon_scheme(name: &'static str, description: &'static str, rows: &[&[i64]]) -> Scheme {
-    build(Def {
-        name,
-        description,
-        state: &[Stat::V, Stat::E, Stat::F],
-        rule: StepRule::single(matrix(rows)),
-        requires: MeshClass {
-            faces: FaceKind::Polygons,
-            closed: true,
-            manifold: true,
-        },
-        produces: FaceKind::Polygons,
-        derive: vec![],
-        hints: Hints {
-            boundary: Some("catmull-clark".into()),
-            nonmanifold: Some("catmull-clark-general".into()),
-            ..Hints::default()
-        },
-    })
-}
-
 /// `tri-split-N` with `N` below 2, not a number or too large.
 ///
 /// ```
@@ -86,7 +64,9 @@ pub fn builtin(name: &str) -> Result<Scheme> {
         "sqrt3" => sqrt3(),
         "sqrt3-boundary" => sqrt3_boundary(),
         "doo-sabin" => doo_sabin(),
+        "doo-sabin-boundary" => doo_sabin_boundary(),
         "mid-edge" => mid_edge(),
+        "mid-edge-boundary" => mid_edge_boundary(),
         "ternary" => tri_split(3)?,
         n => match n.strip_prefix("tri-split-") {
             Some(factor) => {
@@ -122,8 +102,8 @@ pub fn builtin(name: &str) -> Result<Scheme> {
         "loop" | "loop-boundary" | "loop-general" => Rule::Loop,
         "catmull-clark-quad" | "catmull-clark" | "catmull-clark-general" => Rule::CatmullClark,
         "sqrt3" | "sqrt3-boundary" => Rule::Sqrt3,
-        "doo-sabin" => Rule::DooSabin,
-        "mid-edge" => Rule::MidEdge,
+        "doo-sabin" | "doo-sabin-boundary" => Rule::DooSabin,
+        "mid-edge" | "mid-edge-boundary" => Rule::MidEdge,
         split => match split.strip_prefix("tri-split-").map(str::parse::<u32>) {
             Some(Ok(n)) => Rule::TriSplit(n),
             // Split factors beyond u32 make more faces than any level can hold: counted only.
@@ -131,27 +111,31 @@ pub fn builtin(name: &str) -> Result<Scheme> {
         },
     };
     let mut scheme = scheme.renamed(name).with_subdivision_rule(rule);
-    scheme.boundary_variant = scheme.canonical_name() == "loop";
+    scheme.boundary_variant = boundary_twin_of(scheme.canonical_name()).is_some();
     Ok(scheme)
 }
 
-/// # `loop` and its aliases on meshes with boundary
+/// # `loop`, its aliases, `doo-sabin` and `mid-edge` on meshes with boundary
 ///
 /// `loop` and the 4:1 aliases `midpoint`, `butterfly` and `icosphere` count as `loop` on closed
 /// meshes. Their geometry (in `halfedge`) also handles boundaries, so on a mesh with boundary
 /// edges and no non-manifold edge they count as `loop-boundary`, the same 4:1 topology, as
 /// every peer (OpenSubdiv, OpenMesh, libigl) subdivides a mesh with boundary when asked for
 /// Loop: these methods pick the scheme that counts them for the mesh at hand, as `halfedge`'s
-/// subdivision does. Every other scheme is returned unchanged (`sqrt3` refuses a boundary and
-/// says to use `sqrt3-boundary`).
+/// subdivision does. `doo-sabin` and `mid-edge` do the same with `doo-sabin-boundary` and
+/// `mid-edge-boundary` (their boundary rules; on closed meshes they keep their `(V, E, F)`
+/// state). Every other scheme is returned unchanged (`sqrt3` refuses a boundary and says to
+/// use `sqrt3-boundary`).
 impl Scheme {
     /// Whether [`for_mesh`](Self::for_mesh) and [`for_counts`](Self::for_counts) may return
     /// another scheme: true for the built-in `loop` and its 4:1 aliases `midpoint`, `butterfly`
-    /// and `icosphere`.
+    /// and `icosphere`, and for `doo-sabin` and `mid-edge`.
     ///
     /// ```
     /// assert!(schemes::builtin("butterfly")?.has_boundary_variant());
     /// assert!(schemes::builtin("loop")?.has_boundary_variant());
+    /// assert!(schemes::builtin("doo-sabin")?.has_boundary_variant());
+    /// assert!(!schemes::builtin("mid-edge-boundary")?.has_boundary_variant());
     /// assert!(!schemes::builtin("loop-boundary")?.has_boundary_variant());
     /// # Ok::<(), schemes::Error>(())
     /// ```
@@ -161,8 +145,9 @@ impl Scheme {
 
     /// The scheme that counts this one on a mesh with `counts`: for `loop` or a 4:1 alias on
     /// a mesh with boundary edges and no non-manifold edge, `loop-boundary` under the name
-    /// asked for ([`canonical_name`](Self::canonical_name) says `loop-boundary`); otherwise a
-    /// copy of this scheme.
+    /// asked for ([`canonical_name`](Self::canonical_name) says `loop-boundary`), and
+    /// likewise `doo-sabin-boundary` for `doo-sabin` and `mid-edge-boundary` for `mid-edge`;
+    /// otherwise a copy of this scheme.
     ///
     /// ```
     /// use schemes::{builtin, MeshCounts};
@@ -190,7 +175,9 @@ impl Scheme {
 
     /// As [`for_mesh`](Self::for_mesh) for counts typed in: a 4:1 alias counts as
     /// `loop-boundary` when the counts make a valid `loop-boundary` state (by its documented
-    /// identities, e.g. `BE = 2E - 3F`) with `BE > 0` and give no non-manifold edge.
+    /// identities, e.g. `BE = 2E - 3F`) with `BE > 0` and give no non-manifold edge; likewise
+    /// `doo-sabin` and `mid-edge` with their boundary twins (whose state needs `IE` and `BE`
+    /// or `E` and `BE`: `V`, `E`, `F` alone keep the closed scheme).
     ///
     /// ```
     /// use schemes::{builtin, CountsInput};
@@ -213,7 +200,9 @@ impl Scheme {
         {
             return self.clone();
         }
-        let boundary = loop_boundary();
+        let Some(boundary) = boundary_twin_of(self.canonical_name()) else {
+            return self.clone();
+        };
         let be = boundary
             .state_names()
             .iter()
@@ -227,10 +216,26 @@ impl Scheme {
     }
 }
 
+/// The boundary-aware built-in that counts the built-in `canonical` on a mesh with boundary:
+/// `loop-boundary` for `loop`, `doo-sabin-boundary` for `doo-sabin`, `mid-edge-boundary` for
+/// `mid-edge`.
+fn boundary_twin_of(canonical: &str) -> Option<Scheme> {
+    match canonical {
+        "loop" => Some(loop_boundary()),
+        "doo-sabin" => Some(doo_sabin_boundary()),
+        "mid-edge" => Some(mid_edge_boundary()),
+        _ => None,
+    }
+}
+
 impl Scheme {
-    /// `loop-boundary` under this scheme's name, with its rule.
+    /// The boundary-aware twin under this scheme's name, with its rule (a copy of this scheme
+    /// when it has none).
     fn boundary_twin(&self) -> Scheme {
-        let twin = loop_boundary().renamed(self.name());
+        let Some(twin) = boundary_twin_of(self.canonical_name()) else {
+            return self.clone();
+        };
+        let twin = twin.renamed(self.name());
         match self.subdivision_rule() {
             Some(rule) => twin.with_subdivision_rule(rule),
             None => twin,
@@ -629,6 +634,61 @@ pub fn sqrt3_boundary() -> Scheme {
     })
 }
 
+/// A scheme over the state `(V, E, F)` of closed manifold polygon meshes that produces
+/// polygons (Doo-Sabin, mid-edge), pointing to its boundary-aware twin (`boundary`) for
+/// boundaries and to `catmull-clark-general` for non-manifold edges.
+fn closed_polygon_scheme(
+    name: &'static str,
+    description: &'static str,
+    rows: &[&[i64]],
+    boundary: &'static str,
+) -> Scheme {
+    build(Def {
+        name,
+        description,
+        state: &[Stat::V, Stat::E, Stat::F],
+        rule: StepRule::single(matrix(rows)),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: true,
+            manifold: true,
+        },
+        produces: FaceKind::Polygons,
+        derive: vec![],
+        hints: Hints {
+            boundary: Some(boundary.into()),
+            nonmanifold: Some("catmull-clark-general".into()),
+            ..Hints::default()
+        },
+    })
+}
+
+/// A scheme over the state `(V, IE, BE, F)` of manifold polygon meshes with boundary allowed
+/// that produces polygons (the boundary-aware Doo-Sabin and mid-edge), `E = IE + BE` derived.
+fn boundary_polygon_scheme(
+    name: &'static str,
+    description: &'static str,
+    rows: &[&[i64]],
+) -> Scheme {
+    build(Def {
+        name,
+        description,
+        state: &[Stat::V, Stat::IE, Stat::BE, Stat::F],
+        rule: StepRule::single(matrix(rows)),
+        requires: MeshClass {
+            faces: FaceKind::Polygons,
+            closed: false,
+            manifold: true,
+        },
+        produces: FaceKind::Polygons,
+        derive: vec![(Stat::E, Derivation::new(vec![0, 1, 1, 0], 1))],
+        hints: Hints {
+            nonmanifold: Some("catmull-clark-general".into()),
+            ..Hints::default()
+        },
+    })
+}
+
 /// `doo-sabin`: Doo-Sabin subdivision on closed polygon meshes, state `(V, E, F)`.
 ///
 /// **Rule.** Every corner of every face becomes a new vertex (`H` of them). New faces: one per
@@ -650,6 +710,69 @@ pub fn doo_sabin() -> Scheme {
         "doo-sabin",
         "Doo-Sabin subdivision on closed polygon meshes",
         &[&[0, 2, 0], &[0, 4, 0], &[1, 1, 1]],
+        "doo-sabin-boundary",
+    )
+}
+
+/// `doo-sabin-boundary`: Doo-Sabin subdivision on polygon meshes whose edges have one or two
+/// faces (boundary allowed), state `(V, IE, BE, F)`. `doo-sabin` counts as this scheme on a
+/// mesh with boundary edges ([`Scheme::for_mesh`]).
+///
+/// **Rule** (the boundary treatment that makes the boundary converge to the quadratic B-spline
+/// of the boundary polygon, Chaikin's corner cutting, as Doo's and Nasri's boundary rules do:
+/// D. Doo, "A subdivision algorithm for smoothing down irregularly shaped polyhedrons", 1978;
+/// A. H. Nasri, "Polyhedral subdivision methods for free-form surfaces", ACM TOG 6(1), 1987).
+/// As [`doo_sabin`] inside: every corner of every face becomes a new vertex, with one face
+/// per old face, one quad per interior edge and one face per interior vertex. On the boundary:
+///
+/// - each boundary edge `(a, b)` gets two new vertices, its Chaikin points `(3a + b)/4` and
+///   `(a + 3b)/4`, and its quad joins the face's two corners on it to these two points;
+/// - each boundary vertex gets a face of `k + 2` sides, `k` its number of faces: the `k`
+///   face corners at it and the Chaikin points next to it on its two boundary edges. A
+///   boundary corner with one face (valence 2) gets a triangle: the corner is cut.
+///
+/// (CGAL's `DQQ` step instead emits no quad on a border edge and no face on a border vertex,
+/// so its surface retreats from the border; counting it would need the number of face corners
+/// at boundary vertices, which this state does not carry.)
+///
+/// **Counts.** Every vertex of a manifold mesh has one fan of faces, so a boundary vertex has
+/// two boundary edges and the boundary vertices are as many as the boundary edges (`BV =
+/// BE`). New vertices: `H = 2IE + BE` corners and `2BE` Chaikin points, `V' = 2IE + 3BE`.
+/// Faces: `F' = F + IE + BE + V`. Edges: the `H` sides of the shrunken faces; two more per
+/// interior quad (`2IE`), three more per boundary quad (`3BE`: the two joining the corners to
+/// the Chaikin points and the outer one); one more per boundary vertex face (`BE`: the side
+/// joining the two Chaikin points), so `E' = 4IE + 5BE`. The outer sides and those last sides
+/// are the new boundary, Chaikin's polygon: `BE' = 2BE`, `IE' = 4IE + 3BE`:
+///
+/// ```text
+/// [V' ]   [0 2 3 0] [V ]
+/// [IE'] = [0 4 3 0] [IE]     E = IE + BE (derived)
+/// [BE']   [0 0 2 0] [BE]
+/// [F' ]   [1 1 1 1] [F ]
+/// ```
+///
+/// On a closed mesh (`BE = 0`, `IE = E`) this is [`doo_sabin`]. The new mesh is again
+/// manifold with one fan per vertex, so the identity `BV = BE` holds at every level.
+///
+/// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, 0, -1)`), 0 for `IE`
+/// and `BE` (eigenvalues 4, 2, 1).
+///
+/// ```
+/// use schemes::{builtin, MeshCounts};
+///
+/// // One quad: a shrunken quad, four boundary quads and four corner triangles.
+/// let quad = MeshCounts::from_polygons(&[[0, 1, 2, 3]])?;
+/// let ds = builtin("doo-sabin")?.for_mesh(&quad);
+/// assert_eq!(ds.canonical_name(), "doo-sabin-boundary");
+/// let c = ds.counts_at(&quad, 1)?;
+/// assert_eq!((c.vertices, c.edges, c.faces), (12.into(), 20.into(), 9.into()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn doo_sabin_boundary() -> Scheme {
+    boundary_polygon_scheme(
+        "doo-sabin-boundary",
+        "Doo-Sabin subdivision on polygon meshes with boundary (boundary as Chaikin's quadratic B-spline)",
+        &[&[0, 2, 3, 0], &[0, 4, 3, 0], &[0, 0, 2, 0], &[1, 1, 1, 1]],
     )
 }
 
@@ -675,6 +798,61 @@ pub fn mid_edge() -> Scheme {
         "mid-edge",
         "Peters-Reif mid-edge subdivision on closed polygon meshes",
         &[&[0, 1, 0], &[0, 2, 0], &[1, 0, 1]],
+        "mid-edge-boundary",
+    )
+}
+
+/// `mid-edge-boundary`: Peters and Reif's mid-edge subdivision on polygon meshes whose edges
+/// have one or two faces (boundary allowed), state `(V, IE, BE, F)`. `mid-edge` counts as
+/// this scheme on a mesh with boundary edges ([`Scheme::for_mesh`]).
+///
+/// **Rule** (J. Peters, U. Reif, "The simplest subdivision scheme for smoothing polyhedra",
+/// ACM TOG 16(4), 1997, inside; on the boundary the cubic B-spline border masks of
+/// Catmull-Clark and Loop, as CGAL's `PQQ`/`PTQ` `border_node`: edge point the midpoint,
+/// vertex point `(a + 6v + b)/8`). As [`mid_edge`] inside: one vertex at the midpoint of each
+/// edge, one face per old face on the midpoints of its edges, one face per interior vertex on
+/// the midpoints of its edges. Each boundary vertex `v` is kept as a vertex (moved to
+/// `(a + 6v + b)/8`, `a` and `b` its boundary neighbours), and its face has `k + 2` sides, `k`
+/// its number of faces: `v` and the midpoints of its `k + 1` edges. A boundary corner with one
+/// face (valence 2) gets a triangle. The boundary polygon is thus refined by the cubic
+/// B-spline rule (its vertices and its edge midpoints), and the kept vertices are corners
+/// with one face at the next level.
+///
+/// **Counts.** Every vertex of a manifold mesh has one fan of faces, so the boundary vertices
+/// are as many as the boundary edges (`BV = BE`). `V' = E + BE = IE + 2BE`; one face per old
+/// face and per old vertex, `F' = F + V`; edges: one per face corner (`H = 2IE + BE`, joining
+/// the midpoints of its two sides) and two per boundary vertex (joining it to the midpoints of
+/// its boundary edges, the new boundary): `BE' = 2BE`, `IE' = 2IE + BE`:
+///
+/// ```text
+/// [V' ]   [0 1 2 0] [V ]
+/// [IE'] = [0 2 1 0] [IE]     E = IE + BE (derived)
+/// [BE']   [0 0 2 0] [BE]
+/// [F' ]   [1 0 0 1] [F ]
+/// ```
+///
+/// On a closed mesh (`BE = 0`, `IE = E`) this is [`mid_edge`]. The new mesh is again manifold
+/// with one fan per vertex, so `BV = BE` holds at every level.
+///
+/// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, 0, -1)`), 0 for `IE`
+/// and `BE` (eigenvalue 2 twice, in one Jordan block: `IE(s) = 2^s IE0 + s 2^(s-1) BE0`).
+///
+/// ```
+/// use schemes::{builtin, MeshCounts};
+///
+/// // One quad: the quad of its midpoints and four corner triangles.
+/// let quad = MeshCounts::from_polygons(&[[0, 1, 2, 3]])?;
+/// let me = builtin("mid-edge")?.for_mesh(&quad);
+/// assert_eq!(me.canonical_name(), "mid-edge-boundary");
+/// let c = me.counts_at(&quad, 1)?;
+/// assert_eq!((c.vertices, c.edges, c.faces), (8.into(), 12.into(), 5.into()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn mid_edge_boundary() -> Scheme {
+    boundary_polygon_scheme(
+        "mid-edge-boundary",
+        "Peters-Reif mid-edge subdivision on polygon meshes with boundary (boundary as a cubic B-spline)",
+        &[&[0, 1, 2, 0], &[0, 2, 1, 0], &[0, 0, 2, 0], &[1, 0, 0, 1]],
     )
 }
 

@@ -28,12 +28,15 @@
 //! | `sqrt3` | V, E, F | `[1 0 1] [0 1 3] [0 0 3]` | closed triangles |
 //! | `sqrt3-boundary` | V, IE, BE, F | a cycle of two, see [`catalog::sqrt3_boundary`] | triangles, edges of one or two faces |
 //! | `doo-sabin` | V, E, F | `[0 2 0] [0 4 0] [1 1 1]` | closed polygons |
+//! | `doo-sabin-boundary` | V, IE, BE, F | `[0 2 3 0] [0 4 3 0] [0 0 2 0] [1 1 1 1]` | polygons, edges of one or two faces |
 //! | `mid-edge` | V, E, F | `[0 1 0] [0 2 0] [1 0 1]` | closed polygons |
+//! | `mid-edge-boundary` | V, IE, BE, F | `[0 1 2 0] [0 2 1 0] [0 0 2 0] [1 0 0 1]` | polygons, edges of one or two faces |
 //! | `tri-split-N` (`ternary` = 3) | V, E, F | see [`catalog::tri_split`] | any triangle mesh |
 //!
 //! The aliases `midpoint`, `butterfly` and `icosphere` (the same 4:1 topology with their own
-//! geometry in `halfedge`) count as `loop-boundary` on a mesh with boundary:
-//! [`Scheme::for_mesh`], [`Plan::for_mesh`].
+//! geometry in `halfedge`) count as `loop-boundary` on a mesh with boundary, and `doo-sabin`
+//! and `mid-edge` as `doo-sabin-boundary` and `mid-edge-boundary`: [`Scheme::for_mesh`],
+//! [`Plan::for_mesh`].
 //!
 //! # Example: the icosahedron under Loop
 //!

@@ -177,9 +177,9 @@ impl Plan {
         Ok(self)
     }
 
-    /// Whether a stage is a 4:1 alias that counts as `loop-boundary` on a mesh with boundary
-    /// ([`Scheme::has_boundary_variant`]), so that [`for_mesh`](Self::for_mesh) and
-    /// [`for_counts`](Self::for_counts) may change the plan.
+    /// Whether a stage is a 4:1 alias that counts as `loop-boundary` on a mesh with boundary,
+    /// or `doo-sabin` / `mid-edge` ([`Scheme::has_boundary_variant`]), so that
+    /// [`for_mesh`](Self::for_mesh) and [`for_counts`](Self::for_counts) may change the plan.
     pub fn has_boundary_variant(&self) -> bool {
         self.stages.iter().any(|s| s.scheme.has_boundary_variant())
     }

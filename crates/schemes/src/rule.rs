@@ -47,9 +47,11 @@ pub enum Rule {
     CatmullClark,
     /// Kobbelt's √3 (on a boundary: his alternating boundary steps).
     Sqrt3,
-    /// Doo-Sabin (closed meshes).
+    /// Doo-Sabin (on a boundary: Chaikin's quadratic B-spline boundary,
+    /// [`doo_sabin_boundary`](crate::catalog::doo_sabin_boundary)).
     DooSabin,
-    /// Peters-Reif mid-edge (closed meshes).
+    /// Peters-Reif mid-edge (on a boundary: the cubic B-spline boundary,
+    /// [`mid_edge_boundary`](crate::catalog::mid_edge_boundary)).
     MidEdge,
 }
 
@@ -88,6 +90,8 @@ impl Rule {
     /// `loop` on closed meshes, `loop-boundary` on meshes with boundary edges and
     /// `loop-general` on non-manifold face lists; Catmull-Clark is `catmull-clark`, or
     /// `catmull-clark-general` with non-manifold edges; √3 is `sqrt3` or `sqrt3-boundary`;
+    /// Doo-Sabin and mid-edge are `doo-sabin` and `mid-edge` on closed meshes,
+    /// `doo-sabin-boundary` and `mid-edge-boundary` with boundary edges;
     /// `TriSplit(n)` is `tri-split-n`. The scheme keeps the rule's name.
     ///
     /// # Errors
@@ -112,7 +116,9 @@ impl Rule {
             Rule::CatmullClark => "catmull-clark",
             Rule::Sqrt3 if boundary => "sqrt3-boundary",
             Rule::Sqrt3 => "sqrt3",
+            Rule::DooSabin if boundary && !nonmanifold => "doo-sabin-boundary",
             Rule::DooSabin => "doo-sabin",
+            Rule::MidEdge if boundary && !nonmanifold => "mid-edge-boundary",
             Rule::MidEdge => "mid-edge",
         };
         Ok(builtin(canonical)?.renamed(&self.to_string()))

@@ -92,7 +92,8 @@ impl<'a> Input<'a> {
 
     /// The plan that counts `plan` on the initial state the flags name: the 4:1 aliases
     /// (`midpoint`, `butterfly`, `icosphere`) count as `loop-boundary` on a mesh with
-    /// boundary, exactly as `subdivide` and `verify` count them ([`Plan::for_mesh`],
+    /// boundary, `doo-sabin` and `mid-edge` as `doo-sabin-boundary` and `mid-edge-boundary`,
+    /// exactly as `subdivide` and `verify` count them ([`Plan::for_mesh`],
     /// [`Plan::for_counts`]). `loop` itself is unchanged (it refuses a boundary). With no
     /// mesh or counts, or with more than one initial state (a usage error
     /// [`initial_state`](Self::initial_state) reports), or counts that do not parse

@@ -1,32 +1,56 @@
-//! The dual-type schemes on closed polygon meshes: Doo-Sabin and mid-edge (Peters-Reif).
+//! The dual-type schemes on polygon meshes: Doo-Sabin and mid-edge (Peters-Reif), closed or
+//! with boundary.
 //!
-//! # Doo-Sabin numbering (input `V`, `E`, `F`; closed, so every half-edge has a face)
+//! # Doo-Sabin numbering (input `V`, `E`, `F`)
 //!
 //! - Vertices: the corner at the source of half-edge `h` inside its face is vertex `h`:
-//!   `V' = 2E`.
-//! - Edges: `h` (joining corners `h` and `next(h)`: the side of the shrunken face) and `2E + h`
-//!   (joining corner `h` and corner `next(twin(h))`, the other corner at the same old vertex
-//!   across the old edge): `E' = 4E`.
-//! - Faces: the shrunken old faces `0..F`, one quad per old edge `F + e`, one face per old
-//!   vertex `F + E + v` (its degree is the valence): `F' = F + E + V`.
+//!   `V' = 2E` on a closed mesh. On a boundary half-edge `h` (no face), vertex `h` is the
+//!   Chaikin point of its edge near its source, `(3 source + target) / 4`, and vertex
+//!   `2E + r` the one near its target, `r` the rank of `h` among the boundary half-edges
+//!   (in increasing order): `V' = 2E + BE`.
+//! - Edges: `h` (joining corners `h` and `next(h)`: the side of the shrunken face; on a
+//!   boundary half-edge, the outer side of its boundary quad, joining its two Chaikin points)
+//!   and `2E + h` (joining vertex `h` to the other vertex at the same old vertex across the old
+//!   edge: corner `next(twin(h))`, or the Chaikin point near the source of `h` when `twin(h)`
+//!   is a boundary half-edge): `E' = 4E`. With boundary, edge `4E + r` joins the two Chaikin
+//!   points at the source of boundary half-edge `r` (the side of that vertex's face on the
+//!   new boundary): `E' = 4E + BE`.
+//! - Faces: the shrunken old faces `0..F`, one quad per old edge `F + e` (on a boundary edge:
+//!   the face's two corners on it and its two Chaikin points), one face per old vertex
+//!   `F + E + v` (its degree is the valence inside; `k + 2` on the boundary, `k` the number of
+//!   faces at it: a triangle at a corner with one face): `F' = F + E + V`.
 //!
 //! Geometry: the standard Doo-Sabin weights; the corner at `p_0` of an `n`-gon
 //! `p_0, ..., p_{n-1}` is `Σ w_j p_j` with `w_0 = (n + 5) / (4n)` and
-//! `w_j = (3 + 2 cos(2πj/n)) / (4n)`.
+//! `w_j = (3 + 2 cos(2πj/n)) / (4n)`, for every face, boundary or not; the boundary points
+//! are Chaikin's, so the boundary converges to the quadratic B-spline of the boundary polygon
+//! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]).
 //!
 //! # Mid-edge numbering
 //!
-//! - Vertices: the midpoint of edge `e` is vertex `e`: `V' = E`.
-//! - Edges: half-edge `h` gives edge `h`, joining the midpoints of `h` and `next(h)`: `E' = 2E`.
+//! - Vertices: the midpoint of edge `e` is vertex `e`: `V' = E`. With boundary, vertex `E + r`
+//!   is the old source of boundary half-edge `r`, kept and moved by the cubic B-spline rule
+//!   `(a + 6v + b) / 8`: `V' = E + BE`.
+//! - Edges: a face half-edge `h` gives edge `h`, joining the midpoints of `h` and `next(h)`:
+//!   `E' = 2E` on a closed mesh. With boundary, boundary half-edge `h` gives edge `h`, joining
+//!   its kept source to its midpoint, and edge `2E + r` joins the midpoint of boundary
+//!   half-edge `r` to its kept target: `E' = 2E + BE`.
 //! - Faces: the old faces (on the midpoints of their edges) `0..F`, then one face per old vertex
-//!   `F + v` on the midpoints of its edges: `F' = F + V`.
+//!   `F + v` on the midpoints of its edges (and, on the boundary, on the kept vertex itself: a
+//!   triangle at a corner with one face): `F' = F + V`.
+//!
+//! The rule and its sources: [`schemes::catalog::mid_edge_boundary`].
 
 use std::f64::consts::PI;
+
+use glam::DVec3;
 
 use super::build::{Builder, StepContext};
 use super::par::Sink;
 use super::refine::Vector;
 use super::topo::Topo;
+use super::trisplit::boundary_vertex;
+use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
 /// One Doo-Sabin step on `t` (closed, every valence >= 3: checked by the caller), face by
@@ -36,6 +60,9 @@ pub(crate) fn doo_sabin_step<const GROW: bool>(
     positions: Vec<glam::DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
+    if !t.is_closed() {
+        return doo_sabin_with_boundary::<GROW>(t, positions, ctx);
+    }
     let t = *t;
     let ne = t.ne() as u32;
     let mut b = Builder::<GROW>::new(ctx.expected)?;
@@ -60,10 +87,128 @@ pub(crate) fn mid_edge_step<const GROW: bool>(
     positions: Vec<glam::DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
+    if !t.is_closed() {
+        return mid_edge_with_boundary::<GROW>(t, positions, ctx);
+    }
     let t = *t;
     let mut b = Builder::<GROW>::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
     vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
+    b.finish(positions, ctx)
+}
+
+/// The rank of each boundary half-edge among the boundary half-edges in increasing order
+/// (`INVALID` on the others).
+fn boundary_ranks(t: &Topo<'_>) -> Result<Vec<u32>> {
+    let mut rank = super::alloc::filled(INVALID, 2 * t.ne(), "boundary ranks")?;
+    let mut next = 0u32;
+    for h in 0..2 * t.ne() as u32 {
+        if t.is_boundary(h) {
+            rank[h as usize] = next;
+            next += 1;
+        }
+    }
+    Ok(rank)
+}
+
+/// One Doo-Sabin step on the mesh `t` with boundary (the numbering of the module docs), with
+/// the new level's `positions` computed by the caller ([`doo_sabin_points`]).
+pub(crate) fn doo_sabin_with_boundary<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Vec<DVec3>,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = *t;
+    let ne = t.ne() as u32;
+    let rank = boundary_ranks(&t)?;
+    // The Chaikin point near the target of boundary half-edge h.
+    let near_target = |h: u32| 2 * ne + rank[h as usize];
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    face_faces(&t, &mut b, |h| (h, 2 * h));
+    for e in 0..ne {
+        let (mut h, mut tw) = (2 * e, 2 * e + 1);
+        if t.is_boundary(h) {
+            (h, tw) = (tw, h);
+        }
+        // `h` has a face; `tw` too inside, on the boundary its Chaikin points stand in for
+        // the corners `next(tw)` and `tw`.
+        let across = if t.is_boundary(tw) {
+            near_target(tw)
+        } else {
+            t.next(tw)
+        };
+        b.face(&[
+            (t.next(h), 2 * h + 1),
+            (h, 2 * (2 * ne + h)),
+            (across, 2 * tw + 1),
+            (tw, 2 * (2 * ne + tw)),
+        ]);
+    }
+    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
+    for v in 0..t.nv() as u32 {
+        ring.clear();
+        t.for_outgoing(v, |h| ring.push(h));
+        corners.clear();
+        let n = ring.len();
+        let first = ring[0];
+        if t.is_boundary(first) {
+            // ring[0] is the outgoing boundary half-edge, ring[n - 1] the face half-edge whose
+            // twin is the incoming one: Chaikin point near v on the incoming edge, the corners
+            // at v, the Chaikin point near v on the outgoing edge.
+            let last = ring[n - 1];
+            corners.push((near_target(last ^ 1), 2 * (2 * ne + last) + 1));
+            for k in (0..n - 1).rev() {
+                corners.push((ring[k + 1], 2 * (2 * ne + ring[k]) + 1));
+            }
+            corners.push((first, 2 * (4 * ne + rank[first as usize]) + 1));
+        } else {
+            for k in (0..n).rev() {
+                corners.push((ring[(k + 1) % n], 2 * (2 * ne + ring[k]) + 1));
+            }
+        }
+        b.face(&corners);
+    }
+    b.finish(positions, ctx)
+}
+
+/// One mid-edge step on the mesh `t` with boundary (the numbering of the module docs), with
+/// the new level's `positions` computed by the caller ([`mid_edge_points`]).
+pub(crate) fn mid_edge_with_boundary<const GROW: bool>(
+    t: &Topo<'_>,
+    positions: Vec<DVec3>,
+    ctx: &StepContext<'_>,
+) -> Result<HalfEdgeMesh> {
+    let t = *t;
+    let ne = t.ne() as u32;
+    let rank = boundary_ranks(&t)?;
+    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
+    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
+    for v in 0..t.nv() as u32 {
+        ring.clear();
+        t.for_outgoing(v, |h| ring.push(h));
+        corners.clear();
+        let n = ring.len();
+        let first = ring[0];
+        if t.is_boundary(first) {
+            // The midpoint of the outgoing boundary edge, the kept vertex, the midpoint of the
+            // incoming boundary edge, then the midpoints of the interior edges.
+            let incoming = ring[n - 1] ^ 1;
+            corners.push((first >> 1, 2 * first + 1));
+            corners.push((
+                ne + rank[first as usize],
+                2 * (2 * ne + rank[incoming as usize]) + 1,
+            ));
+            for k in (0..n - 1).rev() {
+                corners.push((ring[k + 1] >> 1, 2 * (ring[k] ^ 1) + 1));
+            }
+        } else {
+            for k in (0..n).rev() {
+                corners.push((ring[(k + 1) % n] >> 1, 2 * (ring[k] ^ 1) + 1));
+            }
+        }
+        b.face(&corners);
+    }
     b.finish(positions, ctx)
 }
 
@@ -102,17 +247,48 @@ fn vertex_faces<const GROW: bool>(
     }
 }
 
-/// The Doo-Sabin points of a step, appended to `out`.
+/// The Doo-Sabin points of a step, appended to `out` (corners and, with boundary, Chaikin
+/// points).
 pub(crate) fn doo_sabin_points<V: Vector>(
     t: &Topo<'_>,
     src: &[V],
     out: &mut impl Sink<V>,
     parallel: bool,
 ) {
-    out.append(2 * t.ne(), parallel, |h| doo_sabin_point(t, src, h as u32));
+    out.append(2 * t.ne(), parallel, |h| {
+        let h = h as u32;
+        if t.is_boundary(h) {
+            chaikin(src, t.source(h), t.target(h))
+        } else {
+            doo_sabin_point(t, src, h)
+        }
+    });
+    if !t.is_closed() {
+        let boundary = boundary_halfedges(t);
+        out.append(boundary.len(), parallel, |k| {
+            let h = boundary[k];
+            chaikin(src, t.target(h), t.source(h))
+        });
+    }
 }
 
-/// The mid-edge points of a step, appended to `out`.
+/// The boundary half-edges in increasing order.
+fn boundary_halfedges(t: &Topo<'_>) -> Vec<u32> {
+    (0..2 * t.ne() as u32)
+        .filter(|&h| t.is_boundary(h))
+        .collect()
+}
+
+/// Chaikin's point of the edge `(a, b)` near `a`: `(3a + b) / 4`.
+fn chaikin<V: Vector>(src: &[V], a: u32, b: u32) -> V {
+    src[a as usize]
+        .clone()
+        .scale(0.75)
+        .add(src[b as usize].clone().scale(0.25))
+}
+
+/// The mid-edge points of a step, appended to `out` (midpoints and, with boundary, the kept
+/// boundary vertices).
 pub(crate) fn mid_edge_points<V: Vector>(
     t: &Topo<'_>,
     src: &[V],
@@ -126,6 +302,12 @@ pub(crate) fn mid_edge_points<V: Vector>(
             .add(src[t.target(h) as usize].clone())
             .scale(0.5)
     });
+    if !t.is_closed() {
+        let boundary = boundary_halfedges(t);
+        out.append(boundary.len(), parallel, |k| {
+            boundary_vertex(t, src, t.source(boundary[k]))
+        });
+    }
 }
 
 /// The Doo-Sabin point of the corner at the source of `h` in its face.

@@ -71,18 +71,41 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
         Algorithm::CatmullClark => format!("the point of face {} {of}", v - nv - ne),
         Algorithm::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
         Algorithm::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
-        Algorithm::MidEdge => format!("the midpoint of {}", edge(v)),
-        Algorithm::DooSabin => match before {
+        Algorithm::MidEdge if v < ne => format!("the midpoint of {}", edge(v)),
+        Algorithm::DooSabin if v < 2 * ne => match before {
             Before::Mesh(m) => {
                 let t = Topo::new(m);
                 let h = v as u32;
-                format!(
-                    "the corner of face {} at vertex {} {of}",
-                    t.face(h),
-                    t.source(h)
-                )
+                if t.is_boundary(h) {
+                    format!("on {}", edge(v / 2))
+                } else {
+                    format!(
+                        "the corner of face {} at vertex {} {of}",
+                        t.face(h),
+                        t.source(h)
+                    )
+                }
             }
             Before::Counts { .. } => format!("from half-edge {v} {of}"),
+        },
+        // The kept boundary vertices (mid-edge) and the second Chaikin point of each boundary
+        // edge (Doo-Sabin), numbered by the rank of their boundary half-edge.
+        Algorithm::MidEdge | Algorithm::DooSabin => match before {
+            Before::Mesh(m) => {
+                let t = Topo::new(m);
+                let first = if rule == Algorithm::MidEdge { ne } else { 2 * ne };
+                let h = (0..2 * ne as u32)
+                    .filter(|&h| t.is_boundary(h))
+                    .nth(v - first);
+                match h {
+                    Some(h) if rule == Algorithm::MidEdge => {
+                        format!("from boundary vertex {} {of}", t.source(h))
+                    }
+                    Some(h) => format!("on {}", edge(h as usize / 2)),
+                    None => format!("computed from {}", of.trim_start_matches("of ")),
+                }
+            }
+            Before::Counts { .. } => format!("computed from {}", of.trim_start_matches("of ")),
         },
         _ => format!("computed from {}", of.trim_start_matches("of ")),
     }

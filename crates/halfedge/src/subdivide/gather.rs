@@ -378,8 +378,17 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
     assemble(ctx, halfedge, vertex, face)
 }
 
-/// The connectivity of one Doo-Sabin step on the closed mesh `t`.
+/// Zero positions for a face-by-face step that builds only the topology.
+fn zeros(ctx: &StepContext<'_>) -> Result<Vec<glam::DVec3>> {
+    super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions")
+}
+
+/// The connectivity of one Doo-Sabin step on `t` (with boundary: built face by face).
 pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    if !t.is_closed() {
+        return super::dual::doo_sabin_with_boundary::<false>(t, zeros(ctx)?, ctx)
+            .map(Connectivity::from_mesh);
+    }
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {
@@ -428,8 +437,12 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
     assemble(ctx, halfedge, |h| 2 * h, face)
 }
 
-/// The connectivity of one mid-edge step on the closed mesh `t`.
+/// The connectivity of one mid-edge step on `t` (with boundary: built face by face).
 pub(crate) fn mid_edge_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+    if !t.is_closed() {
+        return super::dual::mid_edge_with_boundary::<false>(t, zeros(ctx)?, ctx)
+            .map(Connectivity::from_mesh);
+    }
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
     let built = Sizes {

@@ -27,8 +27,8 @@
 //! | [`Rule::TriSplit`] | `tri-split-N`, `ternary` | 1:N² | linear (points on the flat triangles) |
 //! | [`Rule::CatmullClark`] | `catmull-clark`, `catmull-clark-quad`, `catmull-clark-general` | quads | Catmull-Clark, boundary rules |
 //! | [`Rule::Sqrt3`] | `sqrt3`, `sqrt3-boundary` | √3 | Kobbelt's, with his boundary rule |
-//! | [`Rule::DooSabin`] | `doo-sabin` | dual | Doo-Sabin weights |
-//! | [`Rule::MidEdge`] | `mid-edge` | dual | edge midpoints (Peters-Reif) |
+//! | [`Rule::DooSabin`] | `doo-sabin`, `doo-sabin-boundary` | dual | Doo-Sabin weights, Chaikin boundary |
+//! | [`Rule::MidEdge`] | `mid-edge`, `mid-edge-boundary` | dual | edge midpoints (Peters-Reif), cubic B-spline boundary |
 //!
 //! # Geometry and scheme notes
 //!
@@ -48,7 +48,13 @@
 //!   (boundary edges trisected with the ternary cubic B-spline rule `1, 16, 10 / 27` and
 //!   `4, 19, 4 / 27`; the boundary triangle is split from its opposite vertex).
 //! - Catmull-Clark: boundary edges take the midpoint, boundary vertices `3/4, 1/8, 1/8`.
-//! - Doo-Sabin and mid-edge need closed meshes whose vertices all have valence >= 3.
+//! - Doo-Sabin and mid-edge are counted by `doo-sabin` and `mid-edge` on closed meshes and by
+//!   `doo-sabin-boundary` and `mid-edge-boundary` on meshes with boundary: Doo-Sabin adds
+//!   Chaikin's points `3/4, 1/4` on boundary edges (the boundary becomes the quadratic
+//!   B-spline of the boundary polygon), mid-edge keeps the boundary vertices with
+//!   `3/4, 1/8, 1/8` (the cubic B-spline); a corner with one face gets a triangle. Interior
+//!   vertices need valence >= 3 (a vertex face has at least 3 sides). On a boundary both are
+//!   built face by face into the predicted arrays.
 //!
 //! The 4:1 family, Catmull-Clark, √3 on closed meshes, Doo-Sabin and mid-edge write every
 //! output array front to back from index formulas (in parallel chunks when `threads != 1`);
@@ -350,10 +356,10 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
             }
         }
         Algorithm::DooSabin | Algorithm::MidEdge => {
-            if t.boundary_edges() > 0 {
-                return refuse("the mesh has a boundary, the scheme needs a closed mesh".into());
-            }
-            if let Some(v) = (0..t.nv() as u32).find(|&v| t.valence(v) < 3) {
+            // A boundary vertex of valence 2 (a corner with one face) gets a triangle.
+            if let Some(v) =
+                (0..t.nv() as u32).find(|&v| t.valence(v) < 3 && !t.is_boundary_vertex(v))
+            {
                 return refuse(format!(
                     "vertex {v} has valence {}, the scheme needs at least 3 (its vertex face would have fewer than 3 sides)",
                     t.valence(v)
@@ -411,13 +417,14 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> Result<T> + Send) -
 /// predicts ([`Rule::scheme_for`], [`schemes::Scheme::counts_at`]) and checked afterwards;
 /// only levels `s - 1` and `s` are alive at a time. `levels = 0` returns a copy of the input.
 /// On a mesh with boundary, Loop and its 4:1 relatives use their boundary rules (counted by
-/// `loop-boundary`) and √3 alternates Kobbelt's boundary steps (`sqrt3-boundary`).
+/// `loop-boundary`), √3 alternates Kobbelt's boundary steps (`sqrt3-boundary`), and Doo-Sabin
+/// and mid-edge use theirs (`doo-sabin-boundary`, `mid-edge-boundary`).
 ///
 /// # Errors
 ///
 /// - [`Error::Scheme`] for a mesh outside the rule's class (e.g. a quad under Loop), with the
 ///   scheme crate's suggestion;
-/// - [`Error::SchemeNotApplicable`] when the algorithm cannot run (a boundary or a vertex of
+/// - [`Error::SchemeNotApplicable`] when the algorithm cannot run (an interior vertex of
 ///   valence 2 under a dual scheme);
 /// - [`Error::TooLarge`] when a level would not fit 32-bit handles;
 /// - [`Error::ThreadPool`] when the requested threads cannot be started;
@@ -589,11 +596,13 @@ shorthands! {
     /// has a boundary.
     "" sqrt3_subdivide => Rule::Sqrt3;
 
-    /// Doo-Sabin subdivision on closed polygon meshes ([`Rule::DooSabin`]).
-    " (a boundary, or a vertex of valence below 3)" doo_sabin_subdivide => Rule::DooSabin;
+    /// Doo-Sabin subdivision on polygon meshes ([`Rule::DooSabin`]), with Chaikin's boundary
+    /// rule when the mesh has a boundary.
+    " (an interior vertex of valence below 3)" doo_sabin_subdivide => Rule::DooSabin;
 
-    /// Peters-Reif mid-edge subdivision on closed polygon meshes ([`Rule::MidEdge`]).
-    " (a boundary, or a vertex of valence below 3)" mid_edge_subdivide => Rule::MidEdge;
+    /// Peters-Reif mid-edge subdivision on polygon meshes ([`Rule::MidEdge`]), with the cubic
+    /// B-spline boundary rule when the mesh has a boundary.
+    " (an interior vertex of valence below 3)" mid_edge_subdivide => Rule::MidEdge;
 }
 
 /// The 1:N² triangle split ([`Rule::TriSplit`]) with points on the flat triangles.

@@ -124,7 +124,9 @@ fn hashes() -> Vec<(String, u64)> {
     out
 }
 
-/// The hashes of the one-shot code before it became a wrapper over the refinement.
+/// The hashes of the one-shot code before it became a wrapper over the refinement; Doo-Sabin
+/// and mid-edge on the meshes with boundary (grid, quad_grid, holes, mixed) were refusals then
+/// and are their boundary rules' output since.
 const EXPECTED: &[(&str, u64)] = &[
     ("icosahedron loop", 0xcc408ad6e1ae3f6a),
     ("icosahedron midpoint", 0x4ff986cb7cd22d0a),
@@ -167,8 +169,8 @@ const EXPECTED: &[(&str, u64)] = &[
     ("grid tri-split-3", 0x517aa136c72ad887),
     ("grid catmull-clark", 0x64d47e09f1f9ba5c),
     ("grid sqrt3", 0x385f6a4e5ea7509d),
-    ("grid doo-sabin", 0x46d83e14a56baea5),
-    ("grid mid-edge", 0x2e3b896b49cbda6d),
+    ("grid doo-sabin", 0x72f55552589abb91),
+    ("grid mid-edge", 0x4a04b95efed6c67b),
     ("grid tri-split-4", 0x23223c3ea7d59cad),
     ("quad_grid loop", 0xb0ef41c6c107f349),
     ("quad_grid midpoint", 0x130dbf6c7356588d),
@@ -178,8 +180,8 @@ const EXPECTED: &[(&str, u64)] = &[
     ("quad_grid tri-split-3", 0x5b7feafd2194a289),
     ("quad_grid catmull-clark", 0xfa9327cfb479c180),
     ("quad_grid sqrt3", 0x78f886bfad2e8d0f),
-    ("quad_grid doo-sabin", 0x46d83e14a56baea5),
-    ("quad_grid mid-edge", 0x2e3b896b49cbda6d),
+    ("quad_grid doo-sabin", 0xcaf23f88c6f6cbd4),
+    ("quad_grid mid-edge", 0x036d3815b5e6c7db),
     ("quad_grid tri-split-4", 0x0bb89eda29e893d3),
     ("holes loop", 0x0d932273f1189e65),
     ("holes midpoint", 0x1d30dc0f30ffb235),
@@ -189,8 +191,8 @@ const EXPECTED: &[(&str, u64)] = &[
     ("holes tri-split-3", 0x8015fb2a7ff0a3a7),
     ("holes catmull-clark", 0xbace4d2c95f4f34a),
     ("holes sqrt3", 0x4e0e37951de1465b),
-    ("holes doo-sabin", 0xd2d1f38bff02911d),
-    ("holes mid-edge", 0x3f153b4c083f44ab),
+    ("holes doo-sabin", 0x930b78f5e74a2348),
+    ("holes mid-edge", 0x5a21692e3e104c05),
     ("holes tri-split-4", 0x5a8920d6e46055dd),
     ("mixed loop", 0x3f7556deb1231b25),
     ("mixed midpoint", 0x609e7af292604375),
@@ -200,8 +202,8 @@ const EXPECTED: &[(&str, u64)] = &[
     ("mixed tri-split-3", 0x101f7fd00a5eb85d),
     ("mixed catmull-clark", 0x1c6e8f4bd9913f18),
     ("mixed sqrt3", 0x937fd42b1a84f17b),
-    ("mixed doo-sabin", 0x9c632d4c1cc32f15),
-    ("mixed mid-edge", 0x8ce2174fa1f6eaa5),
+    ("mixed doo-sabin", 0xf4ab622bcea32ac1),
+    ("mixed mid-edge", 0x6890479f614a401f),
     ("mixed tri-split-4", 0xf31cdf1c5a16eb8f),
 ];
 

@@ -298,6 +298,55 @@ fn doo_sabin_and_mid_edge_on_the_cube() {
 }
 
 #[test]
+fn doo_sabin_and_mid_edge_with_boundary() {
+    // One quad under Doo-Sabin: 4 corners + 8 Chaikin points; edges 4 + 4 * 3 + 4;
+    // faces: the quad, 4 boundary quads, 4 corner triangles. State (V, IE, BE, F).
+    check(
+        "doo-sabin-boundary",
+        &quad(),
+        1,
+        &[12, 12, 8, 9],
+        [12, 20, 9],
+    );
+    // The strip of three quads (V 8, IE 2, BE 8, F 3): V' = 2*2 + 3*8, F' = 3 + 10 + 8.
+    check(
+        "doo-sabin-boundary",
+        &quad_strip(),
+        1,
+        &[28, 32, 16, 21],
+        [28, 48, 21],
+    );
+    // Mid-edge on one quad: 4 midpoints + 4 kept corners; the midpoint quad and 4 triangles.
+    check("mid-edge-boundary", &quad(), 1, &[8, 4, 8, 5], [8, 12, 5]);
+    check(
+        "mid-edge-boundary",
+        &quad(),
+        2,
+        &[20, 16, 16, 13],
+        [20, 32, 13],
+    );
+    // `doo-sabin` and `mid-edge` count as their twins on a boundary, keep their state closed.
+    for (name, twin) in [
+        ("doo-sabin", "doo-sabin-boundary"),
+        ("mid-edge", "mid-edge-boundary"),
+    ] {
+        let s = builtin(name).unwrap();
+        assert_eq!(s.for_mesh(&quad_strip()).canonical_name(), twin);
+        assert_eq!(s.for_mesh(&quad_strip()).name(), name);
+        assert_eq!(s.for_mesh(&cube()).canonical_name(), name);
+        assert_eq!(s.for_mesh(&cube()).state_names(), ["V", "E", "F"]);
+        let typed = |t: &str| {
+            s.for_counts(&t.parse().unwrap())
+                .canonical_name()
+                .to_owned()
+        };
+        assert_eq!(typed("V=8,IE=2,BE=8,F=3"), twin);
+        assert_eq!(typed("V=8,E=10,F=3"), name);
+        assert_eq!(typed("V=8,E=12,F=6"), name);
+    }
+}
+
+#[test]
 fn tri_split_on_the_icosahedron() {
     // Paper ref. [12]: 10 N^2 + 2 vertices after one step.
     for n in 2..=12u64 {
@@ -329,7 +378,7 @@ fn names_aliases_and_unknown_names() {
         err.to_string(),
         "unknown scheme `catmul-clark`; built-in schemes: loop, loop-boundary, loop-general, \
          catmull-clark-quad, catmull-clark, catmull-clark-general, sqrt3, sqrt3-boundary, \
-         doo-sabin, mid-edge, tri-split-N (N >= 2); aliases: midpoint, butterfly, icosphere, ternary"
+         doo-sabin, doo-sabin-boundary, mid-edge, mid-edge-boundary, tri-split-N (N >= 2); aliases: midpoint, butterfly, icosphere, ternary"
     );
     assert_eq!(
         builtin("tri-split-1").unwrap_err().to_string(),
@@ -360,7 +409,9 @@ fn names_aliases_and_unknown_names() {
             "sqrt3",
             "sqrt3-boundary",
             "doo-sabin",
+            "doo-sabin-boundary",
             "mid-edge",
+            "mid-edge-boundary",
             "tri-split-2",
             "tri-split-3"
         ]
@@ -434,7 +485,7 @@ fn refusals_say_why_and_what_to_use() {
     );
     assert_eq!(
         refuse("doo-sabin", &quad()),
-        "doo-sabin needs a closed mesh, but this mesh has 4 boundary edges; use catmull-clark"
+        "doo-sabin needs a closed mesh, but this mesh has 4 boundary edges; use doo-sabin-boundary"
     );
     assert_eq!(
         refuse("loop-general", &book().clone().tap_quads()),
@@ -502,6 +553,16 @@ fn identities_hold_along_the_recurrences() {
         // Powering agrees with stepping for every residue.
         assert_eq!(sb.state_at(&x0, s as u64).unwrap(), x);
     }
+    // The dual schemes with boundary keep V - E + F = 1 on a strip, and BE doubles.
+    for name in ["doo-sabin-boundary", "mid-edge-boundary"] {
+        let s = builtin(name).unwrap();
+        let x0 = s.initial_state(&quad_strip()).unwrap();
+        for (k, x) in s.states_up_to(&x0, 10).unwrap().into_iter().enumerate() {
+            let [v, e, f] = s.vef(&x).unwrap();
+            assert_eq!(v - e + f, BigInt::from(1), "{name}");
+            assert_eq!(x[2], BigInt::from(8) << k, "{name}");
+        }
+    }
     // Closed schemes keep V - E + F = 2 on the cube / octahedron.
     for (name, mesh) in [
         ("doo-sabin", cube()),
@@ -545,7 +606,7 @@ fn identities_hold_along_the_recurrences() {
 #[test]
 fn valid_from_as_documented() {
     // (scheme, q coefficients from the constant term up, valid_from per component, mesh)
-    let cases: [(&str, Vec<i64>, Vec<u64>, MeshCounts); 4] = [
+    let cases: [(&str, Vec<i64>, Vec<u64>, MeshCounts); 6] = [
         // cc: char poly x (x-1) (x-2)^2 (x-4); q = (x-1)(x-2)^2(x-4) = x^4 - 9x^3 + 28x^2 - 36x + 16.
         (
             "catmull-clark",
@@ -562,6 +623,19 @@ fn valid_from_as_documented() {
         // doo-sabin, mid-edge: x (x-4)(x-1), x (x-2)(x-1).
         ("doo-sabin", vec![4, -5, 1], vec![1, 0, 1], mixed_closed()),
         ("mid-edge", vec![2, -3, 1], vec![1, 0, 1], mixed_closed()),
+        // doo-sabin-boundary: x (x-4)(x-2)(x-1); mid-edge-boundary: x (x-2)^2 (x-1).
+        (
+            "doo-sabin-boundary",
+            vec![-8, 14, -7, 1],
+            vec![1, 0, 0, 1],
+            quad_strip(),
+        ),
+        (
+            "mid-edge-boundary",
+            vec![-4, 8, -5, 1],
+            vec![1, 0, 0, 1],
+            quad_strip(),
+        ),
     ];
     for (name, q, valid_from, mesh) in cases {
         let s = builtin(name).unwrap();
@@ -594,7 +668,7 @@ fn valid_from_as_documented() {
 /// of every built-in, and their `valid_from` levels are the documented ones.
 #[test]
 fn closed_forms_agree_and_valid_from_is_as_documented() {
-    let documented: [(&str, &[u64]); 12] = [
+    let documented: [(&str, &[u64]); 14] = [
         ("loop", &[0, 0]),
         ("loop-boundary", &[0, 0, 0]),
         ("loop-general", &[0, 0, 0]),
@@ -604,7 +678,9 @@ fn closed_forms_agree_and_valid_from_is_as_documented() {
         ("sqrt3", &[0, 0, 0]),
         ("sqrt3-boundary", &[0, 0, 0, 0]),
         ("doo-sabin", &[1, 0, 1]),
+        ("doo-sabin-boundary", &[1, 0, 0, 1]),
         ("mid-edge", &[1, 0, 1]),
+        ("mid-edge-boundary", &[1, 0, 0, 1]),
         ("tri-split-2", &[0, 0, 0]),
         ("tri-split-3", &[0, 0, 0]),
     ];

@@ -9,7 +9,7 @@ use crate::util::{data, fails, file_names, ok, subcount, subcount_in};
 fn stats_base_json_has_the_issue_keys() {
     assert_eq!(
         ok(&["stats", "--base", "cube", "--format", "json"]),
-        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 0, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"mid-edge\"]}\n"
+        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 0, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"doo-sabin-boundary\", \"mid-edge\", \"mid-edge-boundary\"]}\n"
     );
     let v: serde_json::Value =
         serde_json::from_str(&ok(&["stats", "--base", "torus:2", "--format", "json"])).unwrap();
@@ -49,6 +49,8 @@ fn stats_base_json_has_the_issue_keys() {
             "catmull-clark",
             "catmull-clark-general",
             "sqrt3-boundary",
+            "doo-sabin-boundary",
+            "mid-edge-boundary",
             "tri-split-2",
             "tri-split-3"
         ])
@@ -59,7 +61,7 @@ fn stats_base_json_has_the_issue_keys() {
 fn stats_of_small_obj_and_off_files() {
     assert_eq!(
         ok(&["stats", "--mesh", &data("tetra.obj")]),
-        "V = 4 (vertices used by faces; 0 unreferenced)\nE = 6 (IE = 6 interior, BE = 0 boundary, NME = 0 non-manifold)\nF = 4 (4 of degree 3)\nH = 12 (sum of face degrees)\nboundary loops = 0\ncomponents = 1\nEuler characteristic = 2\ngenus = 0\nmanifold, consistently oriented\napplicable schemes: loop, loop-boundary, loop-general, catmull-clark, catmull-clark-general, sqrt3, sqrt3-boundary, doo-sabin, mid-edge, tri-split-2, tri-split-3\n"
+        "V = 4 (vertices used by faces; 0 unreferenced)\nE = 6 (IE = 6 interior, BE = 0 boundary, NME = 0 non-manifold)\nF = 4 (4 of degree 3)\nH = 12 (sum of face degrees)\nboundary loops = 0\ncomponents = 1\nEuler characteristic = 2\ngenus = 0\nmanifold, consistently oriented\napplicable schemes: loop, loop-boundary, loop-general, catmull-clark, catmull-clark-general, sqrt3, sqrt3-boundary, doo-sabin, doo-sabin-boundary, mid-edge, mid-edge-boundary, tri-split-2, tri-split-3\n"
     );
     let v: serde_json::Value = serde_json::from_str(&ok(&[
         "stats",
@@ -77,7 +79,9 @@ fn stats_of_small_obj_and_off_files() {
         serde_json::json!([
             "catmull-clark-quad",
             "catmull-clark",
-            "catmull-clark-general"
+            "catmull-clark-general",
+            "doo-sabin-boundary",
+            "mid-edge-boundary"
         ])
     );
     // The mesh's statistics are the initial state of table and friends.
@@ -104,7 +108,7 @@ fn obj_face_forms_groups_and_unreferenced_vertices() {
     let path = data("features.obj");
     assert_eq!(
         ok(&["stats", "--mesh", &path, "--format", "json"]),
-        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 1, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"mid-edge\"]}\n"
+        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 1, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"doo-sabin-boundary\", \"mid-edge\", \"mid-edge-boundary\"]}\n"
     );
     let text = ok(&["stats", "--mesh", &path]);
     assert!(
@@ -871,6 +875,11 @@ fn verify_shared_meshes() {
         ),
         ("osd_catmark_chaikin2.obj", "catmull-clark-quad", "3"),
         ("chamfer_cube.obj", "doo-sabin", "2"),
+        // Issue 13, item 5: the dual schemes on meshes with boundary.
+        ("stanford_bunny_holes.obj", "doo-sabin", "2"),
+        ("stanford_bunny_holes.obj", "mid-edge", "2"),
+        ("planexy.obj", "doo-sabin", "3"),
+        ("face.obj", "mid-edge", "2"),
         ("broken/beetle_nonmanifold.obj", "loop-general", "1"),
         ("broken/osd_catmark_fan.obj", "catmull-clark-general", "2"),
     ];
@@ -1127,5 +1136,61 @@ fn frames_write_the_one_shot_result_and_time_the_evaluations() {
         ],
         2,
         "this scheme runs on the raw face list",
+    );
+}
+
+/// Issue 13, item 5: `doo-sabin` and `mid-edge` accept a mesh with boundary and count it by
+/// their boundary twins' state `(V, IE, BE, F)`; on a closed mesh they keep `(V, E, F)`.
+#[test]
+fn dual_schemes_count_and_subdivide_meshes_with_boundary() {
+    // The 2x2 triangle grid: V 9, IE 8, BE 8, F 8. Doo-Sabin: V' = 2IE + 3BE,
+    // IE' = 4IE + 3BE, BE' = 2BE, F' = F + IE + BE + V.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "doo-sabin",
+            "--base",
+            "grid:2x2",
+            "--levels",
+            "2",
+            "--format",
+            "csv"
+        ]),
+        "level,V,IE,BE,F,E\n0,9,8,8,8,16\n1,40,56,16,33,72\n2,160,272,32,145,304\n"
+    );
+    // Mid-edge: V' = IE + 2BE, IE' = 2IE + BE, BE' = 2BE, F' = F + V.
+    assert_eq!(
+        ok(&[
+            "table", "--scheme", "mid-edge", "--base", "grid:2x2", "--levels", "2", "--format",
+            "csv"
+        ]),
+        "level,V,IE,BE,F,E\n0,9,8,8,8,16\n1,24,24,16,17,40\n2,56,64,32,41,96\n"
+    );
+    for scheme in ["doo-sabin", "mid-edge"] {
+        for base in ["grid:3x2", "quad-grid:2x2", "icosahedron-holes:2", "mixed"] {
+            let out = ok(&[
+                "verify", "--base", base, "--scheme", scheme, "--levels", "3",
+            ]);
+            assert!(
+                out.ends_with("all counts match the prediction\n"),
+                "{scheme} on {base}: {out}"
+            );
+        }
+    }
+    // Closed meshes keep the closed state.
+    assert_eq!(
+        ok(&[
+            "table",
+            "--scheme",
+            "doo-sabin",
+            "--base",
+            "cube",
+            "--levels",
+            "1",
+            "--format",
+            "csv"
+        ]),
+        "level,V,E,F\n0,8,12,6\n1,24,48,26\n"
     );
 }

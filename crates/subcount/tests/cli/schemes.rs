@@ -5,7 +5,7 @@ use std::path::Path;
 
 use crate::util::{data, example_scheme, fails, ok, subcount};
 
-const BUILTINS: [&str; 12] = [
+const BUILTINS: [&str; 14] = [
     "loop",
     "loop-boundary",
     "loop-general",
@@ -15,7 +15,9 @@ const BUILTINS: [&str; 12] = [
     "sqrt3",
     "sqrt3-boundary",
     "doo-sabin",
+    "doo-sabin-boundary",
     "mid-edge",
+    "mid-edge-boundary",
     "tri-split-2",
     "tri-split-3",
 ];
@@ -27,6 +29,7 @@ fn base_for(scheme: &str) -> &'static str {
         "catmull-clark-quad" => "quad-grid:2x2",
         "catmull-clark" | "catmull-clark-general" => "mixed",
         "doo-sabin" | "mid-edge" => "cube",
+        "doo-sabin-boundary" | "mid-edge-boundary" => "mixed",
         _ => "grid:2x2",
     }
 }
