@@ -57,6 +57,7 @@ fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) ->
 
 pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let loaded = required_mesh(&args.mesh)?;
+    loaded.print_notes();
     let poly = &loaded.poly;
     // Present only when the file has tags: an untagged mesh's output is what it always was.
     let tags = poly.has_tags().then(|| tag_summary(loaded.tags(), poly));
@@ -265,11 +266,15 @@ fn chosen_scheme(
         (None, None) => return Err(usage!("give --scheme NAME or --scheme-file FILE")),
     }
     .for_mesh(counts);
+    refuse_triangle_rule(
+        mesh,
+        scheme.name(),
+        [(scheme.name(), scheme.subdivision_rule())],
+    )?;
     scheme
         .initial_state(counts)
         .map_err(|e| not_applicable(mesh, e))?;
     let rule = sub::checked_rule(&scheme, counts).map_err(halfedge_failure)?;
-    refuse_triangle_rule(mesh, scheme.name(), [(scheme.name(), Some(rule))])?;
     Ok((scheme, rule))
 }
 
@@ -331,6 +336,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let counts = halfedge::stats::face_list_counts(poly);
     refuse_uncounted(&loaded, &counts, &args.mesh)?;
     let (scheme, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    loaded.print_notes();
     // The rule's own scheme sizes the real subdivision (a custom matrix may be wrong).
     let sizing = rule.scheme_for(&counts).map_err(scheme_failure)?;
     let x0 = sizing
@@ -443,6 +449,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let counts = halfedge::stats::face_list_counts(poly);
     refuse_uncounted(&loaded, &counts, &args.mesh)?;
     let (chosen, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    loaded.print_notes();
     let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
     if refine_once && (face_list || args.no_preallocate) {

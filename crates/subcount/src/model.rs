@@ -48,6 +48,7 @@ impl<'a> Input<'a> {
                 refuse_degenerate_faces(&loaded.poly, &self.source.mesh)?;
                 let counts = halfedge::stats::face_list_counts(&loaded.poly);
                 refuse_uncounted(&loaded, &counts, &self.source.mesh)?;
+                loaded.print_notes();
                 Some(counts)
             }
             None => None,
@@ -205,6 +206,9 @@ pub(crate) struct LoadedMesh {
     pub(crate) poly: PolygonMesh,
     /// The resolved options.
     pub(crate) options: SubdivisionOptions,
+    /// At most two lines for stderr: the tags of the file not read, the flags that override
+    /// the file's tags ([`LoadedMesh::print_notes`]).
+    notes: Vec<String>,
 }
 
 impl LoadedMesh {
@@ -212,12 +216,20 @@ impl LoadedMesh {
     pub(crate) fn tags(&self) -> &Tags {
         self.poly.tags()
     }
+
+    /// Prints the notes on stderr. Commands call it once the mesh passed their checks, so
+    /// that a refusal stays one line on stderr.
+    pub(crate) fn print_notes(&self) {
+        for note in &self.notes {
+            eprintln!("{note}");
+        }
+    }
 }
 
 /// Reads the mesh named by `--mesh` or `--base`, if any, with its tags (unless
-/// `--ignore-tags`), and resolves the subdivision options. Prints at most two lines on
-/// stderr: the tags the file has that are not read (each name with its count), and the
-/// flags that override the file's tags (naming both values).
+/// `--ignore-tags`), and resolves the subdivision options. Its notes
+/// ([`LoadedMesh::print_notes`]) are the tags the file has that are not read (each name with
+/// its count), and the flags that override the file's tags (naming both values).
 pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure> {
     let poly = match (&mesh.mesh, &mesh.base) {
         (Some(_), Some(_)) => return Err(usage!("--mesh and --base cannot be used together")),
@@ -227,7 +239,8 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
             } else {
                 ReadOptions::default()
             };
-            halfedge::io::read_mesh_with(path, &options).map_err(|e| mesh_failure(e, Kind::Input))?
+            halfedge::io::read_mesh_with(path, &options)
+                .map_err(|e| mesh_failure(e, Kind::Input))?
         }
         (None, Some(name)) => {
             halfedge::shapes::from_name(name).map_err(|e| mesh_failure(e, Kind::Usage))?
@@ -238,6 +251,7 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
         }
     };
     let label = mesh_label(mesh);
+    let mut notes = Vec::new();
     if !poly.ignored_tags().is_empty() {
         let total: u64 = poly.ignored_tags().iter().map(|t| t.count).sum();
         let names: Vec<String> = poly
@@ -245,17 +259,21 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
             .iter()
             .map(|t| format!("{} ({})", t.name, t.count))
             .collect();
-        eprintln!(
+        notes.push(format!(
             "warning: {label}: ignored {total} tag line{} this program does not read: {}",
             if total == 1 { "" } else { "s" },
             names.join(", ")
-        );
+        ));
     }
     let (options, overrides) = resolve_options(mesh, &poly.tags().options);
     if !overrides.is_empty() {
-        eprintln!("note: {label}: {}", overrides.join("; "));
+        notes.push(format!("note: {label}: {}", overrides.join("; ")));
     }
-    Ok(Some(LoadedMesh { poly, options }))
+    Ok(Some(LoadedMesh {
+        poly,
+        options,
+        notes,
+    }))
 }
 
 /// The one resolution of the subdivision options: a flag given on the command line wins over

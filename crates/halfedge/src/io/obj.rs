@@ -203,11 +203,12 @@ pub(crate) fn read_obj_within(
             file: name.to_string(),
         });
     }
-    tags.finish(&mut mesh).map_err(|(line, kind)| Error::Parse {
-        file: name.to_string(),
-        line,
-        kind,
-    })?;
+    tags.finish(&mut mesh)
+        .map_err(|(line, kind)| Error::Parse {
+            file: name.to_string(),
+            line,
+            kind,
+        })?;
     Ok(mesh)
 }
 
@@ -533,30 +534,53 @@ mod tests {
         let t = mesh.tags();
         assert_eq!(t.creases().len(), 5);
         // (1, 4) given twice: the later 2.5 wins; (4, 5) has sharpness 0: not sharp.
-        let sharp: Vec<(u32, u32, f32)> =
-            t.sharp_edges().iter().map(|c| (c.a, c.b, c.sharpness)).collect();
+        let sharp: Vec<(u32, u32, f32)> = t
+            .sharp_edges()
+            .iter()
+            .map(|c| (c.a, c.b, c.sharpness))
+            .collect();
         assert_eq!(sharp, [(0, 1, 10.0), (1, 4, 2.5), (2, 5, 0.5)]);
-        let corners: Vec<(u32, f32)> =
-            t.sharp_vertices().iter().map(|c| (c.vertex, c.sharpness)).collect();
+        let corners: Vec<(u32, f32)> = t
+            .sharp_vertices()
+            .iter()
+            .map(|c| (c.vertex, c.sharpness))
+            .collect();
         assert_eq!(corners, [(0, 3.0), (2, 3.0), (3, 1.0), (5, 10.0)]);
         assert_eq!((t.holes(), t.hole_faces()), (&[1, 1][..], vec![1]));
-        assert_eq!(t.options.boundary, Some(BoundaryInterpolation::EdgeAndCorner));
+        assert_eq!(
+            t.options.boundary,
+            Some(BoundaryInterpolation::EdgeAndCorner)
+        );
         assert_eq!(t.options.face_varying, Some(FaceVaryingInterpolation::All));
         assert_eq!(t.options.crease_method, Some(CreaseMethod::Chaikin));
         assert_eq!(t.options.triangle_rule, Some(TriangleRule::Smooth));
-        let ignored: Vec<(&str, u64)> =
-            mesh.ignored_tags().iter().map(|i| (i.name.as_str(), i.count)).collect();
-        assert_eq!(ignored, [("facevaryingpropagatecorners", 1), ("vertexedit", 2)]);
+        let ignored: Vec<(&str, u64)> = mesh
+            .ignored_tags()
+            .iter()
+            .map(|i| (i.name.as_str(), i.count))
+            .collect();
+        assert_eq!(
+            ignored,
+            [("facevaryingpropagatecorners", 1), ("vertexedit", 2)]
+        );
         assert!(mesh.has_tags());
         // Every option value by number.
-        for (value, b) in [(0, BoundaryInterpolation::None), (2, BoundaryInterpolation::Edge)] {
+        for (value, b) in [
+            (0, BoundaryInterpolation::None),
+            (2, BoundaryInterpolation::Edge),
+        ] {
             let m = read(&strip(&format!("t interpolateboundary 1/0/0 {value}\n"))).expect("valid");
             assert_eq!(m.tags().options.boundary, Some(b));
         }
-        let m = read(&strip("t creasemethod 0/0/1 normal\nt facevaryinginterpolateboundary 1/0/0 0\n"))
-            .expect("valid");
+        let m = read(&strip(
+            "t creasemethod 0/0/1 normal\nt facevaryinginterpolateboundary 1/0/0 0\n",
+        ))
+        .expect("valid");
         assert_eq!(m.tags().options.crease_method, Some(CreaseMethod::Uniform));
-        assert_eq!(m.tags().options.face_varying, Some(FaceVaryingInterpolation::None));
+        assert_eq!(
+            m.tags().options.face_varying,
+            Some(FaceVaryingInterpolation::None)
+        );
     }
 
     #[test]
@@ -622,8 +646,15 @@ mod tests {
         for (tags, message) in cases {
             let text = strip(&format!("# tags\n{tags}"));
             let err = read(&text).unwrap_err();
-            assert!(matches!(err, Error::Parse { line: 10, .. }), "{tags}: {err}");
-            assert_eq!(err.to_string(), format!("t.obj: line 10: {message}"), "{tags}");
+            assert!(
+                matches!(err, Error::Parse { line: 10, .. }),
+                "{tags}: {err}"
+            );
+            assert_eq!(
+                err.to_string(),
+                format!("t.obj: line 10: {message}"),
+                "{tags}"
+            );
         }
         // Errors found once the faces are known name the tag's own line, even when faces follow.
         let text = "t crease 2/1/0 0 1 10\nt crease 2/1/0 0 2 10\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";

@@ -6,10 +6,20 @@ use halfedge::tags::{BoundaryInterpolation, CreaseMethod};
 use testdata::meshes_dir;
 
 /// The tagged shared meshes: (file, sharp edges, boundary tag, crease method tag).
-const TAGGED: &[(&str, usize, Option<BoundaryInterpolation>, Option<CreaseMethod>)] = &[
+const TAGGED: &[(
+    &str,
+    usize,
+    Option<BoundaryInterpolation>,
+    Option<CreaseMethod>,
+)] = &[
     ("osd_catmark_pawn.obj", 120, None, None),
     ("osd_catmark_bishop.obj", 224, None, None),
-    ("osd_catmark_chaikin2.obj", 4, None, Some(CreaseMethod::Chaikin)),
+    (
+        "osd_catmark_chaikin2.obj",
+        4,
+        None,
+        Some(CreaseMethod::Chaikin),
+    ),
     (
         "osd_catmark_nonquads.obj",
         0,
@@ -32,8 +42,15 @@ fn the_tagged_shared_meshes_hold_what_their_t_lines_say() {
         let mesh = io::read_mesh(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
         let tags = mesh.tags();
         assert_eq!(tags.sharp_edges().len(), edges, "{name}");
-        assert_eq!(tags.creases().len(), edges, "{name}: one crease line per edge");
-        assert!(tags.corners().is_empty() && tags.holes().is_empty(), "{name}");
+        assert_eq!(
+            tags.creases().len(),
+            edges,
+            "{name}: one crease line per edge"
+        );
+        assert!(
+            tags.corners().is_empty() && tags.holes().is_empty(),
+            "{name}"
+        );
         assert_eq!(tags.options.boundary, boundary, "{name}");
         assert_eq!(tags.options.crease_method, method, "{name}");
         assert!(mesh.ignored_tags().is_empty(), "{name}");
@@ -47,7 +64,12 @@ fn the_tagged_shared_meshes_hold_what_their_t_lines_say() {
     let pawn = io::read_mesh(dir.join("osd_catmark_pawn.obj")).expect("pawn");
     assert!(pawn.tags().sharp_edges().iter().all(|c| c.sharpness == 6.0));
     let chaikin = io::read_mesh(dir.join("osd_catmark_chaikin2.obj")).expect("chaikin2");
-    let sharpness: Vec<f32> = chaikin.tags().sharp_edges().iter().map(|c| c.sharpness).collect();
+    let sharpness: Vec<f32> = chaikin
+        .tags()
+        .sharp_edges()
+        .iter()
+        .map(|c| c.sharpness)
+        .collect();
     assert_eq!(sharpness, [0.5, 1.5, 2.5, 3.5]);
 }
 
@@ -62,7 +84,11 @@ fn no_other_shared_mesh_has_tags_and_none_has_holes() {
             if path.extension().and_then(|e| e.to_str()) != Some("obj") {
                 continue;
             }
-            let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("").to_string();
+            let name = path
+                .file_name()
+                .and_then(|n| n.to_str())
+                .unwrap_or("")
+                .to_string();
             let mesh = io::read_mesh(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
             assert!(mesh.tags().holes().is_empty(), "{name} has holes");
             assert!(mesh.ignored_tags().is_empty(), "{name}");
