@@ -101,11 +101,14 @@ pub enum ParseError {
         /// The offending token.
         token: String,
     },
-    /// An OBJ tag line whose name or value counts are missing or malformed (the grammar is
+    /// An OBJ tag line without a name or without value counts (the grammar is
     /// `t NAME nInts/nFloats/nStrings ints floats strings`).
+    #[error("a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)")]
+    TagIncomplete,
+    /// An OBJ tag line whose value counts are malformed.
     #[error("`{token}` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)")]
     TagCounts {
-        /// The token where the counts should be (empty when the line ends early).
+        /// The token where the counts should be.
         token: String,
     },
     /// A tag line with more or fewer values than its counts declare.

@@ -45,7 +45,7 @@
 //! with valid values (integers, finite sharpness `>= 0`, an option value in range), and its
 //! vertices, faces and edges must exist in the file (a crease's two vertices must be the ends
 //! of a side of some face); otherwise the read fails with [`Error::Parse`] naming the file and
-//! the tag's line ([`ParseError::TagCounts`], [`ParseError::TagValueCount`],
+//! the tag's line ([`ParseError::TagIncomplete`], [`ParseError::TagCounts`], [`ParseError::TagValueCount`],
 //! [`ParseError::TagForm`], [`ParseError::TagOption`], [`ParseError::TagSharpness`],
 //! [`ParseError::Tag`], ...). [`ReadOptions::without_tags`] skips `t` lines unread, as this
 //! crate did before it read tags.

@@ -250,12 +250,9 @@ impl TagReader {
         mut tokens: impl Iterator<Item = &'a str>,
         line: u64,
     ) -> std::result::Result<(), ParseError> {
-        let Some(name) = tokens.next() else {
-            return Err(ParseError::TagCounts {
-                token: String::new(),
-            });
+        let (Some(name), Some(counts_token)) = (tokens.next(), tokens.next()) else {
+            return Err(ParseError::TagIncomplete);
         };
-        let counts_token = tokens.next().unwrap_or("");
         let counts = parse_counts(counts_token).ok_or_else(|| ParseError::TagCounts {
             token: shorten(counts_token),
         })?;
@@ -606,7 +603,8 @@ mod tests {
     #[test]
     fn every_tag_error_names_the_file_and_line() {
         let cases: &[(&str, &str)] = &[
-            ("t\n", "`` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t\n", "a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease\n", "a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
             ("t crease 2 1 0 0 1\n", "`2` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
             ("t crease 2/1 0 1 1\n", "`2/1` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
             ("t crease 2/1/0/0 0 1 1\n", "`2/1/0/0` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
