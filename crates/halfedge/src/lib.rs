@@ -15,7 +15,8 @@
 //!   [`schemes::MeshCounts::from_face_list`], and counts every defect of a face list.
 //! - [`shapes`] generates base meshes in code (platonic solids, cube, tori of any genus,
 //!   icosahedron with holes, grids, a mixed-polygon disk), also by name (`torus:3`).
-//! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed.
+//! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed;
+//!   [`io`] reads them from OpenSubdiv's OBJ `t` lines into [`PolygonMesh::tags`].
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output
 //!   exactly from the predicted counts.
 //!

@@ -8,7 +8,10 @@ use crate::tags::{IgnoredTag, TagError, Tags};
 /// (0-based) in order.
 ///
 /// Nothing is validated: faces may repeat vertices, share edges between any number of faces,
-/// refer to missing vertices or leave vertices unused. Statistics
+/// refer to missing vertices or leave vertices unused. A mesh may carry
+/// [`tags`](PolygonMesh::tags) (creases, corners, holes, subdivision options): the OBJ
+/// reader fills them from OpenSubdiv's `t` lines, and [`PolygonMesh::set_tags`] sets them
+/// (checked against the faces); [`PolygonMesh::into_parts`] and the writers leave them out. Statistics
 /// ([`crate::stats::face_list_counts`]) work on any face list; [`crate::HalfEdgeMesh`] is built
 /// from it with `HalfEdgeMesh::try_from(&polygon_mesh)`, which validates.
 ///

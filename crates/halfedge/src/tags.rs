@@ -11,6 +11,13 @@
 //! | [`CreaseMethod`] | `CreasingMethod` | `--crease-method uniform\|chaikin` |
 //! | [`TriangleRule`] | `TriangleSubdivision` | `--triangle-rule catmark\|smooth` |
 //!
+//! [`crate::io`] reads OpenSubdiv's OBJ tags into a [`Tags`] on the mesh it returns
+//! ([`crate::PolygonMesh::tags`]; the tag grammar is in the `io` docs); in code,
+//! [`crate::PolygonMesh::set_tags`] sets them, checked by [`Tags::check_against`]. The options
+//! a file's tags set ([`TagOptions`], each `None` where the file says nothing) apply over the
+//! defaults or a caller's choice with [`TagOptions::over`], giving the [`SubdivisionOptions`]
+//! of a run.
+//!
 //! Sharpness values are `f32`, as in OpenSubdiv, so that their decay from level to level is
 //! computed with the same arithmetic: 0 is smooth, 10 and above ([`INFINITELY_SHARP`]) is
 //! infinitely sharp, values between are semi-sharp.

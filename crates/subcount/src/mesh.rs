@@ -364,12 +364,12 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let custom = args.scheme.scheme_file.is_some();
     let reports = if on_face_list(&scheme, rule, &counts, custom) {
-        sub::verify_polygons(&poly, &scheme, levels, &opts)
+        sub::verify_polygons(poly, &scheme, levels, &opts)
     } else {
-        let mesh = validate(&poly, &args.mesh)?;
+        let mesh = validate(poly, &args.mesh)?;
         sub::verify(&mesh, &scheme, levels, &opts)
     }
-    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
+    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
@@ -493,7 +493,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let mesh = if face_list {
         None
     } else {
-        Some(validate(&poly, &args.mesh)?)
+        Some(validate(poly, &args.mesh)?)
     };
     let load_s = start.elapsed().as_secs_f64();
 
@@ -533,9 +533,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
         }
         Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),
-        None => sub::subdivide_polygons(&poly, rule, levels, &opts).map(Output::Polygons),
+        None => sub::subdivide_polygons(poly, rule, levels, &opts).map(Output::Polygons),
     }
-    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
+    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let subdivide_s = match &result {
         Output::Refined(r) => (r.refine_topology + r.first_evaluation).as_secs_f64(),
         _ => t1.elapsed().as_secs_f64(),
