@@ -221,6 +221,9 @@ struct TagReader {
     corner_lines: Vec<u64>,
     hole_lines: Vec<u64>,
     ignored: BTreeMap<String, u64>,
+    /// The heap bytes of `ignored`, kept as names are added (summed per line, it would make
+    /// a file of many distinct unknown tags quadratic).
+    ignored_bytes: usize,
 }
 
 /// What each known tag takes, for [`ParseError::TagForm`].
@@ -237,17 +240,13 @@ impl TagReader {
         self.tags.heap_bytes()
             + (self.crease_lines.len() + self.corner_lines.len() + self.hole_lines.len())
                 * std::mem::size_of::<u64>()
-            + self
-                .ignored
-                .keys()
-                .map(|k| k.len() + std::mem::size_of::<(String, u64)>())
-                .sum::<usize>()
+            + self.ignored_bytes
     }
 
     /// Reads one `t` line (the tokens after `t`).
-    fn read<'a>(
+    fn read(
         &mut self,
-        mut tokens: impl Iterator<Item = &'a str>,
+        mut tokens: std::str::SplitAsciiWhitespace<'_>,
         line: u64,
     ) -> std::result::Result<(), ParseError> {
         let (Some(name), Some(counts_token)) = (tokens.next(), tokens.next()) else {
@@ -256,19 +255,20 @@ impl TagReader {
         let counts = parse_counts(counts_token).ok_or_else(|| ParseError::TagCounts {
             token: shorten(counts_token),
         })?;
-        let values: Vec<&str> = tokens.collect();
+        // The values are walked, never collected: a 16 MiB line of indices stays 16 MiB.
+        let found = tokens.clone().count() as u64;
         let declared = counts.iter().fold(0u64, |a, &c| a.saturating_add(c));
-        if values.len() as u64 != declared {
+        if found != declared {
             return Err(ParseError::TagValueCount {
                 name: shorten(name),
                 declared,
-                found: values.len() as u64,
+                found,
             });
         }
         let [n_ints, n_floats, n_strings] = counts.map(|c| c as usize);
-        let ints = &values[..n_ints];
-        let floats = &values[n_ints..n_ints + n_floats];
-        let strings = &values[n_ints + n_floats..];
+        let mut ints = tokens.clone().take(n_ints);
+        let floats = tokens.clone().skip(n_ints).take(n_floats);
+        let mut strings = tokens.skip(n_ints + n_floats);
         let form = |ok: bool, expected: &'static str| {
             if ok {
                 Ok(())
@@ -279,6 +279,11 @@ impl TagReader {
                     expected,
                 })
             }
+        };
+        let option_value = |what: Option<&str>, expected: &'static str| ParseError::TagOption {
+            name: name.to_string(),
+            value: shorten(what.unwrap_or("")),
+            expected,
         };
         match name {
             "crease" => {
@@ -291,14 +296,16 @@ impl TagReader {
                     CREASE_FORM,
                 )?;
                 let sharpness = parse_sharpnesses(name, floats)?;
-                for (k, pair) in ints.chunks_exact(2).enumerate() {
-                    let a = parse_tag_index(name, pair[0], "0-based vertex index")?;
-                    let b = parse_tag_index(name, pair[1], "0-based vertex index")?;
+                let mut k = 0;
+                while let (Some(a), Some(b)) = (ints.next(), ints.next()) {
+                    let a = parse_tag_index(name, a, "0-based vertex index")?;
+                    let b = parse_tag_index(name, b, "0-based vertex index")?;
                     let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
                     self.tags
                         .add_crease(a, b, s)
-                        .map_err(|_| sharpness_error(name, floats[0]))?;
+                        .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
                     self.crease_lines.push(line);
+                    k += 1;
                 }
             }
             "corner" => {
@@ -307,12 +314,12 @@ impl TagReader {
                     CORNER_FORM,
                 )?;
                 let sharpness = parse_sharpnesses(name, floats)?;
-                for (k, token) in ints.iter().enumerate() {
+                for (k, token) in ints.enumerate() {
                     let v = parse_tag_index(name, token, "0-based vertex index")?;
                     let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
                     self.tags
                         .add_corner(v, s)
-                        .map_err(|_| sharpness_error(name, floats[0]))?;
+                        .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
                     self.corner_lines.push(line);
                 }
             }
@@ -326,46 +333,49 @@ impl TagReader {
             }
             "interpolateboundary" => {
                 form(counts == [1, 0, 0], ONE_INT_FORM)?;
-                let value = option_int(ints[0]);
-                let b = value.and_then(BoundaryInterpolation::from_tag_value);
-                self.tags.options.boundary = Some(b.ok_or_else(|| ParseError::TagOption {
-                    name: name.to_string(),
-                    value: shorten(ints[0]),
-                    expected: "0 none, 1 edge-and-corner, 2 edge-only",
+                let token = ints.next();
+                let b = token
+                    .and_then(option_int)
+                    .and_then(BoundaryInterpolation::from_tag_value);
+                self.tags.options.boundary = Some(b.ok_or_else(|| {
+                    option_value(token, "0 none, 1 edge-and-corner, 2 edge-only")
                 })?);
             }
             "facevaryinginterpolateboundary" => {
                 form(counts == [1, 0, 0], ONE_INT_FORM)?;
-                let value = option_int(ints[0]);
-                let f = value.and_then(FaceVaryingInterpolation::from_tag_value);
-                self.tags.options.face_varying =
-                    Some(f.ok_or_else(|| ParseError::TagOption {
-                        name: name.to_string(),
-                        value: shorten(ints[0]),
-                        expected: "0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all",
-                    })?);
+                let token = ints.next();
+                let f = token
+                    .and_then(option_int)
+                    .and_then(FaceVaryingInterpolation::from_tag_value);
+                self.tags.options.face_varying = Some(f.ok_or_else(|| {
+                    option_value(
+                        token,
+                        "0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all",
+                    )
+                })?);
             }
             "creasemethod" => {
                 form(counts == [0, 0, 1], ONE_STRING_FORM)?;
-                let m = CreaseMethod::from_tag_name(strings[0]);
-                self.tags.options.crease_method = Some(m.ok_or_else(|| ParseError::TagOption {
-                    name: name.to_string(),
-                    value: shorten(strings[0]),
-                    expected: "normal or chaikin",
-                })?);
+                let token = strings.next();
+                let m = token.and_then(CreaseMethod::from_tag_name);
+                self.tags.options.crease_method =
+                    Some(m.ok_or_else(|| option_value(token, "normal or chaikin"))?);
             }
             "smoothtriangles" => {
                 form(counts == [0, 0, 1], ONE_STRING_FORM)?;
-                let r = TriangleRule::from_tag_name(strings[0]);
-                self.tags.options.triangle_rule = Some(r.ok_or_else(|| ParseError::TagOption {
-                    name: name.to_string(),
-                    value: shorten(strings[0]),
-                    expected: "catmark or smooth",
-                })?);
+                let token = strings.next();
+                let r = token.and_then(TriangleRule::from_tag_name);
+                self.tags.options.triangle_rule =
+                    Some(r.ok_or_else(|| option_value(token, "catmark or smooth"))?);
             }
             _ => {
-                let count = self.ignored.entry(shorten(name)).or_insert(0);
-                *count += 1;
+                let key = shorten(name);
+                if let Some(count) = self.ignored.get_mut(&key) {
+                    *count += 1;
+                } else {
+                    self.ignored_bytes += key.len() + std::mem::size_of::<(String, u64)>();
+                    self.ignored.insert(key, 1);
+                }
             }
         }
         Ok(())
@@ -439,9 +449,11 @@ fn option_int(token: &str) -> Option<i64> {
 }
 
 /// Parses a tag's sharpness values (finite, `>= 0`).
-fn parse_sharpnesses(name: &str, tokens: &[&str]) -> std::result::Result<Vec<f32>, ParseError> {
+fn parse_sharpnesses<'a>(
+    name: &str,
+    tokens: impl Iterator<Item = &'a str>,
+) -> std::result::Result<Vec<f32>, ParseError> {
     tokens
-        .iter()
         .map(|t| match t.parse::<f32>() {
             Ok(s) if s.is_finite() && s >= 0.0 => Ok(s),
             Ok(_) => Err(sharpness_error(name, t)),
@@ -578,6 +590,23 @@ mod tests {
             m.tags().options.face_varying,
             Some(FaceVaryingInterpolation::None)
         );
+    }
+
+    #[test]
+    fn a_long_tag_line_is_walked_and_a_repeated_edge_counts_once() {
+        let pairs = 200_000;
+        let line = format!(
+            "t crease {}/1/0 {} 10\n",
+            2 * pairs,
+            "0 1 4 1 ".repeat(pairs / 2)
+        );
+        let mesh = read(&strip(&line)).expect("valid");
+        assert_eq!(mesh.tags().creases().len(), pairs);
+        assert_eq!(mesh.tags().sharp_edges().len(), 2);
+        // Per-pair sharpness: the k-th float belongs to the k-th pair.
+        let mesh = read(&strip("t crease 4/2/0 0 1 1 2 3 4\n")).expect("valid");
+        let s: Vec<f32> = mesh.tags().creases().iter().map(|c| c.sharpness).collect();
+        assert_eq!(s, [3.0, 4.0]);
     }
 
     #[test]
