@@ -24,9 +24,32 @@ pub const MAX_DIM: usize = 12;
 /// Levels at which states are evaluated.
 pub const LEVELS: [u64; 4] = [0, 1, 5, 40];
 
-/// Loads OBJ bytes, then runs the half-edge construction and both face-list statistics.
+/// Loads OBJ bytes, then runs the half-edge construction and both face-list statistics; and
+/// OpenSubdiv's tags: a file read with tags is read without them too (same positions and
+/// faces, no tags), and the tags the reader accepted pass `Tags::check_against` on its mesh.
 pub fn obj(data: &[u8]) -> u64 {
-    mesh_work(io::read_obj_from(data, "fuzz.obj"))
+    let loaded = io::read_obj_from(data, "fuzz.obj");
+    let mut work = 0;
+    if let Ok(mesh) = &loaded {
+        let tags = mesh.tags();
+        assert_eq!(
+            tags.check_against(mesh),
+            Ok(()),
+            "the reader checked the tags"
+        );
+        let sharp = tags.sharp_edges();
+        assert!(sharp.iter().all(|c| c.a < c.b && c.sharpness > 0.0));
+        assert!(sharp.len() <= tags.creases().len());
+        assert!(tags.sharp_vertices().len() <= tags.corners().len());
+        assert!(tags.hole_faces().len() <= tags.holes().len());
+        work += (tags.creases().len() + tags.corners().len() + tags.holes().len()) as u64;
+        let plain = io::read_obj_from_with(data, "fuzz.obj", &io::ReadOptions::without_tags())
+            .expect("a file read with its tags reads without them");
+        assert!(!plain.has_tags());
+        assert_eq!(plain.positions, mesh.positions);
+        assert_eq!(plain.face_indices(), mesh.face_indices());
+    }
+    work + mesh_work(loaded)
 }
 
 /// Loads OFF bytes, then as [`obj`].

@@ -173,6 +173,31 @@ fn corpus_seeds_load_as_expected() {
             "{name}"
         );
     }
+    let tagged = load("tags-every-kind.obj").expect("every tag kind, valid");
+    let tags = tagged.tags();
+    assert_eq!(
+        (
+            tags.sharp_edges().len(),
+            tags.sharp_vertices().len(),
+            tags.hole_faces()
+        ),
+        (2, 2, vec![0])
+    );
+    assert_eq!(tagged.ignored_tags().len(), 1);
+    let err = load("tags-counts-overflow.obj").unwrap_err();
+    assert!(
+        err.ends_with(
+            "line 6: tag `crease` declares 18446744073709551615 values but the line has 1"
+        ),
+        "{err}"
+    );
+    let err = load("tags-crease-not-an-edge.obj").unwrap_err();
+    assert!(
+        err.ends_with("line 6: tag `crease`: vertices 0 and 2 are not an edge of the mesh's faces"),
+        "{err}"
+    );
+    let before = load("tags-before-faces.obj").expect("tags may precede the faces");
+    assert_eq!(before.tags().hole_faces(), [0]);
 }
 
 /// OBJ-ish text: statements built from a small vocabulary, so the fuzzing reaches the face
@@ -198,8 +223,43 @@ fn obj_text() -> impl Strategy<Value = String> {
         1 => Just("g part".to_string()),
         1 => Just("# comment".to_string()),
         1 => Just("f 1 2 \\".to_string()),
+        3 => tag_statement(),
     ];
     prop::collection::vec(statement, 0..24).prop_map(|lines| lines.join("\n"))
+}
+
+/// OpenSubdiv tag lines, well-formed and not: known and unknown names, counts that match
+/// the values or not, indices in and out of range, sharpness and option values.
+fn tag_statement() -> impl Strategy<Value = String> {
+    let name = prop_oneof![
+        Just("crease"),
+        Just("corner"),
+        Just("hole"),
+        Just("interpolateboundary"),
+        Just("facevaryinginterpolateboundary"),
+        Just("creasemethod"),
+        Just("smoothtriangles"),
+        Just("vertexedit"),
+    ];
+    let value = prop_oneof![
+        (0i64..9).prop_map(|i| i.to_string()),
+        Just("-1".to_string()),
+        Just("4294967295".to_string()),
+        Just("2.5".to_string()),
+        Just("nan".to_string()),
+        Just("chaikin".to_string()),
+        Just("smooth".to_string()),
+    ];
+    (
+        name,
+        0u8..4,
+        0u8..3,
+        0u8..2,
+        prop::collection::vec(value, 0..7),
+    )
+        .prop_map(|(name, ints, floats, strings, values)| {
+            format!("t {name} {ints}/{floats}/{strings} {}", values.join(" "))
+        })
 }
 
 /// Scheme-file-ish text: lines of valid and broken scheme statements.

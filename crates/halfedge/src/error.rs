@@ -101,6 +101,66 @@ pub enum ParseError {
         /// The offending token.
         token: String,
     },
+    /// An OBJ tag line without a name or without value counts (the grammar is
+    /// `t NAME nInts/nFloats/nStrings ints floats strings`).
+    #[error("a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)")]
+    TagIncomplete,
+    /// An OBJ tag line whose value counts are malformed.
+    #[error("`{token}` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)")]
+    TagCounts {
+        /// The token where the counts should be.
+        token: String,
+    },
+    /// A tag line with more or fewer values than its counts declare.
+    #[error("tag `{name}` declares {declared} values but the line has {found}")]
+    TagValueCount {
+        /// The tag.
+        name: String,
+        /// nInts + nFloats + nStrings.
+        declared: u64,
+        /// The values on the line.
+        found: u64,
+    },
+    /// A known tag with counts its meaning does not allow (an odd number of crease
+    /// integers, a float count that is neither 1 nor one per pair or vertex, ...).
+    #[error("tag `{name}` has {counts} values: expected {expected}")]
+    TagForm {
+        /// The tag.
+        name: String,
+        /// The counts as written, `nInts/nFloats/nStrings`.
+        counts: String,
+        /// What the tag takes.
+        expected: &'static str,
+    },
+    /// An option tag with a value outside its range.
+    #[error("tag `{name}`: `{value}` is not a valid value (expected {expected})")]
+    TagOption {
+        /// The tag.
+        name: String,
+        /// The value (shortened when long).
+        value: String,
+        /// The valid values and their meaning.
+        expected: &'static str,
+    },
+    /// A sharpness that is negative, NaN or infinite.
+    #[error("tag `{name}`: sharpness `{token}` is not valid (expected a finite number >= 0)")]
+    TagSharpness {
+        /// The tag.
+        name: String,
+        /// The value as written (shortened when long).
+        token: String,
+    },
+    /// A tag's vertex or face index beyond 32 bits.
+    #[error("tag `{name}`: index `{token}` is too large")]
+    TagIndexTooLarge {
+        /// The tag.
+        name: String,
+        /// The index as written (shortened when long).
+        token: String,
+    },
+    /// A tag that names a vertex, face or edge the file's mesh does not have.
+    #[error(transparent)]
+    Tag(#[from] crate::tags::TagError),
 }
 
 /// Everything that can go wrong loading, validating or subdividing a mesh.

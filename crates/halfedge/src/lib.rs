@@ -16,7 +16,8 @@
 //! - [`shapes`] generates base meshes in code (platonic solids, cube, tori of any genus,
 //!   icosahedron with holes, grids, a mixed-polygon disk), also by name (`torus:3`).
 //! - [`holes`] finds the faces that are holes and what is written around them.
-//! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed.
+//! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed;
+//!   [`io`] reads them from OpenSubdiv's OBJ `t` lines into [`PolygonMesh::tags`].
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output
 //!   exactly from the predicted counts.
 //!

@@ -2,11 +2,16 @@
 
 use glam::DVec3;
 
+use crate::tags::{IgnoredTag, TagError, Tags};
+
 /// A polygon mesh as a plain face list: vertex positions and, per face, its vertex indices
 /// (0-based) in order.
 ///
 /// Nothing is validated: faces may repeat vertices, share edges between any number of faces,
-/// refer to missing vertices or leave vertices unused. Statistics
+/// refer to missing vertices or leave vertices unused. A mesh may carry
+/// [`tags`](PolygonMesh::tags) (creases, corners, holes, subdivision options): the OBJ
+/// reader fills them from OpenSubdiv's `t` lines, and [`PolygonMesh::set_tags`] sets them
+/// (checked against the faces); [`PolygonMesh::into_parts`] and the writers leave them out. Statistics
 /// ([`crate::stats::face_list_counts`]) work on any face list; [`crate::HalfEdgeMesh`] is built
 /// from it with `HalfEdgeMesh::try_from(&polygon_mesh)`, which validates.
 ///
@@ -33,6 +38,10 @@ pub struct PolygonMesh {
     face_indices: Vec<u32>,
     /// The file line of each face, for meshes read from a file (else empty).
     face_lines: Vec<u64>,
+    /// Creases, corners, holes and options (OpenSubdiv's OBJ tags, or set in code).
+    tags: Tags,
+    /// The tags of the file that were not interpreted.
+    ignored_tags: Vec<IgnoredTag>,
 }
 
 impl Default for PolygonMesh {
@@ -42,16 +51,21 @@ impl Default for PolygonMesh {
             face_offsets: vec![0],
             face_indices: Vec::new(),
             face_lines: Vec::new(),
+            tags: Tags::default(),
+            ignored_tags: Vec::new(),
         }
     }
 }
 
-/// Equal positions and faces (where the faces were read from does not matter).
+/// Equal positions, faces and [`tags`](PolygonMesh::tags) (creases, corners, holes and
+/// options change the surface). Where the faces were read from and which tags the reader
+/// ignored ([`PolygonMesh::ignored_tags`]) do not matter.
 impl PartialEq for PolygonMesh {
     fn eq(&self, other: &PolygonMesh) -> bool {
         self.positions == other.positions
             && self.face_offsets == other.face_offsets
             && self.face_indices == other.face_indices
+            && self.tags == other.tags
     }
 }
 
@@ -92,6 +106,8 @@ impl PolygonMesh {
             face_offsets,
             face_indices,
             face_lines: Vec::new(),
+            tags: Tags::default(),
+            ignored_tags: Vec::new(),
         }
     }
 
@@ -152,6 +168,63 @@ impl PolygonMesh {
     /// ```
     pub fn face_line(&self, f: usize) -> Option<u64> {
         self.face_lines.get(f).copied().filter(|&line| line > 0)
+    }
+
+    /// The creases, corners, holes and options of the mesh: what an OBJ file's `t` lines say
+    /// (see [`crate::io`]), or what [`set_tags`](Self::set_tags) set; empty otherwise.
+    ///
+    /// ```
+    /// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt crease 2/1/0 0 1 10\nt vertexedit 0/0/1 x\n";
+    /// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "tagged.obj")?;
+    /// assert_eq!(mesh.tags().sharp_edges().len(), 1);
+    /// assert_eq!(mesh.ignored_tags()[0].name, "vertexedit");
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn tags(&self) -> &Tags {
+        &self.tags
+    }
+
+    /// Sets the tags, checked against the faces the mesh has now ([`Tags::check_against`]).
+    ///
+    /// # Errors
+    ///
+    /// The first crease, corner or hole that names a vertex, face or edge the mesh does not
+    /// have; the tags are then left as they were.
+    ///
+    /// ```
+    /// use halfedge::{shapes, tags::Tags};
+    /// let mut cube = shapes::cube();
+    /// let mut tags = Tags::default();
+    /// tags.add_hole(5);
+    /// cube.set_tags(tags)?;
+    /// assert_eq!(cube.tags().hole_faces(), [5]);
+    /// let mut beyond = Tags::default();
+    /// beyond.add_hole(6);
+    /// assert!(cube.set_tags(beyond).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_tags(&mut self, tags: Tags) -> Result<(), TagError> {
+        tags.check_against(self)?;
+        self.tags = tags;
+        Ok(())
+    }
+
+    /// Sets tags the reader has checked, and the tags it ignored.
+    pub(crate) fn set_read_tags(&mut self, tags: Tags, ignored: Vec<IgnoredTag>) {
+        self.tags = tags;
+        self.ignored_tags = ignored;
+    }
+
+    /// The tags of the file that the reader did not interpret (`vertexedit`, ...), each
+    /// name once with its number of lines, sorted by name; empty for meshes not read from a
+    /// file or read without tags.
+    pub fn ignored_tags(&self) -> &[IgnoredTag] {
+        &self.ignored_tags
+    }
+
+    /// Whether the mesh has tags: interpreted ([`tags`](Self::tags) not empty) or ignored.
+    pub fn has_tags(&self) -> bool {
+        !self.tags.is_empty() || !self.ignored_tags.is_empty()
     }
 
     /// Number of vertex positions (used or not).

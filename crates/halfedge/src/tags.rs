@@ -11,6 +11,13 @@
 //! | [`CreaseMethod`] | `CreasingMethod` | `--crease-method uniform\|chaikin` |
 //! | [`TriangleRule`] | `TriangleSubdivision` | `--triangle-rule catmark\|smooth` |
 //!
+//! [`crate::io`] reads OpenSubdiv's OBJ tags into a [`Tags`] on the mesh it returns
+//! ([`crate::PolygonMesh::tags`]; the tag grammar is in the `io` docs); in code,
+//! [`crate::PolygonMesh::set_tags`] sets them, checked by [`Tags::check_against`]. The options
+//! a file's tags set ([`TagOptions`], each `None` where the file says nothing) apply over the
+//! defaults or a caller's choice with [`TagOptions::over`], giving the [`SubdivisionOptions`]
+//! of a run.
+//!
 //! Sharpness values are `f32`, as in OpenSubdiv, so that their decay from level to level is
 //! computed with the same arithmetic: 0 is smooth, 10 and above ([`INFINITELY_SHARP`]) is
 //! infinitely sharp, values between are semi-sharp.
@@ -29,8 +36,11 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use std::collections::{BTreeMap, HashMap};
 use std::fmt;
 use std::str::FromStr;
+
+use crate::polygon::PolygonMesh;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp
 /// (`Sdc::Crease::SHARPNESS_INFINITE`).
@@ -147,6 +157,75 @@ named_enum! {
         Catmark => "catmark",
         /// The modified weights that smooth triangles (`TRI_SUB_SMOOTH`).
         Smooth => "smooth",
+    }
+}
+
+impl BoundaryInterpolation {
+    /// The value of OpenSubdiv's `interpolateboundary` tag: 0 none, 1 edge-and-corner,
+    /// 2 edge-only.
+    pub fn tag_value(self) -> i64 {
+        match self {
+            BoundaryInterpolation::None => 0,
+            BoundaryInterpolation::EdgeAndCorner => 1,
+            BoundaryInterpolation::Edge => 2,
+        }
+    }
+
+    /// The option an `interpolateboundary` tag value names (`None` outside `0..=2`).
+    pub fn from_tag_value(value: i64) -> Option<BoundaryInterpolation> {
+        BoundaryInterpolation::ALL
+            .iter()
+            .copied()
+            .find(|b| b.tag_value() == value)
+    }
+}
+
+impl FaceVaryingInterpolation {
+    /// The value of OpenSubdiv's `facevaryinginterpolateboundary` tag: 0 none, 1 corners-only,
+    /// 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all (the declaration order).
+    pub fn tag_value(self) -> i64 {
+        FaceVaryingInterpolation::ALL
+            .iter()
+            .position(|&f| f == self)
+            .map_or(0, |i| i as i64)
+    }
+
+    /// The option a `facevaryinginterpolateboundary` tag value names (`None` outside `0..=5`).
+    pub fn from_tag_value(value: i64) -> Option<FaceVaryingInterpolation> {
+        usize::try_from(value)
+            .ok()
+            .and_then(|i| FaceVaryingInterpolation::ALL.get(i).copied())
+    }
+}
+
+impl CreaseMethod {
+    /// The string of OpenSubdiv's `creasemethod` tag: `normal` (uniform) or `chaikin`.
+    pub fn tag_name(self) -> &'static str {
+        match self {
+            CreaseMethod::Uniform => "normal",
+            CreaseMethod::Chaikin => "chaikin",
+        }
+    }
+
+    /// The method a `creasemethod` tag string names.
+    pub fn from_tag_name(name: &str) -> Option<CreaseMethod> {
+        CreaseMethod::ALL
+            .iter()
+            .copied()
+            .find(|m| m.tag_name() == name)
+    }
+}
+
+impl TriangleRule {
+    /// The string of OpenSubdiv's `smoothtriangles` tag: `catmark` or `smooth` (the
+    /// command-line names).
+    pub fn tag_name(self) -> &'static str {
+        self.name()
+    }
+
+    /// The rule a `smoothtriangles` tag string names.
+    pub fn from_tag_name(name: &str) -> Option<TriangleRule> {
+        name.parse().ok()
     }
 }
 
@@ -325,6 +404,182 @@ impl Tags {
             && self.holes.is_empty()
             && self.options.is_empty()
     }
+}
+
+impl Tags {
+    /// The sharp edges: one crease per edge (its vertices in increasing order), the last
+    /// sharpness given for it, edges whose sharpness is 0 left out; sorted by vertices.
+    pub fn sharp_edges(&self) -> Vec<Crease> {
+        let mut last: BTreeMap<(u32, u32), f32> = BTreeMap::new();
+        for c in &self.creases {
+            last.insert((c.a.min(c.b), c.a.max(c.b)), c.sharpness);
+        }
+        last.into_iter()
+            .filter(|&(_, s)| s > 0.0)
+            .map(|((a, b), sharpness)| Crease { a, b, sharpness })
+            .collect()
+    }
+
+    /// The sharp vertices: one corner per vertex, the last sharpness given for it, vertices
+    /// whose sharpness is 0 left out; sorted by vertex.
+    pub fn sharp_vertices(&self) -> Vec<Corner> {
+        let mut last: BTreeMap<u32, f32> = BTreeMap::new();
+        for c in &self.corners {
+            last.insert(c.vertex, c.sharpness);
+        }
+        last.into_iter()
+            .filter(|&(_, s)| s > 0.0)
+            .map(|(vertex, sharpness)| Corner { vertex, sharpness })
+            .collect()
+    }
+
+    /// The hole faces, each once, sorted.
+    pub fn hole_faces(&self) -> Vec<u32> {
+        let mut faces = self.holes.clone();
+        faces.sort_unstable();
+        faces.dedup();
+        faces
+    }
+
+    /// The bytes the lists occupy on the heap (for memory budgets).
+    pub fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(self.creases.as_slice())
+            + std::mem::size_of_val(self.corners.as_slice())
+            + std::mem::size_of_val(self.holes.as_slice())
+    }
+
+    /// Checks the tags against a mesh: every crease and corner vertex exists, every hole
+    /// face exists, and every crease joins the two ends of a side of some face (in either
+    /// direction).
+    ///
+    /// # Errors
+    ///
+    /// The first problem as a [`TagError`] naming the entry (its position in
+    /// [`creases`](Self::creases), [`corners`](Self::corners) or [`holes`](Self::holes)):
+    /// creases are checked first, then corners, then holes.
+    ///
+    /// ```
+    /// use halfedge::{shapes, tags::{TagError, Tags}};
+    ///
+    /// let cube = shapes::cube();
+    /// let mut tags = Tags::default();
+    /// tags.add_crease(0, 1, 10.0)?;
+    /// assert_eq!(tags.check_against(&cube), Ok(()));
+    /// tags.add_crease(0, 6, 1.0)?; // a diagonal: no face has the side (0, 6)
+    /// assert_eq!(tags.check_against(&cube), Err(TagError::NotAnEdge { entry: 1, a: 0, b: 6 }));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn check_against(&self, mesh: &PolygonMesh) -> Result<(), TagError> {
+        let vertices = mesh.n_vertices();
+        let in_range = |v: u32| (v as usize) < vertices;
+        for (entry, c) in self.creases.iter().enumerate() {
+            if let Some(vertex) = [c.a, c.b].into_iter().find(|&v| !in_range(v)) {
+                return Err(TagError::VertexOutOfRange {
+                    tag: "crease",
+                    entry,
+                    vertex,
+                    vertices,
+                });
+            }
+        }
+        if !self.creases.is_empty() {
+            // Each wanted edge once, with its first entry; the sides of the faces mark them.
+            let mut wanted: HashMap<(u32, u32), (usize, bool)> = HashMap::new();
+            for (entry, c) in self.creases.iter().enumerate() {
+                wanted
+                    .entry((c.a.min(c.b), c.a.max(c.b)))
+                    .or_insert((entry, false));
+            }
+            for face in mesh.faces() {
+                for (i, &a) in face.iter().enumerate() {
+                    let b = face[(i + 1) % face.len()];
+                    if let Some(found) = wanted.get_mut(&(a.min(b), a.max(b))) {
+                        found.1 = true;
+                    }
+                }
+            }
+            if let Some(&entry) = wanted
+                .values()
+                .filter(|(_, found)| !found)
+                .map(|(entry, _)| entry)
+                .min()
+            {
+                let c = self.creases[entry];
+                return Err(TagError::NotAnEdge {
+                    entry,
+                    a: c.a,
+                    b: c.b,
+                });
+            }
+        }
+        for (entry, c) in self.corners.iter().enumerate() {
+            if !in_range(c.vertex) {
+                return Err(TagError::VertexOutOfRange {
+                    tag: "corner",
+                    entry,
+                    vertex: c.vertex,
+                    vertices,
+                });
+            }
+        }
+        let faces = mesh.n_faces();
+        for (entry, &face) in self.holes.iter().enumerate() {
+            if face as usize >= faces {
+                return Err(TagError::FaceOutOfRange { entry, face, faces });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A tag that names what a mesh does not have (see [`Tags::check_against`]); `entry` is the
+/// position of the crease, corner or hole in its list.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TagError {
+    /// A crease or corner on a vertex the mesh does not have.
+    #[error("tag `{tag}`: vertex {vertex} is out of range (the mesh has {vertices} vertices; tag indices are 0-based)")]
+    VertexOutOfRange {
+        /// `crease` or `corner`.
+        tag: &'static str,
+        /// The entry's position in its list.
+        entry: usize,
+        /// The vertex.
+        vertex: u32,
+        /// The number of vertices of the mesh.
+        vertices: usize,
+    },
+    /// A hole on a face the mesh does not have.
+    #[error("tag `hole`: face {face} is out of range (the mesh has {faces} faces; tag indices are 0-based)")]
+    FaceOutOfRange {
+        /// The entry's position in [`Tags::holes`].
+        entry: usize,
+        /// The face.
+        face: u32,
+        /// The number of faces of the mesh.
+        faces: usize,
+    },
+    /// A crease on two vertices that no face joins by a side.
+    #[error("tag `crease`: vertices {a} and {b} are not an edge of the mesh's faces")]
+    NotAnEdge {
+        /// The entry's position in [`Tags::creases`].
+        entry: usize,
+        /// One end.
+        a: u32,
+        /// The other end.
+        b: u32,
+    },
+}
+
+/// A tag of a file that this crate does not interpret (`vertexedit`, `facevaryingpropagatecorners`,
+/// ...): its name and how many lines had it. The reader returns them
+/// ([`crate::PolygonMesh::ignored_tags`]) instead of printing.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct IgnoredTag {
+    /// The tag's name.
+    pub name: String,
+    /// The number of lines with this name.
+    pub count: u64,
 }
 
 fn check_sharpness(value: f32) -> Result<(), InvalidSharpness> {

@@ -3,6 +3,22 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
+use halfedge::tags::{BoundaryInterpolation, CreaseMethod, TriangleRule};
+
+/// The value parser of an option enum of `halfedge::tags`: its command-line names (listed in
+/// `--help` and in the error for another value), parsed by its `FromStr`.
+macro_rules! named_parser {
+    ($t:ty) => {
+        clap::builder::TypedValueParser::try_map(
+            clap::builder::PossibleValuesParser::new(
+                <$t>::ALL
+                    .iter()
+                    .map(|v| clap::builder::PossibleValue::new(v.name())),
+            ),
+            |s: String| s.parse::<$t>(),
+        )
+    };
+}
 
 /// The most threads `--threads` may ask for. Each thread costs a stack and a start-up, and
 /// the geometry passes gain nothing past the number of cores: without a cap, `--threads
@@ -283,7 +299,8 @@ pub(crate) struct Source {
     pub(crate) mesh: MeshSource,
 }
 
-/// A mesh to read statistics from: a file or a generated base mesh.
+/// A mesh to read statistics from: a file or a generated base mesh, with the subdivision
+/// options that override its OpenSubdiv tags.
 #[derive(Args, Debug, Clone, Default)]
 pub(crate) struct MeshSource {
     /// A mesh file (OBJ or OFF).
@@ -293,6 +310,34 @@ pub(crate) struct MeshSource {
     /// icosahedron-holes:K, grid:WxH, quad-grid:WxH, mixed.
     #[arg(long, value_name = "NAME")]
     pub(crate) base: Option<String>,
+    /// Boundary interpolation (default: the file's interpolateboundary tag, else edge).
+    #[arg(long, value_name = "MODE", value_parser = named_parser!(BoundaryInterpolation))]
+    pub(crate) boundary: Option<BoundaryInterpolation>,
+    /// How semi-sharp creases decay (default: the file's creasemethod tag, else uniform).
+    #[arg(long, value_name = "METHOD", value_parser = named_parser!(CreaseMethod))]
+    pub(crate) crease_method: Option<CreaseMethod>,
+    /// Catmull-Clark's rule for triangles (default: the file's smoothtriangles tag, else
+    /// catmark); not with a triangle scheme.
+    #[arg(long, value_name = "RULE", value_parser = named_parser!(TriangleRule))]
+    pub(crate) triangle_rule: Option<TriangleRule>,
+    /// Do not read the file's OpenSubdiv tags (t lines): creases, corners, holes, options.
+    #[arg(long)]
+    pub(crate) ignore_tags: bool,
+}
+
+impl MeshSource {
+    /// Whether a subdivision option flag (--boundary, --crease-method, --triangle-rule,
+    /// --ignore-tags) is given, and the first one's name.
+    pub(crate) fn option_flag(&self) -> Option<&'static str> {
+        [
+            (self.boundary.is_some(), "--boundary"),
+            (self.crease_method.is_some(), "--crease-method"),
+            (self.triangle_rule.is_some(), "--triangle-rule"),
+            (self.ignore_tags, "--ignore-tags"),
+        ]
+        .into_iter()
+        .find_map(|(given, name)| given.then_some(name))
+    }
 }
 
 /// Output formats of `table`.

@@ -19,14 +19,14 @@ use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
 use crate::levels::parse_levels_count;
 use crate::model::{
     face_place, load_mesh, load_scheme_file, mesh_label, not_applicable, refuse_degenerate_faces,
-    validate,
+    refuse_triangle_rule, refuse_uncounted, validate, LoadedMesh,
 };
 use crate::output::json_text;
 
 /// The most levels `verify` picks by itself from `--max-faces`.
 const MAX_VERIFY_LEVELS: u64 = 64;
 
-fn required_mesh(mesh: &MeshSource) -> Result<PolygonMesh, Failure> {
+fn required_mesh(mesh: &MeshSource) -> Result<LoadedMesh, Failure> {
     load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
 }
 
@@ -56,10 +56,14 @@ fn located_failure(e: halfedge::Error, poly: &PolygonMesh, mesh: &MeshSource) ->
 }
 
 pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let poly = required_mesh(&args.mesh)?;
-    let counts = halfedge::stats::face_list_counts(&poly);
-    let problems = halfedge::stats::face_list_problems(&poly);
-    let validation = validate(&poly, &args.mesh).err();
+    let loaded = required_mesh(&args.mesh)?;
+    loaded.print_notes();
+    let poly = &loaded.poly;
+    // Present only when the file has tags: an untagged mesh's output is what it always was.
+    let tags = poly.has_tags().then(|| tag_summary(loaded.tags(), poly));
+    let counts = halfedge::stats::face_list_counts(poly);
+    let problems = halfedge::stats::face_list_problems(poly);
+    let validation = validate(poly, &args.mesh).err();
     // A face that repeats a vertex is refused on every path, so no scheme applies.
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()
@@ -82,7 +86,7 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                 .iter()
                 .map(|(d, n)| (d.to_string(), Value::from(*n)))
                 .collect();
-            json_text(&json!({
+            let mut object = json!({
                 "V": c.vertices,
                 "E": c.edges,
                 "IE": c.interior_edges,
@@ -104,8 +108,14 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                     "nonmanifold_vertices": problems.nonmanifold_vertices,
                     "inconsistently_oriented_edges": problems.inconsistently_oriented_edges,
                 },
-                "applicable_schemes": applicable,
-            }))
+            });
+            if let (Some(tags), Value::Object(map)) = (&tags, &mut object) {
+                map.insert("tags".to_owned(), tags.to_json());
+            }
+            if let Value::Object(map) = &mut object {
+                map.insert("applicable_schemes".to_owned(), json!(applicable));
+            }
+            json_text(&object)
         }
         ReportFormat::Text => {
             let degrees: Vec<String> = c
@@ -135,12 +145,101 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                 None => t.push_str("manifold, consistently oriented\n"),
                 Some(e) => t.push_str(&format!("not a valid half-edge mesh: {:#}\n", e.error)),
             }
+            if let Some(tags) = &tags {
+                t.push_str(&format!("{}\n", tags.to_text()));
+            }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t
         }
     };
     writeln!(out, "{text}").map_err(write_failure)?;
     Ok(0)
+}
+
+/// What a file's tags hold, for `stats`: distinct sharp edges and vertices (sharpness > 0),
+/// distinct hole faces, the options the tags set, and the tags not read.
+struct TagSummary {
+    crease_edges: usize,
+    corners: usize,
+    holes: usize,
+    /// `(key, value)`: `boundary`, `face_varying`, `crease_method`, `triangle_rule`, each only
+    /// when a tag sets it, valued by its command-line name.
+    options: Vec<(&'static str, &'static str)>,
+    /// Tag names not read, with their number of lines.
+    ignored: Vec<(String, u64)>,
+}
+
+fn tag_summary(tags: &halfedge::tags::Tags, poly: &PolygonMesh) -> TagSummary {
+    let o = &tags.options;
+    let options = [
+        ("boundary", o.boundary.map(|v| v.name())),
+        ("face_varying", o.face_varying.map(|v| v.name())),
+        ("crease_method", o.crease_method.map(|v| v.name())),
+        ("triangle_rule", o.triangle_rule.map(|v| v.name())),
+    ]
+    .into_iter()
+    .filter_map(|(k, v)| v.map(|v| (k, v)))
+    .collect();
+    TagSummary {
+        crease_edges: tags.sharp_edges().len(),
+        corners: tags.sharp_vertices().len(),
+        holes: tags.hole_faces().len(),
+        options,
+        ignored: poly
+            .ignored_tags()
+            .iter()
+            .map(|t| (t.name.clone(), t.count))
+            .collect(),
+    }
+}
+
+impl TagSummary {
+    fn to_json(&self) -> Value {
+        let options: serde_json::Map<String, Value> = self
+            .options
+            .iter()
+            .map(|&(k, v)| (k.to_owned(), Value::from(v)))
+            .collect();
+        let mut object = json!({
+            "crease_edges": self.crease_edges,
+            "corners": self.corners,
+            "holes": self.holes,
+            "options": options,
+        });
+        if let (false, Value::Object(map)) = (self.ignored.is_empty(), &mut object) {
+            let ignored: serde_json::Map<String, Value> = self
+                .ignored
+                .iter()
+                .map(|(k, n)| (k.clone(), Value::from(*n)))
+                .collect();
+            map.insert("ignored".to_owned(), ignored.into());
+        }
+        object
+    }
+
+    fn to_text(&self) -> String {
+        let mut t = format!(
+            "tags: {} crease edges, {} corners, {} holes",
+            self.crease_edges, self.corners, self.holes
+        );
+        if !self.options.is_empty() {
+            let options: Vec<String> = self
+                .options
+                .iter()
+                .map(|(k, v)| format!("{k} = {v}"))
+                .collect();
+            t.push_str(&format!("; options: {}", options.join(", ")));
+        }
+        if !self.ignored.is_empty() {
+            let ignored: Vec<String> = self
+                .ignored
+                .iter()
+                .map(|(k, n)| format!("{k} ({n})"))
+                .collect();
+            t.push_str(&format!("; ignored: {}", ignored.join(", ")));
+        }
+        t
+    }
 }
 
 /// The scheme of `--scheme` (built-in) or `--scheme-file` as it counts this mesh (`loop` and
@@ -167,6 +266,11 @@ fn chosen_scheme(
         (None, None) => return Err(usage!("give --scheme NAME or --scheme-file FILE")),
     }
     .for_mesh(counts);
+    refuse_triangle_rule(
+        mesh,
+        scheme.name(),
+        [(scheme.name(), scheme.subdivision_rule())],
+    )?;
     scheme
         .initial_state(counts)
         .map_err(|e| not_applicable(mesh, e))?;
@@ -226,10 +330,13 @@ fn guard_memory(
 }
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let poly = required_mesh(&args.mesh)?;
-    refuse_degenerate_faces(&poly, &args.mesh)?;
-    let counts = halfedge::stats::face_list_counts(&poly);
+    let loaded = required_mesh(&args.mesh)?;
+    let poly = &loaded.poly;
+    refuse_degenerate_faces(poly, &args.mesh)?;
+    let counts = halfedge::stats::face_list_counts(poly);
+    refuse_uncounted(&loaded, &counts, &args.mesh)?;
     let (scheme, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    loaded.print_notes();
     // The rule's own scheme sizes the real subdivision (a custom matrix may be wrong).
     let sizing = rule.scheme_for(&counts).map_err(scheme_failure)?;
     let x0 = sizing
@@ -257,12 +364,12 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let custom = args.scheme.scheme_file.is_some();
     let reports = if on_face_list(&scheme, rule, &counts, custom) {
-        sub::verify_polygons(&poly, &scheme, levels, &opts)
+        sub::verify_polygons(poly, &scheme, levels, &opts)
     } else {
-        let mesh = validate(&poly, &args.mesh)?;
+        let mesh = validate(poly, &args.mesh)?;
         sub::verify(&mesh, &scheme, levels, &opts)
     }
-    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
+    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
@@ -334,10 +441,15 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
     let start = Instant::now();
-    let poly = required_mesh(&args.mesh)?;
-    refuse_degenerate_faces(&poly, &args.mesh)?;
-    let counts = halfedge::stats::face_list_counts(&poly);
+    // `loaded.tags()` (creases, corners, holes) and `loaded.options` (resolved boundary,
+    // crease method, triangle rule) are what the geometry is to follow.
+    let loaded = required_mesh(&args.mesh)?;
+    let poly = &loaded.poly;
+    refuse_degenerate_faces(poly, &args.mesh)?;
+    let counts = halfedge::stats::face_list_counts(poly);
+    refuse_uncounted(&loaded, &counts, &args.mesh)?;
     let (chosen, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    loaded.print_notes();
     let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
     if refine_once && (face_list || args.no_preallocate) {
@@ -381,7 +493,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let mesh = if face_list {
         None
     } else {
-        Some(validate(&poly, &args.mesh)?)
+        Some(validate(poly, &args.mesh)?)
     };
     let load_s = start.elapsed().as_secs_f64();
 
@@ -421,9 +533,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
         }
         Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),
-        None => sub::subdivide_polygons(&poly, rule, levels, &opts).map(Output::Polygons),
+        None => sub::subdivide_polygons(poly, rule, levels, &opts).map(Output::Polygons),
     }
-    .map_err(|e| located_failure(e, &poly, &args.mesh))?;
+    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let subdivide_s = match &result {
         Output::Refined(r) => (r.refine_topology + r.first_evaluation).as_secs_f64(),
         _ => t1.elapsed().as_secs_f64(),

@@ -1,9 +1,17 @@
 //! What a command counts, from the flags: a [`Counter`] over a recurrence (from `--matrix`)
 //! or a scheme plan (from `--scheme`, `--scheme-file`), and its initial state (from `--init`,
 //! `--counts`, `--mesh` or `--base`). The mesh is read once per command ([`Input`]).
+//!
+//! Every command reads its mesh through [`load_mesh`], the one place where the file's
+//! OpenSubdiv tags meet the flags: [`resolve_options`] gives the subdivision options (a flag
+//! wins over the tag, the tag over the default), and the counting commands refuse what is
+//! not counted yet ([`refuse_uncounted`]: holes, `--boundary none` on a mesh with boundary).
 
 use std::cell::OnceCell;
 
+use halfedge::io::ReadOptions;
+use halfedge::tags::{SubdivisionOptions, TagOptions, Tags};
+use halfedge::{PolygonMesh, Rule};
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
 use schemes::{Counter, CountsInput, MeshCounts, Plan, Scheme};
@@ -36,9 +44,12 @@ impl<'a> Input<'a> {
             return Ok(counts.as_ref());
         }
         let counts = match load_mesh(&self.source.mesh)? {
-            Some(poly) => {
-                refuse_degenerate_faces(&poly, &self.source.mesh)?;
-                Some(halfedge::stats::face_list_counts(&poly))
+            Some(loaded) => {
+                refuse_degenerate_faces(&loaded.poly, &self.source.mesh)?;
+                let counts = halfedge::stats::face_list_counts(&loaded.poly);
+                refuse_uncounted(&loaded, &counts, &self.source.mesh)?;
+                loaded.print_notes();
+                Some(counts)
             }
             None => None,
         };
@@ -56,6 +67,7 @@ impl<'a> Input<'a> {
     /// `loop-boundary`).
     pub(crate) fn counter(&self) -> Result<Counter, Failure> {
         let source = self.source;
+        refuse_options_without_mesh(&source.mesh)?;
         if let Some(text) = source.matrix.as_deref() {
             if source.scheme.is_some() || source.scheme_file.is_some() {
                 return Err(usage!(
@@ -87,6 +99,11 @@ impl<'a> Input<'a> {
             (None, Some(custom)) => Plan::single(custom),
             (None, None) => Plan::parse(DEFAULT_SCHEME)?,
         };
+        let stages = plan
+            .stages()
+            .iter()
+            .map(|stage| (stage.scheme().name(), stage.scheme().subdivision_rule()));
+        refuse_triangle_rule(&source.mesh, &plan.name(), stages)?;
         Ok(Counter::Plan(self.for_initial_state(plan)?))
     }
 
@@ -181,18 +198,207 @@ impl<'a> Input<'a> {
     }
 }
 
-/// Reads the mesh named by `--mesh` or `--base`, if any.
-pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<halfedge::PolygonMesh>, Failure> {
-    match (&mesh.mesh, &mesh.base) {
-        (Some(_), Some(_)) => Err(usage!("--mesh and --base cannot be used together")),
-        (Some(path), None) => halfedge::io::read_mesh(path)
-            .map(Some)
-            .map_err(|e| mesh_failure(e, Kind::Input)),
-        (None, Some(name)) => halfedge::shapes::from_name(name)
-            .map(Some)
-            .map_err(|e| mesh_failure(e, Kind::Usage)),
-        (None, None) => Ok(None),
+/// A mesh as the commands use it: its face list, with the file's tags
+/// ([`PolygonMesh::tags`]; none with `--ignore-tags`, for OFF files and base meshes), and
+/// the subdivision options resolved from the flags, the tags and the defaults
+/// ([`resolve_options`]). `subdivide` hands both to the geometry.
+pub(crate) struct LoadedMesh {
+    /// The face list and its tags.
+    pub(crate) poly: PolygonMesh,
+    /// The resolved options.
+    pub(crate) options: SubdivisionOptions,
+    /// At most two lines for stderr: the tags of the file not read, the flags that override
+    /// the file's tags ([`LoadedMesh::print_notes`]).
+    notes: Vec<String>,
+}
+
+impl LoadedMesh {
+    /// The creases, corners, holes and options of the file (empty with `--ignore-tags`).
+    pub(crate) fn tags(&self) -> &Tags {
+        self.poly.tags()
     }
+
+    /// Prints the notes on stderr. Commands call it once the mesh passed their checks, so
+    /// that a refusal stays one line on stderr.
+    pub(crate) fn print_notes(&self) {
+        for note in &self.notes {
+            eprintln!("{note}");
+        }
+    }
+}
+
+/// Reads the mesh named by `--mesh` or `--base`, if any, with its tags (unless
+/// `--ignore-tags`), and resolves the subdivision options. Its notes
+/// ([`LoadedMesh::print_notes`]) are the tags the file has that are not read (each name with
+/// its count), and the flags that override the file's tags (naming both values).
+pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure> {
+    let poly = match (&mesh.mesh, &mesh.base) {
+        (Some(_), Some(_)) => return Err(usage!("--mesh and --base cannot be used together")),
+        (Some(path), None) => {
+            let options = if mesh.ignore_tags {
+                ReadOptions::without_tags()
+            } else {
+                ReadOptions::default()
+            };
+            halfedge::io::read_mesh_with(path, &options)
+                .map_err(|e| mesh_failure(e, Kind::Input))?
+        }
+        (None, Some(name)) => {
+            halfedge::shapes::from_name(name).map_err(|e| mesh_failure(e, Kind::Usage))?
+        }
+        (None, None) => {
+            refuse_options_without_mesh(mesh)?;
+            return Ok(None);
+        }
+    };
+    let label = mesh_label(mesh);
+    let mut notes = Vec::new();
+    if !poly.ignored_tags().is_empty() {
+        let total: u64 = poly.ignored_tags().iter().map(|t| t.count).sum();
+        let names: Vec<String> = poly
+            .ignored_tags()
+            .iter()
+            .map(|t| format!("{} ({})", t.name, t.count))
+            .collect();
+        notes.push(format!(
+            "warning: {label}: ignored {total} tag line{} this program does not read: {}",
+            if total == 1 { "" } else { "s" },
+            names.join(", ")
+        ));
+    }
+    let (options, overrides) = resolve_options(mesh, &poly.tags().options);
+    if !overrides.is_empty() {
+        notes.push(format!("note: {label}: {}", overrides.join("; ")));
+    }
+    Ok(Some(LoadedMesh {
+        poly,
+        options,
+        notes,
+    }))
+}
+
+/// The one resolution of the subdivision options: a flag given on the command line wins over
+/// the file's tag, the tag wins over the default (edge, uniform, catmark; face-varying
+/// corners-plus1). Also returns, for each flag that overrides a tag with another value, a
+/// note naming both (`--boundary edge overrides the tag interpolateboundary 1
+/// (edge-and-corner)`).
+pub(crate) fn resolve_options(
+    flags: &MeshSource,
+    tags: &TagOptions,
+) -> (SubdivisionOptions, Vec<String>) {
+    let mut overrides = Vec::new();
+    let mut from_flags = TagOptions::default();
+    from_flags.boundary = flags.boundary;
+    from_flags.crease_method = flags.crease_method;
+    from_flags.triangle_rule = flags.triangle_rule;
+    if let (Some(flag), Some(tag)) = (flags.boundary, tags.boundary) {
+        if flag != tag {
+            overrides.push(format!(
+                "--boundary {flag} overrides the tag interpolateboundary {} ({tag})",
+                tag.tag_value()
+            ));
+        }
+    }
+    if let (Some(flag), Some(tag)) = (flags.crease_method, tags.crease_method) {
+        if flag != tag {
+            overrides.push(format!(
+                "--crease-method {flag} overrides the tag creasemethod {} ({tag})",
+                tag.tag_name()
+            ));
+        }
+    }
+    if let (Some(flag), Some(tag)) = (flags.triangle_rule, tags.triangle_rule) {
+        if flag != tag {
+            overrides.push(format!(
+                "--triangle-rule {flag} overrides the tag smoothtriangles {}",
+                tag.tag_name()
+            ));
+        }
+    }
+    let options = from_flags.over(tags.over(SubdivisionOptions::default()));
+    (options, overrides)
+}
+
+/// The subdivision option flags describe how a mesh is subdivided: without `--mesh` or
+/// `--base` they are a usage error (exit 2), not silently ignored.
+pub(crate) fn refuse_options_without_mesh(mesh: &MeshSource) -> Result<(), Failure> {
+    match mesh.option_flag() {
+        Some(flag) if mesh.mesh.is_none() && mesh.base.is_none() => Err(usage!(
+            "{flag} describes how a mesh is subdivided: give --mesh FILE or --base NAME"
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// `--triangle-rule` is Catmull-Clark's rule for triangles (OpenSubdiv's
+/// `TriangleSubdivision`): refused (exit 2) for a scheme, or a composition without a
+/// Catmull-Clark stage, whose rule works on triangles (the Loop family, 1:N², √3), which has
+/// no such choice. `stages` are each stage's name and rule.
+pub(crate) fn refuse_triangle_rule<'a>(
+    mesh: &MeshSource,
+    scheme: &str,
+    stages: impl IntoIterator<Item = (&'a str, Option<Rule>)>,
+) -> Result<(), Failure> {
+    let Some(rule) = mesh.triangle_rule else {
+        return Ok(());
+    };
+    let stages: Vec<(&str, Option<Rule>)> = stages.into_iter().collect();
+    if stages.iter().any(|(_, r)| *r == Some(Rule::CatmullClark)) {
+        return Ok(());
+    }
+    if let Some((name, _)) = stages
+        .iter()
+        .find(|(_, r)| r.is_some_and(Rule::needs_triangles))
+    {
+        let which = if *name == scheme {
+            format!("{name} is a triangle scheme")
+        } else {
+            format!("{scheme} has the triangle scheme {name} and no catmull-clark stage")
+        };
+        return Err(usage!(
+            "--triangle-rule {rule} is Catmull-Clark's rule for triangles (OpenSubdiv's TriangleSubdivision), but {which}: triangle schemes (the Loop family, tri-split-N, sqrt3) have no such choice; drop the flag or use --scheme catmull-clark"
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses (exit 2) to count or subdivide a mesh whose resolved input makes faces holes:
+/// hole tags, or boundary interpolation `none` on a mesh with boundary edges (OpenSubdiv's
+/// `VTX_BOUNDARY_NONE` makes the faces on the boundary holes). Their counts are not derived
+/// yet, and counts that ignore them would be wrong.
+pub(crate) fn refuse_uncounted(
+    loaded: &LoadedMesh,
+    counts: &MeshCounts,
+    mesh: &MeshSource,
+) -> Result<(), Failure> {
+    let label = mesh_label(mesh);
+    let holes = loaded.tags().hole_faces();
+    if !holes.is_empty() {
+        let n = holes.len();
+        return Err(usage!(
+            "{label}: the file's hole tags make {n} face{} holes, and holes are not counted yet: use --ignore-tags to count the mesh without its tags",
+            if n == 1 { "" } else { "s" }
+        ));
+    }
+    if loaded.options.boundary == halfedge::tags::BoundaryInterpolation::None
+        && counts.boundary_edges > 0
+    {
+        let source = if mesh.boundary.is_some() {
+            "--boundary none".to_string()
+        } else {
+            "the file's tag interpolateboundary 0 (none)".to_string()
+        };
+        let fix = if mesh.boundary.is_some() {
+            "use --boundary edge or edge-and-corner"
+        } else {
+            "use --boundary edge or edge-and-corner, or --ignore-tags"
+        };
+        return Err(usage!(
+            "{label}: {source} makes the faces on the boundary ({} boundary edges) holes, and holes are not counted yet: {fix}",
+            counts.boundary_edges
+        ));
+    }
+    Ok(())
 }
 
 /// A mesh that could not be loaded: a resource limit is exit 4, anything else `otherwise`.

@@ -12,10 +12,43 @@
 //! `v/vt`, `v/vt/vn`, `v//vn`, negative indices) — in one streaming pass over a `BufRead`
 //! (no whole-file string), with an error naming the file and line for every bad token, and
 //! ignores every other statement (`vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`,
-//! `p`, OpenSubdiv's `t`, ...). tobj is kept as an independent cross-check: the test suite
-//! loads every mesh of the shared folder with both and compares positions and faces.
+//! `p`, ...) except OpenSubdiv's tags (below). tobj is kept as an independent cross-check:
+//! the test suite loads every mesh of the shared folder with both and compares positions and
+//! faces.
 //!
-//! OFF (`OFF`, `COFF`, `NOFF`, `CNOFF` with ASCII data) is read the same way.
+//! OFF (`OFF`, `COFF`, `NOFF`, `CNOFF` with ASCII data) is read the same way. OFF has no tags:
+//! an OFF mesh's [`PolygonMesh::tags`] are always empty.
+//!
+//! # Tags (OBJ)
+//!
+//! OpenSubdiv's shapes carry creases, corners, holes and subdivision options as tag lines,
+//! `t NAME nInts/nFloats/nStrings ints floats strings`, read by default into the mesh's
+//! [`tags`](PolygonMesh::tags) ([`crate::tags::Tags`]) as OpenSubdiv's shape loader
+//! interprets them. Indices in tags are **0-based** (unlike `f` lines).
+//!
+//! | tag | values | meaning |
+//! |---|---|---|
+//! | `crease` | `2k/1/0` or `2k/k/0` | vertex pairs `a b c d ...` are the edges (a,b), (c,d), ...; one sharpness for all pairs or one per pair |
+//! | `corner` | `k/1/0` or `k/k/0` | vertex sharpness, one for all vertices or one per vertex |
+//! | `hole` | `k/0/0` | face indices |
+//! | `interpolateboundary` | `1/0/0` | 0 none, 1 edge-and-corner, 2 edge-only ([`crate::tags::BoundaryInterpolation`]) |
+//! | `facevaryinginterpolateboundary` | `1/0/0` | 0-5: none, corners-only, corners-plus1, corners-plus2, boundaries, all |
+//! | `creasemethod` | `0/0/1` | `normal` (uniform) or `chaikin` |
+//! | `smoothtriangles` | `0/0/1` | `catmark` or `smooth` |
+//!
+//! A later crease or corner on the same edge or vertex replaces the earlier one, a later
+//! option tag the earlier one. Any other tag name (`vertexedit`, `facevaryingpropagatecorners`,
+//! ...) is not interpreted: the reader returns each such name with its number of lines
+//! ([`PolygonMesh::ignored_tags`]) and prints nothing. The reader is deliberately stricter
+//! than OpenSubdiv's (which skips or aborts): every tag line must follow the grammar (the
+//! counts must match the values on the line), a known tag must have the form the table gives
+//! with valid values (integers, finite sharpness `>= 0`, an option value in range), and its
+//! vertices, faces and edges must exist in the file (a crease's two vertices must be the ends
+//! of a side of some face); otherwise the read fails with [`Error::Parse`] naming the file and
+//! the tag's line ([`ParseError::TagIncomplete`], [`ParseError::TagCounts`], [`ParseError::TagValueCount`],
+//! [`ParseError::TagForm`], [`ParseError::TagOption`], [`ParseError::TagSharpness`],
+//! [`ParseError::Tag`], ...). [`ReadOptions::without_tags`] skips `t` lines unread, as this
+//! crate did before it read tags.
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
 //! open; files are written to a temporary file in the target folder and renamed over the
@@ -46,7 +79,7 @@ mod obj;
 mod off;
 mod write;
 
-pub use self::obj::{read_obj, read_obj_from};
+pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
     check_output, write_atomically, write_buffers_obj, write_buffers_obj_file, write_obj,
@@ -73,17 +106,63 @@ use crate::polygon::PolygonMesh;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_mesh(path: impl AsRef<Path>) -> Result<PolygonMesh> {
+    read_mesh_with(path, &ReadOptions::default())
+}
+
+/// [`read_mesh`] with options (OFF has no tags, so [`ReadOptions::tags`] changes nothing
+/// there).
+///
+/// # Errors
+///
+/// As [`read_mesh`].
+///
+/// # Example
+///
+/// ```no_run
+/// use halfedge::io::{read_mesh_with, ReadOptions};
+/// let pawn = read_mesh_with("osd_catmark_pawn.obj", &ReadOptions::default())?;
+/// assert_eq!(pawn.tags().sharp_edges().len(), 120);
+/// let untagged = read_mesh_with("osd_catmark_pawn.obj", &ReadOptions::without_tags())?;
+/// assert!(untagged.tags().is_empty());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<PolygonMesh> {
     let path = path.as_ref();
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     match extension.as_deref() {
-        Some("obj") => read_obj(path),
+        Some("obj") => read_obj_with(path, options),
         Some("off") => read_off(path),
         _ => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),
+    }
+}
+
+/// How the readers read a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ReadOptions {
+    /// Read OpenSubdiv's `t` lines into [`PolygonMesh::tags`] (the default); when `false`
+    /// they are skipped unread, malformed or not.
+    pub tags: bool,
+}
+
+impl ReadOptions {
+    /// Tags read (the default).
+    pub const DEFAULT: ReadOptions = ReadOptions { tags: true };
+
+    /// Tags skipped unread.
+    pub fn without_tags() -> ReadOptions {
+        ReadOptions { tags: false }
+    }
+}
+
+impl Default for ReadOptions {
+    fn default() -> Self {
+        ReadOptions::DEFAULT
     }
 }
 
@@ -168,9 +247,10 @@ impl Budget {
         }
     }
 
-    /// Refuses once `mesh` occupies more than the budget.
-    fn check<R>(self, mesh: &PolygonMesh, lines: &Lines<R>) -> Result<()> {
-        if mesh.heap_bytes() as u64 > self.bytes {
+    /// Refuses once `mesh` and `extra` bytes (the tags read so far) occupy more than the
+    /// budget.
+    fn check<R>(self, mesh: &PolygonMesh, extra: usize, lines: &Lines<R>) -> Result<()> {
+        if mesh.heap_bytes().saturating_add(extra) as u64 > self.bytes {
             return Err(Error::MeshTooLarge {
                 file: lines.name.clone(),
                 line: lines.line,
@@ -311,7 +391,13 @@ mod tests {
         let vertices = b"v 0 0 0\n".repeat(1000);
         let data = std::io::Cursor::new(vertices).chain(endless);
         let budget = Budget { bytes: 24 * 500 };
-        let err = obj::read_obj_within(BufReader::new(data), "endless.obj", budget).unwrap_err();
+        let err = obj::read_obj_within(
+            BufReader::new(data),
+            "endless.obj",
+            budget,
+            &ReadOptions::default(),
+        )
+        .unwrap_err();
         assert_eq!(
             err.to_string(),
             "endless.obj: line 500: the mesh read so far needs more than 12000 bytes of memory, half of what is available to this process"

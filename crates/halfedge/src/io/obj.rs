@@ -1,13 +1,18 @@
-//! OBJ reading: `v` and `f` statements, everything else ignored.
+//! OBJ reading: `v`, `f` and OpenSubdiv's `t` statements, everything else ignored.
 
+use std::collections::BTreeMap;
 use std::io::BufRead;
 use std::path::Path;
 
 use glam::DVec3;
 
-use super::{open, parse_coordinate, shorten, Budget, Lines};
+use super::{open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
+use crate::tags::{
+    BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, IgnoredTag, TagError, Tags,
+    TriangleRule,
+};
 
 /// Reads an OBJ file as a face list, keeping polygons (no triangulation) and every `v` line
 /// (used or not) in file order.
@@ -28,8 +33,22 @@ use crate::polygon::PolygonMesh;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
+    read_obj_with(path, &ReadOptions::default())
+}
+
+/// [`read_obj`] with options (e.g. [`ReadOptions::without_tags`]: `t` lines skipped unread).
+///
+/// # Errors
+///
+/// As [`read_obj`].
+pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<PolygonMesh> {
     let path = path.as_ref();
-    read_obj_from(open(path)?, &path.display().to_string())
+    read_obj_within(
+        open(path)?,
+        &path.display().to_string(),
+        Budget::of_process(),
+        options,
+    )
 }
 
 /// Reads OBJ text from any buffered reader; `name` is the file name used in error messages.
@@ -38,13 +57,15 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// `v`, `v/vt`, `v/vt/vn` or `v//vn`, where `v` is 1-based or negative (relative to the
 /// vertices read so far). Positive indices may refer to vertices defined later in the file.
 /// Comments (`#`), blank lines, backslash line continuations and all other statements are
-/// skipped.
+/// skipped, except OpenSubdiv's tags (`t NAME nInts/nFloats/nStrings ints floats strings`),
+/// which become the mesh's [`tags`](PolygonMesh::tags) as the [`crate::io`] docs describe.
 ///
 /// # Errors
 ///
 /// As [`read_obj`]: a bad or non-finite coordinate, a vertex with fewer than three
 /// coordinates, a face index that is 0, not a number, too large or out of range, a face with
-/// fewer than three corners, binary data, no faces at all, a mesh beyond the memory budget.
+/// fewer than three corners, a malformed tag line or a tag on a vertex, face or edge the file
+/// does not have, binary data, no faces at all, a mesh beyond the memory budget.
 ///
 /// # Example
 ///
@@ -56,17 +77,44 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
-    read_obj_within(reader, name, Budget::of_process())
+    read_obj_within(reader, name, Budget::of_process(), &ReadOptions::default())
 }
 
-/// [`read_obj_from`] with the mesh's memory limited to `budget`.
+/// [`read_obj_from`] with options.
+///
+/// # Errors
+///
+/// As [`read_obj_from`].
+///
+/// # Example
+///
+/// ```
+/// use halfedge::io::{read_obj_from_with, ReadOptions};
+/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nt crease 2/1/0 0 7 10\n";
+/// let err = read_obj_from_with(text.as_bytes(), "t.obj", &ReadOptions::default()).unwrap_err();
+/// assert_eq!(err.to_string(), "t.obj: line 5: tag `crease`: vertex 7 is out of range (the mesh has 3 vertices; tag indices are 0-based)");
+/// let mesh = read_obj_from_with(text.as_bytes(), "t.obj", &ReadOptions::without_tags())?;
+/// assert!(!mesh.has_tags());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn read_obj_from_with(
+    reader: impl BufRead,
+    name: &str,
+    options: &ReadOptions,
+) -> Result<PolygonMesh> {
+    read_obj_within(reader, name, Budget::of_process(), options)
+}
+
+/// [`read_obj_from_with`] with the mesh's memory limited to `budget`.
 pub(crate) fn read_obj_within(
     reader: impl BufRead,
     name: &str,
     budget: Budget,
+    options: &ReadOptions,
 ) -> Result<PolygonMesh> {
     let mut lines = Lines::new(reader, name);
     let mut mesh = PolygonMesh::default();
+    let mut tags = TagReader::default();
     let mut corners: Vec<u32> = Vec::new();
     // Positive indices beyond the vertices read so far: checked at the end.
     let mut forward: Vec<(u64, i64)> = Vec::new();
@@ -96,7 +144,7 @@ pub(crate) fn read_obj_within(
                     });
                 }
                 mesh.positions.push(DVec3::from_array(xyz));
-                budget.check(&mesh, &lines)?;
+                budget.check(&mesh, tags.heap_bytes(), &lines)?;
             }
             "f" => {
                 corners.clear();
@@ -129,7 +177,12 @@ pub(crate) fn read_obj_within(
                     return Err(lines.error(kind));
                 }
                 mesh.push_face_from_line(&corners, lines.line);
-                budget.check(&mesh, &lines)?;
+                budget.check(&mesh, tags.heap_bytes(), &lines)?;
+            }
+            "t" if options.tags => {
+                tags.read(tokens, lines.line)
+                    .map_err(|kind| lines.error(kind))?;
+                budget.check(&mesh, tags.heap_bytes(), &lines)?;
             }
             _ => {}
         }
@@ -150,7 +203,273 @@ pub(crate) fn read_obj_within(
             file: name.to_string(),
         });
     }
+    tags.finish(&mut mesh)
+        .map_err(|(line, kind)| Error::Parse {
+            file: name.to_string(),
+            line,
+            kind,
+        })?;
     Ok(mesh)
+}
+
+/// The tags read so far, with the line of every crease, corner and hole (for errors found
+/// once the faces are known).
+#[derive(Default)]
+struct TagReader {
+    tags: Tags,
+    crease_lines: Vec<u64>,
+    corner_lines: Vec<u64>,
+    hole_lines: Vec<u64>,
+    ignored: BTreeMap<String, u64>,
+    /// The heap bytes of `ignored`, kept as names are added (summed per line, it would make
+    /// a file of many distinct unknown tags quadratic).
+    ignored_bytes: usize,
+}
+
+/// What each known tag takes, for [`ParseError::TagForm`].
+const CREASE_FORM: &str =
+    "vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)";
+const CORNER_FORM: &str =
+    "vertices and one sharpness for all or one per vertex (k/1/0 or k/k/0, k >= 1)";
+const HOLE_FORM: &str = "face indices only (k/0/0, k >= 1)";
+const ONE_INT_FORM: &str = "one integer (1/0/0)";
+const ONE_STRING_FORM: &str = "one string (0/0/1)";
+
+impl TagReader {
+    fn heap_bytes(&self) -> usize {
+        self.tags.heap_bytes()
+            + (self.crease_lines.len() + self.corner_lines.len() + self.hole_lines.len())
+                * std::mem::size_of::<u64>()
+            + self.ignored_bytes
+    }
+
+    /// Reads one `t` line (the tokens after `t`).
+    fn read(
+        &mut self,
+        mut tokens: std::str::SplitAsciiWhitespace<'_>,
+        line: u64,
+    ) -> std::result::Result<(), ParseError> {
+        let (Some(name), Some(counts_token)) = (tokens.next(), tokens.next()) else {
+            return Err(ParseError::TagIncomplete);
+        };
+        let counts = parse_counts(counts_token).ok_or_else(|| ParseError::TagCounts {
+            token: shorten(counts_token),
+        })?;
+        // The values are walked, never collected: a 16 MiB line of indices stays 16 MiB.
+        let found = tokens.clone().count() as u64;
+        let declared = counts.iter().fold(0u64, |a, &c| a.saturating_add(c));
+        if found != declared {
+            return Err(ParseError::TagValueCount {
+                name: shorten(name),
+                declared,
+                found,
+            });
+        }
+        let [n_ints, n_floats, n_strings] = counts.map(|c| c as usize);
+        let mut ints = tokens.clone().take(n_ints);
+        let floats = tokens.clone().skip(n_ints).take(n_floats);
+        let mut strings = tokens.skip(n_ints + n_floats);
+        let form = |ok: bool, expected: &'static str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(ParseError::TagForm {
+                    name: name.to_string(),
+                    counts: counts_token.to_string(),
+                    expected,
+                })
+            }
+        };
+        let option_value = |what: Option<&str>, expected: &'static str| ParseError::TagOption {
+            name: name.to_string(),
+            value: shorten(what.unwrap_or("")),
+            expected,
+        };
+        match name {
+            "crease" => {
+                let pairs = n_ints / 2;
+                form(
+                    n_ints >= 2
+                        && n_ints % 2 == 0
+                        && (n_floats == 1 || n_floats == pairs)
+                        && n_strings == 0,
+                    CREASE_FORM,
+                )?;
+                let sharpness = parse_sharpnesses(name, floats)?;
+                let mut k = 0;
+                while let (Some(a), Some(b)) = (ints.next(), ints.next()) {
+                    let a = parse_tag_index(name, a, "0-based vertex index")?;
+                    let b = parse_tag_index(name, b, "0-based vertex index")?;
+                    let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
+                    self.tags
+                        .add_crease(a, b, s)
+                        .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
+                    self.crease_lines.push(line);
+                    k += 1;
+                }
+            }
+            "corner" => {
+                form(
+                    n_ints >= 1 && (n_floats == 1 || n_floats == n_ints) && n_strings == 0,
+                    CORNER_FORM,
+                )?;
+                let sharpness = parse_sharpnesses(name, floats)?;
+                for (k, token) in ints.enumerate() {
+                    let v = parse_tag_index(name, token, "0-based vertex index")?;
+                    let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
+                    self.tags
+                        .add_corner(v, s)
+                        .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
+                    self.corner_lines.push(line);
+                }
+            }
+            "hole" => {
+                form(n_ints >= 1 && n_floats == 0 && n_strings == 0, HOLE_FORM)?;
+                for token in ints {
+                    let f = parse_tag_index(name, token, "0-based face index")?;
+                    self.tags.add_hole(f);
+                    self.hole_lines.push(line);
+                }
+            }
+            "interpolateboundary" => {
+                form(counts == [1, 0, 0], ONE_INT_FORM)?;
+                let token = ints.next();
+                let b = token
+                    .and_then(option_int)
+                    .and_then(BoundaryInterpolation::from_tag_value);
+                self.tags.options.boundary = Some(b.ok_or_else(|| {
+                    option_value(token, "0 none, 1 edge-and-corner, 2 edge-only")
+                })?);
+            }
+            "facevaryinginterpolateboundary" => {
+                form(counts == [1, 0, 0], ONE_INT_FORM)?;
+                let token = ints.next();
+                let f = token
+                    .and_then(option_int)
+                    .and_then(FaceVaryingInterpolation::from_tag_value);
+                self.tags.options.face_varying = Some(f.ok_or_else(|| {
+                    option_value(
+                        token,
+                        "0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all",
+                    )
+                })?);
+            }
+            "creasemethod" => {
+                form(counts == [0, 0, 1], ONE_STRING_FORM)?;
+                let token = strings.next();
+                let m = token.and_then(CreaseMethod::from_tag_name);
+                self.tags.options.crease_method =
+                    Some(m.ok_or_else(|| option_value(token, "normal or chaikin"))?);
+            }
+            "smoothtriangles" => {
+                form(counts == [0, 0, 1], ONE_STRING_FORM)?;
+                let token = strings.next();
+                let r = token.and_then(TriangleRule::from_tag_name);
+                self.tags.options.triangle_rule =
+                    Some(r.ok_or_else(|| option_value(token, "catmark or smooth"))?);
+            }
+            _ => {
+                let key = shorten(name);
+                if let Some(count) = self.ignored.get_mut(&key) {
+                    *count += 1;
+                } else {
+                    self.ignored_bytes += key.len() + std::mem::size_of::<(String, u64)>();
+                    self.ignored.insert(key, 1);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the tags against the mesh read and hands them over; an error comes with the
+    /// line of the tag.
+    fn finish(self, mesh: &mut PolygonMesh) -> std::result::Result<(), (u64, ParseError)> {
+        if let Err(e) = self.tags.check_against(mesh) {
+            let line = match &e {
+                TagError::VertexOutOfRange {
+                    tag: "corner",
+                    entry,
+                    ..
+                } => self.corner_lines[*entry],
+                TagError::VertexOutOfRange { entry, .. } | TagError::NotAnEdge { entry, .. } => {
+                    self.crease_lines[*entry]
+                }
+                TagError::FaceOutOfRange { entry, .. } => self.hole_lines[*entry],
+            };
+            return Err((line, ParseError::Tag(e)));
+        }
+        let ignored = self
+            .ignored
+            .into_iter()
+            .map(|(name, count)| IgnoredTag { name, count })
+            .collect();
+        mesh.set_read_tags(self.tags, ignored);
+        Ok(())
+    }
+}
+
+/// Parses `nInts/nFloats/nStrings` (three unsigned decimal numbers).
+fn parse_counts(token: &str) -> Option<[u64; 3]> {
+    let mut parts = token.split('/');
+    let mut counts = [0u64; 3];
+    for slot in &mut counts {
+        let part = parts.next()?;
+        if part.is_empty() || !part.bytes().all(|b| b.is_ascii_digit()) {
+            return None;
+        }
+        *slot = part.parse().ok()?;
+    }
+    parts.next().is_none().then_some(counts)
+}
+
+/// Parses a tag's 0-based vertex or face index.
+fn parse_tag_index(
+    name: &str,
+    token: &str,
+    expected: &'static str,
+) -> std::result::Result<u32, ParseError> {
+    if token.is_empty() || !token.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(ParseError::InvalidNumber {
+            token: shorten(token),
+            expected,
+        });
+    }
+    match token.parse::<u32>() {
+        Ok(i) if i < u32::MAX => Ok(i),
+        _ => Err(ParseError::TagIndexTooLarge {
+            name: name.to_string(),
+            token: shorten(token),
+        }),
+    }
+}
+
+/// An option tag's integer (`None` when it is not one, reported as an invalid value).
+fn option_int(token: &str) -> Option<i64> {
+    token.parse().ok()
+}
+
+/// Parses a tag's sharpness values (finite, `>= 0`).
+fn parse_sharpnesses<'a>(
+    name: &str,
+    tokens: impl Iterator<Item = &'a str>,
+) -> std::result::Result<Vec<f32>, ParseError> {
+    tokens
+        .map(|t| match t.parse::<f32>() {
+            Ok(s) if s.is_finite() && s >= 0.0 => Ok(s),
+            Ok(_) => Err(sharpness_error(name, t)),
+            Err(_) => Err(ParseError::InvalidNumber {
+                token: shorten(t),
+                expected: "sharpness",
+            }),
+        })
+        .collect()
+}
+
+fn sharpness_error(name: &str, token: &str) -> ParseError {
+    ParseError::TagSharpness {
+        name: name.to_string(),
+        token: shorten(token),
+    }
 }
 
 /// Parses an OBJ vertex index: a non-zero integer whose magnitude fits `u32`.
@@ -183,7 +502,7 @@ mod tests {
     fn corner_forms_groups_and_ignored_statements() {
         let text = "mtllib x.mtl\no one\nv 0 0 0\nv 1 0 0 1.0\nv 1 1 0\nv 0 1 0 0.5 0.5 0.5\n\
                     vt 0 0\nvn 0 0 1\nvp 0.5\ns off\ng a b\nusemtl m\n\
-                    f 1/1 2/1/1 3//1\nt crease 2 1 0 1 2\nl 1 2\ng c\nf -4 -2 \\\n -1 # tail\n\
+                    f 1/1 2/1/1 3//1\nt crease 2/1/0 0 1 2\nl 1 2\ng c\nf -4 -2 \\\n -1 # tail\n\
                     f 1 3 4\n";
         let mesh = read_obj_from(text.as_bytes(), "x.obj").expect("valid");
         assert_eq!(mesh.n_vertices(), 4);
@@ -198,5 +517,178 @@ mod tests {
         let mesh = read_obj_from(text.as_bytes(), "x.obj").expect("valid");
         assert_eq!(mesh.positions[0], DVec3::new(1.0, -25.0, 0.5));
         assert_eq!(mesh.face(0), &[0, 1, 2]);
+    }
+
+    fn read(text: &str) -> Result<PolygonMesh> {
+        read_obj_from(text.as_bytes(), "t.obj")
+    }
+
+    /// A quad strip: vertices 0-5, faces (0 1 4 3) and (1 2 5 4); then `tags`.
+    fn strip(tags: &str) -> String {
+        format!(
+            "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n{tags}"
+        )
+    }
+
+    #[test]
+    fn every_tag_kind_is_read() {
+        let mesh = read(&strip(
+            "t crease 4/1/0 0 1 1 4 10\nt crease 2/1/0 4 1 2.5\nt crease 4/2/0 2 5 5 4 0.5 0\n\
+             t corner 2/1/0 0 2 3\nt corner 2/2/0 3 5 1 10\nt hole 2/0/0 1 1\n\
+             t interpolateboundary 1/0/0 1\nt facevaryinginterpolateboundary 1/0/0 5\n\
+             t creasemethod 0/0/1 chaikin\nt smoothtriangles 0/0/1 smooth\n\
+             t vertexedit 1/0/2 3 P add\nt vertexedit 0/0/0\nt facevaryingpropagatecorners 1/0/0 1\n",
+        ))
+        .expect("valid");
+        let t = mesh.tags();
+        assert_eq!(t.creases().len(), 5);
+        // (1, 4) given twice: the later 2.5 wins; (4, 5) has sharpness 0: not sharp.
+        let sharp: Vec<(u32, u32, f32)> = t
+            .sharp_edges()
+            .iter()
+            .map(|c| (c.a, c.b, c.sharpness))
+            .collect();
+        assert_eq!(sharp, [(0, 1, 10.0), (1, 4, 2.5), (2, 5, 0.5)]);
+        let corners: Vec<(u32, f32)> = t
+            .sharp_vertices()
+            .iter()
+            .map(|c| (c.vertex, c.sharpness))
+            .collect();
+        assert_eq!(corners, [(0, 3.0), (2, 3.0), (3, 1.0), (5, 10.0)]);
+        assert_eq!((t.holes(), t.hole_faces()), (&[1, 1][..], vec![1]));
+        assert_eq!(
+            t.options.boundary,
+            Some(BoundaryInterpolation::EdgeAndCorner)
+        );
+        assert_eq!(t.options.face_varying, Some(FaceVaryingInterpolation::All));
+        assert_eq!(t.options.crease_method, Some(CreaseMethod::Chaikin));
+        assert_eq!(t.options.triangle_rule, Some(TriangleRule::Smooth));
+        let ignored: Vec<(&str, u64)> = mesh
+            .ignored_tags()
+            .iter()
+            .map(|i| (i.name.as_str(), i.count))
+            .collect();
+        assert_eq!(
+            ignored,
+            [("facevaryingpropagatecorners", 1), ("vertexedit", 2)]
+        );
+        assert!(mesh.has_tags());
+        // Every option value by number.
+        for (value, b) in [
+            (0, BoundaryInterpolation::None),
+            (2, BoundaryInterpolation::Edge),
+        ] {
+            let m = read(&strip(&format!("t interpolateboundary 1/0/0 {value}\n"))).expect("valid");
+            assert_eq!(m.tags().options.boundary, Some(b));
+        }
+        let m = read(&strip(
+            "t creasemethod 0/0/1 normal\nt facevaryinginterpolateboundary 1/0/0 0\n",
+        ))
+        .expect("valid");
+        assert_eq!(m.tags().options.crease_method, Some(CreaseMethod::Uniform));
+        assert_eq!(
+            m.tags().options.face_varying,
+            Some(FaceVaryingInterpolation::None)
+        );
+    }
+
+    #[test]
+    fn a_long_tag_line_is_walked_and_a_repeated_edge_counts_once() {
+        let pairs = 200_000;
+        let line = format!(
+            "t crease {}/1/0 {} 10\n",
+            2 * pairs,
+            "0 1 4 1 ".repeat(pairs / 2)
+        );
+        let mesh = read(&strip(&line)).expect("valid");
+        assert_eq!(mesh.tags().creases().len(), pairs);
+        assert_eq!(mesh.tags().sharp_edges().len(), 2);
+        // Per-pair sharpness: the k-th float belongs to the k-th pair.
+        let mesh = read(&strip("t crease 4/2/0 0 1 1 2 3 4\n")).expect("valid");
+        let s: Vec<f32> = mesh.tags().creases().iter().map(|c| c.sharpness).collect();
+        assert_eq!(s, [3.0, 4.0]);
+    }
+
+    #[test]
+    fn tags_are_compared_and_can_be_skipped() {
+        let tagged = read(&strip("t crease 2/1/0 0 1 10\n")).expect("valid");
+        let plain = read(&strip("")).expect("valid");
+        assert!(!plain.has_tags() && plain.tags().is_empty());
+        assert_ne!(tagged, plain, "creases change the surface");
+        let skipped = read_obj_from_with(
+            strip("t crease 2/1/0 0 1 10\nt nonsense\nt crease 1/1/0 0 1\n").as_bytes(),
+            "t.obj",
+            &ReadOptions::without_tags(),
+        )
+        .expect("tags skipped unread");
+        assert_eq!(skipped, plain);
+        assert!(!skipped.has_tags());
+        // Ignored tags are provenance, not part of the surface.
+        let ignored = read(&strip("t vertexedit 0/0/0\n")).expect("valid");
+        assert_eq!(ignored, plain);
+        assert!(ignored.has_tags() && ignored.tags().is_empty());
+    }
+
+    #[test]
+    fn every_tag_error_names_the_file_and_line() {
+        let cases: &[(&str, &str)] = &[
+            ("t\n", "a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease\n", "a tag line needs a name and value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease 2 1 0 0 1\n", "`2` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease 2/1 0 1 1\n", "`2/1` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease 2/1/0/0 0 1 1\n", "`2/1/0/0` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease -2/1/0 0 1 1\n", "`-2/1/0` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t crease 2/1/0 0 1\n", "tag `crease` declares 3 values but the line has 2"),
+            ("t crease 2/1/0 0 1 1 7\n", "tag `crease` declares 3 values but the line has 4"),
+            ("t vertexedit 99999999999999999999/0/0 1\n", "`99999999999999999999/0/0` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
+            ("t vertexedit 18446744073709551615/18446744073709551615/2 1\n", "tag `vertexedit` declares 18446744073709551615 values but the line has 1"),
+            ("t crease 3/1/0 0 1 4 1\n", "tag `crease` has 3/1/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
+            ("t crease 4/3/0 0 1 1 4 1 1 1\n", "tag `crease` has 4/3/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
+            ("t crease 2/0/0 0 1\n", "tag `crease` has 2/0/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
+            ("t crease 0/1/0 1\n", "tag `crease` has 0/1/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
+            ("t crease 2/1/1 0 1 1 x\n", "tag `crease` has 2/1/1 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
+            ("t corner 2/3/0 0 1 1 1 1\n", "tag `corner` has 2/3/0 values: expected vertices and one sharpness for all or one per vertex (k/1/0 or k/k/0, k >= 1)"),
+            ("t hole 1/1/0 0 1\n", "tag `hole` has 1/1/0 values: expected face indices only (k/0/0, k >= 1)"),
+            ("t interpolateboundary 2/0/0 1 1\n", "tag `interpolateboundary` has 2/0/0 values: expected one integer (1/0/0)"),
+            ("t creasemethod 1/0/0 1\n", "tag `creasemethod` has 1/0/0 values: expected one string (0/0/1)"),
+            ("t crease 2/1/0 0 x 1\n", "`x` is not a valid 0-based vertex index"),
+            ("t crease 2/1/0 0 -1 1\n", "`-1` is not a valid 0-based vertex index"),
+            ("t crease 2/1/0 0 1 sharp\n", "`sharp` is not a valid sharpness"),
+            ("t crease 2/1/0 0 1 -1\n", "tag `crease`: sharpness `-1` is not valid (expected a finite number >= 0)"),
+            ("t corner 1/1/0 0 nan\n", "tag `corner`: sharpness `nan` is not valid (expected a finite number >= 0)"),
+            ("t corner 1/1/0 0 1e39\n", "tag `corner`: sharpness `1e39` is not valid (expected a finite number >= 0)"),
+            ("t hole 1/0/0 4294967295\n", "tag `hole`: index `4294967295` is too large"),
+            ("t hole 1/0/0 1.0\n", "`1.0` is not a valid 0-based face index"),
+            ("t interpolateboundary 1/0/0 3\n", "tag `interpolateboundary`: `3` is not a valid value (expected 0 none, 1 edge-and-corner, 2 edge-only)"),
+            ("t interpolateboundary 1/0/0 x\n", "tag `interpolateboundary`: `x` is not a valid value (expected 0 none, 1 edge-and-corner, 2 edge-only)"),
+            ("t facevaryinginterpolateboundary 1/0/0 6\n", "tag `facevaryinginterpolateboundary`: `6` is not a valid value (expected 0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all)"),
+            ("t creasemethod 0/0/1 uniform\n", "tag `creasemethod`: `uniform` is not a valid value (expected normal or chaikin)"),
+            ("t smoothtriangles 0/0/1 loop\n", "tag `smoothtriangles`: `loop` is not a valid value (expected catmark or smooth)"),
+            ("t crease 2/1/0 0 6 10\n", "tag `crease`: vertex 6 is out of range (the mesh has 6 vertices; tag indices are 0-based)"),
+            ("t corner 1/1/0 6 10\n", "tag `corner`: vertex 6 is out of range (the mesh has 6 vertices; tag indices are 0-based)"),
+            ("t hole 1/0/0 2\n", "tag `hole`: face 2 is out of range (the mesh has 2 faces; tag indices are 0-based)"),
+            ("t crease 2/1/0 0 4 10\n", "tag `crease`: vertices 0 and 4 are not an edge of the mesh's faces"),
+            ("t crease 2/1/0 3 3 10\n", "tag `crease`: vertices 3 and 3 are not an edge of the mesh's faces"),
+        ];
+        for (tags, message) in cases {
+            let text = strip(&format!("# tags\n{tags}"));
+            let err = read(&text).unwrap_err();
+            assert!(
+                matches!(err, Error::Parse { line: 10, .. }),
+                "{tags}: {err}"
+            );
+            assert_eq!(
+                err.to_string(),
+                format!("t.obj: line 10: {message}"),
+                "{tags}"
+            );
+        }
+        // Errors found once the faces are known name the tag's own line, even when faces follow.
+        let text = "t crease 2/1/0 0 1 10\nt crease 2/1/0 0 2 10\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+        let err = read(text).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.obj: line 2: tag `crease`: vertices 0 and 2 are not an edge of the mesh's faces"
+        );
     }
 }

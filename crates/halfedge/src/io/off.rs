@@ -130,7 +130,7 @@ pub(crate) fn read_off_within(
             *slot = parse_coordinate(token).map_err(|kind| lines.error(kind))?;
         }
         mesh.positions.push(DVec3::from_array(xyz));
-        budget.check(&mesh, &lines)?;
+        budget.check(&mesh, 0, &lines)?;
     }
     let mut corners: Vec<u32> = Vec::new();
     while mesh.n_faces() < n_faces as usize {
@@ -182,7 +182,7 @@ pub(crate) fn read_off_within(
             corners.push(index as u32);
         }
         mesh.push_face_from_line(&corners, lines.line);
-        budget.check(&mesh, &lines)?;
+        budget.check(&mesh, 0, &lines)?;
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {

@@ -4,3 +4,4 @@ mod invalid_obj;
 mod properties;
 mod roundtrip;
 mod shared_meshes;
+mod tags;

@@ -6,4 +6,5 @@ mod matrix;
 mod meshes;
 mod plot;
 mod schemes;
+mod tags;
 mod util;

@@ -1,0 +1,587 @@
+//! OpenSubdiv's OBJ tags end to end: `stats` reports them, the option flags and their
+//! precedence over the tags, `--ignore-tags`, and the refusals (malformed tags exit 3; holes,
+//! boundary `none` and `--triangle-rule` with a triangle scheme exit 2).
+
+use crate::util::{fails, ok, subcount};
+
+/// A 2x1 quad strip (vertices 0-5, faces (0 1 4 3), (1 2 5 4)) followed by `tags`.
+const STRIP: &str = "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 5 4\nf 2 3 6 5\n";
+
+/// A closed cube (vertices 0-7, 0-based) followed by `tags`.
+const CUBE: &str =
+    "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n\
+                    f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+/// Writes `text` as `name` in a fresh folder; returns the folder (kept alive) and the path.
+fn file(name: &str, text: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).expect("written");
+    let path = path.to_str().expect("UTF-8 path").to_owned();
+    (dir, path)
+}
+
+#[test]
+fn stats_reports_the_tags_in_text_and_json() {
+    let tags = "t crease 4/1/0 0 1 1 4 10\nt crease 2/1/0 4 5 0\nt corner 2/1/0 0 2 3\n\
+                t interpolateboundary 1/0/0 1\nt creasemethod 0/0/1 chaikin\n";
+    let (_dir, path) = file("strip.obj", &format!("{STRIP}{tags}"));
+    let json = ok(&["stats", "--mesh", &path, "--format", "json"]);
+    let value: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    assert_eq!(
+        value["tags"].to_string(),
+        r#"{"crease_edges":2,"corners":2,"holes":0,"options":{"boundary":"edge-and-corner","crease_method":"chaikin"}}"#
+    );
+    assert!(
+        json.contains(r#""tags": {"crease_edges": 2, "corners": 2, "holes": 0, "options": {"boundary": "edge-and-corner", "crease_method": "chaikin"}}, "applicable_schemes": "#),
+        "{json}"
+    );
+    let text = ok(&["stats", "--mesh", &path]);
+    assert!(
+        text.contains("\nmanifold, consistently oriented\ntags: 2 crease edges, 2 corners, 0 holes; options: boundary = edge-and-corner, crease_method = chaikin\napplicable schemes: "),
+        "{text}"
+    );
+    // Holes are counted once each; every option key.
+    let (_dir, path) = file(
+        "holes.obj",
+        &format!("{STRIP}t hole 2/0/0 1 1\nt smoothtriangles 0/0/1 smooth\nt facevaryinginterpolateboundary 1/0/0 4\n"),
+    );
+    let text = ok(&["stats", "--mesh", &path]);
+    assert!(
+        text.contains("\ntags: 0 crease edges, 0 corners, 1 holes; options: face_varying = boundaries, triangle_rule = smooth\n"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_file_without_tags_and_ignore_tags_give_todays_output() {
+    let (_dir, plain) = file("plain.obj", STRIP);
+    let (_dir2, tagged) = file(
+        "tagged.obj",
+        &format!("{STRIP}t crease 2/1/0 0 1 10\nt vertexedit 0/0/1 x\n"),
+    );
+    for format in ["text", "json"] {
+        let before = ok(&["stats", "--mesh", &plain, "--format", format]);
+        assert!(!before.contains("tags"), "{before}");
+        assert_eq!(
+            ok(&[
+                "stats",
+                "--mesh",
+                &plain,
+                "--format",
+                format,
+                "--ignore-tags"
+            ]),
+            before
+        );
+        // --ignore-tags reads the tagged file as before tags were read: same output, and no
+        // line about the unknown tag.
+        let ignored = ok(&[
+            "stats",
+            "--mesh",
+            &tagged,
+            "--format",
+            format,
+            "--ignore-tags",
+        ]);
+        assert_eq!(ignored, before);
+    }
+    // A malformed tag is no error with --ignore-tags (the t lines are not read).
+    let (_dir3, bad) = file("bad.obj", &format!("{STRIP}t crease 3/1/0 0 1 2 1\n"));
+    ok(&[
+        "table",
+        "--mesh",
+        &bad,
+        "--ignore-tags",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ]);
+}
+
+#[test]
+fn unknown_tags_are_reported_once_with_their_count() {
+    let (_dir, path) = file(
+        "edits.obj",
+        &format!("{STRIP}t vertexedit 1/0/0 3\nt vertexedit 0/0/0\nt facevaryingpropagatecorners 1/0/0 1\n"),
+    );
+    let run = subcount(&["stats", "--mesh", &path]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stderr,
+        format!("warning: {path}: ignored 3 tag lines this program does not read: facevaryingpropagatecorners (1), vertexedit (2)\n")
+    );
+    assert!(
+        run.stdout.contains("\ntags: 0 crease edges, 0 corners, 0 holes; ignored: facevaryingpropagatecorners (1), vertexedit (2)\n"),
+        "{}",
+        run.stdout
+    );
+    let json = subcount(&["stats", "--mesh", &path, "--format", "json"]).stdout;
+    assert!(
+        json.contains(r#""tags": {"crease_edges": 0, "corners": 0, "holes": 0, "options": {}, "ignored": {"facevaryingpropagatecorners": 1, "vertexedit": 2}}"#),
+        "{json}"
+    );
+    // Once per command, also for a counting command.
+    let run = subcount(&[
+        "table",
+        "--mesh",
+        &path,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ]);
+    assert_eq!(
+        (run.code, run.stderr.lines().count()),
+        (0, 1),
+        "{}",
+        run.stderr
+    );
+}
+
+#[test]
+fn malformed_tags_exit_3_naming_file_and_line() {
+    let cases = [
+        ("t crease 2/1/0 0 1\n", "line 9: tag `crease` declares 3 values but the line has 2"),
+        ("t crease 3/1/0 0 1 4 1\n", "line 9: tag `crease` has 3/1/0 values"),
+        ("t crease 2/1/0 0 4 1\n", "line 9: tag `crease`: vertices 0 and 4 are not an edge of the mesh's faces"),
+        ("t corner 1/1/0 9 1\n", "line 9: tag `corner`: vertex 9 is out of range (the mesh has 6 vertices; tag indices are 0-based)"),
+        ("t hole 1/0/0 2\n", "line 9: tag `hole`: face 2 is out of range (the mesh has 2 faces; tag indices are 0-based)"),
+        ("t interpolateboundary 1/0/0 3\n", "line 9: tag `interpolateboundary`: `3` is not a valid value"),
+        ("t creasemethod 0/0/1 fast\n", "line 9: tag `creasemethod`: `fast` is not a valid value (expected normal or chaikin)"),
+        ("t crease 2/1/0 0 1 x\n", "line 9: `x` is not a valid sharpness"),
+    ];
+    for (tag, message) in cases {
+        let (_dir, path) = file("bad.obj", &format!("{STRIP}{tag}"));
+        for command in [&["stats"][..], &["table", "--scheme", "catmull-clark"]] {
+            let mut args = command.to_vec();
+            args.extend(["--mesh", &path]);
+            fails(&args, 3, &format!("{path}: {message}"));
+        }
+    }
+}
+
+#[test]
+fn a_flag_wins_over_the_tag_with_one_note_naming_both() {
+    let (_dir, path) = file(
+        "opts.obj",
+        &format!("{CUBE}t interpolateboundary 1/0/0 1\nt creasemethod 0/0/1 chaikin\nt smoothtriangles 0/0/1 smooth\n"),
+    );
+    let table = [
+        "table",
+        "--mesh",
+        &path,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ];
+    let plain = ok(&table);
+    // The same value as the tag: nothing to say.
+    let mut same = table.to_vec();
+    same.extend([
+        "--boundary",
+        "edge-and-corner",
+        "--crease-method",
+        "chaikin",
+    ]);
+    assert_eq!(ok(&same), plain);
+    for (flags, note) in [
+        (
+            &["--boundary", "edge"][..],
+            "--boundary edge overrides the tag interpolateboundary 1 (edge-and-corner)",
+        ),
+        (
+            &["--crease-method", "uniform"],
+            "--crease-method uniform overrides the tag creasemethod chaikin (chaikin)",
+        ),
+        (
+            &["--triangle-rule", "catmark"],
+            "--triangle-rule catmark overrides the tag smoothtriangles smooth",
+        ),
+        (
+            &["--boundary", "none", "--crease-method", "uniform"],
+            "--boundary none overrides the tag interpolateboundary 1 (edge-and-corner); --crease-method uniform overrides the tag creasemethod chaikin (chaikin)",
+        ),
+    ] {
+        let mut args = table.to_vec();
+        args.extend(flags);
+        let run = subcount(&args);
+        assert_eq!(run.code, 0, "{flags:?}: {}", run.stderr);
+        assert_eq!(run.stderr, format!("note: {path}: {note}\n"), "{flags:?}");
+        // Creases, corners, the crease method and the triangle rule never change counts (nor
+        // does --boundary none on a closed mesh).
+        assert_eq!(run.stdout, plain, "{flags:?}");
+    }
+    // Without tags there is nothing to override.
+    let (_dir, untagged) = file("cube.obj", CUBE);
+    ok(&[
+        "stats",
+        "--mesh",
+        &untagged,
+        "--boundary",
+        "none",
+        "--crease-method",
+        "chaikin",
+    ]);
+    // Not a value of the option: clap lists the values (exit 2).
+    fails(
+        &["stats", "--mesh", &untagged, "--crease-method", "normal"],
+        2,
+        "[possible values: uniform, chaikin]",
+    );
+}
+
+#[test]
+fn every_command_that_reads_a_mesh_takes_the_flags() {
+    let (dir, path) = file(
+        "cube.obj",
+        &format!("{CUBE}t crease 2/1/0 0 1 10\nt corner 1/1/0 6 10\n"),
+    );
+    let flags = [
+        "--boundary",
+        "edge-and-corner",
+        "--crease-method",
+        "chaikin",
+        "--triangle-rule",
+        "smooth",
+    ];
+    let svg = dir.path().join("p.svg");
+    let svg = svg.to_str().unwrap();
+    let commands: [&[&str]; 9] = [
+        &["stats"],
+        &["table", "--scheme", "catmull-clark", "--levels", "2"],
+        &["at", "--scheme", "catmull-clark", "--level", "5"],
+        &["formula", "--scheme", "catmull-clark"],
+        &["fit", "--scheme", "catmull-clark", "--max-faces", "1000"],
+        &["density", "--scheme", "catmull-clark", "--level", "2"],
+        &[
+            "plot",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "3",
+            "-o",
+            svg,
+        ],
+        &["verify", "--scheme", "catmull-clark", "--levels", "2"],
+        &["subdivide", "--scheme", "catmull-clark", "--levels", "1"],
+    ];
+    for command in commands {
+        let mut with = command.to_vec();
+        with.extend(["--mesh", &path]);
+        let mut without = with.clone();
+        with.extend(flags);
+        without.push("--ignore-tags");
+        let (with, without) = (ok(&with), ok(&without));
+        if command[0] == "stats" {
+            // stats reports the tags it read; nothing else changes.
+            let line = "tags: 1 crease edges, 1 corners, 0 holes\n";
+            assert_eq!(with.replacen(line, "", 1), without);
+            assert!(with.contains(line), "{with}");
+        } else {
+            assert_eq!(with, without, "{command:?}");
+        }
+    }
+}
+
+#[test]
+fn the_triangle_rule_is_refused_with_a_triangle_scheme() {
+    let (_dir, path) = file("cube.obj", CUBE);
+    let why = "is Catmull-Clark's rule for triangles (OpenSubdiv's TriangleSubdivision), but";
+    fails(
+        &[
+            "verify",
+            "--mesh",
+            &path,
+            "--scheme",
+            "loop",
+            "--triangle-rule",
+            "smooth",
+        ],
+        2,
+        &format!("--triangle-rule smooth {why} loop is a triangle scheme"),
+    );
+    fails(
+        &[
+            "table",
+            "--base",
+            "icosahedron",
+            "--triangle-rule",
+            "catmark",
+        ],
+        2,
+        why,
+    );
+    fails(
+        &[
+            "subdivide",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "sqrt3",
+            "--levels",
+            "1",
+            "--triangle-rule",
+            "smooth",
+        ],
+        2,
+        "sqrt3 is a triangle scheme",
+    );
+    fails(
+        &[
+            "at",
+            "--base",
+            "icosahedron",
+            "--scheme",
+            "loop:1,tri-split-2",
+            "--level",
+            "2",
+            "--triangle-rule",
+            "smooth",
+        ],
+        2,
+        "has the triangle scheme loop and no catmull-clark stage",
+    );
+    // Catmull-Clark (also as a stage of a composition) takes it.
+    ok(&[
+        "table",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "catmull-clark",
+        "--triangle-rule",
+        "smooth",
+        "--levels",
+        "1",
+    ]);
+    ok(&[
+        "table",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop:1,catmull-clark",
+        "--triangle-rule",
+        "smooth",
+        "--levels",
+        "2",
+    ]);
+    // A file's smoothtriangles tag with a Loop scheme is no error: the tag describes the file.
+    let (_dir, tagged) = file(
+        "tet.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt smoothtriangles 0/0/1 smooth\n",
+    );
+    ok(&[
+        "verify", "--mesh", &tagged, "--scheme", "loop", "--levels", "1",
+    ]);
+}
+
+#[test]
+fn holes_and_boundary_none_are_refused_until_counted() {
+    let (_dir, holes) = file("holes.obj", &format!("{CUBE}t hole 1/0/0 2\n"));
+    let hole_message =
+        "the file's hole tags make 1 face holes, and holes are not counted yet: use --ignore-tags";
+    let (_dir2, strip) = file("strip.obj", STRIP);
+    let (_dir3, tagged_none) = file(
+        "none.obj",
+        &format!("{STRIP}t interpolateboundary 1/0/0 0\n"),
+    );
+    let (_dir4, closed_none) = file(
+        "closed.obj",
+        &format!("{CUBE}t interpolateboundary 1/0/0 0\n"),
+    );
+    let commands: [&[&str]; 8] = [
+        &["table", "--scheme", "catmull-clark"],
+        &["at", "--scheme", "catmull-clark", "--level", "3"],
+        &["formula", "--scheme", "catmull-clark"],
+        &["fit", "--scheme", "catmull-clark", "--max-faces", "100"],
+        &["density", "--scheme", "catmull-clark", "--level", "2"],
+        &[
+            "plot",
+            "--scheme",
+            "catmull-clark",
+            "-o",
+            "/nonexistent/never-written.svg",
+        ],
+        &["verify", "--scheme", "catmull-clark", "--levels", "1"],
+        &["subdivide", "--scheme", "catmull-clark", "--levels", "1"],
+    ];
+    for command in commands {
+        let with = |extra: &[&'static str], mesh: &str| {
+            let mut args: Vec<String> = command.iter().map(|s| s.to_string()).collect();
+            args.extend(["--mesh".to_string(), mesh.to_string()]);
+            args.extend(extra.iter().map(|s| s.to_string()));
+            args
+        };
+        let run = |args: Vec<String>, code: i32, needle: &str| {
+            let args: Vec<&str> = args.iter().map(String::as_str).collect();
+            fails(&args, code, needle);
+        };
+        run(with(&[], &holes), 2, &format!("{holes}: {hole_message}"));
+        run(
+            with(&["--boundary", "none"], &strip),
+            2,
+            &format!("{strip}: --boundary none makes the faces on the boundary (6 boundary edges) holes, and holes are not counted yet: use --boundary edge or edge-and-corner"),
+        );
+        run(
+            with(&[], &tagged_none),
+            2,
+            "the file's tag interpolateboundary 0 (none) makes the faces on the boundary (6 boundary edges) holes, and holes are not counted yet: use --boundary edge or edge-and-corner, or --ignore-tags",
+        );
+        if command[0] != "plot" {
+            // The tag overridden or not read; boundary none on a closed mesh has no effect.
+            for args in [
+                with(&["--ignore-tags"], &holes),
+                with(&["--boundary", "edge"], &tagged_none),
+                with(&["--ignore-tags"], &tagged_none),
+                with(&[], &closed_none),
+            ] {
+                let args: Vec<&str> = args.iter().map(String::as_str).collect();
+                let run = subcount(&args);
+                assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
+            }
+        }
+    }
+    // stats reports the holes rather than refusing.
+    assert!(
+        ok(&["stats", "--mesh", &holes]).contains("\ntags: 0 crease edges, 0 corners, 1 holes\n")
+    );
+}
+
+#[test]
+fn the_option_flags_need_a_mesh() {
+    fails(
+        &[
+            "table",
+            "--counts",
+            "V=8,E=12,F=6",
+            "--scheme",
+            "catmull-clark",
+            "--boundary",
+            "none",
+        ],
+        2,
+        "--boundary describes how a mesh is subdivided: give --mesh FILE or --base NAME",
+    );
+    fails(
+        &[
+            "at",
+            "--matrix",
+            "[[2]]",
+            "--init",
+            "1",
+            "--level",
+            "3",
+            "--ignore-tags",
+        ],
+        2,
+        "--ignore-tags describes how a mesh is subdivided",
+    );
+    fails(
+        &["formula", "--crease-method", "chaikin"],
+        2,
+        "--crease-method describes",
+    );
+}
+
+/// The shared meshes with tags: counts with and without `--ignore-tags` are equal (creases
+/// and the crease method never change counts, and none of them has holes), and `stats`
+/// reports the tags.
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn tags_never_change_the_counts_of_the_shared_meshes() {
+    let cases = [
+        (
+            "osd_catmark_pawn.obj",
+            "catmull-clark",
+            "tags: 120 crease edges, 0 corners, 0 holes\n",
+        ),
+        (
+            "osd_catmark_bishop.obj",
+            "catmull-clark",
+            "tags: 224 crease edges, 0 corners, 0 holes\n",
+        ),
+        (
+            "osd_catmark_chaikin2.obj",
+            "catmull-clark",
+            "tags: 4 crease edges, 0 corners, 0 holes; options: crease_method = chaikin\n",
+        ),
+        (
+            "osd_catmark_nonquads.obj",
+            "catmull-clark",
+            "tags: 0 crease edges, 0 corners, 0 holes; options: boundary = edge-and-corner\n",
+        ),
+        (
+            "osd_loop_icosahedron.obj",
+            "loop",
+            "tags: 0 crease edges, 0 corners, 0 holes; options: boundary = edge\n",
+        ),
+    ];
+    for (file, scheme, line) in cases {
+        let path = testdata::mesh(file);
+        let path = path.to_str().unwrap();
+        let stats = ok(&["stats", "--mesh", path]);
+        assert!(stats.contains(&format!("\n{line}")), "{file}: {stats}");
+        assert!(
+            !ok(&["stats", "--mesh", path, "--ignore-tags"]).contains("tags"),
+            "{file}"
+        );
+        let commands: [&[&str]; 3] = [
+            &["table", "--levels", "4"],
+            &["at", "--level", "40"],
+            &["verify", "--levels", "2"],
+        ];
+        for command in commands {
+            let mut args = command.to_vec();
+            args.extend(["--mesh", path, "--scheme", scheme]);
+            let with = ok(&args);
+            args.push("--ignore-tags");
+            assert_eq!(with, ok(&args), "{file}: {command:?}");
+        }
+        let mut args = vec![
+            "subdivide",
+            "--mesh",
+            path,
+            "--scheme",
+            scheme,
+            "--levels",
+            "2",
+        ];
+        let with = ok(&args);
+        args.push("--ignore-tags");
+        assert_eq!(with, ok(&args), "{file}: subdivide");
+    }
+    // The tagged meshes with boundary refuse boundary none; the closed icosahedron takes it.
+    let nonquads = testdata::mesh("osd_catmark_nonquads.obj");
+    fails(
+        &[
+            "verify",
+            "--mesh",
+            nonquads.to_str().unwrap(),
+            "--scheme",
+            "catmull-clark",
+            "--boundary",
+            "none",
+        ],
+        2,
+        "holes are not counted yet",
+    );
+    let ico = testdata::mesh("osd_loop_icosahedron.obj");
+    let run = subcount(&[
+        "table",
+        "--mesh",
+        ico.to_str().unwrap(),
+        "--boundary",
+        "none",
+        "--levels",
+        "2",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(
+        run.stderr
+            .contains("--boundary none overrides the tag interpolateboundary 2 (edge)"),
+        "{}",
+        run.stderr
+    );
+}
