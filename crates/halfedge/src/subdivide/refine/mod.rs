@@ -67,6 +67,7 @@ pub use self::stencil::StencilTable;
 use self::tables::{CcTables, LoopTables};
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
+use super::sdc::{Creases, WeightTable};
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
 use super::trisplit::{Template, TriRule};
@@ -100,6 +101,8 @@ struct Level {
 enum Fast {
     Loop(LoopTables),
     CatmullClark(CcTables),
+    /// A Loop or Catmull-Clark level under crease rules: sparse weights per child vertex.
+    Creased(WeightTable),
 }
 
 impl Fast {
@@ -107,6 +110,7 @@ impl Fast {
         match self {
             Fast::Loop(t) => t.bytes(),
             Fast::CatmullClark(t) => t.bytes(),
+            Fast::Creased(t) => t.bytes(),
         }
     }
 }
@@ -157,6 +161,8 @@ pub struct Refinement {
     /// The last level's face list, when it is kept.
     polygons: Option<Polygons>,
     face_degree: Option<usize>,
+    /// The crease rules, when sharpness or options call for them (`None`: the rules' kernels).
+    creases: Option<Creases>,
 }
 
 impl std::fmt::Debug for Refinement {
@@ -257,6 +263,7 @@ impl Refinement {
         let plan = super::plan(rule, &counts)?;
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
+        let creases = Creases::new(mesh, rule, opts.sharpness, &opts.subdivision)?;
         let planned = plan_sizes(&plan, &counts, levels)?;
         let pool = match opts.threads {
             0 | 1 => None,
@@ -286,6 +293,7 @@ impl Refinement {
             sizes: Vec::with_capacity(levels as usize + 1),
             polygons: None,
             face_degree: None,
+            creases,
         };
         let base = Topo::new(mesh);
         refinement.sizes.push(LevelSize {
@@ -362,6 +370,9 @@ impl Refinement {
             let ctx = self.context(s, expected, parallel);
             let next = self.step(&t, &ctx)?;
             let nt = next.topo();
+            if let (Some(creases), true) = (self.creases.as_mut(), s < levels) {
+                creases.push_child(s as usize - 1, &t, &nt);
+            }
             let size = LevelSize {
                 vertices: nt.nv(),
                 edges: nt.ne(),
@@ -417,6 +428,11 @@ impl Refinement {
         let Some(level) = self.topology.get_mut(i) else {
             return Ok(());
         };
+        if level.fast.is_none() {
+            if let (Some(c), Some(creases)) = (&level.topology, self.creases.as_mut()) {
+                level.fast = creases.weights(i, &c.topo())?.map(Fast::Creased);
+            }
+        }
         if level.fast.is_none() {
             if let Some(c) = &level.topology {
                 level.fast = Some(match algorithm {
@@ -751,6 +767,7 @@ impl Refinement {
         match &before.fast {
             Some(Fast::Loop(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
             Some(Fast::CatmullClark(fast)) => return fast.fill(src, dst, parallel),
+            Some(Fast::Creased(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
             None => {}
         }
         let Some(t) = before.topology.as_ref().map(Connectivity::topo) else {
@@ -792,6 +809,10 @@ impl Refinement {
             Some(Fast::CatmullClark(fast)) => {
                 out.resize(n, V::zero());
                 fast.fill(src, &mut out, parallel);
+                return Ok(out);
+            }
+            Some(Fast::Creased(fast)) => {
+                fast.points(src, &mut out, parallel);
                 return Ok(out);
             }
             None => {}
