@@ -1,17 +1,23 @@
 // osd_driver: the OpenSubdiv reference for subcount's differential tests and its peer in
 // bench/peers.
 //
-// Reads an OBJ mesh (only `v` and `f` lines; texture and normal indices, groups, materials and
-// crease tags are ignored), refines it uniformly with OpenSubdiv's Far::TopologyRefiner
-// (fullTopologyInLastLevel = false) and moves the positions down every level with
-// Far::PrimvarRefiner in double precision.
+// Reads an OBJ mesh (`v` and `f` lines, and with --tags OpenSubdiv's `t` tag lines; texture
+// and normal indices, groups and materials are ignored), refines it uniformly with
+// OpenSubdiv's Far::TopologyRefiner (fullTopologyInLastLevel = false) and moves the positions
+// down every level with Far::PrimvarRefiner in double precision.
 //
-// Usage: osd_driver SCHEME LEVEL FILE.obj [BOUNDARY]
+// Usage: osd_driver [OPTIONS] SCHEME LEVEL FILE.obj [BOUNDARY]
 //   writes the last level to stdout as OBJ: `v x y z`, each the shortest text that reads back
-//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's own vertex and face order.
+//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's
+//   own vertex and face order; then `# hole F` (0-based) for each face tagged as a hole.
 //   SCHEME    loop | catmark | bilinear
 //   LEVEL     0..10 (0 writes the base mesh as OpenSubdiv read it)
-//   BOUNDARY  edge-only (default) | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
+//   BOUNDARY  edge-only | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
+//             (default: the file's interpolateboundary tag with --tags, else edge-only)
+//   OPTIONS   --tags: read crease, corner, hole, interpolateboundary, creasemethod and
+//                     smoothtriangles tags (see README.md)
+//             --crease-method uniform|chaikin, --triangle-rule catmark|smooth: Sdc::Options,
+//                     over the file's tags
 //
 // Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
 //   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
@@ -176,6 +182,17 @@ Mesh readObj(char const* path, bool withTags) {
     }
     if (in.bad()) fail(1, std::string(path) + ": read error");
     if (mesh.faceSizes.empty()) fail(1, std::string(path) + ": no faces");
+    // OpenSubdiv does not check the tags' indices: out of range is refused here.
+    int nv = static_cast<int>(mesh.points.size()), nf = static_cast<int>(mesh.faceSizes.size());
+    for (int v : mesh.tags.creasePairs) {
+        if (v < 0 || v >= nv) fail(1, std::string(path) + ": crease vertex " + std::to_string(v) + " out of range");
+    }
+    for (int v : mesh.tags.corners) {
+        if (v < 0 || v >= nv) fail(1, std::string(path) + ": corner vertex " + std::to_string(v) + " out of range");
+    }
+    for (int f : mesh.tags.holes) {
+        if (f < 0 || f >= nf) fail(1, std::string(path) + ": hole face " + std::to_string(f) + " out of range");
+    }
     return mesh;
 }
 
@@ -350,6 +367,18 @@ int reference(int argc, char** argv) {
             put(face[i] + 1);
         }
         out += '\n';
+    }
+    // Faces OpenSubdiv tags as holes (tagged ones and, under VTX_BOUNDARY_NONE, every face at
+    // a boundary vertex, and their descendants): still refined and written above, listed
+    // here as comments (`# hole F`, 0-based) that OBJ readers skip.
+    if (refiner->HasHoles()) {
+        for (int f = 0; f < last.GetNumFaces(); ++f) {
+            if (last.IsFaceHole(f)) {
+                out += "# hole ";
+                put(f);
+                out += '\n';
+            }
+        }
     }
     if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout) != 0) {
         fail(1, "cannot write to stdout");

@@ -1341,4 +1341,23 @@ fn missing_creases_are_told_apart() {
     .expect("Chaikin's rule went unnoticed");
     assert!(err.contains("has no halfedge vertex within"), "{err}");
     drop(tags);
+
+    // Smooth triangles on one side only.
+    let pyramid = Base::load("osd_catmark_pyramid.obj").unwrap_or_else(|e| panic!("{e}"));
+    let smooth = ["--tags", "--triangle-rule", "smooth"];
+    let running = opensubdiv_with(&smooth, Osd::Catmark, 1, &pyramid.path, None);
+    let none = Tags::default();
+    let ours = refine_ours(
+        &pyramid,
+        Osd::Catmark,
+        1,
+        &none,
+        SubdivisionOptions::default(),
+        false,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let err = compare_levels("pyramid", &pyramid.polygons, &ours, &running.mesh())
+        .err()
+        .expect("the smooth triangle rule went unnoticed");
+    assert!(err.contains("has no halfedge vertex within"), "{err}");
 }

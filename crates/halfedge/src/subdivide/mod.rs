@@ -121,7 +121,9 @@ pub struct SubdivideOptions<'a> {
     /// Called after each level is built.
     pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
     /// Creases and corners (Loop and Catmull-Clark, OpenSubdiv's rules: [`sdc`]); honoured by
-    /// [`Refinement::new`](crate::Refinement::new).
+    /// [`Refinement::new`](crate::Refinement::new). The one-shot [`subdivide`],
+    /// [`subdivide_to_face_list`] and [`verify`] do not read it (nor
+    /// [`SubdivideOptions::subdivision`]) yet.
     pub sharpness: Option<&'a Sharpness>,
     /// Boundary interpolation, crease method and triangle rule of the crease rules
     /// ([`sdc`]); the default is OpenSubdiv's `edge` / `uniform` / `catmark`, the rules'

@@ -487,3 +487,37 @@ fn tags_of_a_file_with_bare_vertices_are_renumbered() {
         Err(Error::CreaseNotAnEdge { a: 0, b: 1 })
     ));
 }
+
+/// The weight tables give the same bits on one thread and on several (a grid large enough for
+/// the parallel passes).
+#[test]
+fn crease_rules_do_not_depend_on_the_threads() {
+    let polygons = shapes::quad_grid(40, 40).expect("a grid");
+    let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid");
+    let mut tags = Tags::default();
+    for i in 0..40 {
+        tags.add_crease(20 * 41 + i, 20 * 41 + i + 1, 0.3 + 0.1 * i as f32)
+            .expect("valid");
+    }
+    tags.add_corner(20 * 41 + 20, 1.5).expect("valid");
+    let sharpness = Sharpness::from_tags(&mesh, &tags).expect("resolved");
+    let chaikin = SubdivisionOptions::default().with_crease_method(CreaseMethod::Chaikin);
+    let base: Vec<[f64; 3]> = mesh
+        .positions()
+        .iter()
+        .enumerate()
+        .map(|(v, p)| [p.x, p.y, (v as f64 * 0.37).sin()])
+        .collect();
+    let mut results = Vec::new();
+    for threads in [1, 3] {
+        let opts = SubdivideOptions::default()
+            .with_threads(threads)
+            .with_sharpness(&sharpness)
+            .with_subdivision(chaikin);
+        let r = Refinement::new(&mesh, Rule::CatmullClark, 3, &opts).expect("refined");
+        let mut out = vec![[0.0; 3]; r.n_vertices(3)];
+        r.evaluate(&base, &mut out).expect("evaluated");
+        results.push(out);
+    }
+    assert_eq!(results[0], results[1]);
+}

@@ -143,6 +143,12 @@ struct Polygons {
 /// (`n_vertices(s)` entries for `s < levels`, two buffers in all) on every call; an
 /// [`Evaluator`] keeps them between calls.
 ///
+/// Under crease rules ([`sdc`](super::sdc)) each Loop or Catmull-Clark level keeps a sparse
+/// weight table instead of its flattened tables: 12 bytes per weight (Loop about 5 per child
+/// vertex, Catmull-Clark about 6 on quads, its face points
+/// expanded into their corners) and 4 per child vertex; [`Refinement::predicted_bytes`] does
+/// not count them.
+///
 /// For Loop at 3 levels on the 81,920-face icosphere the refinement holds 137 MB (a
 /// half-edge mesh of the 5.2 M output triangles alone would take 250 MB), for Catmull-Clark
 /// 185 MB.
@@ -252,7 +258,13 @@ impl Refinement {
     /// As [`subdivide`](super::subdivide): [`Error::Scheme`] for a mesh outside the rule's
     /// class, [`Error::SchemeNotApplicable`], [`Error::TooLarge`] for a level that does not fit
     /// (its half-edge handles, or the last level's vertex indices), [`Error::ThreadPool`],
-    /// [`Error::AllocationFailed`], [`Error::PredictionMismatch`] (a bug).
+    /// [`Error::AllocationFailed`], [`Error::PredictionMismatch`] (a bug);
+    /// [`Error::CreasesNotSupported`] when `opts.sharpness` or `opts.subdivision` call for
+    /// crease rules under a rule other than Loop and Catmull-Clark,
+    /// [`Error::SharpnessMismatch`] for a sharpness resolved on another mesh.
+    ///
+    /// With creases ([`SubdivideOptions::sharpness`], [`SubdivideOptions::subdivision`]:
+    /// [`sdc`](super::sdc)) Loop and Catmull-Clark levels follow OpenSubdiv's crease rules.
     pub fn new(
         mesh: &HalfEdgeMesh,
         rule: Rule,
@@ -430,7 +442,14 @@ impl Refinement {
         };
         if level.fast.is_none() {
             if let (Some(c), Some(creases)) = (&level.topology, self.creases.as_mut()) {
-                level.fast = creases.weights(i, &c.topo())?.map(Fast::Creased);
+                let table = creases
+                    .weights(i, &c.topo())?
+                    .ok_or_else(|| Error::InvalidOutput {
+                        scheme: self.name.clone(),
+                        level: i as u32 + 1,
+                        what: "no sharpness for the level refined".into(),
+                    })?;
+                level.fast = Some(Fast::Creased(table));
             }
         }
         if level.fast.is_none() {
