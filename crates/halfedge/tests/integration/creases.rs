@@ -521,3 +521,57 @@ fn crease_rules_do_not_depend_on_the_threads() {
     }
     assert_eq!(results[0], results[1]);
 }
+
+/// The predicted bytes under crease rules bound what a creased refinement keeps, closely.
+#[test]
+fn predicted_crease_bytes_bound_the_refinement() {
+    let cases = [
+        (bumpy_free_grid(false), Rule::CatmullClark),
+        (bumpy_free_grid(true), Rule::Loop),
+        (bumpy_free_grid(true), Rule::CatmullClark),
+        (shapes::mixed(), Rule::CatmullClark),
+        (shapes::icosahedron(), Rule::Loop),
+        (shapes::cube(), Rule::CatmullClark),
+    ];
+    for (polygons, rule) in cases {
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid");
+        let mut tags = Tags::default();
+        let face = polygons.face(0);
+        tags.add_crease(face[0], face[1], 1.5).expect("valid");
+        let sharpness = Sharpness::from_tags(&mesh, &tags).expect("resolved");
+        for levels in 1..=3 {
+            let opts = SubdivideOptions::default().with_sharpness(&sharpness);
+            let r = Refinement::new(&mesh, rule, levels, &opts).expect("refined");
+            let bound = Refinement::predicted_bytes_with_creases(rule, &mesh.counts(), levels)
+                .expect("bound");
+            let kept = num_bigint::BigInt::from(r.heap_bytes());
+            assert!(bound >= kept, "{rule} level {levels}: {bound} < {kept}");
+            assert!(
+                &bound * 10u32 <= &kept * 12u32,
+                "{rule} level {levels}: {bound} over {kept} by more than 20 %"
+            );
+        }
+    }
+}
+
+/// A 6 x 6 grid of quads (or triangles), no crease: the meshes of the byte bounds.
+fn bumpy_free_grid(triangles: bool) -> PolygonMesh {
+    let n = 6u32;
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let positions = (0..(n + 1) * (n + 1))
+        .map(|v| DVec3::new(f64::from(v % (n + 1)), f64::from(v / (n + 1)), 0.0))
+        .collect();
+    let mut mesh = PolygonMesh::with_positions(positions);
+    for j in 0..n {
+        for i in 0..n {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if triangles {
+                mesh.push_face(&[a, b, c]);
+                mesh.push_face(&[a, c, d]);
+            } else {
+                mesh.push_face(&[a, b, c, d]);
+            }
+        }
+    }
+    mesh
+}

@@ -255,6 +255,53 @@ impl Sharpness {
     }
 }
 
+/// The scheme of a weight table, for [`table_bytes_bound`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum TableScheme {
+    Loop,
+    CatmullClark,
+}
+
+/// An upper bound of the bytes of the weight table refining level `level` (counts `c`) of a
+/// mesh with base counts `base`: every row at most its smooth size. Loop: a vertex row holds
+/// the vertex and its neighbours (`V + 2E` entries in all), an edge row 4 (2 on the boundary).
+/// Catmull-Clark: a vertex row the vertex and the distinct vertices of its faces (at most
+/// `sum over its faces of (degree - 1) - valence + 2`), an edge row the corners of its two
+/// faces (`deg f1 + deg f2 - 2`, 2 on the boundary), a face row its corners. The sums of
+/// squared face degrees come from the base's faces by degree at level 0 and are `16 F` (quads)
+/// after. 12 bytes per entry, 4 per row and one.
+pub(crate) fn table_bytes_bound(
+    scheme: TableScheme,
+    base: &schemes::MeshCounts,
+    level: u32,
+    c: &schemes::LevelCounts,
+) -> num_bigint::BigInt {
+    use num_bigint::BigInt;
+    let (v, e, f) = (&c.vertices, &c.edges, &c.faces);
+    // Boundary edges double at each level under both schemes.
+    let boundary = BigInt::from(base.boundary_edges) << level;
+    let interior = e - &boundary;
+    let (entries, rows) = match scheme {
+        TableScheme::Loop => (v + e * 2u32 + &interior * 4u32 + &boundary * 2u32, v + e),
+        TableScheme::CatmullClark => {
+            let (squares, corners) = if level == 0 {
+                let squares: BigInt = base
+                    .faces_by_degree
+                    .iter()
+                    .map(|(&d, &n)| BigInt::from(d) * d * n)
+                    .sum();
+                (squares, BigInt::from(base.corners))
+            } else {
+                (f * 16u32, f * 4u32)
+            };
+            let vertex_rows = v * 3u32 + &squares - &corners - e * 2u32;
+            let edge_rows = &squares - &interior * 2u32 + &boundary * 2u32;
+            (vertex_rows + edge_rows + &corners, v + e + f)
+        }
+    };
+    entries * 12u32 + (rows + 1u32) * 4u32
+}
+
 /// The crease rules of a refinement: the sharpness of the levels still to be flattened.
 #[derive(Debug)]
 pub(crate) struct Creases {
