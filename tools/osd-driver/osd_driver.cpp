@@ -1,17 +1,23 @@
 // osd_driver: the OpenSubdiv reference for subcount's differential tests and its peer in
 // bench/peers.
 //
-// Reads an OBJ mesh (only `v` and `f` lines; texture and normal indices, groups, materials and
-// crease tags are ignored), refines it uniformly with OpenSubdiv's Far::TopologyRefiner
-// (fullTopologyInLastLevel = false) and moves the positions down every level with
-// Far::PrimvarRefiner in double precision.
+// Reads an OBJ mesh (`v` and `f` lines, and with --tags OpenSubdiv's `t` tag lines; texture
+// and normal indices, groups and materials are ignored), refines it uniformly with
+// OpenSubdiv's Far::TopologyRefiner (fullTopologyInLastLevel = false) and moves the positions
+// down every level with Far::PrimvarRefiner in double precision.
 //
-// Usage: osd_driver SCHEME LEVEL FILE.obj [BOUNDARY]
+// Usage: osd_driver [OPTIONS] SCHEME LEVEL FILE.obj [BOUNDARY]
 //   writes the last level to stdout as OBJ: `v x y z`, each the shortest text that reads back
-//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's own vertex and face order.
+//   as the same double (std::to_chars), and `f` lines with 1-based indices, in OpenSubdiv's
+//   own vertex and face order; then `# hole F` (0-based) for each face tagged as a hole.
 //   SCHEME    loop | catmark | bilinear
 //   LEVEL     0..10 (0 writes the base mesh as OpenSubdiv read it)
-//   BOUNDARY  edge-only (default) | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
+//   BOUNDARY  edge-only | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
+//             (default: the file's interpolateboundary tag with --tags, else edge-only)
+//   OPTIONS   --tags: read crease, corner, hole, interpolateboundary, creasemethod and
+//                     smoothtriangles tags (see README.md)
+//             --crease-method uniform|chaikin, --triangle-rule catmark|smooth: Sdc::Options,
+//                     over the file's tags
 //
 // Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
 //   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
@@ -58,10 +64,24 @@ struct Point {
     }
 };
 
+// OpenSubdiv's OBJ tags (`t NAME nInts/nFloats/nStrings ints floats strings`), as its shape
+// loader reads them; kept only with --tags.
+struct Tags {
+    std::vector<int> creasePairs;  // two vertex indices (0-based) per crease
+    std::vector<float> creaseWeights;
+    std::vector<int> corners;
+    std::vector<float> cornerWeights;
+    std::vector<int> holes;        // face indices (0-based)
+    int boundary = -1;             // interpolateboundary: 0 none, 1 edge-and-corner, 2 edge-only
+    std::string creaseMethod;      // creasemethod: normal | chaikin
+    std::string triangles;         // smoothtriangles: catmark | smooth
+};
+
 struct Mesh {
     std::vector<Point> points;
     std::vector<int> faceSizes;
     std::vector<int> corners;
+    Tags tags;
 };
 
 [[noreturn]] void fail(int status, std::string const& message) {
@@ -83,7 +103,51 @@ bool parseIndex(std::string const& token, int vertexCount, int& index) {
     return true;
 }
 
-Mesh readObj(char const* path) {
+// One `t` line (after the keyword): the counts, then that many ints, floats and strings.
+void parseTag(std::istringstream& words, Tags& tags, std::string const& where) {
+    std::string name, counts;
+    if (!(words >> name >> counts)) fail(1, where + "a tag needs a name and counts");
+    int nInts = 0, nFloats = 0, nStrings = 0;
+    if (std::sscanf(counts.c_str(), "%d/%d/%d", &nInts, &nFloats, &nStrings) != 3 || nInts < 0 ||
+        nFloats < 0 || nStrings < 0) {
+        fail(1, where + "bad tag counts '" + counts + "'");
+    }
+    std::vector<int> ints(nInts);
+    std::vector<float> floats(nFloats);
+    std::vector<std::string> strings(nStrings);
+    for (int& i : ints) if (!(words >> i)) fail(1, where + "tag '" + name + "' lacks an integer");
+    for (float& f : floats) if (!(words >> f)) fail(1, where + "tag '" + name + "' lacks a number");
+    for (std::string& t : strings) if (!(words >> t)) fail(1, where + "tag '" + name + "' lacks a string");
+    // A float list is one value for every element or one per element.
+    auto weights = [&](size_t elements, std::vector<float>& out) {
+        if (floats.size() != 1 && floats.size() != elements) {
+            fail(1, where + "tag '" + name + "' needs one sharpness or one per element");
+        }
+        for (size_t k = 0; k < elements; ++k) out.push_back(floats.size() == 1 ? floats[0] : floats[k]);
+    };
+    if (name == "crease") {
+        if (ints.size() % 2 != 0) fail(1, where + "a crease lists vertex pairs");
+        tags.creasePairs.insert(tags.creasePairs.end(), ints.begin(), ints.end());
+        weights(ints.size() / 2, tags.creaseWeights);
+    } else if (name == "corner") {
+        tags.corners.insert(tags.corners.end(), ints.begin(), ints.end());
+        weights(ints.size(), tags.cornerWeights);
+    } else if (name == "hole") {
+        tags.holes.insert(tags.holes.end(), ints.begin(), ints.end());
+    } else if (name == "interpolateboundary") {
+        if (ints.size() != 1 || ints[0] < 0 || ints[0] > 2) fail(1, where + "interpolateboundary takes 0, 1 or 2");
+        tags.boundary = ints[0];
+    } else if (name == "creasemethod") {
+        if (strings.size() != 1) fail(1, where + "creasemethod takes one string");
+        tags.creaseMethod = strings[0];
+    } else if (name == "smoothtriangles") {
+        if (strings.size() != 1) fail(1, where + "smoothtriangles takes one string");
+        tags.triangles = strings[0];
+    }
+    // Other tags (facevaryinginterpolateboundary, vertexedit, ...) do not move vertices here.
+}
+
+Mesh readObj(char const* path, bool withTags) {
     std::ifstream in(path);
     if (!in) fail(1, std::string(path) + ": cannot open: " + std::strerror(errno));
     Mesh mesh;
@@ -112,10 +176,23 @@ Mesh readObj(char const* path) {
             }
             if (size < 3) fail(1, where + "a face needs at least three vertices");
             mesh.faceSizes.push_back(size);
+        } else if (keyword == "t" && withTags) {
+            parseTag(words, mesh.tags, where);
         }
     }
     if (in.bad()) fail(1, std::string(path) + ": read error");
     if (mesh.faceSizes.empty()) fail(1, std::string(path) + ": no faces");
+    // OpenSubdiv does not check the tags' indices: out of range is refused here.
+    int nv = static_cast<int>(mesh.points.size()), nf = static_cast<int>(mesh.faceSizes.size());
+    for (int v : mesh.tags.creasePairs) {
+        if (v < 0 || v >= nv) fail(1, std::string(path) + ": crease vertex " + std::to_string(v) + " out of range");
+    }
+    for (int v : mesh.tags.corners) {
+        if (v < 0 || v >= nv) fail(1, std::string(path) + ": corner vertex " + std::to_string(v) + " out of range");
+    }
+    for (int f : mesh.tags.holes) {
+        if (f < 0 || f >= nf) fail(1, std::string(path) + ": hole face " + std::to_string(f) + " out of range");
+    }
     return mesh;
 }
 
@@ -163,16 +240,22 @@ void requireTriangles(Mesh const& mesh, char const* path) {
 
 // The refiner of the mesh's base level; the mesh's arrays must outlive the call only.
 std::unique_ptr<Far::TopologyRefiner> createRefiner(Mesh const& mesh, Sdc::SchemeType scheme,
-                                                    Sdc::Options::VtxBoundaryInterpolation boundary,
-                                                    char const* path) {
+                                                    Sdc::Options sdcOptions, char const* path) {
     Far::TopologyDescriptor desc;
     desc.numVertices = static_cast<int>(mesh.points.size());
     desc.numFaces = static_cast<int>(mesh.faceSizes.size());
     desc.numVertsPerFace = mesh.faceSizes.data();
     desc.vertIndicesPerFace = mesh.corners.data();
+    Tags const& tags = mesh.tags;
+    desc.numCreases = static_cast<int>(tags.creaseWeights.size());
+    desc.creaseVertexIndexPairs = tags.creasePairs.data();
+    desc.creaseWeights = tags.creaseWeights.data();
+    desc.numCorners = static_cast<int>(tags.cornerWeights.size());
+    desc.cornerVertexIndices = tags.corners.data();
+    desc.cornerWeights = tags.cornerWeights.data();
+    desc.numHoles = static_cast<int>(tags.holes.size());
+    desc.holeIndices = tags.holes.data();
 
-    Sdc::Options sdcOptions;
-    sdcOptions.SetVtxBoundaryInterpolation(boundary);
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     std::unique_ptr<Far::TopologyRefiner> refiner(
         Factory::Create(desc, Factory::Options(scheme, sdcOptions)));
@@ -200,20 +283,57 @@ Point* interpolate(Far::TopologyRefiner const& refiner, Point* points) {
     return src;
 }
 
+Sdc::Options::CreasingMethod parseCreaseMethod(std::string const& name) {
+    if (name == "uniform" || name == "normal") return Sdc::Options::CREASE_UNIFORM;
+    if (name == "chaikin") return Sdc::Options::CREASE_CHAIKIN;
+    fail(2, "unknown crease method '" + name + "' (uniform or chaikin)");
+}
+
+Sdc::Options::TriangleSubdivision parseTriangleRule(std::string const& name) {
+    if (name == "catmark") return Sdc::Options::TRI_SUB_CATMARK;
+    if (name == "smooth") return Sdc::Options::TRI_SUB_SMOOTH;
+    fail(2, "unknown triangle rule '" + name + "' (catmark or smooth)");
+}
+
 int reference(int argc, char** argv) {
-    if (argc < 4 || argc > 5) {
-        fail(2, "usage: osd_driver loop|catmark|bilinear LEVEL FILE.obj "
+    // Options first: --tags, --crease-method M, --triangle-rule R; a flag wins over the tag.
+    bool withTags = false;
+    std::string creaseMethod, triangles;
+    int at = 1;
+    for (; at < argc && std::strncmp(argv[at], "--", 2) == 0; ++at) {
+        std::string flag = argv[at];
+        if (flag == "--tags") {
+            withTags = true;
+        } else if ((flag == "--crease-method" || flag == "--triangle-rule") && at + 1 < argc) {
+            (flag == "--crease-method" ? creaseMethod : triangles) = argv[++at];
+        } else {
+            fail(2, "unknown option '" + flag + "'");
+        }
+    }
+    int rest = argc - at;
+    if (rest < 3 || rest > 4) {
+        fail(2, "usage: osd_driver [--tags] [--crease-method uniform|chaikin] "
+                "[--triangle-rule catmark|smooth] loop|catmark|bilinear LEVEL FILE.obj "
                 "[edge-only|edge-and-corner|none]\n"
                 "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
     }
-    Sdc::SchemeType scheme = parseScheme(argv[1]);
-    int level = parseLevel(argv[2]);
-    Sdc::Options::VtxBoundaryInterpolation boundary =
-        parseBoundary(argc == 5 ? argv[4] : "edge-only");
-    Mesh mesh = readObj(argv[3]);
-    if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, argv[3]);
+    char** args = argv + at;
+    Sdc::SchemeType scheme = parseScheme(args[0]);
+    int level = parseLevel(args[1]);
+    Mesh mesh = readObj(args[2], withTags);
+    if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, args[2]);
 
-    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, boundary, argv[3]);
+    Tags const& tags = mesh.tags;
+    static char const* const boundaryNames[] = {"none", "edge-and-corner", "edge-only"};
+    Sdc::Options sdcOptions;
+    sdcOptions.SetVtxBoundaryInterpolation(parseBoundary(
+        rest == 4 ? args[3] : tags.boundary >= 0 ? boundaryNames[tags.boundary] : "edge-only"));
+    if (creaseMethod.empty()) creaseMethod = tags.creaseMethod;
+    if (!creaseMethod.empty()) sdcOptions.SetCreasingMethod(parseCreaseMethod(creaseMethod));
+    if (triangles.empty()) triangles = tags.triangles;
+    if (!triangles.empty()) sdcOptions.SetTriangleSubdivision(parseTriangleRule(triangles));
+
+    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, sdcOptions, args[2]);
     refine(*refiner, level);
 
     std::vector<Point> points(refiner->GetNumVerticesTotal());
@@ -247,6 +367,18 @@ int reference(int argc, char** argv) {
             put(face[i] + 1);
         }
         out += '\n';
+    }
+    // Faces OpenSubdiv tags as holes (tagged ones and, under VTX_BOUNDARY_NONE, every face at
+    // a boundary vertex, and their descendants): still refined and written above, listed
+    // here as comments (`# hole F`, 0-based) that OBJ readers skip.
+    if (refiner->HasHoles()) {
+        for (int f = 0; f < last.GetNumFaces(); ++f) {
+            if (last.IsFaceHole(f)) {
+                out += "# hole ";
+                put(f);
+                out += '\n';
+            }
+        }
     }
     if (std::fwrite(out.data(), 1, out.size(), stdout) != out.size() || std::fflush(stdout) != 0) {
         fail(1, "cannot write to stdout");
@@ -286,7 +418,7 @@ int timing(int argc, char** argv) {
     int reps = argc > 5 ? parseCount(argv[5], "REPS", 1000) : 3;
     int frames = argc > 6 ? parseCount(argv[6], "FRAMES", 100000) : 0;
     if (reps < 1) fail(2, "REPS must be at least 1");
-    Mesh mesh = readObj(path);
+    Mesh mesh = readObj(path, false);
     if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, path);
 
     using Clock = std::chrono::steady_clock;
@@ -295,8 +427,9 @@ int timing(int argc, char** argv) {
     double checksum = 0.0;
     for (int rep = 0; rep < reps; ++rep) {
         Clock::time_point start = Clock::now();
-        std::unique_ptr<Far::TopologyRefiner> refiner =
-            createRefiner(mesh, scheme, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, path);
+        Sdc::Options edgeOnly;
+        edgeOnly.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+        std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, edgeOnly, path);
         createS.push_back(since(start));
 
         start = Clock::now();

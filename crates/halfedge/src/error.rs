@@ -548,6 +548,47 @@ pub enum Error {
         /// Why.
         reason: &'static str,
     },
+    /// A crease or corner names a vertex the mesh does not have.
+    #[error("{what} names vertex {vertex}, but the mesh has {vertices} vertices")]
+    TagVertexOutOfRange {
+        /// `crease` or `corner`.
+        what: &'static str,
+        /// The vertex named (0-based).
+        vertex: u32,
+        /// The vertices of the mesh.
+        vertices: usize,
+    },
+    /// A crease whose two vertices no edge of the mesh joins.
+    #[error("crease ({a}, {b}) is not an edge of the mesh")]
+    CreaseNotAnEdge {
+        /// One vertex of the crease (0-based, as given).
+        a: u32,
+        /// The other.
+        b: u32,
+    },
+    /// Creases, corners or crease options for a rule that has no crease rules.
+    #[error("creases apply to Loop and Catmull-Clark, not {rule} ({what} given)")]
+    CreasesNotSupported {
+        /// The rule.
+        rule: String,
+        /// What was given (`creases and corners`, ...).
+        what: &'static str,
+    },
+    /// A [`Sharpness`](crate::subdivide::Sharpness) resolved on another mesh.
+    #[error(
+        "the sharpness covers {edges} edges and {vertices} vertices, the mesh has {mesh_edges} \
+         and {mesh_vertices}"
+    )]
+    SharpnessMismatch {
+        /// Edges of the sharpness.
+        edges: usize,
+        /// Vertices of the sharpness.
+        vertices: usize,
+        /// Edges of the mesh.
+        mesh_edges: usize,
+        /// Vertices of the mesh.
+        mesh_vertices: usize,
+    },
     /// The thread pool for parallel subdivision could not be created.
     #[error("cannot start {threads} threads for subdivision: {reason}")]
     ThreadPool {

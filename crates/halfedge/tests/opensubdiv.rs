@@ -119,12 +119,26 @@ fn meshes_dir() -> PathBuf {
 /// boundary interpolation `boundary` (`edge-only` is `VTX_BOUNDARY_EDGE_ONLY`); [`Running::mesh`]
 /// collects it, so `halfedge` can work meanwhile.
 fn opensubdiv(scheme: Osd, level: u32, path: &Path, boundary: &str) -> Running {
+    opensubdiv_with(&[], scheme, level, path, Some(boundary))
+}
+
+/// As [`opensubdiv`], with the driver's options `flags` first (`--tags`, `--crease-method M`,
+/// `--triangle-rule R`) and the boundary interpolation only when given (else the file's tag,
+/// else `edge-only`).
+fn opensubdiv_with(
+    flags: &[&str],
+    scheme: Osd,
+    level: u32,
+    path: &Path,
+    boundary: Option<&str>,
+) -> Running {
     let driver = driver();
     let child = Command::new(&driver)
+        .args(flags)
         .arg(scheme.driver_name())
         .arg(level.to_string())
         .arg(path)
-        .arg(boundary)
+        .args(boundary)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -132,7 +146,8 @@ fn opensubdiv(scheme: Osd, level: u32, path: &Path, boundary: &str) -> Running {
     Running {
         child,
         what: format!(
-            "osd_driver {} {level} {}",
+            "osd_driver {}{} {level} {}",
+            flags.iter().map(|f| format!("{f} ")).collect::<String>(),
             scheme.driver_name(),
             path.display()
         ),
@@ -478,7 +493,16 @@ fn compare(base: &Base, scheme: Osd, level: u32, reference: Reference) -> Result
     if reference.drop_bare_vertices {
         theirs = without_bare_vertices(&theirs);
     }
+    compare_levels(&at, &base.polygons, &ours, &theirs)
+}
 
+/// Compares two last levels (`at` names the comparison), `base` giving the bounding box.
+fn compare_levels(
+    at: &str,
+    base: &PolygonMesh,
+    ours: &PolygonMesh,
+    theirs: &PolygonMesh,
+) -> Result<Outcome, String> {
     if ours.n_vertices() != theirs.n_vertices() || ours.n_faces() != theirs.n_faces() {
         return Err(format!(
             "{at}: halfedge has {} vertices and {} faces, OpenSubdiv {} and {}",
@@ -489,9 +513,9 @@ fn compare(base: &Base, scheme: Osd, level: u32, reference: Reference) -> Result
         ));
     }
 
-    let diagonal = bounding_box_diagonal(&base.polygons.positions);
+    let diagonal = bounding_box_diagonal(&base.positions);
     let tolerance = TOLERANCE * diagonal;
-    let to_ours = correspondence(&theirs, &ours, tolerance).map_err(|e| format!("{at}: {e}"))?;
+    let to_ours = correspondence(theirs, ours, tolerance).map_err(|e| format!("{at}: {e}"))?;
     let max_deviation = theirs
         .positions
         .iter()
@@ -791,4 +815,549 @@ fn bare_vertices_are_kept_by_opensubdiv_and_dropped_by_halfedge() {
             panic!("{err}");
         }
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Creases, corners and the Sdc options (issue 13): the crease rules of `Refinement`.
+// ---------------------------------------------------------------------------------------
+
+use halfedge::refine::Refinement;
+use halfedge::subdivide::Sharpness;
+use halfedge::tags::{
+    BoundaryInterpolation, CreaseMethod, SubdivisionOptions, Tags, TriangleRule, INFINITELY_SHARP,
+};
+
+/// The tags of an OBJ file as OpenSubdiv's shape loader reads them: `crease` (vertex pairs,
+/// one sharpness or one per pair), `corner`, `interpolateboundary` (0 none, 1 edge-and-corner,
+/// 2 edge-only), `creasemethod` (`normal`, `chaikin`), `smoothtriangles`; holes and other tags
+/// are left out (holes do not move vertices). The test's own reader, so these tests do not
+/// depend on the library's.
+fn read_tags(path: &Path) -> Tags {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut tags = Tags::default();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("t") {
+            continue;
+        }
+        let name = words.next().expect("a tag name");
+        let counts: Vec<usize> = words
+            .next()
+            .expect("tag counts")
+            .split('/')
+            .map(|n| n.parse().expect("a count"))
+            .collect();
+        let rest: Vec<&str> = words.collect();
+        let ints: Vec<u32> = rest[..counts[0]]
+            .iter()
+            .map(|w| w.parse().expect("an int"))
+            .collect();
+        let floats: Vec<f32> = rest[counts[0]..counts[0] + counts[1]]
+            .iter()
+            .map(|w| w.parse().expect("a float"))
+            .collect();
+        let strings = &rest[counts[0] + counts[1]..];
+        let weight = |k: usize| {
+            if floats.len() == 1 {
+                floats[0]
+            } else {
+                floats[k]
+            }
+        };
+        match name {
+            "crease" => {
+                for (k, pair) in ints.chunks(2).enumerate() {
+                    tags.add_crease(pair[0], pair[1], weight(k))
+                        .expect("a valid sharpness");
+                }
+            }
+            "corner" => {
+                for (k, &v) in ints.iter().enumerate() {
+                    tags.add_corner(v, weight(k)).expect("a valid sharpness");
+                }
+            }
+            "interpolateboundary" => {
+                tags.options.boundary = Some(match ints[0] {
+                    0 => BoundaryInterpolation::None,
+                    1 => BoundaryInterpolation::EdgeAndCorner,
+                    _ => BoundaryInterpolation::Edge,
+                })
+            }
+            "creasemethod" => {
+                tags.options.crease_method = Some(match strings[0] {
+                    "chaikin" => CreaseMethod::Chaikin,
+                    _ => CreaseMethod::Uniform,
+                })
+            }
+            "smoothtriangles" => {
+                tags.options.triangle_rule = Some(match strings[0] {
+                    "smooth" => TriangleRule::Smooth,
+                    _ => TriangleRule::Catmark,
+                })
+            }
+            _ => {}
+        }
+    }
+    tags
+}
+
+/// `halfedge`'s last level with the crease rules: a [`Refinement`] with the tags' sharpness
+/// and `options`, evaluated in `f64` and its faces written (and, when `stencils`, the same
+/// positions from its stencil table, which must agree to 1e-13 of the diagonal).
+fn refine_ours(
+    base: &Base,
+    scheme: Osd,
+    level: u32,
+    tags: &Tags,
+    options: SubdivisionOptions,
+    stencils: bool,
+) -> Result<PolygonMesh, String> {
+    let rule = match scheme {
+        Osd::Loop => Rule::Loop,
+        Osd::Catmark => Rule::CatmullClark,
+    };
+    let sharpness = Sharpness::from_tags_of(&base.polygons, &base.mesh, tags)
+        .map_err(|e| format!("sharpness: {e}"))?;
+    let opts = SubdivideOptions::default()
+        .with_sharpness(&sharpness)
+        .with_subdivision(options);
+    let r = Refinement::new(&base.mesh, rule, level, &opts).map_err(|e| e.to_string())?;
+    let points: Vec<[f64; 3]> = base.mesh.positions().iter().map(|p| p.to_array()).collect();
+    let mut out = vec![[0.0; 3]; r.n_vertices(level)];
+    r.evaluate(&points, &mut out).map_err(|e| e.to_string())?;
+    if stencils {
+        let table = r.stencils().map_err(|e| e.to_string())?;
+        let mut again = vec![[0.0; 3]; r.n_vertices(level)];
+        table
+            .apply(&points, &mut again)
+            .map_err(|e| e.to_string())?;
+        let diagonal = bounding_box_diagonal(base.mesh.positions());
+        for (v, (a, b)) in out.iter().zip(&again).enumerate() {
+            let d = DVec3::from_array(*a).distance(DVec3::from_array(*b));
+            if d > 1e-13 * diagonal {
+                return Err(format!(
+                    "stencil vertex {v} is {d:e} away from the evaluation"
+                ));
+            }
+        }
+    }
+    let mut offsets = vec![0u32; r.n_faces(level) + 1];
+    let mut indices = vec![0u32; r.n_corners(level)];
+    r.write_polygons(&mut offsets, &mut indices)
+        .map_err(|e| e.to_string())?;
+    let faces: Vec<Vec<u32>> = offsets
+        .windows(2)
+        .map(|w| indices[w[0] as usize..w[1] as usize].to_vec())
+        .collect();
+    Ok(PolygonMesh::from_faces(
+        out.into_iter().map(DVec3::from_array).collect(),
+        faces,
+    ))
+}
+
+/// One crease comparison: `halfedge` with `tags` and `options` against the driver reading the
+/// file's tags (`--tags`), with the options given as flags; `Err` names the first difference.
+fn compare_creased(
+    base: &Base,
+    scheme: Osd,
+    level: u32,
+    tags: &Tags,
+    options: SubdivisionOptions,
+) -> Result<Outcome, String> {
+    let method = options.crease_method.name();
+    let triangles = options.triangle_rule.name();
+    let boundary = match options.boundary {
+        BoundaryInterpolation::Edge => "edge-only",
+        BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
+        BoundaryInterpolation::None => "none",
+    };
+    let flags = [
+        "--tags",
+        "--crease-method",
+        method,
+        "--triangle-rule",
+        triangles,
+    ];
+    let at = format!(
+        "{}, {scheme:?} vs OpenSubdiv {} level {level}, boundary {boundary}, {method}, {triangles}",
+        base.file,
+        scheme.driver_name()
+    );
+    let running = opensubdiv_with(&flags, scheme, level, &base.path, Some(boundary));
+    let ours = refine_ours(base, scheme, level, tags, options, level <= 2);
+    let theirs = running.mesh();
+    let ours = ours.map_err(|e| format!("{at}: {e}"))?;
+    compare_levels(&at, &base.polygons, &ours, &theirs)
+}
+
+/// Runs every comparison of `cases` and fails with all disagreements at once.
+fn check_creased(cases: &[(&Base, Osd, &Tags, SubdivisionOptions)], levels: &[u32]) {
+    driver();
+    let mut failures = Vec::new();
+    let mut largest = 0.0f64;
+    for &(base, scheme, tags, options) in cases {
+        for &level in levels {
+            match compare_creased(base, scheme, level, tags, options) {
+                Ok(outcome) => largest = largest.max(outcome.max_deviation),
+                Err(message) => failures.push(message),
+            }
+        }
+    }
+    eprintln!(
+        "{} crease comparisons, largest deviation {largest:.3e} of the diagonal",
+        cases.len() * levels.len()
+    );
+    assert!(
+        failures.is_empty(),
+        "halfedge's crease rules disagree with OpenSubdiv:\n{}",
+        failures.join("\n")
+    );
+}
+
+/// The resolved options of a file's tags (edge / uniform / catmark where it says nothing).
+fn tag_options(tags: &Tags) -> SubdivisionOptions {
+    tags.options.over(SubdivisionOptions::default())
+}
+
+/// Every tagged shared mesh with its own tags (OpenSubdiv's creases, Chaikin's rule, its
+/// boundary modes), Catmull-Clark on all, Loop on the triangle one, levels 1-3.
+#[test]
+#[ignore = "needs the OpenSubdiv driver"]
+fn crease_rules_match_opensubdiv_on_every_tagged_shared_mesh() {
+    let files = [
+        ("osd_catmark_bishop.obj", Osd::Catmark),
+        ("osd_catmark_pawn.obj", Osd::Catmark),
+        ("osd_catmark_chaikin2.obj", Osd::Catmark),
+        ("osd_catmark_nonquads.obj", Osd::Catmark),
+        ("osd_loop_icosahedron.obj", Osd::Loop),
+        ("osd_loop_icosahedron.obj", Osd::Catmark),
+    ];
+    let bases: Vec<(Base, Osd, Tags)> = files
+        .iter()
+        .map(|&(file, scheme)| {
+            let base = Base::load(file).unwrap_or_else(|e| panic!("{e}"));
+            let tags = read_tags(&base.path);
+            assert!(!tags.is_empty(), "{file} has no tags");
+            (base, scheme, tags)
+        })
+        .collect();
+    let cases: Vec<_> = bases
+        .iter()
+        .map(|(base, scheme, tags)| (base, *scheme, tags, tag_options(tags)))
+        .collect();
+    check_creased(&cases, &[1, 2, 3]);
+}
+
+/// A generated test mesh with its tags, written as an OBJ with OpenSubdiv's `t` lines into the
+/// system's temporary folder (one file per mesh and process, removed on drop).
+struct Generated {
+    base: Base,
+    tags: Tags,
+}
+
+impl Generated {
+    fn new(name: &str, polygons: PolygonMesh, tags: Tags) -> Generated {
+        use std::fmt::Write as _;
+        let mut text = String::new();
+        for p in &polygons.positions {
+            writeln!(text, "v {} {} {}", p.x, p.y, p.z).expect("a string");
+        }
+        for face in polygons.faces() {
+            text.push('f');
+            for &v in face {
+                write!(text, " {}", v + 1).expect("a string");
+            }
+            text.push('\n');
+        }
+        for c in tags.creases() {
+            writeln!(text, "t crease 2/1/0 {} {} {}", c.a, c.b, c.sharpness).expect("a string");
+        }
+        for c in tags.corners() {
+            writeln!(text, "t corner 1/1/0 {} {}", c.vertex, c.sharpness).expect("a string");
+        }
+        let path = std::env::temp_dir().join(format!(
+            "subcount-creases-{}-{name}.obj",
+            std::process::id()
+        ));
+        std::fs::write(&path, text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let mesh = HalfEdgeMesh::try_from(&polygons).unwrap_or_else(|e| panic!("{name}: {e}"));
+        Generated {
+            base: Base {
+                file: name.to_owned(),
+                path,
+                polygons,
+                mesh,
+                has_bare_vertices: false,
+            },
+            tags,
+        }
+    }
+}
+
+impl Drop for Generated {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.base.path);
+    }
+}
+
+/// An `n` x `n` grid of quads over a bumpy height field (so no rule is exact by symmetry),
+/// vertex `(i, j)` numbered `j (n + 1) + i`; split into triangles along one diagonal when
+/// `triangles`.
+fn bumpy_grid(n: u32, triangles: bool) -> PolygonMesh {
+    let id = |i: u32, j: u32| j * (n + 1) + i;
+    let positions = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            let (x, y) = (f64::from(i), f64::from(j));
+            DVec3::new(
+                x + 0.1 * y.sin(),
+                y,
+                0.3 * (1.3 * x).sin() * (0.7 * y).cos(),
+            )
+        })
+        .collect();
+    let mut mesh = PolygonMesh::with_positions(positions);
+    for j in 0..n {
+        for i in 0..n {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if triangles {
+                mesh.push_face(&[a, b, c]);
+                mesh.push_face(&[a, c, d]);
+            } else {
+                mesh.push_face(&[a, b, c, d]);
+            }
+        }
+    }
+    mesh
+}
+
+/// Tags on a 4 x 4 grid: a boundary-to-boundary chain along row 2 of every kind of sharpness
+/// (0.5, 1.3, 2.7, infinite), a chain along row 1 ending in an infinitely sharp corner and a
+/// semi-sharp one, an isolated semi-sharp edge (a dart at each end), a semi-sharp corner on
+/// the row-2 chain and one on a boundary corner of the grid.
+fn grid_tags() -> Tags {
+    let id = |i: u32, j: u32| j * 5 + i;
+    let mut tags = Tags::default();
+    for (i, s) in [0.5, 1.3, 2.7, INFINITELY_SHARP].into_iter().enumerate() {
+        let i = i as u32;
+        tags.add_crease(id(i, 2), id(i + 1, 2), s).expect("valid");
+    }
+    tags.add_crease(id(1, 1), id(2, 1), 0.5).expect("valid");
+    tags.add_crease(id(2, 1), id(3, 1), 1.3).expect("valid");
+    tags.add_corner(id(1, 1), INFINITELY_SHARP).expect("valid");
+    tags.add_corner(id(3, 1), 1.3).expect("valid");
+    tags.add_crease(id(1, 3), id(2, 3), 2.7).expect("valid");
+    tags.add_corner(id(3, 2), 0.5).expect("valid");
+    tags.add_corner(id(0, 0), 0.5).expect("valid");
+    tags
+}
+
+/// Tags where three and four semi-sharp edges meet at one vertex (the sums of `f32`
+/// sharpness run in OpenSubdiv's edge order): a star at the grid's centre, its edges 0.3,
+/// 0.7, 0.9 and 1.7, and a T of 0.2, 2.2, 1.1 at vertex (1, 3).
+fn star_tags() -> Tags {
+    let id = |i: u32, j: u32| j * 5 + i;
+    let mut tags = Tags::default();
+    let c = id(2, 2);
+    for (v, s) in [
+        (id(3, 2), 0.3),
+        (id(2, 3), 0.7),
+        (id(1, 2), 0.9),
+        (id(2, 1), 1.7),
+    ] {
+        tags.add_crease(c, v, s).expect("valid");
+    }
+    let t = id(1, 3);
+    for (v, s) in [(id(0, 3), 0.2), (id(2, 3), 2.2), (id(1, 4), 1.1)] {
+        tags.add_crease(t, v, s).expect("valid");
+    }
+    tags
+}
+
+/// Every combination of boundary mode and crease method (triangle rule `catmark`).
+fn all_modes() -> Vec<SubdivisionOptions> {
+    let mut out = Vec::new();
+    for &boundary in BoundaryInterpolation::ALL {
+        for &method in CreaseMethod::ALL {
+            out.push(
+                SubdivisionOptions::default()
+                    .with_boundary(boundary)
+                    .with_crease_method(method),
+            );
+        }
+    }
+    out
+}
+
+/// Generated grids with creases, corners, darts, chains ending in corners and semi-sharp
+/// values (0.5, 1.3, 2.7 and infinite), each boundary mode, uniform and Chaikin: Catmull-Clark
+/// on quads and triangles, Loop on triangles, levels 1-3.
+#[test]
+#[ignore = "needs the OpenSubdiv driver"]
+fn crease_rules_match_opensubdiv_on_generated_grids() {
+    let quads = Generated::new("quads", bumpy_grid(4, false), grid_tags());
+    let triangles = Generated::new("triangles", bumpy_grid(4, true), grid_tags());
+    let star = Generated::new("star", bumpy_grid(4, false), star_tags());
+    let star_tri = Generated::new("star-tri", bumpy_grid(4, true), star_tags());
+    let mut cases = Vec::new();
+    for options in all_modes() {
+        for (g, scheme) in [
+            (&quads, Osd::Catmark),
+            (&triangles, Osd::Catmark),
+            (&triangles, Osd::Loop),
+            (&star, Osd::Catmark),
+            (&star_tri, Osd::Loop),
+        ] {
+            cases.push((&g.base, scheme, &g.tags, options));
+        }
+    }
+    check_creased(&cases, &[1, 2, 3]);
+}
+
+/// Closed meshes: a cube (Catmull-Clark) and an icosahedron (Loop and Catmull-Clark) with a
+/// loop of creases around one face, a chain ending in corners and semi-sharp corners, uniform
+/// and Chaikin.
+#[test]
+#[ignore = "needs the OpenSubdiv driver"]
+fn crease_rules_match_opensubdiv_on_closed_meshes() {
+    let closed_tags = |mesh: &PolygonMesh| {
+        let mut tags = Tags::default();
+        let face = mesh.face(0);
+        let sharpness = [1.3, 2.7, 0.5, INFINITELY_SHARP];
+        for k in 0..face.len() {
+            let (a, b) = (face[k], face[(k + 1) % face.len()]);
+            tags.add_crease(a, b, sharpness[k % 4]).expect("valid");
+        }
+        // A chain across the next face, ending in corners.
+        let next = mesh.face(1);
+        tags.add_crease(next[1], next[2], 0.5).expect("valid");
+        tags.add_corner(next[2], 2.7).expect("valid");
+        tags.add_corner(face[0], 0.5).expect("valid");
+        tags
+    };
+    let cube = halfedge::shapes::cube();
+    let ico = halfedge::shapes::icosahedron();
+    let cube = Generated::new("cube", cube.clone(), closed_tags(&cube));
+    let ico = Generated::new("icosahedron", ico.clone(), closed_tags(&ico));
+    let mut cases = Vec::new();
+    for &method in CreaseMethod::ALL {
+        let options = SubdivisionOptions::default().with_crease_method(method);
+        cases.push((&cube.base, Osd::Catmark, &cube.tags, options));
+        cases.push((&ico.base, Osd::Loop, &ico.tags, options));
+        cases.push((&ico.base, Osd::Catmark, &ico.tags, options));
+    }
+    check_creased(&cases, &[1, 2, 3]);
+}
+
+/// Catmark's smooth-triangle rule (`TRI_SUB_SMOOTH`) on meshes mixing triangles with quads and
+/// n-gons, with and without creases, and each boundary mode.
+#[test]
+#[ignore = "needs the OpenSubdiv driver"]
+fn smooth_triangles_match_opensubdiv() {
+    let mut mixed = halfedge::shapes::mixed();
+    for (v, p) in mixed.positions.iter_mut().enumerate() {
+        p.z = 0.2 * (v as f64).sin();
+    }
+    let mut creased = Tags::default();
+    creased.add_crease(3, 4, 1.3).expect("valid");
+    creased.add_crease(4, 10, 0.5).expect("valid");
+    creased.add_corner(9, 2.7).expect("valid");
+    let plain = Generated::new("mixed", mixed.clone(), Tags::default());
+    let with_creases = Generated::new("mixed-creased", mixed, creased);
+    let pyramid = Base::load("osd_catmark_pyramid.obj").unwrap_or_else(|e| panic!("{e}"));
+    let nonquads = Base::load("osd_catmark_nonquads.obj").unwrap_or_else(|e| panic!("{e}"));
+    let none = Tags::default();
+    let nonquad_tags = read_tags(&nonquads.path);
+    let mut cases = Vec::new();
+    for &boundary in BoundaryInterpolation::ALL {
+        let options = SubdivisionOptions::default()
+            .with_boundary(boundary)
+            .with_triangle_rule(TriangleRule::Smooth);
+        cases.push((&plain.base, Osd::Catmark, &plain.tags, options));
+        cases.push((
+            &with_creases.base,
+            Osd::Catmark,
+            &with_creases.tags,
+            options,
+        ));
+        cases.push((&nonquads, Osd::Catmark, &nonquad_tags, options));
+    }
+    let smooth = SubdivisionOptions::default().with_triangle_rule(TriangleRule::Smooth);
+    cases.push((&pyramid, Osd::Catmark, &none, smooth));
+    check_creased(&cases, &[1, 2, 3]);
+}
+
+/// The crease comparison can fail: the pawn's 120 creases (sharpness 6) left out of
+/// `halfedge`'s side, or Chaikin's rule asked of one side only, are told apart.
+#[test]
+#[ignore = "needs the OpenSubdiv driver"]
+fn missing_creases_are_told_apart() {
+    driver();
+    let pawn = Base::load("osd_catmark_pawn.obj").unwrap_or_else(|e| panic!("{e}"));
+    let tags = read_tags(&pawn.path);
+    let flags = ["--tags"];
+    let running = opensubdiv_with(&flags, Osd::Catmark, 1, &pawn.path, None);
+    let ours = refine_ours(
+        &pawn,
+        Osd::Catmark,
+        1,
+        &Tags::default(),
+        SubdivisionOptions::default(),
+        false,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let err = compare_levels(
+        "pawn without creases",
+        &pawn.polygons,
+        &ours,
+        &running.mesh(),
+    )
+    .err()
+    .expect("the creases went unnoticed");
+    assert!(err.contains("has no halfedge vertex within"), "{err}");
+
+    let chaikin = Base::load("osd_catmark_chaikin2.obj").unwrap_or_else(|e| panic!("{e}"));
+    let tags_chaikin = read_tags(&chaikin.path);
+    assert_eq!(
+        tags_chaikin.options.crease_method,
+        Some(CreaseMethod::Chaikin)
+    );
+    let uniform = SubdivisionOptions::default();
+    let err = (1..=3)
+        .map(|level| compare_creased(&chaikin, Osd::Catmark, level, &tags_chaikin, uniform))
+        .find_map(Result::err);
+    // The driver was told `uniform` too (flags win over the file's tag): both agree.
+    assert!(err.is_none(), "{err:?}");
+    let running = opensubdiv_with(&flags, Osd::Catmark, 2, &chaikin.path, None);
+    let ours = refine_ours(&chaikin, Osd::Catmark, 2, &tags_chaikin, uniform, false)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let err = compare_levels(
+        "chaikin2 as uniform",
+        &chaikin.polygons,
+        &ours,
+        &running.mesh(),
+    )
+    .err()
+    .expect("Chaikin's rule went unnoticed");
+    assert!(err.contains("has no halfedge vertex within"), "{err}");
+    drop(tags);
+
+    // Smooth triangles on one side only.
+    let pyramid = Base::load("osd_catmark_pyramid.obj").unwrap_or_else(|e| panic!("{e}"));
+    let smooth = ["--tags", "--triangle-rule", "smooth"];
+    let running = opensubdiv_with(&smooth, Osd::Catmark, 1, &pyramid.path, None);
+    let none = Tags::default();
+    let ours = refine_ours(
+        &pyramid,
+        Osd::Catmark,
+        1,
+        &none,
+        SubdivisionOptions::default(),
+        false,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let err = compare_levels("pyramid", &pyramid.polygons, &ours, &running.mesh())
+        .err()
+        .expect("the smooth triangle rule went unnoticed");
+    assert!(err.contains("has no halfedge vertex within"), "{err}");
 }

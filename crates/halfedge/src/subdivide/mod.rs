@@ -90,6 +90,7 @@ mod gather;
 mod oneshot_hashes;
 mod par;
 pub mod refine;
+pub mod sdc;
 mod sqrt3;
 mod to_faces;
 mod topo;
@@ -97,11 +98,14 @@ mod trisplit;
 
 use num_bigint::BigInt;
 pub use schemes::Rule;
+
+pub use self::sdc::Sharpness;
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
 use self::build::Sizes;
 use self::topo::Topo;
 use self::trisplit::{Template, TriRule};
+use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// Options of [`subdivide`] and friends.
@@ -123,6 +127,15 @@ pub struct SubdivideOptions<'a> {
     pub preallocate: bool,
     /// Called after each level is built.
     pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
+    /// Creases and corners (Loop and Catmull-Clark, OpenSubdiv's rules: [`sdc`]); honoured by
+    /// [`Refinement::new`](crate::Refinement::new). The one-shot [`subdivide`],
+    /// [`subdivide_to_face_list`] and [`verify`] do not read it (nor
+    /// [`SubdivideOptions::subdivision`]) yet.
+    pub sharpness: Option<&'a Sharpness>,
+    /// Boundary interpolation, crease method and triangle rule of the crease rules
+    /// ([`sdc`]); the default is OpenSubdiv's `edge` / `uniform` / `catmark`, the rules'
+    /// own kernels.
+    pub subdivision: SubdivisionOptions,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -131,6 +144,8 @@ impl Default for SubdivideOptions<'_> {
             threads: 1,
             preallocate: true,
             progress: None,
+            sharpness: None,
+            subdivision: SubdivisionOptions::default(),
         }
     }
 }
@@ -153,6 +168,18 @@ impl<'a> SubdivideOptions<'a> {
         self.progress = Some(progress);
         self
     }
+
+    /// Sets [`SubdivideOptions::sharpness`].
+    pub fn with_sharpness(mut self, sharpness: &'a Sharpness) -> Self {
+        self.sharpness = Some(sharpness);
+        self
+    }
+
+    /// Sets [`SubdivideOptions::subdivision`].
+    pub fn with_subdivision(mut self, subdivision: SubdivisionOptions) -> Self {
+        self.subdivision = subdivision;
+        self
+    }
 }
 
 impl std::fmt::Debug for SubdivideOptions<'_> {
@@ -161,6 +188,13 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
             .field("threads", &self.threads)
             .field("preallocate", &self.preallocate)
             .field("progress", &self.progress.map(|_| "callback"))
+            .field(
+                "sharpness",
+                &self
+                    .sharpness
+                    .map(|s| (s.n_sharp_edges(), s.n_sharp_vertices())),
+            )
+            .field("subdivision", &self.subdivision)
             .finish()
     }
 }

@@ -1,5 +1,6 @@
 //! Integration tests of the `halfedge` crate (one test binary; see STYLE.md section 7).
 
+mod creases;
 mod invalid_obj;
 mod properties;
 mod roundtrip;

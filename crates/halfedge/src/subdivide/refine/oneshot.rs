@@ -79,6 +79,7 @@ impl Refinement {
             sizes: Vec::new(),
             polygons: None,
             face_degree: None,
+            creases: None,
         }
     }
 

@@ -1,0 +1,489 @@
+//! One level of Loop or Catmull-Clark with creases, as OpenSubdiv's `Sdc::Scheme` computes
+//! it (`ComputeEdgeVertexMask`, `ComputeVertexVertexMask`, the schemes' smooth, crease and
+//! corner masks, Catmark's smooth-triangle edge weights), flattened into a sparse table:
+//! every child vertex as weights of the parent's vertices. Face points inside the masks of
+//! Catmull-Clark are expanded into their corners, so a row reads the parent level only.
+//!
+//! The child vertices are numbered as the half-edge builders number them: the children of
+//! the parent's vertices (same index), then those of its edges (`nv + e`), then, under
+//! Catmull-Clark, those of its faces (`nv + ne + f`).
+//!
+//! Rules, as Vtr tags them: a parent vertex's rule comes from its sharpness and the sharp
+//! edges around it; its child's from the decayed values. An edge's child takes the crease
+//! rule when both child edges of the edge are sharp, else the smooth or dart rule; a face's
+//! child is smooth. When the two rules of a vertex differ, the masks are blended by the
+//! fractional weight of [`fractional_weight`]; an edge whose children are not both sharp
+//! blends its crease mask (weight: its sharpness, as OpenSubdiv, even above 1 under Chaikin)
+//! with its smooth one.
+
+use std::f64::consts::PI;
+
+use super::crease::{
+    child_edge_sharpness, decrement, fractional_weight, is_sharp, vertex_rule_of, VertexRule,
+};
+use crate::mesh::INVALID;
+use crate::subdivide::par::Sink;
+use crate::subdivide::refine::Vector;
+use crate::subdivide::topo::Topo;
+use crate::tags::{CreaseMethod, SubdivisionOptions, TriangleRule};
+use crate::{Error, Result};
+
+/// The scheme of a crease-aware level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Scheme {
+    Loop,
+    CatmullClark,
+}
+
+/// The sharpness of one level: per edge and per vertex, and the order in which OpenSubdiv
+/// lists each vertex's edges (its sums of `f32` values run in that order).
+#[derive(Clone, Debug)]
+pub(crate) struct LevelSharpness {
+    /// Per edge (`h >> 1`).
+    pub(crate) edges: Vec<f32>,
+    /// Per vertex.
+    pub(crate) vertices: Vec<f32>,
+    /// Per vertex: the outgoing half-edge OpenSubdiv lists first (its leading edge).
+    pub(crate) first: Vec<u32>,
+}
+
+/// The outgoing half-edges of `v` counter-clockwise from `first` (OpenSubdiv's order of a
+/// vertex's edges; face `i`, where there is one, lies between edges `i` and `i + 1`), into
+/// `ring`.
+fn ccw_ring(t: &Topo<'_>, v: u32, first: u32, ring: &mut Vec<u32>) {
+    ring.clear();
+    let mut h = first;
+    loop {
+        ring.push(h);
+        if t.is_boundary(h) {
+            break;
+        }
+        h = t.prev(h) ^ 1;
+        if h == first || ring.len() > t.ne() * 2 {
+            break;
+        }
+    }
+    debug_assert!(ring.iter().all(|&h| t.source(h) == v));
+}
+
+/// The leading outgoing half-edge of a boundary vertex (the one whose face follows the
+/// boundary counter-clockwise), or `None` for an interior vertex.
+fn boundary_first(t: &Topo<'_>, v: u32) -> Option<u32> {
+    let h = t.vertex_halfedge(v);
+    t.is_boundary(h).then(|| t.prev(h) ^ 1)
+}
+
+impl LevelSharpness {
+    /// The sharpness of the base level: the given values with boundary edges infinitely sharp
+    /// (as OpenSubdiv does under every boundary mode) and, under `edge-and-corner`, boundary
+    /// vertices of one face infinitely sharp. Interior vertices list their edges from the
+    /// lowest-numbered face around them, as OpenSubdiv's base level does.
+    pub(crate) fn base(
+        t: &Topo<'_>,
+        edges: &[f32],
+        vertices: &[f32],
+        options: &SubdivisionOptions,
+    ) -> LevelSharpness {
+        use crate::tags::{BoundaryInterpolation, INFINITELY_SHARP};
+        let mut e: Vec<f32> = edges.to_vec();
+        for (i, s) in e.iter_mut().enumerate() {
+            if t.is_boundary_edge(i as u32) {
+                *s = INFINITELY_SHARP;
+            }
+        }
+        let mut vs: Vec<f32> = vertices.to_vec();
+        let mut first = Vec::with_capacity(t.nv());
+        for v in 0..t.nv() as u32 {
+            match boundary_first(t, v) {
+                Some(h) => {
+                    if options.boundary == BoundaryInterpolation::EdgeAndCorner && t.valence(v) == 2
+                    {
+                        vs[v as usize] = INFINITELY_SHARP;
+                    }
+                    first.push(h);
+                }
+                None => {
+                    let mut best = t.vertex_halfedge(v);
+                    t.for_outgoing(v, |h| {
+                        if t.face(h) < t.face(best) {
+                            best = h;
+                        }
+                    });
+                    first.push(best);
+                }
+            }
+        }
+        LevelSharpness {
+            edges: e,
+            vertices: vs,
+            first,
+        }
+    }
+}
+
+/// A level's child vertices as sparse weights of the parent's vertices (rows in child order).
+#[derive(Debug, Default)]
+pub(crate) struct WeightTable {
+    offsets: Vec<u32>,
+    index: Vec<u32>,
+    weight: Vec<f64>,
+}
+
+impl WeightTable {
+    /// Bytes held.
+    pub(crate) fn bytes(&self) -> usize {
+        4 * (self.offsets.len() + self.index.len()) + 8 * self.weight.len()
+    }
+
+    /// The number of child vertices.
+    pub(crate) fn rows(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// The child vertices from the parent's data `src`, appended to `out`.
+    pub(crate) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
+        out.append(self.rows(), parallel, |r| {
+            let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+            let mut sum = V::zero();
+            for (&i, &w) in self.index[a..b].iter().zip(&self.weight[a..b]) {
+                sum = sum.add(src[i as usize].clone().scale(w));
+            }
+            sum
+        });
+    }
+
+    /// Ends the current row: merges equal vertices (sorted by vertex).
+    fn push_row(&mut self, row: &mut Vec<(u32, f64)>) -> Result<()> {
+        row.sort_by_key(|&(v, _)| v);
+        let mut last = INVALID;
+        for &(v, w) in row.iter() {
+            if v == last {
+                if let Some(x) = self.weight.last_mut() {
+                    *x += w;
+                }
+            } else {
+                self.index.push(v);
+                self.weight.push(w);
+                last = v;
+            }
+        }
+        row.clear();
+        let n = u32::try_from(self.index.len()).map_err(|_| Error::IndexOverflow {
+            what: "crease weight table entries",
+            count: self.index.len() as u128,
+        })?;
+        self.offsets.push(n);
+        Ok(())
+    }
+}
+
+/// A vertex mask (`Sdc`'s vertex, edge and face weights): one weight for the vertex, one per
+/// ring edge (its opposite vertex) and one per ring face (its centre; Catmull-Clark only).
+#[derive(Clone, Debug, Default)]
+struct Mask {
+    vertex: f64,
+    edges: Vec<f64>,
+    faces: Vec<f64>,
+}
+
+impl Mask {
+    fn corner(n: usize, faces: usize) -> Mask {
+        Mask {
+            vertex: 1.0,
+            edges: vec![0.0; n],
+            faces: vec![0.0; faces],
+        }
+    }
+
+    /// 3/4 of the vertex and 1/8 of each of the two sharp edges (the first and last sharp
+    /// ones in the ring: `GetSharpEdgePairOfCrease`).
+    fn crease(sharpness: &[f32], faces: usize) -> Mask {
+        let n = sharpness.len();
+        let mut m = Mask {
+            vertex: 0.75,
+            edges: vec![0.0; n],
+            faces: vec![0.0; faces],
+        };
+        let first = sharpness.iter().position(|&s| is_sharp(s));
+        let last = sharpness.iter().rposition(|&s| is_sharp(s));
+        if let (Some(a), Some(b)) = (first, last) {
+            m.edges[a] = 0.125;
+            m.edges[b] = 0.125;
+        }
+        m
+    }
+
+    fn smooth(scheme: Scheme, n: usize, faces: usize) -> Mask {
+        match scheme {
+            Scheme::CatmullClark => {
+                // Valence from the faces (a smooth vertex is interior: as many as edges).
+                let valence = faces as f64;
+                let f = 1.0 / (faces * faces) as f64;
+                Mask {
+                    vertex: (valence - 2.0) / valence,
+                    edges: vec![f; n],
+                    faces: vec![f; faces],
+                }
+            }
+            Scheme::Loop => {
+                let (e, v) = if faces == 6 {
+                    (0.0625, 0.625)
+                } else {
+                    let valence = faces as f64;
+                    let inv = 1.0 / valence;
+                    let cos = (PI * 2.0 * inv).cos();
+                    let beta = 0.25 * cos + 0.375;
+                    let e = (0.625 - beta * beta) * inv;
+                    (e, 1.0 - e * valence)
+                };
+                Mask {
+                    vertex: v,
+                    edges: vec![e; n],
+                    faces: vec![0.0; faces],
+                }
+            }
+        }
+    }
+
+    fn of(rule: VertexRule, scheme: Scheme, sharpness: &[f32], faces: usize) -> Mask {
+        match rule {
+            VertexRule::Smooth | VertexRule::Dart => Mask::smooth(scheme, sharpness.len(), faces),
+            VertexRule::Crease => Mask::crease(sharpness, faces),
+            VertexRule::Corner => Mask::corner(sharpness.len(), faces),
+        }
+    }
+
+    /// `parent * p + child * (1 - p)` (`CombineVertexVertexMasks`).
+    fn blend(mut self, child: &Mask, p: f64) -> Mask {
+        let c = 1.0 - p;
+        self.vertex = p * self.vertex + c * child.vertex;
+        for (x, y) in self.edges.iter_mut().zip(&child.edges) {
+            *x = p * *x + c * y;
+        }
+        for (x, y) in self.faces.iter_mut().zip(&child.faces) {
+            *x = p * *x + c * y;
+        }
+        self
+    }
+}
+
+/// One crease-aware level built from its parent `t` and the parent's sharpness: the weight
+/// table of the child vertices and, when asked, the child level's sharpness.
+pub(crate) struct LevelBuilder<'a> {
+    t: Topo<'a>,
+    sharp: &'a LevelSharpness,
+    scheme: Scheme,
+    method: CreaseMethod,
+    smooth_triangles: bool,
+    /// Per half-edge `h`: the sharpness of the child of edge `h >> 1` at `source(h)`.
+    child_at: Vec<f32>,
+}
+
+impl<'a> LevelBuilder<'a> {
+    pub(crate) fn new(
+        t: Topo<'a>,
+        sharp: &'a LevelSharpness,
+        scheme: Scheme,
+        options: &SubdivisionOptions,
+    ) -> LevelBuilder<'a> {
+        let method = options.crease_method;
+        let mut child_at = vec![0.0f32; 2 * t.ne()];
+        let mut ring = Vec::new();
+        let mut edge_sharpness = Vec::new();
+        for v in 0..t.nv() as u32 {
+            ccw_ring(&t, v, sharp.first[v as usize], &mut ring);
+            edge_sharpness.clear();
+            edge_sharpness.extend(ring.iter().map(|&h| sharp.edges[(h >> 1) as usize]));
+            for (i, &h) in ring.iter().enumerate() {
+                child_at[h as usize] = child_edge_sharpness(method, &edge_sharpness, i);
+            }
+        }
+        LevelBuilder {
+            t,
+            sharp,
+            scheme,
+            method,
+            smooth_triangles: scheme == Scheme::CatmullClark
+                && options.triangle_rule == TriangleRule::Smooth,
+            child_at,
+        }
+    }
+
+    /// The weight table of the child vertices.
+    pub(crate) fn weights(&self) -> Result<WeightTable> {
+        let t = &self.t;
+        let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+        let rows = match self.scheme {
+            Scheme::Loop => nv + ne,
+            Scheme::CatmullClark => nv + ne + nf,
+        };
+        let mut table = WeightTable {
+            offsets: Vec::with_capacity(rows + 1),
+            index: Vec::with_capacity(rows * 8),
+            weight: Vec::with_capacity(rows * 8),
+        };
+        table.offsets.push(0);
+        let mut row = Vec::new();
+        let mut ring = Vec::new();
+        for v in 0..nv as u32 {
+            self.vertex_row(v, &mut ring, &mut row);
+            table.push_row(&mut row)?;
+        }
+        for e in 0..ne as u32 {
+            self.edge_row(e, &mut row);
+            table.push_row(&mut row)?;
+        }
+        if self.scheme == Scheme::CatmullClark {
+            for f in 0..nf as u32 {
+                self.face_centre(f, 1.0, &mut row);
+                table.push_row(&mut row)?;
+            }
+        }
+        Ok(table)
+    }
+
+    /// Adds `w` times the centre of face `f` (its corners, `w / degree` each).
+    fn face_centre(&self, f: u32, w: f64, row: &mut Vec<(u32, f64)>) {
+        let t = &self.t;
+        let each = 1.0 / t.face_degree(f) as f64;
+        t.for_face(f, |h| row.push((t.source(h), w * each)));
+    }
+
+    fn vertex_row(&self, v: u32, ring: &mut Vec<u32>, row: &mut Vec<(u32, f64)>) {
+        let t = &self.t;
+        ccw_ring(t, v, self.sharp.first[v as usize], ring);
+        let n = ring.len();
+        let faces: Vec<u32> = ring
+            .iter()
+            .filter(|&&h| !t.is_boundary(h))
+            .map(|&h| t.face(h))
+            .collect();
+        let parent: Vec<f32> = ring
+            .iter()
+            .map(|&h| self.sharp.edges[(h >> 1) as usize])
+            .collect();
+        let child: Vec<f32> = ring.iter().map(|&h| self.child_at[h as usize]).collect();
+        let pv = self.sharp.vertices[v as usize];
+        let cv = decrement(pv);
+        let p_rule = vertex_rule_of(pv, &parent);
+        let c_rule = vertex_rule_of(cv, &child);
+        let nfaces = faces.len();
+        let mut mask = Mask::of(p_rule, self.scheme, &parent, nfaces);
+        if !p_rule.is_smooth() && c_rule != p_rule {
+            let child_mask = Mask::of(c_rule, self.scheme, &child, nfaces);
+            let p = f64::from(fractional_weight(self.method, pv, cv, &parent, &child));
+            mask = mask.blend(&child_mask, p);
+        }
+        row.push((v, mask.vertex));
+        for (&h, &w) in ring.iter().zip(&mask.edges) {
+            row.push((t.target(h), w));
+        }
+        if self.scheme == Scheme::CatmullClark {
+            for (&f, &w) in faces.iter().zip(&mask.faces) {
+                self.face_centre(f, w, row);
+            }
+        }
+        debug_assert_eq!(mask.edges.len(), n);
+    }
+
+    fn edge_row(&self, e: u32, row: &mut Vec<(u32, f64)>) {
+        let t = &self.t;
+        let h = 2 * e;
+        let (a, b) = (t.source(h), t.target(h));
+        let s = self.sharp.edges[e as usize];
+        let crease_children =
+            is_sharp(self.child_at[h as usize]) && is_sharp(self.child_at[(h ^ 1) as usize]);
+        if is_sharp(s) && crease_children {
+            row.push((a, 0.5));
+            row.push((b, 0.5));
+            return;
+        }
+        // The smooth mask (an edge with a sharp parent and a boundary is never here: boundary
+        // edges are infinitely sharp, and so are their children).
+        let (mut vw, fw, faces) = match self.scheme {
+            Scheme::Loop => (0.375, 0.125, [t.face(h), t.face(h ^ 1)]),
+            Scheme::CatmullClark => {
+                let faces = [t.face(h), t.face(h ^ 1)];
+                let tri = |f: u32| f != INVALID && t.face_degree(f) == 3;
+                if self.smooth_triangles && (tri(faces[0]) || tri(faces[1])) {
+                    // Catmark's TRI_SUB_SMOOTH, in Hbr's order of operations.
+                    let weight = |f: u32| if tri(f) { 0.470 } else { 0.25 };
+                    let fw = 0.5 * (weight(faces[0]) + weight(faces[1]));
+                    (0.5 * (1.0 - 2.0 * fw), fw, faces)
+                } else {
+                    (0.25, 0.25, faces)
+                }
+            }
+        };
+        let mut fw = [fw, fw];
+        if is_sharp(s) {
+            // A crease that becomes smooth: blended by the edge's sharpness.
+            let p = f64::from(s);
+            let c = 1.0 - p;
+            vw = p * 0.5 + c * vw;
+            fw = [fw[0] * c, fw[1] * c];
+        }
+        row.push((a, vw));
+        row.push((b, vw));
+        match self.scheme {
+            Scheme::Loop => {
+                row.push((t.target(t.next(h)), fw[0]));
+                row.push((t.target(t.next(h ^ 1)), fw[1]));
+            }
+            Scheme::CatmullClark => {
+                for (f, w) in faces.into_iter().zip(fw) {
+                    if f != INVALID {
+                        self.face_centre(f, w, row);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The sharpness of the child level `child` (numbered as the module docs say).
+    pub(crate) fn child_sharpness(&self, child: &Topo<'_>) -> LevelSharpness {
+        let t = &self.t;
+        let (nv, ne) = (t.nv() as u32, t.ne() as u32);
+        let mut edges = vec![0.0f32; child.ne()];
+        for (e, s) in edges.iter_mut().enumerate() {
+            let h = 2 * e as u32;
+            let (x, y) = (child.source(h), child.target(h));
+            let (vertex, mid) = if x < nv { (x, y) } else { (y, x) };
+            if vertex < nv && (nv..nv + ne).contains(&mid) {
+                let pe = mid - nv;
+                let ph = if t.source(2 * pe) == vertex {
+                    2 * pe
+                } else {
+                    2 * pe + 1
+                };
+                *s = self.child_at[ph as usize];
+            }
+        }
+        let mut vertices = vec![0.0f32; child.nv()];
+        for (v, s) in vertices.iter_mut().enumerate().take(nv as usize) {
+            *s = decrement(self.sharp.vertices[v]);
+        }
+        let first = (0..child.nv() as u32)
+            .map(|v| {
+                if v < nv {
+                    // The child of the parent's leading edge leads here too.
+                    let target = nv + (self.sharp.first[v as usize] >> 1);
+                    let mut found = child.vertex_halfedge(v);
+                    child.for_outgoing(v, |h| {
+                        if child.target(h) == target {
+                            found = h;
+                        }
+                    });
+                    found
+                } else {
+                    boundary_first(child, v).unwrap_or_else(|| child.vertex_halfedge(v))
+                }
+            })
+            .collect();
+        LevelSharpness {
+            edges,
+            vertices,
+            first,
+        }
+    }
+}
