@@ -12,6 +12,9 @@
 //!   written to the last level.
 //! - `evaluate-SCHEME-L3/icosphere/memcpy-f64`: a `copy_from_slice` of the `f64` output size,
 //!   in the same group: this machine's bandwidth reference.
+//! - `creased-SCHEME-L3/icosphere/{new,f64}-1t`: the same jobs under crease rules (a closed
+//!   chain of 1,000 edges of sharpness 2.5 and 100 corners of sharpness 1.5, so every level
+//!   runs on weight tables): `Refinement::new` and a per-frame `f64` evaluation, one thread.
 //!
 //! ```text
 //! cargo bench -p halfedge --bench refine -- 'evaluate-loop'
@@ -21,7 +24,8 @@ use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput};
 use halfedge::refine::{Refinement, Scalar};
-use halfedge::subdivide::{subdivide, SubdivideOptions};
+use halfedge::subdivide::{subdivide, Sharpness, SubdivideOptions};
+use halfedge::tags::Tags;
 use halfedge::{shapes, HalfEdgeMesh, Rule};
 
 const JOBS: [(&str, Rule, u32); 2] = [
@@ -120,6 +124,43 @@ fn bench_evaluate(c: &mut Criterion, mesh: &HalfEdgeMesh) {
     }
 }
 
+/// 1,000 edges (each vertex's first outgoing edge, from vertex 0 on) of sharpness 2.5 and 100
+/// corners of sharpness 1.5.
+fn creases(mesh: &HalfEdgeMesh) -> Sharpness {
+    let mut tags = Tags::default();
+    let mut seen = std::collections::HashSet::new();
+    for v in mesh.vertices().take(1000) {
+        let h = mesh.vertex_halfedge(v);
+        let w = mesh.to_vertex(h);
+        if seen.insert((v.0.min(w.0), v.0.max(w.0))) {
+            tags.add_crease(v.0, w.0, 2.5).expect("valid");
+        }
+    }
+    for v in mesh.vertices().step_by(811).take(100) {
+        tags.add_corner(v.0, 1.5).expect("valid");
+    }
+    Sharpness::from_tags(mesh, &tags).expect("edges of the mesh")
+}
+
+fn bench_creased(c: &mut Criterion, mesh: &HalfEdgeMesh) {
+    let base: Vec<[f64; 3]> = mesh.positions().iter().map(|p| p.to_array()).collect();
+    let sharpness = creases(mesh);
+    let opts = SubdivideOptions::default().with_sharpness(&sharpness);
+    for (name, rule, levels) in JOBS {
+        let mut group = c.benchmark_group(format!("creased-{name}-L{levels}"));
+        configure(&mut group);
+        let r = Refinement::new(mesh, rule, levels, &opts).expect("the rule applies");
+        let n = r.n_vertices(levels);
+        group.throughput(Throughput::Elements(r.n_faces(levels) as u64));
+        group.bench_function(BenchmarkId::new("icosphere", "new-1t"), |b| {
+            b.iter(|| Refinement::new(mesh, rule, levels, &opts).expect("applies"))
+        });
+        group.throughput(Throughput::Bytes((n * 24) as u64));
+        evaluate_variant::<f64>(&mut group, &r, &base, "f64-1t");
+        group.finish();
+    }
+}
+
 // What `criterion_group!` and `criterion_main!` expand to, without their undocumented
 // public function.
 fn main() {
@@ -127,5 +168,6 @@ fn main() {
     let mesh = icosphere();
     bench_oneshot(&mut c, &mesh);
     bench_evaluate(&mut c, &mesh);
+    bench_creased(&mut c, &mesh);
     c.final_summary();
 }

@@ -1075,6 +1075,9 @@ impl Generated {
         for c in tags.corners() {
             writeln!(text, "t corner 1/1/0 {} {}", c.vertex, c.sharpness).expect("a string");
         }
+        for f in tags.holes() {
+            writeln!(text, "t hole 1/0/0 {f}").expect("a string");
+        }
         let path = std::env::temp_dir().join(format!(
             "subcount-creases-{}-{name}.obj",
             std::process::id()
@@ -1191,7 +1194,10 @@ fn all_modes() -> Vec<SubdivisionOptions> {
 
 /// Generated grids with creases, corners, darts, chains ending in corners and semi-sharp
 /// values (0.5, 1.3, 2.7 and infinite), each boundary mode, uniform and Chaikin: Catmull-Clark
-/// on quads and triangles, Loop on triangles, levels 1-3.
+/// on quads and triangles, Loop on triangles, levels 1-3. One grid also has holes (a face at
+/// the boundary, two adjacent ones, all four around an interior vertex) on OpenSubdiv's side
+/// only: uniform refinement still refines and positions every vertex of a hole face, so the
+/// surface is the same (holes only say what is not drawn).
 #[test]
 #[ignore = "needs the OpenSubdiv driver"]
 fn crease_rules_match_opensubdiv_on_generated_grids() {
@@ -1199,6 +1205,11 @@ fn crease_rules_match_opensubdiv_on_generated_grids() {
     let triangles = Generated::new("triangles", bumpy_grid(4, true), grid_tags());
     let star = Generated::new("star", bumpy_grid(4, false), star_tags());
     let star_tri = Generated::new("star-tri", bumpy_grid(4, true), star_tags());
+    let mut with_holes = grid_tags();
+    for f in [0, 5, 6, 10, 9] {
+        with_holes.add_hole(f);
+    }
+    let holes = Generated::new("holes", bumpy_grid(4, false), with_holes);
     let mut cases = Vec::new();
     for options in all_modes() {
         for (g, scheme) in [
@@ -1207,6 +1218,7 @@ fn crease_rules_match_opensubdiv_on_generated_grids() {
             (&triangles, Osd::Loop),
             (&star, Osd::Catmark),
             (&star_tri, Osd::Loop),
+            (&holes, Osd::Catmark),
         ] {
             cases.push((&g.base, scheme, &g.tags, options));
         }

@@ -464,13 +464,13 @@ impl Refinement {
         };
         if level.fast.is_none() {
             if let (Some(c), Some(creases)) = (&level.topology, self.creases.as_mut()) {
-                let table = creases
-                    .weights(i, &c.topo())?
-                    .ok_or_else(|| Error::InvalidOutput {
+                let table = creases.weights(i, &c.topo(), parallel)?.ok_or_else(|| {
+                    Error::InvalidOutput {
                         scheme: self.name.clone(),
                         level: i as u32 + 1,
                         what: "no sharpness for the level refined".into(),
-                    })?;
+                    }
+                })?;
                 level.fast = Some(Fast::Creased(table));
             }
         }

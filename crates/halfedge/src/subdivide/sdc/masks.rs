@@ -151,30 +151,25 @@ impl WeightTable {
             sum
         });
     }
+}
 
-    /// Ends the current row: merges equal vertices (sorted by vertex).
-    fn push_row(&mut self, row: &mut Vec<(u32, f64)>) -> Result<()> {
-        row.sort_by_key(|&(v, _)| v);
-        let mut last = INVALID;
-        for &(v, w) in row.iter() {
-            if v == last {
-                if let Some(x) = self.weight.last_mut() {
-                    *x += w;
-                }
-            } else {
-                self.index.push(v);
-                self.weight.push(w);
-                last = v;
+/// Appends `row` to `index` and `weight`, equal vertices merged (sorted by vertex), and
+/// clears it.
+fn merge_row(row: &mut Vec<(u32, f64)>, index: &mut Vec<u32>, weight: &mut Vec<f64>) {
+    row.sort_by_key(|&(v, _)| v);
+    let mut last = INVALID;
+    for &(v, w) in row.iter() {
+        if v == last {
+            if let Some(x) = weight.last_mut() {
+                *x += w;
             }
+        } else {
+            index.push(v);
+            weight.push(w);
+            last = v;
         }
-        row.clear();
-        let n = u32::try_from(self.index.len()).map_err(|_| Error::IndexOverflow {
-            what: "crease weight table entries",
-            count: self.index.len() as u128,
-        })?;
-        self.offsets.push(n);
-        Ok(())
     }
+    row.clear();
 }
 
 /// A vertex mask (`Sdc`'s vertex, edge and face weights): one weight for the vertex, one per
@@ -187,74 +182,60 @@ struct Mask {
 }
 
 impl Mask {
-    fn corner(n: usize, faces: usize) -> Mask {
-        Mask {
-            vertex: 1.0,
-            edges: vec![0.0; n],
-            faces: vec![0.0; faces],
-        }
-    }
-
-    /// 3/4 of the vertex and 1/8 of each of the two sharp edges (the first and last sharp
-    /// ones in the ring: `GetSharpEdgePairOfCrease`).
-    fn crease(sharpness: &[f32], faces: usize) -> Mask {
+    /// Sets the mask of `rule` for a vertex of `sharpness.len()` edges and `faces` faces.
+    fn set(&mut self, rule: VertexRule, scheme: Scheme, sharpness: &[f32], faces: usize) {
         let n = sharpness.len();
-        let mut m = Mask {
-            vertex: 0.75,
-            edges: vec![0.0; n],
-            faces: vec![0.0; faces],
-        };
-        let first = sharpness.iter().position(|&s| is_sharp(s));
-        let last = sharpness.iter().rposition(|&s| is_sharp(s));
-        if let (Some(a), Some(b)) = (first, last) {
-            m.edges[a] = 0.125;
-            m.edges[b] = 0.125;
-        }
-        m
-    }
-
-    fn smooth(scheme: Scheme, n: usize, faces: usize) -> Mask {
-        match scheme {
-            Scheme::CatmullClark => {
-                // Valence from the faces (a smooth vertex is interior: as many as edges).
-                let valence = faces as f64;
-                let f = 1.0 / (faces * faces) as f64;
-                Mask {
-                    vertex: (valence - 2.0) / valence,
-                    edges: vec![f; n],
-                    faces: vec![f; faces],
-                }
-            }
-            Scheme::Loop => {
-                let (e, v) = if faces == 6 {
-                    (0.0625, 0.625)
-                } else {
-                    let valence = faces as f64;
-                    let inv = 1.0 / valence;
-                    let cos = (PI * 2.0 * inv).cos();
-                    let beta = 0.25 * cos + 0.375;
-                    let e = (0.625 - beta * beta) * inv;
-                    (e, 1.0 - e * valence)
-                };
-                Mask {
-                    vertex: v,
-                    edges: vec![e; n],
-                    faces: vec![0.0; faces],
-                }
-            }
-        }
-    }
-
-    fn of(rule: VertexRule, scheme: Scheme, sharpness: &[f32], faces: usize) -> Mask {
+        self.edges.clear();
+        self.faces.clear();
         match rule {
-            VertexRule::Smooth | VertexRule::Dart => Mask::smooth(scheme, sharpness.len(), faces),
-            VertexRule::Crease => Mask::crease(sharpness, faces),
-            VertexRule::Corner => Mask::corner(sharpness.len(), faces),
+            VertexRule::Corner => {
+                self.vertex = 1.0;
+                self.edges.resize(n, 0.0);
+                self.faces.resize(faces, 0.0);
+            }
+            VertexRule::Crease => {
+                // 3/4 of the vertex and 1/8 of each of the two sharp edges (the first and last
+                // sharp ones in the ring: `GetSharpEdgePairOfCrease`).
+                self.vertex = 0.75;
+                self.edges.resize(n, 0.0);
+                self.faces.resize(faces, 0.0);
+                let first = sharpness.iter().position(|&s| is_sharp(s));
+                let last = sharpness.iter().rposition(|&s| is_sharp(s));
+                if let (Some(a), Some(b)) = (first, last) {
+                    self.edges[a] = 0.125;
+                    self.edges[b] = 0.125;
+                }
+            }
+            VertexRule::Smooth | VertexRule::Dart => match scheme {
+                Scheme::CatmullClark => {
+                    // Valence from the faces (a smooth vertex is interior: as many as edges).
+                    let valence = faces as f64;
+                    let f = 1.0 / (faces * faces) as f64;
+                    self.vertex = (valence - 2.0) / valence;
+                    self.edges.resize(n, f);
+                    self.faces.resize(faces, f);
+                }
+                Scheme::Loop => {
+                    let (e, v) = if faces == 6 {
+                        (0.0625, 0.625)
+                    } else {
+                        let valence = faces as f64;
+                        let inv = 1.0 / valence;
+                        let cos = (PI * 2.0 * inv).cos();
+                        let beta = 0.25 * cos + 0.375;
+                        let e = (0.625 - beta * beta) * inv;
+                        (e, 1.0 - e * valence)
+                    };
+                    self.vertex = v;
+                    self.edges.resize(n, e);
+                    self.faces.resize(faces, 0.0);
+                }
+            },
         }
     }
 
-    /// `parent * p + child * (1 - p)` (`CombineVertexVertexMasks`).
-    fn blend(mut self, child: &Mask, p: f64) -> Mask {
+    /// `self * p + child * (1 - p)` (`CombineVertexVertexMasks`).
+    fn blend(&mut self, child: &Mask, p: f64) {
         let c = 1.0 - p;
         self.vertex = p * self.vertex + c * child.vertex;
         for (x, y) in self.edges.iter_mut().zip(&child.edges) {
@@ -263,9 +244,23 @@ impl Mask {
         for (x, y) in self.faces.iter_mut().zip(&child.faces) {
             *x = p * *x + c * y;
         }
-        self
     }
 }
+
+/// Buffers reused from one vertex row to the next.
+#[derive(Default)]
+struct Scratch {
+    ring: Vec<u32>,
+    faces: Vec<u32>,
+    parent: Vec<f32>,
+    child: Vec<f32>,
+    mask: Mask,
+    child_mask: Mask,
+    row: Vec<(u32, f64)>,
+}
+
+/// Rows per task when a weight table is built in parallel.
+const ROW_CHUNK: usize = 1 << 13;
 
 /// One crease-aware level built from its parent `t` and the parent's sharpness: the weight
 /// table of the child vertices and, when asked, the child level's sharpness.
@@ -309,35 +304,64 @@ impl<'a> LevelBuilder<'a> {
         }
     }
 
-    /// The weight table of the child vertices.
-    pub(crate) fn weights(&self) -> Result<WeightTable> {
+    /// The weight table of the child vertices, built in chunks of rows (in parallel when
+    /// `parallel`).
+    pub(crate) fn weights(&self, parallel: bool) -> Result<WeightTable> {
         let t = &self.t;
         let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
         let rows = match self.scheme {
             Scheme::Loop => nv + ne,
             Scheme::CatmullClark => nv + ne + nf,
         };
+        let part = |range: std::ops::Range<usize>| {
+            let mut scratch = Scratch::default();
+            let mut index = Vec::with_capacity(8 * range.len());
+            let mut weight = Vec::with_capacity(8 * range.len());
+            let mut ends = Vec::with_capacity(range.len());
+            for r in range {
+                let mut row = std::mem::take(&mut scratch.row);
+                if r < nv {
+                    self.vertex_row(r as u32, &mut scratch, &mut row);
+                } else if r < nv + ne {
+                    self.edge_row((r - nv) as u32, &mut row);
+                } else {
+                    self.face_centre((r - nv - ne) as u32, 1.0, &mut row);
+                }
+                merge_row(&mut row, &mut index, &mut weight);
+                ends.push(index.len());
+                scratch.row = row;
+            }
+            (index, weight, ends)
+        };
+        let chunks: Vec<(Vec<u32>, Vec<f64>, Vec<usize>)> = if parallel && rows >= 2 * ROW_CHUNK {
+            use rayon::prelude::*;
+            (0..rows.div_ceil(ROW_CHUNK))
+                .into_par_iter()
+                .map(|c| part(c * ROW_CHUNK..((c + 1) * ROW_CHUNK).min(rows)))
+                .collect()
+        } else {
+            vec![part(0..rows)]
+        };
+        let total: usize = chunks.iter().map(|(i, _, _)| i.len()).sum();
+        u32::try_from(total).map_err(|_| Error::IndexOverflow {
+            what: "crease weight table entries",
+            count: total as u128,
+        })?;
+        let what = "a crease weight table";
         let mut table = WeightTable {
-            offsets: Vec::with_capacity(rows + 1),
-            index: Vec::with_capacity(rows * 8),
-            weight: Vec::with_capacity(rows * 8),
+            offsets: crate::subdivide::alloc::with_capacity(rows + 1, what)?,
+            index: crate::subdivide::alloc::with_capacity(total, what)?,
+            weight: crate::subdivide::alloc::with_capacity(total, what)?,
         };
         table.offsets.push(0);
-        let mut row = Vec::new();
-        let mut ring = Vec::new();
-        for v in 0..nv as u32 {
-            self.vertex_row(v, &mut ring, &mut row);
-            table.push_row(&mut row)?;
-        }
-        for e in 0..ne as u32 {
-            self.edge_row(e, &mut row);
-            table.push_row(&mut row)?;
-        }
-        if self.scheme == Scheme::CatmullClark {
-            for f in 0..nf as u32 {
-                self.face_centre(f, 1.0, &mut row);
-                table.push_row(&mut row)?;
-            }
+        for (index, weight, ends) in chunks {
+            // At most `total`, which fits u32.
+            let start = table.index.len();
+            table
+                .offsets
+                .extend(ends.iter().map(|&e| (start + e) as u32));
+            table.index.extend_from_slice(&index);
+            table.weight.extend_from_slice(&weight);
         }
         Ok(table)
     }
@@ -349,30 +373,38 @@ impl<'a> LevelBuilder<'a> {
         t.for_face(f, |h| row.push((t.source(h), w * each)));
     }
 
-    fn vertex_row(&self, v: u32, ring: &mut Vec<u32>, row: &mut Vec<(u32, f64)>) {
+    fn vertex_row(&self, v: u32, scratch: &mut Scratch, row: &mut Vec<(u32, f64)>) {
         let t = &self.t;
+        let Scratch {
+            ring,
+            faces,
+            parent,
+            child,
+            mask,
+            child_mask,
+            ..
+        } = scratch;
         ccw_ring(t, v, self.sharp.first[v as usize], ring);
-        let n = ring.len();
-        let faces: Vec<u32> = ring
-            .iter()
-            .filter(|&&h| !t.is_boundary(h))
-            .map(|&h| t.face(h))
-            .collect();
-        let parent: Vec<f32> = ring
-            .iter()
-            .map(|&h| self.sharp.edges[(h >> 1) as usize])
-            .collect();
-        let child: Vec<f32> = ring.iter().map(|&h| self.child_at[h as usize]).collect();
+        faces.clear();
+        faces.extend(
+            ring.iter()
+                .filter(|&&h| !t.is_boundary(h))
+                .map(|&h| t.face(h)),
+        );
+        parent.clear();
+        parent.extend(ring.iter().map(|&h| self.sharp.edges[(h >> 1) as usize]));
+        child.clear();
+        child.extend(ring.iter().map(|&h| self.child_at[h as usize]));
         let pv = self.sharp.vertices[v as usize];
         let cv = decrement(pv);
-        let p_rule = vertex_rule_of(pv, &parent);
-        let c_rule = vertex_rule_of(cv, &child);
+        let p_rule = vertex_rule_of(pv, parent);
+        let c_rule = vertex_rule_of(cv, child);
         let nfaces = faces.len();
-        let mut mask = Mask::of(p_rule, self.scheme, &parent, nfaces);
+        mask.set(p_rule, self.scheme, parent, nfaces);
         if !p_rule.is_smooth() && c_rule != p_rule {
-            let child_mask = Mask::of(c_rule, self.scheme, &child, nfaces);
-            let p = f64::from(fractional_weight(self.method, pv, cv, &parent, &child));
-            mask = mask.blend(&child_mask, p);
+            child_mask.set(c_rule, self.scheme, child, nfaces);
+            let p = f64::from(fractional_weight(self.method, pv, cv, parent, child));
+            mask.blend(child_mask, p);
         }
         row.push((v, mask.vertex));
         for (&h, &w) in ring.iter().zip(&mask.edges) {
@@ -383,7 +415,6 @@ impl<'a> LevelBuilder<'a> {
                 self.face_centre(f, w, row);
             }
         }
-        debug_assert_eq!(mask.edges.len(), n);
     }
 
     fn edge_row(&self, e: u32, row: &mut Vec<(u32, f64)>) {

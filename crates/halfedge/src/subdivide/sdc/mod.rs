@@ -394,12 +394,17 @@ impl Creases {
 
     /// The weight table that refines level `level` (`t`) into the next one; the level's
     /// sharpness is dropped (the next level's was recorded before).
-    pub(crate) fn weights(&mut self, level: usize, t: &Topo<'_>) -> Result<Option<WeightTable>> {
+    pub(crate) fn weights(
+        &mut self,
+        level: usize,
+        t: &Topo<'_>,
+        parallel: bool,
+    ) -> Result<Option<WeightTable>> {
         let Some(sharp) = self.levels.get_mut(level).and_then(Option::take) else {
             return Ok(None);
         };
         LevelBuilder::new(*t, &sharp, self.scheme, &self.options)
-            .weights()
+            .weights(parallel)
             .map(Some)
     }
 }
