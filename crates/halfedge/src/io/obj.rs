@@ -690,5 +690,13 @@ mod tests {
             err.to_string(),
             "t.obj: line 2: tag `crease`: vertices 0 and 2 are not an edge of the mesh's faces"
         );
+        // A face repeating a vertex has a side from it to itself: no edge for a crease
+        // (found by the fuzzer's `obj` target: the crease `1 1` was accepted).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2 3\nt crease 2/1/0 1 1 10\n";
+        let err = read(text).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.obj: line 5: tag `crease`: vertices 1 and 1 are not an edge of the mesh's faces"
+        );
     }
 }
