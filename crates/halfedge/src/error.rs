@@ -127,7 +127,7 @@ pub enum ParseError {
     TagForm {
         /// The tag.
         name: String,
-        /// The counts as written, `nInts/nFloats/nStrings`.
+        /// The counts as written, `nInts/nFloats/nStrings` (shortened when long).
         counts: String,
         /// What the tag takes.
         expected: &'static str,

@@ -450,7 +450,8 @@ impl Tags {
 
     /// Checks the tags against a mesh: every crease and corner vertex exists, every hole
     /// face exists, and every crease joins the two ends of a side of some face (in either
-    /// direction).
+    /// direction; a side from a vertex to itself, as in a face that repeats a vertex, joins
+    /// nothing).
     ///
     /// # Errors
     ///
@@ -484,6 +485,8 @@ impl Tags {
         }
         if !self.creases.is_empty() {
             // Each wanted edge once, with its first entry; the sides of the faces mark them.
+            // A side from a vertex to itself (a face repeating a vertex, `f 1 2 2`) is no
+            // edge: a crease `v v` is refused even on such a face.
             let mut wanted: HashMap<(u32, u32), (usize, bool)> = HashMap::new();
             for (entry, c) in self.creases.iter().enumerate() {
                 wanted
@@ -493,6 +496,9 @@ impl Tags {
             for face in mesh.faces() {
                 for (i, &a) in face.iter().enumerate() {
                     let b = face[(i + 1) % face.len()];
+                    if a == b {
+                        continue;
+                    }
                     if let Some(found) = wanted.get_mut(&(a.min(b), a.max(b))) {
                         found.1 = true;
                     }

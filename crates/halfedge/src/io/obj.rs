@@ -275,7 +275,7 @@ impl TagReader {
             } else {
                 Err(ParseError::TagForm {
                     name: name.to_string(),
-                    counts: counts_token.to_string(),
+                    counts: shorten(counts_token),
                     expected,
                 })
             }
@@ -689,6 +689,24 @@ mod tests {
         assert_eq!(
             err.to_string(),
             "t.obj: line 2: tag `crease`: vertices 0 and 2 are not an edge of the mesh's faces"
+        );
+        // A long value-counts token is shortened in the message, as every other token is.
+        let counts = format!("{}1/1/0", "0".repeat(1000));
+        let err = read(&strip(&format!("t hole {counts} 0 1\n"))).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "t.obj: line 9: tag `hole` has {}... values: expected {HOLE_FORM}",
+                "0".repeat(40)
+            )
+        );
+        // A face repeating a vertex has a side from it to itself: no edge for a crease
+        // (found by the fuzzer's `obj` target: the crease `1 1` was accepted).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2 3\nt crease 2/1/0 1 1 10\n";
+        let err = read(text).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.obj: line 5: tag `crease`: vertices 1 and 1 are not an edge of the mesh's faces"
         );
     }
 }
