@@ -137,6 +137,39 @@ pub fn predicted_peak_bytes(
     Ok(arrays + input_faces + freed + PROCESS_BYTES)
 }
 
+/// [`predicted_peak_bytes`] of `rule`'s counting scheme ([`Rule::scheme_for`](crate::Rule::scheme_for))
+/// when the one-shot subdivision runs under crease rules (a sharpness or options that change
+/// something: [`SubdivideOptions::sharpness`](crate::subdivide::SubdivideOptions::sharpness)),
+/// with what the crease rules add to the two levels alive
+/// ([`Refinement::one_shot_crease_bytes`](crate::Refinement::one_shot_crease_bytes): the last
+/// parent level's weight table and sharpness). For rules without crease rules it is
+/// [`predicted_peak_bytes`].
+///
+/// ```
+/// use halfedge::memory::{predicted_peak_bytes, predicted_peak_bytes_with_creases};
+/// use halfedge::{Refinement, Rule};
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let cc = schemes::builtin("catmull-clark")?;
+/// let plain = predicted_peak_bytes(&cc, &cube, 3, Some(4))?;
+/// let creased = predicted_peak_bytes_with_creases(Rule::CatmullClark, &cube, 3, Some(4))?;
+/// assert_eq!(creased, plain + Refinement::one_shot_crease_bytes(Rule::CatmullClark, &cube, 3)?);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`Error::Scheme`](crate::Error::Scheme) when the rule does not apply.
+pub fn predicted_peak_bytes_with_creases(
+    rule: crate::Rule,
+    counts: &MeshCounts,
+    levels: u32,
+    last_faces: Option<usize>,
+) -> crate::Result<BigInt> {
+    let scheme = rule.scheme_for(counts)?;
+    let peak = predicted_peak_bytes(&scheme, counts, levels, last_faces)?;
+    Ok(peak + crate::Refinement::one_shot_crease_bytes(rule, counts, levels)?)
+}
+
 /// glibc's largest mmap threshold (`DEFAULT_MMAP_THRESHOLD_MAX` on 64-bit targets): a block
 /// at least this large is always mapped on its own and unmapped when freed.
 const MMAP_THRESHOLD_MAX: u64 = 32 << 20;
@@ -244,8 +277,10 @@ pub fn check_peak(
 /// positions of `scalar_bytes` per coordinate into caller buffers: the larger of the arrays
 /// alive while the levels are built (the input and the last two levels, the last as a face
 /// list, as in [`predicted_peak_bytes`] without its process, face-list and freed-level terms)
-/// and the input, the refinement kept ([`crate::Refinement::predicted_bytes`]) and the output
-/// positions and indices (with `frames`, a moved copy of the base and a second output buffer).
+/// and the input, the refinement kept ([`crate::Refinement::predicted_bytes`], or with
+/// `creases` [`crate::Refinement::predicted_bytes_with_creases`]: a refinement under crease
+/// rules) and the output positions and indices (with `frames`, a moved copy of the base and a
+/// second output buffer).
 ///
 /// # Errors
 ///
@@ -256,10 +291,15 @@ pub fn predicted_refinement_peak_bytes(
     levels: u32,
     scalar_bytes: usize,
     frames: bool,
+    creases: bool,
 ) -> crate::Result<BigInt> {
     let scheme = rule.scheme_for(counts)?;
     let building = arrays_peak_bytes(&scheme, counts, levels, Some(4))?;
-    let kept = crate::Refinement::predicted_bytes(rule, counts, levels)?;
+    let kept = if creases {
+        crate::Refinement::predicted_bytes_with_creases(rule, counts, levels)?
+    } else {
+        crate::Refinement::predicted_bytes(rule, counts, levels)?
+    };
     let c = scheme.counts_at(counts, u64::from(levels))?;
     let point = BigInt::from(3 * scalar_bytes);
     let copies = if frames { 2 } else { 1 };
