@@ -626,7 +626,10 @@ fn tagged_meshes() -> Vec<(&'static str, PolygonMesh, Tags)> {
 fn the_one_shot_subdivision_follows_the_crease_rules_to_the_bit() {
     use halfedge::subdivide::{subdivide, subdivide_to_face_list, verify};
     let mut modes = Vec::new();
-    for boundary in [BoundaryInterpolation::Edge, BoundaryInterpolation::EdgeAndCorner] {
+    for boundary in [
+        BoundaryInterpolation::Edge,
+        BoundaryInterpolation::EdgeAndCorner,
+    ] {
         for method in [CreaseMethod::Uniform, CreaseMethod::Chaikin] {
             for triangles in [TriangleRule::Catmark, TriangleRule::Smooth] {
                 modes.push(
@@ -659,7 +662,8 @@ fn the_one_shot_subdivision_follows_the_crease_rules_to_the_bit() {
                         continue;
                     }
                     for threads in [1, 2] {
-                        let at = format!("{name} {rule} {options:?} level {levels} threads {threads}");
+                        let at =
+                            format!("{name} {rule} {options:?} level {levels} threads {threads}");
                         let opts = SubdivideOptions::default()
                             .with_threads(threads)
                             .with_sharpness(&sharpness)
@@ -726,9 +730,15 @@ fn the_one_shot_subdivision_refuses_creases_it_cannot_apply() {
     let opts = SubdivideOptions::default().with_sharpness(&sharp);
     for rule in [Rule::Butterfly, Rule::Sqrt3, Rule::Midpoint, Rule::DooSabin] {
         let err = subdivide(&ico, rule, 1, &opts).unwrap_err();
-        assert!(matches!(err, Error::CreasesNotSupported { .. }), "{rule}: {err}");
+        assert!(
+            matches!(err, Error::CreasesNotSupported { .. }),
+            "{rule}: {err}"
+        );
         let err = subdivide_to_face_list(&ico, rule, 2, &opts).unwrap_err();
-        assert!(matches!(err, Error::CreasesNotSupported { .. }), "{rule}: {err}");
+        assert!(
+            matches!(err, Error::CreasesNotSupported { .. }),
+            "{rule}: {err}"
+        );
     }
     let cube = HalfEdgeMesh::try_from(&shapes::cube()).expect("valid");
     let err = subdivide(&cube, Rule::CatmullClark, 1, &opts).unwrap_err();

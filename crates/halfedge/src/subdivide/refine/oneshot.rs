@@ -75,12 +75,7 @@ pub(crate) fn one_shot(
 impl Refinement {
     /// A refinement of `plan` to `levels` that keeps no level, with the crease rules of
     /// [`Creases::new`]: the one-shot mode.
-    fn streaming(
-        plan: &Plan,
-        levels: u32,
-        threads: usize,
-        creases: Option<Creases>,
-    ) -> Refinement {
+    fn streaming(plan: &Plan, levels: u32, threads: usize, creases: Option<Creases>) -> Refinement {
         let template = match plan.algorithm {
             Algorithm::Tri(_, n) => Some(crate::subdivide::trisplit::Template::new(n)),
             _ => None,
