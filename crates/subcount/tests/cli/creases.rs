@@ -361,3 +361,116 @@ fn creases_under_a_rule_without_crease_rules_are_refused() {
         "1",
     ]);
 }
+
+/// The differential tests' driver and comparison (`crates/halfedge/tests/osd_support`), shared
+/// with `halfedge`'s `tests/opensubdiv.rs`.
+#[allow(dead_code)]
+#[path = "../../../halfedge/tests/osd_support/mod.rs"]
+mod osd_support;
+
+/// A level is compared when its output has at most this many faces (about 2 M).
+const MAX_FACES: u64 = 2_100_000;
+
+/// `subcount subdivide -o out.obj` of every tagged shared mesh (a file with `t` lines) against
+/// OpenSubdiv's driver reading the same tags (`osd_driver --tags`: creases, corners, the
+/// boundary mode and the crease method of the file), Catmull-Clark on every one and Loop on the
+/// triangle ones, levels 1-3 up to [`MAX_FACES`]: positions within 1e-12 of the bounding-box
+/// diagonal, faces one for one.
+#[test]
+#[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and SUBCOUNT_MESHES"]
+fn subdivide_matches_opensubdiv_on_every_tagged_shared_mesh() {
+    use osd_support::{compare_levels, opensubdiv_with, Osd};
+    osd_support::driver();
+    let dir = testdata::meshes_dir();
+    let mut files: Vec<std::path::PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("listed").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "obj") && p.is_file())
+        .filter(|p| {
+            let text = std::fs::read_to_string(p).unwrap_or_default();
+            text.lines().any(|l| l.starts_with("t "))
+        })
+        .collect();
+    files.sort();
+    assert!(
+        files.len() >= 5,
+        "{} tagged meshes in {}",
+        files.len(),
+        dir.display()
+    );
+    let out_dir = tempfile::tempdir().expect("a temporary folder");
+    let mut failures = Vec::new();
+    let mut compared = Vec::new();
+    for path in &files {
+        let name = path
+            .file_name()
+            .expect("a name")
+            .to_string_lossy()
+            .into_owned();
+        let polygons = halfedge::io::read_mesh(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let triangles = polygons.faces().all(|f| f.len() == 3);
+        let mut schemes = vec![(Osd::Catmark, "catmull-clark")];
+        if triangles {
+            schemes.push((Osd::Loop, "loop"));
+        }
+        for (osd, scheme) in schemes {
+            for level in 1..=3u32 {
+                let faces = osd.faces_at(polygons.n_faces(), polygons.n_corners(), level);
+                if faces > MAX_FACES {
+                    eprintln!("{name} {scheme} level {level}: {faces} faces, not compared");
+                    continue;
+                }
+                let at = format!("{name}, subcount subdivide --scheme {scheme} --levels {level} vs osd_driver --tags");
+                let running = opensubdiv_with(&["--tags"], osd, level, path, None);
+                let out = out_dir.path().join(format!("{name}-{scheme}-{level}.obj"));
+                let (mesh, out_str) = (path.to_str().expect("UTF-8"), out.to_str().expect("UTF-8"));
+                let levels = level.to_string();
+                let run = subcount(&[
+                    "subdivide",
+                    "--mesh",
+                    mesh,
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    &levels,
+                    "-o",
+                    out_str,
+                ]);
+                let theirs = running.mesh();
+                if run.code != 0 {
+                    failures.push(format!("{at}: exit {}: {}", run.code, run.stderr));
+                    continue;
+                }
+                let ours = halfedge::io::read_mesh(&out).expect("subcount's output");
+                std::fs::remove_file(&out).expect("removed");
+                match compare_levels(&at, &polygons, &ours, &theirs) {
+                    Ok(outcome) => {
+                        eprintln!(
+                            "{at}: max deviation {:.3e} of the diagonal",
+                            outcome.max_deviation
+                        );
+                        compared.push((name.clone(), scheme, level));
+                    }
+                    Err(message) => failures.push(message),
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "subcount disagrees with OpenSubdiv:\n{}",
+        failures.join("\n")
+    );
+    for name in [
+        "osd_catmark_pawn.obj",
+        "osd_catmark_chaikin2.obj",
+        "osd_loop_icosahedron.obj",
+    ] {
+        for level in 1..=3 {
+            assert!(
+                compared.iter().any(|(n, _, l)| n == name && *l == level),
+                "{name} level {level} was not compared"
+            );
+        }
+    }
+}
