@@ -802,15 +802,16 @@ impl Refinement {
         Ok(bytes)
     }
 
-    /// An upper bound of the bytes the one-shot subdivision
+    /// An upper bound of what the one-shot subdivision
     /// ([`subdivide`](super::subdivide), [`subdivide_to_face_list`](super::subdivide_to_face_list))
-    /// adds under crease rules to the two levels it keeps, for `rule` (Loop or Catmull-Clark;
-    /// 0 for the others, which have no crease rules) at `levels` on a mesh with `counts`: the
-    /// weight table of level `levels - 1` (the largest, alive while the last level's
-    /// positions are computed, bounded as in [`Refinement::predicted_bytes_with_creases`])
-    /// and that level's sharpness (4 bytes per edge, 8 per vertex). What
+    /// holds under crease rules, next to the input and level `levels - 1`, while it builds the
+    /// weight table of level `levels - 1` (the largest), for `rule` (Loop or Catmull-Clark; 0
+    /// for the others, which have no crease rules) at `levels` on a mesh with `counts`: the
+    /// table twice (its rows are built in chunks, then copied into the table; bounded as in
+    /// [`Refinement::predicted_bytes_with_creases`]), 8 bytes per row (the chunks' row ends)
+    /// and the level's sharpness (4 bytes per edge, 8 per vertex). What
     /// [`memory::predicted_peak_bytes_with_creases`](crate::memory::predicted_peak_bytes_with_creases)
-    /// adds to the one-shot peak.
+    /// weighs against the last level.
     ///
     /// # Errors
     ///
@@ -828,7 +829,9 @@ impl Refinement {
             return Ok(0u32.into());
         };
         let c = plan.scheme.counts_at(counts, u64::from(last))?;
-        Ok(table + &c.edges * 4u32 + &c.vertices * 8u32)
+        // One row per vertex of the next level.
+        let rows = plan.scheme.counts_at(counts, u64::from(levels))?.vertices;
+        Ok(table * 2u32 + rows * 8u32 + &c.edges * 4u32 + &c.vertices * 8u32)
     }
 
     /// Refines `base` (one entry per vertex of level 0) straight to the last level, into
