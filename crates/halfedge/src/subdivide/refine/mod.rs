@@ -45,7 +45,8 @@
 //! same sizes, builds each level by the same topology step, computes its positions by the
 //! same evaluation dispatch as [`Refinement::stencils`] and writes the last level's faces
 //! with the same index buffers as [`Refinement::write_triangles`], keeping only two levels
-//! alive and no flattened tables (it evaluates once).
+//! alive and no flattened tables (it evaluates once), except, under crease rules, the weight
+//! table of the level it refines: the table [`Refinement::new`] keeps for that level.
 //!
 //! The geometry is one implementation: every rule's kernels are generic over the data they
 //! combine (`DVec3` for [`subdivide`](super::subdivide), `[T; N]` here, a sparse weighted sum
