@@ -36,6 +36,14 @@ fn halfedge_failure(e: halfedge::Error) -> Failure {
     let kind = match &e {
         E::Scheme(inner) => return scheme_failure(inner.clone()),
         E::NoSubdivision { .. } => Kind::Usage,
+        E::CreasesNotSupported { .. } => {
+            return Failure::new(
+                Kind::Input,
+                anyhow::anyhow!(
+                    "{e}: use a Loop or Catmull-Clark scheme, --ignore-tags (for the file's tags), or drop the option flags"
+                ),
+            )
+        }
         _ if e.is_resource_limit() => Kind::Guard,
         E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
             Kind::Mismatch
@@ -354,19 +362,25 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
         }
     };
-    let need = halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None);
-    guard_memory(
-        need.map_err(Into::into),
-        sizing.name(),
-        levels,
-        args.allow_large,
-    )?;
-    let opts = SubdivideOptions::default().with_threads(args.threads);
     let custom = args.scheme.scheme_file.is_some();
-    let reports = if on_face_list(&scheme, rule, &counts, custom) {
+    let face_list = on_face_list(&scheme, rule, &counts, custom);
+    let need = if loaded.has_crease_rules() && !face_list {
+        halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, None)
+    } else {
+        halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None).map_err(Into::into)
+    };
+    guard_memory(need, sizing.name(), levels, args.allow_large)?;
+    let opts = SubdivideOptions::default().with_threads(args.threads);
+    let reports = if face_list {
+        // The face-list subdividers place points linearly: no crease rules to follow.
         sub::verify_polygons(poly, &scheme, levels, &opts)
     } else {
         let mesh = validate(poly, &args.mesh)?;
+        let sharpness = loaded.sharpness(&mesh, &args.mesh)?;
+        let mut opts = opts.with_subdivision(loaded.options);
+        if let Some(sharpness) = &sharpness {
+            opts = opts.with_sharpness(sharpness);
+        }
         sub::verify(&mesh, &scheme, levels, &opts)
     }
     .map_err(|e| located_failure(e, poly, &args.mesh))?;
@@ -441,8 +455,8 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
     let start = Instant::now();
-    // `loaded.tags()` (creases, corners, holes) and `loaded.options` (resolved boundary,
-    // crease method, triangle rule) are what the geometry is to follow.
+    // `loaded.tags()` (creases and corners; holes are refused) and `loaded.options` (resolved
+    // boundary, crease method, triangle rule) are what the geometry follows.
     let loaded = required_mesh(&args.mesh)?;
     let poly = &loaded.poly;
     refuse_degenerate_faces(poly, &args.mesh)?;
@@ -481,7 +495,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             levels,
             bytes,
             args.frames > 0,
+            loaded.has_crease_rules(),
         )
+    } else if loaded.has_crease_rules() && !face_list {
+        halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, last_faces)
     } else {
         halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
             .map_err(Into::into)
@@ -519,10 +536,20 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             bar.set_position(u64::from(done.level));
         }
     };
-    let opts = SubdivideOptions::default()
+    // The file's creases and corners and the resolved options (the face-list subdividers
+    // place points linearly and read neither).
+    let sharpness = match &mesh {
+        Some(mesh) => loaded.sharpness(mesh, &args.mesh)?,
+        None => None,
+    };
+    let mut opts = SubdivideOptions::default()
         .with_threads(args.threads)
         .with_preallocate(!args.no_preallocate)
-        .with_progress(&progress);
+        .with_progress(&progress)
+        .with_subdivision(loaded.options);
+    if let Some(sharpness) = &sharpness {
+        opts = opts.with_sharpness(sharpness);
+    }
     let t1 = Instant::now();
     let result = match &mesh {
         Some(mesh) if refine_once => {

@@ -10,6 +10,7 @@
 use std::cell::OnceCell;
 
 use halfedge::io::ReadOptions;
+use halfedge::subdivide::Sharpness;
 use halfedge::tags::{SubdivisionOptions, TagOptions, Tags};
 use halfedge::{PolygonMesh, Rule};
 use num_bigint::BigInt;
@@ -201,7 +202,8 @@ impl<'a> Input<'a> {
 /// A mesh as the commands use it: its face list, with the file's tags
 /// ([`PolygonMesh::tags`]; none with `--ignore-tags`, for OFF files and base meshes), and
 /// the subdivision options resolved from the flags, the tags and the defaults
-/// ([`resolve_options`]). `subdivide` hands both to the geometry.
+/// ([`resolve_options`]). `subdivide` and `verify` hand both to the geometry
+/// ([`LoadedMesh::sharpness`], [`LoadedMesh::options`]).
 pub(crate) struct LoadedMesh {
     /// The face list and its tags.
     pub(crate) poly: PolygonMesh,
@@ -216,6 +218,35 @@ impl LoadedMesh {
     /// The creases, corners, holes and options of the file (empty with `--ignore-tags`).
     pub(crate) fn tags(&self) -> &Tags {
         self.poly.tags()
+    }
+
+    /// Whether the subdivision may follow crease rules: the file's tags make an edge or a
+    /// vertex sharp, or the resolved options are not the defaults (the library decides whether
+    /// they change anything on the mesh; the memory guard counts their tables when they may).
+    pub(crate) fn has_crease_rules(&self) -> bool {
+        let tags = self.tags();
+        !tags.sharp_edges().is_empty()
+            || !tags.sharp_vertices().is_empty()
+            || self.options != SubdivisionOptions::default()
+    }
+
+    /// The creases and corners of the file's tags on `mesh`, the half-edge mesh built from
+    /// [`LoadedMesh::poly`] ([`Sharpness::from_tags_of`]: its vertices renumbered when some
+    /// vertex of the file is in no face); `None` when no edge or vertex is sharp (and with
+    /// `--ignore-tags`, whose tags are empty). A crease the half-edge mesh cannot resolve is
+    /// exit 3, naming the file.
+    pub(crate) fn sharpness(
+        &self,
+        mesh: &halfedge::HalfEdgeMesh,
+        source: &MeshSource,
+    ) -> Result<Option<Sharpness>, Failure> {
+        let tags = self.tags();
+        if tags.creases().is_empty() && tags.corners().is_empty() {
+            return Ok(None);
+        }
+        let sharpness = Sharpness::from_tags_of(&self.poly, mesh, tags)
+            .map_err(|e| input!("{}: {e}", mesh_label(source)))?;
+        Ok((!sharpness.is_smooth()).then_some(sharpness))
     }
 
     /// Prints the notes on stderr. Commands call it once the mesh passed their checks, so

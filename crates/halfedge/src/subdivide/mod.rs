@@ -128,13 +128,15 @@ pub struct SubdivideOptions<'a> {
     /// Called after each level is built.
     pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
     /// Creases and corners (Loop and Catmull-Clark, OpenSubdiv's rules: [`sdc`]); honoured by
-    /// [`Refinement::new`](crate::Refinement::new). The one-shot [`subdivide`],
-    /// [`subdivide_to_face_list`] and [`verify`] do not read it (nor
-    /// [`SubdivideOptions::subdivision`]) yet.
+    /// [`Refinement::new`](crate::Refinement::new) and by the one-shot [`subdivide`],
+    /// [`subdivide_to_face_list`] and [`verify`] alike (the same weight tables: in `f64` the
+    /// same positions to the bit). Other rules refuse a sharpness that is not smooth
+    /// ([`Error::CreasesNotSupported`]); the face-list subdividers ([`subdivide_polygons`],
+    /// [`verify_polygons`]) place points linearly and do not read it.
     pub sharpness: Option<&'a Sharpness>,
     /// Boundary interpolation, crease method and triangle rule of the crease rules
-    /// ([`sdc`]); the default is OpenSubdiv's `edge` / `uniform` / `catmark`, the rules'
-    /// own kernels.
+    /// ([`sdc`]), read wherever [`SubdivideOptions::sharpness`] is; the default is
+    /// OpenSubdiv's `edge` / `uniform` / `catmark`, the rules' own kernels.
     pub subdivision: SubdivisionOptions,
 }
 

@@ -575,3 +575,172 @@ fn bumpy_free_grid(triangles: bool) -> PolygonMesh {
     }
     mesh
 }
+
+/// The tagged meshes of the one-shot comparison: the recorded grid (quads and triangles), a
+/// larger grid with a row of semi-sharp creases (the parallel passes), the cube with a hard
+/// edge, a semi-sharp one and a corner, the icosahedron with two creases.
+fn tagged_meshes() -> Vec<(&'static str, PolygonMesh, Tags)> {
+    let cube_polygons = shapes::cube();
+    let c = cube_polygons.face(0).to_vec();
+    let mut cube = Tags::default();
+    cube.add_crease(c[0], c[1], 10.0).expect("valid");
+    cube.add_crease(c[1], c[2], 1.5).expect("valid");
+    cube.add_corner(6, 2.5).expect("valid");
+    let ico_polygons = shapes::icosahedron();
+    let f = ico_polygons.face(0).to_vec();
+    let g = ico_polygons.face(7).to_vec();
+    let mut ico = Tags::default();
+    ico.add_crease(f[0], f[1], 2.25).expect("valid");
+    ico.add_crease(g[1], g[2], 0.75).expect("valid");
+    let mut big = shapes::quad_grid(40, 40).expect("a grid");
+    for (v, p) in big.positions.iter_mut().enumerate() {
+        p.z = (v as f64 * 0.37).sin();
+    }
+    let mut big_tags = Tags::default();
+    for i in 0..40 {
+        big_tags
+            .add_crease(20 * 41 + i, 20 * 41 + i + 1, 0.3 + 0.1 * i as f32)
+            .expect("valid");
+    }
+    big_tags.add_corner(20 * 41 + 20, 1.5).expect("valid");
+    let mut big_triangles = PolygonMesh::with_positions(big.positions.clone());
+    for face in big.faces() {
+        big_triangles.push_face(&[face[0], face[1], face[2]]);
+        big_triangles.push_face(&[face[0], face[2], face[3]]);
+    }
+    vec![
+        ("grid", grid(false), grid_tags()),
+        ("grid of triangles", grid(true), grid_tags()),
+        ("40 x 40 grid", big, big_tags.clone()),
+        ("40 x 40 grid of triangles", big_triangles, big_tags),
+        ("cube", cube_polygons, cube),
+        ("icosahedron", ico_polygons, ico),
+    ]
+}
+
+/// The one-shot subdivision ([`subdivide_to_face_list`], [`subdivide`], [`verify`]) under
+/// crease rules is the refinement's evaluation to the bit, its faces the refinement's index
+/// buffers: Loop on the triangle meshes and Catmull-Clark on all, every boundary mode, both
+/// crease methods and (Catmull-Clark) both triangle rules, levels 1-3, 1 and 2 threads.
+#[test]
+fn the_one_shot_subdivision_follows_the_crease_rules_to_the_bit() {
+    use halfedge::subdivide::{subdivide, subdivide_to_face_list, verify};
+    let mut modes = Vec::new();
+    for boundary in [
+        BoundaryInterpolation::Edge,
+        BoundaryInterpolation::EdgeAndCorner,
+    ] {
+        for method in [CreaseMethod::Uniform, CreaseMethod::Chaikin] {
+            for triangles in [TriangleRule::Catmark, TriangleRule::Smooth] {
+                modes.push(
+                    SubdivisionOptions::default()
+                        .with_boundary(boundary)
+                        .with_crease_method(method)
+                        .with_triangle_rule(triangles),
+                );
+            }
+        }
+    }
+    let mut compared = 0;
+    for (name, polygons, tags) in tagged_meshes() {
+        let mesh = HalfEdgeMesh::try_from(&polygons).expect("valid");
+        let sharpness = Sharpness::from_tags(&mesh, &tags).expect("resolved");
+        let triangles = polygons.faces().all(|f| f.len() == 3);
+        let large = polygons.n_faces() > 100;
+        let rules: &[Rule] = if triangles {
+            &[Rule::Loop, Rule::CatmullClark]
+        } else {
+            &[Rule::CatmullClark]
+        };
+        for &rule in rules {
+            for &options in &modes {
+                if rule == Rule::Loop && options.triangle_rule == TriangleRule::Smooth {
+                    continue;
+                }
+                for levels in 1..=3 {
+                    if large && levels == 3 && options != modes[3] {
+                        continue;
+                    }
+                    for threads in [1, 2] {
+                        let at =
+                            format!("{name} {rule} {options:?} level {levels} threads {threads}");
+                        let opts = SubdivideOptions::default()
+                            .with_threads(threads)
+                            .with_sharpness(&sharpness)
+                            .with_subdivision(options);
+                        let r = Refinement::new(&mesh, rule, levels, &opts).expect("refined");
+                        let base: Vec<[f64; 3]> =
+                            mesh.positions().iter().map(|p| p.to_array()).collect();
+                        let mut expected = vec![[0.0; 3]; r.n_vertices(levels)];
+                        r.evaluate(&base, &mut expected).expect("evaluated");
+                        let mut offsets = vec![0u32; r.n_faces(levels) + 1];
+                        let mut indices = vec![0u32; r.n_corners(levels)];
+                        r.write_polygons(&mut offsets, &mut indices).expect("faces");
+
+                        let level = subdivide_to_face_list(&mesh, rule, levels, &opts)
+                            .unwrap_or_else(|e| panic!("{at}: {e}"));
+                        let got: Vec<[f64; 3]> =
+                            level.mesh.positions.iter().map(|p| p.to_array()).collect();
+                        assert!(got == expected, "{at}: face list positions differ");
+                        assert_eq!(level.mesh.face_indices(), &indices[..], "{at}: faces");
+                        assert_eq!(level.edges, r.n_edges(levels), "{at}: edges");
+
+                        let half = subdivide(&mesh, rule, levels, &opts)
+                            .unwrap_or_else(|e| panic!("{at}: {e}"));
+                        let got: Vec<[f64; 3]> =
+                            half.positions().iter().map(|p| p.to_array()).collect();
+                        assert!(got == expected, "{at}: half-edge positions differ");
+                        // Face by face into growing arrays (the benchmarks' baseline): from
+                        // level 2 on its edges, hence the new vertices, are numbered otherwise
+                        // and each new vertex lists its edges from another one (OpenSubdiv's
+                        // order of the sums), so the same points to rounding.
+                        if !large {
+                            let grown =
+                                subdivide(&mesh, rule, levels, &opts.with_preallocate(false))
+                                    .unwrap_or_else(|e| panic!("{at}: {e}"));
+                            let got: Vec<[f64; 3]> =
+                                grown.positions().iter().map(|p| p.to_array()).collect();
+                            assert_same_points(&got, &expected);
+                        }
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        // verify runs the same levels (its reports are the counts, unchanged by creases).
+        let rule = rules[0];
+        let scheme = rule.scheme_for(&mesh.counts()).expect("a scheme");
+        let opts = SubdivideOptions::default().with_sharpness(&sharpness);
+        let reports = verify(&mesh, &scheme, 2, &opts).expect("verified");
+        assert!(reports.iter().all(|r| r.is_match()), "{name}");
+    }
+    assert!(compared > 300, "{compared} comparisons");
+}
+
+/// The one-shot subdivision refuses crease rules for a rule that has none, as
+/// [`Refinement::new`] does, and a sharpness of another mesh.
+#[test]
+fn the_one_shot_subdivision_refuses_creases_it_cannot_apply() {
+    use halfedge::subdivide::{subdivide, subdivide_to_face_list};
+    let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("valid");
+    let f = shapes::icosahedron().face(0).to_vec();
+    let mut tags = Tags::default();
+    tags.add_crease(f[0], f[1], 2.0).expect("valid");
+    let sharp = Sharpness::from_tags(&ico, &tags).expect("resolved");
+    let opts = SubdivideOptions::default().with_sharpness(&sharp);
+    for rule in [Rule::Butterfly, Rule::Sqrt3, Rule::Midpoint, Rule::DooSabin] {
+        let err = subdivide(&ico, rule, 1, &opts).unwrap_err();
+        assert!(
+            matches!(err, Error::CreasesNotSupported { .. }),
+            "{rule}: {err}"
+        );
+        let err = subdivide_to_face_list(&ico, rule, 2, &opts).unwrap_err();
+        assert!(
+            matches!(err, Error::CreasesNotSupported { .. }),
+            "{rule}: {err}"
+        );
+    }
+    let cube = HalfEdgeMesh::try_from(&shapes::cube()).expect("valid");
+    let err = subdivide(&cube, Rule::CatmullClark, 1, &opts).unwrap_err();
+    assert!(matches!(err, Error::SharpnessMismatch { .. }), "{err}");
+}

@@ -45,7 +45,8 @@
 //! same sizes, builds each level by the same topology step, computes its positions by the
 //! same evaluation dispatch as [`Refinement::stencils`] and writes the last level's faces
 //! with the same index buffers as [`Refinement::write_triangles`], keeping only two levels
-//! alive and no flattened tables (it evaluates once).
+//! alive and no flattened tables (it evaluates once), except, under crease rules, the weight
+//! table of the level it refines: the table [`Refinement::new`] keeps for that level.
 //!
 //! The geometry is one implementation: every rule's kernels are generic over the data they
 //! combine (`DVec3` for [`subdivide`](super::subdivide), `[T; N]` here, a sparse weighted sum
@@ -235,6 +236,26 @@ fn plan_sizes(
         out.push((built.then_some(sizes), vef));
     }
     Ok(out)
+}
+
+/// An upper bound of the bytes of the crease weight table that refines level `level` of
+/// `plan` on a mesh with `counts` ([`sdc::table_bytes_bound`](super::sdc)), `None` for the
+/// rules without crease rules: each term of [`Refinement::predicted_bytes_with_creases`] and
+/// of [`Refinement::one_shot_crease_bytes`].
+fn crease_table_bytes(
+    plan: &Plan,
+    counts: &MeshCounts,
+    level: u32,
+) -> Result<Option<num_bigint::BigInt>> {
+    let scheme = match plan.algorithm {
+        Algorithm::Tri(TriRule::Loop, 2) => super::sdc::TableScheme::Loop,
+        Algorithm::CatmullClark => super::sdc::TableScheme::CatmullClark,
+        _ => return Ok(None),
+    };
+    let c = plan.scheme.counts_at(counts, u64::from(level))?;
+    Ok(Some(super::sdc::table_bytes_bound(
+        scheme, counts, level, &c,
+    )))
 }
 
 /// The number of face corners of `t` (the half-edges with a face).
@@ -769,23 +790,49 @@ impl Refinement {
     ) -> Result<num_bigint::BigInt> {
         use num_bigint::BigInt;
         let plan = super::plan(rule, counts)?;
-        let scheme = match plan.algorithm {
-            Algorithm::Tri(TriRule::Loop, 2) => super::sdc::TableScheme::Loop,
-            Algorithm::CatmullClark => super::sdc::TableScheme::CatmullClark,
-            _ => return Refinement::predicted_bytes(rule, counts, levels),
-        };
-        if levels == 0 {
+        if levels == 0 || crease_table_bytes(&plan, counts, 0)?.is_none() {
             return Refinement::predicted_bytes(rule, counts, levels);
         }
         let mut bytes = BigInt::from(0u32);
         for s in 0..levels {
-            let c = plan.scheme.counts_at(counts, u64::from(s))?;
-            bytes += super::sdc::table_bytes_bound(scheme, counts, s, &c);
+            bytes += crease_table_bytes(&plan, counts, s)?.unwrap_or_default();
         }
         // The last parent level keeps its connectivity for the index buffers.
         let c = plan.scheme.counts_at(counts, u64::from(levels - 1))?;
         bytes += &c.vertices * 4u32 + &c.edges * 32u32 + &c.faces * 4u32;
         Ok(bytes)
+    }
+
+    /// An upper bound of what the one-shot subdivision
+    /// ([`subdivide`](super::subdivide), [`subdivide_to_face_list`](super::subdivide_to_face_list))
+    /// holds under crease rules, next to the input and level `levels - 1`, while it builds the
+    /// weight table of level `levels - 1` (the largest), for `rule` (Loop or Catmull-Clark; 0
+    /// for the others, which have no crease rules) at `levels` on a mesh with `counts`: the
+    /// table twice (its rows are built in chunks, then copied into the table; bounded as in
+    /// [`Refinement::predicted_bytes_with_creases`]), 8 bytes per row (the chunks' row ends)
+    /// and the level's sharpness (4 bytes per edge, 8 per vertex). What
+    /// [`memory::predicted_peak_bytes_with_creases`](crate::memory::predicted_peak_bytes_with_creases)
+    /// weighs against the last level.
+    ///
+    /// # Errors
+    ///
+    /// As [`Refinement::predicted_bytes`].
+    pub fn one_shot_crease_bytes(
+        rule: Rule,
+        counts: &MeshCounts,
+        levels: u32,
+    ) -> Result<num_bigint::BigInt> {
+        let plan = super::plan(rule, counts)?;
+        let Some(last) = levels.checked_sub(1) else {
+            return Ok(0u32.into());
+        };
+        let Some(table) = crease_table_bytes(&plan, counts, last)? else {
+            return Ok(0u32.into());
+        };
+        let c = plan.scheme.counts_at(counts, u64::from(last))?;
+        // One row per vertex of the next level.
+        let rows = plan.scheme.counts_at(counts, u64::from(levels))?.vertices;
+        Ok(table * 2u32 + rows * 8u32 + &c.edges * 4u32 + &c.vertices * 8u32)
     }
 
     /// Refines `base` (one entry per vertex of level 0) straight to the last level, into

@@ -10,14 +10,25 @@
 //! What the mode drops: a [`Refinement`] keeps every level's topology (it evaluates many
 //! times); the one-shot subdivision evaluates once, level by level, so it keeps only the level
 //! it refines (as a half-edge mesh with its positions) and the one it builds, and it does not
-//! flatten levels into tables (their building costs more than the one evaluation they would
-//! serve). The peak is the one of the level loop it replaced: levels `s - 1` and `s`.
+//! flatten levels into the rules' fast tables (their building costs more than the one
+//! evaluation they would serve). The peak is the one of the level loop it replaced: levels
+//! `s - 1` and `s`.
+//!
+//! Under crease rules ([`SubdivideOptions::sharpness`], [`SubdivideOptions::subdivision`]:
+//! the same [`Creases`] that [`Refinement::new`] builds, or none when they change nothing)
+//! each level's positions come from the crease weight table of the level refined
+//! ([`Creases::table`], the table [`Refinement::new`] keeps for it), built just before and
+//! dropped before the next level's topology; the child's sharpness is then recorded from
+//! the two levels ([`Creases::push_child`]) and the parent's dropped, so only the sharpness of
+//! the last two levels is alive. In `f64` the positions are those of
+//! [`Refinement::evaluate`] to the bit.
 
 use glam::DVec3;
 use schemes::MeshCounts;
 
-use super::{direct, plan_sizes, LevelRef, Next, Refinement};
+use super::{direct, plan_sizes, Fast, LevelRef, Next, Refinement};
 use crate::subdivide::build::Sizes;
+use crate::subdivide::sdc::Creases;
 use crate::subdivide::topo::Topo;
 use crate::subdivide::{finite, to_faces, Algorithm, LevelDone, Plan, SubdivideOptions};
 use crate::{HalfEdgeMesh, PolygonMesh, Result};
@@ -48,21 +59,23 @@ pub(crate) fn one_shot(
 ) -> Result<OneShot> {
     plan.scheme.initial_state(counts)?;
     crate::subdivide::check_mesh(plan, mesh)?;
+    let creases = Creases::new(mesh, plan.rule, opts.sharpness, &opts.subdivision)?;
     let grow = !opts.preallocate;
     let faces = faces && !grow && direct(plan.algorithm);
     let planned = plan_sizes(plan, counts, levels, !faces)?;
     if levels == 0 {
         return Ok(OneShot::Mesh(mesh.clone()));
     }
-    let r = Refinement::streaming(plan, levels, opts.threads);
+    let mut r = Refinement::streaming(plan, levels, opts.threads, creases);
     crate::subdivide::with_threads(opts.threads, || {
         r.stream(mesh, &planned, grow, opts, &mut visit)
     })
 }
 
 impl Refinement {
-    /// A refinement of `plan` to `levels` that keeps no level: the one-shot mode.
-    fn streaming(plan: &Plan, levels: u32, threads: usize) -> Refinement {
+    /// A refinement of `plan` to `levels` that keeps no level, with the crease rules of
+    /// [`Creases::new`]: the one-shot mode.
+    fn streaming(plan: &Plan, levels: u32, threads: usize, creases: Option<Creases>) -> Refinement {
         let template = match plan.algorithm {
             Algorithm::Tri(_, n) => Some(crate::subdivide::trisplit::Template::new(n)),
             _ => None,
@@ -79,13 +92,13 @@ impl Refinement {
             sizes: Vec::new(),
             polygons: None,
             face_degree: None,
-            creases: None,
+            creases,
         }
     }
 
     /// The level loop of [`one_shot`] (in its threads).
     fn stream(
-        &self,
+        &mut self,
         mesh: &HalfEdgeMesh,
         planned: &[(Option<Sizes>, [usize; 3])],
         grow: bool,
@@ -115,17 +128,20 @@ impl Refinement {
                 faces: nf,
             });
             let ctx = self.context(s, expected, parallel);
-            // The level before as the evaluation reads it (no tables: one evaluation).
+            // The level before as the evaluation reads it: no fast tables (one evaluation),
+            // the crease weight table of this level under crease rules.
             let step_b = self.step_b(&t, s, sizes, parallel)?;
+            let creased = self.crease_table(s, &t, parallel)?;
             let before = LevelRef {
                 topology: Some(t),
                 step_b: step_b.as_ref(),
-                fast: None,
+                fast: creased.as_ref(),
             };
-            // Positions first: their temporaries (Catmull-Clark's face points) are freed
-            // before the topology's are allocated.
+            // Positions first: their temporaries (Catmull-Clark's face points, the crease
+            // table) are freed before the topology's are allocated.
             let positions: Vec<DVec3> =
                 self.values_after(&before, &input.positions, nv, grow, "positions")?;
+            drop(creased);
             let origin = finite::Before::Mesh(input);
             finite::check_positions(&self.name, self.algorithm, s, &origin, &positions)?;
             if sizes.is_none() {
@@ -145,6 +161,14 @@ impl Refinement {
                 Next::Topology(..) => return Err(ctx.invalid("no positions".into())),
                 Next::Mesh(m) => m,
             };
+            if let Some(creases) = self.creases.as_mut() {
+                // The child's sharpness (only when a level follows), then the parent's dropped.
+                let level = s as usize - 1;
+                if s < levels {
+                    creases.push_child(level, &t, &Topo::new(&next));
+                }
+                creases.release(level);
+            }
             if s == levels {
                 // Level s - 1 is dropped before the last level is visited.
                 drop(current.take());
@@ -157,6 +181,22 @@ impl Refinement {
         match current {
             Some(last) => Ok(OneShot::Mesh(last)),
             None => Ok(OneShot::Mesh(mesh.clone())),
+        }
+    }
+
+    /// The crease weight table refining level `s - 1` (`t`) under crease rules, as
+    /// [`Refinement::new`] builds it for that level; `None` without crease rules.
+    fn crease_table(&self, s: u32, t: &Topo<'_>, parallel: bool) -> Result<Option<Fast>> {
+        let Some(creases) = &self.creases else {
+            return Ok(None);
+        };
+        match creases.table(s as usize - 1, t, parallel)? {
+            Some(table) => Ok(Some(Fast::Creased(table))),
+            None => Err(crate::Error::InvalidOutput {
+                scheme: self.name.clone(),
+                level: s,
+                what: "no sharpness for the level refined".into(),
+            }),
         }
     }
 }

@@ -400,11 +400,32 @@ impl Creases {
         t: &Topo<'_>,
         parallel: bool,
     ) -> Result<Option<WeightTable>> {
-        let Some(sharp) = self.levels.get_mut(level).and_then(Option::take) else {
+        let table = self.table(level, t, parallel)?;
+        self.release(level);
+        Ok(table)
+    }
+
+    /// The weight table that refines level `level` (`t`) into the next one, the level's
+    /// sharpness kept (the one-shot subdivision evaluates a level before it builds the next
+    /// one, whose sharpness [`Creases::push_child`] reads off this one's).
+    pub(crate) fn table(
+        &self,
+        level: usize,
+        t: &Topo<'_>,
+        parallel: bool,
+    ) -> Result<Option<WeightTable>> {
+        let Some(Some(sharp)) = self.levels.get(level) else {
             return Ok(None);
         };
-        LevelBuilder::new(*t, &sharp, self.scheme, &self.options)
+        LevelBuilder::new(*t, sharp, self.scheme, &self.options)
             .weights(parallel)
             .map(Some)
+    }
+
+    /// Drops the sharpness of level `level` (its table is built, its child's recorded).
+    pub(crate) fn release(&mut self, level: usize) {
+        if let Some(sharp) = self.levels.get_mut(level) {
+            *sharp = None;
+        }
     }
 }
