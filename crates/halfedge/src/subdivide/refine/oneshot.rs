@@ -80,6 +80,7 @@ impl Refinement {
             polygons: None,
             face_degree: None,
             creases: None,
+            written: None,
         }
     }
 
