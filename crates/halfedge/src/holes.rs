@@ -159,9 +159,7 @@ impl HoleSet {
     /// Checks that every hole is a face of a mesh with `n_faces` faces.
     pub(crate) fn check(&self, n_faces: usize) -> Result<()> {
         match self.faces.last() {
-            Some(&face) if face as usize >= n_faces => {
-                Err(Error::HoleOutOfRange { face, n_faces })
-            }
+            Some(&face) if face as usize >= n_faces => Err(Error::HoleOutOfRange { face, n_faces }),
             _ => Ok(()),
         }
     }

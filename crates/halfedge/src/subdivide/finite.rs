@@ -93,7 +93,11 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
         Algorithm::MidEdge | Algorithm::DooSabin => match before {
             Before::Mesh(m) => {
                 let t = Topo::new(m);
-                let first = if rule == Algorithm::MidEdge { ne } else { 2 * ne };
+                let first = if rule == Algorithm::MidEdge {
+                    ne
+                } else {
+                    2 * ne
+                };
                 let h = (0..2 * ne as u32)
                     .filter(|&h| t.is_boundary(h))
                     .nth(v - first);

@@ -876,8 +876,8 @@ pub fn verify(
         let mut reports = vec![report(&predictor, &written, 0, &written)?];
         run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
             let mask = holes.written_at(plan.rule, &degrees, s)?;
-            let faces = (0..m.n_faces() as u32)
-                .map(|f| m.face_vertices(crate::FaceId(f)).map(|v| v.0));
+            let faces =
+                (0..m.n_faces() as u32).map(|f| m.face_vertices(crate::FaceId(f)).map(|v| v.0));
             let measured = written_face_counts(faces, &mask, m.n_vertices());
             reports.push(report(&predictor, &written, s, &measured)?);
             Ok(())
