@@ -867,11 +867,10 @@ pub fn verify(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = mesh.counts();
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    if let Some(holes) = crate::holes::active(opts.holes, plan.rule, mesh.n_faces())? {
+    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
         // What is written is predicted from the written faces and counted on them.
         let written = holes.written_mesh_counts(mesh);
-        let predictor = scheme.for_mesh(&written);
+        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
         let degrees = crate::holes::degrees_of(mesh);
         let mut reports = vec![report(&predictor, &written, 0, &written)?];
         run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
@@ -884,6 +883,7 @@ pub fn verify(
         })?;
         return Ok(reports);
     }
+    let (plan, predictor) = verify_plan(scheme, &counts)?;
     let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
         reports.push(report(&predictor, &counts, s, &m.counts())?);
@@ -899,6 +899,35 @@ fn verify_plan(scheme: &Scheme, counts: &MeshCounts) -> Result<(Plan, Scheme)> {
     let mut plan = plan(rule, counts)?;
     plan.name = scheme.name().to_owned();
     Ok((plan, scheme.for_mesh(counts)))
+}
+
+/// The holes of a [`verify`] run of `scheme` (see [`crate::holes::active`]).
+fn verify_holes<'a>(
+    scheme: &Scheme,
+    opts: &SubdivideOptions<'a>,
+    n_faces: usize,
+) -> Result<Option<&'a HoleSet>> {
+    if opts.holes.is_none_or(HoleSet::is_empty) {
+        return Ok(None);
+    }
+    match scheme.subdivision_rule() {
+        Some(rule) => crate::holes::active(opts.holes, rule, n_faces),
+        None => Err(no_rule(scheme)),
+    }
+}
+
+/// [`verify_plan`] with holes: the scheme must accept the written faces (`written`), whose
+/// counts it predicts; the subdivision of the whole mesh (`counts`) is sized by the rule's
+/// own scheme.
+fn verify_plan_with_holes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    written: &MeshCounts,
+) -> Result<(Plan, Scheme)> {
+    let rule = checked_rule(scheme, written)?;
+    let mut plan = plan(rule, counts)?;
+    plan.name = scheme.name().to_owned();
+    Ok((plan, scheme.for_mesh(written)))
 }
 
 /// Subdivides a raw face list (non-manifold allowed) `levels` times by a rule whose topology
@@ -968,10 +997,9 @@ pub fn verify_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = crate::stats::face_list_counts(mesh);
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    if let Some(holes) = crate::holes::active(opts.holes, plan.rule, mesh.n_faces())? {
+    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
         let written = holes.written_counts(mesh);
-        let predictor = scheme.for_mesh(&written);
+        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
         let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
         let mut reports = vec![report(&predictor, &written, 0, &written)?];
         faces::run_levels(&plan, mesh, levels, opts, |s, m| {
@@ -983,6 +1011,7 @@ pub fn verify_polygons(
         })?;
         return Ok(reports);
     }
+    let (plan, predictor) = verify_plan(scheme, &counts)?;
     let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     faces::run_levels(&plan, mesh, levels, opts, |s, m| {
         let measured = crate::stats::face_list_counts(m);
