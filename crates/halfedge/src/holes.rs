@@ -312,11 +312,11 @@ pub(crate) fn written_part(mesh: PolygonMesh, written: &[bool]) -> Result<Polygo
 
 /// The holes of a subdivision run (`opts.holes`), `None` when there are none; refused for a
 /// rule whose faces do not nest and checked against the base mesh's `n_faces`.
-pub(crate) fn active<'a>(
-    holes: Option<&'a HoleSet>,
+pub(crate) fn active(
+    holes: Option<&HoleSet>,
     rule: Rule,
     n_faces: usize,
-) -> Result<Option<&'a HoleSet>> {
+) -> Result<Option<&HoleSet>> {
     let Some(holes) = holes.filter(|h| !h.is_empty()) else {
         return Ok(None);
     };

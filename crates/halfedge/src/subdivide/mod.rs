@@ -907,7 +907,7 @@ fn verify_holes<'a>(
     opts: &SubdivideOptions<'a>,
     n_faces: usize,
 ) -> Result<Option<&'a HoleSet>> {
-    if opts.holes.is_none_or(HoleSet::is_empty) {
+    if opts.holes.map_or(true, HoleSet::is_empty) {
         return Ok(None);
     }
     match scheme.subdivision_rule() {
