@@ -527,7 +527,9 @@ pub struct FaceListLevel {
     pub mesh: PolygonMesh,
     /// The number of edges of the level: counted by the construction from the half-edge mesh
     /// of the level before (4:1: `2E + 3F`; Catmull-Clark: `2E` plus one per face corner), or
-    /// read off the half-edge mesh for the schemes built that way.
+    /// read off the half-edge mesh for the schemes built that way. With holes
+    /// ([`SubdivideOptions::holes`]) the written edges as predicted (the written vertices and
+    /// faces are checked against the prediction).
     pub edges: usize,
 }
 

@@ -306,6 +306,14 @@ impl Refinement {
     ///
     /// With creases ([`SubdivideOptions::sharpness`], [`SubdivideOptions::subdivision`]:
     /// [`sdc`](super::sdc)) Loop and Catmull-Clark levels follow OpenSubdiv's crease rules.
+    ///
+    /// With holes ([`SubdivideOptions::holes`], rules whose faces nest, else
+    /// [`Error::HolesNeedNestedFaces`]) every level is refined whole, but the last level's
+    /// buffers hold only what is written: its faces not descending from holes and the
+    /// vertices they use, in order; their sizes are predicted (and checked to fit) before
+    /// anything is built, the written vertices and faces checked afterwards. The refinement
+    /// also keeps 4 bytes per written vertex; [`Refinement::predicted_bytes`] does not count
+    /// them.
     pub fn new(
         mesh: &HalfEdgeMesh,
         rule: Rule,
@@ -750,17 +758,21 @@ impl Refinement {
         self.sizes.get(level as usize)
     }
 
-    /// The vertices of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The vertices of level `level` (`0..=levels`; 0 beyond the last level). With holes
+    /// ([`SubdivideOptions::holes`]) the last level's are the written ones (what
+    /// [`Refinement::evaluate`] fills), known before the refinement was built.
     pub fn n_vertices(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.vertices)
     }
 
-    /// The faces of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The faces of level `level` (`0..=levels`; 0 beyond the last level); with holes, the
+    /// last level's written faces (what the index buffers hold).
     pub fn n_faces(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.faces)
     }
 
-    /// The edges of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The edges of level `level` (`0..=levels`; 0 beyond the last level); with holes, the
+    /// last level's written edges as predicted (its vertices and faces are checked).
     pub fn n_edges(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.edges)
     }
