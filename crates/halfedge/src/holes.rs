@@ -26,9 +26,10 @@
 //! [`BoundaryInterpolation::None`]: crate::tags::BoundaryInterpolation::None
 
 use schemes::holes::{nests_faces, HoleCounts};
-use schemes::{MeshCounts, Rule};
+use schemes::{LevelCounts, MeshCounts, Rule};
 
-use crate::{Error, PolygonMesh, Result};
+use crate::mesh::FaceId;
+use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// The faces of `mesh` that have a vertex on a boundary edge (an edge of exactly one face), in
 /// order: the faces OpenSubdiv makes holes under `VTX_BOUNDARY_NONE` (Loop and Catmull-Clark).
@@ -118,6 +119,51 @@ impl HoleSet {
         MeshCounts::from_face_list(written, mesh.positions.len())
     }
 
+    /// [`HoleSet::written_counts`] of a half-edge mesh (its faces are the faces of the face
+    /// list it was built from, in order).
+    pub fn written_mesh_counts(&self, mesh: &HalfEdgeMesh) -> MeshCounts {
+        let faces = (0..mesh.n_faces() as u32)
+            .filter(|&f| !self.contains(f))
+            .map(|f| mesh.face_vertices(FaceId(f)).map(|v| v.0));
+        MeshCounts::from_face_list(faces, mesh.n_vertices())
+    }
+
+    /// What `rule` writes at `level` of a mesh whose written faces have the statistics
+    /// `written` ([`HoleSet::written_counts`]): the rule's scheme for those faces
+    /// ([`Rule::scheme_for`]: a closed mesh with holes has boundary and counts with the
+    /// boundary-aware state) at `level`.
+    ///
+    /// ```
+    /// use halfedge::holes::HoleSet;
+    /// use halfedge::{shapes, Rule};
+    ///
+    /// let cube = shapes::cube();
+    /// let holes = HoleSet::new(cube.n_faces(), [0])?;
+    /// let at2 = HoleSet::written_level(Rule::CatmullClark, &holes.written_counts(&cube), 2)?;
+    /// assert_eq!(at2.faces, (5 * 16).into());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::HolesNeedNestedFaces`] for a rule whose faces do not nest; [`Error::Scheme`]
+    /// when the rule's scheme refuses the written faces.
+    pub fn written_level(rule: Rule, written: &MeshCounts, level: u32) -> Result<LevelCounts> {
+        if !nests_faces(rule) {
+            return Err(Error::HolesNeedNestedFaces { rule });
+        }
+        let scheme = rule.scheme_for(written)?;
+        Ok(scheme.counts_at(written, u64::from(level))?)
+    }
+
+    /// Checks that every hole is a face of a mesh with `n_faces` faces.
+    pub(crate) fn check(&self, n_faces: usize) -> Result<()> {
+        match self.faces.last() {
+            Some(&face) if face as usize >= n_faces => Err(Error::HoleOutOfRange { face, n_faces }),
+            _ => Ok(()),
+        }
+    }
+
     /// What the holes remove from `mesh` ([`schemes::holes::HoleCounts`]).
     pub fn hole_counts(&self, mesh: &PolygonMesh) -> HoleCounts {
         let full = crate::stats::face_list_counts(mesh);
@@ -168,6 +214,149 @@ impl HoleSet {
         }
         Ok(written)
     }
+}
+
+/// The offsets of a face list (`usize` in a [`PolygonMesh`], `u32` in a refinement's buffers).
+pub(crate) trait Offset: Copy {
+    fn get(self) -> usize;
+    /// Only called with values up to an existing offset.
+    fn make(n: usize) -> Self;
+}
+
+impl Offset for usize {
+    fn get(self) -> usize {
+        self
+    }
+    fn make(n: usize) -> usize {
+        n
+    }
+}
+
+impl Offset for u32 {
+    fn get(self) -> usize {
+        self as usize
+    }
+    fn make(n: usize) -> u32 {
+        n as u32
+    }
+}
+
+/// Keeps, in place, the faces of `offsets` / `indices` whose `written` entry is `true` (in
+/// order) and renumbers their vertices: the vertices they use, in the order of their old
+/// index. Returns the old index of each kept vertex (ascending). `written` has one entry per
+/// face; `n_vertices` bounds the indices.
+pub(crate) fn compact_faces<O: Offset>(
+    offsets: &mut Vec<O>,
+    indices: &mut Vec<u32>,
+    n_vertices: usize,
+    written: &[bool],
+) -> Result<Vec<u32>> {
+    const UNUSED: u32 = u32::MAX;
+    let nf = offsets.len().saturating_sub(1);
+    let mut map = crate::subdivide::alloc::filled(UNUSED, n_vertices, "the written vertices")?;
+    for f in 0..nf {
+        if written.get(f) == Some(&true) {
+            for &v in &indices[offsets[f].get()..offsets[f + 1].get()] {
+                if let Some(slot) = map.get_mut(v as usize) {
+                    *slot = 0;
+                }
+            }
+        }
+    }
+    let used = map.iter().filter(|&&m| m != UNUSED).count();
+    let mut kept = crate::subdivide::alloc::with_capacity(used, "the written vertices")?;
+    for (v, slot) in map.iter_mut().enumerate() {
+        if *slot != UNUSED {
+            *slot = kept.len() as u32;
+            kept.push(v as u32);
+        }
+    }
+    let (mut start, mut faces, mut corners) = (offsets.first().map_or(0, |o| o.get()), 0, 0);
+    for f in 0..nf {
+        let end = offsets[f + 1].get();
+        if written.get(f) == Some(&true) {
+            for i in start..end {
+                indices[corners] = map.get(indices[i] as usize).copied().unwrap_or(UNUSED);
+                corners += 1;
+            }
+            faces += 1;
+            offsets[faces] = O::make(corners);
+        }
+        start = end;
+    }
+    offsets.truncate(faces + 1);
+    indices.truncate(corners);
+    Ok(kept)
+}
+
+/// Moves the entries of `kept` (ascending old indices) to the front of `values`, in order,
+/// and drops the rest.
+pub(crate) fn compact_values<T: Clone>(values: &mut Vec<T>, kept: &[u32]) {
+    for (new, &old) in kept.iter().enumerate() {
+        if new != old as usize {
+            values[new] = values[old as usize].clone();
+        }
+    }
+    values.truncate(kept.len());
+}
+
+/// The written part of a subdivided level: the faces whose `written` entry is `true` and the
+/// vertices they use, renumbered in order (compacted in place, no second copy).
+pub(crate) fn written_part(mesh: PolygonMesh, written: &[bool]) -> Result<PolygonMesh> {
+    let (mut positions, mut offsets, mut indices) = mesh.into_parts();
+    let kept = compact_faces(&mut offsets, &mut indices, positions.len(), written)?;
+    compact_values(&mut positions, &kept);
+    positions.shrink_to_fit();
+    Ok(PolygonMesh::from_raw_parts(positions, offsets, indices))
+}
+
+/// The holes of a subdivision run (`opts.holes`), `None` when there are none; refused for a
+/// rule whose faces do not nest and checked against the base mesh's `n_faces`.
+pub(crate) fn active(
+    holes: Option<&HoleSet>,
+    rule: Rule,
+    n_faces: usize,
+) -> Result<Option<&HoleSet>> {
+    let Some(holes) = holes.filter(|h| !h.is_empty()) else {
+        return Ok(None);
+    };
+    if !nests_faces(rule) {
+        return Err(Error::HolesNeedNestedFaces { rule });
+    }
+    holes.check(n_faces)?;
+    Ok(Some(holes))
+}
+
+/// The face degrees of a half-edge mesh, for [`HoleSet::written_at`].
+pub(crate) fn degrees_of(mesh: &HalfEdgeMesh) -> Vec<usize> {
+    (0..mesh.n_faces() as u32)
+        .map(|f| mesh.face_degree(FaceId(f)))
+        .collect()
+}
+
+/// Checks a written level against its prediction (a mismatch is a bug).
+pub(crate) fn check_written(
+    name: &str,
+    level: u32,
+    predicted: &LevelCounts,
+    vertices: usize,
+    faces: usize,
+) -> Result<()> {
+    for (what, predicted, actual) in [
+        ("written vertices", &predicted.vertices, vertices),
+        ("written faces", &predicted.faces, faces),
+    ] {
+        if *predicted != num_bigint::BigInt::from(actual) {
+            return Err(Error::PredictionMismatch {
+                scheme: name.to_owned(),
+                level,
+                what,
+                predicted: predicted.clone(),
+                actual: actual as u64,
+            });
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -275,6 +275,40 @@ pub fn peak_limit() -> u128 {
     u128::from(available_bytes().unwrap_or(8 << 30)) / 2
 }
 
+/// The bytes leaving holes out of the last level adds to [`predicted_peak_bytes`] (the face
+/// list is compacted in place, [`crate::holes`]): the new number of every vertex of the
+/// whole level and the old index of each kept one (4 bytes each per vertex), which faces
+/// descend from holes (1 byte per face); and, for a last level built as a half-edge mesh
+/// (`last_faces` `None`), the face list it becomes (at most `2 E` corners).
+///
+/// ```
+/// use halfedge::memory::hole_filter_bytes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let cc = schemes::builtin("catmull-clark")?;
+/// // Level 1: 26 vertices, 24 faces.
+/// assert_eq!(hole_filter_bytes(&cc, &cube, 1, Some(4))?, (8 * 26 + 24).into());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`predicted_peak_bytes`].
+pub fn hole_filter_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+    last_faces: Option<usize>,
+) -> Result<BigInt, schemes::Error> {
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    let mut bytes = BigInt::from(8) * &c.vertices + &c.faces;
+    if last_faces.is_none() {
+        bytes += BigInt::from(24) * &c.vertices
+            + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+            + BigInt::from(8) * &c.edges;
+    }
+    Ok(bytes)
+}
+
 /// The memory guard of real subdivision: [`predicted_peak_bytes`] of `scheme` to `levels`,
 /// refused with [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit) when it exceeds `limit` (e.g. [`peak_limit`]).
 ///

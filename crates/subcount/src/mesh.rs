@@ -19,7 +19,7 @@ use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
 use crate::levels::parse_levels_count;
 use crate::model::{
     face_place, load_mesh, load_scheme_file, mesh_label, not_applicable, refuse_degenerate_faces,
-    refuse_triangle_rule, refuse_uncounted, validate, LoadedMesh,
+    refuse_triangle_rule, validate, LoadedMesh,
 };
 use crate::output::json_text;
 
@@ -250,14 +250,28 @@ impl TagSummary {
     }
 }
 
-/// The scheme of `--scheme` (built-in) or `--scheme-file` as it counts this mesh (`loop` and
-/// its aliases count as `loop-boundary` on a mesh with boundary: [`Scheme::for_mesh`]), and
-/// the rule that really subdivides it ([`sub::checked_rule`]).
+/// What `verify` and `subdivide` run: the scheme as it counts what is written, its rule, and
+/// the holes.
+struct Chosen {
+    /// The scheme of `--scheme` or `--scheme-file` for the written faces.
+    scheme: Scheme,
+    /// The rule that really subdivides it.
+    rule: Rule,
+    /// The faces that are holes ([`LoadedMesh::holes`]), if any.
+    holes: Option<halfedge::holes::HoleSet>,
+}
+
+/// The scheme of `--scheme` (built-in) or `--scheme-file` as it counts what is written of
+/// this mesh (`loop` and its aliases count as `loop-boundary` on a mesh with boundary:
+/// [`Scheme::for_mesh`]; with holes, the statistics of the written faces, so a closed mesh
+/// with holes counts with the boundary-aware state), the rule that really subdivides it
+/// ([`sub::checked_rule`]) and the holes. `counts` are the statistics of all faces.
 fn chosen_scheme(
     choice: &SchemeChoice,
+    loaded: &LoadedMesh,
     counts: &MeshCounts,
     mesh: &MeshSource,
-) -> Result<(Scheme, Rule), Failure> {
+) -> Result<Chosen, Failure> {
     let scheme = match (&choice.scheme_file, &choice.scheme) {
         (Some(path), name) => {
             let custom = load_scheme_file(path)?;
@@ -272,8 +286,16 @@ fn chosen_scheme(
         }
         (None, Some(name)) => schemes::builtin(name).map_err(scheme_failure)?,
         (None, None) => return Err(usage!("give --scheme NAME or --scheme-file FILE")),
-    }
-    .for_mesh(counts);
+    };
+    let holes = loaded.holes(
+        counts,
+        mesh,
+        scheme.name(),
+        &[(scheme.name(), scheme.subdivision_rule())],
+    )?;
+    let written = holes.as_ref().map(|h| h.written_counts(&loaded.poly));
+    let counts = written.as_ref().unwrap_or(counts);
+    let scheme = scheme.for_mesh(counts);
     refuse_triangle_rule(
         mesh,
         scheme.name(),
@@ -283,7 +305,11 @@ fn chosen_scheme(
         .initial_state(counts)
         .map_err(|e| not_applicable(mesh, e))?;
     let rule = sub::checked_rule(&scheme, counts).map_err(halfedge_failure)?;
-    Ok((scheme, rule))
+    Ok(Chosen {
+        scheme,
+        rule,
+        holes,
+    })
 }
 
 /// Whether to run on the raw face list: a built-in scheme that allows non-manifold input
@@ -342,10 +368,11 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let poly = &loaded.poly;
     refuse_degenerate_faces(poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(poly);
-    refuse_uncounted(&loaded, &counts, &args.mesh)?;
-    let (scheme, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    let chosen = chosen_scheme(&args.scheme, &loaded, &counts, &args.mesh)?;
+    let (scheme, rule) = (&chosen.scheme, chosen.rule);
     loaded.print_notes();
-    // The rule's own scheme sizes the real subdivision (a custom matrix may be wrong).
+    // The rule's own scheme sizes the real subdivision of the whole mesh (a custom matrix may
+    // be wrong); the scheme predicts what is written.
     let sizing = rule.scheme_for(&counts).map_err(scheme_failure)?;
     let x0 = sizing
         .initial_state(&counts)
@@ -363,17 +390,20 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         }
     };
     let custom = args.scheme.scheme_file.is_some();
-    let face_list = on_face_list(&scheme, rule, &counts, custom);
+    let face_list = on_face_list(scheme, rule, &counts, custom);
     let need = if loaded.has_crease_rules() && !face_list {
         halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, None)
     } else {
         halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None).map_err(Into::into)
     };
     guard_memory(need, sizing.name(), levels, args.allow_large)?;
-    let opts = SubdivideOptions::default().with_threads(args.threads);
+    let mut opts = SubdivideOptions::default().with_threads(args.threads);
+    if let Some(holes) = &chosen.holes {
+        opts = opts.with_holes(holes);
+    }
     let reports = if face_list {
         // The face-list subdividers place points linearly: no crease rules to follow.
-        sub::verify_polygons(poly, &scheme, levels, &opts)
+        sub::verify_polygons(poly, scheme, levels, &opts)
     } else {
         let mesh = validate(poly, &args.mesh)?;
         let sharpness = loaded.sharpness(&mesh, &args.mesh)?;
@@ -381,7 +411,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }
-        sub::verify(&mesh, &scheme, levels, &opts)
+        sub::verify(&mesh, scheme, levels, &opts)
     }
     .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
@@ -461,8 +491,11 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let poly = &loaded.poly;
     refuse_degenerate_faces(poly, &args.mesh)?;
     let counts = halfedge::stats::face_list_counts(poly);
-    refuse_uncounted(&loaded, &counts, &args.mesh)?;
-    let (chosen, rule) = chosen_scheme(&args.scheme, &counts, &args.mesh)?;
+    let Chosen {
+        scheme: chosen,
+        rule,
+        holes,
+    } = chosen_scheme(&args.scheme, &loaded, &counts, &args.mesh)?;
     loaded.print_notes();
     let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
@@ -484,6 +517,9 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let last_faces = (!face_list && !args.no_preallocate)
         .then(|| sub::direct_face_degree(rule))
         .flatten();
+    // With holes a manifold mesh's last level is written as a face list (the written faces
+    // need not be a manifold), compacted in place.
+    let holes_as_faces = holes.is_some() && !face_list && !refine_once;
     let need = if refine_once {
         let bytes = match args.precision {
             Precision::F32 => 4,
@@ -497,11 +533,19 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             args.frames > 0,
             loaded.has_crease_rules(),
         )
-    } else if loaded.has_crease_rules() && !face_list {
-        halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, last_faces)
     } else {
-        halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
-            .map_err(Into::into)
+        let levels_bytes = if loaded.has_crease_rules() && !face_list {
+            halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, last_faces)
+        } else {
+            halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
+                .map_err(Into::into)
+        };
+        levels_bytes.and_then(|bytes| match holes {
+            Some(_) => halfedge::memory::hole_filter_bytes(&scheme, &counts, levels, last_faces)
+                .map(|filter| bytes + filter)
+                .map_err(Into::into),
+            None => Ok(bytes),
+        })
     };
     let predicted = guard_memory(need, scheme.name(), levels, args.allow_large)?;
     if let Some(path) = &args.output {
@@ -550,13 +594,16 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     if let Some(sharpness) = &sharpness {
         opts = opts.with_sharpness(sharpness);
     }
+    if let Some(holes) = &holes {
+        opts = opts.with_holes(holes);
+    }
     let t1 = Instant::now();
     let result = match &mesh {
         Some(mesh) if refine_once => {
             refined::run(mesh, rule, levels, args.precision, args.frames, &opts)
                 .map(Output::Refined)
         }
-        Some(mesh) if last_faces.is_some() => {
+        Some(mesh) if last_faces.is_some() || holes_as_faces => {
             sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
         }
         Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),

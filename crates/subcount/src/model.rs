@@ -4,14 +4,17 @@
 //!
 //! Every command reads its mesh through [`load_mesh`], the one place where the file's
 //! OpenSubdiv tags meet the flags: [`resolve_options`] gives the subdivision options (a flag
-//! wins over the tag, the tag over the default), and the counting commands refuse what is
-//! not counted yet ([`refuse_uncounted`]: holes, `--boundary none` on a mesh with boundary).
+//! wins over the tag, the tag over the default), and [`LoadedMesh::holes`] the faces that are
+//! holes (the file's hole tags, and under `--boundary none` the faces at the boundary): every
+//! command counts what is written, the statistics of the faces that are not holes, and
+//! refuses holes under a scheme whose faces do not nest.
 
 use std::cell::OnceCell;
 
+use halfedge::holes::HoleSet;
 use halfedge::io::ReadOptions;
 use halfedge::subdivide::Sharpness;
-use halfedge::tags::{SubdivisionOptions, TagOptions, Tags};
+use halfedge::tags::{BoundaryInterpolation, SubdivisionOptions, TagOptions, Tags};
 use halfedge::{PolygonMesh, Rule};
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
@@ -28,6 +31,9 @@ pub(crate) const DEFAULT_COUNTS: &str = "V=12,E=30,F=20";
 /// The flags that name what to count, with the statistics of their mesh read at most once.
 pub(crate) struct Input<'a> {
     source: &'a Source,
+    /// The mesh and the statistics of all its faces.
+    loaded: OnceCell<Option<(LoadedMesh, MeshCounts)>>,
+    /// What is counted: the statistics of the written faces.
     counts: OnceCell<Option<MeshCounts>>,
 }
 
@@ -35,22 +41,48 @@ impl<'a> Input<'a> {
     pub(crate) fn new(source: &'a Source) -> Input<'a> {
         Input {
             source,
+            loaded: OnceCell::new(),
             counts: OnceCell::new(),
         }
     }
 
-    /// The statistics of the mesh named by `--mesh` or `--base`, if any.
-    fn mesh_counts(&self) -> Result<Option<&MeshCounts>, Failure> {
-        if let Some(counts) = self.counts.get() {
-            return Ok(counts.as_ref());
+    /// The mesh named by `--mesh` or `--base`, if any, with the statistics of all its faces.
+    fn loaded(&self) -> Result<Option<&(LoadedMesh, MeshCounts)>, Failure> {
+        if let Some(loaded) = self.loaded.get() {
+            return Ok(loaded.as_ref());
         }
-        let counts = match load_mesh(&self.source.mesh)? {
+        let loaded = match load_mesh(&self.source.mesh)? {
             Some(loaded) => {
                 refuse_degenerate_faces(&loaded.poly, &self.source.mesh)?;
                 let counts = halfedge::stats::face_list_counts(&loaded.poly);
-                refuse_uncounted(&loaded, &counts, &self.source.mesh)?;
+                Some((loaded, counts))
+            }
+            None => None,
+        };
+        Ok(self.loaded.get_or_init(|| loaded).as_ref())
+    }
+
+    /// The statistics `plan` counts on the mesh named by `--mesh` or `--base`, if any: those
+    /// of its written faces when it has holes ([`LoadedMesh::holes`]; refused, exit 2, under
+    /// a stage whose faces do not nest), of all its faces otherwise. The plan is the same
+    /// for every call of a command (its boundary variant has the same rules).
+    fn mesh_counts(&self, plan: &Plan) -> Result<Option<&MeshCounts>, Failure> {
+        if let Some(counts) = self.counts.get() {
+            return Ok(counts.as_ref());
+        }
+        let counts = match self.loaded()? {
+            Some((loaded, counts)) => {
+                let stages: Vec<(&str, Option<Rule>)> = plan
+                    .stages()
+                    .iter()
+                    .map(|s| (s.scheme().name(), s.scheme().subdivision_rule()))
+                    .collect();
+                let holes = loaded.holes(counts, &self.source.mesh, &plan.name(), &stages)?;
                 loaded.print_notes();
-                Some(counts)
+                Some(match holes {
+                    Some(holes) => holes.written_counts(&loaded.poly),
+                    None => counts.clone(),
+                })
             }
             None => None,
         };
@@ -127,7 +159,7 @@ impl<'a> Input<'a> {
                 Ok(input) => plan.for_counts(&input),
                 Err(_) => plan,
             }),
-            (None, None, true) => Ok(match self.mesh_counts()? {
+            (None, None, true) => Ok(match self.mesh_counts(&plan)? {
                 Some(counts) => plan.for_mesh(counts),
                 None => plan,
             }),
@@ -180,7 +212,7 @@ impl<'a> Input<'a> {
         let Some(plan) = counter.plan() else {
             return Err(usage!("--matrix needs --init with one value per component"));
         };
-        if let Some(counts) = self.mesh_counts()? {
+        if let Some(counts) = self.mesh_counts(plan)? {
             return plan
                 .initial_state(counts)
                 .map_err(|e| not_applicable(&source.mesh, e));
@@ -247,6 +279,81 @@ impl LoadedMesh {
         let sharpness = Sharpness::from_tags_of(&self.poly, mesh, tags)
             .map_err(|e| input!("{}: {e}", mesh_label(source)))?;
         Ok((!sharpness.is_smooth()).then_some(sharpness))
+    }
+
+    /// The faces that are holes when `stages` (each stage's name and rule; `scheme` names
+    /// them all) run on this mesh, whose faces have the statistics `counts`: the file's hole
+    /// tags, and the faces at the boundary under boundary interpolation `none` (OpenSubdiv's
+    /// `VTX_BOUNDARY_NONE`, Loop and Catmull-Clark: [`halfedge::holes::boundary_faces`]).
+    /// `None` when there are none.
+    ///
+    /// # Errors
+    ///
+    /// Usage errors (exit 2): boundary `none` on a mesh with boundary under a stage other
+    /// than Loop or Catmull-Clark (which have no such mode); holes under a stage whose faces
+    /// do not nest (√3, Doo-Sabin, mid-edge: a hole has no descendants) or that names no
+    /// rule.
+    pub(crate) fn holes(
+        &self,
+        counts: &MeshCounts,
+        mesh: &MeshSource,
+        scheme: &str,
+        stages: &[(&str, Option<Rule>)],
+    ) -> Result<Option<HoleSet>, Failure> {
+        let label = mesh_label(mesh);
+        let which = |name: &str| {
+            if name == scheme {
+                name.to_owned()
+            } else {
+                format!("{scheme} (its stage {name})")
+            }
+        };
+        let mut faces = self.tags().hole_faces();
+        let tagged = faces.len();
+        if self.options.boundary == BoundaryInterpolation::None && counts.boundary_edges > 0 {
+            let (source, fix) = if mesh.boundary.is_some() {
+                (
+                    "--boundary none".to_string(),
+                    "use --boundary edge or edge-and-corner",
+                )
+            } else {
+                (
+                    "the file's tag interpolateboundary 0 (none)".to_string(),
+                    "use --boundary edge or edge-and-corner, or --ignore-tags",
+                )
+            };
+            let other = stages
+                .iter()
+                .find(|(_, r)| !matches!(r, Some(Rule::Loop | Rule::CatmullClark)));
+            if let Some((name, _)) = other {
+                return Err(usage!(
+                    "{label}: {source} is OpenSubdiv's VTX_BOUNDARY_NONE (the faces at the boundary become holes), a mode of loop and catmull-clark; {} has no such mode on a mesh with boundary ({} boundary edges): {fix}",
+                    which(name),
+                    counts.boundary_edges
+                ));
+            }
+            faces.extend(halfedge::holes::boundary_faces(&self.poly));
+        }
+        if faces.is_empty() {
+            return Ok(None);
+        }
+        let nests = |r: &Option<Rule>| r.is_some_and(schemes::holes::nests_faces);
+        if let Some((name, rule)) = stages.iter().find(|(_, r)| !nests(r)) {
+            let why = match rule {
+                Some(_) => "its faces do not nest, so a hole has no descendants",
+                None => {
+                    "it names no subdivision rule (`topology`), so a hole's descendants are unknown"
+                }
+            };
+            return Err(usage!(
+                "{label}: the file's hole tags make {tagged} face{} holes, but {}: {why}; holes are counted and written by the 4:1 family (loop, midpoint, butterfly, icosphere), tri-split-N and catmull-clark: use one of them, or --ignore-tags to count the mesh without its tags",
+                if tagged == 1 { "" } else { "s" },
+                which(name)
+            ));
+        }
+        HoleSet::new(self.poly.n_faces(), faces)
+            .map(Some)
+            .map_err(|e| input!("{label}: {e}"))
     }
 
     /// Prints the notes on stderr. Commands call it once the mesh passed their checks, so
@@ -388,45 +495,6 @@ pub(crate) fn refuse_triangle_rule<'a>(
         };
         return Err(usage!(
             "--triangle-rule {rule} is Catmull-Clark's rule for triangles (OpenSubdiv's TriangleSubdivision), but {which}: triangle schemes (the Loop family, tri-split-N, sqrt3) have no such choice; drop the flag or use --scheme catmull-clark"
-        ));
-    }
-    Ok(())
-}
-
-/// Refuses (exit 2) to count or subdivide a mesh whose resolved input makes faces holes:
-/// hole tags, or boundary interpolation `none` on a mesh with boundary edges (OpenSubdiv's
-/// `VTX_BOUNDARY_NONE` makes the faces on the boundary holes). Their counts are not derived
-/// yet, and counts that ignore them would be wrong.
-pub(crate) fn refuse_uncounted(
-    loaded: &LoadedMesh,
-    counts: &MeshCounts,
-    mesh: &MeshSource,
-) -> Result<(), Failure> {
-    let label = mesh_label(mesh);
-    let holes = loaded.tags().hole_faces();
-    if !holes.is_empty() {
-        let n = holes.len();
-        return Err(usage!(
-            "{label}: the file's hole tags make {n} face{} holes, and holes are not counted yet: use --ignore-tags to count the mesh without its tags",
-            if n == 1 { "" } else { "s" }
-        ));
-    }
-    if loaded.options.boundary == halfedge::tags::BoundaryInterpolation::None
-        && counts.boundary_edges > 0
-    {
-        let source = if mesh.boundary.is_some() {
-            "--boundary none".to_string()
-        } else {
-            "the file's tag interpolateboundary 0 (none)".to_string()
-        };
-        let fix = if mesh.boundary.is_some() {
-            "use --boundary edge or edge-and-corner"
-        } else {
-            "use --boundary edge or edge-and-corner, or --ignore-tags"
-        };
-        return Err(usage!(
-            "{label}: {source} makes the faces on the boundary ({} boundary edges) holes, and holes are not counted yet: {fix}",
-            counts.boundary_edges
         ));
     }
     Ok(())

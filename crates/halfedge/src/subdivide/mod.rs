@@ -79,7 +79,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-mod alloc;
+pub(crate) mod alloc;
 mod build;
 mod catmull_clark;
 mod dual;
@@ -105,6 +105,7 @@ use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 use self::build::Sizes;
 use self::topo::Topo;
 use self::trisplit::{Template, TriRule};
+use crate::holes::HoleSet;
 use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
@@ -138,6 +139,17 @@ pub struct SubdivideOptions<'a> {
     /// ([`sdc`]), read wherever [`SubdivideOptions::sharpness`] is; the default is
     /// OpenSubdiv's `edge` / `uniform` / `catmark`, the rules' own kernels.
     pub subdivision: SubdivisionOptions,
+    /// Faces that are holes ([`crate::holes`]), for the rules whose faces nest
+    /// ([`schemes::holes::nests_faces`]; the others are refused with
+    /// [`Error::HolesNeedNestedFaces`]): they are refined like any other face, so the surface
+    /// around them is unchanged, but their descendants are not written, nor the vertices
+    /// only they use (the others renumbered, in order). Honoured by
+    /// [`subdivide_to_face_list`], [`subdivide_polygons`], [`verify`] and
+    /// [`verify_polygons`] (which count what is written), [`subdivide`] (the written faces
+    /// as a half-edge mesh, when they are one) and [`Refinement::new`](crate::Refinement::new)
+    /// (index buffers and vertex data of the written part). `None` or an empty set changes
+    /// nothing.
+    pub holes: Option<&'a HoleSet>,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -148,6 +160,7 @@ impl Default for SubdivideOptions<'_> {
             progress: None,
             sharpness: None,
             subdivision: SubdivisionOptions::default(),
+            holes: None,
         }
     }
 }
@@ -182,6 +195,12 @@ impl<'a> SubdivideOptions<'a> {
         self.subdivision = subdivision;
         self
     }
+
+    /// Sets [`SubdivideOptions::holes`].
+    pub fn with_holes(mut self, holes: &'a HoleSet) -> Self {
+        self.holes = Some(holes);
+        self
+    }
 }
 
 impl std::fmt::Debug for SubdivideOptions<'_> {
@@ -197,6 +216,7 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
                     .map(|s| (s.n_sharp_edges(), s.n_sharp_vertices())),
             )
             .field("subdivision", &self.subdivision)
+            .field("holes", &self.holes.map(|h| h.faces().len()))
             .finish()
     }
 }
@@ -490,6 +510,12 @@ pub fn subdivide(
 ) -> Result<HalfEdgeMesh> {
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
+    if crate::holes::active(opts.holes, rule, mesh.n_faces())?.is_some() {
+        // The written faces as a half-edge mesh: refused by its validation when they are not
+        // one (two written fans meeting at a vertex between holes).
+        let level = subdivide_to_face_list(mesh, rule, levels, opts)?;
+        return HalfEdgeMesh::try_from(&level.mesh);
+    }
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
 
@@ -503,7 +529,9 @@ pub struct FaceListLevel {
     pub mesh: PolygonMesh,
     /// The number of edges of the level: counted by the construction from the half-edge mesh
     /// of the level before (4:1: `2E + 3F`; Catmull-Clark: `2E` plus one per face corner), or
-    /// read off the half-edge mesh for the schemes built that way.
+    /// read off the half-edge mesh for the schemes built that way. With holes
+    /// ([`SubdivideOptions::holes`]) the written edges as predicted (the written vertices and
+    /// faces are checked against the prediction).
     pub edges: usize,
 }
 
@@ -562,16 +590,92 @@ pub fn subdivide_to_face_list(
 ) -> Result<FaceListLevel> {
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
+    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
+    let written = match holes {
+        Some(holes) => Some(written_prediction(
+            &plan,
+            &holes.written_mesh_counts(mesh),
+            levels,
+        )?),
+        None => None,
+    };
     let noop = |_: u32, _: &HalfEdgeMesh| Ok(());
-    Ok(
-        match refine::one_shot(&plan, mesh, &counts, levels, true, opts, noop)? {
-            refine::OneShot::Mesh(m) => FaceListLevel {
-                mesh: m.to_polygon_mesh(),
-                edges: m.n_edges(),
-            },
-            refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh, edges },
+    let level = match refine::one_shot(&plan, mesh, &counts, levels, true, opts, noop)? {
+        refine::OneShot::Mesh(m) => FaceListLevel {
+            mesh: m.to_polygon_mesh(),
+            edges: m.n_edges(),
         },
-    )
+        refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh, edges },
+    };
+    match (holes, written) {
+        (Some(holes), Some(predicted)) => {
+            let degrees = crate::holes::degrees_of(mesh);
+            keep_written(level.mesh, holes, &degrees, &plan, levels, &predicted)
+        }
+        _ => Ok(level),
+    }
+}
+
+/// What `plan` writes at `levels` of a mesh whose written faces have the counts `written`,
+/// checked to fit before anything is built (the last level's vertex indices fit `u32`).
+fn written_prediction(plan: &Plan, written: &MeshCounts, levels: u32) -> Result<LevelCounts> {
+    let c = HoleSet::written_level(plan.rule, written, levels)?;
+    sizes(&c, &plan.name, levels, false)?;
+    Ok(c)
+}
+
+/// The written part of the last level `mesh` (numbered as [`subdivide`] numbers it: the
+/// children of a face contiguous, in the order of their parents), checked against the
+/// prediction; its `edges` are the predicted ones.
+fn keep_written(
+    mesh: PolygonMesh,
+    holes: &HoleSet,
+    degrees: &[usize],
+    plan: &Plan,
+    levels: u32,
+    predicted: &LevelCounts,
+) -> Result<FaceListLevel> {
+    let mask = holes.written_at(plan.rule, degrees, levels)?;
+    if mask.len() != mesh.n_faces() {
+        return Err(Error::InvalidOutput {
+            scheme: plan.name.clone(),
+            level: levels,
+            what: format!(
+                "{} faces where the holes' descendants were counted on {}",
+                mesh.n_faces(),
+                mask.len()
+            ),
+        });
+    }
+    let mesh = crate::holes::written_part(mesh, &mask)?;
+    crate::holes::check_written(
+        &plan.name,
+        levels,
+        predicted,
+        mesh.n_vertices(),
+        mesh.n_faces(),
+    )?;
+    let edges = usize::try_from(&predicted.edges).map_err(|_| Error::TooLarge {
+        scheme: plan.name.clone(),
+        level: levels,
+        what: "edges",
+        count: predicted.edges.clone(),
+    })?;
+    Ok(FaceListLevel { mesh, edges })
+}
+
+/// The statistics of the faces of `faces` (an iterator of vertex lists) whose `written`
+/// entry is `true`.
+fn written_face_counts<F, I>(faces: F, written: &[bool], positions: usize) -> MeshCounts
+where
+    F: Iterator<Item = I> + Clone,
+    I: IntoIterator<Item = u32>,
+{
+    let faces = faces
+        .zip(written.iter().copied())
+        .filter(|(_, w)| *w)
+        .map(|(f, _)| f);
+    MeshCounts::from_face_list(faces, positions)
 }
 
 /// Defines the public shorthands for [`subdivide`] with one rule; the string before the name
@@ -767,6 +871,22 @@ pub fn verify(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = mesh.counts();
+    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
+        // What is written is predicted from the written faces and counted on them.
+        let written = holes.written_mesh_counts(mesh);
+        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
+        let degrees = crate::holes::degrees_of(mesh);
+        let mut reports = vec![report(&predictor, &written, 0, &written)?];
+        run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
+            let mask = holes.written_at(plan.rule, &degrees, s)?;
+            let faces =
+                (0..m.n_faces() as u32).map(|f| m.face_vertices(crate::FaceId(f)).map(|v| v.0));
+            let measured = written_face_counts(faces, &mask, m.n_vertices());
+            reports.push(report(&predictor, &written, s, &measured)?);
+            Ok(())
+        })?;
+        return Ok(reports);
+    }
     let (plan, predictor) = verify_plan(scheme, &counts)?;
     let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
@@ -783,6 +903,35 @@ fn verify_plan(scheme: &Scheme, counts: &MeshCounts) -> Result<(Plan, Scheme)> {
     let mut plan = plan(rule, counts)?;
     plan.name = scheme.name().to_owned();
     Ok((plan, scheme.for_mesh(counts)))
+}
+
+/// The holes of a [`verify`] run of `scheme` (see [`crate::holes::active`]).
+fn verify_holes<'a>(
+    scheme: &Scheme,
+    opts: &SubdivideOptions<'a>,
+    n_faces: usize,
+) -> Result<Option<&'a HoleSet>> {
+    if opts.holes.map_or(true, HoleSet::is_empty) {
+        return Ok(None);
+    }
+    match scheme.subdivision_rule() {
+        Some(rule) => crate::holes::active(opts.holes, rule, n_faces),
+        None => Err(no_rule(scheme)),
+    }
+}
+
+/// [`verify_plan`] with holes: the scheme must accept the written faces (`written`), whose
+/// counts it predicts; the subdivision of the whole mesh (`counts`) is sized by the rule's
+/// own scheme.
+fn verify_plan_with_holes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    written: &MeshCounts,
+) -> Result<(Plan, Scheme)> {
+    let rule = checked_rule(scheme, written)?;
+    let mut plan = plan(rule, counts)?;
+    plan.name = scheme.name().to_owned();
+    Ok((plan, scheme.for_mesh(written)))
 }
 
 /// Subdivides a raw face list (non-manifold allowed) `levels` times by a rule whose topology
@@ -817,7 +966,13 @@ pub fn subdivide_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<PolygonMesh> {
     let plan = plan(rule, &crate::stats::face_list_counts(mesh))?;
-    faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))
+    let Some(holes) = crate::holes::active(opts.holes, rule, mesh.n_faces())? else {
+        return faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()));
+    };
+    let predicted = written_prediction(&plan, &holes.written_counts(mesh), levels)?;
+    let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
+    let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
+    Ok(keep_written(last, holes, &degrees, &plan, levels, &predicted)?.mesh)
 }
 
 /// [`verify`] for raw face lists: really subdivides with [`subdivide_polygons`] and compares
@@ -846,6 +1001,20 @@ pub fn verify_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = crate::stats::face_list_counts(mesh);
+    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
+        let written = holes.written_counts(mesh);
+        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
+        let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
+        let mut reports = vec![report(&predictor, &written, 0, &written)?];
+        faces::run_levels(&plan, mesh, levels, opts, |s, m| {
+            let mask = holes.written_at(plan.rule, &degrees, s)?;
+            let faces = m.faces().map(|f| f.iter().copied());
+            let measured = written_face_counts(faces, &mask, m.n_vertices());
+            reports.push(report(&predictor, &written, s, &measured)?);
+            Ok(())
+        })?;
+        return Ok(reports);
+    }
     let (plan, predictor) = verify_plan(scheme, &counts)?;
     let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
     faces::run_levels(&plan, mesh, levels, opts, |s, m| {

@@ -120,6 +120,57 @@ impl Running {
         io::read_obj_from(output.stdout.as_slice(), "osd_driver output")
             .unwrap_or_else(|e| panic!("{} wrote an unreadable OBJ: {e}", self.what))
     }
+
+    /// What the driver writes of its output: the faces it does not list as holes (its
+    /// `# hole F` comments) and the vertices they use, renumbered in order.
+    pub(crate) fn written(self) -> (PolygonMesh, usize) {
+        let output = self
+            .child
+            .wait_with_output()
+            .unwrap_or_else(|e| panic!("{}: {e}", self.what));
+        assert!(
+            output.status.success(),
+            "{} failed: {}",
+            self.what,
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let text = String::from_utf8_lossy(&output.stdout);
+        let holes: std::collections::HashSet<usize> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# hole "))
+            .map(|f| f.trim().parse().expect("a face index"))
+            .collect();
+        let all = io::read_obj_from(output.stdout.as_slice(), "osd_driver output")
+            .unwrap_or_else(|e| panic!("{} wrote an unreadable OBJ: {e}", self.what));
+        let kept = PolygonMesh::from_faces(
+            all.positions.clone(),
+            (0..all.n_faces())
+                .filter(|f| !holes.contains(f))
+                .map(|f| all.face(f).to_vec()),
+        );
+        (without_bare_vertices(&kept), holes.len())
+    }
+}
+
+/// The mesh without the vertices no face uses, the others renumbered in order.
+pub(crate) fn without_bare_vertices(mesh: &PolygonMesh) -> PolygonMesh {
+    let mut used = vec![false; mesh.n_vertices()];
+    for &v in mesh.face_indices() {
+        used[v as usize] = true;
+    }
+    let mut new_index = vec![u32::MAX; mesh.n_vertices()];
+    let mut positions = Vec::new();
+    for (v, &p) in mesh.positions.iter().enumerate() {
+        if used[v] {
+            new_index[v] = u32::try_from(positions.len()).expect("vertex index fits u32");
+            positions.push(p);
+        }
+    }
+    let faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|face| face.iter().map(|&v| new_index[v as usize]).collect())
+        .collect();
+    PolygonMesh::from_faces(positions, faces)
 }
 
 pub(crate) fn bounding_box_diagonal(positions: &[DVec3]) -> f64 {

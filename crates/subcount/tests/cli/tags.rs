@@ -1,6 +1,8 @@
 //! OpenSubdiv's OBJ tags end to end: `stats` reports them, the option flags and their
-//! precedence over the tags, `--ignore-tags`, and the refusals (malformed tags exit 3; holes,
-//! boundary `none` and `--triangle-rule` with a triangle scheme exit 2).
+//! precedence over the tags, `--ignore-tags`, holes and boundary `none` counted as what is
+//! written, and the refusals (malformed tags exit 3; holes under a scheme whose faces do not
+//! nest, boundary `none` under a scheme without that mode and `--triangle-rule` with a
+//! triangle scheme exit 2).
 
 use crate::util::{fails, ok, subcount};
 
@@ -377,73 +379,371 @@ fn the_triangle_rule_is_refused_with_a_triangle_scheme() {
     ]);
 }
 
+/// The counting commands of the holes tests, with `--mesh` to follow.
+const COUNTING: [&[&str]; 8] = [
+    &["table", "--scheme", "catmull-clark", "--levels", "2"],
+    &["at", "--scheme", "catmull-clark", "--level", "2"],
+    &["formula", "--scheme", "catmull-clark"],
+    &["fit", "--scheme", "catmull-clark", "--max-faces", "100"],
+    &["density", "--scheme", "catmull-clark", "--level", "2"],
+    &["plot", "--scheme", "catmull-clark", "-o", "PLOT"],
+    &["verify", "--scheme", "catmull-clark", "--levels", "2"],
+    &["subdivide", "--scheme", "catmull-clark", "--levels", "2"],
+];
+
+/// `command` on `mesh` with `extra`, a plot written into `dir`.
+fn counting_args(
+    command: &[&str],
+    mesh: &str,
+    extra: &[&str],
+    dir: &std::path::Path,
+) -> Vec<String> {
+    let plot = dir.join("plot.svg").to_str().expect("UTF-8").to_owned();
+    let mut args: Vec<String> = command
+        .iter()
+        .map(|s| {
+            if *s == "PLOT" {
+                plot.clone()
+            } else {
+                s.to_string()
+            }
+        })
+        .collect();
+    args.extend(["--mesh".to_string(), mesh.to_string()]);
+    args.extend(extra.iter().map(|s| s.to_string()));
+    args
+}
+
+fn run_args(args: &[String]) -> crate::util::Run {
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    subcount(&args)
+}
+
 #[test]
-fn holes_and_boundary_none_are_refused_until_counted() {
-    let (_dir, holes) = file("holes.obj", &format!("{CUBE}t hole 1/0/0 2\n"));
-    let hole_message =
-        "the file's hole tags make 1 face holes, and holes are not counted yet: use --ignore-tags";
-    let (_dir2, strip) = file("strip.obj", STRIP);
-    let (_dir3, tagged_none) = file(
+fn holes_are_counted_as_what_is_written() {
+    // The cube with face 2 a hole: what is written is an open box, counted with the
+    // boundary-aware state; the same counts as the open box written out without the face.
+    let (dir, holes) = file(
+        "holes.obj",
+        &format!(
+            "{CUBE}t hole 1/0/0 2
+"
+        ),
+    );
+    let open_box = CUBE.replace("f 1 2 6 5\n", "");
+    let (_dir2, open) = file("open.obj", &open_box);
+    for command in COUNTING {
+        let tagged = run_args(&counting_args(command, &holes, &[], dir.path()));
+        assert_eq!(tagged.code, 0, "{command:?}: {}", tagged.stderr);
+        if command[0] != "plot" {
+            let untagged = run_args(&counting_args(command, &open, &[], dir.path()));
+            let same = |text: &str| text.replace(&holes, "MESH").replace(&open, "MESH");
+            assert_eq!(same(&tagged.stdout), same(&untagged.stdout), "{command:?}");
+        }
+        // --ignore-tags counts the whole cube.
+        let whole = run_args(&counting_args(
+            command,
+            &holes,
+            &["--ignore-tags"],
+            dir.path(),
+        ));
+        assert_eq!(whole.code, 0, "{command:?}: {}", whole.stderr);
+        if !matches!(command[0], "plot" | "formula" | "fit") {
+            assert_ne!(whole.stdout, tagged.stdout, "{command:?}");
+        }
+    }
+    // The figures: level 2 of the open box (89 vertices, 168 edges, 80 quads, 16 boundary
+    // edges), in text and JSON; verify compares them with the real written output.
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme",
+            "catmull-clark",
+            "--level",
+            "2",
+            "--mesh",
+            &holes,
+            "--format",
+            "json"
+        ]),
+        "{\"level\": 2, \"V\": 89, \"IE\": 152, \"BE\": 16, \"F\": 80, \"H\": 320, \"E\": 168}\n"
+    );
+    let json = ok(&[
+        "verify",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "2",
+        "--mesh",
+        &holes,
+        "--format",
+        "json",
+    ]);
+    let rows: serde_json::Value = serde_json::from_str(&json).expect("JSON");
+    assert_eq!(rows[2]["measured"]["F"], 80);
+    assert_eq!(rows[2]["measured"]["BE"], 16);
+    assert_eq!(rows[2]["match"], true);
+    // subdivide writes the written faces only, with the vertices they use.
+    let out = dir.path().join("out.obj");
+    let out_s = out.to_str().expect("UTF-8");
+    let summary = ok(&[
+        "subdivide",
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "2",
+        "--mesh",
+        &holes,
+        "-o",
+        out_s,
+    ]);
+    assert_eq!(
+        summary,
+        format!("level 2: V = 89, E = 168, F = 80; wrote {out_s}\n")
+    );
+    let text = std::fs::read_to_string(&out).expect("written");
+    let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+    assert_eq!((count("v "), count("f ")), (89, 80));
+    for precision in ["f32", "f64"] {
+        let summary = ok(&[
+            "subdivide",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "2",
+            "--mesh",
+            &holes,
+            "--precision",
+            precision,
+            "--frames",
+            "1",
+            "-o",
+            out_s,
+        ]);
+        assert_eq!(
+            summary,
+            format!("level 2: V = 89, E = 168, F = 80; wrote {out_s}\n")
+        );
+        let text = std::fs::read_to_string(&out).expect("written");
+        let count = |p: &str| text.lines().filter(|l| l.starts_with(p)).count();
+        assert_eq!((count("v "), count("f ")), (89, 80), "{precision}");
+    }
+    // Loop on a closed triangle mesh with holes counts as loop-boundary; tri-split too.
+    let (_dir3, tet) = file(
+        "tet.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt hole 1/0/0 0\n",
+    );
+    for scheme in ["loop", "butterfly", "tri-split-3"] {
+        let run = subcount(&[
+            "verify", "--scheme", scheme, "--levels", "3", "--mesh", &tet,
+        ]);
+        assert_eq!(run.code, 0, "{scheme}: {}", run.stderr);
+        assert!(
+            run.stdout.ends_with("all counts match the prediction\n"),
+            "{}",
+            run.stdout
+        );
+    }
+    assert_eq!(
+        ok(&["at", "--scheme", "loop", "--level", "1", "--mesh", &tet]),
+        "level 1\nV = 10\nIE = 15\nBE = 6\nE = 21\nF = 12\n"
+    );
+}
+
+#[test]
+fn holes_under_schemes_whose_faces_do_not_nest_are_usage_errors() {
+    let (_dir, holes) = file("holes.obj", &format!("{CUBE}t hole 2/0/0 2 3\n"));
+    let (_dir2, tet) = file(
+        "tet.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt hole 1/0/0 0\n",
+    );
+    let tail = "its faces do not nest, so a hole has no descendants; holes are counted and written by the 4:1 family (loop, midpoint, butterfly, icosphere), tri-split-N and catmull-clark: use one of them, or --ignore-tags to count the mesh without its tags";
+    for (mesh, scheme, n) in [
+        (&holes, "doo-sabin", "2 faces"),
+        (&holes, "mid-edge", "2 faces"),
+        (&tet, "sqrt3", "1 face"),
+    ] {
+        let message = format!("{mesh}: the file's hole tags make {n} holes, but {scheme}: {tail}");
+        for command in [
+            &["table", "--scheme", scheme][..],
+            &["at", "--scheme", scheme, "--level", "1"],
+            &["verify", "--scheme", scheme, "--levels", "1"],
+            &["subdivide", "--scheme", scheme, "--levels", "1"],
+        ] {
+            let mut args = command.to_vec();
+            args.extend(["--mesh", mesh.as_str()]);
+            fails(&args, 2, &message);
+            args.push("--ignore-tags");
+            let run = subcount(&args);
+            assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
+        }
+    }
+    // A composition names its stage.
+    fails(
+        &[
+            "table",
+            "--scheme",
+            "catmull-clark:1,doo-sabin",
+            "--mesh",
+            &holes,
+        ],
+        2,
+        "but catmull-clark:1,doo-sabin (its stage doo-sabin): its faces do not nest",
+    );
+}
+
+#[test]
+fn boundary_none_makes_the_faces_at_the_boundary_holes() {
+    // A 3x3 quad grid under VTX_BOUNDARY_NONE: the eight faces at the boundary are holes and
+    // the centre face is written (as OpenSubdiv computes it, edge-only positions).
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme",
+            "catmull-clark",
+            "--level",
+            "1",
+            "--base",
+            "quad-grid:3x3",
+            "--boundary",
+            "none"
+        ]),
+        "level 1\nV = 9\nIE = 4\nBE = 8\nF = 4\nH = 16\nE = 12\n"
+    );
+    let run = subcount(&[
+        "verify",
+        "--scheme",
+        "loop",
+        "--levels",
+        "3",
+        "--base",
+        "grid:4x4",
+        "--boundary",
+        "none",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.ends_with("all counts match the prediction\n"));
+    let dir = tempfile::tempdir().expect("a folder");
+    let out = dir.path().join("none.obj");
+    let out_s = out.to_str().expect("UTF-8");
+    assert_eq!(
+        ok(&[
+            "subdivide",
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "2",
+            "--base",
+            "quad-grid:3x3",
+            "--boundary",
+            "none",
+            "-o",
+            out_s
+        ]),
+        format!("level 2: V = 25, E = 40, F = 16; wrote {out_s}\n")
+    );
+    // The strip: every face touches the boundary, nothing is written.
+    let (_dir, strip) = file("strip.obj", STRIP);
+    let (_dir2, tagged_none) = file(
         "none.obj",
         &format!("{STRIP}t interpolateboundary 1/0/0 0\n"),
     );
-    let (_dir4, closed_none) = file(
+    for mesh in [&strip, &tagged_none] {
+        let extra: &[&str] = if mesh == &strip {
+            &["--boundary", "none"]
+        } else {
+            &[]
+        };
+        let mut args = vec![
+            "at",
+            "--scheme",
+            "catmull-clark",
+            "--level",
+            "1",
+            "--mesh",
+            mesh.as_str(),
+        ];
+        args.extend(extra);
+        assert_eq!(
+            ok(&args),
+            "level 1\nV = 0\nIE = 0\nBE = 0\nF = 0\nH = 0\nE = 0\n"
+        );
+    }
+    // Other schemes have no such mode on a mesh with boundary: a usage error naming it.
+    for scheme in ["doo-sabin", "mid-edge", "butterfly", "tri-split-2"] {
+        let base = if scheme == "doo-sabin" || scheme == "mid-edge" {
+            "quad-grid:3x3"
+        } else {
+            "grid:3x3"
+        };
+        for command in [
+            &["table", "--scheme", scheme][..],
+            &["subdivide", "--scheme", scheme, "--levels", "1"],
+        ] {
+            let mut args = command.to_vec();
+            args.extend(["--base", base, "--boundary", "none"]);
+            fails(
+                &args,
+                2,
+                &format!("base mesh {base}: --boundary none is OpenSubdiv's VTX_BOUNDARY_NONE (the faces at the boundary become holes), a mode of loop and catmull-clark; {scheme} has no such mode on a mesh with boundary"),
+            );
+        }
+    }
+    fails(
+        &["table", "--scheme", "doo-sabin", "--mesh", &tagged_none],
+        2,
+        "the file's tag interpolateboundary 0 (none) is OpenSubdiv's VTX_BOUNDARY_NONE (the faces at the boundary become holes), a mode of loop and catmull-clark; doo-sabin has no such mode on a mesh with boundary (6 boundary edges): use --boundary edge or edge-and-corner, or --ignore-tags",
+    );
+    // Overridden, not read, or on a closed mesh: no holes.
+    let (_dir3, closed_none) = file(
         "closed.obj",
         &format!("{CUBE}t interpolateboundary 1/0/0 0\n"),
     );
-    let commands: [&[&str]; 8] = [
-        &["table", "--scheme", "catmull-clark"],
-        &["at", "--scheme", "catmull-clark", "--level", "3"],
-        &["formula", "--scheme", "catmull-clark"],
-        &["fit", "--scheme", "catmull-clark", "--max-faces", "100"],
-        &["density", "--scheme", "catmull-clark", "--level", "2"],
-        &[
-            "plot",
-            "--scheme",
-            "catmull-clark",
-            "-o",
-            "/nonexistent/never-written.svg",
-        ],
-        &["verify", "--scheme", "catmull-clark", "--levels", "1"],
-        &["subdivide", "--scheme", "catmull-clark", "--levels", "1"],
-    ];
-    for command in commands {
-        let with = |extra: &[&'static str], mesh: &str| {
-            let mut args: Vec<String> = command.iter().map(|s| s.to_string()).collect();
-            args.extend(["--mesh".to_string(), mesh.to_string()]);
-            args.extend(extra.iter().map(|s| s.to_string()));
-            args
-        };
-        let run = |args: Vec<String>, code: i32, needle: &str| {
-            let args: Vec<&str> = args.iter().map(String::as_str).collect();
-            fails(&args, code, needle);
-        };
-        run(with(&[], &holes), 2, &format!("{holes}: {hole_message}"));
-        run(
-            with(&["--boundary", "none"], &strip),
-            2,
-            &format!("{strip}: --boundary none makes the faces on the boundary (6 boundary edges) holes, and holes are not counted yet: use --boundary edge or edge-and-corner"),
+    let whole = ok(&[
+        "at",
+        "--scheme",
+        "catmull-clark",
+        "--level",
+        "1",
+        "--mesh",
+        &strip,
+    ]);
+    for args in [
+        vec!["--mesh", tagged_none.as_str(), "--boundary", "edge"],
+        vec!["--mesh", tagged_none.as_str(), "--ignore-tags"],
+    ] {
+        let mut all = vec!["at", "--scheme", "catmull-clark", "--level", "1"];
+        all.extend(args);
+        let run = subcount(&all);
+        assert_eq!(
+            (run.code, run.stdout.as_str()),
+            (0, whole.as_str()),
+            "{all:?}"
         );
-        run(
-            with(&[], &tagged_none),
-            2,
-            "the file's tag interpolateboundary 0 (none) makes the faces on the boundary (6 boundary edges) holes, and holes are not counted yet: use --boundary edge or edge-and-corner, or --ignore-tags",
-        );
-        if command[0] != "plot" {
-            // The tag overridden or not read; boundary none on a closed mesh has no effect.
-            for args in [
-                with(&["--ignore-tags"], &holes),
-                with(&["--boundary", "edge"], &tagged_none),
-                with(&["--ignore-tags"], &tagged_none),
-                with(&[], &closed_none),
-            ] {
-                let args: Vec<&str> = args.iter().map(String::as_str).collect();
-                let run = subcount(&args);
-                assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
-            }
-        }
     }
-    // stats reports the holes rather than refusing.
+    assert_eq!(
+        ok(&[
+            "at",
+            "--scheme",
+            "doo-sabin",
+            "--level",
+            "1",
+            "--mesh",
+            &closed_none
+        ]),
+        ok(&[
+            "at",
+            "--scheme",
+            "doo-sabin",
+            "--level",
+            "1",
+            "--mesh",
+            &closed_none,
+            "--ignore-tags"
+        ])
+    );
+    // stats reports the holes as it did.
+    let (_dir4, holes) = file("holes.obj", &format!("{CUBE}t hole 1/0/0 2\n"));
     assert!(
         ok(&["stats", "--mesh", &holes]).contains("\ntags: 0 crease edges, 0 corners, 1 holes\n")
     );

@@ -196,6 +196,19 @@ pub struct Refinement {
     face_degree: Option<usize>,
     /// The crease rules, when sharpness or options call for them (`None`: the rules' kernels).
     creases: Option<Creases>,
+    /// With holes ([`SubdivideOptions::holes`]): the written part of the last level.
+    written: Option<Written>,
+}
+
+/// The written part of the last level of a refinement with holes: its face list is
+/// [`Refinement::polygons`] and its sizes the last of [`Refinement::sizes`]; the whole level
+/// is evaluated and its written vertices gathered.
+#[derive(Debug)]
+struct Written {
+    /// The index in the whole last level of each written vertex (ascending).
+    kept: Vec<u32>,
+    /// The sizes of the whole last level.
+    full: LevelSize,
 }
 
 impl std::fmt::Debug for Refinement {
@@ -314,6 +327,14 @@ impl Refinement {
     ///
     /// With creases ([`SubdivideOptions::sharpness`], [`SubdivideOptions::subdivision`]:
     /// [`sdc`](super::sdc)) Loop and Catmull-Clark levels follow OpenSubdiv's crease rules.
+    ///
+    /// With holes ([`SubdivideOptions::holes`], rules whose faces nest, else
+    /// [`Error::HolesNeedNestedFaces`]) every level is refined whole, but the last level's
+    /// buffers hold only what is written: its faces not descending from holes and the
+    /// vertices they use, in order; their sizes are predicted (and checked to fit) before
+    /// anything is built, the written vertices and faces checked afterwards. The refinement
+    /// also keeps 4 bytes per written vertex; [`Refinement::predicted_bytes`] does not count
+    /// them.
     pub fn new(
         mesh: &HalfEdgeMesh,
         rule: Rule,
@@ -326,6 +347,16 @@ impl Refinement {
         super::check_mesh(&plan, mesh)?;
         let creases = Creases::new(mesh, rule, opts.sharpness, &opts.subdivision)?;
         let planned = plan_sizes(&plan, &counts, levels, !direct(plan.algorithm))?;
+        // With holes, what is written is known (and checked to fit) before anything is built.
+        let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
+        let written = match holes {
+            Some(holes) => Some(super::written_prediction(
+                &plan,
+                &holes.written_mesh_counts(mesh),
+                levels,
+            )?),
+            None => None,
+        };
         let pool = match opts.threads {
             0 | 1 => None,
             n => Some(Arc::new(
@@ -355,6 +386,7 @@ impl Refinement {
             polygons: None,
             face_degree: None,
             creases,
+            written: None,
         };
         let base = Topo::new(mesh);
         refinement.sizes.push(LevelSize {
@@ -369,7 +401,119 @@ impl Refinement {
             fast: None,
         });
         refinement.install(|r| r.build(&planned, opts))?;
+        if let (Some(holes), Some(predicted)) = (holes, written) {
+            refinement.keep_written(mesh, holes, &predicted)?;
+        }
         Ok(refinement)
+    }
+
+    /// Replaces the last level's face list and sizes by its written part (holes and their
+    /// descendants dropped, with the vertices only they use; the others renumbered in order),
+    /// checked against the prediction.
+    fn keep_written(
+        &mut self,
+        mesh: &HalfEdgeMesh,
+        holes: &crate::holes::HoleSet,
+        predicted: &schemes::LevelCounts,
+    ) -> Result<()> {
+        let levels = self.levels;
+        let Some(&full) = self.sizes.last() else {
+            return Ok(());
+        };
+        let mask = holes.written_at(self.rule, &crate::holes::degrees_of(mesh), levels)?;
+        if mask.len() != full.faces {
+            return Err(Error::InvalidOutput {
+                scheme: self.name.clone(),
+                level: levels,
+                what: format!(
+                    "{} faces where the holes' descendants were counted on {}",
+                    full.faces,
+                    mask.len()
+                ),
+            });
+        }
+        let mut polygons = match self.polygons.take() {
+            Some(p) => p,
+            None => {
+                // A direct rule: the whole level's corners, written from level `levels - 1`.
+                if u32::try_from(full.corners).is_err() {
+                    return Err(Error::IndexOverflow {
+                        what: "face corners",
+                        count: full.corners as u128,
+                    });
+                }
+                let degree = self.face_degree.unwrap_or(0);
+                let mut indices = super::alloc::filled(0u32, full.corners, "face corners")?;
+                self.write_corners(&mut indices)?;
+                let mut offsets = super::alloc::with_capacity(full.faces + 1, "face offsets")?;
+                // At most `full.corners`, which fits u32.
+                offsets.extend((0..=full.faces).map(|f| (degree * f) as u32));
+                Polygons { offsets, indices }
+            }
+        };
+        let kept = crate::holes::compact_faces(
+            &mut polygons.offsets,
+            &mut polygons.indices,
+            full.vertices,
+            &mask,
+        )?;
+        polygons.offsets.shrink_to_fit();
+        polygons.indices.shrink_to_fit();
+        let faces = polygons.offsets.len() - 1;
+        crate::holes::check_written(&self.name, levels, predicted, kept.len(), faces)?;
+        let edges = usize::try_from(&predicted.edges).map_err(|_| Error::TooLarge {
+            scheme: self.name.clone(),
+            level: levels,
+            what: "edges",
+            count: predicted.edges.clone(),
+        })?;
+        if let Some(last) = self.sizes.last_mut() {
+            *last = LevelSize {
+                vertices: kept.len(),
+                edges,
+                faces,
+                corners: polygons.indices.len(),
+            };
+        }
+        self.face_degree = common_degree(&polygons).or(self.face_degree.filter(|_| faces == 0));
+        self.polygons = Some(polygons);
+        self.written = Some(Written { kept, full });
+        Ok(())
+    }
+
+    /// The vertices of the base level (with holes at `levels = 0`, more than the written
+    /// [`Refinement::n_vertices`]`(0)`).
+    fn base_vertices(&self) -> usize {
+        match &self.written {
+            Some(w) if self.levels == 0 => w.full.vertices,
+            _ => self.n_vertices(0),
+        }
+    }
+
+    /// The vertices the evaluation of `level` computes: the whole last level with holes.
+    fn computed_vertices(&self, level: u32) -> usize {
+        match &self.written {
+            Some(w) if level == self.levels => w.full.vertices,
+            _ => self.n_vertices(level),
+        }
+    }
+
+    /// `dst[i] = full[kept[i]]`: the written vertices of the last level, when there are
+    /// holes (`dst` is then `n_vertices(levels)` long).
+    fn gather<V: Clone>(&self, full: &[V], dst: &mut [V]) {
+        if let Some(w) = &self.written {
+            for (d, &old) in dst.iter_mut().zip(&w.kept) {
+                *d = full[old as usize].clone();
+            }
+        }
+    }
+
+    /// The written entries of the last level's `full` values (all of them without holes).
+    fn written_of<V: Clone>(&self, mut full: Vec<V>) -> Vec<V> {
+        if let Some(w) = &self.written {
+            crate::holes::compact_values(&mut full, &w.kept);
+        }
+        full
     }
 
     /// Builds levels `1..=levels` (the topology `new` keeps).
@@ -635,17 +779,21 @@ impl Refinement {
         self.sizes.get(level as usize)
     }
 
-    /// The vertices of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The vertices of level `level` (`0..=levels`; 0 beyond the last level). With holes
+    /// ([`SubdivideOptions::holes`]) the last level's are the written ones (what
+    /// [`Refinement::evaluate`] fills), known before the refinement was built.
     pub fn n_vertices(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.vertices)
     }
 
-    /// The faces of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The faces of level `level` (`0..=levels`; 0 beyond the last level); with holes, the
+    /// last level's written faces (what the index buffers hold).
     pub fn n_faces(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.faces)
     }
 
-    /// The edges of level `level` (`0..=levels`; 0 beyond the last level).
+    /// The edges of level `level` (`0..=levels`; 0 beyond the last level); with holes, the
+    /// last level's written edges as predicted (its vertices and faces are checked).
     pub fn n_edges(&self, level: u32) -> usize {
         self.size(level).map_or(0, |s| s.edges)
     }
@@ -677,7 +825,8 @@ impl Refinement {
             .polygons
             .as_ref()
             .map_or(0, |p| 4 * (p.offsets.len() + p.indices.len()));
-        levels + polygons
+        let written = self.written.as_ref().map_or(0, |w| 4 * w.kept.len());
+        levels + polygons + written
     }
 
     /// The bytes [`Refinement::new`] would keep for `rule` at `levels` on a mesh with
@@ -856,6 +1005,7 @@ impl Refinement {
         Evaluator {
             refinement: self,
             scratch: [Vec::new(), Vec::new()],
+            full: Vec::new(),
         }
     }
 
@@ -873,6 +1023,13 @@ impl Refinement {
         self.check_level(level)?;
         check_len("src", self.n_vertices(level - 1), src.len())?;
         check_len("dst", self.n_vertices(level), dst.len())?;
+        if self.written.is_some() && level == self.levels {
+            let n = self.computed_vertices(level);
+            let mut full = super::alloc::filled([T::ZERO; N], n, "the whole last level")?;
+            self.run(|| self.fill_level(level, src, &mut full));
+            self.gather(&full, dst);
+            return Ok(());
+        }
         self.run(|| self.fill_level(level, src, dst));
         Ok(())
     }
@@ -910,7 +1067,7 @@ impl Refinement {
                 reason: "a vertex needs at least one entry",
             });
         }
-        let n0 = self.n_vertices(0);
+        let n0 = self.base_vertices();
         let nl = self.n_vertices(self.levels);
         let entries = |n: usize| stride.saturating_mul(n);
         check_len("base", entries(n0), base.len())?;
@@ -947,7 +1104,7 @@ impl Refinement {
     }
 
     fn strided<T: Scalar, const N: usize>(&self, base: &[T], out: &mut [T]) -> Result<()> {
-        let n0 = self.n_vertices(0);
+        let n0 = self.base_vertices();
         let nl = self.n_vertices(self.levels);
         let mut packed = super::alloc::with_capacity(n0, "the packed base")?;
         packed.extend(
@@ -1015,7 +1172,13 @@ impl Refinement {
     fn collect_level<V: Vector>(&self, level: u32, src: &[V]) -> Result<Vec<V>> {
         match self.before(level) {
             Some(before) => {
-                self.values_after(&before, src, self.n_vertices(level), false, "stencils")
+                let n = self.computed_vertices(level);
+                let full = self.values_after(&before, src, n, false, "stencils")?;
+                Ok(if level == self.levels {
+                    self.written_of(full)
+                } else {
+                    full
+                })
             }
             None => Ok(Vec::new()),
         }
@@ -1213,10 +1376,13 @@ impl Refinement {
     /// entries; [`Error::AllocationFailed`].
     pub fn stencils(&self) -> Result<StencilTable> {
         let sizes = self.stencil_sizes()?;
-        let n0 = self.n_vertices(0) as u32;
+        let n0 = self.base_vertices() as u32;
         let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
         for s in 1..=self.levels {
             current = self.run(|| self.collect_level(s, &current))?;
+        }
+        if self.levels == 0 {
+            current = self.written_of(current);
         }
         StencilTable::from_sums(&current, n0 as usize, sizes, &self.name, self.levels)
     }
@@ -1248,10 +1414,13 @@ impl Refinement {
                 reason: "the sphere projection",
             });
         }
-        let n0 = self.n_vertices(0) as u32;
+        let n0 = self.base_vertices() as u32;
         let mut current: Vec<Support> = (0..n0).map(Support::unit).collect();
         for s in 1..=self.levels {
             current = self.run(|| self.collect_level(s, &current))?;
+        }
+        if self.levels == 0 {
+            current = self.written_of(current);
         }
         Ok(StencilSizes {
             rows: current.len(),
@@ -1278,6 +1447,8 @@ fn check_len(what: &'static str, expected: usize, given: usize) -> Result<()> {
 pub struct Evaluator<'r, T: Scalar, const N: usize> {
     refinement: &'r Refinement,
     scratch: [Vec<[T; N]>; 2],
+    /// The whole last level, when holes leave only part of it written.
+    full: Vec<[T; N]>,
 }
 
 impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
@@ -1289,10 +1460,13 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
     pub fn evaluate(&mut self, base: &[[T; N]], out: &mut [[T; N]]) -> Result<()> {
         let r = self.refinement;
         let levels = r.levels;
-        check_len("base", r.n_vertices(0), base.len())?;
+        check_len("base", r.base_vertices(), base.len())?;
         check_len("out", r.n_vertices(levels), out.len())?;
         if levels == 0 {
-            out.copy_from_slice(base);
+            match r.written {
+                Some(_) => r.gather(base, out),
+                None => out.copy_from_slice(base),
+            }
             return Ok(());
         }
         let need = |parity: u32| {
@@ -1306,6 +1480,11 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
         reserve(a, need(1))?;
         reserve(b, need(0))?;
         let (a, b): (&mut [[T; N]], &mut [[T; N]]) = (a, b);
+        let whole = r.computed_vertices(levels);
+        if r.written.is_some() {
+            reserve(&mut self.full, whole)?;
+        }
+        let full = &mut self.full;
         r.run(|| {
             // Odd levels go to `a`, even ones to `b`.
             for s in 1..levels {
@@ -1323,7 +1502,12 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
                 l if (l - 1) % 2 == 1 => &a[..m],
                 _ => &b[..m],
             };
-            r.fill_level(levels, input, out);
+            if r.written.is_some() {
+                r.fill_level(levels, input, &mut full[..whole]);
+                r.gather(&full[..whole], out);
+            } else {
+                r.fill_level(levels, input, out);
+            }
         });
         Ok(())
     }

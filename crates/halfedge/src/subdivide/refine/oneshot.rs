@@ -93,6 +93,7 @@ impl Refinement {
             polygons: None,
             face_degree: None,
             creases,
+            written: None,
         }
     }
 
