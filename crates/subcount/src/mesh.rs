@@ -391,7 +391,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     };
     let custom = args.scheme.scheme_file.is_some();
     let face_list = on_face_list(scheme, rule, &counts, custom);
-    let need = if loaded.has_crease_rules() && !face_list {
+    let need = if loaded.has_crease_rules(rule) && !face_list {
         halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, None)
     } else {
         halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None).map_err(Into::into)
@@ -406,8 +406,8 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         sub::verify_polygons(poly, scheme, levels, &opts)
     } else {
         let mesh = validate(poly, &args.mesh)?;
-        let sharpness = loaded.sharpness(&mesh, &args.mesh)?;
-        let mut opts = opts.with_subdivision(loaded.options);
+        let (sharpness, options) = loaded.crease_inputs(rule, &mesh, &args.mesh)?;
+        let mut opts = opts.with_subdivision(options);
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }
@@ -531,10 +531,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             levels,
             bytes,
             args.frames > 0,
-            loaded.has_crease_rules(),
+            loaded.has_crease_rules(rule),
         )
     } else {
-        let levels_bytes = if loaded.has_crease_rules() && !face_list {
+        let levels_bytes = if loaded.has_crease_rules(rule) && !face_list {
             halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, last_faces)
         } else {
             halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
@@ -582,15 +582,15 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     };
     // The file's creases and corners and the resolved options (the face-list subdividers
     // place points linearly and read neither).
-    let sharpness = match &mesh {
-        Some(mesh) => loaded.sharpness(mesh, &args.mesh)?,
-        None => None,
+    let (sharpness, options) = match &mesh {
+        Some(mesh) => loaded.crease_inputs(rule, mesh, &args.mesh)?,
+        None => (None, Default::default()),
     };
     let mut opts = SubdivideOptions::default()
         .with_threads(args.threads)
         .with_preallocate(!args.no_preallocate)
         .with_progress(&progress)
-        .with_subdivision(loaded.options);
+        .with_subdivision(options);
     if let Some(sharpness) = &sharpness {
         opts = opts.with_sharpness(sharpness);
     }

@@ -255,11 +255,39 @@ impl LoadedMesh {
     /// Whether the subdivision may follow crease rules: the file's tags make an edge or a
     /// vertex sharp, or the resolved options are not the defaults (the library decides whether
     /// they change anything on the mesh; the memory guard counts their tables when they may).
-    pub(crate) fn has_crease_rules(&self) -> bool {
+    pub(crate) fn has_crease_rules(&self, rule: Rule) -> bool {
+        follows_creases(rule) && self.has_crease_input()
+    }
+
+    /// Whether the file's tags make an edge or a vertex sharp, or the resolved options are
+    /// not the defaults.
+    fn has_crease_input(&self) -> bool {
         let tags = self.tags();
         !tags.sharp_edges().is_empty()
             || !tags.sharp_vertices().is_empty()
             || self.options != SubdivisionOptions::default()
+    }
+
+    /// The sharpness ([`LoadedMesh::sharpness`]) and options a subdivision by `rule` of
+    /// `mesh` follows. Only Loop and Catmull-Clark have crease rules (OpenSubdiv's): under any
+    /// other rule both are left out, with one line on stderr when the file or the flags gave
+    /// some, so a tagged file still subdivides by every scheme.
+    pub(crate) fn crease_inputs(
+        &self,
+        rule: Rule,
+        mesh: &halfedge::HalfEdgeMesh,
+        source: &MeshSource,
+    ) -> Result<(Option<Sharpness>, SubdivisionOptions), Failure> {
+        if follows_creases(rule) {
+            return Ok((self.sharpness(mesh, source)?, self.options));
+        }
+        if self.has_crease_input() {
+            eprintln!(
+                "note: {}: creases, corners and the --boundary/--crease-method/--triangle-rule options are not applied by {rule}: only loop and catmull-clark have crease rules (OpenSubdiv's)",
+                mesh_label(source)
+            );
+        }
+        Ok((None, SubdivisionOptions::default()))
     }
 
     /// The creases and corners of the file's tags on `mesh`, the half-edge mesh built from
@@ -363,6 +391,11 @@ impl LoadedMesh {
             eprintln!("{note}");
         }
     }
+}
+
+/// Whether `rule` has crease rules (Loop and Catmull-Clark, as in OpenSubdiv).
+fn follows_creases(rule: Rule) -> bool {
+    matches!(rule, Rule::Loop | Rule::CatmullClark)
 }
 
 /// Reads the mesh named by `--mesh` or `--base`, if any, with its tags (unless
