@@ -1003,7 +1003,11 @@ fn holes_match_opensubdiv_on_generated_meshes() {
     ];
     let mut failures = Vec::new();
     let (mut compared, mut largest, mut hole_faces) = (0usize, 0.0f64, 0usize);
-    let mut check = |g: &Generated, scheme: Osd, holes: &HoleSet, boundary: &str| {
+    let mut check = |g: &Generated,
+                     scheme: Osd,
+                     holes: &HoleSet,
+                     sharpness: Option<&Sharpness>,
+                     boundary: &str| {
         let rule = match scheme {
             Osd::Loop => Rule::Loop,
             Osd::Catmark => Rule::CatmullClark,
@@ -1016,7 +1020,10 @@ fn holes_match_opensubdiv_on_generated_meshes() {
                 scheme.driver_name()
             );
             let running = opensubdiv_with(&["--tags"], scheme, level, &g.base.path, Some(boundary));
-            let opts = SubdivideOptions::default().with_holes(holes);
+            let mut opts = SubdivideOptions::default().with_holes(holes);
+            if let Some(sharpness) = sharpness {
+                opts = opts.with_sharpness(sharpness);
+            }
             let ours = subdivide_to_face_list(&g.base.mesh, rule, level, &opts);
             let (theirs, n_holes) = running.written();
             hole_faces += n_holes;
@@ -1038,7 +1045,7 @@ fn holes_match_opensubdiv_on_generated_meshes() {
             }
             let g = Generated::new(&format!("holes-{name}-{k}"), mesh.clone(), tags);
             let holes = HoleSet::new(mesh.n_faces(), faces.iter().copied()).expect("in range");
-            check(&g, *scheme, &holes, "edge-only");
+            check(&g, *scheme, &holes, None, "edge-only");
         }
     }
     // VTX_BOUNDARY_NONE: the faces at the boundary are OpenSubdiv's holes, and ours.
@@ -1049,7 +1056,25 @@ fn holes_match_opensubdiv_on_generated_meshes() {
     ] {
         let g = Generated::new(&format!("none-{name}"), mesh.clone(), Tags::default());
         let holes = HoleSet::new(mesh.n_faces(), boundary_faces(mesh)).expect("in range");
-        check(&g, scheme, &holes, "none");
+        check(&g, scheme, &holes, None, "none");
+    }
+    // Holes beside creases and a corner: the crease row y = 2 (vertices 10-14) runs along the
+    // hole's corner 12, semi-sharp then infinitely sharp; vertex 0 a corner.
+    for (name, mesh, scheme, hole) in [
+        ("quads", &quads, Osd::Catmark, 5),
+        ("triangles", &triangles, Osd::Loop, 10),
+        ("triangles", &triangles, Osd::Catmark, 10),
+    ] {
+        let mut tags = Tags::default();
+        tags.add_hole(hole);
+        for (a, b, s) in [(10, 11, 1.5), (11, 12, 1.5), (12, 13, 10.0), (13, 14, 10.0)] {
+            tags.add_crease(a, b, s).expect("a valid sharpness");
+        }
+        tags.add_corner(0, 2.5).expect("a valid sharpness");
+        let g = Generated::new(&format!("creased-holes-{name}"), mesh.clone(), tags.clone());
+        let sharpness = Sharpness::from_tags(&g.base.mesh, &tags).expect("edges of the mesh");
+        let holes = HoleSet::new(mesh.n_faces(), [hole]).expect("in range");
+        check(&g, scheme, &holes, Some(&sharpness), "edge-only");
     }
     eprintln!(
         "{compared} hole comparisons ({hole_faces} OpenSubdiv hole faces), largest deviation {largest:.3e} of the diagonal"
