@@ -309,6 +309,29 @@ pub fn hole_filter_bytes(
     Ok(bytes)
 }
 
+/// What holes add to [`predicted_refinement_peak_bytes`] (a refinement that writes only the
+/// faces that are not holes): the whole last level's corners and offsets, built once before the
+/// written faces are kept, and the kept face list (each at most `2E` corners and `F + 1`
+/// offsets of 4 bytes), the map of written vertices (4 bytes each), the whole last level's
+/// values in the evaluator (`3 * scalar_bytes` per vertex) and the transient mask and map of
+/// [`hole_filter_bytes`]. An upper bound.
+///
+/// # Errors
+///
+/// The scheme's error when it does not apply to `counts`.
+pub fn refinement_hole_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+    scalar_bytes: usize,
+) -> Result<BigInt, schemes::Error> {
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    let face_list = BigInt::from(4) * (BigInt::from(2) * &c.edges + &c.faces + 1);
+    Ok(BigInt::from(2) * face_list
+        + BigInt::from(4 + 3 * scalar_bytes) * &c.vertices
+        + hole_filter_bytes(scheme, counts, levels, Some(4))?)
+}
+
 /// The memory guard of real subdivision: [`predicted_peak_bytes`] of `scheme` to `levels`,
 /// refused with [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit) when it exceeds `limit` (e.g. [`peak_limit`]).
 ///

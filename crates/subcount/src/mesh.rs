@@ -76,8 +76,18 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()
     } else {
+        // Holes need faces that nest, boundary `none` (on a mesh with boundary) is a mode of
+        // Loop and Catmull-Clark: the schemes that would refuse them are not listed.
+        let holes = !loaded.tags().hole_faces().is_empty();
+        let none = loaded.options.boundary == halfedge::tags::BoundaryInterpolation::None
+            && counts.boundary_edges > 0;
         sub::applicable_schemes(&counts, validation.is_none())
             .iter()
+            .filter(|s| {
+                let rule = s.subdivision_rule();
+                (!holes || rule.is_some_and(schemes::holes::nests_faces))
+                    && (!none || matches!(rule, Some(Rule::Loop | Rule::CatmullClark)))
+            })
             .map(|s| s.name().to_owned())
             .collect()
     };
@@ -485,8 +495,9 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
     let start = Instant::now();
-    // `loaded.tags()` (creases and corners; holes are refused) and `loaded.options` (resolved
-    // boundary, crease method, triangle rule) are what the geometry follows.
+    // `loaded.tags()` (creases and corners; holes, left out of what is written) and
+    // `loaded.options` (resolved boundary, crease method, triangle rule) are what the geometry
+    // follows.
     let loaded = required_mesh(&args.mesh)?;
     let poly = &loaded.poly;
     refuse_degenerate_faces(poly, &args.mesh)?;
@@ -533,6 +544,12 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             args.frames > 0,
             loaded.has_crease_rules(rule),
         )
+        .and_then(|peak| match holes {
+            Some(_) => halfedge::memory::refinement_hole_bytes(&scheme, &counts, levels, bytes)
+                .map(|holes| peak + holes)
+                .map_err(Into::into),
+            None => Ok(peak),
+        })
     } else {
         let levels_bytes = if loaded.has_crease_rules(rule) && !face_list {
             halfedge::memory::predicted_peak_bytes_with_creases(rule, &counts, levels, last_faces)

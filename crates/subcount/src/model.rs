@@ -259,13 +259,17 @@ impl LoadedMesh {
         follows_creases(rule) && self.has_crease_input()
     }
 
-    /// Whether the file's tags make an edge or a vertex sharp, or the resolved options are
-    /// not the defaults.
+    /// Whether the file's tags make an edge or a vertex sharp, or the resolved boundary, crease
+    /// method or triangle rule are not the defaults.
     fn has_crease_input(&self) -> bool {
+        // The face-varying mode is read by no vertex rule.
+        let (o, d) = (&self.options, SubdivisionOptions::default());
         let tags = self.tags();
         !tags.sharp_edges().is_empty()
             || !tags.sharp_vertices().is_empty()
-            || self.options != SubdivisionOptions::default()
+            || o.boundary != d.boundary
+            || o.crease_method != d.crease_method
+            || o.triangle_rule != d.triangle_rule
     }
 
     /// The sharpness ([`LoadedMesh::sharpness`]) and options a subdivision by `rule` of

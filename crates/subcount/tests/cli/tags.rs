@@ -893,3 +893,36 @@ fn tags_never_change_the_counts_of_the_shared_meshes() {
         run.stderr
     );
 }
+
+/// `stats` lists only the schemes that count and write a mesh's holes (their faces nest) and,
+/// under `--boundary none` on a mesh with boundary, only Loop and Catmull-Clark.
+#[test]
+fn stats_lists_the_schemes_that_take_the_holes() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let tet = dir.path().join("tet.obj");
+    std::fs::write(
+        &tet,
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\nt hole 1/0/0 0\n",
+    )
+    .expect("written");
+    let tet = tet.to_str().expect("UTF-8 path");
+    let listed = |args: &[&str]| -> String {
+        let out = ok(args);
+        out.lines()
+            .find_map(|l| l.strip_prefix("applicable schemes: "))
+            .expect("the applicable schemes")
+            .to_owned()
+    };
+    assert_eq!(
+        listed(&["stats", "--mesh", tet]),
+        "loop, loop-boundary, loop-general, catmull-clark, catmull-clark-general, tri-split-2, tri-split-3"
+    );
+    assert!(listed(&["stats", "--mesh", tet, "--ignore-tags"])
+        .contains("sqrt3, sqrt3-boundary, doo-sabin"));
+    assert_eq!(
+        listed(&["stats", "--base", "quad-grid:3x3", "--boundary", "none"]),
+        "catmull-clark-quad, catmull-clark, catmull-clark-general"
+    );
+    assert!(listed(&["stats", "--base", "quad-grid:3x3"])
+        .ends_with("doo-sabin-boundary, mid-edge-boundary"));
+}
