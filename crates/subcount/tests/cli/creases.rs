@@ -43,25 +43,26 @@ fn file(name: &str, text: &str) -> (tempfile::TempDir, String) {
 /// `subcount subdivide` of `mesh` by `scheme` to `levels` with `extra` flags, written to a file:
 /// its text.
 fn subdivided(mesh: &str, scheme: &str, levels: u32, extra: &[&str]) -> String {
+    let levels = levels.to_string();
+    let mut args = vec!["--scheme", scheme, "--levels", &levels];
+    args.extend(extra);
+    subdivided_with_stderr(mesh, &args).0
+}
+
+/// `subcount subdivide` of `mesh` with `args` written to a file: its text and stderr
+/// (exit 0 asserted).
+fn subdivided_with_stderr(mesh: &str, args: &[&str]) -> (String, String) {
     let dir = tempfile::tempdir().expect("a temporary folder");
     let out = dir.path().join("out.obj");
     let out = out.to_str().expect("UTF-8 path");
-    let levels = levels.to_string();
-    let mut args = vec![
-        "subdivide",
-        "--mesh",
-        mesh,
-        "--scheme",
-        scheme,
-        "--levels",
-        &levels,
-        "-o",
-        out,
-    ];
-    args.extend(extra);
-    let run = subcount(&args);
-    assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
-    std::fs::read_to_string(out).expect("the output")
+    let mut all = vec!["subdivide", "--mesh", mesh, "-o", out];
+    all.extend_from_slice(args);
+    let run = crate::util::subcount(&all);
+    assert_eq!(run.code, 0, "subcount {all:?} failed: {}", run.stderr);
+    (
+        std::fs::read_to_string(out).expect("the output file"),
+        run.stderr,
+    )
 }
 
 /// The library's one-shot subdivision of the file with its tags' sharpness and `options`,
@@ -298,22 +299,6 @@ fn an_untagged_mesh_subdivides_as_before() {
         &format!("{CUBE}t crease 2/1/0 0 1 0\nt interpolateboundary 1/0/0 2\nt creasemethod 0/0/1 normal\n"),
     );
     assert_eq!(subdivided(&zero, "catmull-clark", 2, &[]), plain);
-}
-
-/// `subcount subdivide` of `mesh` with `args` written to a file: its text and stderr
-/// (exit 0 asserted).
-fn subdivided_with_stderr(mesh: &str, args: &[&str]) -> (String, String) {
-    let dir = tempfile::tempdir().expect("a temporary folder");
-    let out = dir.path().join("out.obj");
-    let out = out.to_str().expect("UTF-8 path");
-    let mut all = vec!["subdivide", "--mesh", mesh, "-o", out];
-    all.extend_from_slice(args);
-    let run = crate::util::subcount(&all);
-    assert_eq!(run.code, 0, "subcount {all:?} failed: {}", run.stderr);
-    (
-        std::fs::read_to_string(out).expect("the output file"),
-        run.stderr,
-    )
 }
 
 /// Only Loop and Catmull-Clark have crease rules: under any other rule a tagged file still
