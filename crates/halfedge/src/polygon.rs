@@ -3,6 +3,7 @@
 use glam::DVec3;
 
 use crate::tags::{IgnoredTag, TagError, Tags};
+use crate::uv::{UvError, UvLayout, Uvs};
 
 /// A polygon mesh as a plain face list: vertex positions and, per face, its vertex indices
 /// (0-based) in order.
@@ -42,6 +43,8 @@ pub struct PolygonMesh {
     tags: Tags,
     /// The tags of the file that were not interpreted.
     ignored_tags: Vec<IgnoredTag>,
+    /// Texture coordinates, when every face corner has one.
+    uvs: Option<Uvs>,
 }
 
 impl Default for PolygonMesh {
@@ -53,6 +56,7 @@ impl Default for PolygonMesh {
             face_lines: Vec::new(),
             tags: Tags::default(),
             ignored_tags: Vec::new(),
+            uvs: None,
         }
     }
 }
@@ -66,6 +70,7 @@ impl PartialEq for PolygonMesh {
             && self.face_offsets == other.face_offsets
             && self.face_indices == other.face_indices
             && self.tags == other.tags
+            && self.uvs == other.uvs
     }
 }
 
@@ -108,6 +113,7 @@ impl PolygonMesh {
             face_lines: Vec::new(),
             tags: Tags::default(),
             ignored_tags: Vec::new(),
+            uvs: None,
         }
     }
 
@@ -225,6 +231,39 @@ impl PolygonMesh {
     /// Whether the mesh has tags: interpreted ([`tags`](Self::tags) not empty) or ignored.
     pub fn has_tags(&self) -> bool {
         !self.tags.is_empty() || !self.ignored_tags.is_empty()
+    }
+
+    /// The texture coordinates ([`crate::uv`]): a `vt` per face corner, when the file gave one
+    /// to every corner or [`set_uvs`](Self::set_uvs) set them; `None` otherwise.
+    pub fn uvs(&self) -> Option<&Uvs> {
+        self.uvs.as_ref()
+    }
+
+    /// Sets (or, with `None`, removes) the texture coordinates, checked against the faces the
+    /// mesh has now: one `vt` per face corner.
+    ///
+    /// # Errors
+    ///
+    /// [`UvError::CornerCount`] when the corners differ in number from the mesh's; the
+    /// texture coordinates are then left as they were.
+    pub fn set_uvs(&mut self, uvs: Option<Uvs>) -> Result<(), UvError> {
+        if let Some(u) = &uvs {
+            if u.corners().len() != self.n_corners() {
+                return Err(UvError::CornerCount {
+                    given: u.corners().len(),
+                    expected: self.n_corners(),
+                });
+            }
+        }
+        self.uvs = uvs;
+        Ok(())
+    }
+
+    /// The UV layout of the mesh ([`UvLayout`]), when it has texture coordinates.
+    pub fn uv_layout(&self) -> Option<UvLayout> {
+        self.uvs
+            .as_ref()
+            .map(|u| UvLayout::new(&self.face_indices, u))
     }
 
     /// Number of vertex positions (used or not).
