@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
+use halfedge::tags::{BoundaryInterpolation, CreaseMethod, TriangleRule};
 
 /// The value parser of an option enum of `halfedge::tags`: its command-line names (listed in
 /// `--help` and in the error for another value), parsed by its `FromStr`.
@@ -162,12 +162,6 @@ pub(crate) struct SubdivideArgs {
     #[arg(long, value_name = "N", default_value_t = 0,
           value_parser = clap::value_parser!(u32).range(0..=1_000_000))]
     pub(crate) frames: u32,
-    /// Write the output without texture coordinates (UVs).
-    #[arg(long)]
-    pub(crate) no_uv: bool,
-    /// Write area-weighted vertex normals of the output as vn.
-    #[arg(long)]
-    pub(crate) normals: bool,
 }
 
 /// `subdivide --precision`.
@@ -227,12 +221,6 @@ pub(crate) struct FitArgs {
     /// Bytes per face for --memory (default 12: three u32 indices).
     #[arg(long, value_name = "N", default_value_t = 12)]
     pub(crate) bytes_per_face: u64,
-    /// At most this many UV values (a mesh with texture coordinates).
-    #[arg(long, value_name = "N", allow_hyphen_values = true)]
-    pub(crate) max_uv: Option<String>,
-    /// Bytes per UV value for --memory (a mesh with texture coordinates; default 8: two f32).
-    #[arg(long, value_name = "N")]
-    pub(crate) bytes_per_uv: Option<u64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub(crate) format: ReportFormat,
@@ -335,10 +323,6 @@ pub(crate) struct MeshSource {
     /// Do not read the file's OpenSubdiv tags (t lines): creases, corners, holes, options.
     #[arg(long)]
     pub(crate) ignore_tags: bool,
-    /// How UVs are interpolated, OpenSubdiv's FVarLinearInterpolation (default: the file's
-    /// facevaryinginterpolateboundary tag, else corners-plus1).
-    #[arg(long, value_name = "MODE", value_parser = named_parser!(FaceVaryingInterpolation))]
-    pub(crate) uv_interpolation: Option<FaceVaryingInterpolation>,
 }
 
 impl MeshSource {
