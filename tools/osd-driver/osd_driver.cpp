@@ -1,10 +1,12 @@
 // osd_driver: the OpenSubdiv reference for subcount's differential tests and its peer in
 // bench/peers.
 //
-// Reads an OBJ mesh (`v` and `f` lines, and with --tags OpenSubdiv's `t` tag lines; texture
-// and normal indices, groups and materials are ignored), refines it uniformly with
-// OpenSubdiv's Far::TopologyRefiner (fullTopologyInLastLevel = false) and moves the positions
-// down every level with Far::PrimvarRefiner in double precision.
+// Reads an OBJ mesh (`v` and `f` lines, and with --tags OpenSubdiv's `t` tag lines; with
+// --fvar also `vt` lines and every corner's `vt` index, else texture coordinates are ignored;
+// normals, groups and materials are ignored), refines it uniformly with OpenSubdiv's
+// Far::TopologyRefiner (fullTopologyInLastLevel = false) and moves the positions down every
+// level with Far::PrimvarRefiner in double precision (and with --fvar the texture coordinates,
+// as one face-varying channel, with InterpolateFaceVarying).
 //
 // Usage: osd_driver [OPTIONS] SCHEME LEVEL FILE.obj [BOUNDARY]
 //   writes the last level to stdout as OBJ: `v x y z`, each the shortest text that reads back
@@ -14,10 +16,17 @@
 //   LEVEL     0..10 (0 writes the base mesh as OpenSubdiv read it)
 //   BOUNDARY  edge-only | edge-and-corner | none: Sdc::Options::VtxBoundaryInterpolation
 //             (default: the file's interpolateboundary tag with --tags, else edge-only)
-//   OPTIONS   --tags: read crease, corner, hole, interpolateboundary, creasemethod and
-//                     smoothtriangles tags (see README.md)
+//   OPTIONS   --tags: read crease, corner, hole, interpolateboundary, creasemethod,
+//                     smoothtriangles and facevaryinginterpolateboundary tags (see README.md)
 //             --crease-method uniform|chaikin, --triangle-rule catmark|smooth: Sdc::Options,
 //                     over the file's tags
+//             --fvar MODE: carry the `vt` coordinates as one face-varying channel, MODE
+//                     none | corners-only | corners-plus1 | corners-plus2 | boundaries | all
+//                     (Sdc::Options::FVarLinearInterpolation) or tag (the file's
+//                     facevaryinginterpolateboundary tag, needs --tags; without the tag
+//                     corners-plus1); writes `vt u v` after the `v` lines and `f v/vt` faces
+//             --fvar-counts: with --fvar, print one JSON line of GetNumFVarValues at every
+//                     level 0..LEVEL instead of the mesh
 //
 // Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
 //   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
@@ -53,6 +62,16 @@ using namespace OpenSubdiv;
 
 namespace {
 
+// One texture coordinate; the interface PrimvarRefiner::InterpolateFaceVarying expects.
+struct Uv {
+    double u, v;
+    void Clear() { u = v = 0.0; }
+    void AddWithWeight(Uv const& p, double w) {
+        u += w * p.u;
+        v += w * p.v;
+    }
+};
+
 // One vertex position; the interface PrimvarRefiner::Interpolate expects of its data.
 struct Point {
     double x, y, z;
@@ -75,12 +94,20 @@ struct Tags {
     int boundary = -1;             // interpolateboundary: 0 none, 1 edge-and-corner, 2 edge-only
     std::string creaseMethod;      // creasemethod: normal | chaikin
     std::string triangles;         // smoothtriangles: catmark | smooth
+    // facevaryinginterpolateboundary's integers as written (checked only when --fvar tag
+    // uses them, so a file's output without --fvar does not depend on them).
+    std::vector<int> fvarInterpolation;
+    bool hasFvarInterpolation = false;
 };
 
 struct Mesh {
     std::vector<Point> points;
     std::vector<int> faceSizes;
     std::vector<int> corners;
+    // With --fvar only: the `vt` entries (all of them, used or not) and each corner's 0-based
+    // `vt` index, in the order of `corners`.
+    std::vector<Uv> uvs;
+    std::vector<int> uvCorners;
     Tags tags;
 };
 
@@ -89,17 +116,34 @@ struct Mesh {
     std::exit(status);
 }
 
-// Parses one OBJ vertex reference ("7", "7/2", "7//3", "-1/..."): the 0-based vertex index.
-bool parseIndex(std::string const& token, int vertexCount, int& index) {
-    std::string head = token.substr(0, token.find('/'));
-    if (head.empty()) return false;
+// Resolves one OBJ index ("7", "-1": 1-based, or relative to the `count` entries so far) to
+// a 0-based index below `count`.
+bool resolveIndex(std::string const& text, int count, int& index) {
+    if (text.empty()) return false;
     char* end = nullptr;
     errno = 0;
-    long value = std::strtol(head.c_str(), &end, 10);
+    long value = std::strtol(text.c_str(), &end, 10);
     if (errno != 0 || *end != '\0' || value == 0) return false;
-    long resolved = value > 0 ? value - 1 : vertexCount + value;
-    if (resolved < 0 || resolved >= vertexCount) return false;
+    long resolved = value > 0 ? value - 1 : count + value;
+    if (resolved < 0 || resolved >= count) return false;
     index = static_cast<int>(resolved);
+    return true;
+}
+
+// Parses one OBJ vertex reference ("7", "7/2", "7//3", "-1/..."): the 0-based vertex index.
+bool parseIndex(std::string const& token, int vertexCount, int& index) {
+    return resolveIndex(token.substr(0, token.find('/')), vertexCount, index);
+}
+
+// The texture part of an OBJ vertex reference ("7/2", "7/2/3", "-1/-1"): false when there is
+// none ("7", "7//3"); `valid` says whether it names one of the `uvCount` entries so far.
+bool parseUvIndex(std::string const& token, int uvCount, int& index, bool& valid) {
+    size_t slash = token.find('/');
+    if (slash == std::string::npos) return false;
+    size_t next = token.find('/', slash + 1);
+    std::string text = token.substr(slash + 1, next == std::string::npos ? next : next - slash - 1);
+    if (text.empty()) return false;
+    valid = resolveIndex(text, uvCount, index);
     return true;
 }
 
@@ -143,11 +187,15 @@ void parseTag(std::istringstream& words, Tags& tags, std::string const& where) {
     } else if (name == "smoothtriangles") {
         if (strings.size() != 1) fail(1, where + "smoothtriangles takes one string");
         tags.triangles = strings[0];
+    } else if (name == "facevaryinginterpolateboundary") {
+        tags.fvarInterpolation = ints;
+        tags.hasFvarInterpolation = true;
     }
-    // Other tags (facevaryinginterpolateboundary, vertexedit, ...) do not move vertices here.
+    // Other tags (vertexedit, ...) do not move vertices here.
 }
 
-Mesh readObj(char const* path, bool withTags) {
+// Reads the mesh; `withUvs` also reads `vt` lines and requires a `vt` index at every corner.
+Mesh readObj(char const* path, bool withTags, bool withUvs) {
     std::ifstream in(path);
     if (!in) fail(1, std::string(path) + ": cannot open: " + std::strerror(errno));
     Mesh mesh;
@@ -163,6 +211,17 @@ Mesh readObj(char const* path, bool withTags) {
             Point p;
             if (!(words >> p.x >> p.y >> p.z)) fail(1, where + "a vertex needs three numbers");
             mesh.points.push_back(p);
+        } else if (keyword == "vt" && withUvs) {
+            // `vt u [v [w]]`: v defaults to 0 (as OBJ says), w is dropped.
+            Uv uv{0.0, 0.0};
+            if (!(words >> uv.u)) fail(1, where + "a texture coordinate needs a number");
+            std::string second;
+            if (words >> second) {
+                char* end = nullptr;
+                uv.v = std::strtod(second.c_str(), &end);
+                if (*end != '\0') fail(1, where + "bad texture coordinate '" + second + "'");
+            }
+            mesh.uvs.push_back(uv);
         } else if (keyword == "f") {
             int size = 0;
             std::string token;
@@ -173,6 +232,21 @@ Mesh readObj(char const* path, bool withTags) {
                 }
                 mesh.corners.push_back(index);
                 ++size;
+                if (withUvs) {
+                    int uv = 0;
+                    bool valid = false;
+                    if (!parseUvIndex(token, static_cast<int>(mesh.uvs.size()), uv, valid)) {
+                        fail(1, where + "corner " + std::to_string(size) + " '" + token +
+                                    "' has no texture coordinate index (--fvar needs one at "
+                                    "every corner)");
+                    }
+                    if (!valid) {
+                        fail(1, where + "corner " + std::to_string(size) + " '" + token +
+                                    "': texture coordinate index out of range (" +
+                                    std::to_string(mesh.uvs.size()) + " vt so far)");
+                    }
+                    mesh.uvCorners.push_back(uv);
+                }
             }
             if (size < 3) fail(1, where + "a face needs at least three vertices");
             mesh.faceSizes.push_back(size);
@@ -255,6 +329,15 @@ std::unique_ptr<Far::TopologyRefiner> createRefiner(Mesh const& mesh, Sdc::Schem
     desc.cornerWeights = tags.cornerWeights.data();
     desc.numHoles = static_cast<int>(tags.holes.size());
     desc.holeIndices = tags.holes.data();
+    // The texture coordinates, when read, as face-varying channel 0: one value per `vt`
+    // entry (used or not), one value index per corner.
+    Far::TopologyDescriptor::FVarChannel uvChannel;
+    if (!mesh.uvCorners.empty()) {
+        uvChannel.numValues = static_cast<int>(mesh.uvs.size());
+        uvChannel.valueIndices = mesh.uvCorners.data();
+        desc.numFVarChannels = 1;
+        desc.fvarChannels = &uvChannel;
+    }
 
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
     std::unique_ptr<Far::TopologyRefiner> refiner(
@@ -283,6 +366,35 @@ Point* interpolate(Far::TopologyRefiner const& refiner, Point* points) {
     return src;
 }
 
+// Moves the face-varying values of channel 0 down level by level, as `interpolate` does the
+// positions: `values` holds every level's values, level 0 first (already filled). Returns the
+// last level's first value.
+Uv* interpolateUvs(Far::TopologyRefiner const& refiner, Uv* values) {
+    Far::PrimvarRefinerReal<double> primvar(refiner);
+    Uv* src = values;
+    for (int l = 1; l <= refiner.GetMaxLevel(); ++l) {
+        Uv* dst = src + refiner.GetLevel(l - 1).GetNumFVarValues(0);
+        primvar.InterpolateFaceVarying(l, src, dst, 0);
+        src = dst;
+    }
+    return src;
+}
+
+// The modes of Sdc::Options::FVarLinearInterpolation, in its order (the order of the
+// facevaryinginterpolateboundary tag's integer).
+char const* const fvarModeNames[] = {"none",          "corners-only", "corners-plus1",
+                                     "corners-plus2", "boundaries",   "all"};
+
+// The face-varying mode `name` names (index into fvarModeNames), or -1 for "tag".
+int parseFvarMode(std::string const& name) {
+    if (name == "tag") return -1;
+    for (int m = 0; m < 6; ++m) {
+        if (name == fvarModeNames[m]) return m;
+    }
+    fail(2, "unknown face-varying interpolation '" + name +
+                "' (none, corners-only, corners-plus1, corners-plus2, boundaries, all or tag)");
+}
+
 Sdc::Options::CreasingMethod parseCreaseMethod(std::string const& name) {
     if (name == "uniform" || name == "normal") return Sdc::Options::CREASE_UNIFORM;
     if (name == "chaikin") return Sdc::Options::CREASE_CHAIKIN;
@@ -296,16 +408,21 @@ Sdc::Options::TriangleSubdivision parseTriangleRule(std::string const& name) {
 }
 
 int reference(int argc, char** argv) {
-    // Options first: --tags, --crease-method M, --triangle-rule R; a flag wins over the tag.
-    bool withTags = false;
-    std::string creaseMethod, triangles;
+    // Options first: --tags, --crease-method M, --triangle-rule R, --fvar MODE, --fvar-counts;
+    // a flag wins over the tag.
+    bool withTags = false, fvarCounts = false;
+    std::string creaseMethod, triangles, fvar;
     int at = 1;
     for (; at < argc && std::strncmp(argv[at], "--", 2) == 0; ++at) {
         std::string flag = argv[at];
         if (flag == "--tags") {
             withTags = true;
-        } else if ((flag == "--crease-method" || flag == "--triangle-rule") && at + 1 < argc) {
-            (flag == "--crease-method" ? creaseMethod : triangles) = argv[++at];
+        } else if (flag == "--fvar-counts") {
+            fvarCounts = true;
+        } else if ((flag == "--crease-method" || flag == "--triangle-rule" || flag == "--fvar") &&
+                   at + 1 < argc) {
+            (flag == "--crease-method" ? creaseMethod : flag == "--fvar" ? fvar : triangles) =
+                argv[++at];
         } else {
             fail(2, "unknown option '" + flag + "'");
         }
@@ -313,14 +430,19 @@ int reference(int argc, char** argv) {
     int rest = argc - at;
     if (rest < 3 || rest > 4) {
         fail(2, "usage: osd_driver [--tags] [--crease-method uniform|chaikin] "
-                "[--triangle-rule catmark|smooth] loop|catmark|bilinear LEVEL FILE.obj "
-                "[edge-only|edge-and-corner|none]\n"
+                "[--triangle-rule catmark|smooth] [--fvar none|corners-only|corners-plus1|"
+                "corners-plus2|boundaries|all|tag [--fvar-counts]] loop|catmark|bilinear LEVEL "
+                "FILE.obj [edge-only|edge-and-corner|none]\n"
                 "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
     }
+    bool withUvs = !fvar.empty();
+    int fvarMode = withUvs ? parseFvarMode(fvar) : 0;
+    if (fvarCounts && !withUvs) fail(2, "--fvar-counts needs --fvar MODE");
+    if (fvarMode < 0 && !withTags) fail(2, "--fvar tag reads the file's tag: it needs --tags");
     char** args = argv + at;
     Sdc::SchemeType scheme = parseScheme(args[0]);
     int level = parseLevel(args[1]);
-    Mesh mesh = readObj(args[2], withTags);
+    Mesh mesh = readObj(args[2], withTags, withUvs);
     if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, args[2]);
 
     Tags const& tags = mesh.tags;
@@ -332,9 +454,41 @@ int reference(int argc, char** argv) {
     if (!creaseMethod.empty()) sdcOptions.SetCreasingMethod(parseCreaseMethod(creaseMethod));
     if (triangles.empty()) triangles = tags.triangles;
     if (!triangles.empty()) sdcOptions.SetTriangleSubdivision(parseTriangleRule(triangles));
+    if (fvarMode < 0) {
+        // --fvar tag: facevaryinginterpolateboundary's integer, else corners-plus1 (the default
+        // of USD, RenderMan and `subcount subdivide`; Sdc::Options() itself defaults to all).
+        fvarMode = Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1;
+        if (tags.hasFvarInterpolation) {
+            std::vector<int> const& ints = tags.fvarInterpolation;
+            if (ints.size() != 1 || ints[0] < 0 || ints[0] > 5) {
+                fail(1, std::string(args[2]) + ": facevaryinginterpolateboundary takes one "
+                                               "integer from 0 to 5");
+            }
+            fvarMode = ints[0];
+        }
+    }
+    if (withUvs) {
+        sdcOptions.SetFVarLinearInterpolation(
+            static_cast<Sdc::Options::FVarLinearInterpolation>(fvarMode));
+    }
 
     std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, sdcOptions, args[2]);
     refine(*refiner, level);
+
+    if (fvarCounts) {
+        std::string line = std::string("{\"scheme\": \"") + args[0] + "\", \"level\": " +
+                           std::to_string(level) + ", \"fvar\": \"" + fvarModeNames[fvarMode] +
+                           "\", \"fvar_values\": [";
+        for (int l = 0; l <= level; ++l) {
+            line += (l ? ", " : "") + std::to_string(refiner->GetLevel(l).GetNumFVarValues(0));
+        }
+        line += "]}\n";
+        if (std::fwrite(line.data(), 1, line.size(), stdout) != line.size() ||
+            std::fflush(stdout) != 0) {
+            fail(1, "cannot write to stdout");
+        }
+        return 0;
+    }
 
     std::vector<Point> points(refiner->GetNumVerticesTotal());
     std::copy(mesh.points.begin(), mesh.points.end(), points.begin());
@@ -359,12 +513,29 @@ int reference(int argc, char** argv) {
         }
         out += '\n';
     }
+    if (withUvs) {
+        std::vector<Uv> uvs(refiner->GetNumFVarValuesTotal(0));
+        std::copy(mesh.uvs.begin(), mesh.uvs.end(), uvs.begin());
+        Uv const* uvSrc = interpolateUvs(*refiner, uvs.data());
+        for (int i = 0; i < last.GetNumFVarValues(0); ++i) {
+            out += "vt ";
+            put(uvSrc[i].u);
+            out += ' ';
+            put(uvSrc[i].v);
+            out += '\n';
+        }
+    }
     for (int f = 0; f < last.GetNumFaces(); ++f) {
         Far::ConstIndexArray face = last.GetFaceVertices(f);
+        Far::ConstIndexArray faceUvs = withUvs ? last.GetFaceFVarValues(f, 0) : face;
         out += 'f';
         for (int i = 0; i < face.size(); ++i) {
             out += ' ';
             put(face[i] + 1);
+            if (withUvs) {
+                out += '/';
+                put(faceUvs[i] + 1);
+            }
         }
         out += '\n';
     }
@@ -418,7 +589,7 @@ int timing(int argc, char** argv) {
     int reps = argc > 5 ? parseCount(argv[5], "REPS", 1000) : 3;
     int frames = argc > 6 ? parseCount(argv[6], "FRAMES", 100000) : 0;
     if (reps < 1) fail(2, "REPS must be at least 1");
-    Mesh mesh = readObj(path, false);
+    Mesh mesh = readObj(path, false, false);
     if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, path);
 
     using Clock = std::chrono::steady_clock;
