@@ -29,6 +29,7 @@
 //! vertices in the same cyclic order (the starting corner may differ), as often on both sides.
 //! Whether the numberings also coincide is printed, not required.
 
+mod fvar_reference;
 mod osd_support;
 
 use std::path::{Path, PathBuf};

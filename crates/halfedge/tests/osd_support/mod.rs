@@ -2,7 +2,8 @@
 //! `crates/subcount/tests/cli/creases.rs`, which includes this file by path): running the
 //! repository's driver (`tools/osd-driver`, found through [`DRIVER_VAR`]) and comparing two
 //! last levels vertex for vertex (positions matched through a spatial hash, to [`TOLERANCE`]
-//! of the base mesh's bounding-box diagonal) and face for face.
+//! of the base mesh's bounding-box diagonal) and face for face. [`fvar`] runs the driver with
+//! its face-varying UV channel (`--fvar MODE`, `--fvar-counts`).
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -11,6 +12,8 @@ use std::process::{Command, Stdio};
 
 use halfedge::glam::DVec3;
 use halfedge::{io, PolygonMesh};
+
+pub(crate) mod fvar;
 
 /// Positions must agree to this fraction of the base mesh's bounding-box diagonal.
 pub(crate) const TOLERANCE: f64 = 1e-12;
@@ -105,8 +108,9 @@ pub(crate) struct Running {
 }
 
 impl Running {
-    /// The driver's output, once it has finished; panics when it fails.
-    pub(crate) fn mesh(self) -> PolygonMesh {
+    /// What the driver wrote to stdout, once it has finished successfully; panics, with the
+    /// command and the driver's stderr, when it fails.
+    fn stdout(self) -> (Vec<u8>, String) {
         let output = self
             .child
             .wait_with_output()
@@ -117,31 +121,28 @@ impl Running {
             self.what,
             String::from_utf8_lossy(&output.stderr)
         );
-        io::read_obj_from(output.stdout.as_slice(), "osd_driver output")
-            .unwrap_or_else(|e| panic!("{} wrote an unreadable OBJ: {e}", self.what))
+        (output.stdout, self.what)
+    }
+
+    /// The driver's output, once it has finished; panics when it fails.
+    pub(crate) fn mesh(self) -> PolygonMesh {
+        let (stdout, what) = self.stdout();
+        io::read_obj_from(stdout.as_slice(), "osd_driver output")
+            .unwrap_or_else(|e| panic!("{what} wrote an unreadable OBJ: {e}"))
     }
 
     /// What the driver writes of its output: the faces it does not list as holes (its
     /// `# hole F` comments) and the vertices they use, renumbered in order.
     pub(crate) fn written(self) -> (PolygonMesh, usize) {
-        let output = self
-            .child
-            .wait_with_output()
-            .unwrap_or_else(|e| panic!("{}: {e}", self.what));
-        assert!(
-            output.status.success(),
-            "{} failed: {}",
-            self.what,
-            String::from_utf8_lossy(&output.stderr)
-        );
-        let text = String::from_utf8_lossy(&output.stdout);
+        let (stdout, what) = self.stdout();
+        let text = String::from_utf8_lossy(&stdout);
         let holes: std::collections::HashSet<usize> = text
             .lines()
             .filter_map(|l| l.strip_prefix("# hole "))
             .map(|f| f.trim().parse().expect("a face index"))
             .collect();
-        let all = io::read_obj_from(output.stdout.as_slice(), "osd_driver output")
-            .unwrap_or_else(|e| panic!("{} wrote an unreadable OBJ: {e}", self.what));
+        let all = io::read_obj_from(stdout.as_slice(), "osd_driver output")
+            .unwrap_or_else(|e| panic!("{what} wrote an unreadable OBJ: {e}"));
         let kept = PolygonMesh::from_faces(
             all.positions.clone(),
             (0..all.n_faces())
