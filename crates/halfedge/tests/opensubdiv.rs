@@ -28,6 +28,11 @@
 //! one for one under that map: every OpenSubdiv face is a face of `halfedge`, the same
 //! vertices in the same cyclic order (the starting corner may differ), as often on both sides.
 //! Whether the numberings also coincide is printed, not required.
+//!
+//! The driver's face-varying UV channel (`--fvar MODE`, `--fvar-counts`) is run through
+//! `osd_support::fvar`; its own tests (issue 14's UV value counts, the channel leaving
+//! positions and faces alone, the `facevaryinginterpolateboundary` tag, holes) are in
+//! `fvar_reference`.
 
 mod fvar_reference;
 mod osd_support;
