@@ -79,7 +79,7 @@ use recurrence::{IntMatrix, Recurrence};
 use serde::Serialize;
 
 use crate::catalog::{catmull_clark_general, loop_general, tri_split};
-use crate::{Error, MeshCounts, Result, Rule, Scheme};
+use crate::{Error, MeshCounts, Plan, Result, Row, Rule, Scheme};
 
 /// The statistics of a UV layout (module docs for the definitions), computed by
 /// [`UvCounts::from_layout`].
@@ -420,6 +420,165 @@ impl UvScheme {
     }
 }
 
+/// The UV values of a mesh under a scheme plan: the [`UvScheme`] of every stage's rule from
+/// the layout's statistics, chained across the stages of a composition, as
+/// [`Counter`](crate::Counter) counts `V`, `E`, `F` ([`Counter::uv_counter`](crate::Counter::uv_counter)
+/// builds one). It adds the `UV` column to a counter's rows ([`extend_rows`](Self::extend_rows)).
+///
+/// At a stage boundary the next stage starts from the state reached, the corners `H` (when
+/// the next stage is Catmull-Clark and the previous one a triangle split) being `3 F`: a
+/// triangle split makes triangles.
+///
+/// ```
+/// use schemes::uv::UvCounts;
+/// use schemes::{BigInt, Counter, Plan};
+///
+/// let spot = UvCounts { values: 267, edges: 438, boundary_edges: 144, used_vt: 267,
+///                       faces: 180, corners: 732, ..UvCounts::default() };
+/// let counter = Counter::from(Plan::parse("catmull-clark")?);
+/// let uv = counter.uv_counter(&spot)?;
+/// assert_eq!(uv.values_at(2)?, BigInt::from(3225));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UvCounter {
+    /// Each stage's UV scheme and its number of levels (`None`: unbounded).
+    stages: Vec<(UvScheme, Option<u64>)>,
+    uv: UvCounts,
+}
+
+impl UvCounter {
+    /// The UV values of the layout `uv` under `plan`.
+    ///
+    /// # Errors
+    ///
+    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence.
+    pub fn new(plan: &Plan, uv: UvCounts) -> std::result::Result<UvCounter, NotCounted> {
+        let stages = plan
+            .stages()
+            .iter()
+            .map(|st| Ok((UvScheme::for_scheme(st.scheme())?, st.levels())))
+            .collect::<std::result::Result<_, NotCounted>>()?;
+        Ok(UvCounter { stages, uv })
+    }
+
+    /// The layout's statistics counted from.
+    pub fn uv_counts(&self) -> &UvCounts {
+        &self.uv
+    }
+
+    /// The single stage's UV scheme, when the plan is one scheme.
+    pub fn single(&self) -> Option<&UvScheme> {
+        match self.stages.as_slice() {
+            [(only, None)] => Some(only),
+            _ => None,
+        }
+    }
+
+    /// The index of the stage producing `level`, its first level and the state there.
+    fn stage_state(&self, level: u64) -> Result<(usize, u64, Vec<BigInt>)> {
+        let mut state = self.stages[0].0.initial_state(&self.uv);
+        let mut start = 0u64;
+        for (i, (scheme, levels)) in self.stages.iter().enumerate() {
+            let end = levels.map_or(u64::MAX, |k| start.saturating_add(k));
+            if level <= end {
+                return Ok((i, start, state));
+            }
+            let Some((next, _)) = self.stages.get(i + 1) else {
+                return Err(Error::LevelBeyondPlan { level, last: end });
+            };
+            let reached = scheme.recurrence.state_at(&state, end - start)?;
+            state = next.convert(reached);
+            start = end;
+        }
+        // The last stage is unbounded or has returned the error above.
+        Err(Error::LevelBeyondPlan { level, last: start })
+    }
+
+    /// The state at `level`, in the names of the stage that produced it.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LevelBeyondPlan`] past a bounded plan; [`Error::Recurrence`] from powering.
+    pub fn state_at(&self, level: u64) -> Result<Vec<BigInt>> {
+        let (i, start, state) = self.stage_state(level)?;
+        Ok(self.stages[i]
+            .0
+            .recurrence
+            .state_at(&state, level - start)?)
+    }
+
+    /// The number of UV values at `level` ([`UvCounts::used_vt`] at level 0).
+    ///
+    /// # Errors
+    ///
+    /// As [`state_at`](Self::state_at).
+    pub fn values_at(&self, level: u64) -> Result<BigInt> {
+        if level < UvScheme::VALID_FROM {
+            return Ok(BigInt::from(self.uv.used_vt));
+        }
+        Ok(self.state_at(level)?.swap_remove(0))
+    }
+
+    /// Adds the `UV` column to a table of `columns` and `rows` (from
+    /// [`Counter::columns`](crate::Counter::columns) and [`Counter::rows`](crate::Counter::rows)),
+    /// each row's value at its level.
+    ///
+    /// # Errors
+    ///
+    /// As [`values_at`](Self::values_at).
+    pub fn extend_rows(&self, columns: &mut Vec<String>, rows: &mut [Row]) -> Result {
+        columns.push(UV_COLUMN.to_string());
+        for row in rows {
+            row.values.push(Some(self.values_at(row.level)?));
+        }
+        Ok(())
+    }
+
+    /// A digit summary ([`SUMMARY_DIGITS`](crate::SUMMARY_DIGITS) each end) of the UV values
+    /// at `level` from the exact closed form, for a single scheme; `None` for a composition.
+    pub fn summary_at(&self, level: u64) -> Option<recurrence::DigitSummary> {
+        if level < UvScheme::VALID_FROM {
+            let v = BigInt::from(self.uv.used_vt);
+            return Some(recurrence::digit_summary(&v, crate::SUMMARY_DIGITS));
+        }
+        let single = self.single()?;
+        let form = single.recurrence.closed_form();
+        let x0 = single.initial_state(&self.uv);
+        let mut sums = form.summary_at(&x0, level, crate::SUMMARY_DIGITS).ok()?;
+        Some(sums.swap_remove(0))
+    }
+
+    /// An estimate of log10 of the largest component of the UV state at `level` (at least the
+    /// UV values'), for resource guards: the state at the producing stage's first level exactly, then [`Counter::estimated_log10`](crate::Counter::estimated_log10)
+    /// of that stage's recurrence.
+    ///
+    /// # Errors
+    ///
+    /// As [`state_at`](Self::state_at).
+    pub fn estimated_log10(&self, level: u64) -> Result<f64> {
+        let (i, start, state) = self.stage_state(level)?;
+        let counter = crate::Counter::from(self.stages[i].0.recurrence.clone());
+        counter.estimated_log10(&state, level - start)
+    }
+}
+
+/// The name of the UV column of a counts table (`"UV"` in text, CSV and JSON).
+pub const UV_COLUMN: &str = "UV";
+
+impl UvScheme {
+    /// `state` (another UV scheme's) in this scheme's names: the common components kept,
+    /// `H = 3 F` added when missing (a triangle split's output), `H` dropped when unused.
+    fn convert(&self, mut state: Vec<BigInt>) -> Vec<BigInt> {
+        if state.len() < self.recurrence.dim() {
+            let corners = BigInt::from(3) * &state[3];
+            state.push(corners);
+        }
+        state.truncate(self.recurrence.dim());
+        state
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -577,5 +736,87 @@ mod tests {
         let loop_uv = uv_scheme(Rule::Loop).unwrap();
         assert_eq!(loop_uv.values_at(&uv, 0).unwrap(), BigInt::from(1));
         assert_eq!(loop_uv.values_at(&uv, 1).unwrap(), BigInt::from(6));
+    }
+
+    /// Across a composition the UV values of a layout without seams are the plan's vertices.
+    #[test]
+    fn a_composition_counts_like_the_mesh_without_seams() {
+        let tris: [&[u32]; 4] = [&[0, 1, 4], &[0, 4, 3], &[1, 2, 5], &[1, 5, 4]];
+        let uv = layout(&tris, &tris, &[0, 1, 2, 3, 4, 5]).unwrap();
+        let mesh = MeshCounts::from_polygons(&tris).unwrap();
+        for text in [
+            "loop-boundary:2,catmull-clark",
+            "tri-split-3:1,loop-general:1,catmull-clark-general",
+        ] {
+            let plan = Plan::parse(text).unwrap();
+            let counter = crate::Counter::from(plan.clone());
+            let uvc = counter.uv_counter(&uv).unwrap();
+            assert_eq!(uvc.single(), None);
+            let last = plan.last_level().unwrap_or(5);
+            for s in 0..=last {
+                assert_eq!(
+                    uvc.values_at(s).unwrap(),
+                    plan.counts_at(&mesh, s).unwrap().vertices,
+                    "{text} level {s}"
+                );
+            }
+            assert!(uvc.estimated_log10(last).unwrap() > 1.0);
+            let x0 = plan.initial_state(&mesh).unwrap();
+            let mut rows = counter.rows(&x0, 0..=last).unwrap();
+            let mut columns = counter.columns();
+            uvc.extend_rows(&mut columns, &mut rows).unwrap();
+            assert_eq!(columns.last().map(String::as_str), Some(UV_COLUMN));
+            for row in &rows {
+                let v = counter.columns().iter().position(|c| c == "V").unwrap();
+                assert_eq!(row.values.last(), Some(&row.values[v].clone()), "{text}");
+            }
+        }
+        let bounded = crate::Counter::from(Plan::parse("loop-boundary:2").unwrap());
+        let err = bounded.uv_counter(&uv).unwrap().values_at(3).unwrap_err();
+        assert_eq!(err, Error::LevelBeyondPlan { level: 3, last: 2 });
+        let matrix = crate::Counter::from(Recurrence::new(IntMatrix::identity(2)));
+        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted { rule: None }));
+        let sqrt3 = crate::Counter::from(Plan::parse("loop-boundary:1,sqrt3-boundary").unwrap());
+        assert_eq!(
+            sqrt3.uv_counter(&uv),
+            Err(NotCounted {
+                rule: Some(Rule::Sqrt3)
+            })
+        );
+    }
+
+    #[test]
+    fn summaries_and_estimates_follow_the_closed_form() {
+        let spot = UvCounts {
+            values: 267,
+            edges: 438,
+            boundary_edges: 144,
+            used_vt: 267,
+            faces: 180,
+            corners: 732,
+            ..UvCounts::default()
+        };
+        let counter = crate::Counter::from(builtin("catmull-clark").unwrap());
+        let uvc = counter.uv_counter(&spot).unwrap();
+        // UV(s) = 183*4^s + 72*2^s + 9 for s >= 1.
+        let at = |s: u32| {
+            BigInt::from(183) * BigInt::from(4).pow(s)
+                + BigInt::from(72) * BigInt::from(2).pow(s)
+                + 9
+        };
+        assert_eq!(uvc.values_at(30).unwrap(), at(30));
+        let sum = uvc.summary_at(1000).unwrap();
+        assert_eq!(
+            sum,
+            recurrence::digit_summary(&at(1000), crate::SUMMARY_DIGITS)
+        );
+        assert_eq!(uvc.summary_at(0).unwrap().leading, "267");
+        let estimate = uvc.estimated_log10(1000).unwrap();
+        // The largest component (H = 4^s H0 = 732 * 4^1000) bounds UV from above.
+        let uv_log10 = crate::log10_abs(&at(1000));
+        assert!(
+            estimate >= uv_log10 && estimate < uv_log10 + 1.0,
+            "{estimate}"
+        );
     }
 }
