@@ -119,6 +119,15 @@ impl HoleSet {
         MeshCounts::from_face_list(written, mesh.positions.len())
     }
 
+    /// The UV layout statistics of the written faces of `mesh`
+    /// ([`stats::uv_counts`](crate::stats::uv_counts) of the faces that are not holes; `vt`
+    /// entries only holes use are unreferenced): what [`schemes::uv::UvScheme`] counts the
+    /// written UV values from, as [`HoleSet::written_counts`] for `V`, `E`, `F`. `None`
+    /// without texture coordinates.
+    pub fn written_uv_counts(&self, mesh: &PolygonMesh) -> Option<schemes::uv::UvCounts> {
+        crate::stats::uv_counts_of_faces(mesh, |f| !self.contains(f as u32))
+    }
+
     /// [`HoleSet::written_counts`] of a half-edge mesh (its faces are the faces of the face
     /// list it was built from, in order).
     pub fn written_mesh_counts(&self, mesh: &HalfEdgeMesh) -> MeshCounts {

@@ -19,6 +19,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};
 
 use crate::mesh::{FaceId, HalfEdgeMesh};
@@ -47,6 +48,71 @@ use crate::polygon::PolygonMesh;
 /// ```
 pub fn face_list_counts(mesh: &PolygonMesh) -> MeshCounts {
     MeshCounts::from_face_list(mesh.faces(), mesh.n_vertices())
+}
+
+/// The statistics of the mesh's UV layout ([`schemes::uv::UvCounts`]: values, layout edges
+/// and boundary edges, seam edges, boundary loops, charts, unused `vt`), counted by
+/// [`UvCounts::from_layout`] on [`PolygonMesh::uv_layout`]; `None` when the mesh has no
+/// texture coordinates (or they no longer have one `vt` per face corner).
+///
+/// # Example
+///
+/// ```
+/// use glam::{DVec2, DVec3};
+/// use halfedge::uv::Uvs;
+/// use halfedge::{stats, PolygonMesh};
+///
+/// // Two triangles sharing the edge 0-2; the second has its own vt at vertex 2: a seam.
+/// let mut mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 4], [[0, 1, 2], [0, 2, 3]]);
+/// assert_eq!(stats::uv_counts(&mesh), None);
+/// let coords = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y, DVec2::splat(0.5), DVec2::NEG_X];
+/// mesh.set_uvs(Some(Uvs::new(coords, vec![0, 1, 2, 0, 4, 3])?))?;
+/// let uv = stats::uv_counts(&mesh).expect("a layout");
+/// assert_eq!((uv.values, uv.edges, uv.boundary_edges, uv.seam_edges), (5, 6, 6, 1));
+/// assert_eq!((uv.boundary_loops, uv.charts, uv.unreferenced), (1, 1, 1));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn uv_counts(mesh: &PolygonMesh) -> Option<UvCounts> {
+    uv_counts_of_faces(mesh, |_| true)
+}
+
+/// [`uv_counts`] of the faces `f` with `keep(f)` (the written faces of a mesh with holes):
+/// their layout, with the `vt` entries they do not use as unreferenced.
+pub(crate) fn uv_counts_of_faces(
+    mesh: &PolygonMesh,
+    keep: impl Fn(usize) -> bool,
+) -> Option<UvCounts> {
+    let uvs = mesh.uvs()?;
+    if uvs.corners().len() != mesh.n_corners() {
+        return None;
+    }
+    let layout = mesh.uv_layout()?;
+    let offsets = mesh.face_offsets();
+    let value_vts: Vec<u32> = (0..layout.n_values() as u32)
+        .map(|v| layout.value_vt(v))
+        .collect();
+    let mut used = vec![false; uvs.coords().len()];
+    let mut kept_offsets = vec![0usize];
+    let (mut vertex_corners, mut value_corners) = (Vec::new(), Vec::new());
+    for f in (0..mesh.n_faces()).filter(|&f| keep(f)) {
+        let corners = offsets[f]..offsets[f + 1];
+        vertex_corners.extend_from_slice(&mesh.face_indices()[corners.clone()]);
+        value_corners.extend_from_slice(&layout.corners()[corners.clone()]);
+        for &t in &uvs.corners()[corners] {
+            used[t as usize] = true;
+        }
+        kept_offsets.push(vertex_corners.len());
+    }
+    let unreferenced = used.iter().filter(|&&u| !u).count() as u64;
+    // A layout built by `UvLayout::new` is consistent, so `from_layout` accepts it.
+    UvCounts::from_layout(
+        &kept_offsets,
+        &vertex_corners,
+        &value_corners,
+        &value_vts,
+        unreferenced,
+    )
+    .ok()
 }
 
 /// The defects of a face list that make [`HalfEdgeMesh`] refuse it (or would, for some of

@@ -334,6 +334,11 @@ const CLOSED_TRI: MeshClass = MeshClass {
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1 and 4). The identity `2E = 3F` is kept
 /// by the step (`2E' = 8E = 3(4F) = 3F'`), so `F = 2E/3` stays an integer.
+///
+/// **UV values** ([`crate::uv`]): the layout refines as a triangle mesh under the 4:1 split:
+/// a value per old value and per layout edge, `UV' = UV + UE`, `UE' = 2 UE + 3 F`,
+/// `UBE' = 2 UBE`, `F' = 4 F` (`loop-general`'s matrix on the layout, with its boundary
+/// edges); the count is real from level 1 on, level 0 being the used `vt` entries.
 pub fn loop_scheme() -> Scheme {
     build(Def {
         name: "loop",
@@ -366,6 +371,11 @@ pub fn loop_scheme() -> Scheme {
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, 4, 2). The step keeps
 /// `3F = 2IE + BE`: `2IE' + BE' = 8IE + 4BE = 4(2IE + BE) = 3F'`.
+///
+/// **UV values** ([`crate::uv`]): the layout refines as a triangle mesh under the 4:1 split:
+/// a value per old value and per layout edge, `UV' = UV + UE`, `UE' = 2 UE + 3 F`,
+/// `UBE' = 2 UBE`, `F' = 4 F` (`loop-general`'s matrix on the layout, with its boundary
+/// edges); the count is real from level 1 on, level 0 being the used `vt` entries.
 pub fn loop_boundary() -> Scheme {
     build(Def {
         name: "loop-boundary",
@@ -401,6 +411,11 @@ pub fn loop_boundary() -> Scheme {
 /// ```
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, 2, 4).
+///
+/// **UV values** ([`crate::uv`]): the layout refines as a triangle mesh under the 4:1 split:
+/// a value per old value and per layout edge, `UV' = UV + UE`, `UE' = 2 UE + 3 F`,
+/// `UBE' = 2 UBE`, `F' = 4 F` (`loop-general`'s matrix on the layout, with its boundary
+/// edges); the count is real from level 1 on, level 0 being the used `vt` entries.
 pub fn loop_general() -> Scheme {
     build(Def {
         name: "loop-general",
@@ -435,6 +450,12 @@ pub fn loop_general() -> Scheme {
 /// ```
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, 2, 4).
+///
+/// **UV values** ([`crate::uv`]): OpenSubdiv's face-varying refinement gives a value per
+/// face point, per layout edge and per old value, `UV' = UV + UE + F`, `UE' = 2 UE + H`,
+/// `UBE' = 2 UBE`, `F' = H`, `H' = 4 H` (`catmull-clark-general`'s matrix on the layout, with
+/// its boundary edges), in every linear-interpolation mode; the count is real from level 1 on,
+/// level 0 being the used `vt` entries.
 pub fn catmull_clark_quad() -> Scheme {
     build(Def {
         name: "catmull-clark-quad",
@@ -484,6 +505,12 @@ pub fn catmull_clark_quad() -> Scheme {
 /// `valid_from`: 1 for `V` and `F`, 0 for `IE`, `BE`, `H`. The eigenvalue 0 has the
 /// eigenvector `(1, 0, 0, -1, 0)`: `F` forgets its initial value (`F(s) = 4^(s-1) H0` for
 /// `s >= 1`) and `F0` enters `V` only once, at step 1. The other eigenvalues are 1, 2, 2, 4.
+///
+/// **UV values** ([`crate::uv`]): OpenSubdiv's face-varying refinement gives a value per
+/// face point, per layout edge and per old value, `UV' = UV + UE + F`, `UE' = 2 UE + H`,
+/// `UBE' = 2 UBE`, `F' = H`, `H' = 4 H` (`catmull-clark-general`'s matrix on the layout, with
+/// its boundary edges), in every linear-interpolation mode; the count is real from level 1 on,
+/// level 0 being the used `vt` entries.
 pub fn catmull_clark() -> Scheme {
     build(Def {
         name: "catmull-clark",
@@ -522,6 +549,12 @@ pub fn catmull_clark() -> Scheme {
 ///
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1, 0)`), 0 for `E`
 /// and `H`.
+///
+/// **UV values** ([`crate::uv`]): OpenSubdiv's face-varying refinement gives a value per
+/// face point, per layout edge and per old value, `UV' = UV + UE + F`, `UE' = 2 UE + H`,
+/// `UBE' = 2 UBE`, `F' = H`, `H' = 4 H` (`catmull-clark-general`'s matrix on the layout, with
+/// its boundary edges), in every linear-interpolation mode; the count is real from level 1 on,
+/// level 0 being the used `vt` entries.
 pub fn catmull_clark_general() -> Scheme {
     build(Def {
         name: "catmull-clark-general",
@@ -557,6 +590,9 @@ pub fn catmull_clark_general() -> Scheme {
 /// old edge to have two faces, hence closed meshes; see [`sqrt3_boundary`].
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, 1, 3; diagonalizable).
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn sqrt3() -> Scheme {
     build(Def {
         name: "sqrt3",
@@ -614,6 +650,9 @@ pub fn sqrt3() -> Scheme {
 /// is `BA` (levels `2t`) or `AB` (levels `2t + 1`); [`Scheme::phases`] gives both.
 ///
 /// `valid_from`: 0 for every component (no eigenvalue 0).
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn sqrt3_boundary() -> Scheme {
     let a = matrix(&[&[1, 0, 0, 1], &[0, 1, 0, 3], &[0, 0, 1, 0], &[0, 0, 0, 3]]);
     let b = matrix(&[&[1, 0, 1, 1], &[0, 1, -1, 3], &[0, 0, 3, 0], &[0, 0, 0, 3]]);
@@ -705,6 +744,9 @@ fn boundary_polygon_scheme(
 ///
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`: `V(s) =
 /// 2 * 4^(s-1) E0` only from `s = 1`), 0 for `E` (`E(s) = 4^s E0`).
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn doo_sabin() -> Scheme {
     closed_polygon_scheme(
         "doo-sabin",
@@ -768,6 +810,9 @@ pub fn doo_sabin() -> Scheme {
 /// assert_eq!((c.vertices, c.edges, c.faces), (12.into(), 20.into(), 9.into()));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn doo_sabin_boundary() -> Scheme {
     boundary_polygon_scheme(
         "doo-sabin-boundary",
@@ -793,6 +838,9 @@ pub fn doo_sabin_boundary() -> Scheme {
 /// ```
 ///
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`), 0 for `E`.
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn mid_edge() -> Scheme {
     closed_polygon_scheme(
         "mid-edge",
@@ -848,6 +896,9 @@ pub fn mid_edge() -> Scheme {
 /// assert_eq!((c.vertices, c.edges, c.faces), (8.into(), 12.into(), 5.into()));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+///
+/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
+/// still to be designed.
 pub fn mid_edge_boundary() -> Scheme {
     boundary_polygon_scheme(
         "mid-edge-boundary",
@@ -875,6 +926,11 @@ pub fn mid_edge_boundary() -> Scheme {
 /// `12 + 30(N - 1) + 10(N - 1)(N - 2) = 10N^2 + 2` vertices after one step.
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, N, N^2).
+///
+/// **UV values** ([`crate::uv`]): UVs are linear within each face, so the layout refines
+/// as a triangle mesh under this matrix: `UV' = UV + (N-1) UE + (N-1)(N-2)/2 F`,
+/// `UE' = N UE + 3N(N-1)/2 F`, `UBE' = N UBE`, `F' = N^2 F`; the count is real from level 1
+/// on, level 0 being the used `vt` entries.
 ///
 /// # Errors
 ///

@@ -141,6 +141,23 @@ impl Counter {
         cols
     }
 
+    /// The UV values of a mesh whose UV layout has the statistics `uv`, counted by this
+    /// counter's plan ([`UvCounter`](crate::uv::UvCounter)); the `UV` column of its tables.
+    ///
+    /// # Errors
+    ///
+    /// [`NotCounted`](crate::uv::NotCounted) for a bare matrix and for a plan with a stage
+    /// whose rule has no UV recurrence (√3, Doo-Sabin, mid-edge, a scheme without a rule).
+    pub fn uv_counter(
+        &self,
+        uv: &crate::uv::UvCounts,
+    ) -> std::result::Result<crate::uv::UvCounter, crate::uv::NotCounted> {
+        match self {
+            Counter::Matrix(_) => Err(crate::uv::NotCounted { rule: None }),
+            Counter::Plan(plan) => crate::uv::UvCounter::new(plan, uv.clone()),
+        }
+    }
+
     /// The closed form that gives the state at every level directly, when there is one (a
     /// bare matrix, or a single scheme without a first step or a cycle) and its
     /// [`closed_form_cost`](Recurrence::closed_form_cost) is within `cost_limit`.

@@ -292,6 +292,13 @@ pub enum Error {
         /// The type, e.g. `usize`.
         target: &'static str,
     },
+    /// A UV layout given to [`UvCounts::from_layout`](crate::uv::UvCounts::from_layout) is
+    /// inconsistent (offsets, corner counts, a value out of range or at two vertices).
+    #[error("UV layout: {reason}")]
+    BadUvLayout {
+        /// What is wrong and where.
+        reason: String,
+    },
     /// An error of the underlying recurrence (names, dimensions).
     #[error(transparent)]
     Recurrence(#[from] recurrence::Error),

@@ -13,6 +13,7 @@
 //! - Counting a plan or a bare matrix (powering or closed form, table columns and rows, size
 //!   estimates, digit summaries of huge levels, closed forms with a state substituted):
 //!   [`Counter`].
+//! - UV values (face-varying texture coordinates) and their recurrences: [`uv`].
 //! - Budgets and the paper's eq. (1): [`fit`], [`parse_byte_size`], [`density`].
 //!
 //! # Built-in schemes
@@ -82,6 +83,7 @@ pub mod input;
 mod plan;
 mod rule;
 mod scheme;
+pub mod uv;
 
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};

@@ -7,3 +7,4 @@ mod properties;
 mod roundtrip;
 mod shared_meshes;
 mod tags;
+mod uv_counts;

@@ -1,0 +1,822 @@
+//! Exact UV counts: the statistics of a mesh's UV layout ([`UvCounts`]) and, per rule, the
+//! recurrence of its UV values ([`UvScheme`]).
+//!
+//! # Definitions
+//!
+//! Texture coordinates are face-varying data: a `vt` per face corner, discontinuous across
+//! UV seams. The **UV layout** has the mesh's faces with **values** as corners, a value being
+//! a distinct (vertex, `vt`) pair that some corner uses (OpenSubdiv keeps one value per such
+//! pair from level 1 on: a `vt` used at several vertices is one value per vertex). A surface
+//! edge is a **seam** when its faces do not agree on the values at both of its ends; a seam
+//! edge of two faces is two boundary edges of the layout.
+//!
+//! The layout is a mesh of its own, and its statistics are counted by the one implementation,
+//! [`MeshCounts::from_face_list`], on the faces written with value indices: `V` the values
+//! used, `E` and `BE` its edges and boundary edges, `boundary_loops`, and `charts` its
+//! connected components. `seam_edges` counts surface edges (once each, however many layout
+//! edges they split into), `unreferenced` the `vt` entries no corner uses.
+//!
+//! # Counting UV values
+//!
+//! Every rule whose faces refine on their own and carry UVs within each face (the 4:1 family,
+//! `tri-split-N`, Catmull-Clark in OpenSubdiv's face-varying refinement) refines the layout
+//! *as a mesh*: a child value sits on a parent value, on a layout edge or in a face, exactly as
+//! a child vertex sits on a parent vertex, edge or face. Two faces that disagree at an end of
+//! their common edge give it one child value each, which is the edge's two layout edges; two
+//! that agree give it one. So the UV values follow the rule's matrix for any face list (its
+//! `-general` scheme) applied to the layout's statistics, with the layout's boundary edges
+//! added (each splits into `N` boundary edges): see [`UvScheme`] for each rule's matrix.
+//!
+//! **Level 0** is the number of `vt` entries some corner uses ([`UvCounts::used_vt`]); the
+//! recurrence's `UV` component starts from the layout's values `V` (the (vertex, `vt`) pairs)
+//! and equals the real count from level 1 on ([`UvScheme::VALID_FROM`]); the two agree at
+//! level 0 too when no `vt` is shared by two vertices. OpenSubdiv's level 0 is the whole `vt`
+//! list, used or not (`used_vt + unreferenced`): its `GetNumFVarValues(0)` counts what the
+//! file gives, ours what the faces use.
+//!
+//! With holes, what is written at level `s` is level `s` of the written faces (the children of
+//! a hole are holes, [`crate::holes`]), so their layout (the written faces with their corners'
+//! values) counts the written UV values exactly, as [`MeshCounts`] of the written faces count
+//! `V`, `E`, `F`.
+//!
+//! √3, Doo-Sabin and mid-edge have no UV geometry yet: [`uv_scheme`] answers
+//! [`NotCounted`] for them, and for a scheme without a rule.
+//!
+//! # Example: a cube with one seam
+//!
+//! ```
+//! use schemes::uv::{uv_scheme, UvCounts};
+//! use schemes::{BigInt, Rule};
+//!
+//! // The cube's six quads; the top face (face 1) has its own vt at every corner, so its four
+//! // edges are seams.
+//! let faces: [[u32; 4]; 6] = [
+//!     [0, 1, 2, 3], [4, 7, 6, 5], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0],
+//! ];
+//! let vertex_corners: Vec<u32> = faces.iter().flatten().copied().collect();
+//! let offsets: Vec<usize> = (0..=6).map(|f| 4 * f).collect();
+//! // Value of a corner: its vertex, except on face 1, whose corners get values 8..12.
+//! let value_corners: Vec<u32> = (0..24)
+//!     .map(|c| if (4..8).contains(&c) { 8 + (c as u32 - 4) } else { vertex_corners[c] })
+//!     .collect();
+//! let value_vts: Vec<u32> = (0..12).collect();
+//! let uv = UvCounts::from_layout(&offsets, &vertex_corners, &value_corners, &value_vts, 0)?;
+//! assert_eq!((uv.values, uv.edges, uv.boundary_edges, uv.seam_edges), (12, 16, 8, 4));
+//! assert_eq!((uv.boundary_loops, uv.charts), (2, 2));
+//!
+//! let cc = uv_scheme(Rule::CatmullClark)?;
+//! assert_eq!(cc.recurrence().names(), ["UV", "UE", "UBE", "F", "H"]);
+//! // Level 1: a value per old value, per layout edge and per face.
+//! assert_eq!(cc.values_at(&uv, 1)?, BigInt::from(12 + 16 + 6));
+//! assert!(uv_scheme(Rule::Sqrt3).is_err());
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use std::fmt;
+
+use num_bigint::BigInt;
+use recurrence::{IntMatrix, Recurrence};
+use serde::Serialize;
+
+use crate::catalog::{catmull_clark_general, loop_general, tri_split};
+use crate::{Error, MeshCounts, Plan, Result, Row, Rule, Scheme};
+
+/// The statistics of a UV layout (module docs for the definitions), computed by
+/// [`UvCounts::from_layout`].
+///
+/// Serializes to the `"uv"` object of `subcount stats --format json`: `V`, `E`, `BE`,
+/// `seam_edges`, `boundary_loops`, `charts`, `unreferenced` (the fields that are not
+/// layout statistics, `used_vt`, `faces` and `corners`, are skipped).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct UvCounts {
+    /// `V`: UV values used (distinct (vertex, `vt`) pairs of the corners).
+    #[serde(rename = "V")]
+    pub values: u64,
+    /// `E`: edges of the layout.
+    #[serde(rename = "E")]
+    pub edges: u64,
+    /// `BE`: boundary edges of the layout (one face side), seams counted on both sides.
+    #[serde(rename = "BE")]
+    pub boundary_edges: u64,
+    /// Surface edges whose faces disagree on the values at either end, once per surface edge.
+    pub seam_edges: u64,
+    /// Connected components of the layout's boundary edges.
+    pub boundary_loops: u64,
+    /// Connected components of the layout (faces joined through shared values).
+    pub charts: u64,
+    /// `vt` entries that no corner uses.
+    pub unreferenced: u64,
+    /// `vt` entries that some corner uses: the UV values at level 0.
+    #[serde(skip)]
+    pub used_vt: u64,
+    /// Faces of the layout (the mesh's faces).
+    #[serde(skip)]
+    pub faces: u64,
+    /// Corners of the layout (the mesh's corners, `H`).
+    #[serde(skip)]
+    pub corners: u64,
+}
+
+impl UvCounts {
+    /// The statistics of the layout whose faces are `face_offsets` (face `f` has the corners
+    /// `face_offsets[f]..face_offsets[f + 1]`), with the vertex of every corner in
+    /// `vertex_corners`, its value in `value_corners`, the `vt` of every value in `value_vts`
+    /// (so the values are `0..value_vts.len()`) and `unreferenced` the `vt` entries no corner
+    /// uses.
+    ///
+    /// The layout's `V`, `E`, `BE`, boundary loops and charts are those of
+    /// [`MeshCounts::from_face_list`] on the faces written with value indices (the one
+    /// implementation); seam edges are found by sorting the faces' sides. Runs in
+    /// `O(H log H)` for `H` corners.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::BadUvLayout`] when the offsets do not start at 0, decrease or do not end at the
+    /// number of corners, when the two corner slices differ in length, when a corner names a
+    /// value beyond `value_vts`, or when one value is used at two different vertices.
+    pub fn from_layout(
+        face_offsets: &[usize],
+        vertex_corners: &[u32],
+        value_corners: &[u32],
+        value_vts: &[u32],
+        unreferenced: u64,
+    ) -> Result<UvCounts> {
+        check_layout(face_offsets, vertex_corners, value_corners, value_vts.len())?;
+        let faces = face_offsets.windows(2).map(|w| &value_corners[w[0]..w[1]]);
+        let layout = MeshCounts::from_face_list(faces, 0);
+
+        let mut used = vec![false; value_vts.len()];
+        for &v in value_corners {
+            used[v as usize] = true;
+        }
+        let mut vts: Vec<u32> = value_vts
+            .iter()
+            .zip(&used)
+            .filter(|(_, &u)| u)
+            .map(|(&t, _)| t)
+            .collect();
+        vts.sort_unstable();
+        vts.dedup();
+
+        Ok(UvCounts {
+            values: layout.vertices,
+            edges: layout.edges,
+            boundary_edges: layout.boundary_edges,
+            seam_edges: seam_edges(face_offsets, vertex_corners, value_corners),
+            boundary_loops: layout.boundary_loops,
+            charts: layout.components,
+            unreferenced,
+            used_vt: vts.len() as u64,
+            faces: layout.faces,
+            corners: layout.corners,
+        })
+    }
+}
+
+/// The checks of [`UvCounts::from_layout`]; afterwards every slice index is in range.
+fn check_layout(
+    offsets: &[usize],
+    vertex_corners: &[u32],
+    value_corners: &[u32],
+    n_values: usize,
+) -> Result {
+    let bad = |reason: String| Err(Error::BadUvLayout { reason });
+    if vertex_corners.len() != value_corners.len() {
+        return bad(format!(
+            "{} vertex corners but {} value corners",
+            vertex_corners.len(),
+            value_corners.len()
+        ));
+    }
+    match (offsets.first(), offsets.last()) {
+        (Some(0), Some(&end)) if end == vertex_corners.len() => {}
+        (first, last) => {
+            return bad(format!(
+                "face offsets must run from 0 to the {} corners, but run from {} to {}",
+                vertex_corners.len(),
+                first.map_or("nothing".into(), usize::to_string),
+                last.map_or("nothing".into(), usize::to_string),
+            ))
+        }
+    }
+    if let Some(f) = offsets.windows(2).position(|w| w[1] < w[0]) {
+        return bad(format!(
+            "face {f} ends at corner {} before it starts at corner {}",
+            offsets[f + 1],
+            offsets[f]
+        ));
+    }
+    let mut vertex_of: Vec<Option<u32>> = vec![None; n_values];
+    for (corner, (&vertex, &value)) in vertex_corners.iter().zip(value_corners).enumerate() {
+        let Some(slot) = vertex_of.get_mut(value as usize) else {
+            return bad(format!(
+                "corner {corner} uses value {value}, but there are {n_values} values"
+            ));
+        };
+        match *slot {
+            Some(first) if first != vertex => {
+                return bad(format!(
+                    "value {value} is used at vertex {first} and, at corner {corner}, at vertex {vertex}"
+                ))
+            }
+            _ => *slot = Some(vertex),
+        }
+    }
+    Ok(())
+}
+
+/// The surface edges whose sides do not all carry the same pair of values (checked layout).
+fn seam_edges(offsets: &[usize], vertex_corners: &[u32], value_corners: &[u32]) -> u64 {
+    let pair = |a: u32, b: u32| (u64::from(a) << 32) | u64::from(b);
+    // (surface edge, its values in the order of its vertices) for every side.
+    let mut sides: Vec<(u64, u64)> = Vec::with_capacity(vertex_corners.len());
+    for w in offsets.windows(2) {
+        let (start, end) = (w[0], w[1]);
+        for c in start..end {
+            let n = if c + 1 == end { start } else { c + 1 };
+            let (a, b) = (vertex_corners[c], vertex_corners[n]);
+            let (p, q) = (value_corners[c], value_corners[n]);
+            match a.cmp(&b) {
+                std::cmp::Ordering::Less => sides.push((pair(a, b), pair(p, q))),
+                std::cmp::Ordering::Greater => sides.push((pair(b, a), pair(q, p))),
+                std::cmp::Ordering::Equal => {}
+            }
+        }
+    }
+    sides.sort_unstable();
+    sides.dedup();
+    // After dedup, a surface edge appearing twice carries two different value pairs.
+    let mut seams = 0u64;
+    let mut i = 0;
+    while i < sides.len() {
+        let mut j = i + 1;
+        while j < sides.len() && sides[j].0 == sides[i].0 {
+            j += 1;
+        }
+        if j - i > 1 {
+            seams += 1;
+        }
+        i = j;
+    }
+    seams
+}
+
+/// The names of a [`UvScheme`]'s state: `UV` values, `UE` layout edges, `UBE` layout
+/// boundary edges, `F` faces and, for Catmull-Clark, `H` corners.
+pub const UV_STATE: [&str; 5] = ["UV", "UE", "UBE", "F", "H"];
+
+/// The recurrence of the UV values under one rule, over the layout's statistics.
+///
+/// The matrix is the rule's matrix for any face list applied to the layout (module docs),
+/// with the layout's boundary edges as a component of their own:
+///
+/// - **4:1 split** (Loop, midpoint, butterfly, icosphere): one value per old value and per
+///   layout edge; each layout edge splits in two and each triangle adds three interior edges;
+///   a triangle becomes four. State `(UV, UE, UBE, F)`:
+///   `UV' = UV + UE`, `UE' = 2 UE + 3 F`, `UBE' = 2 UBE`, `F' = 4 F`.
+/// - **`tri-split-N`** (1:N² split, UVs linear within each face): `N - 1` values per layout
+///   edge, `(N-1)(N-2)/2` inside each triangle; a layout edge splits into `N`, each triangle
+///   adds `3N(N-1)/2` interior edges. State `(UV, UE, UBE, F)`:
+///   `UV' = UV + (N-1) UE + (N-1)(N-2)/2 F`, `UE' = N UE + 3N(N-1)/2 F`, `UBE' = N UBE`,
+///   `F' = N² F`.
+/// - **Catmull-Clark** (OpenSubdiv's face-varying refinement, every linear-interpolation mode
+///   alike: the mode changes the values, not their number): one value per face point, per
+///   layout edge and per old value; each face of degree `n` adds `n` interior edges and becomes
+///   `n` quads. State `(UV, UE, UBE, F, H)`, `H` the corners:
+///   `UV' = UV + UE + F`, `UE' = 2 UE + H`, `UBE' = 2 UBE`, `F' = H`, `H' = 4 H`.
+///
+/// The `UV` component equals the real count from level [`UvScheme::VALID_FROM`] on; level 0
+/// is [`UvCounts::used_vt`] ([`UvScheme::values_at`] gives both).
+///
+/// ```
+/// use schemes::uv::{uv_scheme, UvCounts};
+/// use schemes::{BigInt, Rule};
+///
+/// // spot_control_mesh's layout: 267 values, 438 edges, 144 boundary edges; 180 faces, 732
+/// // corners. OpenSubdiv counts 885, 3225, 12297, 48009 values at levels 1-4.
+/// let spot = UvCounts { values: 267, edges: 438, boundary_edges: 144, used_vt: 267,
+///                       faces: 180, corners: 732, ..UvCounts::default() };
+/// let cc = uv_scheme(Rule::CatmullClark)?;
+/// let uv: Vec<BigInt> = (1..=4).map(|s| cc.values_at(&spot, s)).collect::<Result<_, _>>()?;
+/// assert_eq!(uv, [885, 3225, 12297, 48009].map(BigInt::from));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UvScheme {
+    rule: Rule,
+    recurrence: Recurrence,
+}
+
+/// A rule (or a scheme) whose UV values are not counted: √3, Doo-Sabin and mid-edge, whose UV
+/// geometry is not designed yet, and schemes without a subdivision rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct NotCounted {
+    /// The rule, when there is one.
+    pub rule: Option<Rule>,
+}
+
+impl fmt::Display for NotCounted {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.rule {
+            Some(rule) => write!(f, "{rule} does not count UV values (no UV rule yet)"),
+            None => f.write_str("a scheme without a subdivision rule does not count UV values"),
+        }
+    }
+}
+
+/// The UV recurrence of `rule` ([`UvScheme`]).
+///
+/// # Errors
+///
+/// [`NotCounted`] for √3, Doo-Sabin and mid-edge, and for `TriSplit(n)` with `n < 2` or too
+/// large for its matrix.
+pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
+    let not = NotCounted { rule: Some(rule) };
+    // The rule's scheme for any face list, and how many boundary edges a layout boundary
+    // edge splits into.
+    let (general, split): (Scheme, i64) = match rule {
+        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere => (loop_general(), 2),
+        Rule::TriSplit(n) => (tri_split(u64::from(n)).map_err(|_| not)?, i64::from(n)),
+        Rule::CatmullClark => (catmull_clark_general(), 2),
+        Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge => return Err(not),
+    };
+    let recurrence = with_boundary_edges(general.matrix(), split).ok_or(not)?;
+    Ok(UvScheme { rule, recurrence })
+}
+
+/// The general matrix over `V, E, F[, H]` with `BE` inserted after `E` (its own component,
+/// multiplied by `split`), renamed to [`UV_STATE`].
+fn with_boundary_edges(general: &IntMatrix, split: i64) -> Option<Recurrence> {
+    let dim = general.dim() + 1;
+    // Old index of each new component; `None` for UBE.
+    let old = |i: usize| match i {
+        0 | 1 => Some(i),
+        2 => None,
+        _ => Some(i - 1),
+    };
+    let matrix = IntMatrix::from_fn(dim, |i, j| match (old(i), old(j)) {
+        (Some(a), Some(b)) => general.get(a, b),
+        (None, None) => split,
+        _ => 0,
+    });
+    Recurrence::with_names(matrix, UV_STATE[..dim].iter().copied()).ok()
+}
+
+impl UvScheme {
+    /// The first level at which the `UV` component of the recurrence is the real count of UV
+    /// values (level 0 counts the `vt` entries used, which differ when a `vt` is shared by two
+    /// vertices).
+    pub const VALID_FROM: u64 = 1;
+
+    /// The UV recurrence of a scheme's rule ([`uv_scheme`]).
+    ///
+    /// # Errors
+    ///
+    /// [`NotCounted`] for a scheme without a rule or whose rule has no UV recurrence.
+    pub fn for_scheme(scheme: &Scheme) -> std::result::Result<UvScheme, NotCounted> {
+        uv_scheme(scheme.subdivision_rule().ok_or(NotCounted { rule: None })?)
+    }
+
+    /// The rule.
+    pub fn rule(&self) -> Rule {
+        self.rule
+    }
+
+    /// The recurrence over `UV, UE, UBE, F` (and `H` for Catmull-Clark).
+    pub fn recurrence(&self) -> &Recurrence {
+        &self.recurrence
+    }
+
+    /// The initial state from the layout's statistics: `[V, E, BE, F]` or `[V, E, BE, F, H]`.
+    pub fn initial_state(&self, uv: &UvCounts) -> Vec<BigInt> {
+        [uv.values, uv.edges, uv.boundary_edges, uv.faces, uv.corners][..self.recurrence.dim()]
+            .iter()
+            .map(|&x| BigInt::from(x))
+            .collect()
+    }
+
+    /// The state at `level` (its `UV` component is the count from level 1 on).
+    ///
+    /// # Errors
+    ///
+    /// None in practice (the state has the recurrence's length); [`Error::Recurrence`] from
+    /// the powering.
+    pub fn state_at(&self, uv: &UvCounts, level: u64) -> Result<Vec<BigInt>> {
+        Ok(self.recurrence.state_at(&self.initial_state(uv), level)?)
+    }
+
+    /// The number of UV values at `level`: [`UvCounts::used_vt`] at level 0, the recurrence's
+    /// `UV` from level 1 on.
+    ///
+    /// # Errors
+    ///
+    /// As [`state_at`](Self::state_at).
+    pub fn values_at(&self, uv: &UvCounts, level: u64) -> Result<BigInt> {
+        if level < Self::VALID_FROM {
+            return Ok(BigInt::from(uv.used_vt));
+        }
+        let mut state = self.state_at(uv, level)?;
+        Ok(state.swap_remove(0))
+    }
+}
+
+/// The UV values of a mesh under a scheme plan: the [`UvScheme`] of every stage's rule from
+/// the layout's statistics, chained across the stages of a composition, as
+/// [`Counter`](crate::Counter) counts `V`, `E`, `F` ([`Counter::uv_counter`](crate::Counter::uv_counter)
+/// builds one). It adds the `UV` column to a counter's rows ([`extend_rows`](Self::extend_rows)).
+///
+/// At a stage boundary the next stage starts from the state reached, the corners `H` (when
+/// the next stage is Catmull-Clark and the previous one a triangle split) being `3 F`: a
+/// triangle split makes triangles.
+///
+/// ```
+/// use schemes::uv::UvCounts;
+/// use schemes::{BigInt, Counter, Plan};
+///
+/// let spot = UvCounts { values: 267, edges: 438, boundary_edges: 144, used_vt: 267,
+///                       faces: 180, corners: 732, ..UvCounts::default() };
+/// let counter = Counter::from(Plan::parse("catmull-clark")?);
+/// let uv = counter.uv_counter(&spot)?;
+/// assert_eq!(uv.values_at(2)?, BigInt::from(3225));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct UvCounter {
+    /// Each stage's UV scheme and its number of levels (`None`: unbounded).
+    stages: Vec<(UvScheme, Option<u64>)>,
+    uv: UvCounts,
+}
+
+impl UvCounter {
+    /// The UV values of the layout `uv` under `plan`.
+    ///
+    /// # Errors
+    ///
+    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence.
+    pub fn new(plan: &Plan, uv: UvCounts) -> std::result::Result<UvCounter, NotCounted> {
+        let stages = plan
+            .stages()
+            .iter()
+            .map(|st| Ok((UvScheme::for_scheme(st.scheme())?, st.levels())))
+            .collect::<std::result::Result<_, NotCounted>>()?;
+        Ok(UvCounter { stages, uv })
+    }
+
+    /// The layout's statistics counted from.
+    pub fn uv_counts(&self) -> &UvCounts {
+        &self.uv
+    }
+
+    /// The single stage's UV scheme, when the plan is one scheme.
+    pub fn single(&self) -> Option<&UvScheme> {
+        match self.stages.as_slice() {
+            [(only, None)] => Some(only),
+            _ => None,
+        }
+    }
+
+    /// The index of the stage producing `level`, its first level and the state there.
+    fn stage_state(&self, level: u64) -> Result<(usize, u64, Vec<BigInt>)> {
+        let mut state = self.stages[0].0.initial_state(&self.uv);
+        let mut start = 0u64;
+        for (i, (scheme, levels)) in self.stages.iter().enumerate() {
+            let end = levels.map_or(u64::MAX, |k| start.saturating_add(k));
+            if level <= end {
+                return Ok((i, start, state));
+            }
+            let Some((next, _)) = self.stages.get(i + 1) else {
+                return Err(Error::LevelBeyondPlan { level, last: end });
+            };
+            let reached = scheme.recurrence.state_at(&state, end - start)?;
+            state = next.convert(reached);
+            start = end;
+        }
+        // The last stage is unbounded or has returned the error above.
+        Err(Error::LevelBeyondPlan { level, last: start })
+    }
+
+    /// The state at `level`, in the names of the stage that produced it.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LevelBeyondPlan`] past a bounded plan; [`Error::Recurrence`] from powering.
+    pub fn state_at(&self, level: u64) -> Result<Vec<BigInt>> {
+        let (i, start, state) = self.stage_state(level)?;
+        Ok(self.stages[i]
+            .0
+            .recurrence
+            .state_at(&state, level - start)?)
+    }
+
+    /// The number of UV values at `level` ([`UvCounts::used_vt`] at level 0).
+    ///
+    /// # Errors
+    ///
+    /// As [`state_at`](Self::state_at).
+    pub fn values_at(&self, level: u64) -> Result<BigInt> {
+        if level < UvScheme::VALID_FROM {
+            return Ok(BigInt::from(self.uv.used_vt));
+        }
+        Ok(self.state_at(level)?.swap_remove(0))
+    }
+
+    /// Adds the `UV` column to a table of `columns` and `rows` (from
+    /// [`Counter::columns`](crate::Counter::columns) and [`Counter::rows`](crate::Counter::rows)),
+    /// each row's value at its level.
+    ///
+    /// # Errors
+    ///
+    /// As [`values_at`](Self::values_at).
+    pub fn extend_rows(&self, columns: &mut Vec<String>, rows: &mut [Row]) -> Result {
+        columns.push(UV_COLUMN.to_string());
+        for row in rows {
+            row.values.push(Some(self.values_at(row.level)?));
+        }
+        Ok(())
+    }
+
+    /// A digit summary ([`SUMMARY_DIGITS`](crate::SUMMARY_DIGITS) each end) of the UV values
+    /// at `level` from the exact closed form, for a single scheme; `None` for a composition.
+    pub fn summary_at(&self, level: u64) -> Option<recurrence::DigitSummary> {
+        if level < UvScheme::VALID_FROM {
+            let v = BigInt::from(self.uv.used_vt);
+            return Some(recurrence::digit_summary(&v, crate::SUMMARY_DIGITS));
+        }
+        let single = self.single()?;
+        let form = single.recurrence.closed_form();
+        let x0 = single.initial_state(&self.uv);
+        let mut sums = form.summary_at(&x0, level, crate::SUMMARY_DIGITS).ok()?;
+        Some(sums.swap_remove(0))
+    }
+
+    /// An estimate of log10 of the largest component of the UV state at `level` (at least the
+    /// UV values'), for resource guards: the state at the producing stage's first level exactly, then [`Counter::estimated_log10`](crate::Counter::estimated_log10)
+    /// of that stage's recurrence.
+    ///
+    /// # Errors
+    ///
+    /// As [`state_at`](Self::state_at).
+    pub fn estimated_log10(&self, level: u64) -> Result<f64> {
+        let (i, start, state) = self.stage_state(level)?;
+        let counter = crate::Counter::from(self.stages[i].0.recurrence.clone());
+        counter.estimated_log10(&state, level - start)
+    }
+}
+
+/// The name of the UV column of a counts table (`"UV"` in text, CSV and JSON).
+pub const UV_COLUMN: &str = "UV";
+
+impl UvScheme {
+    /// `state` (another UV scheme's) in this scheme's names: the common components kept,
+    /// `H = 3 F` added when missing (a triangle split's output), `H` dropped when unused.
+    fn convert(&self, mut state: Vec<BigInt>) -> Vec<BigInt> {
+        if state.len() < self.recurrence.dim() {
+            let corners = BigInt::from(3) * &state[3];
+            state.push(corners);
+        }
+        state.truncate(self.recurrence.dim());
+        state
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::builtin;
+
+    fn layout(faces: &[&[u32]], values: &[&[u32]], vts: &[u32]) -> Result<UvCounts> {
+        let mut offsets = vec![0];
+        for f in faces {
+            offsets.push(offsets.last().unwrap() + f.len());
+        }
+        let vc: Vec<u32> = faces.iter().flat_map(|f| f.iter().copied()).collect();
+        let uc: Vec<u32> = values.iter().flat_map(|f| f.iter().copied()).collect();
+        UvCounts::from_layout(&offsets, &vc, &uc, vts, 0)
+    }
+
+    #[test]
+    fn seams_are_counted_once_per_surface_edge() {
+        // Two triangles sharing the edge 0-2; the second has its own value at vertex 2.
+        let uv = layout(
+            &[&[0, 1, 2], &[0, 2, 3]],
+            &[&[0, 1, 2], &[0, 4, 3]],
+            &[0, 1, 2, 3, 2],
+        )
+        .unwrap();
+        assert_eq!((uv.values, uv.edges, uv.boundary_edges), (5, 6, 6));
+        assert_eq!((uv.seam_edges, uv.boundary_loops, uv.charts), (1, 1, 1));
+        // Values 2 and 4 share vt 2: four vt are used.
+        assert_eq!((uv.used_vt, uv.faces, uv.corners), (4, 2, 6));
+        // No seam when the faces agree.
+        let uv = layout(
+            &[&[0, 1, 2], &[0, 2, 3]],
+            &[&[0, 1, 2], &[0, 2, 3]],
+            &[0, 1, 2, 3],
+        )
+        .unwrap();
+        assert_eq!((uv.seam_edges, uv.edges, uv.boundary_edges), (0, 5, 4));
+    }
+
+    #[test]
+    fn bad_layouts_are_named() {
+        let err = |offsets: &[usize], vc: &[u32], uc: &[u32], n: usize| {
+            UvCounts::from_layout(offsets, vc, uc, &vec![0; n], 0)
+                .unwrap_err()
+                .to_string()
+        };
+        assert_eq!(
+            err(&[0, 3], &[0, 1, 2], &[0, 1], 3),
+            "UV layout: 3 vertex corners but 2 value corners"
+        );
+        assert_eq!(
+            err(&[0, 2], &[0, 1, 2], &[0, 1, 2], 3),
+            "UV layout: face offsets must run from 0 to the 3 corners, but run from 0 to 2"
+        );
+        assert_eq!(
+            err(&[], &[], &[], 0),
+            "UV layout: face offsets must run from 0 to the 0 corners, but run from nothing to nothing"
+        );
+        assert_eq!(
+            err(&[0, 4, 3, 3], &[0, 1, 2], &[0, 1, 2], 3),
+            "UV layout: face 1 ends at corner 3 before it starts at corner 4"
+        );
+        assert_eq!(
+            err(&[0, 3], &[0, 1, 2], &[0, 1, 5], 3),
+            "UV layout: corner 2 uses value 5, but there are 3 values"
+        );
+        assert_eq!(
+            err(&[0, 3, 6], &[0, 1, 2, 2, 1, 3], &[0, 1, 2, 2, 0, 3], 4),
+            "UV layout: value 0 is used at vertex 0 and, at corner 4, at vertex 1"
+        );
+    }
+
+    /// The UV matrices are the general schemes' matrices on `V, E, F[, H]` plus `BE`.
+    #[test]
+    fn uv_matrices_extend_the_general_schemes() {
+        let rows = |r: Rule| uv_scheme(r).unwrap().recurrence().matrix().to_rows();
+        assert_eq!(
+            rows(Rule::Loop),
+            [[1, 1, 0, 0], [0, 2, 0, 3], [0, 0, 2, 0], [0, 0, 0, 4]]
+        );
+        assert_eq!(rows(Rule::TriSplit(2)), rows(Rule::Butterfly));
+        assert_eq!(
+            rows(Rule::TriSplit(3)),
+            [[1, 2, 0, 1], [0, 3, 0, 9], [0, 0, 3, 0], [0, 0, 0, 9]]
+        );
+        assert_eq!(
+            rows(Rule::CatmullClark),
+            [
+                [1, 1, 0, 1, 0],
+                [0, 2, 0, 0, 1],
+                [0, 0, 2, 0, 0],
+                [0, 0, 0, 0, 1],
+                [0, 0, 0, 0, 4]
+            ]
+        );
+        for rule in [
+            Rule::Sqrt3,
+            Rule::DooSabin,
+            Rule::MidEdge,
+            Rule::TriSplit(1),
+        ] {
+            assert_eq!(uv_scheme(rule), Err(NotCounted { rule: Some(rule) }));
+        }
+        assert_eq!(
+            NotCounted {
+                rule: Some(Rule::Sqrt3)
+            }
+            .to_string(),
+            "sqrt3 does not count UV values (no UV rule yet)"
+        );
+        // A custom scheme without a `topology` key has no rule.
+        let fib = Scheme::from_toml(
+            "name = \"fib\"\nstate = [\"a\", \"b\"]\nmatrix = [[1, 1], [1, 0]]\n",
+        )
+        .unwrap();
+        assert_eq!(UvScheme::for_scheme(&fib), Err(NotCounted { rule: None }));
+        let cc = builtin("catmull-clark-quad").unwrap();
+        assert_eq!(
+            UvScheme::for_scheme(&cc).unwrap().rule(),
+            Rule::CatmullClark
+        );
+    }
+
+    /// A layout without seams is the mesh itself: the UV values are the scheme's vertices.
+    #[test]
+    fn a_layout_without_seams_counts_like_the_mesh() {
+        // An open 2x1 quad strip and its triangulation.
+        let quads: [&[u32]; 2] = [&[0, 1, 4, 3], &[1, 2, 5, 4]];
+        let tris: [&[u32]; 4] = [&[0, 1, 4], &[0, 4, 3], &[1, 2, 5], &[1, 5, 4]];
+        let vts = [0, 1, 2, 3, 4, 5];
+        for (faces, rule) in [
+            (&quads[..], Rule::CatmullClark),
+            (&tris[..], Rule::Loop),
+            (&tris[..], Rule::TriSplit(4)),
+        ] {
+            let uv = layout(faces, faces, &vts).unwrap();
+            assert_eq!(uv.seam_edges, 0);
+            let mesh = MeshCounts::from_polygons(faces).unwrap();
+            let scheme = rule.scheme_for(&mesh).unwrap();
+            let uvs = uv_scheme(rule).unwrap();
+            for s in 0..5 {
+                assert_eq!(
+                    uvs.values_at(&uv, s).unwrap(),
+                    scheme.counts_at(&mesh, s).unwrap().vertices,
+                    "{rule} level {s}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn level_zero_counts_the_used_vt() {
+        // One vt used at all three corners of a triangle: three values, one vt.
+        let uv = layout(&[&[0, 1, 2]], &[&[0, 1, 2]], &[0, 0, 0]).unwrap();
+        assert_eq!((uv.values, uv.used_vt), (3, 1));
+        let loop_uv = uv_scheme(Rule::Loop).unwrap();
+        assert_eq!(loop_uv.values_at(&uv, 0).unwrap(), BigInt::from(1));
+        assert_eq!(loop_uv.values_at(&uv, 1).unwrap(), BigInt::from(6));
+    }
+
+    /// Across a composition the UV values of a layout without seams are the plan's vertices.
+    #[test]
+    fn a_composition_counts_like_the_mesh_without_seams() {
+        let tris: [&[u32]; 4] = [&[0, 1, 4], &[0, 4, 3], &[1, 2, 5], &[1, 5, 4]];
+        let uv = layout(&tris, &tris, &[0, 1, 2, 3, 4, 5]).unwrap();
+        let mesh = MeshCounts::from_polygons(&tris).unwrap();
+        for text in [
+            "loop-boundary:2,catmull-clark",
+            "tri-split-3:1,loop-general:1,catmull-clark-general",
+        ] {
+            let plan = Plan::parse(text).unwrap();
+            let counter = crate::Counter::from(plan.clone());
+            let uvc = counter.uv_counter(&uv).unwrap();
+            assert_eq!(uvc.single(), None);
+            let last = plan.last_level().unwrap_or(5);
+            for s in 0..=last {
+                assert_eq!(
+                    uvc.values_at(s).unwrap(),
+                    plan.counts_at(&mesh, s).unwrap().vertices,
+                    "{text} level {s}"
+                );
+            }
+            assert!(uvc.estimated_log10(last).unwrap() > 1.0);
+            let x0 = plan.initial_state(&mesh).unwrap();
+            let mut rows = counter.rows(&x0, 0..=last).unwrap();
+            let mut columns = counter.columns();
+            uvc.extend_rows(&mut columns, &mut rows).unwrap();
+            assert_eq!(columns.last().map(String::as_str), Some(UV_COLUMN));
+            for row in &rows {
+                let v = counter.columns().iter().position(|c| c == "V").unwrap();
+                assert_eq!(row.values.last(), Some(&row.values[v].clone()), "{text}");
+            }
+        }
+        let bounded = crate::Counter::from(Plan::parse("loop-boundary:2").unwrap());
+        let err = bounded.uv_counter(&uv).unwrap().values_at(3).unwrap_err();
+        assert_eq!(err, Error::LevelBeyondPlan { level: 3, last: 2 });
+        let matrix = crate::Counter::from(Recurrence::new(IntMatrix::identity(2)));
+        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted { rule: None }));
+        let sqrt3 = crate::Counter::from(Plan::parse("loop-boundary:1,sqrt3-boundary").unwrap());
+        assert_eq!(
+            sqrt3.uv_counter(&uv),
+            Err(NotCounted {
+                rule: Some(Rule::Sqrt3)
+            })
+        );
+    }
+
+    #[test]
+    fn summaries_and_estimates_follow_the_closed_form() {
+        let spot = UvCounts {
+            values: 267,
+            edges: 438,
+            boundary_edges: 144,
+            used_vt: 267,
+            faces: 180,
+            corners: 732,
+            ..UvCounts::default()
+        };
+        let counter = crate::Counter::from(builtin("catmull-clark").unwrap());
+        let uvc = counter.uv_counter(&spot).unwrap();
+        // UV(s) = 183*4^s + 72*2^s + 9 for s >= 1.
+        let at = |s: u32| {
+            BigInt::from(183) * BigInt::from(4).pow(s)
+                + BigInt::from(72) * BigInt::from(2).pow(s)
+                + 9
+        };
+        assert_eq!(uvc.values_at(30).unwrap(), at(30));
+        let sum = uvc.summary_at(1000).unwrap();
+        assert_eq!(
+            sum,
+            recurrence::digit_summary(&at(1000), crate::SUMMARY_DIGITS)
+        );
+        assert_eq!(uvc.summary_at(0).unwrap().leading, "267");
+        let estimate = uvc.estimated_log10(1000).unwrap();
+        // The largest component (H = 4^s H0 = 732 * 4^1000) bounds UV from above.
+        let uv_log10 = crate::log10_abs(&at(1000));
+        assert!(
+            estimate >= uv_log10 && estimate < uv_log10 + 1.0,
+            "{estimate}"
+        );
+    }
+}
