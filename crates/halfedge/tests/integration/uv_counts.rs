@@ -90,6 +90,41 @@ fn spot_triangulated_counts_opensubdivs_loop_values() {
     );
 }
 
+/// OpenSubdiv's sibling values: the pawn's and bishop's 4 `vt` are used by every quad at its
+/// four corners in turn, and at 39 of the bishop's vertices the faces around use two `vt` in
+/// the order A, B, A, B, each a value of its own at level 1. Counts are OpenSubdiv 3.5's
+/// `GetNumFVarValues` (tools/osd-driver/README.md).
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn sibling_values_give_opensubdivs_counts_on_the_shared_meshes() {
+    let cases: [(&str, u64, u64, &[u64]); 5] = [
+        ("osd_catmark_pawn.obj", 2281, 0, &[4, 5221, 14629]),
+        ("osd_catmark_bishop.obj", 3244, 39, &[4, 7991, 22951]),
+        (
+            "spot_control_mesh.obj",
+            267,
+            0,
+            &[267, 885, 3225, 12297, 48009],
+        ),
+        ("blub_control_mesh.obj", 141, 0, &[141, 501, 1885]),
+        ("cylinder_ngon.obj", 271, 0, &[271, 943, 3563]),
+    ];
+    for (name, pairs, split, expected) in cases {
+        let mesh = read_with_uvs(&testdata::mesh(name));
+        let uv = stats::uv_counts(&mesh).expect("a layout");
+        assert_eq!((uv.values, uv.split_values), (pairs, split), "{name}");
+        let last = expected.len() as u64 - 1;
+        assert_eq!(
+            values(Rule::CatmullClark, &uv, 0..=last),
+            expected
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect::<Vec<_>>(),
+            "{name}"
+        );
+    }
+}
+
 /// The cube with every face its own chart (a `vt` per corner): every edge is a seam.
 fn cube_of_charts() -> PolygonMesh {
     let mut cube = shapes::cube();
