@@ -347,7 +347,9 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
          start from `UV0` and give the real count from level 1 on; the two agree at level 0 as \
          well when no `vt` is shared by two vertices and nothing is split. OpenSubdiv's level 0 counts the file's whole `vt` list, unused entries \
          included (`GetNumFVarValues(0)`); ours counts what the faces use, and \
-         `subcount stats` reports the unused ones as `unreferenced`.\n\n\
+         `subcount stats` reports the unused ones as `unreferenced`. From level 1 on \
+         OpenSubdiv also keeps one value at each bare vertex (a position no face uses), used \
+         by no face; ours does not count it, as `V` leaves bare vertices out.\n\n\
          **Holes.** What is written at level `s` is level `s` of the written faces, so the \
          layout of the written faces (their corners' values) counts the written UV values \
          exactly, as their `MeshCounts` count `V`, `E`, `F` (`HoleSet::written_uv_counts`); \

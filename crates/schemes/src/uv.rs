@@ -41,7 +41,11 @@
 //! ([`UvScheme::VALID_FROM`]); the two agree at level 0 too when no `vt` is shared by two
 //! vertices and nothing is split. OpenSubdiv's level 0 is the whole `vt`
 //! list, used or not (`used_vt + unreferenced`): its `GetNumFVarValues(0)` counts what the
-//! file gives, ours what the faces use.
+//! file gives, ours what the faces use. From level 1 on OpenSubdiv also keeps one value at
+//! each bare vertex (a position no face uses), which no face uses either; ours counts the
+//! values faces use, as `V` counts the vertices they use. Every shared mesh with UVs agrees
+//! with OpenSubdiv under these two rules at levels 0-2 in every mode
+//! (`crates/halfedge/tests/uv_count_reference`).
 //!
 //! With holes, what is written at level `s` is level `s` of the written faces (the children of
 //! a hole are holes, [`crate::holes`]), so their layout (the written faces with their corners'
