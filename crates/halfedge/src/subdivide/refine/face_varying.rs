@@ -163,8 +163,13 @@ pub(crate) struct UvChannel {
     refinement: Refinement,
     /// The layout's values (level 0).
     n_values: usize,
-    /// The value of each extra run (channel vertex `n_values + i`).
+    /// The layout value of each extra run (channel vertex `n_values + i`).
     siblings: Vec<u32>,
+    /// The OpenSubdiv value (from level 1 on) of each extra run: its own, or that of the run
+    /// of the same value before it.
+    sibling_value: Vec<u32>,
+    /// The extra runs that repeat a value (all runs but the first of each value).
+    n_repeated: usize,
     /// The UV value of each channel vertex of the last level (`INVALID`: not written), when
     /// siblings or holes renumber them.
     merged: Option<Vec<u32>>,
@@ -243,6 +248,8 @@ impl Classify {
 #[derive(Clone, Copy, Debug)]
 struct Run {
     value: u32,
+    /// Its OpenSubdiv value at the vertex (the sibling index).
+    sibling: usize,
     /// Faces in the run.
     faces: usize,
     /// An infinitely sharp surface edge inside the run.
@@ -294,12 +301,24 @@ impl UvChannel {
         // The channel vertex of every corner (by half-edge), and its sharpness.
         let mut corner_vertex = vec![INVALID; 2 * t.ne()];
         let mut siblings: Vec<u32> = Vec::new();
+        // Per sibling channel vertex: the channel vertex of its OpenSubdiv value.
+        let mut representative: Vec<u32> = Vec::new();
+        let mut sibling_of = Vec::new();
         let mut vertex_sharpness = vec![0.0f32; n_values];
         let mut ring = Vec::new();
         let mut runs: Vec<(Run, Vec<u32>)> = Vec::new();
         for v in 0..t.nv() as u32 {
             let boundary = t.is_boundary_vertex(v);
-            let first = boundary_first(&t, v).unwrap_or_else(|| t.vertex_halfedge(v));
+            // OpenSubdiv's order of the faces: from the boundary, or from the lowest face.
+            let first = boundary_first(&t, v).unwrap_or_else(|| {
+                let mut best = t.vertex_halfedge(v);
+                t.for_outgoing(v, |h| {
+                    if t.face(h) < t.face(best) {
+                        best = h;
+                    }
+                });
+                best
+            });
             ccw_ring(&t, v, first, &mut ring);
             // Faces around v in order: ring[i] for the half-edges with a face; face i and
             // face i + 1 share the edge of ring[i + 1].
@@ -311,10 +330,35 @@ impl UvChannel {
             if faces.is_empty() {
                 continue;
             }
+            // OpenSubdiv's values at v (`completeTopologyFromFaceValues`): a new value
+            // wherever the face's value differs from the one before, unless it was seen, but
+            // with two values seen only the first is looked at, so A-B-A-B around a vertex
+            // is three values (A, B, and the second run of B).
+            let mut unique: Vec<u32> = Vec::new();
+            sibling_of.clear();
+            for (i, &h) in faces.iter().enumerate() {
+                let value = cv[h as usize];
+                let sibling = if i == 0 {
+                    unique.push(value);
+                    0
+                } else if value == cv[faces[i - 1] as usize] {
+                    sibling_of[i - 1]
+                } else if unique.len() == 1 || (unique.len() == 2 && unique[0] != value) {
+                    unique.push(value);
+                    unique.len() - 1
+                } else if let Some(k) = unique.iter().position(|&u| u == value) {
+                    k
+                } else {
+                    unique.push(value);
+                    unique.len() - 1
+                };
+                sibling_of.push(sibling);
+            }
             runs.clear();
             let mut any_seam = false;
             for (i, &h) in faces.iter().enumerate() {
                 let value = cv[h as usize];
+                let sibling = sibling_of[i];
                 let joined = i > 0 && {
                     let shared = ring[i];
                     let s = seam(shared);
@@ -331,6 +375,7 @@ impl UvChannel {
                     runs.push((
                         Run {
                             value,
+                            sibling,
                             faces: 1,
                             inf_sharp_inside: false,
                         },
@@ -356,17 +401,31 @@ impl UvChannel {
                     runs[0].0.inf_sharp_inside |= surface_edges(closing >> 1) >= INFINITELY_SHARP;
                 }
             }
-            // Channel vertices: a value's first run is the value itself, the others siblings.
+            // Channel vertices: a value's first run is the value itself, the others siblings
+            // (each pointing to the first run of its OpenSubdiv value).
             let mut seen: Vec<u32> = Vec::new();
-            for (run, members) in &runs {
+            let mut first_of_sibling = vec![INVALID; unique.len()];
+            let mut repeated = vec![false; runs.len()];
+            for (r, (run, members)) in runs.iter().enumerate() {
                 let id = if seen.contains(&run.value) {
                     siblings.push(run.value);
                     vertex_sharpness.push(0.0);
-                    (n_values + siblings.len() - 1) as u32
+                    let id = (n_values + siblings.len() - 1) as u32;
+                    representative.push(if first_of_sibling[run.sibling] == INVALID {
+                        id
+                    } else {
+                        first_of_sibling[run.sibling]
+                    });
+                    id
                 } else {
                     seen.push(run.value);
                     run.value
                 };
+                if first_of_sibling[run.sibling] == INVALID {
+                    first_of_sibling[run.sibling] = id;
+                } else {
+                    repeated[r] = true;
+                }
                 for &h in members {
                     corner_vertex[h as usize] = id;
                 }
@@ -379,16 +438,16 @@ impl UvChannel {
                         || (faces.len() == 1
                             && classify.geometric_corners_smooth
                             && classify.corners_sharp())));
-            let n = seen.len();
-            let corner_values: Vec<u32> = if !smooth || !mismatch {
+            let n = unique.len();
+            let corner_siblings: Vec<usize> = if !smooth || !mismatch {
                 Vec::new()
             } else {
-                // Per value: faces and whether it is disjoint.
-                let span = |value: u32| {
+                // Per sibling: faces and whether it is disjoint.
+                let span = |sibling: usize| {
                     let mut faces = 0usize;
                     let mut count = 0usize;
                     let mut inf = false;
-                    for (run, _) in runs.iter().filter(|(r, _)| r.value == value) {
+                    for (run, _) in runs.iter().filter(|(r, _)| r.sibling == sibling) {
                         faces += run.faces;
                         count += 1;
                         inf |= run.inf_sharp_inside;
@@ -411,11 +470,10 @@ impl UvChannel {
                             | FaceVaryingInterpolation::All
                     ) && n == 1
                         && !boundary);
-                let spans: Vec<(u32, usize, bool)> = seen
-                    .iter()
-                    .map(|&u| {
-                        let (size, disjoint) = span(u);
-                        (u, size, if n == 1 { single_disjoint } else { disjoint })
+                let spans: Vec<(usize, usize, bool)> = (0..n)
+                    .map(|k| {
+                        let (size, disjoint) = span(k);
+                        (k, size, if n == 1 { single_disjoint } else { disjoint })
                     })
                     .collect();
                 let both = classify.dependent()
@@ -431,16 +489,20 @@ impl UvChannel {
                     .map(|s| s.0)
                     .collect()
             };
-            // Sharpness of the channel vertices of v.
-            for &h in &faces {
-                let id = corner_vertex[h as usize] as usize;
-                let value = cv[h as usize];
-                vertex_sharpness[id] =
-                    if corner_values.contains(&value) || (smooth && id >= n_values) {
-                        INFINITELY_SHARP
-                    } else {
-                        sv
-                    };
+            // Sharpness of the channel vertices of v (a sibling in several runs is disjoint,
+            // a corner, in every mode).
+            for (r, (run, members)) in runs.iter().enumerate() {
+                let id = corner_vertex[members[0] as usize] as usize;
+                let corner = repeated[r]
+                    || runs.iter().enumerate().any(|(q, (other, _))| {
+                        q != r && other.sibling == run.sibling && repeated[q]
+                    })
+                    || corner_siblings.contains(&run.sibling);
+                vertex_sharpness[id] = if smooth && corner {
+                    INFINITELY_SHARP
+                } else {
+                    sv
+                };
             }
         }
         // The channel's mesh: the surface's faces with channel vertices as corners.
@@ -499,10 +561,27 @@ impl UvChannel {
                     Ok(None)
                 }
             })?;
+        // The OpenSubdiv value of each sibling (levels 1 and after), numbered after the
+        // layout's values: a sibling that starts a value gets the next number.
+        let mut sibling_value = Vec::with_capacity(siblings.len());
+        let mut next = n_values as u32;
+        for (i, &rep) in representative.iter().enumerate() {
+            let own = (n_values + i) as u32;
+            sibling_value.push(if rep == own {
+                next += 1;
+                next - 1
+            } else if (rep as usize) < n_values {
+                rep
+            } else {
+                sibling_value[rep as usize - n_values]
+            });
+        }
         let mut uv = UvChannel {
             refinement,
             n_values,
+            n_repeated: n_values + siblings.len() - next as usize,
             siblings,
+            sibling_value,
             merged: None,
             n_last: 0,
             written_corners: None,
@@ -523,18 +602,28 @@ impl UvChannel {
     ) -> Result<()> {
         let r = &self.refinement;
         let nv = r.n_vertices(levels);
-        let extra = self.siblings.len();
+        let extra = if levels == 0 {
+            self.siblings.len()
+        } else {
+            self.n_repeated
+        };
         if extra == 0 && holes.is_none() {
             self.n_last = if levels == 0 { self.n_values } else { nv };
             return Ok(());
         }
         let n0 = r.n_vertices(0);
-        // Channel vertex -> value with siblings merged (vertex children keep their index).
+        // Channel vertex -> value with repeated runs merged (vertex children keep their
+        // index): at level 0 the layout's values, after it OpenSubdiv's.
         let merge = |k: usize| -> usize {
             if k < self.n_values {
                 k
             } else if k < n0 {
-                self.siblings[k - self.n_values] as usize
+                let i = k - self.n_values;
+                if levels == 0 {
+                    self.siblings[i] as usize
+                } else {
+                    self.sibling_value[i] as usize
+                }
             } else {
                 k - extra
             }
@@ -609,13 +698,13 @@ impl UvChannel {
         } else if level == 0 {
             self.n_values
         } else {
-            self.refinement.n_vertices(level) - self.siblings.len()
+            self.refinement.n_vertices(level) - self.n_repeated
         }
     }
 
     pub(crate) fn heap_bytes(&self) -> usize {
         self.refinement.heap_bytes()
-            + 4 * self.siblings.len()
+            + 8 * self.siblings.len()
             + self.merged.as_ref().map_or(0, |m| 4 * m.len())
             + self.written_corners.as_ref().map_or(0, |c| 4 * c.len())
     }
