@@ -5,52 +5,17 @@
 
 use std::path::Path;
 
-use halfedge::glam::{DVec2, DVec3};
+use halfedge::glam::DVec2;
 use halfedge::holes::HoleSet;
 use halfedge::uv::Uvs;
-use halfedge::{shapes, stats, PolygonMesh, Rule};
+use halfedge::{io, shapes, stats, PolygonMesh, Rule};
 use schemes::uv::{uv_scheme, UvCounts};
 use schemes::BigInt;
 
-/// The faces and texture coordinates of an OBJ file (`v`, `vt`, `f v/vt...` with positive
-/// indices only): a temporary reader for these tests until `io::read_obj` reads `vt`.
+/// The mesh of an OBJ file, with its texture coordinates.
 fn read_with_uvs(path: &Path) -> PolygonMesh {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let (mut positions, mut coords, mut faces, mut corners) = (vec![], vec![], vec![], vec![]);
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        let number = |w: &str| -> f64 {
-            w.parse()
-                .unwrap_or_else(|e| panic!("{}:{}: {w}: {e}", path.display(), n + 1))
-        };
-        match words.next() {
-            Some("v") => positions.push(DVec3::ZERO),
-            Some("vt") => {
-                let uv: Vec<f64> = words.take(2).map(number).collect();
-                coords.push(DVec2::new(uv[0], uv[1]));
-            }
-            Some("f") => {
-                let mut face = vec![];
-                for corner in words {
-                    let mut parts = corner.split('/');
-                    let index = |p: Option<&str>| -> u32 {
-                        let p = p.unwrap_or_else(|| panic!("{}:{}: no vt", path.display(), n + 1));
-                        p.parse::<u32>()
-                            .unwrap_or_else(|e| panic!("{}:{}: {p}: {e}", path.display(), n + 1))
-                            - 1
-                    };
-                    face.push(index(parts.next()));
-                    corners.push(index(parts.next()));
-                }
-                faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    let mut mesh = PolygonMesh::from_faces(positions, faces);
-    let uvs = Uvs::new(coords, corners).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    mesh.set_uvs(Some(uvs))
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mesh = io::read_obj(path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(mesh.uvs().is_some(), "{}: no uvs", path.display());
     mesh
 }
 
