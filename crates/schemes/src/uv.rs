@@ -690,6 +690,11 @@ impl UvCounter {
         Ok(UvCounter { stages, uv })
     }
 
+    /// The dimension of the last stage's UV recurrence (the order of its UV values).
+    pub fn dim(&self) -> usize {
+        self.stages.last().map_or(0, |(s, _)| s.recurrence.dim())
+    }
+
     /// The layout's statistics counted from.
     pub fn uv_counts(&self) -> &UvCounts {
         &self.uv
