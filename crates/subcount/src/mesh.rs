@@ -4,9 +4,11 @@ use std::io::Write;
 use std::time::Instant;
 
 use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
+use halfedge::uv::UvLayout;
 use halfedge::{HalfEdgeMesh, PolygonMesh, Rule};
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
+use schemes::uv::UvCounter;
 use schemes::{Budget, MeshCounts, Plan, Scheme};
 
 use crate::args::{
@@ -397,6 +399,110 @@ fn guard_memory(
         })
 }
 
+/// The `UV` component of `verify`: the UV values a scheme predicts for the mesh's layout
+/// ([`UvCounter`]), against those of the real face-varying subdivision.
+struct UvCheck {
+    /// The layout refined.
+    layout: UvLayout,
+    /// The prediction.
+    counter: UvCounter,
+    /// Level 0 as [`schemes::uv`] defines it: the `vt` entries the written corners use.
+    used_vt: u64,
+}
+
+impl UvCheck {
+    /// `None` for a mesh without a UV layout (no `vt`, or `vt` at only some corners: what is
+    /// verified is then what it always was), and for a scheme that does not count UV values
+    /// (one note on stderr, as `table` gives).
+    fn new(
+        loaded: &LoadedMesh,
+        scheme: &Scheme,
+        holes: Option<&halfedge::holes::HoleSet>,
+    ) -> Result<Option<UvCheck>, Failure> {
+        let poly = &loaded.poly;
+        let (Some(layout), Some(uvs)) = (poly.uv_layout(), poly.uvs()) else {
+            return Ok(None);
+        };
+        let counts = match holes {
+            Some(holes) => holes.written_uv_counts(poly),
+            None => halfedge::stats::uv_counts(poly),
+        };
+        let Some(counts) = counts else {
+            return Ok(None);
+        };
+        let counter = match UvCounter::new(&Plan::single(scheme.clone()), counts) {
+            Ok(counter) => counter,
+            Err(not) => {
+                eprintln!("note: {not}: no UV rows");
+                return Ok(None);
+            }
+        };
+        // Level 0, measured: the distinct `vt` of the written faces' corners.
+        let offsets = poly.face_offsets();
+        let mut used = vec![false; uvs.coords().len()];
+        for f in (0..poly.n_faces()).filter(|&f| holes.map_or(true, |h| !h.contains(f as u32))) {
+            for &t in &uvs.corners()[offsets[f]..offsets[f + 1]] {
+                used[t as usize] = true;
+            }
+        }
+        let used_vt = used.iter().filter(|&&u| u).count() as u64;
+        Ok(Some(UvCheck {
+            layout,
+            counter,
+            used_vt,
+        }))
+    }
+
+    /// Refines the layout on `mesh` by `rule` to each level `1..=levels` (a
+    /// [`halfedge::Refinement`] with UVs per level, under `opts`: holes, creases, options) and
+    /// counts the distinct UV values its faces' corners use
+    /// ([`halfedge::Refinement::write_uv_indices`]): the measured values of levels `1..`.
+    fn measure(
+        &self,
+        mesh: &HalfEdgeMesh,
+        rule: Rule,
+        levels: u32,
+        opts: &SubdivideOptions<'_>,
+    ) -> Result<Vec<u64>, Failure> {
+        let opts = opts.with_uvs(&self.layout);
+        let mut measured = Vec::with_capacity(levels as usize);
+        for level in 1..=levels {
+            let r =
+                halfedge::Refinement::new(mesh, rule, level, &opts).map_err(halfedge_failure)?;
+            let mut corners = vec![0u32; r.n_corners(level)];
+            r.write_uv_indices(&mut corners).map_err(halfedge_failure)?;
+            let n = corners.iter().max().map_or(0, |&m| m as usize + 1);
+            let mut used = vec![false; n];
+            for &k in &corners {
+                used[k as usize] = true;
+            }
+            measured.push(used.iter().filter(|&&u| u).count() as u64);
+        }
+        Ok(measured)
+    }
+
+    /// Appends `("UV", predicted)` and `("UV", measured)` to every report, `measured` being
+    /// the values of levels `1..` ([`UvCheck::measure`]).
+    fn extend(&self, reports: &mut [sub::LevelReport], measured: &[u64]) -> Result<(), Failure> {
+        for r in reports.iter_mut() {
+            let m = match r.level {
+                0 => self.used_vt,
+                s => match measured.get(s as usize - 1) {
+                    Some(&m) => m,
+                    None => continue,
+                },
+            };
+            let p = self
+                .counter
+                .values_at(u64::from(r.level))
+                .map_err(scheme_failure)?;
+            r.predicted.push(("UV".to_owned(), p));
+            r.measured.push(("UV".to_owned(), BigInt::from(m)));
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let loaded = required_mesh(&args.mesh)?;
     let poly = &loaded.poly;
@@ -435,9 +541,24 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     if let Some(holes) = &chosen.holes {
         opts = opts.with_holes(holes);
     }
-    let reports = if face_list {
+    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref())?;
+    // The UV values measured at levels 1.., when there is a UV component.
+    let mut uv_measured = None;
+    let mut reports = if face_list {
         // The face-list subdividers place points linearly: no crease rules to follow.
-        sub::verify_polygons(poly, scheme, levels, &opts)
+        let reports = sub::verify_polygons(poly, scheme, levels, &opts)
+            .map_err(|e| located_failure(e, poly, &args.mesh))?;
+        if let Some(check) = &uv_check {
+            // UVs are refined on a half-edge mesh: measured when the face list is one.
+            match halfedge::HalfEdgeMesh::try_from(poly) {
+                Ok(mesh) => uv_measured = Some(check.measure(&mesh, rule, levels, &opts)?),
+                Err(_) => eprintln!(
+                    "note: {}: UV values are measured on a manifold mesh, and this one is not: no UV rows",
+                    mesh_label(&args.mesh)
+                ),
+            }
+        }
+        reports
     } else {
         let mesh = validate(poly, &args.mesh)?;
         let (sharpness, options) = loaded.crease_inputs(rule, &mesh, &args.mesh)?;
@@ -445,9 +566,16 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }
-        sub::verify(&mesh, scheme, levels, &opts)
+        let reports = sub::verify(&mesh, scheme, levels, &opts)
+            .map_err(|e| located_failure(e, poly, &args.mesh))?;
+        if let Some(check) = &uv_check {
+            uv_measured = Some(check.measure(&mesh, rule, levels, &opts)?);
+        }
+        reports
+    };
+    if let (Some(check), Some(measured)) = (&uv_check, &uv_measured) {
+        check.extend(&mut reports, measured)?;
     }
-    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
