@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use halfedge::tags::{BoundaryInterpolation, CreaseMethod, TriangleRule};
+use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
 
 /// The value parser of an option enum of `halfedge::tags`: its command-line names (listed in
 /// `--help` and in the error for another value), parsed by its `FromStr`.
@@ -162,6 +162,16 @@ pub(crate) struct SubdivideArgs {
     #[arg(long, value_name = "N", default_value_t = 0,
           value_parser = clap::value_parser!(u32).range(0..=1_000_000))]
     pub(crate) frames: u32,
+    /// How UVs are linearly interpolated under loop and catmull-clark (OpenSubdiv's
+    /// FVarLinearInterpolation; none: fully smooth; default: the file's
+    /// facevaryinginterpolateboundary tag, else corners-plus1).
+    #[arg(long, value_name = "MODE", conflicts_with = "no_uv",
+          value_parser = named_parser!(FaceVaryingInterpolation))]
+    pub(crate) uv_interpolation: Option<FaceVaryingInterpolation>,
+    /// Write the output without texture coordinates (and refine none), even when the mesh
+    /// has them.
+    #[arg(long)]
+    pub(crate) no_uv: bool,
 }
 
 /// `subdivide --precision`.

@@ -1,9 +1,10 @@
 //! `stats`, `verify` and `subdivide`: real meshes and real subdivision.
 
 use std::io::Write;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
+use halfedge::tags::FaceVaryingInterpolation;
 use halfedge::uv::UvLayout;
 use halfedge::{HalfEdgeMesh, PolygonMesh, Rule};
 use num_bigint::BigInt;
@@ -660,7 +661,32 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         holes,
     } = chosen_scheme(&args.scheme, &loaded, &counts, &args.mesh)?;
     loaded.print_notes();
-    let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    let label = mesh_label(&args.mesh);
+    let mut face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    // The UV layout to refine: none with --no-uv; vt at only some corners is written
+    // without UVs, saying why.
+    let mut layout = if args.no_uv {
+        None
+    } else {
+        if let Some(partial) = poly.partial_uvs() {
+            eprintln!("note: {label}: {partial}: writing without UVs");
+        }
+        poly.uv_layout()
+    };
+    if layout.is_some() && face_list {
+        // UVs are refined on a half-edge mesh: the 1:N² splits (placed on the flat triangles
+        // either way) run there when the face list is one; the -general schemes and
+        // non-manifold input keep the raw face list, without UVs.
+        if matches!(rule, Rule::TriSplit(_)) && halfedge::HalfEdgeMesh::try_from(poly).is_ok() {
+            face_list = false;
+        } else {
+            eprintln!(
+                "note: {label}: {} runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs",
+                chosen.name()
+            );
+            layout = None;
+        }
+    }
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
     if refine_once && (face_list || args.no_preallocate) {
         return Err(usage!(
@@ -744,17 +770,22 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         bar.set_message(format!("subdividing with {}", chosen.name()));
         bar
     });
+    // The surface's levels move the bar; a face-varying channel reports its own after them.
+    let clock = refined::SurfaceClock::new(levels);
     let progress = |done: &LevelDone| {
-        if let Some(bar) = &bar {
+        if let (true, Some(bar)) = (clock.report(done), &bar) {
             bar.set_position(u64::from(done.level));
         }
     };
     // The file's creases and corners and the resolved options (the face-list subdividers
     // place points linearly and read neither).
-    let (sharpness, options) = match &mesh {
+    let (sharpness, mut options) = match &mesh {
         Some(mesh) => loaded.crease_inputs(rule, mesh, &args.mesh)?,
         None => (None, Default::default()),
     };
+    if layout.is_some() {
+        options = options.with_face_varying(uv_interpolation(&args, &loaded, rule, &label));
+    }
     let mut opts = SubdivideOptions::default()
         .with_threads(args.threads)
         .with_preallocate(!args.no_preallocate)
@@ -767,21 +798,53 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         opts = opts.with_holes(holes);
     }
     let t1 = Instant::now();
-    let result = match &mesh {
-        Some(mesh) if refine_once => {
-            refined::run(mesh, rule, levels, args.precision, args.frames, &opts)
-                .map(Output::Refined)
+    let run = |opts: &SubdivideOptions<'_>| match &mesh {
+        Some(mesh) if refine_once => refined::run(
+            mesh,
+            rule,
+            levels,
+            args.precision,
+            args.frames,
+            opts,
+            &clock,
+        )
+        .map(Output::Refined),
+        // With UVs the last level is a face list carrying them.
+        Some(mesh) if opts.uvs.is_some() || last_faces.is_some() || holes_as_faces => {
+            sub::subdivide_to_face_list(mesh, rule, levels, opts).map(Output::Faces)
         }
-        Some(mesh) if last_faces.is_some() || holes_as_faces => {
-            sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
-        }
-        Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),
-        None => sub::subdivide_polygons(poly, rule, levels, &opts).map(Output::Polygons),
+        Some(mesh) => sub::subdivide(mesh, rule, levels, opts).map(Output::Mesh),
+        None => sub::subdivide_polygons(poly, rule, levels, opts).map(Output::Polygons),
+    };
+    let result = match &layout {
+        Some(layout) => match run(&opts.with_uvs(layout)) {
+            // Refused before anything is built: the rule has no face-varying rule.
+            Err(e @ halfedge::Error::UvsNotSupported { .. }) => {
+                eprintln!("note: {label}: {e}: writing without UVs");
+                run(&opts)
+            }
+            result => result,
+        },
+        None => run(&opts),
     }
     .map_err(|e| located_failure(e, poly, &args.mesh))?;
+    let end = Instant::now();
     let subdivide_s = match &result {
-        Output::Refined(r) => (r.refine_topology + r.first_evaluation).as_secs_f64(),
-        _ => t1.elapsed().as_secs_f64(),
+        Output::Refined(r) => {
+            (r.refine_topology + r.first_evaluation + r.uvs.map_or(Duration::ZERO, |u| u.1))
+                .as_secs_f64()
+        }
+        _ => (end - t1).as_secs_f64(),
+    };
+    // The UV values written and the time spent on them (the one-shot path refines them
+    // after the surface's last level).
+    let uvs = match &result {
+        Output::Refined(r) => r.uvs.map(|(n, time)| (n, time.as_secs_f64())),
+        Output::Faces(level) => level
+            .mesh
+            .uvs()
+            .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
+        _ => None,
     };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -808,12 +871,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             (c.vertices as usize, c.edges as usize, c.faces as usize)
         }
     };
+    let uv = uvs.map_or_else(String::new, |(n, _)| format!(", UV = {n}"));
     let message = match &args.output {
         Some(path) => format!(
-            "level {levels}: V = {v}, E = {e}, F = {f}; wrote {}",
+            "level {levels}: V = {v}, E = {e}, F = {f}{uv}; wrote {}",
             path.display()
         ),
-        None => format!("level {levels}: V = {v}, E = {e}, F = {f} (no -o: nothing written)"),
+        None => format!("level {levels}: V = {v}, E = {e}, F = {f}{uv} (no -o: nothing written)"),
     };
     // With `-o -` the mesh is standard output: the summary goes to stderr.
     if args.output.as_deref() == Some(std::path::Path::new("-")) {
@@ -832,11 +896,43 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             ),
             _ => String::new(),
         };
+        let uv_s = uvs.map_or_else(String::new, |(_, s)| format!(", \"uv_s\": {s:.6}"));
         eprintln!(
-            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}{frames}}}"
+            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}{frames}{uv_s}}}"
         );
     }
     Ok(0)
+}
+
+/// The face-varying interpolation of a run with UVs: `--uv-interpolation` over the file's
+/// `facevaryinginterpolateboundary` tag over `corners-plus1` ([`resolve_options`] resolved
+/// the tag; [`LoadedMesh::crease_inputs`] hands it on under Loop and Catmull-Clark). One
+/// note when the flag overrides the tag with another value, one when the rule refines UVs
+/// linearly whatever the mode.
+///
+/// [`resolve_options`]: crate::model::resolve_options
+fn uv_interpolation(
+    args: &SubdivideArgs,
+    loaded: &LoadedMesh,
+    rule: Rule,
+    label: &str,
+) -> FaceVaryingInterpolation {
+    let resolved = loaded.options.face_varying;
+    let Some(flag) = args.uv_interpolation else {
+        return resolved;
+    };
+    if let Some(tag) = loaded.tags().options.face_varying.filter(|&t| t != flag) {
+        eprintln!(
+            "note: {label}: --uv-interpolation {flag} overrides the tag facevaryinginterpolateboundary {} ({tag})",
+            tag.tag_value()
+        );
+    }
+    if !matches!(rule, Rule::Loop | Rule::CatmullClark) {
+        eprintln!(
+            "note: {label}: --uv-interpolation is a mode of loop and catmull-clark; {rule} refines UVs linearly"
+        );
+    }
+    flag
 }
 
 enum Output {
