@@ -10,3 +10,4 @@ mod schemes;
 mod tags;
 mod util;
 mod uv_input;
+mod uv_subdivide;

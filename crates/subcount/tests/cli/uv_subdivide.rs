@@ -1,0 +1,487 @@
+//! UVs through `subdivide` and `verify`: the refined UVs written with the summary's `UV = N`
+//! (the count `table` predicts), `--uv-interpolation` (flag over tag over `corners-plus1`),
+//! `--no-uv`, the notes for partial `vt` and for rules that do not carry UVs, `uv_s` in
+//! `--timings`, and `verify`'s `UV` component.
+
+use serde_json::Value;
+
+use crate::util::{data, ok, subcount};
+
+/// The names of `--uv-interpolation`, in OpenSubdiv's order.
+const MODES: [&str; 6] = [
+    "none",
+    "corners-only",
+    "corners-plus1",
+    "corners-plus2",
+    "boundaries",
+    "all",
+];
+
+/// The `N` of `UV = N` in a summary line, if any.
+fn summary_uv(summary: &str) -> Option<u64> {
+    let start = summary.find("UV = ")? + "UV = ".len();
+    let digits: String = summary[start..]
+        .chars()
+        .take_while(char::is_ascii_digit)
+        .collect();
+    digits.parse().ok()
+}
+
+/// The UV values `table` predicts at `level`.
+fn predicted_uv(mesh: &str, scheme: &str, level: u64) -> u64 {
+    let text = ok(&[
+        "table",
+        "--mesh",
+        mesh,
+        "--scheme",
+        scheme,
+        "--levels",
+        &level.to_string(),
+        "--format",
+        "json",
+    ]);
+    let rows: Value = serde_json::from_str(&text).expect("table JSON");
+    rows.as_array().and_then(|r| r.last()).expect("a row")["UV"]
+        .as_u64()
+        .expect("a UV column")
+}
+
+/// Runs `subdivide` on `mesh` with `args`, writing into a temporary folder: the summary
+/// (stdout), stderr and the written file's text.
+fn subdivide(mesh: &str, args: &[&str]) -> (String, String, String) {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let out = dir.path().join("out.obj");
+    let out = out.to_str().expect("a UTF-8 path");
+    let mut all = vec!["subdivide", "--mesh", mesh, "-o", out];
+    all.extend_from_slice(args);
+    let run = subcount(&all);
+    assert_eq!(run.code, 0, "subcount {all:?}: {}", run.stderr);
+    let text = std::fs::read_to_string(out).expect("the output file");
+    (run.stdout.replace(out, "OUT"), run.stderr, text)
+}
+
+#[test]
+fn the_summary_counts_the_uv_values_table_predicts() {
+    let cube = data("uv_cube.obj");
+    for (scheme, levels) in [("catmull-clark", 2), ("catmull-clark", 0)] {
+        let predicted = predicted_uv(&cube, scheme, levels);
+        for precision in ["f64", "f32"] {
+            let (summary, stderr, _) = subdivide(
+                &cube,
+                &[
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    &levels.to_string(),
+                    "--precision",
+                    precision,
+                ],
+            );
+            assert_eq!(stderr, "");
+            assert_eq!(summary_uv(&summary), Some(predicted), "{summary}");
+            assert!(
+                summary.contains(&format!(", UV = {predicted}; wrote OUT")),
+                "{summary}"
+            );
+        }
+    }
+    // 18 values, 21 layout edges, 6 faces: 18 + 21 + 6 at level 1.
+    assert_eq!(predicted_uv(&cube, "catmull-clark", 1), 45);
+}
+
+#[test]
+fn every_interpolation_mode_is_accepted_and_keeps_the_counts() {
+    let cube = data("uv_cube.obj");
+    let base = ["--scheme", "catmull-clark", "--levels", "2"];
+    let (default, _, _) = subdivide(&cube, &base);
+    for mode in MODES {
+        let mut args = base.to_vec();
+        args.extend(["--uv-interpolation", mode]);
+        let (summary, stderr, _) = subdivide(&cube, &args);
+        assert_eq!(stderr, "", "{mode}");
+        assert_eq!(summary, default, "{mode}");
+    }
+    let run = subcount(&[
+        "subdivide",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+        "--uv-interpolation",
+        "smooth",
+    ]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+    assert!(
+        run.stderr.contains("corners-plus1") && run.stderr.contains("boundaries"),
+        "{}",
+        run.stderr
+    );
+    let run = subcount(&[
+        "subdivide",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+        "--uv-interpolation",
+        "all",
+        "--no-uv",
+    ]);
+    assert_eq!(run.code, 2, "{}", run.stderr);
+}
+
+#[test]
+fn the_flag_overrides_the_tag_with_a_note() {
+    let tagged = data("uv_cube_tagged.obj");
+    let (summary, stderr, _) = subdivide(
+        &tagged,
+        &[
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "--uv-interpolation",
+            "none",
+        ],
+    );
+    assert_eq!(summary_uv(&summary), Some(45));
+    assert_eq!(
+        stderr,
+        format!("note: {tagged}: --uv-interpolation none overrides the tag facevaryinginterpolateboundary 5 (all)\n")
+    );
+    // The same value as the tag: no note.
+    let (_, stderr, _) = subdivide(
+        &tagged,
+        &[
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "--uv-interpolation",
+            "all",
+        ],
+    );
+    assert_eq!(stderr, "");
+}
+
+#[test]
+fn triangle_rules_write_the_uv_values_table_predicts() {
+    let cube = data("uv_cube_tri.obj");
+    for scheme in ["loop", "midpoint", "butterfly", "tri-split-3"] {
+        let predicted = predicted_uv(&cube, scheme, 2);
+        let (summary, stderr, _) = subdivide(&cube, &["--scheme", scheme, "--levels", "2"]);
+        assert_eq!(stderr, "", "{scheme}");
+        assert_eq!(summary_uv(&summary), Some(predicted), "{scheme}: {summary}");
+    }
+    // The 4:1 rules other than Loop refine UVs linearly: the mode flag says so.
+    let (summary, stderr, _) = subdivide(
+        &cube,
+        &[
+            "--scheme",
+            "midpoint",
+            "--levels",
+            "1",
+            "--uv-interpolation",
+            "all",
+        ],
+    );
+    assert_eq!(
+        stderr,
+        format!("note: {cube}: --uv-interpolation is a mode of loop and catmull-clark; midpoint refines UVs linearly\n")
+    );
+    assert_eq!(summary_uv(&summary), Some(45));
+    // A base mesh has no UVs: the flag changes nothing and says nothing.
+    let run = subcount(&[
+        "subdivide",
+        "--base",
+        "icosahedron",
+        "--scheme",
+        "loop",
+        "--levels",
+        "1",
+        "--uv-interpolation",
+        "all",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(run.stderr, "");
+    assert_eq!(
+        run.stdout,
+        "level 1: V = 42, E = 120, F = 80 (no -o: nothing written)\n"
+    );
+}
+
+#[test]
+fn no_uv_writes_what_a_mesh_without_vt_writes() {
+    let cube = data("uv_cube.obj");
+    let text = std::fs::read_to_string(&cube).expect("the fixture");
+    // The same mesh without texture coordinates.
+    let stripped: String = text
+        .lines()
+        .filter(|l| !l.starts_with("vt "))
+        .map(|l| {
+            if l.starts_with("f ") {
+                l.split(' ')
+                    .map(|c| c.split('/').next().unwrap_or(c))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            } else {
+                l.to_owned()
+            }
+        })
+        .map(|l| l + "\n")
+        .collect();
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let plain = dir.path().join("plain.obj");
+    std::fs::write(&plain, stripped).expect("written");
+    let plain = plain.to_str().expect("a UTF-8 path");
+    for args in [
+        &["--scheme", "catmull-clark", "--levels", "2"][..],
+        &[
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "2",
+            "--precision",
+            "f32",
+        ],
+        &["--scheme", "doo-sabin", "--levels", "1"],
+    ] {
+        let mut with_flag = args.to_vec();
+        with_flag.push("--no-uv");
+        let (summary, stderr, written) = subdivide(&cube, &with_flag);
+        let (plain_summary, plain_stderr, plain_written) = subdivide(plain, args);
+        assert_eq!(stderr, "");
+        assert_eq!(plain_stderr, "");
+        assert_eq!(summary, plain_summary, "{args:?}");
+        assert!(!summary.contains("UV"), "{summary}");
+        assert_eq!(written, plain_written, "{args:?}");
+        assert!(!written.contains("vt "));
+    }
+}
+
+#[test]
+fn partial_texture_coordinates_are_written_without_uvs_saying_why() {
+    let partial = data("uv_partial.obj");
+    let (summary, stderr, written) =
+        subdivide(&partial, &["--scheme", "catmull-clark", "--levels", "1"]);
+    assert_eq!(
+        stderr,
+        format!("note: {partial}: 20 of 24 face corners have texture coordinates: no UV layout: writing without UVs\n")
+    );
+    assert_eq!(summary, "level 1: V = 26, E = 48, F = 24; wrote OUT\n");
+    assert!(!written.contains("vt ") && !written.contains('/'));
+}
+
+#[test]
+fn rules_without_uvs_write_without_them_saying_so() {
+    let cube = data("uv_cube.obj");
+    for scheme in ["doo-sabin", "mid-edge"] {
+        let (summary, stderr, written) = subdivide(&cube, &["--scheme", scheme, "--levels", "1"]);
+        assert_eq!(
+            stderr,
+            format!("note: {cube}: UVs are not refined under {scheme} (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
+        );
+        assert!(!summary.contains("UV"), "{summary}");
+        assert!(!written.contains("vt "));
+    }
+    let (summary, stderr, _) = subdivide(
+        &cube,
+        &["--scheme", "catmull-clark-general", "--levels", "1"],
+    );
+    assert_eq!(stderr, format!("note: {cube}: catmull-clark-general runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs\n"));
+    assert!(!summary.contains("UV"), "{summary}");
+}
+
+#[test]
+fn timings_gain_uv_s_when_uvs_are_refined() {
+    let cube = data("uv_cube.obj");
+    let keys = |stderr: &str| -> Vec<String> {
+        let json = stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("timings: "))
+            .expect("a timings line");
+        let object: Value = serde_json::from_str(json).expect("timings JSON");
+        let map = object.as_object().expect("an object");
+        map.keys().cloned().collect()
+    };
+    let base = [
+        "load_s",
+        "peak_bytes",
+        "predicted_peak_bytes",
+        "subdivide_s",
+        "write_s",
+    ];
+    let with = |extra: &[&str]| -> Vec<String> {
+        let mut k: Vec<String> = base.iter().chain(extra).map(|s| s.to_string()).collect();
+        k.sort();
+        k
+    };
+    let run = |args: &[&str]| {
+        let mut all = vec!["--scheme", "catmull-clark", "--levels", "2", "--timings"];
+        all.extend_from_slice(args);
+        let (_, stderr, _) = subdivide(&cube, &all);
+        let mut k = keys(&stderr);
+        k.sort();
+        k
+    };
+    assert_eq!(run(&[]), with(&["uv_s"]));
+    assert_eq!(run(&["--no-uv"]), with(&[]));
+    assert_eq!(
+        run(&["--frames", "2"]),
+        with(&["uv_s", "refine_topology_s", "evaluate_s"])
+    );
+}
+
+/// `verify --format json` on `mesh`: per level, `(predicted UV, measured UV)`.
+fn verify_uv(mesh: &str, scheme: &str, levels: &str) -> Vec<(Value, Value)> {
+    let text = ok(&[
+        "verify", "--mesh", mesh, "--scheme", scheme, "--levels", levels, "--format", "json",
+    ]);
+    let rows: Value = serde_json::from_str(&text).expect("verify JSON");
+    rows.as_array()
+        .expect("an array")
+        .iter()
+        .map(|r| {
+            assert_eq!(r["match"], Value::Bool(true), "{r}");
+            (r["predicted"]["UV"].clone(), r["measured"]["UV"].clone())
+        })
+        .collect()
+}
+
+#[test]
+fn verify_checks_the_uv_values_of_every_level() {
+    let cube = data("uv_cube.obj");
+    let rows = verify_uv(&cube, "catmull-clark", "2");
+    let predicted: Vec<Value> = (0..=2)
+        .map(|l| Value::from(predicted_uv(&cube, "catmull-clark", l)))
+        .collect();
+    assert_eq!(
+        rows,
+        predicted
+            .iter()
+            .map(|p| (p.clone(), p.clone()))
+            .collect::<Vec<_>>()
+    );
+    // Level 0 counts the vt used (18: no vt is used at two vertices).
+    assert_eq!(rows[0].0, Value::from(18));
+    let text = ok(&[
+        "verify",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ]);
+    assert!(
+        text.contains("    1         UV         45        45\n"),
+        "{text}"
+    );
+    // A scheme that does not count UVs: a note, no UV rows.
+    let run = subcount(&[
+        "verify",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "doo-sabin",
+        "--levels",
+        "1",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stderr,
+        "note: doo-sabin does not count UV values (no UV rule yet): no UV rows\n"
+    );
+    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+}
+
+#[test]
+fn a_mesh_without_vt_verifies_and_subdivides_as_before() {
+    let tetra = data("tetra.obj");
+    let text = ok(&[
+        "verify", "--mesh", &tetra, "--scheme", "loop", "--levels", "1", "--format", "json",
+    ]);
+    assert!(!text.contains("UV"), "{text}");
+    let (summary, stderr, written) = subdivide(&tetra, &["--scheme", "loop", "--levels", "1"]);
+    assert_eq!(stderr, "");
+    assert_eq!(summary, "level 1: V = 10, E = 24, F = 16; wrote OUT\n");
+    assert!(!written.contains("vt ") && !written.contains('/'));
+}
+
+// ---- the shared test meshes ($SUBCOUNT_MESHES) ----
+
+fn shared(name: &str) -> String {
+    testdata::mesh(name).to_string_lossy().into_owned()
+}
+
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn spot_catmull_clark_level_2_writes_the_predicted_uv_values() {
+    let spot = shared("spot_control_mesh.obj");
+    let predicted = predicted_uv(&spot, "catmull-clark", 2);
+    // OpenSubdiv's GetNumFVarValues(2) on spot_control_mesh.
+    assert_eq!(predicted, 3225);
+    let (summary, stderr, _) = subdivide(&spot, &["--scheme", "catmull-clark", "--levels", "2"]);
+    assert_eq!(stderr, "");
+    assert_eq!(
+        summary,
+        "level 2: V = 2930, E = 5856, F = 2928, UV = 3225; wrote OUT\n"
+    );
+    for mode in MODES {
+        let (s, _, _) = subdivide(
+            &spot,
+            &[
+                "--scheme",
+                "catmull-clark",
+                "--levels",
+                "2",
+                "--uv-interpolation",
+                mode,
+            ],
+        );
+        assert_eq!(s, summary, "{mode}");
+    }
+}
+
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn verify_matches_opensubdivs_uv_counts_on_spot() {
+    let spot = shared("spot_control_mesh.obj");
+    let counts = |rows: Vec<(Value, Value)>| -> Vec<u64> {
+        rows.into_iter()
+            .map(|(p, m)| {
+                assert_eq!(p, m);
+                p.as_u64().expect("a count")
+            })
+            .collect()
+    };
+    assert_eq!(
+        counts(verify_uv(&spot, "catmull-clark", "2")),
+        [267, 885, 3225]
+    );
+    let triangulated = shared("spot_triangulated.obj");
+    assert_eq!(
+        counts(verify_uv(&triangulated, "loop", "2")),
+        [3225, 12297, 48009]
+    );
+}
+
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn sqrt3_on_spot_writes_without_uvs_saying_so() {
+    let triangulated = shared("spot_triangulated.obj");
+    let (summary, stderr, written) =
+        subdivide(&triangulated, &["--scheme", "sqrt3", "--levels", "1"]);
+    assert_eq!(
+        stderr,
+        format!("note: {triangulated}: UVs are not refined under sqrt3 (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
+    );
+    assert_eq!(
+        summary,
+        "level 1: V = 8786, E = 26352, F = 17568; wrote OUT\n"
+    );
+    assert!(!written.contains("vt "));
+}
