@@ -62,7 +62,7 @@ pub(crate) enum Command {
     /// Really subdivide a mesh and compare every count with the prediction (exit 1 on a
     /// mismatch).
     Verify(VerifyArgs),
-    /// Subdivide a mesh and write it as OBJ.
+    /// Subdivide a mesh and write it as OBJ, with its UVs (vt) when every face corner has one.
     Subdivide(SubdivideArgs),
     /// Draw V, E, F and the state components versus level on a log scale (SVG or PNG).
     Plot(PlotArgs),
