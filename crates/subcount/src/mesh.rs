@@ -831,15 +831,18 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let end = Instant::now();
     let subdivide_s = match &result {
         Output::Refined(r) => {
-            (r.refine_topology + r.first_evaluation + r.uvs.map_or(Duration::ZERO, |u| u.1))
-                .as_secs_f64()
+            // The UVs' topology is part of refine_topology; their evaluation is not.
+            let uv_evaluation = r.uvs.map_or(Duration::ZERO, |u| u.2);
+            (r.refine_topology + r.first_evaluation + uv_evaluation).as_secs_f64()
         }
         _ => (end - t1).as_secs_f64(),
     };
     // The UV values written and the time spent on them (the one-shot path refines them
     // after the surface's last level).
     let uvs = match &result {
-        Output::Refined(r) => r.uvs.map(|(n, time)| (n, time.as_secs_f64())),
+        Output::Refined(r) => r
+            .uvs
+            .map(|(n, topology, evaluation)| (n, (topology + evaluation).as_secs_f64())),
         Output::Faces(level) => level
             .mesh
             .uvs()

@@ -27,9 +27,10 @@ pub(crate) struct Refined {
     pub(crate) first_evaluation: Duration,
     /// The median of the per-frame evaluations (`None` without frames).
     pub(crate) evaluate_median: Option<Duration>,
-    /// With UVs: the UV values of the last level and the time spent on them (the channel's
-    /// topology, after the surface's: [`SurfaceClock`]; their evaluation and index buffer).
-    pub(crate) uvs: Option<(usize, Duration)>,
+    /// With UVs: the UV values of the last level, the time the channel's topology took
+    /// (part of `refine_topology`, after the surface's: [`SurfaceClock`]) and the time of
+    /// their evaluation and index buffer.
+    pub(crate) uvs: Option<(usize, Duration, Duration)>,
     /// Writes the last level as OBJ.
     write: Box<Writer>,
 }
@@ -167,7 +168,7 @@ fn run_in<T: Scalar>(
             refinement.evaluate_uvs(&base, &mut values)?;
             let mut corners = vec![0u32; refinement.n_corners(levels)];
             refinement.write_uv_indices(&mut corners)?;
-            Some((values, corners, uv_topology + t.elapsed()))
+            Some((values, corners, t.elapsed()))
         }
         None => None,
     };
@@ -186,7 +187,9 @@ fn run_in<T: Scalar>(
         Ok(times[times.len() / 2])
     });
     let evaluate_median = evaluate_median.transpose()?;
-    let uv_summary = uvs.as_ref().map(|(values, _, time)| (values.len(), *time));
+    let uv_summary = uvs
+        .as_ref()
+        .map(|(values, _, time)| (values.len(), uv_topology, *time));
     let write = Box::new(move |path: &Path| {
         let faces = match degree {
             Some(degree) => FaceBuffers::Uniform {
