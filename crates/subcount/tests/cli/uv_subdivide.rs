@@ -214,6 +214,29 @@ fn triangle_rules_write_the_uv_values_table_predicts() {
 }
 
 #[test]
+fn holes_write_and_verify_the_uv_values_of_the_written_faces() {
+    let holed = data("uv_cube_hole.obj");
+    let predicted = predicted_uv(&holed, "catmull-clark", 2);
+    for precision in ["f64", "f32"] {
+        let (summary, stderr, _) = subdivide(
+            &holed,
+            &[
+                "--scheme",
+                "catmull-clark",
+                "--levels",
+                "2",
+                "--precision",
+                precision,
+            ],
+        );
+        assert_eq!(stderr, "");
+        assert_eq!(summary_uv(&summary), Some(predicted), "{summary}");
+    }
+    let rows = verify_uv(&holed, "catmull-clark", "2");
+    assert_eq!(rows[2], (Value::from(predicted), Value::from(predicted)));
+}
+
+#[test]
 fn no_uv_writes_what_a_mesh_without_vt_writes() {
     let cube = data("uv_cube.obj");
     let text = std::fs::read_to_string(&cube).expect("the fixture");
