@@ -99,8 +99,10 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file, write_obj,
-    write_obj_file, write_polygon_obj, write_polygon_obj_file, FaceBuffers,
+    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file,
+    write_buffers_obj_file_with, write_buffers_obj_with, write_obj, write_obj_file,
+    write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
+    write_polygon_obj_file_with, write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
 };
 
 use std::io::{BufRead, Read};
