@@ -68,10 +68,15 @@
 //! crate did before it read tags.
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
-//! open; files are written to a temporary file in the target folder and renamed over the
-//! target only when complete, so no partial output is ever left behind ([`write_atomically`]:
-//! also `-` for standard output, symbolic links, special files, write-protected targets and
-//! signals).
+//! open; a mesh with texture coordinates also gets its `vt` lines and `f v/vt` corners, so it
+//! opens textured, and [`ObjWriteOptions`] leaves them out or adds area-weighted vertex
+//! normals ([`crate::normals`]) as `vn` lines with `f v/vt/vn` or `f v//vn` corners (the
+//! `vn` index is the vertex's); a mesh without texture coordinates and without normals is
+//! written exactly as before they existed. [`write_buffers_obj_with`] writes caller-owned
+//! buffers, UV values and a value per corner ([`UvBuffers`]) included. Files are written to a
+//! temporary file in the target folder and renamed over the target only when complete, so no
+//! partial output is ever left behind ([`write_atomically`]: also `-` for standard output,
+//! symbolic links, special files, write-protected targets and signals).
 //!
 //! # Example
 //!
