@@ -172,6 +172,10 @@ pub(crate) struct SubdivideArgs {
     /// has them.
     #[arg(long)]
     pub(crate) no_uv: bool,
+    /// Write area-weighted vertex normals of the output as vn lines (faces v/vt/vn, or v//vn
+    /// without UVs).
+    #[arg(long)]
+    pub(crate) normals: bool,
 }
 
 /// `subdivide --precision`.

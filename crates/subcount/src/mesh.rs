@@ -3,6 +3,7 @@
 use std::io::Write;
 use std::time::{Duration, Instant};
 
+use halfedge::io::ObjWriteOptions;
 use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
 use halfedge::tags::FaceVaryingInterpolation;
 use halfedge::uv::UvLayout;
@@ -856,11 +857,18 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
 
     let t2 = Instant::now();
     if let Some(path) = &args.output {
+        // UVs only when refined (a level-0 copy of the face list keeps the file's), normals
+        // of the output with --normals.
+        let options = ObjWriteOptions::default()
+            .with_uvs(uvs.is_some())
+            .with_normals(args.normals);
         match &result {
-            Output::Mesh(m) => halfedge::io::write_obj_file(m, path),
-            Output::Polygons(p) => halfedge::io::write_polygon_obj_file(p, path),
-            Output::Faces(level) => halfedge::io::write_polygon_obj_file(&level.mesh, path),
-            Output::Refined(r) => r.write(path),
+            Output::Mesh(m) => halfedge::io::write_obj_file_with(m, path, &options),
+            Output::Polygons(p) => halfedge::io::write_polygon_obj_file_with(p, path, &options),
+            Output::Faces(level) => {
+                halfedge::io::write_polygon_obj_file_with(&level.mesh, path, &options)
+            }
+            Output::Refined(r) => r.write(path, &options),
         }
         .map_err(|e| Failure::new(Kind::Input, e))?;
     }

@@ -8,14 +8,14 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use halfedge::glam::DVec3;
-use halfedge::io::FaceBuffers;
+use halfedge::io::{FaceBuffers, ObjWriteOptions, UvBuffers};
 use halfedge::subdivide::{LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
 
 use crate::args::Precision;
 
-/// Writes a level to a path.
-type Writer = dyn Fn(&Path) -> halfedge::Result<()>;
+/// Writes a level to a path, with the writer's options.
+type Writer = dyn Fn(&Path, &ObjWriteOptions) -> halfedge::Result<()>;
 
 /// What a refine-once run produced and measured.
 pub(crate) struct Refined {
@@ -36,9 +36,10 @@ pub(crate) struct Refined {
 }
 
 impl Refined {
-    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]).
-    pub(crate) fn write(&self, path: &Path) -> halfedge::Result<()> {
-        (self.write)(path)
+    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]), its
+    /// UVs when they were refined and `options` asks for them, normals when it asks.
+    pub(crate) fn write(&self, path: &Path, options: &ObjWriteOptions) -> halfedge::Result<()> {
+        (self.write)(path, options)
     }
 }
 
@@ -190,7 +191,7 @@ fn run_in<T: Scalar>(
     let uv_summary = uvs
         .as_ref()
         .map(|(values, _, time)| (values.len(), uv_topology, *time));
-    let write = Box::new(move |path: &Path| {
+    let write = Box::new(move |path: &Path, options: &ObjWriteOptions| {
         let faces = match degree {
             Some(degree) => FaceBuffers::Uniform {
                 degree,
@@ -201,9 +202,10 @@ fn run_in<T: Scalar>(
                 indices: &indices,
             },
         };
-        // The UV buffers are written once the OBJ writer takes them (uvio).
-        let _ = &uvs;
-        halfedge::io::write_buffers_obj_file(&out, faces, path)
+        let uvs = uvs
+            .as_ref()
+            .map(|(values, corners, _)| UvBuffers { values, corners });
+        halfedge::io::write_buffers_obj_file_with(&out, faces, uvs, path, options)
     });
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],

@@ -508,3 +508,178 @@ fn sqrt3_on_spot_writes_without_uvs_saying_so() {
     );
     assert!(!written.contains("vt "));
 }
+
+/// The `vt`, `vn` and face lines of an OBJ text, and the forms of its face corners: how many
+/// corners have a `vt` and how many a `vn`, of all corners.
+struct ObjShape {
+    vt: usize,
+    vn: usize,
+    faces: usize,
+    corners: usize,
+    with_vt: usize,
+    with_vn: usize,
+}
+
+fn shape(text: &str) -> ObjShape {
+    let mut s = ObjShape {
+        vt: 0,
+        vn: 0,
+        faces: 0,
+        corners: 0,
+        with_vt: 0,
+        with_vn: 0,
+    };
+    for line in text.lines() {
+        if line.starts_with("vt ") {
+            s.vt += 1;
+        } else if line.starts_with("vn ") {
+            s.vn += 1;
+        } else if let Some(corners) = line.strip_prefix("f ") {
+            s.faces += 1;
+            for corner in corners.split_whitespace() {
+                let parts: Vec<&str> = corner.split('/').collect();
+                s.corners += 1;
+                s.with_vt += usize::from(parts.get(1).is_some_and(|t| !t.is_empty()));
+                s.with_vn += usize::from(parts.get(2).is_some_and(|n| !n.is_empty()));
+            }
+        }
+    }
+    s
+}
+
+/// The `vt` lines of an OBJ text.
+fn vt_lines(text: &str) -> Vec<&str> {
+    text.lines().filter(|l| l.starts_with("vt ")).collect()
+}
+
+#[test]
+fn the_written_file_has_every_uv_value_and_a_vt_at_every_corner() {
+    let cube = data("uv_cube.obj");
+    for precision in ["f64", "f32"] {
+        let (summary, _, text) = subdivide(
+            &cube,
+            &[
+                "--scheme",
+                "catmull-clark",
+                "--levels",
+                "2",
+                "--precision",
+                precision,
+            ],
+        );
+        let n = summary_uv(&summary).expect("UV = N") as usize;
+        let s = shape(&text);
+        assert_eq!(s.vt, n, "{precision}");
+        assert_eq!(
+            (s.faces, s.corners, s.with_vt, s.with_vn),
+            (96, 384, 384, 0)
+        );
+        // Read back: every corner has a vt, every vt is used, and each is one UV value.
+        let mesh = halfedge::io::read_obj_from(text.as_bytes(), "out.obj").expect("readable");
+        let uvs = mesh.uvs().expect("a vt at every corner");
+        assert_eq!((uvs.coords().len(), uvs.unreferenced()), (n, 0));
+        let layout = halfedge::stats::uv_counts(&mesh).expect("a layout");
+        assert_eq!(layout.values as usize, n);
+        assert_eq!(layout.charts, 3);
+    }
+}
+
+#[test]
+fn interpolation_modes_move_values_not_their_number() {
+    let cube = data("uv_cube.obj");
+    let written = |mode: Option<&str>| {
+        let mut args = vec!["--scheme", "catmull-clark", "--levels", "2"];
+        if let Some(mode) = mode {
+            args.extend(["--uv-interpolation", mode]);
+        }
+        subdivide(&cube, &args).2
+    };
+    let default = written(None);
+    assert_eq!(written(Some("corners-plus1")), default);
+    let none = written(Some("none"));
+    let all = written(Some("all"));
+    assert_eq!(vt_lines(&none).len(), vt_lines(&all).len());
+    assert_ne!(vt_lines(&none), vt_lines(&all));
+    // Fully smooth UVs pull the chart corners in; bilinear ones keep the unit cube's corners.
+    assert!(all.contains("\nvt 0.0 0.25\n"), "{all}");
+    assert!(!none.contains("\nvt 0.0 0.25\n"));
+    // The positions and faces do not depend on the mode.
+    let geometry = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| l.starts_with("v ") || l.starts_with("f "))
+            .map(str::to_owned)
+            .collect()
+    };
+    assert_eq!(geometry(&none), geometry(&all));
+}
+
+#[test]
+fn the_tag_sets_the_default_mode() {
+    let cube = data("uv_cube.obj");
+    let tagged = data("uv_cube_tagged.obj");
+    let args = ["--scheme", "catmull-clark", "--levels", "2"];
+    let (_, stderr, from_tag) = subdivide(&tagged, &args);
+    assert_eq!(stderr, "");
+    let mut all = args.to_vec();
+    all.extend(["--uv-interpolation", "all"]);
+    assert_eq!(from_tag, subdivide(&cube, &all).2);
+    assert_ne!(from_tag, subdivide(&cube, &args).2);
+}
+
+#[test]
+fn normals_are_written_as_vn_at_every_corner() {
+    let cube = data("uv_cube.obj");
+    for precision in ["f64", "f32"] {
+        let base = [
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "--precision",
+            precision,
+        ];
+        let mut args = base.to_vec();
+        args.push("--normals");
+        let (summary, _, text) = subdivide(&cube, &args);
+        let s = shape(&text);
+        assert_eq!(
+            (s.vn, s.corners, s.with_vt, s.with_vn),
+            (26, 96, 96, 96),
+            "{precision}"
+        );
+        assert_eq!(summary, subdivide(&cube, &base).0);
+        args.push("--no-uv");
+        let (_, _, text) = subdivide(&cube, &args);
+        let s = shape(&text);
+        assert_eq!(
+            (s.vt, s.vn, s.with_vt, s.with_vn),
+            (0, 26, 0, 96),
+            "{precision}"
+        );
+        assert!(text.contains("//"));
+        // Unit normals.
+        for line in text.lines().filter(|l| l.starts_with("vn ")) {
+            let n: Vec<f64> = line[3..]
+                .split_whitespace()
+                .map(|x| x.parse().expect("a number"))
+                .collect();
+            let length = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+            assert!((length - 1.0).abs() < 1e-6, "{line}");
+        }
+    }
+    // Without the flag, no normals.
+    let (_, _, text) = subdivide(&cube, &["--scheme", "catmull-clark", "--levels", "1"]);
+    assert_eq!(shape(&text).vn, 0);
+}
+
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn spot_level_2_reads_back_with_its_3225_uv_values() {
+    let spot = shared("spot_control_mesh.obj");
+    let (_, _, text) = subdivide(&spot, &["--scheme", "catmull-clark", "--levels", "2"]);
+    let s = shape(&text);
+    assert_eq!((s.vt, s.corners, s.with_vt), (3225, 11712, 11712));
+    let mesh = halfedge::io::read_obj_from(text.as_bytes(), "spot2.obj").expect("readable");
+    let uvs = mesh.uvs().expect("a vt at every corner");
+    assert_eq!((uvs.coords().len(), uvs.unreferenced()), (3225, 0));
+}
