@@ -683,3 +683,119 @@ fn spot_level_2_reads_back_with_its_3225_uv_values() {
     let uvs = mesh.uvs().expect("a vt at every corner");
     assert_eq!((uvs.coords().len(), uvs.unreferenced()), (3225, 0));
 }
+
+// ---- against OpenSubdiv ($SUBCOUNT_OSD_DRIVER, $SUBCOUNT_MESHES) ----
+
+/// The differential tests' driver and comparison (`crates/halfedge/tests/osd_support`).
+#[allow(dead_code)]
+#[path = "../../../halfedge/tests/osd_support/mod.rs"]
+mod osd_support;
+
+/// `subcount subdivide -o` of spot (Catmull-Clark, level 2) and spot_triangulated (Loop,
+/// level 1) in every `--uv-interpolation` mode, in `f64` and `f32`, against OpenSubdiv's
+/// `InterpolateFaceVarying` (the driver's `--fvar MODE`): the same UV values, and at every
+/// face corner (faces matched through their positions) the same UV, to 1e-12 of the UV
+/// bounding box's diagonal in `f64` and 1e-6 in `f32`.
+#[test]
+#[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and SUBCOUNT_MESHES"]
+fn written_uvs_match_opensubdiv_in_every_mode() {
+    use halfedge::glam::DVec2;
+    use halfedge::tags::FaceVaryingInterpolation;
+    use osd_support::fvar::opensubdiv_fvar;
+    use osd_support::{bounding_box_diagonal, correspondence, without_bare_vertices, Osd};
+    use std::collections::HashMap;
+
+    osd_support::driver();
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    for (osd, scheme, file, level) in [
+        (Osd::Catmark, "catmull-clark", "spot_control_mesh.obj", 2u32),
+        (Osd::Loop, "loop", "spot_triangulated.obj", 1),
+    ] {
+        let path = testdata::mesh(file);
+        let base = halfedge::io::read_mesh(&path).expect("readable");
+        let diagonal = bounding_box_diagonal(&base.positions);
+        for &mode in FaceVaryingInterpolation::ALL {
+            let running = opensubdiv_fvar(&[], osd, level, &path, None, mode.into());
+            let theirs = running.fvar_level();
+            let their_mesh = without_bare_vertices(&theirs.mesh);
+            let (lo, hi) = theirs.values().iter().fold(
+                (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+                |(lo, hi), &p| (lo.min(p), hi.max(p)),
+            );
+            let scale = (hi - lo).length();
+            for (precision, tolerance) in [("f64", 1e-12), ("f32", 1e-6)] {
+                let what = format!("{file} {scheme} level {level} {} {precision}", mode.name());
+                let out = dir
+                    .path()
+                    .join(format!("{scheme}-{}-{precision}.obj", mode.name()));
+                let out = out.to_str().expect("UTF-8");
+                let levels = level.to_string();
+                ok(&[
+                    "subdivide",
+                    "--mesh",
+                    path.to_str().expect("UTF-8"),
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    &levels,
+                    "--uv-interpolation",
+                    mode.name(),
+                    "--precision",
+                    precision,
+                    "-o",
+                    out,
+                ]);
+                let ours = halfedge::io::read_mesh(out).expect("subcount's output");
+                let our_uvs = ours.uvs().expect("UVs written");
+                assert_eq!(
+                    our_uvs.coords().len(),
+                    theirs.values().len(),
+                    "{what}: values"
+                );
+                let to_ours = correspondence(&their_mesh, &ours, 1e-6 * diagonal)
+                    .unwrap_or_else(|e| panic!("{what}: positions: {e}"));
+                // Our faces by their vertex cycle from its smallest vertex.
+                let key = |face: &[u32]| {
+                    let start = (0..face.len()).min_by_key(|&i| face[i]).unwrap_or(0);
+                    let cycle: Vec<u32> = (0..face.len())
+                        .map(|j| face[(start + j) % face.len()])
+                        .collect();
+                    (cycle, start)
+                };
+                let offsets = ours.face_offsets();
+                let faces: HashMap<Vec<u32>, (usize, usize)> = (0..ours.n_faces())
+                    .map(|f| {
+                        let (cycle, start) = key(ours.face(f));
+                        (cycle, (f, start))
+                    })
+                    .collect();
+                let mut worst = 0.0f64;
+                for f in 0..theirs.mesh.n_faces() {
+                    let mapped: Vec<u32> = their_mesh
+                        .face(f)
+                        .iter()
+                        .map(|&v| to_ours[v as usize])
+                        .collect();
+                    let (cycle, their_start) = key(&mapped);
+                    let &(g, our_start) = faces
+                        .get(&cycle)
+                        .unwrap_or_else(|| panic!("{what}: face {f} has no match"));
+                    let n = mapped.len();
+                    for j in 0..n {
+                        let their_corner = (their_start + j) % n;
+                        let our_corner = (our_start + j) % n;
+                        let t = theirs.values()[theirs.face_values(f)[their_corner] as usize];
+                        let o =
+                            our_uvs.coords()[our_uvs.corners()[offsets[g] + our_corner] as usize];
+                        worst = worst.max((t - o).length() / scale);
+                    }
+                }
+                assert!(
+                    worst <= tolerance,
+                    "{what}: UVs differ by {worst:.3e} of the diagonal"
+                );
+                eprintln!("{what}: max UV deviation {worst:.3e}");
+            }
+        }
+    }
+}
