@@ -686,11 +686,6 @@ fn spot_level_2_reads_back_with_its_3225_uv_values() {
 
 // ---- against OpenSubdiv ($SUBCOUNT_OSD_DRIVER, $SUBCOUNT_MESHES) ----
 
-/// The differential tests' driver and comparison (`crates/halfedge/tests/osd_support`).
-#[allow(dead_code)]
-#[path = "../../../halfedge/tests/osd_support/mod.rs"]
-mod osd_support;
-
 /// `subcount subdivide -o` of spot (Catmull-Clark, level 2) and spot_triangulated (Loop,
 /// level 1) in every `--uv-interpolation` mode, in `f64` and `f32`, against OpenSubdiv's
 /// `InterpolateFaceVarying` (the driver's `--fvar MODE`): the same UV values, and at every
@@ -699,9 +694,9 @@ mod osd_support;
 #[test]
 #[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and SUBCOUNT_MESHES"]
 fn written_uvs_match_opensubdiv_in_every_mode() {
+    use crate::creases::osd_support::{self, fvar::opensubdiv_fvar};
     use halfedge::glam::DVec2;
     use halfedge::tags::FaceVaryingInterpolation;
-    use osd_support::fvar::opensubdiv_fvar;
     use osd_support::{bounding_box_diagonal, correspondence, without_bare_vertices, Osd};
     use std::collections::HashMap;
 
