@@ -144,7 +144,8 @@ pub(crate) struct SubdivideArgs {
     /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = parse_threads)]
     pub(crate) threads: usize,
-    /// Print one line `timings: {...}` on stderr.
+    /// Print one line `timings: {...}` on stderr (with UVs refined, uv_s: the seconds spent
+    /// on them, after the surface's last level).
     #[arg(long)]
     pub(crate) timings: bool,
     /// Grow the output buffers instead of preallocating them (for comparisons).

@@ -422,6 +422,34 @@ fn verify_checks_the_uv_values_of_every_level() {
 }
 
 #[test]
+fn a_non_manifold_face_list_is_subdivided_and_verified_without_uvs_saying_so() {
+    let book = data("uv_book.obj");
+    let run = subcount(&[
+        "verify",
+        "--mesh",
+        &book,
+        "--scheme",
+        "tri-split-2",
+        "--levels",
+        "1",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stderr,
+        format!("note: {book}: UV values are measured on a manifold mesh, and this one is not: no UV rows\n")
+    );
+    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+    let (summary, stderr, written) =
+        subdivide(&book, &["--scheme", "tri-split-3", "--levels", "1"]);
+    assert_eq!(
+        stderr,
+        format!("note: {book}: tri-split-3 runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs\n")
+    );
+    assert_eq!(summary, "level 1: V = 22, E = 48, F = 27; wrote OUT\n");
+    assert!(!written.contains("vt "));
+}
+
+#[test]
 fn a_mesh_without_vt_verifies_and_subdivides_as_before() {
     let tetra = data("tetra.obj");
     let text = ok(&[
