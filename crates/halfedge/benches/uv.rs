@@ -24,7 +24,11 @@ use halfedge::tags::{FaceVaryingInterpolation, SubdivisionOptions};
 use halfedge::{io, HalfEdgeMesh, Rule};
 
 const JOBS: [(&str, Rule, &str); 2] = [
-    ("catmull-clark", Rule::CatmullClark, "spot_quadrangulated.obj"),
+    (
+        "catmull-clark",
+        Rule::CatmullClark,
+        "spot_quadrangulated.obj",
+    ),
     ("loop", Rule::Loop, "spot_triangulated.obj"),
 ];
 const LEVELS: u32 = 3;

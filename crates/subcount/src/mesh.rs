@@ -918,8 +918,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
 /// The face-varying interpolation of a run with UVs: `--uv-interpolation` over the file's
 /// `facevaryinginterpolateboundary` tag over `corners-plus1` ([`resolve_options`] resolved
 /// the tag; [`LoadedMesh::crease_inputs`] hands it on under Loop and Catmull-Clark). One
-/// note when the flag overrides the tag with another value, one when the rule refines UVs
-/// linearly whatever the mode.
+/// note when the flag overrides the tag with another value, one when the rule has no such
+/// mode (the other rules refine UVs linearly, or not at all).
 ///
 /// [`resolve_options`]: crate::model::resolve_options
 fn uv_interpolation(
@@ -940,7 +940,7 @@ fn uv_interpolation(
     }
     if !matches!(rule, Rule::Loop | Rule::CatmullClark) {
         eprintln!(
-            "note: {label}: --uv-interpolation is a mode of loop and catmull-clark; {rule} refines UVs linearly"
+            "note: {label}: --uv-interpolation is a mode of loop and catmull-clark, not applied by {rule}"
         );
     }
     flag

@@ -190,7 +190,7 @@ fn triangle_rules_write_the_uv_values_table_predicts() {
     );
     assert_eq!(
         stderr,
-        format!("note: {cube}: --uv-interpolation is a mode of loop and catmull-clark; midpoint refines UVs linearly\n")
+        format!("note: {cube}: --uv-interpolation is a mode of loop and catmull-clark, not applied by midpoint\n")
     );
     assert_eq!(summary_uv(&summary), Some(45));
     // A base mesh has no UVs: the flag changes nothing and says nothing.
