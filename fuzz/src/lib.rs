@@ -26,7 +26,9 @@ pub const LEVELS: [u64; 4] = [0, 1, 5, 40];
 
 /// Loads OBJ bytes, then runs the half-edge construction and both face-list statistics; and
 /// OpenSubdiv's tags: a file read with tags is read without them too (same positions and
-/// faces, no tags), and the tags the reader accepted pass `Tags::check_against` on its mesh.
+/// faces, no tags), and the tags the reader accepted pass `Tags::check_against` on its mesh;
+/// and texture coordinates: a `vt` per corner within the file's (then a UV layout and its
+/// statistics), or a partial record consistent with the faces.
 pub fn obj(data: &[u8]) -> u64 {
     let loaded = io::read_obj_from(data, "fuzz.obj");
     let mut work = 0;
@@ -48,6 +50,25 @@ pub fn obj(data: &[u8]) -> u64 {
         assert!(!plain.has_tags());
         assert_eq!(plain.positions, mesh.positions);
         assert_eq!(plain.face_indices(), mesh.face_indices());
+        assert_eq!(plain.uvs(), mesh.uvs());
+        if let Some(uvs) = mesh.uvs() {
+            assert_eq!(uvs.corners().len(), mesh.n_corners(), "a vt per corner");
+            assert!(uvs
+                .corners()
+                .iter()
+                .all(|&t| (t as usize) < uvs.coords().len()));
+            assert_eq!(mesh.partial_uvs(), None);
+            let layout = mesh.uv_layout().expect("texture coordinates give a layout");
+            assert!(layout.n_values() <= mesh.n_corners());
+            let counts = stats::uv_counts(mesh).expect("texture coordinates give a layout");
+            assert_eq!(counts.unreferenced, uvs.unreferenced() as u64);
+            work += (uvs.coords().len() + layout.n_values()) as u64 + counts.edges;
+        }
+        if let Some(partial) = mesh.partial_uvs() {
+            assert!(mesh.uvs().is_none());
+            assert!(0 < partial.with_vt && partial.with_vt < partial.corners);
+            assert_eq!(partial.corners, mesh.n_corners());
+        }
     }
     work + mesh_work(loaded)
 }

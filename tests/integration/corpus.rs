@@ -198,6 +198,29 @@ fn corpus_seeds_load_as_expected() {
     );
     let before = load("tags-before-faces.obj").expect("tags may precede the faces");
     assert_eq!(before.tags().hole_faces(), [0]);
+    // Texture coordinates: every corner form, negative and forward indices, partial, unused.
+    let vts = |name: &str| {
+        let mesh = load(name).unwrap_or_else(|e| panic!("{e}"));
+        let uvs = mesh.uvs().unwrap_or_else(|| panic!("{name}: no uvs"));
+        (uvs.corners().to_vec(), uvs.unreferenced())
+    };
+    assert_eq!(vts("vt-corner-forms.obj"), (vec![0, 1, 2, 3, 0, 2, 3], 0));
+    assert_eq!(vts("vt-negative-indices.obj"), (vec![0, 1, 2, 3, 2, 0], 0));
+    assert_eq!(vts("vt-unused-entries.obj"), (vec![0, 1, 4], 2));
+    let partial = load("vt-partial.obj").expect("a partial layout is no error");
+    assert_eq!(
+        partial.partial_uvs().map(|p| p.to_string()).as_deref(),
+        Some("3 of 6 face corners have texture coordinates: no UV layout")
+    );
+    for (name, end) in [
+        ("vt-index-out-of-range.obj", "line 6: corner 3: texture coordinate index 3 is out of range (the file has 2 texture coordinates)"),
+        ("vt-forward-and-negative-out-of-range.obj", "line 5: corner 1: texture coordinate index -9 is out of range (the file has 0 texture coordinates)"),
+        ("vt-one-value.obj", "line 4: texture coordinate has 1 values, expected u v (and an optional w)"),
+        ("vt-index-zero.obj", "line 5: corner 2: `0` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+    ] {
+        let err = load(name).unwrap_err();
+        assert!(err.ends_with(end), "{name}: {err}");
+    }
 }
 
 /// OBJ-ish text: statements built from a small vocabulary, so the fuzzing reaches the face
@@ -210,6 +233,8 @@ fn obj_text() -> impl Strategy<Value = String> {
         Just("4294967296".to_string()),
         (1i64..8).prop_map(|i| format!("{i}/1/1")),
         (1i64..8).prop_map(|i| format!("{i}//2")),
+        (1i64..8, -4i64..6).prop_map(|(i, t)| format!("{i}/{t}")),
+        (-8i64..0, 1i64..4).prop_map(|(i, t)| format!("{i}/{t}/1")),
     ];
     let coordinate = prop_oneof![
         (-3i32..3).prop_map(|x| x.to_string()),
@@ -218,8 +243,9 @@ fn obj_text() -> impl Strategy<Value = String> {
         Just("x".to_string()),
     ];
     let statement = prop_oneof![
-        4 => prop::collection::vec(coordinate, 0..5).prop_map(|c| format!("v {}", c.join(" "))),
+        4 => prop::collection::vec(coordinate.clone(), 0..5).prop_map(|c| format!("v {}", c.join(" "))),
         6 => prop::collection::vec(index, 0..6).prop_map(|i| format!("f {}", i.join(" "))),
+        3 => prop::collection::vec(coordinate.clone(), 0..4).prop_map(|c| format!("vt {}", c.join(" "))),
         1 => Just("g part".to_string()),
         1 => Just("# comment".to_string()),
         1 => Just("f 1 2 \\".to_string()),

@@ -331,15 +331,30 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
          component of their own (each splits into `N` boundary edges). For Catmull-Clark this \
          is OpenSubdiv's face-varying refinement in every linear-interpolation mode (the mode \
          moves values, it does not add or remove them).\n\n\
+         **OpenSubdiv's sibling values.** Before refining, OpenSubdiv numbers the values at \
+         each vertex along its faces in their order around it (`FVarLevel::\
+         completeTopologyFromFaceValues`, the order of `Level::orderVertexFacesAndEdges`: an \
+         interior vertex from its first face, a boundary vertex from the face whose side leaving \
+         it is a boundary edge, then across the side entering the vertex; a vertex whose faces \
+         are not one oriented fan in face order). While it knows exactly two values it compares \
+         a new run only with the first, so the order A, B, A, B makes the second run of B a \
+         value of its own, which every level keeps. `UvCounts::split_values` counts these \
+         (osd_catmark_bishop: 3244 (vertex, `vt`) pairs, 39 split values, 7991 values at level \
+         1; none on spot, blub, cylinder_ngon, the pawn). Loop and Catmull-Clark, OpenSubdiv's \
+         rules, start from `UV0 = V + split_values`; the other rules refine the layout as a \
+         mesh and start from `UV0 = V`.\n\n\
          **Level 0** is the number of `vt` entries that some corner uses. The recurrences \
-         start from the layout's values `UV0` (the (vertex, `vt`) pairs) and give the real \
-         count from level 1 on; the two agree at level 0 as well when no `vt` is shared by two \
-         vertices. OpenSubdiv's level 0 counts the file's whole `vt` list, unused entries \
+         start from `UV0` and give the real count from level 1 on; the two agree at level 0 as \
+         well when no `vt` is shared by two vertices and nothing is split. OpenSubdiv's level 0 counts the file's whole `vt` list, unused entries \
          included (`GetNumFVarValues(0)`); ours counts what the faces use, and \
-         `subcount stats` reports the unused ones as `unreferenced`.\n\n\
+         `subcount stats` reports the unused ones as `unreferenced`. From level 1 on \
+         OpenSubdiv also keeps one value at each bare vertex (a position no face uses), used \
+         by no face; ours does not count it, as `V` leaves bare vertices out.\n\n\
          **Holes.** What is written at level `s` is level `s` of the written faces, so the \
          layout of the written faces (their corners' values) counts the written UV values \
-         exactly, as their `MeshCounts` count `V`, `E`, `F` (`HoleSet::written_uv_counts`).\n\n",
+         exactly, as their `MeshCounts` count `V`, `E`, `F` (`HoleSet::written_uv_counts`); \
+         its split values are the siblings of the whole mesh (holes are refined too) that \
+         written faces use.\n\n",
     );
     let mut not_counted = Vec::new();
     for rule in schemes::Rule::ALL {

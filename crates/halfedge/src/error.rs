@@ -68,6 +68,32 @@ pub enum ParseError {
         /// Number of vertices defined before this line (OBJ) or in the file (OFF).
         vertices: u64,
     },
+    /// A texture-coordinate line (`vt u v [w]`) with fewer than two values.
+    #[error("texture coordinate has {found} values, expected u v (and an optional w)")]
+    MissingTexCoords {
+        /// How many values the line has.
+        found: usize,
+    },
+    /// A face corner's texture-coordinate index (`v/vt`, `v/vt/vn`) that is not a non-zero
+    /// integer fitting 32 bits.
+    #[error("corner {corner}: `{token}` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)")]
+    InvalidTexCoordIndex {
+        /// The corner on the face line (1-based).
+        corner: usize,
+        /// The index as written (shortened when long).
+        token: String,
+    },
+    /// A face corner's texture-coordinate index that refers past the `vt` lines of the file
+    /// (or, negative, before the first one).
+    #[error("corner {corner}: texture coordinate index {index} is out of range (the file has {count} texture coordinates)")]
+    TexCoordIndexOutOfRange {
+        /// The corner on the face line (1-based).
+        corner: usize,
+        /// The index as written in the file.
+        index: i64,
+        /// Number of `vt` lines before this line (negative indices) or in the file.
+        count: u64,
+    },
     /// A face with fewer than three corners.
     #[error("face has {corners} vertices, at least 3 are needed")]
     FaceTooSmall {

@@ -3,7 +3,7 @@
 use glam::DVec3;
 
 use crate::tags::{IgnoredTag, TagError, Tags};
-use crate::uv::{UvError, UvLayout, Uvs};
+use crate::uv::{PartialUvs, UvError, UvLayout, Uvs};
 
 /// A polygon mesh as a plain face list: vertex positions and, per face, its vertex indices
 /// (0-based) in order.
@@ -45,6 +45,8 @@ pub struct PolygonMesh {
     ignored_tags: Vec<IgnoredTag>,
     /// Texture coordinates, when every face corner has one.
     uvs: Option<Uvs>,
+    /// For a file where only some corners name a `vt`: how many.
+    partial_uvs: Option<PartialUvs>,
 }
 
 impl Default for PolygonMesh {
@@ -57,13 +59,15 @@ impl Default for PolygonMesh {
             tags: Tags::default(),
             ignored_tags: Vec::new(),
             uvs: None,
+            partial_uvs: None,
         }
     }
 }
 
-/// Equal positions, faces and [`tags`](PolygonMesh::tags) (creases, corners, holes and
-/// options change the surface). Where the faces were read from and which tags the reader
-/// ignored ([`PolygonMesh::ignored_tags`]) do not matter.
+/// Equal positions, faces, [`tags`](PolygonMesh::tags) (creases, corners, holes and
+/// options change the surface) and [`uvs`](PolygonMesh::uvs). Where the faces were read
+/// from, which tags the reader ignored ([`PolygonMesh::ignored_tags`]) and why a file gave no
+/// UVs ([`PolygonMesh::partial_uvs`]) do not matter.
 impl PartialEq for PolygonMesh {
     fn eq(&self, other: &PolygonMesh) -> bool {
         self.positions == other.positions
@@ -114,6 +118,7 @@ impl PolygonMesh {
             tags: Tags::default(),
             ignored_tags: Vec::new(),
             uvs: None,
+            partial_uvs: None,
         }
     }
 
@@ -234,13 +239,43 @@ impl PolygonMesh {
     }
 
     /// The texture coordinates ([`crate::uv`]): a `vt` per face corner, when the file gave one
-    /// to every corner or [`set_uvs`](Self::set_uvs) set them; `None` otherwise.
+    /// to every corner or [`set_uvs`](Self::set_uvs) set them; `None` otherwise (see
+    /// [`partial_uvs`](Self::partial_uvs) for a file where only some corners have one).
+    ///
+    /// ```
+    /// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 9 9\nf 1/1 2/2 3/-2\n";
+    /// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "uv.obj")?;
+    /// let uvs = mesh.uvs().expect("every corner has a vt");
+    /// assert_eq!(uvs.corners(), [0, 1, 2]);
+    /// assert_eq!((uvs.coords().len(), uvs.unreferenced()), (4, 1));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn uvs(&self) -> Option<&Uvs> {
         self.uvs.as_ref()
     }
 
+    /// Why the mesh has no [`uvs`](Self::uvs) although its file names texture coordinates:
+    /// `Some` when only some of its face corners have a `vt` ([`PartialUvs`]: how many of
+    /// how many); `None` when every corner has one (the mesh has UVs), when none has one, and
+    /// for meshes not read from an OBJ file or whose UVs were [set](Self::set_uvs).
+    pub fn partial_uvs(&self) -> Option<PartialUvs> {
+        self.partial_uvs
+    }
+
+    /// The reader's texture coordinates (one `vt` per corner, checked by the reader) or the
+    /// record of a file where only some corners have one.
+    pub(crate) fn set_read_uvs(&mut self, uvs: Option<Uvs>, partial: Option<PartialUvs>) {
+        debug_assert!(uvs
+            .as_ref()
+            .map_or(true, |u| u.corners().len() == self.n_corners()));
+        debug_assert!(uvs.is_none() || partial.is_none());
+        self.uvs = uvs;
+        self.partial_uvs = partial;
+    }
+
     /// Sets (or, with `None`, removes) the texture coordinates, checked against the faces the
-    /// mesh has now: one `vt` per face corner.
+    /// mesh has now: one `vt` per face corner. On success the reader's record of partial
+    /// texture coordinates ([`partial_uvs`](Self::partial_uvs)) is cleared.
     ///
     /// # Errors
     ///
@@ -256,6 +291,7 @@ impl PolygonMesh {
             }
         }
         self.uvs = uvs;
+        self.partial_uvs = None;
         Ok(())
     }
 

@@ -105,14 +105,26 @@ pub(crate) fn uv_counts_of_faces(
     }
     let unreferenced = used.iter().filter(|&&u| !u).count() as u64;
     // A layout built by `UvLayout::new` is consistent, so `from_layout` accepts it.
-    UvCounts::from_layout(
+    let mut counts = UvCounts::from_layout(
         &kept_offsets,
         &vertex_corners,
         &value_corners,
         &value_vts,
         unreferenced,
     )
-    .ok()
+    .ok()?;
+    if kept_offsets.len() <= mesh.n_faces() {
+        // Some faces are left out: a vertex's sibling values are those of all its faces.
+        counts.split_values = UvCounts::kept_split_values(
+            offsets,
+            mesh.face_indices(),
+            layout.corners(),
+            layout.n_values(),
+            keep,
+        )
+        .ok()?;
+    }
+    Some(counts)
 }
 
 /// The defects of a face list that make [`HalfEdgeMesh`] refuse it (or would, for some of

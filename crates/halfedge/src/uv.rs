@@ -63,6 +63,12 @@ impl Uvs {
         Ok(Uvs { coords, corners })
     }
 
+    /// What the OBJ reader read: every corner names an existing coordinate.
+    pub(crate) fn from_read(coords: Vec<DVec2>, corners: Vec<u32>) -> Uvs {
+        debug_assert!(corners.iter().all(|&c| (c as usize) < coords.len()));
+        Uvs { coords, corners }
+    }
+
     /// The texture coordinates (`vt` entries), used or not.
     pub fn coords(&self) -> &[DVec2] {
         &self.coords
@@ -85,6 +91,38 @@ impl Uvs {
     /// The coordinates and corners.
     pub fn into_parts(self) -> (Vec<DVec2>, Vec<u32>) {
         (self.coords, self.corners)
+    }
+}
+
+/// Why a mesh read from a file has no texture coordinates although some of its face corners
+/// name a `vt`: only `with_vt` of its `corners` face corners do, so there is no UV layout
+/// (a layout needs a value at every corner). Reading such a file is not an error; the mesh
+/// records this in [`PolygonMesh::partial_uvs`](crate::PolygonMesh::partial_uvs).
+///
+/// ```
+/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\nf 2 4 3\n";
+/// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "half.obj")?;
+/// assert!(mesh.uvs().is_none());
+/// let partial = mesh.partial_uvs().expect("some corners have a vt");
+/// assert_eq!((partial.with_vt, partial.corners), (3, 6));
+/// assert_eq!(partial.to_string(), "3 of 6 face corners have texture coordinates: no UV layout");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PartialUvs {
+    /// The face corners that name a `vt` (at least one, fewer than `corners`).
+    pub with_vt: usize,
+    /// All face corners of the mesh.
+    pub corners: usize,
+}
+
+impl std::fmt::Display for PartialUvs {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} of {} face corners have texture coordinates: no UV layout",
+            self.with_vt, self.corners
+        )
     }
 }
 

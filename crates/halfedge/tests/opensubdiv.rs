@@ -32,10 +32,12 @@
 //! The driver's face-varying UV channel (`--fvar MODE`, `--fvar-counts`) is run through
 //! `osd_support::fvar`; its own tests (issue 14's UV value counts, the channel leaving
 //! positions and faces alone, the `facevaryinginterpolateboundary` tag, holes) are in
-//! `fvar_reference`.
+//! `fvar_reference`; the UV value counts `schemes::uv` predicts are compared with its
+//! `--fvar-counts` on every shared mesh with UVs in `uv_count_reference`.
 
 mod fvar_reference;
 mod osd_support;
+mod uv_count_reference;
 
 use std::path::{Path, PathBuf};
 

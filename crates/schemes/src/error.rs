@@ -222,6 +222,10 @@ pub enum Error {
         "no limit given: set a maximum number of vertices, edges or faces, or a memory budget"
     )]
     NoLimit,
+    /// A budget limits UV values (`max_uv`, `bytes_per_uv`) but the search has no UV layout
+    /// to count them from ([`fit`](crate::fit) rather than [`fit_uv`](crate::fit_uv)).
+    #[error("a UV limit needs a mesh with a UV layout (texture coordinates at every face corner)")]
+    NoUvLayout,
     /// A byte size such as `2GiB` could not be parsed.
     #[error("byte size `{text}`: {reason}")]
     ByteSize {

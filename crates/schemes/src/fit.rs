@@ -33,6 +33,7 @@
 use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};
 
+use crate::uv::UvCounter;
 use crate::{Error, LevelCounts, Plan, Result};
 
 /// Limits for [`fit`]; every limit that is set must hold.
@@ -44,11 +45,21 @@ pub struct Budget {
     pub max_edges: Option<BigInt>,
     /// At most this many faces.
     pub max_faces: Option<BigInt>,
+    /// At most this many UV values (needs a UV layout: [`fit_uv`]).
+    pub max_uv: Option<BigInt>,
     /// At most this many bytes for a mesh layout.
     pub memory: Option<MemoryBudget>,
 }
 
-/// A byte budget `bytes_per_vertex * V + bytes_per_edge * E + bytes_per_face * F <= bytes`.
+impl Budget {
+    /// Whether a limit counts UV values (`max_uv`, or `bytes_per_uv` in the memory budget).
+    pub fn limits_uv(&self) -> bool {
+        self.max_uv.is_some() || self.memory.as_ref().is_some_and(|m| m.bytes_per_uv > 0)
+    }
+}
+
+/// A byte budget `bytes_per_vertex * V + bytes_per_edge * E + bytes_per_face * F
+/// + bytes_per_uv * UV <= bytes`.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MemoryBudget {
     /// The budget in bytes.
@@ -59,6 +70,8 @@ pub struct MemoryBudget {
     pub bytes_per_edge: u64,
     /// Bytes per face (e.g. 12 for three `u32` indices).
     pub bytes_per_face: u64,
+    /// Bytes per UV value (e.g. 8 for two `f32`; 0 without UVs). Needs a UV layout: [`fit_uv`].
+    pub bytes_per_uv: u64,
 }
 
 /// The answer of [`fit`].
@@ -151,21 +164,24 @@ impl Fit {
 /// The largest state (in total bits) a search computes: 2^26 bits, 8 MiB.
 const MAX_STATE_BITS: u64 = 1 << 26;
 
+/// The counts a quantity weighs: `V, E, F, UV`.
+type Counts4 = [BigInt; 4];
+
 struct Quantity {
     name: String,
     bound: BigInt,
-    weights: [BigInt; 3],
+    weights: Counts4,
 }
 
 impl Quantity {
-    fn value(&self, vef: &[BigInt; 3]) -> BigInt {
+    fn value(&self, vef: &Counts4) -> BigInt {
         self.weights.iter().zip(vef).map(|(w, x)| w * x).sum()
     }
 }
 
 fn quantities(budget: &Budget) -> Vec<Quantity> {
     let one = |k: usize| {
-        let mut w: [BigInt; 3] = Default::default();
+        let mut w: Counts4 = Default::default();
         w[k] = BigInt::from(1);
         w
     };
@@ -174,6 +190,7 @@ fn quantities(budget: &Budget) -> Vec<Quantity> {
         ("V", &budget.max_vertices, 0),
         ("E", &budget.max_edges, 1),
         ("F", &budget.max_faces, 2),
+        ("UV", &budget.max_uv, 3),
     ] {
         if let Some(b) = bound {
             out.push(Quantity {
@@ -187,7 +204,13 @@ fn quantities(budget: &Budget) -> Vec<Quantity> {
         out.push(Quantity {
             name: "bytes".into(),
             bound: m.bytes.clone(),
-            weights: [m.bytes_per_vertex, m.bytes_per_edge, m.bytes_per_face].map(BigInt::from),
+            weights: [
+                m.bytes_per_vertex,
+                m.bytes_per_edge,
+                m.bytes_per_face,
+                m.bytes_per_uv,
+            ]
+            .map(BigInt::from),
         });
     }
     out
@@ -205,21 +228,31 @@ enum Crossing {
 struct Probe<'a> {
     plan: &'a Plan,
     x0: &'a [BigInt],
-    weights: Vec<[BigInt; 3]>,
+    /// The UV values, when a limit counts them.
+    uv: Option<&'a UvCounter>,
+    weights: Vec<Counts4>,
     names: Vec<String>,
 }
 
 impl Probe<'_> {
-    fn values_of(&self, vef: &[BigInt; 3]) -> Vec<BigInt> {
-        self.weights
+    /// The quantities from `V, E, F` and the UV values at `level` (0 without a UV limit).
+    fn values_of(&self, vef: [BigInt; 3], level: u64) -> Result<Vec<BigInt>> {
+        let uv = match self.uv {
+            Some(uv) => uv.values_at(level)?,
+            None => BigInt::zero(),
+        };
+        let [v, e, f] = vef;
+        let counts: Counts4 = [v, e, f, uv];
+        Ok(self
+            .weights
             .iter()
-            .map(|w| w.iter().zip(vef).map(|(a, b)| a * b).sum())
-            .collect()
+            .map(|w| w.iter().zip(&counts).map(|(a, b)| a * b).sum())
+            .collect())
     }
 
     fn at(&self, level: u64) -> Result<Vec<BigInt>> {
         let state = self.plan.state_at(self.x0, level)?;
-        Ok(self.values_of(&self.plan.vef(level, &state)?))
+        self.values_of(self.plan.vef(level, &state)?, level)
     }
 
     /// Refuses, before materializing it, a level whose largest count is estimated at more
@@ -247,11 +280,11 @@ impl Probe<'_> {
         if bits > MAX_STATE_BITS {
             return Err(Error::SearchTooLarge { level: h, bits });
         }
-        let mut out = vec![self.values_of(&scheme.vef(&state)?)];
+        let mut out = vec![self.values_of(scheme.vef(&state)?, h)?];
         // `h..end` shifted by one: no overflow when the search reaches `u64::MAX`.
         for level in (h..h.saturating_add(w)).map(|l| l + 1) {
             state = crate::scheme::apply(scheme.rule().matrix_of_step(level - start), &state);
-            out.push(self.values_of(&scheme.vef(&state)?));
+            out.push(self.values_of(scheme.vef(&state)?, level)?);
         }
         Ok(out)
     }
@@ -294,7 +327,10 @@ impl Probe<'_> {
         if let Some(last) = self.plan.last_level() {
             return self.bounded(hit, last, v0);
         }
-        let w = (scheme.dim() as u64).saturating_mul(scheme.period());
+        // With UV values the quantities follow the two recurrences side by side: the window
+        // covers the order of both.
+        let uv_dim = self.uv.map_or(0, |uv| uv.dim() as u64);
+        let w = (scheme.dim() as u64 + uv_dim).saturating_mul(scheme.period());
         let mut lo = (0u64, v0);
         loop {
             let values = self.window(h, w)?;
@@ -439,6 +475,50 @@ impl Probe<'_> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn fit(plan: &Plan, x0: &[BigInt], budget: &Budget) -> Result<Fit> {
+    if budget.limits_uv() {
+        return Err(Error::NoUvLayout);
+    }
+    search(plan, x0, None, budget)
+}
+
+/// [`fit`] with the UV values of a mesh's layout (`uv`, from
+/// [`Counter::uv_counter`](crate::Counter::uv_counter) for the same plan), so that
+/// [`Budget::max_uv`] and [`MemoryBudget::bytes_per_uv`] count too: the highest level whose
+/// `V`, `E`, `F`, UV values and bytes stay within every limit.
+///
+/// # Errors
+///
+/// As [`fit`].
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use schemes::uv::UvCounts;
+/// use schemes::{fit_uv, Budget, Counter, Fit, MemoryBudget, Plan};
+///
+/// // spot_control_mesh: UV(s) = 183 4^s + 72 2^s + 9 from level 1 (885, 3225, 12297, ...).
+/// let spot = UvCounts { values: 267, edges: 438, boundary_edges: 144, used_vt: 267,
+///                       faces: 180, corners: 732, ..UvCounts::default() };
+/// let plan = Plan::parse("catmull-clark")?;
+/// let x0 = [188, 366, 0, 180, 732].map(BigInt::from);
+/// let uv = Counter::from(plan.clone()).uv_counter(&spot)?;
+/// let budget = Budget { max_uv: Some(BigInt::from(12296)), ..Budget::default() };
+/// let Fit::Level(c) = fit_uv(&plan, &x0, &uv, &budget)? else { panic!("UV grows") };
+/// assert_eq!(c.level, 2);
+/// // 8 bytes per UV value on top of the default positions and faces.
+/// let memory = MemoryBudget { bytes: BigInt::from(1 << 20), bytes_per_vertex: 12,
+///                             bytes_per_face: 16, bytes_per_uv: 8, ..MemoryBudget::default() };
+/// let budget = Budget { memory: Some(memory), ..Budget::default() };
+/// assert_eq!(fit_uv(&plan, &x0, &uv, &budget)?.highest_level(64), Some(3));
+/// // Without a layout a UV limit is refused.
+/// assert!(schemes::fit(&plan, &x0, &budget).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn fit_uv(plan: &Plan, x0: &[BigInt], uv: &UvCounter, budget: &Budget) -> Result<Fit> {
+    search(plan, x0, Some(uv), budget)
+}
+
+/// The search of [`fit`] and [`fit_uv`].
+fn search(plan: &Plan, x0: &[BigInt], uv: Option<&UvCounter>, budget: &Budget) -> Result<Fit> {
     let qs = quantities(budget);
     if qs.is_empty() {
         return Err(Error::NoLimit);
@@ -446,6 +526,7 @@ pub fn fit(plan: &Plan, x0: &[BigInt], budget: &Budget) -> Result<Fit> {
     let probe = Probe {
         plan,
         x0,
+        uv,
         weights: qs.iter().map(|q| q.weights.clone()).collect(),
         names: qs.iter().map(|q| q.name.clone()).collect(),
     };
@@ -454,7 +535,11 @@ pub fn fit(plan: &Plan, x0: &[BigInt], budget: &Budget) -> Result<Fit> {
     match probe.first(&exceeds)? {
         Crossing::At(0) => {
             let c = plan.level_counts(x0, 0)?;
-            let vef = [c.vertices.clone(), c.edges.clone(), c.faces.clone()];
+            let uv0 = match uv {
+                Some(uv) => uv.values_at(0)?,
+                None => BigInt::zero(),
+            };
+            let vef = [c.vertices.clone(), c.edges.clone(), c.faces.clone(), uv0];
             let detail: Vec<String> = qs
                 .iter()
                 .filter(|q| q.value(&vef) > q.bound)
@@ -652,7 +737,8 @@ pub fn level_for_area(
     let probe = Probe {
         plan,
         x0,
-        weights: vec![[1, 0, 0].map(BigInt::from)],
+        uv: None,
+        weights: vec![[1, 0, 0, 0].map(BigInt::from)],
         names: vec!["V".into()],
     };
     let reached = |v: &[BigInt]| v[0].to_f64().unwrap_or(f64::INFINITY) >= needed;
@@ -769,6 +855,7 @@ mod tests {
                 bytes_per_vertex: 12,
                 bytes_per_edge: 0,
                 bytes_per_face: 12,
+                bytes_per_uv: 0,
             }),
             ..max_vertices(12)
         };

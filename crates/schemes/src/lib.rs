@@ -93,7 +93,7 @@ pub use crate::counter::{
 pub use crate::counts::{first_repeated_vertex, DisjointSets, MeshCounts, Stat};
 pub use crate::error::{Error, Result};
 pub use crate::fit::{
-    density, fit, level_for_area, parse_byte_size, Budget, Density, Fit, MemoryBudget,
+    density, fit, fit_uv, level_for_area, parse_byte_size, Budget, Density, Fit, MemoryBudget,
 };
 pub use crate::input::{parse_init, CountsInput, Facts};
 pub use crate::plan::{Plan, Stage};

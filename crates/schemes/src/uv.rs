@@ -27,17 +27,31 @@
 //! `-general` scheme) applied to the layout's statistics, with the layout's boundary edges
 //! added (each splits into `N` boundary edges): see [`UvScheme`] for each rule's matrix.
 //!
+//! **OpenSubdiv's sibling values.** Before refining, OpenSubdiv numbers the values at each
+//! vertex along its faces in their order around it; while it knows exactly two it compares a
+//! new run only with the first, so the order A, B, A, B makes the second run of B a value of
+//! its own, kept at every level ([`UvCounts::split_values`] counts them; osd_catmark_bishop
+//! has 39, so its 3244 (vertex, `vt`) pairs give 7991 values at level 1, not 7952). Loop and
+//! Catmull-Clark, OpenSubdiv's rules, start from `UV0 = V + split_values`; the other rules
+//! refine the layout as a mesh and start from `UV0 = V` ([`UvScheme::splits_siblings`]). In
+//! a composition only the first stage starts from split values.
+//!
 //! **Level 0** is the number of `vt` entries some corner uses ([`UvCounts::used_vt`]); the
-//! recurrence's `UV` component starts from the layout's values `V` (the (vertex, `vt`) pairs)
-//! and equals the real count from level 1 on ([`UvScheme::VALID_FROM`]); the two agree at
-//! level 0 too when no `vt` is shared by two vertices. OpenSubdiv's level 0 is the whole `vt`
+//! recurrence's `UV` component starts from `UV0` and equals the real count from level 1 on
+//! ([`UvScheme::VALID_FROM`]); the two agree at level 0 too when no `vt` is shared by two
+//! vertices and nothing is split. OpenSubdiv's level 0 is the whole `vt`
 //! list, used or not (`used_vt + unreferenced`): its `GetNumFVarValues(0)` counts what the
-//! file gives, ours what the faces use.
+//! file gives, ours what the faces use. From level 1 on OpenSubdiv also keeps one value at
+//! each bare vertex (a position no face uses), which no face uses either; ours counts the
+//! values faces use, as `V` counts the vertices they use. Every shared mesh with UVs agrees
+//! with OpenSubdiv under these two rules at levels 0-2 in every mode
+//! (`crates/halfedge/tests/uv_count_reference`).
 //!
 //! With holes, what is written at level `s` is level `s` of the written faces (the children of
 //! a hole are holes, [`crate::holes`]), so their layout (the written faces with their corners'
 //! values) counts the written UV values exactly, as [`MeshCounts`] of the written faces count
-//! `V`, `E`, `F`.
+//! `V`, `E`, `F`; their split values are the siblings of the whole mesh (holes are refined
+//! too) that written faces use ([`UvCounts::kept_split_values`]).
 //!
 //! √3, Doo-Sabin and mid-edge have no UV geometry yet: [`uv_scheme`] answers
 //! [`NotCounted`] for them, and for a scheme without a rule.
@@ -109,6 +123,12 @@ pub struct UvCounts {
     /// `vt` entries that some corner uses: the UV values at level 0.
     #[serde(skip)]
     pub used_vt: u64,
+    /// The values OpenSubdiv's face-varying refinement adds to `V` before level 1 (its
+    /// "sibling" values; [`sibling_values`]): at a vertex whose faces, in OpenSubdiv's order
+    /// around it, use two values in the order A, B, A, B, the second run of B is a value of
+    /// its own. Loop and Catmull-Clark count from `V + split_values` (module docs).
+    #[serde(skip)]
+    pub split_values: u64,
     /// Faces of the layout (the mesh's faces).
     #[serde(skip)]
     pub faces: u64,
@@ -158,7 +178,11 @@ impl UvCounts {
         vts.sort_unstable();
         vts.dedup();
 
+        let siblings = sibling_values(face_offsets, vertex_corners, value_corners);
+        let split_values = split_values_of(value_corners, &siblings, |_| true);
+
         Ok(UvCounts {
+            split_values,
             values: layout.vertices,
             edges: layout.edges,
             boundary_edges: layout.boundary_edges,
@@ -170,6 +194,34 @@ impl UvCounts {
             faces: layout.faces,
             corners: layout.corners,
         })
+    }
+}
+
+impl UvCounts {
+    /// [`split_values`](Self::split_values) of the faces `f` with `keep(f)` of a layout (the
+    /// arguments of [`from_layout`](Self::from_layout)), the values at each vertex being
+    /// those of all its faces: OpenSubdiv refines hole faces too, so which faces are written
+    /// does not change a vertex's values, only which of them are used.
+    ///
+    /// # Errors
+    ///
+    /// As [`from_layout`](Self::from_layout).
+    pub fn kept_split_values(
+        face_offsets: &[usize],
+        vertex_corners: &[u32],
+        value_corners: &[u32],
+        n_values: usize,
+        keep: impl Fn(usize) -> bool,
+    ) -> Result<u64> {
+        check_layout(face_offsets, vertex_corners, value_corners, n_values)?;
+        let mut kept = vec![false; vertex_corners.len()];
+        for (f, w) in face_offsets.windows(2).enumerate() {
+            if keep(f) {
+                kept[w[0]..w[1]].fill(true);
+            }
+        }
+        let siblings = sibling_values(face_offsets, vertex_corners, value_corners);
+        Ok(split_values_of(value_corners, &siblings, |c| kept[c]))
     }
 }
 
@@ -223,6 +275,162 @@ fn check_layout(
         }
     }
     Ok(())
+}
+
+/// OpenSubdiv's values at a vertex before its first refinement ("siblings"), one id per face
+/// corner of a checked layout: corners with the same id are one value.
+///
+/// `Vtr::internal::FVarLevel::completeTopologyFromFaceValues` (OpenSubdiv 3.5) walks the faces
+/// around each vertex in the order of `Vtr::internal::Level::orderVertexFacesAndEdges`: for a
+/// vertex whose faces form one consistently oriented fan, from its first face (in face order)
+/// for an interior vertex, from the face whose side leaving the vertex is a boundary edge for
+/// a boundary vertex, then to the face across the side entering the vertex in the current
+/// one; for any other vertex, its faces in face order. Along that order it numbers the
+/// distinct values, but when exactly two are known it only compares a new run's value with
+/// the first: in the order A, B, A, B the second run of B gets a value of its own. So a vertex
+/// has as many values as distinct `vt` plus one when its runs start A, B, A, B. The refinement
+/// keeps every one of them (one child value per sibling), which is how osd_catmark_bishop's
+/// 3244 (vertex, `vt`) pairs are 3283 values at the start of level 1.
+fn sibling_values(offsets: &[usize], vertex_corners: &[u32], value_corners: &[u32]) -> Vec<u32> {
+    const NONE: usize = usize::MAX;
+    let n = vertex_corners.len();
+    let (mut next, mut prev) = (vec![0usize; n], vec![0usize; n]);
+    for w in offsets.windows(2) {
+        let (start, end) = (w[0], w[1]);
+        for c in start..end {
+            next[c] = if c + 1 == end { start } else { c + 1 };
+            prev[c] = if c == start { end - 1 } else { c - 1 };
+        }
+    }
+    let n_vertices = vertex_corners.iter().max().map_or(0, |&v| v as usize + 1);
+    // Vertices whose faces OpenSubdiv does not order: at an edge of three or more sides or
+    // a side from a vertex to itself.
+    let mut unordered = vec![false; n_vertices];
+    let pair = |a: u32, b: u32| (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+    let mut sides: Vec<(u64, usize)> = Vec::with_capacity(n);
+    for c in 0..n {
+        let (a, b) = (vertex_corners[c], vertex_corners[next[c]]);
+        if a == b {
+            unordered[a as usize] = true;
+        } else {
+            sides.push((pair(a, b), c));
+        }
+    }
+    sides.sort_unstable();
+    // The other side of the edge of the side starting at each corner (`NONE`: a boundary).
+    let mut partner = vec![NONE; n];
+    for group in sides.chunk_by(|x, y| x.0 == y.0) {
+        match group {
+            [(_, c), (_, d)] => {
+                partner[*c] = *d;
+                partner[*d] = *c;
+            }
+            [_] => {}
+            more => {
+                for &(_, c) in more {
+                    unordered[vertex_corners[c] as usize] = true;
+                    unordered[vertex_corners[next[c]] as usize] = true;
+                }
+            }
+        }
+    }
+    let mut by_vertex: Vec<usize> = (0..n).collect();
+    by_vertex.sort_by_key(|&c| vertex_corners[c]);
+
+    let mut ids = vec![0u32; n];
+    let mut visited = vec![false; n];
+    let (mut order, mut unique, mut sibling) = (Vec::new(), Vec::new(), Vec::new());
+    let mut next_id = 0u32;
+    for around in by_vertex.chunk_by(|&c, &d| vertex_corners[c] == vertex_corners[d]) {
+        let v = vertex_corners[around[0]];
+        order.clear();
+        let fan = !unordered[v as usize] && {
+            let mut leading = around.iter().filter(|&&c| partner[c] == NONE);
+            let start = match (leading.next(), leading.next()) {
+                (None, _) => Some(around[0]),
+                (Some(&c), None) => Some(c),
+                (Some(_), Some(_)) => None,
+            };
+            let mut ok = start.is_some();
+            if let Some(start) = start {
+                order.push(start);
+                visited[start] = true;
+                let mut current = start;
+                // The face across the side entering `v`, whose corner there starts the side.
+                while ok && order.len() < around.len() {
+                    let q = partner[prev[current]];
+                    ok = q != NONE && vertex_corners[q] == v && !visited[q];
+                    if ok {
+                        visited[q] = true;
+                        order.push(q);
+                        current = q;
+                    }
+                }
+            }
+            for &c in &order {
+                visited[c] = false;
+            }
+            ok
+        };
+        if !fan {
+            order.clear();
+            order.extend_from_slice(around);
+        }
+        // The distinct values along the order, as OpenSubdiv numbers them.
+        unique.clear();
+        sibling.clear();
+        for (i, &c) in order.iter().enumerate() {
+            let value = value_corners[c];
+            if i == 0 {
+                unique.push(value);
+                sibling.push(0);
+            } else if value == value_corners[order[i - 1]] {
+                sibling.push(sibling[i - 1]);
+            } else if unique.len() == 1 || (unique.len() == 2 && unique[0] != value) {
+                sibling.push(unique.len());
+                unique.push(value);
+            } else if let Some(k) = unique.iter().position(|&u| u == value) {
+                sibling.push(k);
+            } else {
+                sibling.push(unique.len());
+                unique.push(value);
+            }
+        }
+        for (&c, &k) in order.iter().zip(&sibling) {
+            ids[c] = next_id + k as u32;
+        }
+        next_id += unique.len() as u32;
+    }
+    ids
+}
+
+/// The sibling values ([`sibling_values`]) of the corners with `keep(corner)` beyond their
+/// distinct values.
+fn split_values_of(value_corners: &[u32], siblings: &[u32], keep: impl Fn(usize) -> bool) -> u64 {
+    let distinct = |ids: &mut dyn Iterator<Item = u32>| {
+        let mut seen: Vec<bool> = Vec::new();
+        let mut count = 0u64;
+        for id in ids {
+            let i = id as usize;
+            if i >= seen.len() {
+                seen.resize(i + 1, false);
+            }
+            if !seen[i] {
+                seen[i] = true;
+                count += 1;
+            }
+        }
+        count
+    };
+    let kept = |ids: &[u32]| -> Vec<u32> {
+        ids.iter()
+            .enumerate()
+            .filter(|&(c, _)| keep(c))
+            .map(|(_, &i)| i)
+            .collect()
+    };
+    let (values, sibs) = (kept(value_corners), kept(siblings));
+    distinct(&mut sibs.into_iter()) - distinct(&mut values.into_iter())
 }
 
 /// The surface edges whose sides do not all carry the same pair of values (checked layout).
@@ -387,9 +595,29 @@ impl UvScheme {
         &self.recurrence
     }
 
-    /// The initial state from the layout's statistics: `[V, E, BE, F]` or `[V, E, BE, F, H]`.
+    /// Whether the rule's face-varying refinement is OpenSubdiv's (Loop and Catmull-Clark),
+    /// which starts from its sibling values ([`UvCounts::split_values`]); the other rules
+    /// refine the layout as a mesh, from its values `V`.
+    pub fn splits_siblings(&self) -> bool {
+        matches!(self.rule, Rule::Loop | Rule::CatmullClark)
+    }
+
+    /// The initial state from the layout's statistics: `[UV0, E, BE, F]` or
+    /// `[UV0, E, BE, F, H]`, `UV0` being `V + split_values` for Loop and Catmull-Clark
+    /// ([`splits_siblings`](Self::splits_siblings)) and `V` for the other rules.
     pub fn initial_state(&self, uv: &UvCounts) -> Vec<BigInt> {
-        [uv.values, uv.edges, uv.boundary_edges, uv.faces, uv.corners][..self.recurrence.dim()]
+        let split = if self.splits_siblings() {
+            uv.split_values
+        } else {
+            0
+        };
+        [
+            uv.values + split,
+            uv.edges,
+            uv.boundary_edges,
+            uv.faces,
+            uv.corners,
+        ][..self.recurrence.dim()]
             .iter()
             .map(|&x| BigInt::from(x))
             .collect()
@@ -460,6 +688,11 @@ impl UvCounter {
             .map(|st| Ok((UvScheme::for_scheme(st.scheme())?, st.levels())))
             .collect::<std::result::Result<_, NotCounted>>()?;
         Ok(UvCounter { stages, uv })
+    }
+
+    /// The dimension of the last stage's UV recurrence (the order of its UV values).
+    pub fn dim(&self) -> usize {
+        self.stages.last().map_or(0, |(s, _)| s.recurrence.dim())
     }
 
     /// The layout's statistics counted from.
@@ -615,6 +848,48 @@ mod tests {
         )
         .unwrap();
         assert_eq!((uv.seam_edges, uv.edges, uv.boundary_edges), (0, 5, 4));
+    }
+
+    /// Four quads around vertex 4 (a 3x3 grid), the centre's value in each face given.
+    fn around_centre(centre: [u32; 4]) -> UvCounts {
+        let faces: [&[u32]; 4] = [&[0, 1, 4, 3], &[1, 2, 5, 4], &[4, 5, 8, 7], &[3, 4, 7, 6]];
+        let [a, b, c, d] = centre;
+        let values: [&[u32]; 4] = [&[0, 1, a, 3], &[1, 2, 5, b], &[c, 5, 8, 7], &[3, d, 7, 6]];
+        layout(&faces, &values, &[0, 1, 2, 3, 4, 5, 6, 7, 8, 4, 4, 4]).unwrap()
+    }
+
+    #[test]
+    fn a_value_used_twice_apart_around_a_vertex_is_split_once() {
+        // Faces 0, 1, 2, 3 are in order around the centre: values A, B, A, B.
+        let abab = around_centre([4, 9, 4, 9]);
+        assert_eq!((abab.values, abab.split_values), (10, 1));
+        let cc = uv_scheme(Rule::CatmullClark).unwrap();
+        assert_eq!(cc.initial_state(&abab)[0], BigInt::from(11));
+        assert_eq!(
+            cc.values_at(&abab, 1).unwrap(),
+            BigInt::from(11 + abab.edges + 4)
+        );
+        // Rules that refine the layout as a mesh do not split.
+        let butterfly = uv_scheme(Rule::Butterfly).unwrap();
+        assert!(!butterfly.splits_siblings());
+        assert_eq!(butterfly.initial_state(&abab)[0], BigInt::from(10));
+        // Contiguous runs, or a third value, split nothing.
+        for centre in [[4, 4, 9, 9], [4, 9, 4, 10], [4, 9, 10, 9], [4, 4, 4, 4]] {
+            assert_eq!(around_centre(centre).split_values, 0, "{centre:?}");
+        }
+        // Left out faces keep the vertex's values. In OpenSubdiv's order (faces 0, 1, 2, 3,
+        // from face 0) face 3 has the second value of B: without face 0 both B values are
+        // still written, without face 3 (or face 1) one is.
+        let faces: Vec<u32> = [[0, 1, 4, 3], [1, 2, 5, 4], [4, 5, 8, 7], [3, 4, 7, 6]].concat();
+        let values: Vec<u32> = [[0, 1, 4, 3], [1, 2, 5, 9], [4, 5, 8, 7], [3, 9, 7, 6]].concat();
+        let offsets = [0, 4, 8, 12, 16];
+        let kept = |keep: &dyn Fn(usize) -> bool| {
+            UvCounts::kept_split_values(&offsets, &faces, &values, 10, keep).unwrap()
+        };
+        assert_eq!(kept(&|_| true), 1);
+        assert_eq!(kept(&|f| f != 0), 1);
+        assert_eq!(kept(&|f| f != 3), 0);
+        assert_eq!(kept(&|f| f != 1), 0);
     }
 
     #[test]

@@ -209,6 +209,9 @@ pub(crate) struct FitArgs {
     /// At most this many faces.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub(crate) max_faces: Option<String>,
+    /// At most this many UV values (needs --mesh with texture coordinates at every corner).
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub(crate) max_uv: Option<String>,
     /// A memory budget, e.g. 2GiB (GiB = 2^30 bytes, GB = 10^9 bytes).
     #[arg(long, value_name = "SIZE", allow_hyphen_values = true)]
     pub(crate) memory: Option<String>,
@@ -221,6 +224,10 @@ pub(crate) struct FitArgs {
     /// Bytes per face for --memory (default 12: three u32 indices).
     #[arg(long, value_name = "N", default_value_t = 12)]
     pub(crate) bytes_per_face: u64,
+    /// Bytes per UV value for --memory (e.g. 8: two f32; default 0, UVs not counted; needs
+    /// --mesh with texture coordinates at every corner).
+    #[arg(long, value_name = "N")]
+    pub(crate) bytes_per_uv: Option<u64>,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
     pub(crate) format: ReportFormat,

@@ -37,8 +37,11 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let counter = input.counter()?;
     let x0 = input.initial_state(&counter)?;
     guard::table(&counter, &x0, &levels)?;
-    let rows = counter.rows(&x0, levels)?;
-    let columns = counter.columns();
+    let mut rows = counter.rows(&x0, levels)?;
+    let mut columns = counter.columns();
+    if let Some(uv) = input.uv_counter(&counter)? {
+        uv.extend_rows(&mut columns, &mut rows)?;
+    }
     match args.format {
         TableFormat::Text => output::write_table_text(out, &columns, &rows),
         TableFormat::Json => output::write_table_json(out, &columns, &rows),
@@ -53,24 +56,41 @@ fn at(args: AtArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let input = Input::new(&args.source);
     let counter = input.counter()?;
     let x0 = input.initial_state(&counter)?;
-    let columns = counter.columns();
+    let mut columns = counter.columns();
+    let uv = input.uv_counter(&counter)?;
+    if uv.is_some() {
+        columns.push(schemes::uv::UV_COLUMN.to_string());
+    }
     if args.summary {
         // An exact closed form summarizes every count without materializing it (any
         // level); otherwise the counts are computed under the digit guard.
-        let sums = match counter.summaries(&x0, s, args.allow_large) {
+        let summary = |v: &BigInt| recurrence::digit_summary(v, schemes::SUMMARY_DIGITS);
+        let mut sums = match counter.summaries(&x0, s, args.allow_large) {
             Some(sums) => sums,
             None => {
                 guard::digits(&counter, &x0, s, args.allow_large, Hint::AtSummary)?;
                 let row = counter.row_at(&x0, s)?;
-                let summary = |v: &BigInt| recurrence::digit_summary(v, schemes::SUMMARY_DIGITS);
                 row.values.iter().map(|v| v.as_ref().map(summary)).collect()
             }
         };
+        if let Some(uv) = &uv {
+            let sum = match uv.summary_at(s) {
+                Some(sum) => sum,
+                None => {
+                    guard::digits(&counter, &x0, s, args.allow_large, Hint::AtSummary)?;
+                    summary(&uv.values_at(s)?)
+                }
+            };
+            sums.push(Some(sum));
+        }
         write_summaries(out, args.format, s, &columns, &sums).map_err(write_failure)?;
         return Ok(0);
     }
     guard::digits(&counter, &x0, s, args.allow_large, Hint::At)?;
-    let row = counter.row_at(&x0, s)?;
+    let mut row = counter.row_at(&x0, s)?;
+    if let Some(uv) = &uv {
+        row.values.push(Some(uv.values_at(s)?));
+    }
     match args.format {
         AtFormat::Text => {
             let mut text = format!("level {s}\n");
@@ -149,8 +169,84 @@ fn formula(args: FormulaArgs, out: &mut impl Write) -> Result<u8, Failure> {
     if let (Some(x0), FormulaFormat::Text) = (&x0, args.format) {
         text = format!("{}\n\n{}", text.trim_end(), counter.specialized_text(x0));
     }
+    if let Some(uv) = input.uv_counter(&counter)? {
+        let fn_base = counter.plan().map_or_else(String::new, |p| {
+            p.name().replace(|c: char| !c.is_ascii_alphanumeric(), "_")
+        });
+        text = uv_formula(&uv, args.format, text, &fn_base)?;
+    }
     writeln!(out, "{}", text.trim_end()).map_err(write_failure)?;
     Ok(0)
+}
+
+/// `formula --mesh FILE` for a mesh with a UV layout: `text` (the counts' forms) followed by
+/// the closed form of the UV values `UV(s)` over the layout's statistics `UV0`, `UE0`, `UBE0`
+/// and the scheme's `F0` (and `H0` for Catmull-Clark), in the format asked: the `UV(s)` line
+/// in text (with the layout's numbers substituted, as for the counts) and LaTeX, a second
+/// function `<scheme>_uv_counts` in Rust, and a `"UV"` component appended to the JSON list.
+/// A composition has no single UV form: one note on stderr says so and `text` is unchanged.
+fn uv_formula(
+    uv: &schemes::uv::UvCounter,
+    format: FormulaFormat,
+    text: String,
+    fn_base: &str,
+) -> Result<String, Failure> {
+    let Some(single) = uv.single() else {
+        eprintln!(
+            "note: the UV values of a composition have no single closed form: `subcount table` counts them (its UV column)"
+        );
+        return Ok(text);
+    };
+    let form = verified_form(single.recurrence(), format)?;
+    let uv_line = |all: String| -> String {
+        all.lines()
+            .filter(|l| l.starts_with("UV("))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let layout = uv.uv_counts();
+    let text = text.trim_end();
+    Ok(match format {
+        FormulaFormat::Text => {
+            let x0 = single.initial_state(layout);
+            let given: Vec<String> = single
+                .recurrence()
+                .names()
+                .iter()
+                .zip(&x0)
+                .map(|(n, v)| format!("{n}(0) = {v}"))
+                .collect();
+            let numbers = schemes::specialized_lines(&form, &x0, "s")
+                .and_then(|l| l.into_iter().next())
+                .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
+            format!(
+                "{text}\n\n# UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
+                uv_line(form.to_text()),
+                given.join(", "),
+                layout.used_vt,
+            )
+        }
+        FormulaFormat::Latex => format!("{text}\n{}", uv_line(form.to_latex())),
+        FormulaFormat::Rust => format!(
+            "{text}\n\n/// UV values: the state (UV, UE, UBE, F{}) of the UV layout, `UV` from level 1 on.\n{}",
+            if single.recurrence().dim() > 4 { ", H" } else { "" },
+            form.to_rust(&format!("{fn_base}_uv_counts"))
+        ),
+        FormulaFormat::Json => {
+            let mut value: Value = serde_json::from_str(text).map_err(|e| Failure::new(Kind::Input, e))?;
+            let uv_forms = form.to_json();
+            let component = uv_forms
+                .as_array()
+                .and_then(|a| a.iter().find(|c| c["component"] == "UV"))
+                .cloned()
+                .unwrap_or(Value::Null);
+            match &mut value {
+                Value::Array(list) => list.push(component),
+                other => *other = json!({ "forms": other.clone(), "UV": component }),
+            }
+            pretty(&value)?
+        }
+    })
 }
 
 fn render_form(form: &ClosedForm, format: FormulaFormat, fn_name: &str) -> Result<String, Failure> {

@@ -96,6 +96,9 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     } else {
         None
     };
+    // Present only when the file has texture coordinates: a mesh without `vt` prints what it
+    // always printed.
+    let uv = halfedge::stats::uv_counts(poly);
     let c = &counts;
     let text = match args.format {
         ReportFormat::Json => {
@@ -129,6 +132,9 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
             });
             if let (Some(tags), Value::Object(map)) = (&tags, &mut object) {
                 map.insert("tags".to_owned(), tags.to_json());
+            }
+            if let (Some(uv), Value::Object(map)) = (&uv, &mut object) {
+                map.insert("uv".to_owned(), json!(uv));
             }
             if let Value::Object(map) = &mut object {
                 map.insert("applicable_schemes".to_owned(), json!(applicable));
@@ -166,12 +172,30 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
             if let Some(tags) = &tags {
                 t.push_str(&format!("{}\n", tags.to_text()));
             }
+            if let Some(uv) = &uv {
+                t.push_str(&format!("{}\n", uv_layout_text(uv)));
+            }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t
         }
     };
     writeln!(out, "{text}").map_err(write_failure)?;
     Ok(0)
+}
+
+/// The UV layout line of `stats`: `UV layout: V = 267, E = 438, BE = 144, seam edges = 72,
+/// boundary loops = 13, charts = 13, unreferenced = 0`.
+fn uv_layout_text(uv: &schemes::uv::UvCounts) -> String {
+    format!(
+        "UV layout: V = {}, E = {}, BE = {}, seam edges = {}, boundary loops = {}, charts = {}, unreferenced = {}",
+        uv.values,
+        uv.edges,
+        uv.boundary_edges,
+        uv.seam_edges,
+        uv.boundary_loops,
+        uv.charts,
+        uv.unreferenced
+    )
 }
 
 /// What a file's tags hold, for `stats`: distinct sharp edges and vertices (sharpness > 0),

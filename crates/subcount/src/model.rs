@@ -18,6 +18,7 @@ use halfedge::tags::{BoundaryInterpolation, SubdivisionOptions, TagOptions, Tags
 use halfedge::{PolygonMesh, Rule};
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
+use schemes::uv::{UvCounter, UvCounts};
 use schemes::{Counter, CountsInput, MeshCounts, Plan, Scheme};
 
 use crate::args::{MeshSource, Source};
@@ -35,6 +36,8 @@ pub(crate) struct Input<'a> {
     loaded: OnceCell<Option<(LoadedMesh, MeshCounts)>>,
     /// What is counted: the statistics of the written faces.
     counts: OnceCell<Option<MeshCounts>>,
+    /// The holes of the mesh under the plan counted (set with `counts`).
+    holes: OnceCell<Option<HoleSet>>,
 }
 
 impl<'a> Input<'a> {
@@ -43,6 +46,7 @@ impl<'a> Input<'a> {
             source,
             loaded: OnceCell::new(),
             counts: OnceCell::new(),
+            holes: OnceCell::new(),
         }
     }
 
@@ -79,14 +83,64 @@ impl<'a> Input<'a> {
                     .collect();
                 let holes = loaded.holes(counts, &self.source.mesh, &plan.name(), &stages)?;
                 loaded.print_notes();
-                Some(match holes {
+                let written = match &holes {
                     Some(holes) => holes.written_counts(&loaded.poly),
                     None => counts.clone(),
-                })
+                };
+                let _ = self.holes.set(holes);
+                Some(written)
             }
             None => None,
         };
         Ok(self.counts.get_or_init(|| counts).as_ref())
+    }
+
+    /// The statistics of the UV layout `plan` counts UV values from
+    /// ([`halfedge::stats::uv_counts`]; with holes, of the written faces:
+    /// [`HoleSet::written_uv_counts`]): `None` without `--mesh`/`--base` or when the mesh
+    /// has no UV layout (no `vt`, or `vt` at only some corners).
+    pub(crate) fn uv_counts(&self, plan: &Plan) -> Result<Option<UvCounts>, Failure> {
+        if self.mesh_counts(plan)?.is_none() {
+            return Ok(None);
+        }
+        let Some((loaded, _)) = self.loaded()? else {
+            return Ok(None);
+        };
+        Ok(match self.holes.get() {
+            Some(Some(holes)) => holes.written_uv_counts(&loaded.poly),
+            _ => halfedge::stats::uv_counts(&loaded.poly),
+        })
+    }
+
+    /// The UV values under `counter` of the mesh's layout ([`Input::uv_counts`]), for the
+    /// `UV` column of `table`, `at` and `plot`: `Ok(None)` without a mesh, on a mesh without
+    /// a UV layout, and when the counter does not count UV values
+    /// ([`schemes::uv::NotCounted`]: √3, Doo-Sabin, mid-edge, a scheme without a rule); the
+    /// last says so in one note on stderr (`note: sqrt3 does not count UV values (no UV rule
+    /// yet): no UV column`), so that a missing column is explained, and stdout is what it is
+    /// without UVs.
+    pub(crate) fn uv_counter(&self, counter: &Counter) -> Result<Option<UvCounter>, Failure> {
+        if !self.has_mesh() {
+            return Ok(None);
+        }
+        let Some(plan) = counter.plan() else {
+            return Ok(None);
+        };
+        let Some(uv) = self.uv_counts(plan)? else {
+            return Ok(None);
+        };
+        match counter.uv_counter(&uv) {
+            Ok(uv) => Ok(Some(uv)),
+            Err(not) => {
+                eprintln!("note: {not}: no UV column");
+                Ok(None)
+            }
+        }
+    }
+
+    /// Whether a mesh is given (`--mesh`, `--base`).
+    pub(crate) fn has_mesh(&self) -> bool {
+        self.source.mesh.mesh.is_some() || self.source.mesh.base.is_some()
     }
 
     /// Whether an initial state is given (`--init`, `--counts`, `--mesh`, `--base`).

@@ -1,4 +1,5 @@
-//! `plot`: V, E, F and the state components versus level on a log10 scale, as SVG or PNG.
+//! `plot`: V, E, F, the state components and, for a mesh with a UV layout, its UV values
+//! versus level on a log10 scale, as SVG or PNG.
 //!
 //! The counts come from [`Counter`] exactly as `table` computes them; only the drawing is
 //! approximate. log10 of a count comes from its bit length and leading 64 bits, so counts of
@@ -38,8 +39,12 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     let counter = input.counter()?;
     let x0 = input.initial_state(&counter)?;
     crate::guard::table(&counter, &x0, &levels)?;
-    let rows = counter.rows(&x0, levels.clone())?;
-    let columns = counter.columns();
+    let mut rows = counter.rows(&x0, levels.clone())?;
+    let mut columns = counter.columns();
+    // A mesh with a UV layout adds the UV values as a series of their own.
+    if let Some(uv) = input.uv_counter(&counter)? {
+        uv.extend_rows(&mut columns, &mut rows)?;
+    }
     let series = series_of(&columns, &rows);
     // Columns without a positive count in range cannot be drawn on a log scale: the legend
     // says so.

@@ -46,6 +46,7 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
             bytes_per_vertex: args.bytes_per_vertex,
             bytes_per_edge: args.bytes_per_edge,
             bytes_per_face: args.bytes_per_face,
+            bytes_per_uv: args.bytes_per_uv.unwrap_or(0),
         }),
         None => None,
     };
@@ -53,19 +54,27 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
         max_vertices: parse_limit("max-vertices", &args.max_vertices)?,
         max_edges: parse_limit("max-edges", &args.max_edges)?,
         max_faces: parse_limit("max-faces", &args.max_faces)?,
+        max_uv: parse_limit("max-uv", &args.max_uv)?,
         memory,
     };
     if budget == Budget::default() {
         return Err(usage!(
-            "fit needs a limit: --max-vertices, --max-edges, --max-faces or --memory"
+            "fit needs a limit: --max-vertices, --max-edges, --max-faces, --max-uv or --memory"
         ));
     }
     let x0 = input.initial_state(&counter)?;
-    let fit = schemes::fit(&plan, &x0, &budget)?;
-    let columns = counter.columns();
+    let uv = uv_for_fit(&input, &counter, &plan, &args)?;
+    let fit = match &uv {
+        Some(uv) => schemes::fit_uv(&plan, &x0, uv, &budget)?,
+        None => schemes::fit(&plan, &x0, &budget)?,
+    };
+    let mut columns = counter.columns();
     let counts = fit.counts()?;
     let note = matches!(fit, Fit::Unbounded { .. }).then(|| unbounded_note(counts.level));
-    let row = counter.row_from_state(counts.level, counts.state.clone())?;
+    let mut row = counter.row_from_state(counts.level, counts.state.clone())?;
+    if let Some(uv) = &uv {
+        uv.extend_rows(&mut columns, std::slice::from_mut(&mut row))?;
+    }
     let mut buf = Vec::new();
     match (note, args.format) {
         (None, ReportFormat::Json) => output::write_row_json(&mut buf, &columns, &row),
@@ -89,6 +98,48 @@ pub(crate) fn fit(args: FitArgs, out: &mut impl Write) -> Result<u8, Failure> {
     .map_err(write_failure)?;
     writeln!(out, "{}", String::from_utf8_lossy(&buf).trim_end()).map_err(write_failure)?;
     Ok(0)
+}
+
+/// The UV values `fit` counts: those of the mesh's UV layout under the plan, when it has one
+/// and the plan counts UV values (a `UV` line in the answer). `--max-uv` and `--bytes-per-uv`
+/// need them: without a mesh, on a mesh without a UV layout, or under a scheme that does not
+/// count UV values, they are a usage error (exit 2).
+fn uv_for_fit(
+    input: &Input<'_>,
+    counter: &Counter,
+    plan: &Plan,
+    args: &FitArgs,
+) -> Result<Option<schemes::uv::UvCounter>, Failure> {
+    let flag = match (&args.max_uv, args.bytes_per_uv) {
+        (Some(_), _) => Some("--max-uv"),
+        (None, Some(_)) => Some("--bytes-per-uv"),
+        (None, None) => None,
+    };
+    let layout = if input.has_mesh() {
+        input.uv_counts(plan)?
+    } else {
+        None
+    };
+    let Some(flag) = flag else {
+        return Ok(layout.and_then(|uv| counter.uv_counter(&uv).ok()));
+    };
+    let Some(layout) = layout else {
+        let what = if input.has_mesh() {
+            format!(
+                "{} has no UV layout",
+                crate::model::mesh_label(&args.source.mesh)
+            )
+        } else {
+            "no mesh is given".to_string()
+        };
+        return Err(usage!(
+            "{flag} counts UV values, which needs --mesh FILE with texture coordinates (`vt`) at every face corner, but {what}"
+        ));
+    };
+    counter
+        .uv_counter(&layout)
+        .map(Some)
+        .map_err(|e| usage!("{flag}: {e}"))
 }
 
 /// The note of a [`Fit::Unbounded`] answer: the limited counts are the same at `level` and

@@ -8,13 +8,30 @@
 //! back as separate meshes), it drops vertices no face references (we must report them), and
 //! its `LoadError` carries no line number (we must name the line). Pre-scanning the file to
 //! recover all that would mean parsing it twice. So this module reads the part of OBJ that
-//! matters for topology itself — `v` lines and the first field of each `f` corner (`v`,
-//! `v/vt`, `v/vt/vn`, `v//vn`, negative indices) — in one streaming pass over a `BufRead`
-//! (no whole-file string), with an error naming the file and line for every bad token, and
-//! ignores every other statement (`vt`, `vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`,
-//! `p`, ...) except OpenSubdiv's tags (below). tobj is kept as an independent cross-check:
-//! the test suite loads every mesh of the shared folder with both and compares positions and
-//! faces.
+//! matters for topology and texturing itself — `v` and `vt` lines and the first two fields
+//! of each `f` corner (`v`, `v/vt`, `v/vt/vn`, `v//vn`, negative indices) — in one streaming
+//! pass over a `BufRead` (no whole-file string), with an error naming the file and line (and,
+//! for a texture-coordinate index, the corner) for every bad token, and ignores every other
+//! statement (`vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`, ...) except
+//! OpenSubdiv's tags (below). tobj is kept as an independent cross-check: the test suite
+//! loads every mesh of the shared folder with both and compares positions, faces and each
+//! corner's texture coordinate.
+//!
+//! # Texture coordinates (OBJ)
+//!
+//! `vt u v [w]` lines are read as `f64` `(u, v)` (`w` is ignored), and each corner's `vt`
+//! field becomes its texture coordinate ([`crate::uv`]): when **every** face corner of the
+//! file names one, the mesh has [`uvs`](PolygonMesh::uvs) (unused `vt` lines are kept and
+//! counted by [`crate::uv::Uvs::unreferenced`]). A file where only some corners name one is
+//! read without UVs, not refused: [`PolygonMesh::partial_uvs`] says how many do ("N of M face
+//! corners have texture coordinates: no UV layout"). A file with `vt` lines that no corner
+//! uses has no UVs and nothing partial. A `vt` index is 1-based, or negative counting back
+//! from the `vt` lines read so far, and may name a later line; one that is not a valid index
+//! or names no `vt` of the file is an error naming the file, line and corner
+//! ([`ParseError::InvalidTexCoordIndex`], [`ParseError::TexCoordIndexOutOfRange`]), and a
+//! `vt` line with fewer than two values is [`ParseError::MissingTexCoords`]. Normals (`vn`,
+//! the third corner field) are not read: a subdivided surface needs new ones. OFF files have
+//! no texture coordinates.
 //!
 //! OFF (`OFF`, `COFF`, `NOFF`, `CNOFF` with ASCII data) is read the same way. OFF has no tags:
 //! an OFF mesh's [`PolygonMesh::tags`] are always empty.

@@ -1,10 +1,10 @@
-//! OBJ reading: `v`, `f` and OpenSubdiv's `t` statements, everything else ignored.
+//! OBJ reading: `v`, `vt`, `f` and OpenSubdiv's `t` statements, everything else ignored.
 
 use std::collections::BTreeMap;
 use std::io::BufRead;
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::{open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
@@ -13,6 +13,7 @@ use crate::tags::{
     BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, IgnoredTag, TagError, Tags,
     TriangleRule,
 };
+use crate::uv::{PartialUvs, Uvs};
 
 /// Reads an OBJ file as a face list, keeping polygons (no triangulation) and every `v` line
 /// (used or not) in file order.
@@ -53,27 +54,43 @@ pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 
 /// Reads OBJ text from any buffered reader; `name` is the file name used in error messages.
 ///
-/// Reads `v x y z` (further values such as `w` or colours are ignored) and `f` with corners
-/// `v`, `v/vt`, `v/vt/vn` or `v//vn`, where `v` is 1-based or negative (relative to the
-/// vertices read so far). Positive indices may refer to vertices defined later in the file.
-/// Comments (`#`), blank lines, backslash line continuations and all other statements are
-/// skipped, except OpenSubdiv's tags (`t NAME nInts/nFloats/nStrings ints floats strings`),
-/// which become the mesh's [`tags`](PolygonMesh::tags) as the [`crate::io`] docs describe.
+/// Reads `v x y z` (further values such as `w` or colours are ignored), `vt u v` (a `w` is
+/// ignored) and `f` with corners `v`, `v/vt`, `v/vt/vn` or `v//vn`, where `v` and `vt` are
+/// 1-based or negative (relative to the vertices, or texture coordinates, read so far).
+/// Positive indices may refer to vertices or texture coordinates defined later in the file.
+/// The `vn` field is not read (normals are not carried). When every face corner names a `vt`,
+/// the mesh has [`uvs`](PolygonMesh::uvs); when only some do, it has none and
+/// [`partial_uvs`](PolygonMesh::partial_uvs) says how many do; `vt` lines no corner uses are
+/// kept (counted by [`Uvs::unreferenced`]). Comments (`#`), blank lines, backslash line
+/// continuations and all other statements are skipped, except OpenSubdiv's tags
+/// (`t NAME nInts/nFloats/nStrings ints floats strings`), which become the mesh's
+/// [`tags`](PolygonMesh::tags) as the [`crate::io`] docs describe.
 ///
 /// # Errors
 ///
 /// As [`read_obj`]: a bad or non-finite coordinate, a vertex with fewer than three
-/// coordinates, a face index that is 0, not a number, too large or out of range, a face with
-/// fewer than three corners, a malformed tag line or a tag on a vertex, face or edge the file
-/// does not have, binary data, no faces at all, a mesh beyond the memory budget.
+/// coordinates, a `vt` with fewer than two, a face index that is 0, not a number, too large or
+/// out of range, a texture-coordinate index that is not valid or out of range (naming the
+/// corner: [`ParseError::InvalidTexCoordIndex`], [`ParseError::TexCoordIndexOutOfRange`]), a
+/// face with fewer than three corners, a malformed tag line or a tag on a vertex, face or
+/// edge the file does not have, binary data, no faces at all, a mesh beyond the memory budget.
 ///
 /// # Example
 ///
 /// ```
-/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\ng a\nf 1/1 2/2 3/3\ng b\nf -3//1 -1//1 -2//1\n";
+/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n\
+///             g a\nf 1/1 2/2 3/3\ng b\nf -3/-3/1 -1/-1/1 -2/-2/1\n";
 /// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "two.obj")?;
 /// assert_eq!(mesh.n_faces(), 2);
 /// assert_eq!(mesh.face(1), &[0, 2, 1]);
+/// assert_eq!(mesh.uvs().expect("a vt at every corner").corners(), [0, 1, 2, 0, 2, 1]);
+///
+/// let err = halfedge::io::read_obj_from("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/2\n".as_bytes(), "bad.obj")
+///     .unwrap_err();
+/// assert_eq!(
+///     err.to_string(),
+///     "bad.obj: line 5: corner 3: texture coordinate index 2 is out of range (the file has 1 texture coordinates)"
+/// );
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
@@ -116,6 +133,9 @@ pub(crate) fn read_obj_within(
     let mut mesh = PolygonMesh::default();
     let mut tags = TagReader::default();
     let mut corners: Vec<u32> = Vec::new();
+    let mut uv = UvReader::default();
+    // The `vt` of the corners of one face line that have one.
+    let mut face_vts: Vec<u32> = Vec::new();
     // Positive indices beyond the vertices read so far: checked at the end.
     let mut forward: Vec<(u64, i64)> = Vec::new();
     loop {
@@ -144,13 +164,33 @@ pub(crate) fn read_obj_within(
                     });
                 }
                 mesh.positions.push(DVec3::from_array(xyz));
-                budget.check(&mesh, tags.heap_bytes(), &lines)?;
+                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
+            }
+            "vt" => {
+                let mut st = [0.0f64; 2];
+                for (i, slot) in st.iter_mut().enumerate() {
+                    let Some(token) = tokens.next() else {
+                        let kind = ParseError::MissingTexCoords { found: i };
+                        return Err(lines.error(kind));
+                    };
+                    *slot = parse_tex_coordinate(token).map_err(|kind| lines.error(kind))?;
+                }
+                if uv.coords.len() >= u32::MAX as usize - 1 {
+                    return Err(Error::TooManyElements {
+                        what: "texture coordinates",
+                        count: uv.coords.len() as u64 + 1,
+                    });
+                }
+                uv.coords.push(DVec2::from_array(st));
+                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
             }
             "f" => {
                 corners.clear();
+                face_vts.clear();
                 let count = mesh.positions.len() as u64;
-                for token in tokens {
-                    let field = token.split('/').next().unwrap_or("");
+                for (k, token) in tokens.enumerate() {
+                    let mut fields = token.split('/');
+                    let field = fields.next().unwrap_or("");
                     let index = parse_index(field).map_err(|kind| lines.error(kind))?;
                     let resolved = if index < 0 {
                         let back = index.unsigned_abs();
@@ -169,6 +209,15 @@ pub(crate) fn read_obj_within(
                         index as u64 - 1
                     };
                     corners.push(resolved as u32);
+                    match fields.next() {
+                        Some(vt) if !vt.is_empty() => {
+                            let t = uv
+                                .resolve(vt, k + 1, lines.line)
+                                .map_err(|kind| lines.error(kind))?;
+                            face_vts.push(t);
+                        }
+                        _ => {}
+                    }
                 }
                 if corners.len() < 3 {
                     let kind = ParseError::FaceTooSmall {
@@ -177,25 +226,38 @@ pub(crate) fn read_obj_within(
                     return Err(lines.error(kind));
                 }
                 mesh.push_face_from_line(&corners, lines.line);
-                budget.check(&mesh, tags.heap_bytes(), &lines)?;
+                uv.push_face(&face_vts, corners.len());
+                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
             }
             "t" if options.tags => {
                 tags.read(tokens, lines.line)
                     .map_err(|kind| lines.error(kind))?;
-                budget.check(&mesh, tags.heap_bytes(), &lines)?;
+                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
             }
             _ => {}
         }
     }
     let count = mesh.positions.len() as u64;
-    if let Some(&(line, index)) = forward.iter().find(|&&(_, index)| index as u64 > count) {
+    let vertex_error = forward
+        .iter()
+        .find(|&&(_, index)| index as u64 > count)
+        .map(|&(line, index)| {
+            let kind = ParseError::IndexOutOfRange {
+                index,
+                vertices: count,
+            };
+            (line, kind)
+        });
+    // The first bad forward reference in the file, a vertex's before a vt's on one line.
+    let error = match (vertex_error, uv.forward_error()) {
+        (Some(v), Some(t)) => Some(if t.0 < v.0 { t } else { v }),
+        (v, t) => v.or(t),
+    };
+    if let Some((line, kind)) = error {
         return Err(Error::Parse {
             file: name.to_string(),
             line,
-            kind: ParseError::IndexOutOfRange {
-                index,
-                vertices: count,
-            },
+            kind,
         });
     }
     if mesh.n_faces() == 0 {
@@ -209,7 +271,106 @@ pub(crate) fn read_obj_within(
             line,
             kind,
         })?;
+    let (uvs, partial) = uv.finish();
+    mesh.set_read_uvs(uvs, partial);
     Ok(mesh)
+}
+
+/// The texture coordinates read so far and the `vt` of the face corners.
+#[derive(Default)]
+struct UvReader {
+    /// The `vt` lines.
+    coords: Vec<DVec2>,
+    /// The `vt` of every corner so far, while every corner so far has one (else empty).
+    vts: Vec<u32>,
+    /// The corners read so far, and those of them with a `vt`.
+    corners: usize,
+    with_vt: usize,
+    /// Positive `vt` indices beyond the `vt` lines read so far (line, corner, index), each
+    /// larger than every earlier one: the first of them beyond the file's count is the
+    /// file's first bad forward reference (an earlier, smaller one is within it).
+    forward: Vec<(u64, usize, i64)>,
+}
+
+impl UvReader {
+    fn heap_bytes(&self) -> usize {
+        std::mem::size_of_val(self.coords.as_slice())
+            + std::mem::size_of_val(self.vts.as_slice())
+            + std::mem::size_of_val(self.forward.as_slice())
+    }
+
+    /// The 0-based `vt` of a corner's `vt` field (corner `corner` of the face on `line`).
+    fn resolve(
+        &mut self,
+        field: &str,
+        corner: usize,
+        line: u64,
+    ) -> std::result::Result<u32, ParseError> {
+        let index = parse_index(field).map_err(|_| ParseError::InvalidTexCoordIndex {
+            corner,
+            token: shorten(field),
+        })?;
+        let count = self.coords.len() as u64;
+        if index < 0 {
+            let back = index.unsigned_abs();
+            if back > count {
+                return Err(ParseError::TexCoordIndexOutOfRange {
+                    corner,
+                    index,
+                    count,
+                });
+            }
+            return Ok((count - back) as u32);
+        }
+        if index as u64 > count && self.forward.last().map_or(true, |&(_, _, i)| index > i) {
+            self.forward.push((line, corner, index));
+        }
+        Ok(index as u32 - 1)
+    }
+
+    /// Records a face of `corners` corners whose corners with a `vt` have `vts`.
+    fn push_face(&mut self, vts: &[u32], corners: usize) {
+        let all_so_far = self.with_vt == self.corners;
+        self.with_vt += vts.len();
+        self.corners += corners;
+        if all_so_far && vts.len() == corners {
+            self.vts.extend_from_slice(vts);
+        } else if !self.vts.is_empty() {
+            self.vts = Vec::new();
+        }
+    }
+
+    /// The first corner naming a `vt` beyond the file's, with its line.
+    fn forward_error(&self) -> Option<(u64, ParseError)> {
+        let count = self.coords.len() as u64;
+        self.forward
+            .iter()
+            .find(|&&(_, _, index)| index as u64 > count)
+            .map(|&(line, corner, index)| {
+                let kind = ParseError::TexCoordIndexOutOfRange {
+                    corner,
+                    index,
+                    count,
+                };
+                (line, kind)
+            })
+    }
+
+    /// The mesh's texture coordinates (every corner has a `vt`), or the record of a file
+    /// where only some corners have one; neither when no corner has one (`vt` lines or not).
+    fn finish(self) -> (Option<Uvs>, Option<PartialUvs>) {
+        if self.with_vt == 0 {
+            (None, None)
+        } else if self.with_vt == self.corners {
+            (Some(Uvs::from_read(self.coords, self.vts)), None)
+        } else {
+            let partial = PartialUvs {
+                with_vt: self.with_vt,
+                corners: self.corners,
+            };
+            (None, Some(partial))
+        }
+    }
 }
 
 /// The tags read so far, with the line of every crease, corner and hole (for errors found
@@ -472,6 +633,17 @@ fn sharpness_error(name: &str, token: &str) -> ParseError {
     }
 }
 
+/// Parses a finite texture coordinate.
+fn parse_tex_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
+    parse_coordinate(token).map_err(|kind| match kind {
+        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
+            token,
+            expected: "texture coordinate",
+        },
+        kind => kind,
+    })
+}
+
 /// Parses an OBJ vertex index: a non-zero integer whose magnitude fits `u32`.
 fn parse_index(field: &str) -> std::result::Result<i64, ParseError> {
     let digits = field.strip_prefix(['-', '+']).unwrap_or(field);
@@ -521,6 +693,143 @@ mod tests {
 
     fn read(text: &str) -> Result<PolygonMesh> {
         read_obj_from(text.as_bytes(), "t.obj")
+    }
+
+    /// Four vertices and four texture coordinates; then `faces`.
+    fn textured(faces: &str) -> String {
+        format!("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1 0.5\nvt 0 1\n{faces}")
+    }
+
+    fn vts(mesh: &PolygonMesh) -> Vec<u32> {
+        mesh.uvs().expect("uvs").corners().to_vec()
+    }
+
+    #[test]
+    fn every_corner_form_with_a_vt_gives_uvs() {
+        for faces in [
+            "f 1/1 2/2 3/3 4/4\n",
+            "f 1/1/1 2/2/1 3/3/1 4/4/1\n",
+            "f 1/1 2/2/1 3/3/7 4/4\n",
+            "f -4/-4 -3/-3/1 -2/-2 -1/-1//\n",
+            "f 1/-4 2/2 3/-2 4/4/\n",
+        ] {
+            let mesh = read(&textured(faces)).expect(faces);
+            assert_eq!(vts(&mesh), [0, 1, 2, 3], "{faces}");
+            assert_eq!(mesh.face(0), &[0, 1, 2, 3], "{faces}");
+            assert_eq!(mesh.partial_uvs(), None);
+        }
+        let mesh = read(&textured("f 1/1 2/2 3/3 4/4\n")).expect("valid");
+        let uvs = mesh.uvs().expect("uvs");
+        // `w` is ignored; u and v are kept as f64.
+        assert_eq!(uvs.coords()[2], DVec2::new(1.0, 1.0));
+        assert_eq!(uvs.unreferenced(), 0);
+        // Vertices and texture coordinates are counted apart: -1 is the last vt read so far.
+        let text = "v 0 0 0\nvt 0 0\nvt 0.5 0.5\nv 1 0 0\nv 0 1 0\nf -3/-1 -2/-2 -1/-1\nvt 1 1\nf 1/-1 2/-1 3/3\n";
+        let mesh = read(text).expect("valid");
+        assert_eq!(vts(&mesh), [1, 0, 1, 2, 2, 2]);
+        // A positive index may name a vt defined later in the file.
+        let mesh = read("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/3 2/2 3/1\nvt 0 0\nvt 1 0\nvt 0 1\n")
+            .expect("valid");
+        assert_eq!(vts(&mesh), [2, 1, 0]);
+    }
+
+    #[test]
+    fn without_vt_at_some_corners_there_are_no_uvs_and_the_mesh_says_why() {
+        for (faces, with_vt, corners) in [
+            ("f 1/1 2/2 3/3 4/4\nf 1 2 3\n", 4, 7),
+            ("f 1 2 3\nf 1/1 2/2 3/3 4/4\n", 4, 7),
+            ("f 1/1 2//1 3/3 4/4\n", 3, 4),
+            ("f 1//1 2//1 3/3//\n", 1, 3),
+        ] {
+            let mesh = read(&textured(faces)).expect(faces);
+            assert_eq!(mesh.uvs(), None, "{faces}");
+            let partial = mesh.partial_uvs().expect(faces);
+            assert_eq!((partial.with_vt, partial.corners), (with_vt, corners));
+            assert_eq!(
+                partial.to_string(),
+                format!(
+                    "{with_vt} of {corners} face corners have texture coordinates: no UV layout"
+                )
+            );
+        }
+        // vt lines that no corner uses: no uvs, and nothing partial either.
+        for faces in ["f 1 2 3 4\n", "f 1//1 2//1 3//1\n"] {
+            let mesh = read(&textured(faces)).expect(faces);
+            assert_eq!((mesh.uvs(), mesh.partial_uvs()), (None, None), "{faces}");
+        }
+        // Unused vt entries are kept and counted.
+        let mesh = read(&textured("f 1/4 2/2 3/4\n")).expect("valid");
+        let uvs = mesh.uvs().expect("uvs");
+        assert_eq!((uvs.coords().len(), uvs.unreferenced()), (4, 2));
+        // set_uvs replaces what the reader recorded.
+        let mut mesh = read(&textured("f 1/1 2 3\n")).expect("valid");
+        assert!(mesh.partial_uvs().is_some());
+        mesh.set_uvs(Some(
+            Uvs::new(vec![DVec2::ZERO], vec![0; 3]).expect("in range"),
+        ))
+        .expect("one per corner");
+        assert_eq!(mesh.partial_uvs(), None);
+    }
+
+    #[test]
+    fn every_texture_coordinate_error_names_the_file_line_and_corner() {
+        let cases: &[(&str, &str)] = &[
+            ("f 1/1 2/2 3/5\n", "t.obj: line 9: corner 3: texture coordinate index 5 is out of range (the file has 4 texture coordinates)"),
+            ("f 1/-5 2/2 3/3\n", "t.obj: line 9: corner 1: texture coordinate index -5 is out of range (the file has 4 texture coordinates)"),
+            ("f 1/1 2/0 3/3\n", "t.obj: line 9: corner 2: `0` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1/1 2/x/1 3/3\n", "t.obj: line 9: corner 2: `x` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1/1 2/1.5 3/3\n", "t.obj: line 9: corner 2: `1.5` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1/1 2/2 3/4294967295\n", "t.obj: line 9: corner 3: `4294967295` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1/1 2/2 3/99999999999999999999999\n", "t.obj: line 9: corner 3: `99999999999999999999999` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1 2 3 4\nf 1/1 2/2 4/9\n", "t.obj: line 10: corner 3: texture coordinate index 9 is out of range (the file has 4 texture coordinates)"),
+            ("vt 1\nf 1/1 2/2 3/3\n", "t.obj: line 9: texture coordinate has 1 values, expected u v (and an optional w)"),
+            ("vt\nf 1/1 2/2 3/3\n", "t.obj: line 9: texture coordinate has 0 values, expected u v (and an optional w)"),
+            ("vt 0 u\n", "t.obj: line 9: `u` is not a valid texture coordinate"),
+            ("vt nan 0\n", "t.obj: line 9: coordinate `nan` is not finite"),
+            ("vt 0 1e999\n", "t.obj: line 9: coordinate `1e999` is not finite"),
+        ];
+        for (faces, message) in cases {
+            let err = read(&textured(faces)).unwrap_err();
+            assert!(matches!(err, Error::Parse { .. }), "{faces}: {err}");
+            assert_eq!(err.to_string(), *message, "{faces}");
+        }
+        let err = read(&textured("f 1/1 2/2 3/6\n")).unwrap_err();
+        assert!(matches!(
+            err,
+            Error::Parse {
+                line: 9,
+                kind: ParseError::TexCoordIndexOutOfRange {
+                    corner: 3,
+                    index: 6,
+                    count: 4
+                },
+                ..
+            }
+        ));
+        // A forward reference beyond the file's vt: the first such corner in the file, even
+        // when a larger one follows; a bad vertex on an earlier line comes first.
+        let text =
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2 2/7 3/3\nf 1/9 2/2 3/1\nvt 0 0\nvt 1 0\nvt 0 1\n";
+        assert_eq!(
+            read(text).unwrap_err().to_string(),
+            "t.obj: line 4: corner 2: texture coordinate index 7 is out of range (the file has 3 texture coordinates)"
+        );
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\nf 1/9 2/2 3/1\nvt 0 0\n";
+        assert_eq!(
+            read(text).unwrap_err().to_string(),
+            "t.obj: line 4: face index 9 is out of range (the file has 3 vertices)"
+        );
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/9 2/2 3/1\nf 1 2 9\nvt 0 0\n";
+        assert_eq!(
+            read(text).unwrap_err().to_string(),
+            "t.obj: line 4: corner 1: texture coordinate index 9 is out of range (the file has 1 texture coordinates)"
+        );
+        // The vertex field is checked before the vt field of the same corner.
+        let err = read(&textured("f 1/1 2/2 0/9\n")).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "t.obj: line 9: face index 0 is not valid (OBJ indices start at 1)"
+        );
     }
 
     /// A quad strip: vertices 0-5, faces (0 1 4 3) and (1 2 5 4); then `tags`.

@@ -8,3 +8,4 @@ mod roundtrip;
 mod shared_meshes;
 mod tags;
 mod uv_counts;
+mod uv_io;

@@ -5,52 +5,17 @@
 
 use std::path::Path;
 
-use halfedge::glam::{DVec2, DVec3};
+use halfedge::glam::DVec2;
 use halfedge::holes::HoleSet;
 use halfedge::uv::Uvs;
-use halfedge::{shapes, stats, PolygonMesh, Rule};
+use halfedge::{io, shapes, stats, PolygonMesh, Rule};
 use schemes::uv::{uv_scheme, UvCounts};
 use schemes::BigInt;
 
-/// The faces and texture coordinates of an OBJ file (`v`, `vt`, `f v/vt...` with positive
-/// indices only): a temporary reader for these tests until `io::read_obj` reads `vt`.
+/// The mesh of an OBJ file, with its texture coordinates.
 fn read_with_uvs(path: &Path) -> PolygonMesh {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let (mut positions, mut coords, mut faces, mut corners) = (vec![], vec![], vec![], vec![]);
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        let number = |w: &str| -> f64 {
-            w.parse()
-                .unwrap_or_else(|e| panic!("{}:{}: {w}: {e}", path.display(), n + 1))
-        };
-        match words.next() {
-            Some("v") => positions.push(DVec3::ZERO),
-            Some("vt") => {
-                let uv: Vec<f64> = words.take(2).map(number).collect();
-                coords.push(DVec2::new(uv[0], uv[1]));
-            }
-            Some("f") => {
-                let mut face = vec![];
-                for corner in words {
-                    let mut parts = corner.split('/');
-                    let index = |p: Option<&str>| -> u32 {
-                        let p = p.unwrap_or_else(|| panic!("{}:{}: no vt", path.display(), n + 1));
-                        p.parse::<u32>()
-                            .unwrap_or_else(|e| panic!("{}:{}: {p}: {e}", path.display(), n + 1))
-                            - 1
-                    };
-                    face.push(index(parts.next()));
-                    corners.push(index(parts.next()));
-                }
-                faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    let mut mesh = PolygonMesh::from_faces(positions, faces);
-    let uvs = Uvs::new(coords, corners).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    mesh.set_uvs(Some(uvs))
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mesh = io::read_obj(path).unwrap_or_else(|e| panic!("{e}"));
+    assert!(mesh.uvs().is_some(), "{}: no uvs", path.display());
     mesh
 }
 
@@ -88,6 +53,41 @@ fn spot_triangulated_counts_opensubdivs_loop_values() {
         values(Rule::Loop, &uv, 0..=2),
         [3225, 12297, 48009].map(BigInt::from)
     );
+}
+
+/// OpenSubdiv's sibling values: the pawn's and bishop's 4 `vt` are used by every quad at its
+/// four corners in turn, and at 39 of the bishop's vertices the faces around use two `vt` in
+/// the order A, B, A, B, each a value of its own at level 1. Counts are OpenSubdiv 3.5's
+/// `GetNumFVarValues` (tools/osd-driver/README.md).
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn sibling_values_give_opensubdivs_counts_on_the_shared_meshes() {
+    let cases: [(&str, u64, u64, &[u64]); 5] = [
+        ("osd_catmark_pawn.obj", 2281, 0, &[4, 5221, 14629]),
+        ("osd_catmark_bishop.obj", 3244, 39, &[4, 7991, 22951]),
+        (
+            "spot_control_mesh.obj",
+            267,
+            0,
+            &[267, 885, 3225, 12297, 48009],
+        ),
+        ("blub_control_mesh.obj", 141, 0, &[141, 501, 1885]),
+        ("cylinder_ngon.obj", 271, 0, &[271, 943, 3563]),
+    ];
+    for (name, pairs, split, expected) in cases {
+        let mesh = read_with_uvs(&testdata::mesh(name));
+        let uv = stats::uv_counts(&mesh).expect("a layout");
+        assert_eq!((uv.values, uv.split_values), (pairs, split), "{name}");
+        let last = expected.len() as u64 - 1;
+        assert_eq!(
+            values(Rule::CatmullClark, &uv, 0..=last),
+            expected
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect::<Vec<_>>(),
+            "{name}"
+        );
+    }
 }
 
 /// The cube with every face its own chart (a `vt` per corner): every edge is a seam.
@@ -140,4 +140,86 @@ fn written_faces_have_the_layout_of_the_mesh_made_of_them() {
     );
     // No UVs, no layout.
     assert_eq!(holes.written_uv_counts(&shapes::cube()), None);
+}
+
+/// A `w` x `h` grid of quads (optionally each split into two triangles) whose corners use
+/// `vt` chosen by `picks`: 0 the corner's vertex's own `vt`, 1-3 one of three `vt` shared by
+/// every vertex (as the pawn's four), so seams and shared `vt` fall anywhere.
+fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh {
+    let n = (w + 1) * (h + 1);
+    let positions: Vec<DVec3> = (0..n)
+        .map(|i| DVec3::new(f64::from(i % (w + 1)), f64::from(i / (w + 1)), 0.0))
+        .collect();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for y in 0..h {
+        for x in 0..w {
+            let a = y * (w + 1) + x;
+            let (b, c, d) = (a + 1, a + w + 2, a + w + 1);
+            if triangles {
+                faces.push(vec![a, b, c]);
+                faces.push(vec![a, c, d]);
+            } else {
+                faces.push(vec![a, b, c, d]);
+            }
+        }
+    }
+    let corners: Vec<u32> = faces
+        .iter()
+        .flatten()
+        .enumerate()
+        .map(|(i, &v)| match picks[i % picks.len()] {
+            0 => 3 + v,
+            k => u32::from(k - 1),
+        })
+        .collect();
+    let coords = vec![DVec2::ZERO; 3 + n as usize];
+    let mut mesh = PolygonMesh::from_faces(positions, faces);
+    mesh.set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
+        .expect("one vt per corner");
+    mesh
+}
+
+/// The layout as a face list of its own: the mesh's faces with value indices as corners.
+fn layout_mesh(mesh: &PolygonMesh) -> PolygonMesh {
+    let layout = mesh.uv_layout().expect("a layout");
+    let offsets = mesh.face_offsets();
+    let faces = offsets
+        .windows(2)
+        .map(|w| layout.corners()[w[0]..w[1]].to_vec());
+    PolygonMesh::from_faces(vec![DVec3::ZERO; layout.n_values()], faces)
+}
+
+proptest::proptest! {
+    /// The UV recurrences count the layout refined as a face list (`subdivide_polygons` on the
+    /// value-index faces: a child value per parent value, layout edge and face), plus, for
+    /// OpenSubdiv's rules, the sibling values the layout splits off at level 0, at every level.
+    #[test]
+    fn uv_recurrences_count_the_refined_layout(
+        w in 1u32..5,
+        h in 1u32..4,
+        triangles in proptest::bool::ANY,
+        picks in proptest::collection::vec(0u8..4, 1..40),
+    ) {
+        use halfedge::subdivide::{subdivide_polygons, SubdivideOptions};
+        let mesh = grid_with_seams(w, h, triangles, &picks);
+        let uv = stats::uv_counts(&mesh).expect("a layout");
+        let layout = layout_mesh(&mesh);
+        let mut rules = vec![Rule::CatmullClark];
+        if triangles {
+            rules.extend([Rule::Loop, Rule::Butterfly, Rule::TriSplit(3)]);
+        }
+        for rule in rules {
+            let scheme = uv_scheme(rule).expect("counted");
+            let split = if scheme.splits_siblings() { uv.split_values } else { 0 };
+            for s in 1..=3u32 {
+                let refined = subdivide_polygons(&layout, rule, s, &SubdivideOptions::default())
+                    .map_err(|e| proptest::test_runner::TestCaseError::fail(format!("{rule}: {e}")))?;
+                proptest::prop_assert_eq!(
+                    scheme.values_at(&uv, u64::from(s)).expect("counts"),
+                    BigInt::from(refined.n_vertices() as u64 + split),
+                    "{} level {}", rule, s
+                );
+            }
+        }
+    }
 }

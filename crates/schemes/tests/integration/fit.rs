@@ -50,6 +50,7 @@ fn fit_matches_a_linear_scan() {
                     bytes_per_vertex: 12,
                     bytes_per_edge: 0,
                     bytes_per_face: 12,
+                    bytes_per_uv: 0,
                 }),
                 ..Budget::default()
             };
@@ -259,4 +260,62 @@ fn none_fits_is_an_answer() {
     assert!(matches!(every, Fit::Unbounded { .. }), "{every:?}");
     assert_eq!(every.highest_level(30), Some(30));
     assert_eq!(every.counts().unwrap().level, 0);
+}
+
+/// With a UV layout, `fit_uv` finds what a linear scan over the UV values (and bytes with
+/// `bytes_per_uv`) finds, for single schemes and compositions; `fit` refuses a UV limit.
+#[test]
+fn fit_uv_matches_a_linear_scan_of_the_uv_values() {
+    use schemes::uv::UvCounts;
+    use schemes::{fit_uv, Counter, Error};
+    // spot_control_mesh's layout (with 3 split values, to count them) and its state.
+    let spot = UvCounts {
+        values: 267,
+        edges: 438,
+        boundary_edges: 144,
+        used_vt: 267,
+        faces: 180,
+        corners: 732,
+        split_values: 3,
+        ..UvCounts::default()
+    };
+    let x0 = [188, 366, 0, 180, 732].map(BigInt::from);
+    for text in ["catmull-clark", "catmull-clark:2,catmull-clark"] {
+        let plan = Plan::parse(text).unwrap();
+        let uv = Counter::from(plan.clone()).uv_counter(&spot).unwrap();
+        for limit in [300u64, 885, 886, 3225, 50_000, 10_000_000] {
+            let budget = Budget {
+                max_uv: Some(BigInt::from(limit)),
+                ..Budget::default()
+            };
+            let scan = (0..64u64)
+                .take_while(|&s| uv.values_at(s).unwrap() <= BigInt::from(limit))
+                .last();
+            let got = fit_uv(&plan, &x0, &uv, &budget).unwrap().highest_level(64);
+            assert_eq!(got, scan, "{text} max_uv {limit}");
+            assert_eq!(schemes::fit(&plan, &x0, &budget), Err(Error::NoUvLayout));
+        }
+        for bytes in [10_000u64, 123_456, 4_000_000_000] {
+            let memory = MemoryBudget {
+                bytes: BigInt::from(bytes),
+                bytes_per_vertex: 12,
+                bytes_per_face: 16,
+                bytes_per_uv: 8,
+                ..MemoryBudget::default()
+            };
+            let budget = Budget {
+                memory: Some(memory),
+                ..Budget::default()
+            };
+            let scan = (0..64u64)
+                .take_while(|&s| {
+                    let c = plan.level_counts(&x0, s).unwrap();
+                    let uv = uv.values_at(s).unwrap();
+                    12 * &c.vertices + 16 * &c.faces + 8 * uv <= BigInt::from(bytes)
+                })
+                .last();
+            let got = fit_uv(&plan, &x0, &uv, &budget).unwrap().highest_level(64);
+            assert_eq!(got, scan, "{text} {bytes} bytes");
+        }
+    }
 }

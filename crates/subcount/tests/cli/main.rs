@@ -9,3 +9,4 @@ mod plot;
 mod schemes;
 mod tags;
 mod util;
+mod uv_input;
