@@ -19,7 +19,6 @@ use halfedge::holes::HoleSet;
 use halfedge::refine::Refinement;
 use halfedge::subdivide::{Sharpness, SubdivideOptions};
 use halfedge::tags::{FaceVaryingInterpolation, SubdivisionOptions};
-use halfedge::uv::Uvs;
 use halfedge::{io, HalfEdgeMesh, PolygonMesh, Rule};
 
 use osd_support::fvar::{opensubdiv_fvar, FvarLevel};
@@ -32,37 +31,14 @@ fn shared(file: &str) -> PathBuf {
     testdata::meshes_dir().join(file)
 }
 
-/// `path` read by `halfedge::io` with its `vt` (every corner `v/vt`), parsed here.
+/// `path` read by `halfedge::io`, with its `vt`.
 fn read_with_uvs(path: &Path) -> PolygonMesh {
-    let mut mesh = io::read_obj(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let text = std::fs::read_to_string(path).expect("readable");
-    let mut coords = Vec::new();
-    let mut corners = Vec::new();
-    for line in text.lines() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("vt") => {
-                let u: f64 = words.next().expect("u").parse().expect("a number");
-                let v: f64 = words.next().map_or(0.0, |w| w.parse().expect("a number"));
-                coords.push(DVec2::new(u, v));
-            }
-            Some("f") => {
-                for w in words {
-                    let vt = w.split('/').nth(1).expect("a vt on every corner");
-                    let i: i64 = vt.parse().expect("a vt index");
-                    let i = if i < 0 {
-                        coords.len() as i64 + i
-                    } else {
-                        i - 1
-                    };
-                    corners.push(i as u32);
-                }
-            }
-            _ => {}
-        }
-    }
-    mesh.set_uvs(Some(Uvs::new(coords, corners).expect("vt in range")))
-        .expect("a vt per corner");
+    let mesh = io::read_obj(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        mesh.uvs().is_some(),
+        "{}: a vt on every corner",
+        path.display()
+    );
     mesh
 }
 
@@ -253,7 +229,6 @@ const MESHES: &[(&str, Osd)] = &[
 #[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and the shared meshes (SUBCOUNT_MESHES)"]
 fn shared_meshes_match_opensubdiv_in_every_mode() {
     driver();
-    let mut report = Vec::new();
     for &(file, scheme) in MESHES {
         let path = shared(file);
         let mesh = read_with_uvs(&path);
@@ -272,11 +247,9 @@ fn shared_meshes_match_opensubdiv_in_every_mode() {
                     c.worst,
                     start.elapsed()
                 );
-                report.push(format!("{file} L{level} {}: {:.1e}", mode.name(), c.worst));
             }
         }
     }
-    eprintln!("{}", report.join("\n"));
 }
 
 /// A `n` x `n` grid of quads (or of triangles, two per quad) on `[0, n]²` with a UV layout
