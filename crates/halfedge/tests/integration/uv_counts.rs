@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use halfedge::glam::DVec2;
+use halfedge::glam::{DVec2, DVec3};
 use halfedge::holes::HoleSet;
 use halfedge::uv::Uvs;
 use halfedge::{io, shapes, stats, PolygonMesh, Rule};

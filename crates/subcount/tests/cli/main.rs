@@ -9,4 +9,5 @@ mod plot;
 mod schemes;
 mod tags;
 mod util;
+mod uv_counts;
 mod uv_input;
