@@ -615,6 +615,22 @@ pub enum Error {
         /// Vertices of the mesh.
         mesh_vertices: usize,
     },
+    /// UVs asked of a rule that does not refine them yet (√3, Doo-Sabin, mid-edge).
+    #[error("UVs are not refined under {rule} (Loop, Catmull-Clark and the triangle splits refine them)")]
+    UvsNotSupported {
+        /// The rule.
+        rule: String,
+    },
+    /// A UV layout ([`crate::uv::UvLayout`]) that is not of the mesh refined.
+    #[error("the UV layout does not match the mesh: {reason}")]
+    UvLayoutMismatch {
+        /// What differs (corners, or a value used at two vertices).
+        reason: String,
+    },
+    /// UVs evaluated on a refinement built without a UV layout
+    /// ([`SubdivideOptions::uvs`](crate::subdivide::SubdivideOptions::uvs)).
+    #[error("the refinement has no UVs (build it with SubdivideOptions::with_uvs)")]
+    NoUvs,
     /// The thread pool for parallel subdivision could not be created.
     #[error("cannot start {threads} threads for subdivision: {reason}")]
     ThreadPool {

@@ -150,6 +150,15 @@ pub struct SubdivideOptions<'a> {
     /// (index buffers and vertex data of the written part). `None` or an empty set changes
     /// nothing.
     pub holes: Option<&'a HoleSet>,
+    /// The UV layout of the mesh ([`crate::uv::UvLayout`], from
+    /// [`PolygonMesh::uv_layout`]) to refine as face-varying data
+    /// ([`refine::face_varying`]): [`Refinement::new`](crate::Refinement::new) then refines it
+    /// too ([`Refinement::evaluate_uvs`](crate::Refinement::evaluate_uvs)) and
+    /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
+    /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
+    /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; √3, Doo-Sabin and
+    /// mid-edge refuse it ([`Error::UvsNotSupported`]).
+    pub uvs: Option<&'a crate::uv::UvLayout>,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -161,6 +170,7 @@ impl Default for SubdivideOptions<'_> {
             sharpness: None,
             subdivision: SubdivisionOptions::default(),
             holes: None,
+            uvs: None,
         }
     }
 }
@@ -196,6 +206,12 @@ impl<'a> SubdivideOptions<'a> {
         self
     }
 
+    /// Sets [`SubdivideOptions::uvs`].
+    pub fn with_uvs(mut self, uvs: &'a crate::uv::UvLayout) -> Self {
+        self.uvs = Some(uvs);
+        self
+    }
+
     /// Sets [`SubdivideOptions::holes`].
     pub fn with_holes(mut self, holes: &'a HoleSet) -> Self {
         self.holes = Some(holes);
@@ -217,6 +233,7 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
             )
             .field("subdivision", &self.subdivision)
             .field("holes", &self.holes.map(|h| h.faces().len()))
+            .field("uvs", &self.uvs.map(|u| u.n_values()))
             .finish()
     }
 }
@@ -590,6 +607,9 @@ pub fn subdivide_to_face_list(
 ) -> Result<FaceListLevel> {
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
+    if opts.uvs.is_some() {
+        refine::face_varying::channel_rule(rule)?;
+    }
     let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
     let written = match holes {
         Some(holes) => Some(written_prediction(
@@ -607,13 +627,23 @@ pub fn subdivide_to_face_list(
         },
         refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh, edges },
     };
-    match (holes, written) {
+    let mut level = match (holes, written) {
         (Some(holes), Some(predicted)) => {
             let degrees = crate::holes::degrees_of(mesh);
-            keep_written(level.mesh, holes, &degrees, &plan, levels, &predicted)
+            keep_written(level.mesh, holes, &degrees, &plan, levels, &predicted)?
         }
-        _ => Ok(level),
+        _ => level,
+    };
+    if let Some(layout) = opts.uvs {
+        let uvs = refine::face_varying::refined_uvs(mesh, layout, rule, levels, opts)?;
+        level
+            .mesh
+            .set_uvs(Some(uvs))
+            .map_err(|e| Error::UvLayoutMismatch {
+                reason: e.to_string(),
+            })?;
     }
+    Ok(level)
 }
 
 /// What `plan` writes at `levels` of a mesh whose written faces have the counts `written`,

@@ -62,6 +62,7 @@
 //! data near the overflow limit of `T` can give infinities.
 
 mod data;
+pub mod face_varying;
 mod oneshot;
 mod stencil;
 mod tables;
@@ -198,6 +199,8 @@ pub struct Refinement {
     creases: Option<Creases>,
     /// With holes ([`SubdivideOptions::holes`]): the written part of the last level.
     written: Option<Written>,
+    /// With a UV layout ([`SubdivideOptions::uvs`]): its face-varying channel.
+    uvs: Option<Box<face_varying::UvChannel>>,
 }
 
 /// The written part of the last level of a refinement with holes: its face list is
@@ -341,11 +344,34 @@ impl Refinement {
         levels: u32,
         opts: &SubdivideOptions<'_>,
     ) -> Result<Refinement> {
+        // Refused before any topology is built.
+        if opts.uvs.is_some() {
+            face_varying::channel_rule(rule)?;
+        }
+        let creases = || Creases::new(mesh, rule, opts.sharpness, &opts.subdivision);
+        let mut refinement = Refinement::with_creases(mesh, rule, levels, opts, creases)?;
+        if let Some(layout) = opts.uvs {
+            refinement.uvs = Some(Box::new(face_varying::UvChannel::new(
+                mesh, layout, rule, levels, opts,
+            )?));
+        }
+        Ok(refinement)
+    }
+
+    /// [`Refinement::new`] with the crease rules given (a face-varying channel's own), and
+    /// no UVs.
+    fn with_creases(
+        mesh: &HalfEdgeMesh,
+        rule: Rule,
+        levels: u32,
+        opts: &SubdivideOptions<'_>,
+        creases: impl FnOnce() -> Result<Option<Creases>>,
+    ) -> Result<Refinement> {
         let counts = mesh.counts();
         let plan = super::plan(rule, &counts)?;
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
-        let creases = Creases::new(mesh, rule, opts.sharpness, &opts.subdivision)?;
+        let creases = creases()?;
         let planned = plan_sizes(&plan, &counts, levels, !direct(plan.algorithm))?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
@@ -387,6 +413,7 @@ impl Refinement {
             face_degree: None,
             creases,
             written: None,
+            uvs: None,
         };
         let base = Topo::new(mesh);
         refinement.sizes.push(LevelSize {
@@ -810,6 +837,45 @@ impl Refinement {
         self.face_degree
     }
 
+    /// Whether the refinement refines UVs ([`SubdivideOptions::uvs`]; [`face_varying`]).
+    pub fn has_uvs(&self) -> bool {
+        self.uvs.is_some()
+    }
+
+    /// The UV values of level `level` (`0..=levels`; 0 beyond the last level, and without
+    /// UVs): level 0 is the layout's values, the last level's are the values its written
+    /// faces use (with holes, fewer than the level has). Known when the refinement is built.
+    pub fn n_uvs(&self, level: u32) -> usize {
+        self.uvs.as_ref().map_or(0, |u| u.n_uvs(level))
+    }
+
+    /// Refines the UV values `base` (one per value of the layout,
+    /// [`UvLayout::values`](crate::uv::UvLayout::values)) to the last level, into `out`
+    /// (`n_uvs(levels)` entries), by the face-varying rules of [`face_varying`].
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv base`, `uv out`);
+    /// [`Error::AllocationFailed`].
+    pub fn evaluate_uvs<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
+        self.run(|| uvs.evaluate(base, out))
+    }
+
+    /// Writes the UV value of every face corner of the last level (`n_corners(levels)`
+    /// entries), face after face in the order of [`Refinement::write_triangles`],
+    /// [`write_quads`](Refinement::write_quads) and [`write_polygons`](Refinement::write_polygons)
+    /// (with holes, the written faces only): index `i` names entry `i` of
+    /// [`Refinement::evaluate_uvs`]' output.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv indices`).
+    pub fn write_uv_indices(&self, out: &mut [u32]) -> Result<()> {
+        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
+        uvs.write_indices(out, self.n_corners(self.levels))
+    }
+
     /// The bytes the refinement keeps on the heap (see [Memory](Refinement#memory)).
     pub fn heap_bytes(&self) -> usize {
         let levels: usize = self
@@ -826,7 +892,8 @@ impl Refinement {
             .as_ref()
             .map_or(0, |p| 4 * (p.offsets.len() + p.indices.len()));
         let written = self.written.as_ref().map_or(0, |w| 4 * w.kept.len());
-        levels + polygons + written
+        let uvs = self.uvs.as_ref().map_or(0, |u| u.heap_bytes());
+        levels + polygons + written + uvs
     }
 
     /// The bytes [`Refinement::new`] would keep for `rule` at `levels` on a mesh with

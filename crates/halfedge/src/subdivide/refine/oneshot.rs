@@ -94,6 +94,7 @@ impl Refinement {
             face_degree: None,
             creases,
             written: None,
+            uvs: None,
         }
     }
 

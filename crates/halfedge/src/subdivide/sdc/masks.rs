@@ -21,6 +21,7 @@ use std::f64::consts::PI;
 use super::crease::{
     child_edge_sharpness, decrement, fractional_weight, is_sharp, vertex_rule_of, VertexRule,
 };
+use super::Linear;
 use crate::mesh::INVALID;
 use crate::subdivide::par::Sink;
 use crate::subdivide::refine::Vector;
@@ -50,7 +51,7 @@ pub(crate) struct LevelSharpness {
 /// The outgoing half-edges of `v` counter-clockwise from `first` (OpenSubdiv's order of a
 /// vertex's edges; face `i`, where there is one, lies between edges `i` and `i + 1`), into
 /// `ring`.
-fn ccw_ring(t: &Topo<'_>, v: u32, first: u32, ring: &mut Vec<u32>) {
+pub(crate) fn ccw_ring(t: &Topo<'_>, v: u32, first: u32, ring: &mut Vec<u32>) {
     ring.clear();
     let mut h = first;
     loop {
@@ -68,7 +69,7 @@ fn ccw_ring(t: &Topo<'_>, v: u32, first: u32, ring: &mut Vec<u32>) {
 
 /// The leading outgoing half-edge of a boundary vertex (the one whose face follows the
 /// boundary counter-clockwise), or `None` for an interior vertex.
-fn boundary_first(t: &Topo<'_>, v: u32) -> Option<u32> {
+pub(crate) fn boundary_first(t: &Topo<'_>, v: u32) -> Option<u32> {
     let h = t.vertex_halfedge(v);
     t.is_boundary(h).then(|| t.prev(h) ^ 1)
 }
@@ -272,6 +273,8 @@ pub(crate) struct LevelBuilder<'a> {
     smooth_triangles: bool,
     /// Per half-edge `h`: the sharpness of the child of edge `h >> 1` at `source(h)`.
     child_at: Vec<f32>,
+    /// A face-varying channel's linear interpolation.
+    linear: Linear,
 }
 
 impl<'a> LevelBuilder<'a> {
@@ -280,6 +283,7 @@ impl<'a> LevelBuilder<'a> {
         sharp: &'a LevelSharpness,
         scheme: Scheme,
         options: &SubdivisionOptions,
+        linear: Linear,
     ) -> LevelBuilder<'a> {
         let method = options.crease_method;
         let mut child_at = vec![0.0f32; 2 * t.ne()];
@@ -301,6 +305,7 @@ impl<'a> LevelBuilder<'a> {
             smooth_triangles: scheme == Scheme::CatmullClark
                 && options.triangle_rule == TriangleRule::Smooth,
             child_at,
+            linear,
         }
     }
 
@@ -375,6 +380,12 @@ impl<'a> LevelBuilder<'a> {
 
     fn vertex_row(&self, v: u32, scratch: &mut Scratch, row: &mut Vec<(u32, f64)>) {
         let t = &self.t;
+        if self.linear == Linear::All
+            || (self.linear == Linear::Boundaries && t.is_boundary_vertex(v))
+        {
+            row.push((v, 1.0));
+            return;
+        }
         let Scratch {
             ring,
             faces,
@@ -424,7 +435,7 @@ impl<'a> LevelBuilder<'a> {
         let s = self.sharp.edges[e as usize];
         let crease_children =
             is_sharp(self.child_at[h as usize]) && is_sharp(self.child_at[(h ^ 1) as usize]);
-        if is_sharp(s) && crease_children {
+        if (is_sharp(s) && crease_children) || self.linear == Linear::All {
             row.push((a, 0.5));
             row.push((b, 0.5));
             return;

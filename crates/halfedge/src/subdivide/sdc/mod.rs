@@ -77,7 +77,7 @@ use crate::subdivide::topo::Topo;
 use crate::tags::{BoundaryInterpolation, SubdivisionOptions, Tags, TriangleRule};
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result, Rule};
 
-pub(crate) use self::masks::WeightTable;
+pub(crate) use self::masks::{boundary_first, ccw_ring, WeightTable};
 use self::masks::{LevelBuilder, LevelSharpness, Scheme};
 
 #[cfg(doc)]
@@ -302,11 +302,25 @@ pub(crate) fn table_bytes_bound(
     entries * 12u32 + (rows + 1u32) * 4u32
 }
 
+/// What a face-varying channel interpolates linearly at every level
+/// (`FVarLinearInterpolation`'s `boundaries` and `all`), on top of its sharpness.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub(crate) enum Linear {
+    /// Nothing beyond the sharpness (the surface, and the channels of the other modes).
+    #[default]
+    Nothing,
+    /// Every boundary vertex of the channel is a corner, at every level.
+    Boundaries,
+    /// Every vertex is a corner and every edge point a midpoint (bilinear).
+    All,
+}
+
 /// The crease rules of a refinement: the sharpness of the levels still to be flattened.
 #[derive(Debug)]
 pub(crate) struct Creases {
     scheme: Scheme,
     options: SubdivisionOptions,
+    linear: Linear,
     /// Per level: its sharpness, until its weight table is built.
     levels: Vec<Option<LevelSharpness>>,
 }
@@ -373,6 +387,51 @@ impl Creases {
         Ok(Some(Creases {
             scheme,
             options: *options,
+            linear: Linear::Nothing,
+            levels: vec![Some(base)],
+        }))
+    }
+
+    /// The crease rules of a face-varying channel ([`refine::face_varying`](crate::refine::face_varying)):
+    /// `mesh` is the channel's own topology (the UV layout, its boundary the surface's
+    /// boundary and the seams), `edges` and `vertices` its sharpness (boundary edges are made
+    /// infinitely sharp here), under `options` (whose boundary mode is ignored: the channel's
+    /// corners come in `vertices`) and `linear`. `None` when the rule's own kernels give the
+    /// same values.
+    pub(crate) fn for_channel(
+        mesh: &HalfEdgeMesh,
+        rule: Rule,
+        edges: &[f32],
+        vertices: &[f32],
+        options: &SubdivisionOptions,
+        linear: Linear,
+    ) -> Result<Option<Creases>> {
+        let t = Topo::new(mesh);
+        let options = SubdivisionOptions {
+            boundary: BoundaryInterpolation::Edge,
+            ..*options
+        };
+        let sharp = edges.iter().chain(vertices).any(|&s| s > 0.0);
+        let triangles = rule == Rule::CatmullClark
+            && options.triangle_rule == TriangleRule::Smooth
+            && (0..t.nf() as u32).any(|f| t.face_degree(f) == 3);
+        if !(sharp || triangles || linear != Linear::Nothing) {
+            return Ok(None);
+        }
+        let scheme = match rule {
+            Rule::Loop => Scheme::Loop,
+            Rule::CatmullClark => Scheme::CatmullClark,
+            other => {
+                return Err(Error::UvsNotSupported {
+                    rule: other.to_string(),
+                })
+            }
+        };
+        let base = LevelSharpness::base(&t, edges, vertices, &options);
+        Ok(Some(Creases {
+            scheme,
+            options,
+            linear,
             levels: vec![Some(base)],
         }))
     }
@@ -382,7 +441,8 @@ impl Creases {
     pub(crate) fn push_child(&mut self, level: usize, parent: &Topo<'_>, child: &Topo<'_>) {
         let next = match self.levels.get(level) {
             Some(Some(sharp)) => {
-                LevelBuilder::new(*parent, sharp, self.scheme, &self.options).child_sharpness(child)
+                LevelBuilder::new(*parent, sharp, self.scheme, &self.options, self.linear)
+                    .child_sharpness(child)
             }
             _ => return,
         };
@@ -417,7 +477,7 @@ impl Creases {
         let Some(Some(sharp)) = self.levels.get(level) else {
             return Ok(None);
         };
-        LevelBuilder::new(*t, sharp, self.scheme, &self.options)
+        LevelBuilder::new(*t, sharp, self.scheme, &self.options, self.linear)
             .weights(parallel)
             .map(Some)
     }

@@ -1,0 +1,275 @@
+//! Face-varying UVs against OpenSubdiv 3.5 (`PrimvarRefiner::InterpolateFaceVarying`
+//! through the driver's `--fvar MODE`): every linear-interpolation mode, levels 1-2, on the
+//! shared meshes with `vt` and on generated grids with seams, creases and holes. UVs must
+//! agree to 1e-12 of the UV bounding box's diagonal corner for corner (faces matched through
+//! the positions, so the numbering may differ), the value counts must be OpenSubdiv's, and
+//! the positions are unchanged by the channel. Ignored: they need `SUBCOUNT_OSD_DRIVER` (the
+//! driver, `tools/osd-driver/build.sh`) and `SUBCOUNT_MESHES`, and fail, saying so, without
+//! them.
+
+// Shared with `tests/opensubdiv.rs`, which uses all of it.
+#[allow(dead_code)]
+mod osd_support;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use halfedge::glam::{DVec2, DVec3};
+use halfedge::holes::HoleSet;
+use halfedge::refine::Refinement;
+use halfedge::subdivide::{Sharpness, SubdivideOptions};
+use halfedge::tags::{FaceVaryingInterpolation, SubdivisionOptions};
+use halfedge::uv::Uvs;
+use halfedge::{io, HalfEdgeMesh, PolygonMesh, Rule};
+
+use osd_support::fvar::{opensubdiv_fvar, FvarLevel};
+use osd_support::{
+    bounding_box_diagonal, correspondence, driver, without_bare_vertices, Osd, TOLERANCE,
+};
+
+/// The shared mesh `file`.
+fn shared(file: &str) -> PathBuf {
+    testdata::meshes_dir().join(file)
+}
+
+/// `path` read by `halfedge::io` with its `vt` (every corner `v/vt`), parsed here.
+fn read_with_uvs(path: &Path) -> PolygonMesh {
+    let mut mesh = io::read_obj(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(path).expect("readable");
+    let mut coords = Vec::new();
+    let mut corners = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("vt") => {
+                let u: f64 = words.next().expect("u").parse().expect("a number");
+                let v: f64 = words.next().map_or(0.0, |w| w.parse().expect("a number"));
+                coords.push(DVec2::new(u, v));
+            }
+            Some("f") => {
+                for w in words {
+                    let vt = w.split('/').nth(1).expect("a vt on every corner");
+                    let i: i64 = vt.parse().expect("a vt index");
+                    let i = if i < 0 {
+                        coords.len() as i64 + i
+                    } else {
+                        i - 1
+                    };
+                    corners.push(i as u32);
+                }
+            }
+            _ => {}
+        }
+    }
+    mesh.set_uvs(Some(Uvs::new(coords, corners).expect("vt in range")))
+        .expect("a vt per corner");
+    mesh
+}
+
+/// What one comparison found.
+struct Compared {
+    worst: f64,
+}
+
+/// Refines `mesh` (written to `path` for the driver) by `scheme` to `level` under `mode`
+/// (with `sharpness` and `holes` when given) and compares with OpenSubdiv.
+fn compare(
+    path: &Path,
+    mesh: &PolygonMesh,
+    scheme: Osd,
+    level: u32,
+    mode: FaceVaryingInterpolation,
+    sharpness: bool,
+) -> Compared {
+    let flags: &[&str] = if sharpness { &["--tags"] } else { &[] };
+    let running = opensubdiv_fvar(flags, scheme, level, path, None, mode.into());
+    let he = HalfEdgeMesh::try_from(mesh).expect("a manifold mesh");
+    let layout = mesh.uv_layout().expect("a layout");
+    let resolved = Sharpness::from_tags_of(mesh, &he, mesh.tags()).expect("tags");
+    let holes = HoleSet::new(he.n_faces(), mesh.tags().holes().iter().copied());
+    let options = SubdivisionOptions::default().with_face_varying(mode);
+    let mut opts = SubdivideOptions::default()
+        .with_uvs(&layout)
+        .with_subdivision(options);
+    if sharpness {
+        opts = opts.with_sharpness(&resolved);
+        if let Ok(h) = &holes {
+            opts = opts.with_holes(h);
+        }
+    }
+    let rule = match scheme {
+        Osd::Loop => Rule::Loop,
+        Osd::Catmark => Rule::CatmullClark,
+    };
+    let r = Refinement::new(&he, rule, level, &opts).expect("refined");
+    let base: Vec<[f64; 3]> = he.positions().iter().map(|p| p.to_array()).collect();
+    let mut positions = vec![[0.0; 3]; r.n_vertices(level)];
+    r.evaluate(&base, &mut positions).expect("evaluated");
+    let mut offsets = vec![0u32; r.n_faces(level) + 1];
+    let mut indices = vec![0u32; r.n_corners(level)];
+    r.write_polygons(&mut offsets, &mut indices).expect("faces");
+    let uv_base: Vec<[f64; 2]> = layout.values().iter().map(|v| v.to_array()).collect();
+    let mut uvs = vec![[0.0; 2]; r.n_uvs(level)];
+    r.evaluate_uvs(&uv_base, &mut uvs).expect("uvs");
+    let mut uv_indices = vec![0u32; r.n_corners(level)];
+    r.write_uv_indices(&mut uv_indices).expect("uv indices");
+
+    let theirs = running.fvar_level();
+    let theirs = if theirs.holes.is_empty() {
+        theirs
+    } else {
+        theirs.without_holes()
+    };
+    let what = format!(
+        "{} {scheme:?} level {level} --fvar {}",
+        path.display(),
+        mode.name()
+    );
+    let ours = PolygonMesh::from_faces(
+        positions.iter().map(|&p| DVec3::from(p)).collect(),
+        offsets
+            .windows(2)
+            .map(|w| indices[w[0] as usize..w[1] as usize].to_vec()),
+    );
+    assert_eq!(theirs.mesh.n_faces(), ours.n_faces(), "{what}: faces");
+    // OpenSubdiv gives a vertex in no face a vertex and a value at every level; neither is
+    // written here: the values compared are those faces use.
+    let mut used = vec![false; theirs.values().len()];
+    for &c in theirs.corner_values() {
+        used[c as usize] = true;
+    }
+    let used = used.iter().filter(|&&u| u).count();
+    assert_eq!(used, uvs.len(), "{what}: UV values");
+    if mesh.n_vertices() == he.n_vertices() {
+        assert_eq!(theirs.values().len(), uvs.len(), "{what}: UV values");
+    }
+    let diagonal = bounding_box_diagonal(&mesh.positions);
+    let their_mesh = without_bare_vertices(&theirs.mesh);
+    let to_ours = correspondence(&their_mesh, &ours, TOLERANCE * diagonal)
+        .unwrap_or_else(|e| panic!("{what}: positions: {e}"));
+    Compared {
+        worst: corner_error(
+            &theirs,
+            &their_mesh,
+            &ours,
+            &offsets,
+            &uvs,
+            &uv_indices,
+            &to_ours,
+            &what,
+        ),
+    }
+}
+
+/// The largest difference of corner UVs, relative to the UV bounding box's diagonal; panics
+/// above 1e-12.
+#[allow(clippy::too_many_arguments)]
+fn corner_error(
+    theirs: &FvarLevel,
+    their_mesh: &PolygonMesh,
+    ours: &PolygonMesh,
+    offsets: &[u32],
+    uvs: &[[f64; 2]],
+    uv_indices: &[u32],
+    to_ours: &[u32],
+    what: &str,
+) -> f64 {
+    // Our faces by their vertex cycle from its smallest vertex.
+    let key = |face: &[u32]| {
+        let start = (0..face.len()).min_by_key(|&i| face[i]).unwrap_or(0);
+        let cycle: Vec<u32> = (0..face.len())
+            .map(|j| face[(start + j) % face.len()])
+            .collect();
+        (cycle, start)
+    };
+    let mut faces: HashMap<Vec<u32>, (usize, usize)> = HashMap::new();
+    for f in 0..ours.n_faces() {
+        let (cycle, start) = key(ours.face(f));
+        faces.insert(cycle, (f, start));
+    }
+    let (lo, hi) = theirs.values().iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let scale = (hi - lo).length().max(f64::MIN_POSITIVE);
+    let mut worst = 0.0f64;
+    for f in 0..theirs.mesh.n_faces() {
+        let mapped: Vec<u32> = their_mesh
+            .face(f)
+            .iter()
+            .map(|&v| to_ours[v as usize])
+            .collect();
+        let (cycle, start) = key(&mapped);
+        let &(g, our_start) = faces
+            .get(&cycle)
+            .unwrap_or_else(|| panic!("{what}: OpenSubdiv's face {f} is not one of ours"));
+        let n = mapped.len();
+        let values = theirs.face_values(f);
+        for j in 0..n {
+            let theirs_uv = theirs.values()[values[(start + j) % n] as usize];
+            let corner = offsets[g] as usize + (our_start + j) % n;
+            let ours_uv = DVec2::from(uvs[uv_indices[corner] as usize]);
+            let e = theirs_uv.distance(ours_uv) / scale;
+            assert!(
+                e <= 1e-12,
+                "{what}: face {f} corner {j}: OpenSubdiv {theirs_uv}, ours {ours_uv} ({e:e} of the UV box)"
+            );
+            worst = worst.max(e);
+        }
+    }
+    worst
+}
+
+/// The shared meshes with `vt` on every corner, and the scheme each is compared under.
+const MESHES: &[(&str, Osd)] = &[
+    ("spot_control_mesh.obj", Osd::Catmark),
+    ("spot_control_mesh_negidx.obj", Osd::Catmark),
+    ("spot_triangulated.obj", Osd::Loop),
+    ("spot_quadrangulated.obj", Osd::Catmark),
+    ("blub_control_mesh.obj", Osd::Catmark),
+    ("blub_quadrangulated.obj", Osd::Catmark),
+    ("blub_triangulated.obj", Osd::Loop),
+    ("bob_tri.obj", Osd::Loop),
+    ("beast.obj", Osd::Catmark),
+    ("cylinder_ngon.obj", Osd::Catmark),
+    ("osd_catmark_bishop.obj", Osd::Catmark),
+    ("osd_catmark_cube.obj", Osd::Catmark),
+    ("osd_catmark_nonman_bareverts.obj", Osd::Catmark),
+    ("osd_catmark_nonquads.obj", Osd::Catmark),
+    ("osd_catmark_pawn.obj", Osd::Catmark),
+    ("osd_catmark_pyramid.obj", Osd::Catmark),
+    ("osd_catmark_toroidal_tet.obj", Osd::Catmark),
+    ("osd_catmark_torus.obj", Osd::Catmark),
+    ("osd_loop_icosahedron.obj", Osd::Loop),
+    ("osd_loop_toroidal_tet.obj", Osd::Loop),
+];
+
+#[test]
+#[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and the shared meshes (SUBCOUNT_MESHES)"]
+fn shared_meshes_match_opensubdiv_in_every_mode() {
+    driver();
+    let mut report = Vec::new();
+    for &(file, scheme) in MESHES {
+        let path = shared(file);
+        let mesh = read_with_uvs(&path);
+        for &mode in FaceVaryingInterpolation::ALL {
+            let levels: &[u32] = if mesh.n_corners() > 5000 {
+                &[1]
+            } else {
+                &[1, 2]
+            };
+            for &level in levels {
+                let start = std::time::Instant::now();
+                let c = compare(&path, &mesh, scheme, level, mode, false);
+                eprintln!(
+                    "{file} L{level} {}: {:.1e} {:?}",
+                    mode.name(),
+                    c.worst,
+                    start.elapsed()
+                );
+                report.push(format!("{file} L{level} {}: {:.1e}", mode.name(), c.worst));
+            }
+        }
+    }
+    eprintln!("{}", report.join("\n"));
+}
