@@ -321,3 +321,41 @@ fn a_split_sibling_value_is_counted_by_the_real_refinement_too() {
     // One more than the layout refined as a face list.
     assert_eq!(predicted[0], BigInt::from(10 + 1 + uv.edges + 4));
 }
+
+/// With holes the prediction from the written faces' layout (`HoleSet::written_uv_counts`,
+/// sibling values of the whole mesh) is the number of values the written faces of the real
+/// refinement use, at each last level; on the bishop too, whose sibling values holes can
+/// leave unused.
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn written_uv_values_with_holes_are_the_real_refinements() {
+    use halfedge::refine::Refinement;
+    use halfedge::subdivide::SubdivideOptions;
+    for (name, holes) in [
+        ("spot_control_mesh.obj", vec![0u32, 1, 2, 40, 41]),
+        ("osd_catmark_bishop.obj", (0..968).step_by(3).collect()),
+    ] {
+        let mesh = read_with_uvs(&testdata::mesh(name));
+        let holes = HoleSet::new(mesh.n_faces(), holes).expect("faces of the mesh");
+        let uv = holes.written_uv_counts(&mesh).expect("a layout");
+        let layout = mesh.uv_layout().expect("a layout");
+        let half = halfedge::HalfEdgeMesh::try_from(&mesh).unwrap_or_else(|e| panic!("{e}"));
+        let opts = SubdivideOptions::default()
+            .with_uvs(&layout)
+            .with_holes(&holes);
+        for levels in 1..=2u32 {
+            let r = Refinement::new(&half, Rule::CatmullClark, levels, &opts)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(
+                values(
+                    Rule::CatmullClark,
+                    &uv,
+                    u64::from(levels)..=u64::from(levels)
+                ),
+                [BigInt::from(r.n_uvs(levels))],
+                "{name} level {levels}, split {}",
+                uv.split_values
+            );
+        }
+    }
+}
