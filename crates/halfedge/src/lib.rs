@@ -18,6 +18,9 @@
 //! - [`holes`] finds the faces that are holes and what is written around them.
 //! - [`tags`] describes creases, corners, holes and OpenSubdiv's subdivision options, typed;
 //!   [`io`] reads them from OpenSubdiv's OBJ `t` lines into [`PolygonMesh::tags`].
+//! - [`uv`] holds texture coordinates as face-varying data ([`PolygonMesh::uvs`], read from
+//!   OBJ `vt`); [`normals`] computes area-weighted vertex normals (written as OBJ `vn` on
+//!   request).
 //! - [`subdivide`] runs every built-in subdivision scheme for real, allocating its output
 //!   exactly from the predicted counts.
 //!
@@ -71,6 +74,7 @@ pub mod holes;
 pub mod io;
 pub mod memory;
 mod mesh;
+pub mod normals;
 mod polygon;
 pub mod shapes;
 pub mod stats;

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use halfedge::tags::{BoundaryInterpolation, CreaseMethod, TriangleRule};
+use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
 
 /// The value parser of an option enum of `halfedge::tags`: its command-line names (listed in
 /// `--help` and in the error for another value), parsed by its `FromStr`.
@@ -62,7 +62,7 @@ pub(crate) enum Command {
     /// Really subdivide a mesh and compare every count with the prediction (exit 1 on a
     /// mismatch).
     Verify(VerifyArgs),
-    /// Subdivide a mesh and write it as OBJ.
+    /// Subdivide a mesh and write it as OBJ, with its UVs (vt) when every face corner has one.
     Subdivide(SubdivideArgs),
     /// Draw V, E, F and the state components versus level on a log scale (SVG or PNG).
     Plot(PlotArgs),
@@ -144,7 +144,8 @@ pub(crate) struct SubdivideArgs {
     /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = parse_threads)]
     pub(crate) threads: usize,
-    /// Print one line `timings: {...}` on stderr.
+    /// Print one line `timings: {...}` on stderr (with UVs refined, uv_s: the seconds spent
+    /// on them, after the surface's last level).
     #[arg(long)]
     pub(crate) timings: bool,
     /// Grow the output buffers instead of preallocating them (for comparisons).
@@ -162,6 +163,20 @@ pub(crate) struct SubdivideArgs {
     #[arg(long, value_name = "N", default_value_t = 0,
           value_parser = clap::value_parser!(u32).range(0..=1_000_000))]
     pub(crate) frames: u32,
+    /// How UVs are linearly interpolated under loop and catmull-clark (OpenSubdiv's
+    /// FVarLinearInterpolation; none: fully smooth; default: the file's
+    /// facevaryinginterpolateboundary tag, else corners-plus1).
+    #[arg(long, value_name = "MODE", conflicts_with = "no_uv",
+          value_parser = named_parser!(FaceVaryingInterpolation))]
+    pub(crate) uv_interpolation: Option<FaceVaryingInterpolation>,
+    /// Write the output without texture coordinates (and refine none), even when the mesh
+    /// has them.
+    #[arg(long)]
+    pub(crate) no_uv: bool,
+    /// Write area-weighted vertex normals of the output as vn lines (faces v/vt/vn, or v//vn
+    /// without UVs).
+    #[arg(long)]
+    pub(crate) normals: bool,
 }
 
 /// `subdivide --precision`.

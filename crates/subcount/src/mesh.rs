@@ -1,12 +1,16 @@
 //! `stats`, `verify` and `subdivide`: real meshes and real subdivision.
 
 use std::io::Write;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
+use halfedge::io::ObjWriteOptions;
 use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
+use halfedge::tags::FaceVaryingInterpolation;
+use halfedge::uv::UvLayout;
 use halfedge::{HalfEdgeMesh, PolygonMesh, Rule};
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
+use schemes::uv::UvCounter;
 use schemes::{Budget, MeshCounts, Plan, Scheme};
 
 use crate::args::{
@@ -407,6 +411,110 @@ fn guard_memory(
         })
 }
 
+/// The `UV` component of `verify`: the UV values a scheme predicts for the mesh's layout
+/// ([`UvCounter`]), against those of the real face-varying subdivision.
+struct UvCheck {
+    /// The layout refined.
+    layout: UvLayout,
+    /// The prediction.
+    counter: UvCounter,
+    /// Level 0 as [`schemes::uv`] defines it: the `vt` entries the written corners use.
+    used_vt: u64,
+}
+
+impl UvCheck {
+    /// `None` for a mesh without a UV layout (no `vt`, or `vt` at only some corners: what is
+    /// verified is then what it always was), and for a scheme that does not count UV values
+    /// (one note on stderr, as `table` gives).
+    fn new(
+        loaded: &LoadedMesh,
+        scheme: &Scheme,
+        holes: Option<&halfedge::holes::HoleSet>,
+    ) -> Result<Option<UvCheck>, Failure> {
+        let poly = &loaded.poly;
+        let (Some(layout), Some(uvs)) = (poly.uv_layout(), poly.uvs()) else {
+            return Ok(None);
+        };
+        let counts = match holes {
+            Some(holes) => holes.written_uv_counts(poly),
+            None => halfedge::stats::uv_counts(poly),
+        };
+        let Some(counts) = counts else {
+            return Ok(None);
+        };
+        let counter = match UvCounter::new(&Plan::single(scheme.clone()), counts) {
+            Ok(counter) => counter,
+            Err(not) => {
+                eprintln!("note: {not}: no UV rows");
+                return Ok(None);
+            }
+        };
+        // Level 0, measured: the distinct `vt` of the written faces' corners.
+        let offsets = poly.face_offsets();
+        let mut used = vec![false; uvs.coords().len()];
+        for f in (0..poly.n_faces()).filter(|&f| holes.map_or(true, |h| !h.contains(f as u32))) {
+            for &t in &uvs.corners()[offsets[f]..offsets[f + 1]] {
+                used[t as usize] = true;
+            }
+        }
+        let used_vt = used.iter().filter(|&&u| u).count() as u64;
+        Ok(Some(UvCheck {
+            layout,
+            counter,
+            used_vt,
+        }))
+    }
+
+    /// Refines the layout on `mesh` by `rule` to each level `1..=levels` (a
+    /// [`halfedge::Refinement`] with UVs per level, under `opts`: holes, creases, options) and
+    /// counts the distinct UV values its faces' corners use
+    /// ([`halfedge::Refinement::write_uv_indices`]): the measured values of levels `1..`.
+    fn measure(
+        &self,
+        mesh: &HalfEdgeMesh,
+        rule: Rule,
+        levels: u32,
+        opts: &SubdivideOptions<'_>,
+    ) -> Result<Vec<u64>, Failure> {
+        let opts = opts.with_uvs(&self.layout);
+        let mut measured = Vec::with_capacity(levels as usize);
+        for level in 1..=levels {
+            let r =
+                halfedge::Refinement::new(mesh, rule, level, &opts).map_err(halfedge_failure)?;
+            let mut corners = vec![0u32; r.n_corners(level)];
+            r.write_uv_indices(&mut corners).map_err(halfedge_failure)?;
+            let n = corners.iter().max().map_or(0, |&m| m as usize + 1);
+            let mut used = vec![false; n];
+            for &k in &corners {
+                used[k as usize] = true;
+            }
+            measured.push(used.iter().filter(|&&u| u).count() as u64);
+        }
+        Ok(measured)
+    }
+
+    /// Appends `("UV", predicted)` and `("UV", measured)` to every report, `measured` being
+    /// the values of levels `1..` ([`UvCheck::measure`]).
+    fn extend(&self, reports: &mut [sub::LevelReport], measured: &[u64]) -> Result<(), Failure> {
+        for r in reports.iter_mut() {
+            let m = match r.level {
+                0 => self.used_vt,
+                s => match measured.get(s as usize - 1) {
+                    Some(&m) => m,
+                    None => continue,
+                },
+            };
+            let p = self
+                .counter
+                .values_at(u64::from(r.level))
+                .map_err(scheme_failure)?;
+            r.predicted.push(("UV".to_owned(), p));
+            r.measured.push(("UV".to_owned(), BigInt::from(m)));
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let loaded = required_mesh(&args.mesh)?;
     let poly = &loaded.poly;
@@ -445,9 +553,24 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     if let Some(holes) = &chosen.holes {
         opts = opts.with_holes(holes);
     }
-    let reports = if face_list {
+    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref())?;
+    // The UV values measured at levels 1.., when there is a UV component.
+    let mut uv_measured = None;
+    let mut reports = if face_list {
         // The face-list subdividers place points linearly: no crease rules to follow.
-        sub::verify_polygons(poly, scheme, levels, &opts)
+        let reports = sub::verify_polygons(poly, scheme, levels, &opts)
+            .map_err(|e| located_failure(e, poly, &args.mesh))?;
+        if let Some(check) = &uv_check {
+            // UVs are refined on a half-edge mesh: measured when the face list is one.
+            match halfedge::HalfEdgeMesh::try_from(poly) {
+                Ok(mesh) => uv_measured = Some(check.measure(&mesh, rule, levels, &opts)?),
+                Err(_) => eprintln!(
+                    "note: {}: UV values are measured on a manifold mesh, and this one is not: no UV rows",
+                    mesh_label(&args.mesh)
+                ),
+            }
+        }
+        reports
     } else {
         let mesh = validate(poly, &args.mesh)?;
         let (sharpness, options) = loaded.crease_inputs(rule, &mesh, &args.mesh)?;
@@ -455,9 +578,16 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }
-        sub::verify(&mesh, scheme, levels, &opts)
+        let reports = sub::verify(&mesh, scheme, levels, &opts)
+            .map_err(|e| located_failure(e, poly, &args.mesh))?;
+        if let Some(check) = &uv_check {
+            uv_measured = Some(check.measure(&mesh, rule, levels, &opts)?);
+        }
+        reports
+    };
+    if let (Some(check), Some(measured)) = (&uv_check, &uv_measured) {
+        check.extend(&mut reports, measured)?;
     }
-    .map_err(|e| located_failure(e, poly, &args.mesh))?;
     let all_match = reports.iter().all(|r| r.is_match());
     let text = match args.format {
         ReportFormat::Json => {
@@ -542,7 +672,32 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         holes,
     } = chosen_scheme(&args.scheme, &loaded, &counts, &args.mesh)?;
     loaded.print_notes();
-    let face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    let label = mesh_label(&args.mesh);
+    let mut face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
+    // The UV layout to refine: none with --no-uv; vt at only some corners is written
+    // without UVs, saying why.
+    let mut layout = if args.no_uv {
+        None
+    } else {
+        if let Some(partial) = poly.partial_uvs() {
+            eprintln!("note: {label}: {partial}: writing without UVs");
+        }
+        poly.uv_layout()
+    };
+    if layout.is_some() && face_list {
+        // UVs are refined on a half-edge mesh: the 1:N² splits (placed on the flat triangles
+        // either way) run there when the face list is one; the -general schemes and
+        // non-manifold input keep the raw face list, without UVs.
+        if matches!(rule, Rule::TriSplit(_)) && halfedge::HalfEdgeMesh::try_from(poly).is_ok() {
+            face_list = false;
+        } else {
+            eprintln!(
+                "note: {label}: {} runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs",
+                chosen.name()
+            );
+            layout = None;
+        }
+    }
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
     if refine_once && (face_list || args.no_preallocate) {
         return Err(usage!(
@@ -626,17 +781,22 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         bar.set_message(format!("subdividing with {}", chosen.name()));
         bar
     });
+    // The surface's levels move the bar; a face-varying channel reports its own after them.
+    let clock = refined::SurfaceClock::new(levels);
     let progress = |done: &LevelDone| {
-        if let Some(bar) = &bar {
+        if let (true, Some(bar)) = (clock.report(done), &bar) {
             bar.set_position(u64::from(done.level));
         }
     };
     // The file's creases and corners and the resolved options (the face-list subdividers
     // place points linearly and read neither).
-    let (sharpness, options) = match &mesh {
+    let (sharpness, mut options) = match &mesh {
         Some(mesh) => loaded.crease_inputs(rule, mesh, &args.mesh)?,
         None => (None, Default::default()),
     };
+    if layout.is_some() {
+        options = options.with_face_varying(uv_interpolation(&args, &loaded, rule, &label));
+    }
     let mut opts = SubdivideOptions::default()
         .with_threads(args.threads)
         .with_preallocate(!args.no_preallocate)
@@ -649,21 +809,56 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         opts = opts.with_holes(holes);
     }
     let t1 = Instant::now();
-    let result = match &mesh {
-        Some(mesh) if refine_once => {
-            refined::run(mesh, rule, levels, args.precision, args.frames, &opts)
-                .map(Output::Refined)
+    let run = |opts: &SubdivideOptions<'_>| match &mesh {
+        Some(mesh) if refine_once => refined::run(
+            mesh,
+            rule,
+            levels,
+            args.precision,
+            args.frames,
+            opts,
+            &clock,
+        )
+        .map(Output::Refined),
+        // With UVs the last level is a face list carrying them.
+        Some(mesh) if opts.uvs.is_some() || last_faces.is_some() || holes_as_faces => {
+            sub::subdivide_to_face_list(mesh, rule, levels, opts).map(Output::Faces)
         }
-        Some(mesh) if last_faces.is_some() || holes_as_faces => {
-            sub::subdivide_to_face_list(mesh, rule, levels, &opts).map(Output::Faces)
-        }
-        Some(mesh) => sub::subdivide(mesh, rule, levels, &opts).map(Output::Mesh),
-        None => sub::subdivide_polygons(poly, rule, levels, &opts).map(Output::Polygons),
+        Some(mesh) => sub::subdivide(mesh, rule, levels, opts).map(Output::Mesh),
+        None => sub::subdivide_polygons(poly, rule, levels, opts).map(Output::Polygons),
+    };
+    let result = match &layout {
+        Some(layout) => match run(&opts.with_uvs(layout)) {
+            // Refused before anything is built: the rule has no face-varying rule.
+            Err(e @ halfedge::Error::UvsNotSupported { .. }) => {
+                eprintln!("note: {label}: {e}: writing without UVs");
+                run(&opts)
+            }
+            result => result,
+        },
+        None => run(&opts),
     }
     .map_err(|e| located_failure(e, poly, &args.mesh))?;
+    let end = Instant::now();
     let subdivide_s = match &result {
-        Output::Refined(r) => (r.refine_topology + r.first_evaluation).as_secs_f64(),
-        _ => t1.elapsed().as_secs_f64(),
+        Output::Refined(r) => {
+            // The UVs' topology is part of refine_topology; their evaluation is not.
+            let uv_evaluation = r.uvs.map_or(Duration::ZERO, |u| u.2);
+            (r.refine_topology + r.first_evaluation + uv_evaluation).as_secs_f64()
+        }
+        _ => (end - t1).as_secs_f64(),
+    };
+    // The UV values written and the time spent on them (the one-shot path refines them
+    // after the surface's last level).
+    let uvs = match &result {
+        Output::Refined(r) => r
+            .uvs
+            .map(|(n, topology, evaluation)| (n, (topology + evaluation).as_secs_f64())),
+        Output::Faces(level) => level
+            .mesh
+            .uvs()
+            .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
+        _ => None,
     };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -672,11 +867,18 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
 
     let t2 = Instant::now();
     if let Some(path) = &args.output {
+        // UVs only when refined (a level-0 copy of the face list keeps the file's), normals
+        // of the output with --normals.
+        let options = ObjWriteOptions::default()
+            .with_uvs(uvs.is_some())
+            .with_normals(args.normals);
         match &result {
-            Output::Mesh(m) => halfedge::io::write_obj_file(m, path),
-            Output::Polygons(p) => halfedge::io::write_polygon_obj_file(p, path),
-            Output::Faces(level) => halfedge::io::write_polygon_obj_file(&level.mesh, path),
-            Output::Refined(r) => r.write(path),
+            Output::Mesh(m) => halfedge::io::write_obj_file_with(m, path, &options),
+            Output::Polygons(p) => halfedge::io::write_polygon_obj_file_with(p, path, &options),
+            Output::Faces(level) => {
+                halfedge::io::write_polygon_obj_file_with(&level.mesh, path, &options)
+            }
+            Output::Refined(r) => r.write(path, &options),
         }
         .map_err(|e| Failure::new(Kind::Input, e))?;
     }
@@ -690,12 +892,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             (c.vertices as usize, c.edges as usize, c.faces as usize)
         }
     };
+    let uv = uvs.map_or_else(String::new, |(n, _)| format!(", UV = {n}"));
     let message = match &args.output {
         Some(path) => format!(
-            "level {levels}: V = {v}, E = {e}, F = {f}; wrote {}",
+            "level {levels}: V = {v}, E = {e}, F = {f}{uv}; wrote {}",
             path.display()
         ),
-        None => format!("level {levels}: V = {v}, E = {e}, F = {f} (no -o: nothing written)"),
+        None => format!("level {levels}: V = {v}, E = {e}, F = {f}{uv} (no -o: nothing written)"),
     };
     // With `-o -` the mesh is standard output: the summary goes to stderr.
     if args.output.as_deref() == Some(std::path::Path::new("-")) {
@@ -714,11 +917,43 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             ),
             _ => String::new(),
         };
+        let uv_s = uvs.map_or_else(String::new, |(_, s)| format!(", \"uv_s\": {s:.6}"));
         eprintln!(
-            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}{frames}}}"
+            "timings: {{\"load_s\": {load_s:.6}, \"subdivide_s\": {subdivide_s:.6}, \"write_s\": {write_s:.6}, \"peak_bytes\": {peak}, \"predicted_peak_bytes\": {predicted}{frames}{uv_s}}}"
         );
     }
     Ok(0)
+}
+
+/// The face-varying interpolation of a run with UVs: `--uv-interpolation` over the file's
+/// `facevaryinginterpolateboundary` tag over `corners-plus1` ([`resolve_options`] resolved
+/// the tag; [`LoadedMesh::crease_inputs`] hands it on under Loop and Catmull-Clark). One
+/// note when the flag overrides the tag with another value, one when the rule has no such
+/// mode (the other rules refine UVs linearly, or not at all).
+///
+/// [`resolve_options`]: crate::model::resolve_options
+fn uv_interpolation(
+    args: &SubdivideArgs,
+    loaded: &LoadedMesh,
+    rule: Rule,
+    label: &str,
+) -> FaceVaryingInterpolation {
+    let resolved = loaded.options.face_varying;
+    let Some(flag) = args.uv_interpolation else {
+        return resolved;
+    };
+    if let Some(tag) = loaded.tags().options.face_varying.filter(|&t| t != flag) {
+        eprintln!(
+            "note: {label}: --uv-interpolation {flag} overrides the tag facevaryinginterpolateboundary {} ({tag})",
+            tag.tag_value()
+        );
+    }
+    if !matches!(rule, Rule::Loop | Rule::CatmullClark) {
+        eprintln!(
+            "note: {label}: --uv-interpolation is a mode of loop and catmull-clark, not applied by {rule}"
+        );
+    }
+    flag
 }
 
 enum Output {

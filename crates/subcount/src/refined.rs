@@ -1,19 +1,21 @@
 //! `subdivide --precision f32` and `--frames N`: the topology refined once
 //! ([`halfedge::Refinement`]), positions evaluated into caller-owned buffers, in `f32` or
-//! `f64`, once or once per frame.
+//! `f64`, once or once per frame; with a UV layout ([`SubdivideOptions::uvs`]) the UVs
+//! refined by the same refinement, evaluated into caller-owned buffers and written.
 
 use std::path::Path;
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use halfedge::glam::DVec3;
-use halfedge::io::FaceBuffers;
-use halfedge::subdivide::SubdivideOptions;
+use halfedge::io::{FaceBuffers, ObjWriteOptions, UvBuffers};
+use halfedge::subdivide::{LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
 
 use crate::args::Precision;
 
-/// Writes a level to a path.
-type Writer = dyn Fn(&Path) -> halfedge::Result<()>;
+/// Writes a level to a path, with the writer's options.
+type Writer = dyn Fn(&Path, &ObjWriteOptions) -> halfedge::Result<()>;
 
 /// What a refine-once run produced and measured.
 pub(crate) struct Refined {
@@ -25,14 +27,19 @@ pub(crate) struct Refined {
     pub(crate) first_evaluation: Duration,
     /// The median of the per-frame evaluations (`None` without frames).
     pub(crate) evaluate_median: Option<Duration>,
+    /// With UVs: the UV values of the last level, the time the channel's topology took
+    /// (part of `refine_topology`, after the surface's: [`SurfaceClock`]) and the time of
+    /// their evaluation and index buffer.
+    pub(crate) uvs: Option<(usize, Duration, Duration)>,
     /// Writes the last level as OBJ.
     write: Box<Writer>,
 }
 
 impl Refined {
-    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]).
-    pub(crate) fn write(&self, path: &Path) -> halfedge::Result<()> {
-        (self.write)(path)
+    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]), its
+    /// UVs when they were refined and `options` asks for them, normals when it asks.
+    pub(crate) fn write(&self, path: &Path, options: &ObjWriteOptions) -> halfedge::Result<()> {
+        (self.write)(path, options)
     }
 }
 
@@ -46,10 +53,48 @@ pub(crate) fn run(
     precision: Precision,
     frames: u32,
     opts: &SubdivideOptions<'_>,
+    clock: &SurfaceClock,
 ) -> halfedge::Result<Refined> {
     match precision {
-        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts),
-        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts),
+        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts, clock),
+        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts, clock),
+    }
+}
+
+/// When the surface's last level was built: a refinement (and a one-shot subdivision) with
+/// UVs reports the surface's levels to the progress callback, then its face-varying channel's,
+/// so the first report of the last level splits the surface's work from the UVs'.
+pub(crate) struct SurfaceClock {
+    levels: u32,
+    done: Mutex<Option<Instant>>,
+}
+
+impl SurfaceClock {
+    pub(crate) fn new(levels: u32) -> SurfaceClock {
+        SurfaceClock {
+            levels,
+            done: Mutex::new(None),
+        }
+    }
+
+    /// Records a progress report; `true` while it is the surface's (the channel's reports
+    /// come after its last level).
+    pub(crate) fn report(&self, done: &LevelDone) -> bool {
+        let mut slot = self.done.lock().unwrap_or_else(|e| e.into_inner());
+        if slot.is_some() {
+            return false;
+        }
+        if done.level == self.levels {
+            *slot = Some(Instant::now());
+        }
+        true
+    }
+
+    /// The time from the surface's last level (or from `start`, at level 0, which reports
+    /// nothing) to `end`.
+    pub(crate) fn since_surface(&self, start: Instant, end: Instant) -> Duration {
+        let done = *self.done.lock().unwrap_or_else(|e| e.into_inner());
+        end.saturating_duration_since(done.unwrap_or(start))
     }
 }
 
@@ -59,10 +104,13 @@ fn run_in<T: Scalar>(
     levels: u32,
     frames: u32,
     opts: &SubdivideOptions<'_>,
+    clock: &SurfaceClock,
 ) -> halfedge::Result<Refined> {
     let t0 = Instant::now();
     let refinement = Refinement::new(mesh, rule, levels, opts)?;
-    let refine_topology = t0.elapsed();
+    let built = Instant::now();
+    let refine_topology = built - t0;
+    let uv_topology = clock.since_surface(t0, built);
     let (n, faces, corners) = (
         refinement.n_vertices(levels),
         refinement.n_faces(levels),
@@ -108,6 +156,23 @@ fn run_in<T: Scalar>(
     evaluator.evaluate(&base, &mut out)?;
     let first_evaluation = t.elapsed();
     refuse_non_finite(&out, rule, levels)?;
+    // The UVs: refined by the same refinement into caller-owned buffers.
+    let uvs = match opts.uvs.filter(|_| refinement.has_uvs()) {
+        Some(layout) => {
+            let t = Instant::now();
+            let base: Vec<[T; 2]> = layout
+                .values()
+                .iter()
+                .map(|v| [T::from_f64(v.x), T::from_f64(v.y)])
+                .collect();
+            let mut values = vec![[T::ZERO; 2]; refinement.n_uvs(levels)];
+            refinement.evaluate_uvs(&base, &mut values)?;
+            let mut corners = vec![0u32; refinement.n_corners(levels)];
+            refinement.write_uv_indices(&mut corners)?;
+            Some((values, corners, t.elapsed()))
+        }
+        None => None,
+    };
     let evaluate_median = (frames > 0).then(|| -> halfedge::Result<Duration> {
         let (mut moved, mut scratch) = (base.clone(), vec![[T::ZERO; 3]; n]);
         let step = perturbation_step(mesh);
@@ -123,7 +188,10 @@ fn run_in<T: Scalar>(
         Ok(times[times.len() / 2])
     });
     let evaluate_median = evaluate_median.transpose()?;
-    let write = Box::new(move |path: &Path| {
+    let uv_summary = uvs
+        .as_ref()
+        .map(|(values, _, time)| (values.len(), uv_topology, *time));
+    let write = Box::new(move |path: &Path, options: &ObjWriteOptions| {
         let faces = match degree {
             Some(degree) => FaceBuffers::Uniform {
                 degree,
@@ -134,13 +202,17 @@ fn run_in<T: Scalar>(
                 indices: &indices,
             },
         };
-        halfedge::io::write_buffers_obj_file(&out, faces, path)
+        let uvs = uvs
+            .as_ref()
+            .map(|(values, corners, _)| UvBuffers { values, corners });
+        halfedge::io::write_buffers_obj_file_with(&out, faces, uvs, path, options)
     });
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],
         refine_topology,
         first_evaluation,
         evaluate_median,
+        uvs: uv_summary,
         write,
     })
 }

@@ -68,10 +68,15 @@
 //! crate did before it read tags.
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
-//! open; files are written to a temporary file in the target folder and renamed over the
-//! target only when complete, so no partial output is ever left behind ([`write_atomically`]:
-//! also `-` for standard output, symbolic links, special files, write-protected targets and
-//! signals).
+//! open; a mesh with texture coordinates also gets its `vt` lines and `f v/vt` corners, so it
+//! opens textured, and [`ObjWriteOptions`] leaves them out or adds area-weighted vertex
+//! normals ([`crate::normals`]) as `vn` lines with `f v/vt/vn` or `f v//vn` corners (the
+//! `vn` index is the vertex's); a mesh without texture coordinates and without normals is
+//! written exactly as before they existed. [`write_buffers_obj_with`] writes caller-owned
+//! buffers, UV values and a value per corner ([`UvBuffers`]) included. Files are written to a
+//! temporary file in the target folder and renamed over the target only when complete, so no
+//! partial output is ever left behind ([`write_atomically`]: also `-` for standard output,
+//! symbolic links, special files, write-protected targets and signals).
 //!
 //! # Example
 //!
@@ -99,8 +104,10 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file, write_obj,
-    write_obj_file, write_polygon_obj, write_polygon_obj_file, FaceBuffers,
+    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file,
+    write_buffers_obj_file_with, write_buffers_obj_with, write_obj, write_obj_file,
+    write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
+    write_polygon_obj_file_with, write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
 };
 
 use std::io::{BufRead, Read};

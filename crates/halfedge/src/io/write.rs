@@ -10,7 +10,61 @@ use glam::DVec3;
 
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
+use crate::normals;
 use crate::polygon::PolygonMesh;
+use crate::Scalar;
+
+/// What the OBJ writers write besides positions and faces.
+///
+/// With [`uvs`](Self::uvs) (the default), a mesh with texture coordinates
+/// ([`PolygonMesh::uvs`], or [`UvBuffers`]) gets its `vt` lines, each value once, and faces
+/// `f v/vt`; a mesh without them is written as without this option. With
+/// [`normals`](Self::normals) (off by default), the writer computes area-weighted vertex
+/// normals of the faces written ([`crate::normals::vertex_normals`]) and writes one `vn` per
+/// vertex, after the `vt` lines, and faces `f v/vt/vn` (or `f v//vn` without texture
+/// coordinates), the `vn` index being the vertex's.
+///
+/// ```
+/// use halfedge::io::ObjWriteOptions;
+/// let options = ObjWriteOptions::default();
+/// assert!(options.uvs && !options.normals);
+/// let options = options.with_normals(true).with_uvs(false);
+/// assert!(!options.uvs && options.normals);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ObjWriteOptions {
+    /// Write the mesh's texture coordinates, when it has some (default `true`).
+    pub uvs: bool,
+    /// Write area-weighted vertex normals (default `false`).
+    pub normals: bool,
+}
+
+impl ObjWriteOptions {
+    /// Texture coordinates written, no normals (the default).
+    pub const DEFAULT: ObjWriteOptions = ObjWriteOptions {
+        uvs: true,
+        normals: false,
+    };
+
+    /// These options with [`uvs`](Self::uvs) set to `uvs`.
+    pub fn with_uvs(mut self, uvs: bool) -> ObjWriteOptions {
+        self.uvs = uvs;
+        self
+    }
+
+    /// These options with [`normals`](Self::normals) set to `normals`.
+    pub fn with_normals(mut self, normals: bool) -> ObjWriteOptions {
+        self.normals = normals;
+        self
+    }
+}
+
+impl Default for ObjWriteOptions {
+    fn default() -> Self {
+        ObjWriteOptions::DEFAULT
+    }
+}
 
 /// Writes a mesh as OBJ text: one `v x y z` line per vertex, then one `f` line per face
 /// (1-based indices, n-gons kept), nothing else.
@@ -33,22 +87,108 @@ use crate::polygon::PolygonMesh;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn write_obj(mesh: &HalfEdgeMesh, writer: impl Write) -> std::io::Result<()> {
-    write_faces(
-        mesh.positions(),
-        mesh.faces().map(|f| mesh.face_vertices(f).map(|v| v.0)),
+    write_obj_with(mesh, writer, &ObjWriteOptions::DEFAULT)
+}
+
+/// [`write_obj`] with options: a half-edge mesh has no texture coordinates, so only
+/// [`ObjWriteOptions::normals`] changes the text.
+///
+/// # Errors
+///
+/// Any error of the writer.
+///
+/// ```
+/// use halfedge::io::{write_obj_with, ObjWriteOptions};
+/// let mesh = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::tetrahedron())?;
+/// let mut out = Vec::new();
+/// write_obj_with(&mesh, &mut out, &ObjWriteOptions::default().with_normals(true))?;
+/// let text = String::from_utf8(out)?;
+/// assert_eq!(text.lines().filter(|l| l.starts_with("vn ")).count(), 4);
+/// assert!(text.contains("\nf 1//1 "));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_obj_with(
+    mesh: &HalfEdgeMesh,
+    writer: impl Write,
+    options: &ObjWriteOptions,
+) -> std::io::Result<()> {
+    let faces = || mesh.faces().map(|f| mesh.face_vertices(f).map(|v| v.0));
+    let normals = options.normals.then(|| {
+        let lists = faces().map(|f| f.collect::<Vec<u32>>());
+        normals::vertex_normals(mesh.positions(), lists)
+    });
+    write_coordinates(
+        mesh.positions().iter().map(|p| [&p.x, &p.y, &p.z]),
+        None::<TexCoords<'_, f64, std::iter::Empty<[&f64; 2]>>>,
+        normals.as_deref(),
+        faces(),
         writer,
     )
 }
 
 /// Writes a face list as OBJ text, like [`write_obj`] (every position is written, used or
-/// not, so indices are kept).
+/// not, so indices are kept), with its texture coordinates when it has some
+/// ([`PolygonMesh::uvs`]: every `vt`, used or not, so indices are kept, and `f v/vt`); a
+/// mesh without them is written exactly as [`write_obj`] writes it.
 ///
 /// # Errors
 ///
 /// Any error of the writer.
+///
+/// ```
+/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+/// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "uv.obj")?;
+/// let mut out = Vec::new();
+/// halfedge::io::write_polygon_obj(&mesh, &mut out)?;
+/// assert_eq!(
+///     String::from_utf8(out)?,
+///     "v 0.0 0.0 0.0\nv 1.0 0.0 0.0\nv 0.0 1.0 0.0\nvt 0.0 0.0\nvt 1.0 0.0\nvt 0.0 1.0\nf 1/1 2/2 3/3\n"
+/// );
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn write_polygon_obj(mesh: &PolygonMesh, writer: impl Write) -> std::io::Result<()> {
-    write_faces(
-        &mesh.positions,
+    write_polygon_obj_with(mesh, writer, &ObjWriteOptions::DEFAULT)
+}
+
+/// [`write_polygon_obj`] with options: texture coordinates left out, or normals written
+/// ([`ObjWriteOptions`]).
+///
+/// # Errors
+///
+/// Any error of the writer.
+///
+/// ```
+/// use halfedge::io::{read_obj_from, write_polygon_obj_with, ObjWriteOptions};
+/// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+/// let mesh = read_obj_from(text.as_bytes(), "uv.obj")?;
+/// let mut out = Vec::new();
+/// write_polygon_obj_with(&mesh, &mut out, &ObjWriteOptions::default().with_normals(true))?;
+/// let written = String::from_utf8(out)?;
+/// assert!(written.ends_with("vn 0.0 0.0 1.0\nvn 0.0 0.0 1.0\nvn 0.0 0.0 1.0\nf 1/1/1 2/2/2 3/3/3\n"));
+/// let mut out = Vec::new();
+/// write_polygon_obj_with(&mesh, &mut out, &ObjWriteOptions::default().with_uvs(false))?;
+/// assert!(String::from_utf8(out)?.ends_with("v 0.0 1.0 0.0\nf 1 2 3\n"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_polygon_obj_with(
+    mesh: &PolygonMesh,
+    writer: impl Write,
+    options: &ObjWriteOptions,
+) -> std::io::Result<()> {
+    let uvs = mesh
+        .uvs()
+        .filter(|u| options.uvs && u.corners().len() == mesh.n_corners());
+    let texcoords = uvs.map(|u| TexCoords {
+        values: u.coords().iter().map(|c| [&c.x, &c.y]),
+        corners: u.corners(),
+    });
+    let normals = options
+        .normals
+        .then(|| normals::vertex_normals(&mesh.positions, mesh.faces()));
+    write_coordinates(
+        mesh.positions.iter().map(|p| [&p.x, &p.y, &p.z]),
+        texcoords,
+        normals.as_deref(),
         mesh.faces().map(|f| f.iter().copied()),
         writer,
     )
@@ -74,6 +214,34 @@ pub fn write_obj_file(mesh: &HalfEdgeMesh, path: impl AsRef<Path>) -> Result<()>
 /// As [`write_obj_file`].
 pub fn write_polygon_obj_file(mesh: &PolygonMesh, path: impl AsRef<Path>) -> Result<()> {
     write_atomically(path.as_ref(), |file| write_polygon_obj(mesh, file))
+}
+
+/// [`write_obj_file`] with options ([`write_obj_with`]).
+///
+/// # Errors
+///
+/// As [`write_obj_file`].
+pub fn write_obj_file_with(
+    mesh: &HalfEdgeMesh,
+    path: impl AsRef<Path>,
+    options: &ObjWriteOptions,
+) -> Result<()> {
+    write_atomically(path.as_ref(), |file| write_obj_with(mesh, file, options))
+}
+
+/// [`write_polygon_obj_file`] with options ([`write_polygon_obj_with`]).
+///
+/// # Errors
+///
+/// As [`write_obj_file`].
+pub fn write_polygon_obj_file_with(
+    mesh: &PolygonMesh,
+    path: impl AsRef<Path>,
+    options: &ObjWriteOptions,
+) -> Result<()> {
+    write_atomically(path.as_ref(), |file| {
+        write_polygon_obj_with(mesh, file, options)
+    })
 }
 
 /// The faces of caller-owned index buffers (what a
@@ -117,6 +285,17 @@ impl FaceBuffers<'_> {
     }
 }
 
+/// Texture coordinates in caller-owned buffers (what a face-varying evaluation writes): the UV
+/// values, `f32` or `f64` like the positions, and the value of every face corner, in the
+/// order of the [`FaceBuffers`]' corners (0-based).
+#[derive(Clone, Copy, Debug)]
+pub struct UvBuffers<'a, T> {
+    /// The UV values, each written once as a `vt` line.
+    pub values: &'a [[T; 2]],
+    /// The value of each face corner.
+    pub corners: &'a [u32],
+}
+
 /// Writes positions and faces from caller-owned buffers as OBJ text, like
 /// [`write_polygon_obj`]: coordinates in `f32` or `f64` are written with the shortest text
 /// that reads back as the same value of that type.
@@ -136,10 +315,44 @@ impl FaceBuffers<'_> {
 /// assert_eq!(String::from_utf8(out)?, "v 0.0 0.0 0.0\nv 1.0 0.0 0.0\nv 0.1 1.0 0.0\nf 1 2 3\n");
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_buffers_obj<T: crate::Scalar>(
+pub fn write_buffers_obj<T: Scalar>(
     positions: &[[T; 3]],
     faces: FaceBuffers<'_>,
     writer: impl Write,
+) -> std::io::Result<()> {
+    write_buffers_obj_with(positions, faces, None, writer, &ObjWriteOptions::DEFAULT)
+}
+
+/// [`write_buffers_obj`] with texture coordinates and options: with `uvs` (and
+/// [`ObjWriteOptions::uvs`]) the values are written as `vt` lines, in `T`'s shortest text
+/// like the positions, and the faces as `f v/vt`; with [`ObjWriteOptions::normals`], the
+/// area-weighted vertex normals of the faces ([`crate::normals::vertex_normals_by`], in
+/// `f64`, written in `T`) as `vn` lines and `f v/vt/vn` or `f v//vn`. Without either, the
+/// text is [`write_buffers_obj`]'s.
+///
+/// # Errors
+///
+/// As [`write_buffers_obj`], and [`std::io::ErrorKind::InvalidInput`] when `uvs` has not one
+/// corner per face corner or a corner names a value beyond its values; nothing is written
+/// then.
+///
+/// ```
+/// use halfedge::io::{write_buffers_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers};
+/// let positions: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+/// let faces = FaceBuffers::Uniform { degree: 3, indices: &[0, 1, 2, 0, 2, 3] };
+/// let uvs = UvBuffers { values: &[[0.0f32, 0.0], [1.0, 0.5], [0.25, 1.0]], corners: &[0, 1, 2, 0, 2, 1] };
+/// let mut out = Vec::new();
+/// write_buffers_obj_with(&positions, faces, Some(uvs), &mut out, &ObjWriteOptions::default())?;
+/// let text = String::from_utf8(out)?;
+/// assert!(text.ends_with("vt 0.0 0.0\nvt 1.0 0.5\nvt 0.25 1.0\nf 1/1 2/2 3/3\nf 1/1 3/3 4/2\n"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn write_buffers_obj_with<T: Scalar>(
+    positions: &[[T; 3]],
+    faces: FaceBuffers<'_>,
+    uvs: Option<UvBuffers<'_, T>>,
+    writer: impl Write,
+    options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
     let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
     let list = faces
@@ -155,9 +368,43 @@ pub fn write_buffers_obj<T: crate::Scalar>(
             positions.len()
         )));
     }
+    let uvs = uvs.filter(|_| options.uvs);
+    if let Some(uv) = &uvs {
+        let corners: usize = list.iter().map(|f| f.len()).sum();
+        if uv.corners.len() != corners {
+            return Err(invalid(format!(
+                "{} texture-coordinate corners for {corners} face corners",
+                uv.corners.len()
+            )));
+        }
+        if let Some((corner, &t)) = uv
+            .corners
+            .iter()
+            .enumerate()
+            .find(|(_, &t)| t as usize >= uv.values.len())
+        {
+            return Err(invalid(format!(
+                "face corner {corner} uses UV value {t}, but there are {}",
+                uv.values.len()
+            )));
+        }
+    }
+    let normals = options.normals.then(|| {
+        let position = |v: u32| {
+            let [x, y, z] = positions[v as usize];
+            DVec3::new(x.to_f64(), y.to_f64(), z.to_f64())
+        };
+        normals::vertex_normals_by(positions.len(), position, &list)
+    });
+    let texcoords = uvs.map(|u| TexCoords {
+        values: u.values.iter().map(|[s, t]| [s, t]),
+        corners: u.corners,
+    });
     write_coordinates(
         positions.iter().map(|[x, y, z]| [x, y, z]),
-        list.into_iter().map(|f| f.iter().copied()),
+        texcoords,
+        normals.as_deref(),
+        list.iter().map(|f| f.iter().copied()),
         writer,
     )
 }
@@ -167,7 +414,7 @@ pub fn write_buffers_obj<T: crate::Scalar>(
 /// # Errors
 ///
 /// As [`write_obj_file`], and [`Error::Io`] for inconsistent buffers.
-pub fn write_buffers_obj_file<T: crate::Scalar>(
+pub fn write_buffers_obj_file<T: Scalar>(
     positions: &[[T; 3]],
     faces: FaceBuffers<'_>,
     path: impl AsRef<Path>,
@@ -177,24 +424,44 @@ pub fn write_buffers_obj_file<T: crate::Scalar>(
     })
 }
 
-fn write_faces<F, I>(positions: &[DVec3], faces: F, writer: impl Write) -> std::io::Result<()>
-where
-    F: Iterator<Item = I>,
-    I: Iterator<Item = u32>,
-{
-    write_coordinates(positions.iter().map(|p| [&p.x, &p.y, &p.z]), faces, writer)
+/// [`write_buffers_obj_with`] into a file, atomically ([`write_atomically`]).
+///
+/// # Errors
+///
+/// As [`write_buffers_obj_file`].
+pub fn write_buffers_obj_file_with<T: Scalar>(
+    positions: &[[T; 3]],
+    faces: FaceBuffers<'_>,
+    uvs: Option<UvBuffers<'_, T>>,
+    path: impl AsRef<Path>,
+    options: &ObjWriteOptions,
+) -> Result<()> {
+    write_atomically(path.as_ref(), |file| {
+        write_buffers_obj_with(positions, faces, uvs, file, options)
+    })
+}
+
+/// The texture coordinates [`write_coordinates`] writes: the values, and the value of each
+/// face corner (checked by the caller).
+struct TexCoords<'a, T: 'a, U: Iterator<Item = [&'a T; 2]>> {
+    values: U,
+    corners: &'a [u32],
 }
 
 /// The one OBJ text writer: `v` lines with each coordinate's shortest round-trip text
-/// (`Debug` of `f32`/`f64`), then 1-based `f` lines.
-fn write_coordinates<'p, T, P, F, I>(
+/// (`Debug` of `f32`/`f64`), the `vt` lines of `texcoords`, the `vn` lines of `normals` (in
+/// `T`), then 1-based `f` lines: `f v`, `f v/vt`, `f v//vn` or `f v/vt/vn`.
+fn write_coordinates<'p, T, P, U, F, I>(
     positions: P,
+    texcoords: Option<TexCoords<'p, T, U>>,
+    normals: Option<&[DVec3]>,
     faces: F,
     writer: impl Write,
 ) -> std::io::Result<()>
 where
-    T: std::fmt::Debug + 'p,
+    T: Scalar + 'p,
     P: Iterator<Item = [&'p T; 3]>,
+    U: Iterator<Item = [&'p T; 2]>,
     F: Iterator<Item = I>,
     I: Iterator<Item = u32>,
 {
@@ -202,10 +469,31 @@ where
     for [x, y, z] in positions {
         writeln!(w, "v {x:?} {y:?} {z:?}")?;
     }
+    let mut vts: &[u32] = &[];
+    if let Some(TexCoords { values, corners }) = texcoords {
+        for [s, t] in values {
+            writeln!(w, "vt {s:?} {t:?}")?;
+        }
+        vts = corners;
+    }
+    if let Some(normals) = normals {
+        for n in normals {
+            let [x, y, z] = n.to_array().map(T::from_f64);
+            writeln!(w, "vn {x:?} {y:?} {z:?}")?;
+        }
+    }
+    let with_normals = normals.is_some();
+    let mut vts = vts.iter();
     for face in faces {
         w.write_all(b"f")?;
         for v in face {
-            write!(w, " {}", u64::from(v) + 1)?;
+            let v = u64::from(v) + 1;
+            match (vts.next(), with_normals) {
+                (None, false) => write!(w, " {v}")?,
+                (None, true) => write!(w, " {v}//{v}")?,
+                (Some(t), false) => write!(w, " {v}/{}", u64::from(*t) + 1)?,
+                (Some(t), true) => write!(w, " {v}/{}/{v}", u64::from(*t) + 1)?,
+            }
         }
         w.write_all(b"\n")?;
     }
@@ -696,6 +984,127 @@ mod tests {
             format!("{}: is a directory", dir.display())
         );
         fs::remove_dir_all(&dir).expect("cleanup");
+    }
+
+    /// A mesh without texture coordinates is written as before whatever the UV option; one
+    /// with them gets `vt` and `f v/vt` unless the option is off; normals add `vn` and
+    /// `f v/vt/vn` or `f v//vn`.
+    #[test]
+    fn texture_coordinates_and_normals_in_every_face_form() {
+        use crate::uv::Uvs;
+        use glam::DVec2;
+        let plain = crate::PolygonMesh::from_faces(
+            vec![DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+            [[0u32, 1, 2, 3]],
+        );
+        let text = |mesh: &crate::PolygonMesh, options: ObjWriteOptions| {
+            let mut out = Vec::new();
+            write_polygon_obj_with(mesh, &mut out, &options).expect("written");
+            String::from_utf8(out).expect("text")
+        };
+        let positions = "v 0.0 0.0 0.0\nv 1.0 0.0 0.0\nv 1.0 1.0 0.0\nv 0.0 1.0 0.0\n";
+        let on = ObjWriteOptions::default();
+        for options in [on, on.with_uvs(false)] {
+            assert_eq!(text(&plain, options), format!("{positions}f 1 2 3 4\n"));
+        }
+        let normals = "vn 0.0 0.0 1.0\n".repeat(4);
+        assert_eq!(
+            text(&plain, on.with_normals(true)),
+            format!("{positions}{normals}f 1//1 2//2 3//3 4//4\n")
+        );
+        let mut textured = plain.clone();
+        let coords = vec![
+            DVec2::new(0.5, 0.25),
+            DVec2::ZERO,
+            DVec2::X,
+            DVec2::new(0.1, 0.7),
+        ];
+        textured
+            .set_uvs(Some(Uvs::new(coords, vec![1, 2, 0, 2]).expect("in range")))
+            .expect("a vt per corner");
+        let vt = "vt 0.5 0.25\nvt 0.0 0.0\nvt 1.0 0.0\nvt 0.1 0.7\n";
+        assert_eq!(
+            text(&textured, on),
+            format!("{positions}{vt}f 1/2 2/3 3/1 4/3\n")
+        );
+        assert_eq!(
+            text(&textured, on.with_normals(true)),
+            format!("{positions}{vt}{normals}f 1/2/1 2/3/2 3/1/3 4/3/4\n")
+        );
+        assert_eq!(text(&textured, on.with_uvs(false)), text(&plain, on));
+        let mut out = Vec::new();
+        write_polygon_obj(&textured, &mut out).expect("written");
+        assert_eq!(String::from_utf8(out).expect("text"), text(&textured, on));
+        // The half-edge writer: normals only.
+        let mesh = HalfEdgeMesh::try_from(&textured).expect("a quad");
+        let mut out = Vec::new();
+        write_obj_with(&mesh, &mut out, &on.with_normals(true)).expect("written");
+        assert_eq!(
+            String::from_utf8(out).expect("text"),
+            text(&plain, on.with_normals(true))
+        );
+    }
+
+    /// Buffers with UVs: `f32` values written as `f32`, normals in `f32`, bad UV buffers
+    /// refused before anything is written.
+    #[test]
+    fn uv_buffers_are_written_and_checked() {
+        let positions: [[f32; 3]; 3] = [[0.0, 0.0, 0.0], [0.0, 0.0, 3.0], [0.0, 0.1, 0.0]];
+        let faces = FaceBuffers::Uniform {
+            degree: 3,
+            indices: &[0, 1, 2],
+        };
+        let values = [[0.1f32, 0.2], [0.3, 0.4]];
+        let uvs = UvBuffers {
+            values: &values,
+            corners: &[1, 0, 1],
+        };
+        let on = ObjWriteOptions::default();
+        let write = |uvs, options: ObjWriteOptions| {
+            let mut out = Vec::new();
+            write_buffers_obj_with(&positions, faces, uvs, &mut out, &options)
+                .map(|()| String::from_utf8(out).expect("text"))
+        };
+        let v = "v 0.0 0.0 0.0\nv 0.0 0.0 3.0\nv 0.0 0.1 0.0\n";
+        assert_eq!(
+            write(Some(uvs), on).expect("written"),
+            format!("{v}vt 0.1 0.2\nvt 0.3 0.4\nf 1/2 2/1 3/2\n")
+        );
+        assert_eq!(
+            write(Some(uvs), on.with_normals(true)).expect("written"),
+            format!(
+                "{v}vt 0.1 0.2\nvt 0.3 0.4\n{}f 1/2/1 2/1/2 3/2/3\n",
+                "vn -1.0 0.0 0.0\n".repeat(3)
+            )
+        );
+        let mut plain = Vec::new();
+        write_buffers_obj(&positions, faces, &mut plain).expect("written");
+        let plain = String::from_utf8(plain).expect("text");
+        assert_eq!(
+            write(Some(uvs), on.with_uvs(false)).expect("written"),
+            plain
+        );
+        assert_eq!(write(None, on).expect("written"), plain);
+        for (bad, message) in [
+            (
+                UvBuffers {
+                    values: &values,
+                    corners: &[0, 1],
+                },
+                "2 texture-coordinate corners for 3 face corners",
+            ),
+            (
+                UvBuffers {
+                    values: &values,
+                    corners: &[0, 1, 2],
+                },
+                "face corner 2 uses UV value 2, but there are 2",
+            ),
+        ] {
+            let err = write(Some(bad), on).unwrap_err();
+            assert_eq!(err.kind(), std::io::ErrorKind::InvalidInput);
+            assert_eq!(err.to_string(), message);
+        }
     }
 
     /// `f32` coordinates come back as the same `f32` from the text, and inconsistent buffers

@@ -365,10 +365,10 @@ fn creases_under_a_rule_without_crease_rules_are_left_out_with_a_note() {
 }
 
 /// The differential tests' driver and comparison (`crates/halfedge/tests/osd_support`), shared
-/// with `halfedge`'s `tests/opensubdiv.rs`.
+/// with `halfedge`'s `tests/opensubdiv.rs` (and `uv_subdivide.rs`).
 #[allow(dead_code)]
 #[path = "../../../halfedge/tests/osd_support/mod.rs"]
-mod osd_support;
+pub(crate) mod osd_support;
 
 /// A level is compared when its output has at most this many faces (about 2 M).
 const MAX_FACES: u64 = 2_100_000;

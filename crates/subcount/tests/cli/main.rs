@@ -11,3 +11,4 @@ mod tags;
 mod util;
 mod uv_counts;
 mod uv_input;
+mod uv_subdivide;
