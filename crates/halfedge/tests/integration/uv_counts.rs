@@ -146,11 +146,26 @@ fn written_faces_have_the_layout_of_the_mesh_made_of_them() {
 /// `vt` chosen by `picks`: 0 the corner's vertex's own `vt`, 1-3 one of three `vt` shared by
 /// every vertex (as the pawn's four), so seams and shared `vt` fall anywhere.
 fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh {
+    grid_with_shared_runs(w, h, triangles, picks, &[false])
+}
+
+/// [`grid_with_seams`], and at every vertex `v` with `checker[v % checker.len()]` all corners
+/// use the shared `vt` 0 or 1 by the checkerboard parity of their face (of their quad, plus
+/// the triangle's index in it), so an interior vertex of the quad grid sees A, B, A, B
+/// around it and the triangle grid's see longer alternations.
+fn grid_with_shared_runs(
+    w: u32,
+    h: u32,
+    triangles: bool,
+    picks: &[u8],
+    checker: &[bool],
+) -> PolygonMesh {
     let n = (w + 1) * (h + 1);
     let positions: Vec<DVec3> = (0..n)
         .map(|i| DVec3::new(f64::from(i % (w + 1)), f64::from(i / (w + 1)), 0.0))
         .collect();
     let mut faces: Vec<Vec<u32>> = Vec::new();
+    let mut parity: Vec<u32> = Vec::new();
     for y in 0..h {
         for x in 0..w {
             let a = y * (w + 1) + x;
@@ -158,18 +173,26 @@ fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh
             if triangles {
                 faces.push(vec![a, b, c]);
                 faces.push(vec![a, c, d]);
+                parity.extend([(x + y) % 2, (x + y + 1) % 2]);
             } else {
                 faces.push(vec![a, b, c, d]);
+                parity.push((x + y) % 2);
             }
         }
     }
     let corners: Vec<u32> = faces
         .iter()
-        .flatten()
+        .zip(&parity)
+        .flat_map(|(f, &p)| f.iter().map(move |&v| (v, p)))
         .enumerate()
-        .map(|(i, &v)| match picks[i % picks.len()] {
-            0 => 3 + v,
-            k => u32::from(k - 1),
+        .map(|(i, (v, p))| {
+            if checker[v as usize % checker.len()] {
+                return p;
+            }
+            match picks[i % picks.len()] {
+                0 => 3 + v,
+                k => u32::from(k - 1),
+            }
         })
         .collect();
     let coords = vec![DVec2::ZERO; 3 + n as usize];
@@ -179,47 +202,98 @@ fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh
     mesh
 }
 
-/// The layout as a face list of its own: the mesh's faces with value indices as corners.
-fn layout_mesh(mesh: &PolygonMesh) -> PolygonMesh {
+/// The UV values the real face-varying refinement writes at `level`: the distinct indices of
+/// [`halfedge::refine::Refinement::write_uv_indices`] (checked against `n_uvs`).
+fn written_values(mesh: &PolygonMesh, rule: Rule, level: u32) -> Result<u64, String> {
+    use halfedge::refine::Refinement;
+    use halfedge::subdivide::SubdivideOptions;
     let layout = mesh.uv_layout().expect("a layout");
-    let offsets = mesh.face_offsets();
-    let faces = offsets
-        .windows(2)
-        .map(|w| layout.corners()[w[0]..w[1]].to_vec());
-    PolygonMesh::from_faces(vec![DVec3::ZERO; layout.n_values()], faces)
+    let half = halfedge::HalfEdgeMesh::try_from(mesh).map_err(|e| e.to_string())?;
+    let opts = SubdivideOptions::default().with_uvs(&layout);
+    let r = Refinement::new(&half, rule, level, &opts).map_err(|e| format!("{rule}: {e}"))?;
+    let mut indices = vec![0u32; r.n_corners(level)];
+    r.write_uv_indices(&mut indices)
+        .map_err(|e| format!("{rule}: {e}"))?;
+    indices.sort_unstable();
+    indices.dedup();
+    if indices.len() != r.n_uvs(level) {
+        return Err(format!(
+            "{rule} level {level}: {} indices written, n_uvs {}",
+            indices.len(),
+            r.n_uvs(level)
+        ));
+    }
+    Ok(indices.len() as u64)
+}
+
+/// Every rule with a UV scheme: Catmull-Clark on any grid, the triangle rules on triangles.
+fn uv_rules(triangles: bool) -> Vec<Rule> {
+    let mut rules = vec![Rule::CatmullClark];
+    if triangles {
+        rules.extend([
+            Rule::Loop,
+            Rule::Midpoint,
+            Rule::Butterfly,
+            Rule::Icosphere,
+            Rule::TriSplit(2),
+            Rule::TriSplit(3),
+        ]);
+    }
+    rules
 }
 
 proptest::proptest! {
-    /// The UV recurrences count the layout refined as a face list (`subdivide_polygons` on the
-    /// value-index faces: a child value per parent value, layout edge and face), plus, for
-    /// OpenSubdiv's rules, the sibling values the layout splits off at level 0, at every level.
+    #![proptest_config(proptest::test_runner::Config::with_cases(96))]
+    /// The UV recurrences count the values the real face-varying channel writes (distinct
+    /// indices of `write_uv_indices`), for every rule with UVs, at levels 1-3, on grids with
+    /// random seams and shared `vt`, with vertices whose faces alternate two shared `vt`
+    /// (A, B, A, B: OpenSubdiv's sibling values).
     #[test]
-    fn uv_recurrences_count_the_refined_layout(
+    fn uv_recurrences_count_the_written_uv_values(
         w in 1u32..5,
         h in 1u32..4,
         triangles in proptest::bool::ANY,
         picks in proptest::collection::vec(0u8..4, 1..40),
+        checker in proptest::collection::vec(proptest::bool::weighted(0.4), 1..8),
     ) {
-        use halfedge::subdivide::{subdivide_polygons, SubdivideOptions};
-        let mesh = grid_with_seams(w, h, triangles, &picks);
+        let mesh = grid_with_shared_runs(w, h, triangles, &picks, &checker);
         let uv = stats::uv_counts(&mesh).expect("a layout");
-        let layout = layout_mesh(&mesh);
-        let mut rules = vec![Rule::CatmullClark];
-        if triangles {
-            rules.extend([Rule::Loop, Rule::Butterfly, Rule::TriSplit(3)]);
-        }
-        for rule in rules {
-            let scheme = uv_scheme(rule).expect("counted");
-            let split = if scheme.splits_siblings() { uv.split_values } else { 0 };
-            for s in 1..=3u32 {
-                let refined = subdivide_polygons(&layout, rule, s, &SubdivideOptions::default())
-                    .map_err(|e| proptest::test_runner::TestCaseError::fail(format!("{rule}: {e}")))?;
+        for rule in uv_rules(triangles) {
+            let levels = if matches!(rule, Rule::TriSplit(_)) { 2 } else { 3 };
+            for s in 1..=levels {
+                let written = written_values(&mesh, rule, s)
+                    .map_err(proptest::test_runner::TestCaseError::fail)?;
                 proptest::prop_assert_eq!(
-                    scheme.values_at(&uv, u64::from(s)).expect("counts"),
-                    BigInt::from(refined.n_vertices() as u64 + split),
-                    "{} level {}", rule, s
+                    values(rule, &uv, u64::from(s)..=u64::from(s)),
+                    vec![BigInt::from(written)],
+                    "{} level {} split {}", rule, s, uv.split_values
                 );
             }
+        }
+    }
+}
+
+/// Four triangles around a vertex whose corners there use `vt` 1, 2, 1, 2 (the reviewer's
+/// fan): every rule with UVs writes the values its recurrence counts, at levels 1-2.
+#[test]
+fn a_fan_with_two_shared_vt_alternating_is_counted_for_every_rule() {
+    let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::NEG_X, DVec3::NEG_Y];
+    let faces = vec![vec![0, 1, 2], vec![0, 2, 3], vec![0, 3, 4], vec![0, 4, 1]];
+    let corners = vec![0, 2, 3, 1, 3, 4, 0, 4, 5, 1, 5, 2];
+    let mut mesh = PolygonMesh::from_faces(positions, faces);
+    mesh.set_uvs(Some(
+        Uvs::new(vec![DVec2::ZERO; 6], corners).expect("in range"),
+    ))
+    .expect("one vt per corner");
+    let uv = stats::uv_counts(&mesh).expect("a layout");
+    assert_eq!((uv.values, uv.edges, uv.split_values), (6, 12, 1));
+    for rule in uv_rules(true) {
+        for s in 1..=2u32 {
+            assert_eq!(
+                values(rule, &uv, u64::from(s)..=u64::from(s)),
+                vec![BigInt::from(written_values(&mesh, rule, s).unwrap())],
+                "{rule} level {s}"
+            );
         }
     }
 }

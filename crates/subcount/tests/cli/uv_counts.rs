@@ -541,3 +541,24 @@ fn spot_control_mesh_prints_issue_14s_layout_and_counts() {
     );
     assert!(fit.ends_with("UV = 3225\n"), "{fit}");
 }
+
+/// A fan of four triangles whose centre uses `vt` 1, 2, 1, 2 around it: `verify` matches its
+/// UV counts (and every other count) for every triangle rule and Catmull-Clark, levels 0-2.
+#[test]
+fn verify_counts_a_vertex_with_two_vt_alternating_for_every_rule() {
+    let mesh = crate::util::data("uv_abab_fan.obj");
+    for scheme in [
+        "tri-split-2",
+        "midpoint",
+        "butterfly",
+        "loop",
+        "catmull-clark",
+    ] {
+        let out = ok(&[
+            "verify", "--mesh", &mesh, "--scheme", scheme, "--levels", "2",
+        ]);
+        assert!(out.contains("all counts match"), "{scheme}: {out}");
+        let uv_rows = out.lines().filter(|l| l.contains(" UV ")).count();
+        assert_eq!(uv_rows, 3, "{scheme}: {out}");
+    }
+}

@@ -76,11 +76,18 @@
 //! | `all` | everything: bilinear (Catmull-Clark) or linear (Loop) | `FVAR_LINEAR_ALL`, the default of OpenSubdiv's `Sdc::Options()` |
 //!
 //! A value that appears around its vertex in more than one contiguous run (a `vt` shared
-//! non-contiguously, A-B-A-B around a vertex; a single value cut by two seams) is one value,
-//! as in OpenSubdiv, and a corner in every mode; the channel, a manifold mesh, gives each
-//! run its own vertex (a sibling) and merges them back when values are counted and written.
-//! Values are counted and numbered once per (vertex, `vt`) pair ([`UvLayout`]); OpenSubdiv
-//! also counts unused `vt` at level 0, this crate does not.
+//! non-contiguously, A-B-A-B around a vertex; a single value cut by two seams) is a corner
+//! in every mode; the channel, a manifold mesh, gives each run its own vertex (a sibling).
+//! What is counted and written from level 1 on depends on the rule. Loop and Catmull-Clark
+//! number the runs as OpenSubdiv does: a run is merged with an earlier run of the same
+//! OpenSubdiv value, which at a vertex with two values compares a new run with the first
+//! value only, so every run of the first value (A) is merged with it while, in the order
+//! A, B, A, B, the second run of B is a value of its own, kept at every level
+//! (`schemes::uv::UvCounts::split_values` counts these). The other rules (midpoint,
+//! butterfly, the icosphere, the 1:N² splits) merge every run back into its (vertex, `vt`)
+//! value, as `schemes::uv` counts them (`UvScheme::splits_siblings`). Level 0 is one value
+//! per (vertex, `vt`) pair ([`UvLayout`]) for every rule; OpenSubdiv also counts unused
+//! `vt` at level 0, this crate does not.
 //!
 //! # The other rules
 //!
