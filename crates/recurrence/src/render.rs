@@ -445,7 +445,60 @@ fn integer_combination(coeffs: &[BigInt], names: &[String], style: Style) -> Str
     join_groups(&groups)
 }
 
+impl ClosedForm {
+    /// The line of component `index` in [`to_text_in`](Self::to_text_in) (or, with `latex`,
+    /// [`to_latex_in`](Self::to_latex_in)) for a quantity that the component gives from level
+    /// `max(valid_from, the component's valid_from)` on, and that is the integer of `early` at
+    /// the levels listed there (the component's own early levels, combinations of the initial
+    /// values, at the other levels below its `valid_from`). `None` when there is no such
+    /// component.
+    ///
+    /// ```
+    /// # use recurrence::{IntMatrix, Recurrence};
+    /// # use num_bigint::BigInt;
+    /// let r = Recurrence::with_names("[[1, 1], [0, 4]]".parse::<IntMatrix>()?, ["V", "E"])?;
+    /// let form = r.closed_form();
+    /// assert_eq!(
+    ///     form.component_line_from(0, "s", false, 1, &[(0, BigInt::from(7))]).unwrap(),
+    ///     "V(s) = V0 + (4^s - 1)/3 * E0 for s >= 1; V(0) = 7"
+    /// );
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn component_line_from(
+        &self,
+        index: usize,
+        level: &str,
+        latex: bool,
+        valid_from: u64,
+        early: &[(u64, BigInt)],
+    ) -> Option<String> {
+        let c = self.components().get(index)?;
+        let style = if latex { Style::Latex } else { Style::Text };
+        Some(component_line_with(
+            c,
+            self.names(),
+            style,
+            level,
+            valid_from.max(c.valid_from),
+            early,
+        ))
+    }
+}
+
 fn component_line(c: &ComponentForm, names: &[String], style: Style, level: &str) -> String {
+    component_line_with(c, names, style, level, c.valid_from, &[])
+}
+
+/// [`component_line`] with the range starting at `valid_from` (at least `c.valid_from`) and
+/// the levels of `fixed` given as their integers.
+fn component_line_with(
+    c: &ComponentForm,
+    names: &[String],
+    style: Style,
+    level: &str,
+    valid_from: u64,
+    fixed: &[(u64, BigInt)],
+) -> String {
     let eq = match (c.exact, style) {
         (true, _) => "=",
         (false, Style::Text) => "≈",
@@ -456,27 +509,29 @@ fn component_line(c: &ComponentForm, names: &[String], style: Style, level: &str
         lhs(&c.name, style, level),
         component_rhs(c, names, style, level)
     );
-    if c.valid_from > 0 {
+    if valid_from > 0 {
         let (range, separator, name) = match style {
             Style::Text => (
-                format!(" for {level} >= {}", c.valid_from),
+                format!(" for {level} >= {valid_from}"),
                 "; ",
                 c.name.clone(),
             ),
             Style::Latex => (
-                format!(" \\quad ({level} \\ge {})", c.valid_from),
+                format!(" \\quad ({level} \\ge {valid_from})"),
                 ", \\quad ",
                 c.name.replace('_', "\\_"),
             ),
         };
         line.push_str(&range);
-        for l in &c.early_levels {
-            let _ = write!(
-                line,
-                "{separator}{name}({}) = {}",
-                l.level,
-                integer_combination(&l.coefficients, names, style)
-            );
+        for l in 0..valid_from {
+            let value = if let Some((_, v)) = fixed.iter().find(|(k, _)| *k == l) {
+                v.to_string()
+            } else if let Some(e) = c.early_levels.iter().find(|e| e.level == l) {
+                integer_combination(&e.coefficients, names, style)
+            } else {
+                continue;
+            };
+            let _ = write!(line, "{separator}{name}({l}) = {value}");
         }
     }
     line

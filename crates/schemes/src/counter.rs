@@ -616,46 +616,84 @@ fn divide_summary(y: &DigitSummary, k: u64, wide: usize) -> Option<DigitSummary>
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn specialized_lines(form: &ClosedForm, x0: &[BigInt], var: &str) -> Option<Vec<String>> {
-    let mut lines = Vec::new();
-    for component in form.components() {
-        if !component.exact {
+    form.components()
+        .iter()
+        .map(|c| specialized_component(c, x0, var, c.valid_from, &[]))
+        .collect()
+}
+
+/// The line of component `index` of [`specialized_lines`] for a quantity that the component
+/// gives from level `max(valid_from, the component's valid_from)` on and that is the integer
+/// of `early` at the levels listed there (the component's own early levels, evaluated at
+/// `x0`, at the other levels below its `valid_from`): the UV values, which the recurrence's
+/// `UV` gives from level 1 on while level 0 counts the `vt` used. `None` when there is no
+/// such component or a term is not rational.
+///
+/// ```
+/// use num_bigint::BigInt;
+/// use recurrence::Recurrence;
+///
+/// let r = Recurrence::with_names("[[1,1],[0,4]]".parse()?, ["V", "E"])?;
+/// let x0 = [12, 30].map(BigInt::from);
+/// let early = [(0, BigInt::from(11))];
+/// let line = schemes::specialized_line_from(&r.closed_form(), 0, &x0, "s", 1, &early).unwrap();
+/// assert_eq!(line, "V(s) = 10*4^s + 2 for s >= 1; V(0) = 11");
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn specialized_line_from(
+    form: &ClosedForm,
+    index: usize,
+    x0: &[BigInt],
+    var: &str,
+    valid_from: u64,
+    early: &[(u64, BigInt)],
+) -> Option<String> {
+    let c = form.components().get(index)?;
+    specialized_component(c, x0, var, valid_from.max(c.valid_from), early)
+}
+
+fn specialized_component(
+    component: &recurrence::ComponentForm,
+    x0: &[BigInt],
+    var: &str,
+    valid_from: u64,
+    fixed: &[(u64, BigInt)],
+) -> Option<String> {
+    if !component.exact {
+        return None;
+    }
+    let mut terms: Vec<(BigRational, u32, BigRational)> = Vec::new();
+    for term in &component.terms {
+        let Eigenvalue::Rational(lambda) = &term.eigenvalue else {
             return None;
-        }
-        let mut terms: Vec<(BigRational, u32, BigRational)> = Vec::new();
-        for term in &component.terms {
-            let Eigenvalue::Rational(lambda) = &term.eigenvalue else {
+        };
+        let mut c = BigRational::zero();
+        for (coefficient, x) in term.coefficients.iter().zip(x0) {
+            let Coefficient::Rational(r) = coefficient else {
                 return None;
             };
-            let mut c = BigRational::zero();
-            for (coefficient, x) in term.coefficients.iter().zip(x0) {
-                let Coefficient::Rational(r) = coefficient else {
-                    return None;
-                };
-                c += r * BigRational::from_integer(x.clone());
-            }
-            if !c.is_zero() {
-                terms.push((c, term.s_power, lambda.clone()));
-            }
+            c += r * BigRational::from_integer(x.clone());
         }
-        let mut line = format!("{}({var}) = {}", component.name, render_sum(&terms, var));
-        if component.valid_from > 0 {
-            let early: Vec<String> = component
-                .early_levels
-                .iter()
-                .map(|e| {
-                    let v: BigInt = e.coefficients.iter().zip(x0).map(|(c, x)| c * x).sum();
-                    format!("{}({}) = {v}", component.name, e.level)
-                })
-                .collect();
-            line.push_str(&format!(
-                " for {var} >= {}; {}",
-                component.valid_from,
-                early.join(", ")
-            ));
+        if !c.is_zero() {
+            terms.push((c, term.s_power, lambda.clone()));
         }
-        lines.push(line);
     }
-    Some(lines)
+    let mut line = format!("{}({var}) = {}", component.name, render_sum(&terms, var));
+    if valid_from > 0 {
+        let early: Vec<String> = (0..valid_from)
+            .filter_map(|l| {
+                let v: BigInt = if let Some((_, v)) = fixed.iter().find(|(k, _)| *k == l) {
+                    v.clone()
+                } else {
+                    let e = component.early_levels.iter().find(|e| e.level == l)?;
+                    e.coefficients.iter().zip(x0).map(|(c, x)| c * x).sum()
+                };
+                Some(format!("{}({l}) = {v}", component.name))
+            })
+            .collect();
+        line.push_str(&format!(" for {var} >= {valid_from}; {}", early.join(", ")));
+    }
+    Some(line)
 }
 
 /// `c1*s^k1*l1^s + c2*...`, largest eigenvalue first as the closed form lists them.

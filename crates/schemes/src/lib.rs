@@ -88,7 +88,8 @@ pub mod uv;
 pub use crate::catalog::{builtin, builtins};
 pub use crate::class::{FaceKind, MeshClass};
 pub use crate::counter::{
-    log10_abs, specialized_lines, Counter, Row, CLOSED_FORM_LIMIT, SUMMARY_DIGITS,
+    log10_abs, specialized_line_from, specialized_lines, Counter, Row, CLOSED_FORM_LIMIT,
+    SUMMARY_DIGITS,
 };
 pub use crate::counts::{first_repeated_vertex, DisjointSets, MeshCounts, Stat};
 pub use crate::error::{Error, Result};

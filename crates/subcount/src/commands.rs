@@ -199,13 +199,21 @@ fn uv_formula(
         return Ok(text);
     };
     let form = verified_form(single.recurrence(), format)?;
-    let uv_line = |all: String| -> String {
-        all.lines()
-            .filter(|l| l.starts_with("UV("))
-            .collect::<Vec<_>>()
-            .join("\n")
-    };
     let layout = uv.uv_counts();
+    // The UV values: the recurrence's first component (`UV`) from `VALID_FROM` on (or later,
+    // where the form has early levels), the `vt` the faces use at level 0.
+    let uv_index = 0;
+    let valid_from = schemes::uv::UvScheme::VALID_FROM;
+    let early = [(0, BigInt::from(layout.used_vt))];
+    let line = |latex: bool| {
+        form.component_line_from(uv_index, "s", latex, valid_from, &early)
+            .ok_or_else(|| {
+                Failure::new(
+                    Kind::Input,
+                    anyhow::anyhow!("the UV recurrence has no UV component"),
+                )
+            })
+    };
     let text = text.trim_end();
     Ok(match format {
         FormulaFormat::Text => {
@@ -215,32 +223,47 @@ fn uv_formula(
                 .names()
                 .iter()
                 .zip(&x0)
-                .map(|(n, v)| format!("{n}(0) = {v}"))
+                .map(|(n, v)| format!("{n}0 = {v}"))
                 .collect();
-            let numbers = schemes::specialized_lines(&form, &x0, "s")
-                .and_then(|l| l.into_iter().next())
-                .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
+            let numbers =
+                schemes::specialized_line_from(&form, uv_index, &x0, "s", valid_from, &early)
+                    .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
             format!(
-                "{text}\n\n# UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
-                uv_line(form.to_text()),
+                "{text}\n\n# UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges; UV(0) is the number of vt the faces use\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
+                line(false)?,
                 given.join(", "),
                 layout.used_vt,
             )
         }
-        FormulaFormat::Latex => format!("{text}\n{}", uv_line(form.to_latex())),
-        FormulaFormat::Rust => format!(
-            "{text}\n\n/// UV values: the state (UV, UE, UBE, F{}) of the UV layout, `UV` from level 1 on.\n{}",
-            if single.recurrence().dim() > 4 { ", H" } else { "" },
-            form.to_rust(&format!("{fn_base}_uv_counts"))
-        ),
+        FormulaFormat::Latex => format!("{text}\n{}", line(true)?),
+        FormulaFormat::Rust => {
+            let counts = format!("{fn_base}_uv_counts");
+            let dim = single.recurrence().dim();
+            format!(
+                "{text}\n\n/// UV values: the state (UV, UE, UBE, F{}) of the UV layout, `UV` from level {valid_from} on.\n{}\n\n/// The UV values at level `s`: `used_vt` (the `vt` the faces use) at level 0, the `UV` of\n/// `{counts}` from level {valid_from} on.\npub fn {fn_base}_uv_values(x0: [i128; {dim}], used_vt: i128, s: u64) -> Option<i128> {{\n    if s < {valid_from} {{\n        return Some(used_vt);\n    }}\n    {counts}(x0, s).map(|x| x[{uv_index}])\n}}",
+                if dim > 4 { ", H" } else { "" },
+                form.to_rust(&counts).trim_end()
+            )
+        }
         FormulaFormat::Json => {
-            let mut value: Value = serde_json::from_str(text).map_err(|e| Failure::new(Kind::Input, e))?;
-            let uv_forms = form.to_json();
-            let component = uv_forms
-                .as_array()
-                .and_then(|a| a.iter().find(|c| c["component"] == "UV"))
-                .cloned()
-                .unwrap_or(Value::Null);
+            let mut value: Value =
+                serde_json::from_str(text).map_err(|e| Failure::new(Kind::Input, e))?;
+            let c = form.components().get(uv_index).ok_or_else(|| {
+                Failure::new(
+                    Kind::Input,
+                    anyhow::anyhow!("the UV recurrence has no UV component"),
+                )
+            })?;
+            let mut component = form.to_json()[uv_index].take();
+            let from = valid_from.max(c.valid_from);
+            component["valid_from"] = json!(from);
+            // Below `from`: the `vt` used at level 0 (`"value"`, not a combination of the
+            // initial values), the form's own early levels after it.
+            let mut levels = vec![json!({ "level": 0, "value": layout.used_vt.to_string() })];
+            if let Some(own) = component["early_levels"].as_array() {
+                levels.extend(own.iter().filter(|e| e["level"] != 0).cloned());
+            }
+            component["early_levels"] = Value::Array(levels);
             match &mut value {
                 Value::Array(list) => list.push(component),
                 other => *other = json!({ "forms": other.clone(), "UV": component }),

@@ -562,3 +562,77 @@ fn verify_counts_a_vertex_with_two_vt_alternating_for_every_rule() {
         assert_eq!(uv_rows, 3, "{scheme}: {out}");
     }
 }
+
+/// A tetrahedron whose every corner uses the one `vt`: four (vertex, `vt`) pairs, one `vt`.
+const TETRA_ONE_VT: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nf 1/1 3/1 2/1\nf 1/1 2/1 4/1\nf 2/1 3/1 4/1\nf 1/1 4/1 3/1\n";
+
+/// `UV(s)` holds from level 1 on (`UvScheme::VALID_FROM`) and level 0 is the number of `vt`
+/// the faces use, in every format: Loop on the tetrahedron with one `vt` (the form gives 4 at
+/// level 0, the table 1), Catmull-Clark on the cube with one `vt` (whose form has an early
+/// level of its own, 8 pairs, replaced by the 1 `vt`).
+#[test]
+fn formula_states_uv_level_0_and_validity_in_every_format() {
+    let (_dir, tetra) = file("tetra.obj", TETRA_ONE_VT);
+    let table = ok(&[
+        "table", "--mesh", &tetra, "--scheme", "loop", "--levels", "0..2",
+    ]);
+    let uv_column: Vec<&str> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().last().unwrap())
+        .collect();
+    assert_eq!(uv_column[..2], ["1", "10"], "{table}");
+    let formula = |mesh: &str, scheme: &str, format: &str| {
+        ok(&[
+            "formula", "--mesh", mesh, "--scheme", scheme, "--format", format,
+        ])
+    };
+    let text = formula(&tetra, "loop", "text");
+    assert!(
+        text.contains("\nUV(s) = 2*4^s + 2 for s >= 1; UV(0) = 1\n"),
+        "{text}"
+    );
+    assert!(
+        text.contains(
+            "\nUV(s) = UV0 + (2^s - 1) * UE0 + (4^s - 3*2^s + 2)/2 * F0 for s >= 1; UV(0) = 1\n"
+        ),
+        "{text}"
+    );
+    let latex = formula(&tetra, "loop", "latex");
+    assert!(
+        latex.contains(" \\quad (s \\ge 1), \\quad UV(0) = 1"),
+        "{latex}"
+    );
+    let rust = formula(&tetra, "loop", "rust");
+    assert!(
+        rust.contains("pub fn loop_uv_values(x0: [i128; 4], used_vt: i128, s: u64) -> Option<i128> {\n    if s < 1 {\n        return Some(used_vt);\n    }\n    loop_uv_counts(x0, s).map(|x| x[0])\n}"),
+        "{rust}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&formula(&tetra, "loop", "json")).unwrap();
+    let uv = json.as_array().and_then(|a| a.last()).expect("a list");
+    assert_eq!(uv["component"], "UV", "{json}");
+    assert_eq!(uv["valid_from"], 1, "{json}");
+    assert_eq!(
+        uv["early_levels"],
+        serde_json::json!([{ "level": 0, "value": "1" }]),
+        "{json}"
+    );
+
+    let one_vt_cube = format!(
+        "{CUBE_V}vt 0 0\nf 1/1 4/1 3/1 2/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\nf 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n"
+    );
+    let (_dir2, cube) = file("cube.obj", &one_vt_cube);
+    let text = formula(&cube, "catmull-clark", "text");
+    let last = text.trim_end().lines().last().unwrap();
+    assert!(last.ends_with(" for s >= 1; UV(0) = 1"), "{text}");
+    assert!(!text.contains("UV(0) = 8"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&formula(&cube, "catmull-clark", "json")).unwrap();
+    let uv = json.as_array().and_then(|a| a.last()).expect("a list");
+    assert_eq!(uv["valid_from"], 1, "{json}");
+    assert_eq!(
+        uv["early_levels"][0],
+        serde_json::json!({ "level": 0, "value": "1" }),
+        "{json}"
+    );
+}
