@@ -75,9 +75,18 @@ pub enum ParseError {
         found: usize,
     },
     /// A face corner's texture-coordinate index (`v/vt`, `v/vt/vn`) that is not a non-zero
-    /// integer fitting 32 bits.
+    /// integer (one too large is [`ParseError::TexCoordIndexTooLarge`]).
     #[error("corner {corner}: `{token}` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)")]
     InvalidTexCoordIndex {
+        /// The corner on the face line (1-based).
+        corner: usize,
+        /// The index as written (shortened when long).
+        token: String,
+    },
+    /// A face corner's texture-coordinate index whose magnitude does not fit the index type
+    /// (as [`ParseError::IndexTooLarge`] for a face index).
+    #[error("corner {corner}: texture coordinate index `{token}` is too large")]
+    TexCoordIndexTooLarge {
         /// The corner on the face line (1-based).
         corner: usize,
         /// The index as written (shortened when long).

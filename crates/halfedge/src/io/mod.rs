@@ -28,7 +28,8 @@
 //! uses has no UVs and nothing partial. A `vt` index is 1-based, or negative counting back
 //! from the `vt` lines read so far, and may name a later line; one that is not a valid index
 //! or names no `vt` of the file is an error naming the file, line and corner
-//! ([`ParseError::InvalidTexCoordIndex`], [`ParseError::TexCoordIndexOutOfRange`]), and a
+//! ([`ParseError::InvalidTexCoordIndex`], [`ParseError::TexCoordIndexTooLarge`],
+//! [`ParseError::TexCoordIndexOutOfRange`]), and a
 //! `vt` line with fewer than two values is [`ParseError::MissingTexCoords`]. Normals (`vn`,
 //! the third corner field) are not read: a subdivided surface needs new ones. OFF files have
 //! no texture coordinates.

@@ -70,8 +70,9 @@ pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 ///
 /// As [`read_obj`]: a bad or non-finite coordinate, a vertex with fewer than three
 /// coordinates, a `vt` with fewer than two, a face index that is 0, not a number, too large or
-/// out of range, a texture-coordinate index that is not valid or out of range (naming the
-/// corner: [`ParseError::InvalidTexCoordIndex`], [`ParseError::TexCoordIndexOutOfRange`]), a
+/// out of range, a texture-coordinate index that is not valid, too large or out of range
+/// (naming the corner: [`ParseError::InvalidTexCoordIndex`],
+/// [`ParseError::TexCoordIndexTooLarge`], [`ParseError::TexCoordIndexOutOfRange`]), a
 /// face with fewer than three corners, a malformed tag line or a tag on a vertex, face or
 /// edge the file does not have, binary data, no faces at all, a mesh beyond the memory budget.
 ///
@@ -306,9 +307,14 @@ impl UvReader {
         corner: usize,
         line: u64,
     ) -> std::result::Result<u32, ParseError> {
-        let index = parse_index(field).map_err(|_| ParseError::InvalidTexCoordIndex {
-            corner,
-            token: shorten(field),
+        let index = parse_index(field).map_err(|e| match e {
+            ParseError::IndexTooLarge { token } => {
+                ParseError::TexCoordIndexTooLarge { corner, token }
+            }
+            _ => ParseError::InvalidTexCoordIndex {
+                corner,
+                token: shorten(field),
+            },
         })?;
         let count = self.coords.len() as u64;
         if index < 0 {
@@ -779,8 +785,9 @@ mod tests {
             ("f 1/1 2/0 3/3\n", "t.obj: line 9: corner 2: `0` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
             ("f 1/1 2/x/1 3/3\n", "t.obj: line 9: corner 2: `x` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
             ("f 1/1 2/1.5 3/3\n", "t.obj: line 9: corner 2: `1.5` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
-            ("f 1/1 2/2 3/4294967295\n", "t.obj: line 9: corner 3: `4294967295` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
-            ("f 1/1 2/2 3/99999999999999999999999\n", "t.obj: line 9: corner 3: `99999999999999999999999` is not a valid texture coordinate index (expected a non-zero integer; negative ones count back)"),
+            ("f 1/1 2/2 3/4294967295\n", "t.obj: line 9: corner 3: texture coordinate index `4294967295` is too large"),
+            ("f 1/1 2/-4294967295 3/3\n", "t.obj: line 9: corner 2: texture coordinate index `-4294967295` is too large"),
+            ("f 1/1 2/2 3/99999999999999999999999\n", "t.obj: line 9: corner 3: texture coordinate index `99999999999999999999999` is too large"),
             ("f 1 2 3 4\nf 1/1 2/2 4/9\n", "t.obj: line 10: corner 3: texture coordinate index 9 is out of range (the file has 4 texture coordinates)"),
             ("vt 1\nf 1/1 2/2 3/3\n", "t.obj: line 9: texture coordinate has 1 values, expected u v (and an optional w)"),
             ("vt\nf 1/1 2/2 3/3\n", "t.obj: line 9: texture coordinate has 0 values, expected u v (and an optional w)"),
