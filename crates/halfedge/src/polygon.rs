@@ -145,13 +145,32 @@ impl PolygonMesh {
     }
 
     /// Appends a face (its vertex indices in order; not validated).
+    ///
+    /// The new face's corners have no texture coordinates, so a mesh with
+    /// [`uvs`](Self::uvs) loses them (they become `None`): set them again for every corner
+    /// with [`set_uvs`](Self::set_uvs) after the last face.
+    ///
+    /// ```
+    /// use halfedge::glam::{DVec2, DVec3};
+    /// use halfedge::uv::Uvs;
+    /// use halfedge::PolygonMesh;
+    ///
+    /// let mut mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 4], [vec![0, 1, 2]]);
+    /// mesh.set_uvs(Some(Uvs::new(vec![DVec2::ZERO; 3], vec![0, 1, 2])?))?;
+    /// mesh.push_face(&[0, 2, 3]);
+    /// assert!(mesh.uvs().is_none());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn push_face(&mut self, vertices: &[u32]) {
+        self.uvs = None;
         self.face_indices.extend_from_slice(vertices);
         self.face_offsets.push(self.face_indices.len());
     }
 
-    /// Appends a face from an iterator of vertex indices (not validated).
+    /// Appends a face from an iterator of vertex indices (not validated). As
+    /// [`push_face`](Self::push_face), a mesh with [`uvs`](Self::uvs) loses them.
     pub fn push_face_from_iter(&mut self, vertices: impl IntoIterator<Item = u32>) {
+        self.uvs = None;
         self.face_indices.extend(vertices);
         self.face_offsets.push(self.face_indices.len());
     }
@@ -386,3 +405,31 @@ impl<'a> Iterator for PolygonFaces<'a> {
 }
 
 impl ExactSizeIterator for PolygonFaces<'_> {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pushing_a_face_clears_the_texture_coordinates() {
+        use glam::DVec2;
+        let mut mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 4], [vec![0, 1, 2]]);
+        let uvs = Uvs::new(vec![DVec2::ZERO; 3], vec![0, 1, 2]).unwrap();
+        mesh.set_uvs(Some(uvs)).unwrap();
+        mesh.push_face(&[0, 2, 3]);
+        assert_eq!(mesh.uvs(), None);
+        assert!(mesh.uv_layout().is_none());
+        // Set again for every corner, then a face pushed from an iterator.
+        let six = Uvs::new(vec![DVec2::ZERO; 3], vec![0, 1, 2, 0, 2, 1]).unwrap();
+        mesh.set_uvs(Some(six)).unwrap();
+        assert!(mesh.uvs().is_some());
+        mesh.push_face_from_iter([1, 2, 3]);
+        assert_eq!(mesh.uvs(), None);
+        // The OBJ writer writes no `vt` rather than a file short of corners.
+        let mut out = Vec::new();
+        crate::io::write_polygon_obj(&mesh, &mut out).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert!(!text.contains("vt"), "{text}");
+        assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 3);
+    }
+}
