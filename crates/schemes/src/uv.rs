@@ -98,12 +98,14 @@ use crate::{Error, MeshCounts, Plan, Result, Row, Rule, Scheme};
 /// The statistics of a UV layout (module docs for the definitions), computed by
 /// [`UvCounts::from_layout`].
 ///
-/// Serializes to the `"uv"` object of `subcount stats --format json`: `V`, `E`, `BE`,
+/// Serializes to the `"uv"` object of `subcount stats --format json`: `V` (the (vertex, `vt`)
+/// pairs), `E`, `BE`,
 /// `seam_edges`, `boundary_loops`, `charts`, `unreferenced` (the fields that are not
 /// layout statistics, `used_vt`, `faces` and `corners`, are skipped).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct UvCounts {
-    /// `V`: UV values used (distinct (vertex, `vt`) pairs of the corners).
+    /// `V`: the UV values used: the distinct (vertex, `vt`) pairs of the corners (not the
+    /// `vt` entries used, which are [`used_vt`](Self::used_vt)).
     #[serde(rename = "V")]
     pub values: u64,
     /// `E`: edges of the layout.
