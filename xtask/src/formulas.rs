@@ -435,8 +435,16 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
     };
     let cc = uv_scheme(Rule::CatmullClark)?;
     let x0 = cc.initial_state(&spot);
-    let lines = schemes::specialized_lines(&cc.recurrence().closed_form(), &x0, "s")
-        .context("Catmull-Clark's UV forms are rational")?;
+    // As `formula --mesh` prints it: from `VALID_FROM` on, level 0 the `vt` used.
+    let line = schemes::specialized_line_from(
+        &cc.recurrence().closed_form(),
+        0,
+        &x0,
+        "s",
+        schemes::uv::UvScheme::VALID_FROM,
+        &[(0, BigInt::from(spot.used_vt))],
+    )
+    .context("Catmull-Clark's UV forms are rational")?;
     let _ = writeln!(
         out,
         "Reference: `spot_control_mesh.obj` (267 `vt`, 72 seam edges, 13 charts; \
@@ -450,7 +458,7 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
             "spot_control_mesh's UV count at level {s} is not OpenSubdiv's {osd}"
         );
     }
-    let _ = writeln!(out, "```text\n{}\n```\n", lines[0]);
+    let _ = writeln!(out, "```text\n{line}\n```\n");
 
     let mut cube = shapes::cube();
     let cut = |f: usize, c: u32| {
