@@ -9,3 +9,4 @@ mod shared_meshes;
 mod tags;
 mod uv_counts;
 mod uv_io;
+mod uv_memory;
