@@ -378,8 +378,8 @@ fn real_levels(text: &str) -> Result<u32, Failure> {
     Ok(levels)
 }
 
-/// The memory guard: `need` (a [`halfedge::memory`] prediction) against half the available
-/// memory, unless lifted.
+/// The memory guard: `need` (a [`halfedge::memory`] prediction, with the UV channel's
+/// [`uv_bytes`] when UVs are refined) against half the available memory, unless lifted.
 fn guard_memory(
     need: halfedge::Result<BigInt>,
     scheme: &str,
