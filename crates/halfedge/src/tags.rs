@@ -7,7 +7,7 @@
 //! | here | OpenSubdiv | command line |
 //! |---|---|---|
 //! | [`BoundaryInterpolation`] | `VtxBoundaryInterpolation` | `--boundary edge\|edge-and-corner\|none` |
-//! | [`FaceVaryingInterpolation`] | `FVarLinearInterpolation` | (face-varying data, not yet carried) |
+//! | [`FaceVaryingInterpolation`] | `FVarLinearInterpolation` | [`SubdivideOptions::uvs`](crate::subdivide::SubdivideOptions::uvs) ([`refine::face_varying`](crate::refine::face_varying)) |
 //! | [`CreaseMethod`] | `CreasingMethod` | `--crease-method uniform\|chaikin` |
 //! | [`TriangleRule`] | `TriangleSubdivision` | `--triangle-rule catmark\|smooth` |
 //!

@@ -762,8 +762,30 @@ impl UvCounter {
     /// As [`values_at`](Self::values_at).
     pub fn extend_rows(&self, columns: &mut Vec<String>, rows: &mut [Row]) -> Result {
         columns.push(UV_COLUMN.to_string());
+        // The last level of each stage; a level at a boundary belongs to the earlier stage.
+        let mut ends = Vec::with_capacity(self.stages.len());
+        let mut end = 0u64;
+        for (_, levels) in &self.stages {
+            end = levels.map_or(u64::MAX, |k| end.saturating_add(k));
+            ends.push(end);
+        }
+        // Consecutive levels of one stage step its recurrence once instead of powering.
+        let mut previous: Option<(u64, usize, Vec<BigInt>)> = None;
         for row in rows {
-            row.values.push(Some(self.values_at(row.level)?));
+            let level = row.level;
+            if level < UvScheme::VALID_FROM {
+                row.values.push(Some(BigInt::from(self.uv.used_vt)));
+                continue;
+            }
+            let stage = ends.iter().position(|&e| level <= e);
+            let state = match (&previous, stage) {
+                (Some((l, i, state)), Some(stage)) if l + 1 == level && *i == stage => {
+                    self.stages[stage].0.recurrence.state_at(state, 1)?
+                }
+                _ => self.state_at(level)?,
+            };
+            row.values.push(Some(state[0].clone()));
+            previous = stage.map(|i| (level, i, state));
         }
         Ok(())
     }

@@ -36,10 +36,11 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let input = Input::new(&args.source);
     let counter = input.counter()?;
     let x0 = input.initial_state(&counter)?;
-    guard::table(&counter, &x0, &levels)?;
+    let uv = input.uv_counter(&counter)?;
+    guard::table(&counter, &x0, &levels, uv.as_ref())?;
     let mut rows = counter.rows(&x0, levels)?;
     let mut columns = counter.columns();
-    if let Some(uv) = input.uv_counter(&counter)? {
+    if let Some(uv) = &uv {
         uv.extend_rows(&mut columns, &mut rows)?;
     }
     match args.format {

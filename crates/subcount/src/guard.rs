@@ -56,17 +56,23 @@ pub(crate) fn digits(
 }
 
 /// The guard of the commands that hold every level of a range (`table`, `plot`): the largest
-/// count, then the whole table (rows times columns times digits), before anything is computed.
+/// count, then the whole table (rows times columns times digits), before anything is computed;
+/// with `uv`, its `UV` column counts too (one more column, digits the larger estimate).
 pub(crate) fn table(
     counter: &Counter,
     x0: &[BigInt],
     levels: &RangeInclusive<u64>,
+    uv: Option<&schemes::uv::UvCounter>,
 ) -> Result<(), Failure> {
     digits(counter, x0, *levels.end(), false, Hint::Levels)?;
     // Exact for the message (up to 2^64 rows), as a float for the estimate.
     let rows = u128::from(*levels.end() - *levels.start()) + 1;
-    let cells = rows as f64 * counter.columns().len() as f64;
-    let digits = counter.estimated_log10(x0, *levels.end())? + 1.0;
+    let columns = counter.columns().len() + usize::from(uv.is_some());
+    let cells = rows as f64 * columns as f64;
+    let mut digits = counter.estimated_log10(x0, *levels.end())? + 1.0;
+    if let Some(uv) = uv {
+        digits = digits.max(uv.estimated_log10(*levels.end())? + 1.0);
+    }
     if cells > MAX_TABLE_CELLS || cells * digits > MAX_TABLE_DIGITS {
         return Err(Failure::new(
             Kind::Guard,

@@ -100,8 +100,8 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     } else {
         None
     };
-    // Present only when the file has texture coordinates: a mesh without `vt` prints what it
-    // always printed.
+    // Present only when the file has texture coordinates (a layout, or `vt` at only some
+    // corners: one line, `"uv": null`): a mesh without `vt` prints what it always printed.
     let uv = halfedge::stats::uv_counts(poly);
     let c = &counts;
     let text = match args.format {
@@ -137,8 +137,16 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
             if let (Some(tags), Value::Object(map)) = (&tags, &mut object) {
                 map.insert("tags".to_owned(), tags.to_json());
             }
-            if let (Some(uv), Value::Object(map)) = (&uv, &mut object) {
-                map.insert("uv".to_owned(), json!(uv));
+            if let Value::Object(map) = &mut object {
+                match (&uv, poly.partial_uvs()) {
+                    (Some(uv), _) => {
+                        map.insert("uv".to_owned(), json!(uv));
+                    }
+                    (None, Some(_)) => {
+                        map.insert("uv".to_owned(), Value::Null);
+                    }
+                    (None, None) => {}
+                }
             }
             if let Value::Object(map) = &mut object {
                 map.insert("applicable_schemes".to_owned(), json!(applicable));
@@ -176,8 +184,10 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
             if let Some(tags) = &tags {
                 t.push_str(&format!("{}\n", tags.to_text()));
             }
-            if let Some(uv) = &uv {
-                t.push_str(&format!("{}\n", uv_layout_text(uv)));
+            match (&uv, poly.partial_uvs()) {
+                (Some(uv), _) => t.push_str(&format!("{}\n", uv_layout_text(uv))),
+                (None, Some(partial)) => t.push_str(&format!("{partial}\n")),
+                (None, None) => {}
             }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t

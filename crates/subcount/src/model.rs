@@ -115,10 +115,11 @@ impl<'a> Input<'a> {
     /// The UV values under `counter` of the mesh's layout ([`Input::uv_counts`]), for the
     /// `UV` column of `table`, `at` and `plot`: `Ok(None)` without a mesh, on a mesh without
     /// a UV layout, and when the counter does not count UV values
-    /// ([`schemes::uv::NotCounted`]: √3, Doo-Sabin, mid-edge, a scheme without a rule); the
-    /// last says so in one note on stderr (`note: sqrt3 does not count UV values (no UV rule
-    /// yet): no UV column`), so that a missing column is explained, and stdout is what it is
-    /// without UVs.
+    /// ([`schemes::uv::NotCounted`]: √3, Doo-Sabin, mid-edge, a scheme without a rule). The
+    /// last, and a mesh with `vt` at only some corners, say so in one note on stderr
+    /// (`note: sqrt3 does not count UV values (no UV rule yet): no UV column`, `note: FILE: 4
+    /// of 24 face corners have texture coordinates: no UV layout: no UV column`), so that a
+    /// missing column is explained; stdout is what it is without UVs.
     pub(crate) fn uv_counter(&self, counter: &Counter) -> Result<Option<UvCounter>, Failure> {
         if !self.has_mesh() {
             return Ok(None);
@@ -127,6 +128,12 @@ impl<'a> Input<'a> {
             return Ok(None);
         };
         let Some(uv) = self.uv_counts(plan)? else {
+            if let Some((loaded, _)) = self.loaded()? {
+                if let Some(partial) = loaded.poly.partial_uvs() {
+                    let label = mesh_label(&self.source.mesh);
+                    eprintln!("note: {label}: {partial}: no UV column");
+                }
+            }
             return Ok(None);
         };
         match counter.uv_counter(&uv) {

@@ -38,11 +38,12 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     let input = Input::new(&args.source);
     let counter = input.counter()?;
     let x0 = input.initial_state(&counter)?;
-    crate::guard::table(&counter, &x0, &levels)?;
+    // A mesh with a UV layout adds the UV values as a series of their own.
+    let uv = input.uv_counter(&counter)?;
+    crate::guard::table(&counter, &x0, &levels, uv.as_ref())?;
     let mut rows = counter.rows(&x0, levels.clone())?;
     let mut columns = counter.columns();
-    // A mesh with a UV layout adds the UV values as a series of their own.
-    if let Some(uv) = input.uv_counter(&counter)? {
+    if let Some(uv) = &uv {
         uv.extend_rows(&mut columns, &mut rows)?;
     }
     let series = series_of(&columns, &rows);

@@ -157,7 +157,8 @@ pub struct SubdivideOptions<'a> {
     /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
     /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
     /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; √3, Doo-Sabin and
-    /// mid-edge refuse it ([`Error::UvsNotSupported`]).
+    /// mid-edge refuse it ([`Error::UvsNotSupported`]). [`subdivide`] and [`verify`] (half-edge
+    /// meshes, which carry no UVs) and the face-list subdividers do not read it.
     pub uvs: Option<&'a crate::uv::UvLayout>,
 }
 

@@ -10,3 +10,4 @@ mod tags;
 mod uv_counts;
 mod uv_io;
 mod uv_memory;
+mod uv_refine;

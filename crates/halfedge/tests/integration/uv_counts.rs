@@ -223,3 +223,139 @@ proptest::proptest! {
         }
     }
 }
+
+/// The UV values of the real face-varying refinement ([`halfedge::refine::Refinement`] with
+/// the layout) at levels `1..=levels`.
+fn refined_values(mesh: &PolygonMesh, rule: Rule, levels: u32) -> Vec<BigInt> {
+    use halfedge::refine::Refinement;
+    use halfedge::subdivide::SubdivideOptions;
+    let layout = mesh.uv_layout().expect("a layout");
+    let half = halfedge::HalfEdgeMesh::try_from(mesh).unwrap_or_else(|e| panic!("{e}"));
+    let opts = SubdivideOptions::default().with_uvs(&layout);
+    let r = Refinement::new(&half, rule, levels, &opts).unwrap_or_else(|e| panic!("{rule}: {e}"));
+    (1..=levels).map(|s| BigInt::from(r.n_uvs(s))).collect()
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::test_runner::Config::with_cases(64))]
+    /// The predicted UV values are those of the real face-varying refinement (Loop,
+    /// Catmull-Clark), sibling values included, on grids with random seams and shared `vt`.
+    #[test]
+    fn uv_recurrences_count_the_real_face_varying_refinement(
+        w in 1u32..5,
+        h in 1u32..4,
+        triangles in proptest::bool::ANY,
+        picks in proptest::collection::vec(0u8..4, 1..40),
+    ) {
+        let mesh = grid_with_seams(w, h, triangles, &picks);
+        let uv = stats::uv_counts(&mesh).expect("a layout");
+        let mut rules = vec![Rule::CatmullClark];
+        if triangles {
+            rules.push(Rule::Loop);
+        }
+        for rule in rules {
+            proptest::prop_assert_eq!(
+                values(rule, &uv, 1..=3),
+                refined_values(&mesh, rule, 3),
+                "{} split {}", rule, uv.split_values
+            );
+        }
+    }
+}
+
+/// The predicted UV values are those of the real face-varying refinement on the shared
+/// meshes with UVs that the half-edge mesh accepts (Catmull-Clark, and Loop on triangle
+/// meshes), levels 1-2: the bishop's 39 sibling values included.
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn uv_counts_are_the_real_face_varying_refinements_on_the_shared_meshes() {
+    let dir = testdata::meshes_dir();
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().to_string_lossy().into_owned();
+            name.ends_with(".obj").then_some(name)
+        })
+        .collect();
+    names.sort();
+    let mut checked = Vec::new();
+    for name in names {
+        let path = dir.join(&name);
+        let mesh = io::read_obj(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let Some(uv) = stats::uv_counts(&mesh) else {
+            continue;
+        };
+        if halfedge::HalfEdgeMesh::try_from(&mesh).is_err() {
+            continue;
+        }
+        let mut rules = vec![Rule::CatmullClark];
+        if mesh.faces().all(|f| f.len() == 3) {
+            rules.push(Rule::Loop);
+        }
+        for rule in rules {
+            assert_eq!(
+                values(rule, &uv, 1..=2),
+                refined_values(&mesh, rule, 2),
+                "{name} {rule}"
+            );
+        }
+        checked.push(name);
+    }
+    assert!(
+        checked.iter().any(|n| n == "osd_catmark_bishop.obj") && checked.len() >= 12,
+        "{checked:?}"
+    );
+}
+
+/// Four quads around a vertex using two shared `vt` in the order A, B, A, B around it: one
+/// sibling value split off, in the prediction and in the real refinement alike.
+#[test]
+fn a_split_sibling_value_is_counted_by_the_real_refinement_too() {
+    // Corners 2, 7, 12, 9 are the centre's in faces 0, 1, 3, 2 (OpenSubdiv's order there).
+    let picks = [0, 0, 1, 0, 0, 0, 0, 2, 0, 2, 0, 0, 1, 0, 0, 0];
+    let mesh = grid_with_seams(2, 2, false, &picks);
+    let uv = stats::uv_counts(&mesh).expect("a layout");
+    assert_eq!((uv.values, uv.split_values), (10, 1));
+    let predicted = values(Rule::CatmullClark, &uv, 1..=3);
+    assert_eq!(predicted, refined_values(&mesh, Rule::CatmullClark, 3));
+    // One more than the layout refined as a face list.
+    assert_eq!(predicted[0], BigInt::from(10 + 1 + uv.edges + 4));
+}
+
+/// With holes the prediction from the written faces' layout (`HoleSet::written_uv_counts`,
+/// sibling values of the whole mesh) is the number of values the written faces of the real
+/// refinement use, at each last level; on the bishop too, whose sibling values holes can
+/// leave unused.
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn written_uv_values_with_holes_are_the_real_refinements() {
+    use halfedge::refine::Refinement;
+    use halfedge::subdivide::SubdivideOptions;
+    for (name, holes) in [
+        ("spot_control_mesh.obj", vec![0u32, 1, 2, 40, 41]),
+        ("osd_catmark_bishop.obj", (0..968).step_by(3).collect()),
+    ] {
+        let mesh = read_with_uvs(&testdata::mesh(name));
+        let holes = HoleSet::new(mesh.n_faces(), holes).expect("faces of the mesh");
+        let uv = holes.written_uv_counts(&mesh).expect("a layout");
+        let layout = mesh.uv_layout().expect("a layout");
+        let half = halfedge::HalfEdgeMesh::try_from(&mesh).unwrap_or_else(|e| panic!("{e}"));
+        let opts = SubdivideOptions::default()
+            .with_uvs(&layout)
+            .with_holes(&holes);
+        for levels in 1..=2u32 {
+            let r = Refinement::new(&half, Rule::CatmullClark, levels, &opts)
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(
+                values(
+                    Rule::CatmullClark,
+                    &uv,
+                    u64::from(levels)..=u64::from(levels)
+                ),
+                [BigInt::from(r.n_uvs(levels))],
+                "{name} level {levels}, split {}",
+                uv.split_values
+            );
+        }
+    }
+}

@@ -14,10 +14,8 @@
 //! Ignored: they need `SUBCOUNT_OSD_DRIVER` and `SUBCOUNT_MESHES`, and fail, saying so,
 //! without them.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use halfedge::glam::DVec2;
-use halfedge::uv::Uvs;
 use halfedge::{io, stats, PolygonMesh, Rule};
 use schemes::uv::{uv_scheme, UvCounts};
 use schemes::BigInt;
@@ -28,46 +26,8 @@ use crate::osd_support::{driver, Osd};
 /// The levels compared.
 const LEVELS: u32 = 2;
 
-/// The texture coordinates of an OBJ file whose face corners all name a `vt` (`v/vt`,
-/// `v/vt/vn`, negative indices relative to the `vt` lines so far); `None` when some corner
-/// has none or there is no `vt` line.
-fn file_uvs(path: &Path) -> Option<Uvs> {
-    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let (mut coords, mut corners) = (Vec::new(), Vec::new());
-    for (n, line) in text.lines().enumerate() {
-        let at = || format!("{}:{}", path.display(), n + 1);
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("vt") => {
-                let uv: Vec<f64> = words
-                    .take(2)
-                    .map(|w| w.parse().unwrap_or_else(|e| panic!("{}: {w}: {e}", at())))
-                    .collect();
-                coords.push(DVec2::new(uv[0], uv.get(1).copied().unwrap_or(0.0)));
-            }
-            Some("f") => {
-                for corner in words {
-                    let vt = corner.split('/').nth(1).filter(|t| !t.is_empty())?;
-                    let vt: i64 = vt.parse().unwrap_or_else(|e| panic!("{}: {vt}: {e}", at()));
-                    let resolved = if vt > 0 {
-                        vt - 1
-                    } else {
-                        coords.len() as i64 + vt
-                    };
-                    corners
-                        .push(u32::try_from(resolved).unwrap_or_else(|e| panic!("{}: {e}", at())));
-                }
-            }
-            _ => {}
-        }
-    }
-    if coords.is_empty() {
-        return None;
-    }
-    Some(Uvs::new(coords, corners).unwrap_or_else(|e| panic!("{}: {e}", path.display())))
-}
-
-/// Every shared mesh (not the `broken/` ones) whose corners all have a `vt`, with its UVs.
+/// Every shared mesh (not the `broken/` ones) with UVs (`vt` at every corner), read by
+/// `io::read_obj`.
 fn meshes_with_uvs() -> Vec<(PathBuf, PolygonMesh)> {
     let dir = testdata::meshes_dir();
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
@@ -78,13 +38,10 @@ fn meshes_with_uvs() -> Vec<(PathBuf, PolygonMesh)> {
     paths.sort();
     let mut meshes = Vec::new();
     for path in paths {
-        let Some(uvs) = file_uvs(&path) else {
-            continue;
-        };
-        let mut mesh = io::read_obj(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        mesh.set_uvs(Some(uvs))
-            .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-        meshes.push((path, mesh));
+        let mesh = io::read_obj(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        if mesh.uvs().is_some() {
+            meshes.push((path, mesh));
+        }
     }
     meshes
 }

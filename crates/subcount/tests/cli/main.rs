@@ -9,5 +9,6 @@ mod plot;
 mod schemes;
 mod tags;
 mod util;
+mod uv_counts;
 mod uv_input;
 mod uv_subdivide;

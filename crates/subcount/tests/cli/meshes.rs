@@ -103,13 +103,14 @@ fn stats_of_small_obj_and_off_files() {
 
 /// v/vt, v/vt/vn, v//vn and negative indices, groups sharing vertices, unknown lines ignored,
 /// an OpenSubdiv crease tag (read: `tags` in the JSON), and a vertex no face uses: counted
-/// apart, and left out of the subdivided mesh.
+/// apart, and left out of the subdivided mesh. Only some corners have a `vt`: no UV layout
+/// (`"uv": null`).
 #[test]
 fn obj_face_forms_groups_and_unreferenced_vertices() {
     let path = data("features.obj");
     assert_eq!(
         ok(&["stats", "--mesh", &path, "--format", "json"]),
-        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 1, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"tags\": {\"crease_edges\": 1, \"corners\": 0, \"holes\": 0, \"options\": {}}, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"doo-sabin-boundary\", \"mid-edge\", \"mid-edge-boundary\"]}\n"
+        "{\"V\": 8, \"E\": 12, \"IE\": 12, \"BE\": 0, \"NME\": 0, \"F\": 6, \"H\": 24, \"faces_by_degree\": {\"4\": 6}, \"boundary_loops\": 0, \"components\": 1, \"euler_characteristic\": 2, \"genus\": 0, \"unreferenced_vertices\": 1, \"manifold\": true, \"problems\": {\"faces_with_repeated_vertex\": 0, \"duplicate_faces\": 0, \"nonmanifold_edges\": 0, \"nonmanifold_vertices\": 0, \"inconsistently_oriented_edges\": 0}, \"tags\": {\"crease_edges\": 1, \"corners\": 0, \"holes\": 0, \"options\": {}}, \"uv\": null, \"applicable_schemes\": [\"catmull-clark-quad\", \"catmull-clark\", \"catmull-clark-general\", \"doo-sabin\", \"doo-sabin-boundary\", \"mid-edge\", \"mid-edge-boundary\"]}\n"
     );
     let text = ok(&["stats", "--mesh", &path]);
     assert!(

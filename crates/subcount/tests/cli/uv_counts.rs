@@ -1,0 +1,543 @@
+//! UV values in every count: `stats` prints the UV layout (a text line, the `"uv"` JSON
+//! object), `table`, `at`, `plot` and `fit` gain a `UV` column for a mesh with a UV layout,
+//! `formula --mesh` a `UV(s)` closed form, `fit` the `--max-uv` and `--bytes-per-uv` limits.
+//! A mesh without `vt` prints what it always printed; a mesh with `vt` at only some corners
+//! has no layout (one line in `stats`, `"uv": null`, no column elsewhere).
+//!
+//! spot_control_mesh's numbers are issue 14's: its layout `V = 267, E = 438, BE = 144`, 72
+//! seam edges, 13 charts, and OpenSubdiv's 267, 885, 3225, 12297, 48009 values at levels 0-4
+//! under Catmull-Clark.
+
+use crate::util::{fails, ok, subcount};
+
+/// A temporary folder holding one file.
+fn file(name: &str, text: &str) -> (tempfile::TempDir, String) {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).expect("the fixture is written");
+    let path = path.to_string_lossy().into_owned();
+    (dir, path)
+}
+
+/// The cube's eight corners.
+const CUBE_V: &str =
+    "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n";
+
+/// The cube cut into six charts: each face has its own four `vt` (24 in all).
+fn cube_of_charts() -> String {
+    let faces = [
+        [1, 4, 3, 2],
+        [5, 6, 7, 8],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 4, 8, 7],
+        [4, 1, 5, 8],
+    ];
+    let mut text = CUBE_V.to_string();
+    for i in 0..24 {
+        text.push_str(&format!("vt {} 0\n", f64::from(i) / 24.0));
+    }
+    for (f, face) in faces.iter().enumerate() {
+        let corners: Vec<String> = face
+            .iter()
+            .enumerate()
+            .map(|(k, v)| format!("{v}/{}", 4 * f + k + 1))
+            .collect();
+        text.push_str(&format!("f {}\n", corners.join(" ")));
+    }
+    text
+}
+
+/// The same cube without any `vt`.
+fn plain_cube() -> String {
+    format!("{CUBE_V}f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+}
+
+/// Each quad refines on its own: `6 (2^s + 1)^2` values at level `s`.
+fn charts_at(s: u32) -> u64 {
+    6 * (2u64.pow(s) + 1).pow(2)
+}
+
+#[test]
+fn stats_prints_the_uv_layout_of_a_mesh_with_uvs() {
+    let (_dir, cube) = file("charts.obj", &cube_of_charts());
+    let text = ok(&["stats", "--mesh", &cube]);
+    assert!(
+        text.contains(
+            "\nUV layout: V = 24, E = 24, BE = 24, seam edges = 12, boundary loops = 6, charts = 6, unreferenced = 0\napplicable schemes: "
+        ),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &cube, "--format", "json"])).unwrap();
+    assert_eq!(
+        json["uv"],
+        serde_json::json!({"V": 24, "E": 24, "BE": 24, "seam_edges": 12, "boundary_loops": 6, "charts": 6, "unreferenced": 0})
+    );
+}
+
+#[test]
+fn a_mesh_without_vt_has_no_uv_anywhere() {
+    let (_dir, cube) = file("cube.obj", &plain_cube());
+    let stats = ok(&["stats", "--mesh", &cube]);
+    assert!(!stats.contains("UV"), "{stats}");
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &cube, "--format", "json"])).unwrap();
+    assert!(json.get("uv").is_none(), "{json}");
+    let table = ok(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=2",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(table.lines().next(), Some("level,V,IE,BE,F,H,E"), "{table}");
+    let at = ok(&[
+        "at",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--level",
+        "2",
+        "--format",
+        "json",
+    ]);
+    assert!(!at.contains("UV"), "{at}");
+    let formula = ok(&["formula", "--mesh", &cube, "--scheme", "catmull-clark"]);
+    assert!(!formula.contains("UV"), "{formula}");
+}
+
+#[test]
+fn a_mesh_with_vt_at_some_corners_has_no_layout() {
+    let text = format!("{CUBE_V}vt 0 0\nvt 1 0\nvt 1 1\nf 1/1 4/2 3/3 2/1\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+    let (_dir, cube) = file("partial.obj", &text);
+    let stats = ok(&["stats", "--mesh", &cube]);
+    assert!(
+        stats.contains("\n4 of 24 face corners have texture coordinates: no UV layout\n"),
+        "{stats}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &cube, "--format", "json"])).unwrap();
+    assert_eq!(json["uv"], serde_json::Value::Null, "{json}");
+    // Elsewhere no column, and one note on stderr saying why.
+    let run = subcount(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=1",
+        "--format",
+        "csv",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout.lines().next(),
+        Some("level,V,IE,BE,F,H,E"),
+        "{}",
+        run.stdout
+    );
+    assert_eq!(
+        run.stderr,
+        format!("note: {cube}: 4 of 24 face corners have texture coordinates: no UV layout: no UV column\n")
+    );
+    fails(
+        &[
+            "fit",
+            "--mesh",
+            &cube,
+            "--scheme",
+            "catmull-clark",
+            "--max-uv",
+            "100",
+        ],
+        2,
+        "has no UV layout",
+    );
+}
+
+#[test]
+fn table_at_and_plot_gain_a_uv_column() {
+    let (dir, cube) = file("charts.obj", &cube_of_charts());
+    let csv = ok(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=3",
+        "--format",
+        "csv",
+    ]);
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("level,V,IE,BE,F,H,E,UV"), "{csv}");
+    for (s, line) in lines.enumerate() {
+        let uv = line.rsplit(',').next().unwrap();
+        assert_eq!(uv, charts_at(s as u32).to_string(), "{csv}");
+    }
+    let text = ok(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=2",
+    ]);
+    assert!(
+        text.lines().next().unwrap().trim_end().ends_with("UV"),
+        "{text}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&ok(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=2",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    let rows = json
+        .as_array()
+        .map_or_else(|| json["rows"].clone(), |_| json.clone());
+    let uv: Vec<u64> = rows
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| {
+            r["UV"]
+                .as_u64()
+                .or_else(|| r["UV"].as_str()?.parse().ok())
+                .unwrap()
+        })
+        .collect();
+    assert_eq!(uv, [charts_at(0), charts_at(1), charts_at(2)]);
+
+    let at = ok(&[
+        "at",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--level",
+        "3",
+    ]);
+    assert!(at.ends_with(&format!("UV = {}\n", charts_at(3))), "{at}");
+    let summary = ok(&[
+        "at",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--level",
+        "3",
+        "--summary",
+    ]);
+    assert!(
+        summary.lines().last().unwrap().starts_with("UV: "),
+        "{summary}"
+    );
+    let at_json: serde_json::Value = serde_json::from_str(&ok(&[
+        "at",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--level",
+        "3",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(
+        at_json["UV"].to_string().trim_matches('"'),
+        charts_at(3).to_string()
+    );
+
+    // The plain cube draws its 5 positive components (BE is 0); the charted one one more.
+    let plain = dir.path().join("plain.obj");
+    std::fs::write(&plain, plain_cube()).unwrap();
+    let plot = |mesh: &str, out: &str| {
+        let out = dir.path().join(out);
+        ok(&[
+            "plot",
+            "--mesh",
+            mesh,
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "0..=4",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+    };
+    assert!(plot(plain.to_str().unwrap(), "plain.svg").contains("(5 series, levels 0..=4)"));
+    assert!(plot(&cube, "charts.svg").contains("(6 series, levels 0..=4)"));
+    let svg = std::fs::read_to_string(dir.path().join("charts.svg")).unwrap();
+    assert!(
+        svg.contains(">\nUV\n</text>"),
+        "the legend names the UV series"
+    );
+}
+
+#[test]
+fn schemes_without_uv_counts_print_no_column_and_say_why() {
+    // The charted cube's faces triangulated: sqrt3 applies but does not count UV values.
+    let mut text = CUBE_V.to_string();
+    let quads = [
+        [1, 4, 3, 2],
+        [5, 6, 7, 8],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 4, 8, 7],
+        [4, 1, 5, 8],
+    ];
+    for i in 0..24 {
+        text.push_str(&format!("vt {i} 0\n"));
+    }
+    for (f, q) in quads.iter().enumerate() {
+        let c = |k: usize| format!("{}/{}", q[k], 4 * f + k + 1);
+        text.push_str(&format!(
+            "f {} {} {}\nf {} {} {}\n",
+            c(0),
+            c(1),
+            c(2),
+            c(0),
+            c(2),
+            c(3)
+        ));
+    }
+    let (_dir, mesh) = file("tris.obj", &text);
+    let run = subcount(&[
+        "table", "--mesh", &mesh, "--scheme", "sqrt3", "--levels", "0..=2", "--format", "csv",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout.lines().next(),
+        Some("level,V,E,F"),
+        "{}",
+        run.stdout
+    );
+    assert_eq!(
+        run.stderr,
+        "note: sqrt3 does not count UV values (no UV rule yet): no UV column\n"
+    );
+    // Loop counts them.
+    let loop_csv = ok(&[
+        "table", "--mesh", &mesh, "--scheme", "loop", "--levels", "0..=1", "--format", "csv",
+    ]);
+    assert!(
+        loop_csv.lines().next().unwrap().ends_with(",UV"),
+        "{loop_csv}"
+    );
+    fails(
+        &[
+            "fit", "--mesh", &mesh, "--scheme", "sqrt3", "--max-uv", "100",
+        ],
+        2,
+        "--max-uv: sqrt3 does not count UV values",
+    );
+}
+
+#[test]
+fn fit_limits_uv_values_and_refuses_without_a_layout() {
+    let (_dir, cube) = file("charts.obj", &cube_of_charts());
+    // 24, 54, 150, 486, 1734 values.
+    let text = ok(&[
+        "fit",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--max-uv",
+        "486",
+    ]);
+    assert!(
+        text.starts_with("highest level within the budget: 3\n"),
+        "{text}"
+    );
+    assert!(text.ends_with("UV = 486\n"), "{text}");
+    let json: serde_json::Value = serde_json::from_str(&ok(&[
+        "fit",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--max-uv",
+        "485",
+        "--format",
+        "json",
+    ]))
+    .unwrap();
+    assert_eq!(json["level"], 2, "{json}");
+    // Bytes: 12 V + 12 F + 8 UV; level 2 (98 V, 96 F, 150 UV) is 3528 bytes.
+    let memory = |bytes: &str| {
+        ok(&[
+            "fit",
+            "--mesh",
+            &cube,
+            "--scheme",
+            "catmull-clark",
+            "--memory",
+            bytes,
+            "--bytes-per-uv",
+            "8",
+        ])
+    };
+    assert!(memory("3528").starts_with("highest level within the budget: 2\n"));
+    assert!(memory("3527").starts_with("highest level within the budget: 1\n"));
+    // Without the UV flags the budget is what it was (the answer gains its UV line).
+    let plain = ok(&[
+        "fit",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "catmull-clark",
+        "--memory",
+        "2328",
+    ]);
+    assert!(
+        plain.starts_with("highest level within the budget: 2\n"),
+        "{plain}"
+    );
+
+    fails(
+        &["fit", "--scheme", "loop", "--counts", "V=12,E=30,F=20", "--max-uv", "100"],
+        2,
+        "--max-uv counts UV values, which needs --mesh FILE with texture coordinates (`vt`) at every face corner, but no mesh is given",
+    );
+    let (_plain_dir, plain_cube) = file("cube.obj", &plain_cube());
+    fails(
+        &[
+            "fit",
+            "--mesh",
+            &plain_cube,
+            "--scheme",
+            "catmull-clark",
+            "--memory",
+            "1MiB",
+            "--bytes-per-uv",
+            "8",
+        ],
+        2,
+        "--bytes-per-uv counts UV values",
+    );
+}
+
+#[test]
+fn formula_gives_uv_of_s_in_every_format() {
+    let (_dir, cube) = file("charts.obj", &cube_of_charts());
+    let args = |format: &'static str| -> Vec<String> {
+        [
+            "formula",
+            "--mesh",
+            &cube,
+            "--scheme",
+            "catmull-clark",
+            "--format",
+            format,
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let run = |format: &'static str| {
+        let a = args(format);
+        ok(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let text = run("text");
+    assert!(text.contains("\nUV(s) = UV0 + "), "{text}");
+    assert!(text.contains("UE0"), "{text}");
+    assert!(text.contains("UBE0"), "{text}");
+    // 6 (2^s + 1)^2 = 6*4^s + 12*2^s + 6.
+    assert!(text.contains("\nUV(s) = 6*4^s + 12*2^s + 6"), "{text}");
+    let latex = run("latex");
+    assert!(latex.contains("\nUV(s) = "), "{latex}");
+    assert!(latex.contains("{UE}_0"), "{latex}");
+    let rust = run("rust");
+    assert!(
+        rust.contains("pub fn catmull_clark_uv_counts(x0: [i128; 5], s: u64)"),
+        "{rust}"
+    );
+    let json: serde_json::Value = serde_json::from_str(&run("json")).unwrap();
+    let last = json
+        .as_array()
+        .and_then(|a| a.last())
+        .expect("a list of components");
+    assert_eq!(last["component"], "UV", "{json}");
+    assert!(
+        last["terms"][0]["coefficients"].get("UE").is_some(),
+        "{json}"
+    );
+}
+
+// ---- spot_control_mesh ($SUBCOUNT_MESHES) ----
+
+fn spot() -> String {
+    testdata::mesh("spot_control_mesh.obj")
+        .to_string_lossy()
+        .into_owned()
+}
+
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn spot_control_mesh_prints_issue_14s_layout_and_counts() {
+    let spot = spot();
+    let text = ok(&["stats", "--mesh", &spot]);
+    assert!(
+        text.contains("\nUV layout: V = 267, E = 438, BE = 144, seam edges = 72, boundary loops = 13, charts = 13, unreferenced = 0\n"),
+        "{text}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &spot, "--format", "json"])).unwrap();
+    // The keys exact, in this order.
+    assert_eq!(
+        json["uv"].to_string(),
+        r#"{"V":267,"E":438,"BE":144,"seam_edges":72,"boundary_loops":13,"charts":13,"unreferenced":0}"#
+    );
+    let csv = ok(&[
+        "table",
+        "--mesh",
+        &spot,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0..=4",
+        "--format",
+        "csv",
+    ]);
+    let uv: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(uv, ["267", "885", "3225", "12297", "48009"], "{csv}");
+    let formula = ok(&["formula", "--mesh", &spot, "--scheme", "catmull-clark"]);
+    assert!(
+        formula.contains("\nUV(s) = 183*4^s + 72*2^s + 9 for s >= 1"),
+        "{formula}"
+    );
+    let fit = ok(&[
+        "fit",
+        "--mesh",
+        &spot,
+        "--scheme",
+        "catmull-clark",
+        "--max-uv",
+        "12296",
+    ]);
+    assert!(
+        fit.starts_with("highest level within the budget: 2\n"),
+        "{fit}"
+    );
+    assert!(fit.ends_with("UV = 3225\n"), "{fit}");
+}
