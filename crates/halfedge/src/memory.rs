@@ -434,10 +434,11 @@ pub fn predicted_refinement_peak_bytes(
 /// channel's base (a face list and a half-edge mesh of the layout, freed before its levels
 /// are built). Against the channel's heap and the caller's buffers it is 1.3 to 1.7 times
 /// what is measured (`tests/integration/uv_memory.rs`: at least it, at most twice). Measured
-/// as a peak (`subcount subdivide --timings`, debug build): `spot_quadrangulated` at
-/// Catmull-Clark level 3 peaks 37.3 MB higher with UVs than without on the one-shot path,
-/// 38.3 MB predicted; `spot_triangulated` at Loop level 3 30.2 MB (one-shot) and 42.1 MB
-/// (`--frames 2`), 37.0 MB predicted.
+/// as a peak (`subcount subdivide --timings --threads 1`, debug build; more threads add
+/// glibc's per-thread arenas, a few MB either way), the UVs' share (the peak with UVs minus
+/// the peak with `--no-uv`): `spot_quadrangulated` at Catmull-Clark level 3, 36.3 MB on the
+/// one-shot path and 31.1 MB with `--frames 2`, 38.3 MB predicted; `spot_triangulated` at
+/// Loop level 3, 29.6 MB and 31.6 MB, 37.0 MB predicted.
 ///
 /// ```
 /// use halfedge::memory::predicted_uv_bytes;
