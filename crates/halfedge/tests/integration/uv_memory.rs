@@ -87,6 +87,13 @@ fn the_uv_prediction_bounds_the_channel_on_a_grid_with_seams() {
     let triangles = grid_of_four_charts(12, 8, true);
     let uv = stats::uv_counts(&quads).expect("a layout");
     assert_eq!(uv.seam_edges, 8 + 12);
+    // The layout as a mesh of its own has the layout's V, E and BE.
+    let layout = stats::uv_layout_counts(&quads).expect("layout counts");
+    assert_eq!(
+        (layout.vertices, layout.edges, layout.boundary_edges),
+        (uv.values, uv.edges, uv.boundary_edges)
+    );
+    assert_eq!(uv.values, 13 * 9 + 9 + 13 + 1);
     for (name, poly, rule) in [
         ("quads", &quads, Rule::CatmullClark),
         ("triangles", &triangles, Rule::Loop),
