@@ -1,7 +1,8 @@
 //! Memory for the resource guards: how many bytes a [`HalfEdgeMesh`] occupies, exactly and from
 //! predicted counts, the peak a subdivision will need ([`predicted_peak_bytes`]), and how many
 //! bytes this process may still allocate ([`available_bytes`]), so that a subdivision, a base
-//! mesh or a mesh file is refused before it is built.
+//! mesh or a mesh file is refused before it is built. Refining UVs adds their face-varying
+//! channel ([`predicted_uv_bytes`]) to either path's peak.
 
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
@@ -399,6 +400,104 @@ pub fn predicted_refinement_peak_bytes(
     // the refinement and the buffers are alive with the input: the larger of the two.
     let input = arrays_peak_bytes(&scheme, counts, 0, None)?;
     Ok(building.max(kept + buffers + input))
+}
+
+/// What refining a UV layout with the surface adds to a peak: the face-varying channel of
+/// [`refine::face_varying`](crate::refine::face_varying) under `rule` to `levels`, on a layout
+/// with the statistics `layout` (the mesh's faces with the layout's values as corners:
+/// [`stats::uv_layout_counts`](crate::stats::uv_layout_counts)), its values of `scalar_bytes`
+/// per coordinate. The same terms on both paths that refine UVs:
+/// [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list) with
+/// [`SubdivideOptions::uvs`](crate::subdivide::SubdivideOptions::uvs) (always `f64`: pass 8)
+/// and a [`Refinement`](crate::Refinement) with UVs evaluated by
+/// [`Refinement::evaluate_uvs`](crate::Refinement::evaluate_uvs) into the caller's buffers
+/// (`scalar_bytes` of the caller's type). The sum of
+///
+/// - the channel, a refinement of the layout by its own rule (the rule itself for Loop,
+///   Catmull-Clark and the 1:N² splits, midpoint for butterfly and the icosphere) under its
+///   crease rules ([`Refinement::predicted_bytes_with_creases`](crate::Refinement::predicted_bytes_with_creases)
+///   of the layout: seams and layout corners make the channel's vertices sharp), plus the
+///   merged numbering of its last level and the corner buffer it is computed from (4 bytes per
+///   vertex and per corner of the last level: kept when values have several runs around a
+///   vertex, counted always);
+/// - the evaluation: the base values and the output values (`2 * scalar_bytes` per value of
+///   levels 0 and `levels`), the two intermediate buffers (the largest odd and even levels
+///   below `levels`) and the whole last level before it is merged (counted always);
+/// - the UV index of every corner of the last level (4 bytes each);
+/// - with `holes`, the written corners' UV indices and the channel's last face list read to
+///   find them (4 bytes per corner, twice, and per face).
+///
+/// The last level's corners are `d` per face for the rules that write `d`-gons
+/// ([`direct_face_degree`](crate::subdivide::direct_face_degree)), else bounded by `2E`.
+/// Not counted: the layout's sibling values (a value used in several runs around a vertex is
+/// a vertex of the channel per run, a few per mesh) and the transient arrays of building the
+/// channel's base (a face list and a half-edge mesh of the layout, freed before its levels
+/// are built). Against the channel's heap and the caller's buffers it is 1.3 to 1.7 times
+/// what is measured (`tests/integration/uv_memory.rs`: at least it, at most twice). Measured
+/// as a peak (`subcount subdivide --timings --threads 1`, debug build; more threads add
+/// glibc's per-thread arenas, a few MB either way), the UVs' share (the peak with UVs minus
+/// the peak with `--no-uv`): `spot_quadrangulated` at Catmull-Clark level 3, 36.3 MB on the
+/// one-shot path and 31.1 MB with `--frames 2`, 38.3 MB predicted; `spot_triangulated` at
+/// Loop level 3, 29.6 MB and 31.6 MB, 37.0 MB predicted.
+///
+/// ```
+/// use halfedge::memory::predicted_uv_bytes;
+/// use halfedge::Rule;
+/// // A cube whose six faces each have their own UV square: six separate quads.
+/// let faces: Vec<[u32; 4]> = (0..6u32).map(|f| [4 * f, 4 * f + 1, 4 * f + 2, 4 * f + 3]).collect();
+/// let layout = schemes::MeshCounts::from_polygons(&faces)?;
+/// let f64_bytes = predicted_uv_bytes(Rule::CatmullClark, &layout, 2, 8, false)?;
+/// let f32_bytes = predicted_uv_bytes(Rule::CatmullClark, &layout, 2, 4, false)?;
+/// // Values of levels 0, 1 and 2 (24, 54, 150), the last one twice: 4 bytes less per
+/// // coordinate.
+/// assert_eq!(f64_bytes - f32_bytes, (8 * (24 + 54 + 2 * 150)).into());
+/// assert!(predicted_uv_bytes(Rule::Sqrt3, &layout, 2, 8, false).is_err());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// [`Error::UvsNotSupported`](crate::Error::UvsNotSupported) for √3, Doo-Sabin and mid-edge
+/// (no face-varying rule), [`Error::Scheme`](crate::Error::Scheme) when the channel's rule does
+/// not apply to the layout.
+pub fn predicted_uv_bytes(
+    rule: crate::Rule,
+    layout: &MeshCounts,
+    levels: u32,
+    scalar_bytes: usize,
+    holes: bool,
+) -> crate::Result<BigInt> {
+    let channel = crate::refine::face_varying::channel_rule(rule)?;
+    let scheme = channel.scheme_for(layout)?;
+    let heap = crate::Refinement::predicted_bytes_with_creases(channel, layout, levels)?;
+    let level = |s: u32| scheme.counts_at(layout, u64::from(s));
+    let last = level(levels)?;
+    let corners = match crate::subdivide::direct_face_degree(channel) {
+        Some(degree) if levels > 0 => BigInt::from(degree) * &last.faces,
+        _ if levels == 0 => BigInt::from(layout.corners),
+        _ => BigInt::from(2) * &last.edges,
+    };
+    let value = BigInt::from(2 * scalar_bytes);
+    // Evaluator::evaluate: odd intermediate levels in one buffer, even ones in the other.
+    let mut scratch = [BigInt::from(0), BigInt::from(0)];
+    for s in 1..levels {
+        let v = level(s)?.vertices;
+        let slot = &mut scratch[(s % 2) as usize];
+        if v > *slot {
+            *slot = v;
+        }
+    }
+    let [even, odd] = scratch;
+    let numbering = BigInt::from(4) * (&last.vertices + &corners);
+    let evaluation =
+        &value * (BigInt::from(layout.vertices) + BigInt::from(2) * &last.vertices + even + odd);
+    let indices = BigInt::from(4) * &corners;
+    let written = if holes {
+        BigInt::from(4) * (BigInt::from(2) * &corners + &last.faces + 1)
+    } else {
+        BigInt::from(0)
+    };
+    Ok(heap + numbering + evaluation + indices + written)
 }
 
 /// `need` if it is at most `limit`, else [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit)

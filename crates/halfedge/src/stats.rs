@@ -76,6 +76,37 @@ pub fn uv_counts(mesh: &PolygonMesh) -> Option<UvCounts> {
     uv_counts_of_faces(mesh, |_| true)
 }
 
+/// The statistics of the UV layout as a mesh of its own: the mesh's faces with the layout's
+/// values ([`PolygonMesh::uv_layout`]) as corners, counted by [`MeshCounts::from_face_list`]
+/// (its `V`, `E`, `BE` are [`uv_counts`]' `values`, `edges`, `boundary_edges`). What the
+/// face-varying channel refines, all faces included (holes are refined too), and what
+/// [`memory::predicted_uv_bytes`](crate::memory::predicted_uv_bytes) sizes. `None` as for
+/// [`uv_counts`].
+///
+/// ```
+/// use glam::{DVec2, DVec3};
+/// use halfedge::uv::Uvs;
+/// use halfedge::{stats, PolygonMesh};
+///
+/// // Two triangles with a seam along their shared edge: two separate triangles in UV.
+/// let mut mesh = PolygonMesh::from_faces(vec![DVec3::ZERO; 4], [[0, 1, 2], [0, 2, 3]]);
+/// let coords = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y, DVec2::splat(0.5), DVec2::NEG_X];
+/// mesh.set_uvs(Some(Uvs::new(coords, vec![0, 1, 2, 4, 5, 3])?))?;
+/// let layout = stats::uv_layout_counts(&mesh).expect("a layout");
+/// assert_eq!((layout.vertices, layout.edges, layout.boundary_edges, layout.faces), (6, 6, 6, 2));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn uv_layout_counts(mesh: &PolygonMesh) -> Option<MeshCounts> {
+    let uvs = mesh.uvs()?;
+    if uvs.corners().len() != mesh.n_corners() {
+        return None;
+    }
+    let layout = mesh.uv_layout()?;
+    let offsets = mesh.face_offsets();
+    let faces = offsets.windows(2).map(|w| &layout.corners()[w[0]..w[1]]);
+    Some(MeshCounts::from_face_list(faces, layout.n_values()))
+}
+
 /// [`uv_counts`] of the faces `f` with `keep(f)` (the written faces of a mesh with holes):
 /// their layout, with the `vt` entries they do not use as unreferenced.
 pub(crate) fn uv_counts_of_faces(

@@ -388,8 +388,8 @@ fn real_levels(text: &str) -> Result<u32, Failure> {
     Ok(levels)
 }
 
-/// The memory guard: `need` (a [`halfedge::memory`] prediction) against half the available
-/// memory, unless lifted.
+/// The memory guard: `need` (a [`halfedge::memory`] prediction, with the UV channel's
+/// [`uv_bytes`] when UVs are refined) against half the available memory, unless lifted.
 fn guard_memory(
     need: halfedge::Result<BigInt>,
     scheme: &str,
@@ -409,6 +409,25 @@ fn guard_memory(
             ),
             e => halfedge_failure(e),
         })
+}
+
+/// What refining the UV layout of `poly` adds to the memory guard's need
+/// ([`halfedge::memory::predicted_uv_bytes`] of its layout's statistics); 0 for a rule without
+/// a face-varying rule (it writes without UVs) or a mesh without a layout.
+fn uv_bytes(
+    poly: &PolygonMesh,
+    rule: Rule,
+    levels: u32,
+    scalar_bytes: usize,
+    holes: bool,
+) -> halfedge::Result<BigInt> {
+    let Some(layout) = halfedge::stats::uv_layout_counts(poly) else {
+        return Ok(BigInt::from(0));
+    };
+    match halfedge::memory::predicted_uv_bytes(rule, &layout, levels, scalar_bytes, holes) {
+        Err(halfedge::Error::UvsNotSupported { .. }) => Ok(BigInt::from(0)),
+        bytes => bytes,
+    }
 }
 
 /// The `UV` component of `verify`: the UV values a scheme predicts for the mesh's layout
@@ -548,12 +567,19 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     } else {
         halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None).map_err(Into::into)
     };
+    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref())?;
+    // The UV component refines the layout with the surface (a refinement with UVs per level,
+    // the largest the last).
+    let need = match &uv_check {
+        Some(_) => need
+            .and_then(|need| Ok(need + uv_bytes(poly, rule, levels, 8, chosen.holes.is_some())?)),
+        None => need,
+    };
     guard_memory(need, sizing.name(), levels, args.allow_large)?;
     let mut opts = SubdivideOptions::default().with_threads(args.threads);
     if let Some(holes) = &chosen.holes {
         opts = opts.with_holes(holes);
     }
-    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref())?;
     // The UV values measured at levels 1.., when there is a UV component.
     let mut uv_measured = None;
     let mut reports = if face_list {
@@ -752,6 +778,18 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
                 .map_err(Into::into),
             None => Ok(bytes),
         })
+    };
+    // With UVs the face-varying channel adds its refinement and buffers (the one-shot path
+    // refines them in f64); a rule without a face-varying rule writes without them.
+    let need = match &layout {
+        Some(_) => need.and_then(|need| {
+            let scalar = match args.precision {
+                Precision::F32 if refine_once => 4,
+                _ => 8,
+            };
+            Ok(need + uv_bytes(poly, rule, levels, scalar, holes.is_some())?)
+        }),
+        None => need,
     };
     let predicted = guard_memory(need, scheme.name(), levels, args.allow_large)?;
     if let Some(path) = &args.output {

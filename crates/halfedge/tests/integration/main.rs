@@ -9,4 +9,5 @@ mod shared_meshes;
 mod tags;
 mod uv_counts;
 mod uv_io;
+mod uv_memory;
 mod uv_refine;

@@ -893,7 +893,7 @@ fn verify_shared_meshes() {
     ];
     for (file, scheme, levels) in cases {
         let path = testdata::mesh(file);
-        let out = ok(&[
+        let run = subcount(&[
             "verify",
             "--mesh",
             path.to_str().unwrap(),
@@ -902,6 +902,20 @@ fn verify_shared_meshes() {
             "--levels",
             levels,
         ]);
+        assert_eq!(run.code, 0, "{file} {scheme}: {}", run.stderr);
+        // The fan has texture coordinates but no half-edge mesh to refine them on: its UV
+        // values go unmeasured, and verify says so (issue 14); every other case is silent.
+        let note = if file == "broken/osd_catmark_fan.obj" {
+            format!(
+                "note: {}: UV values are measured on a manifold mesh, and this one is not: \
+                 no UV rows\n",
+                path.display()
+            )
+        } else {
+            String::new()
+        };
+        assert_eq!(run.stderr, note, "{file} {scheme}: stderr");
+        let out = run.stdout;
         assert!(
             out.ends_with("all counts match the prediction\n"),
             "{file} {scheme}: {out}"

@@ -822,3 +822,48 @@ fn written_uvs_match_opensubdiv_in_every_mode() {
         }
     }
 }
+
+/// The memory guard counts the UV channel: `--timings`' `predicted_peak_bytes` with UVs is
+/// the one without (`--no-uv`) plus [`halfedge::memory::predicted_uv_bytes`] of the layout
+/// (`f64` values on the one-shot path, the chosen precision when refining once; a rule
+/// without a face-varying rule adds nothing).
+#[test]
+fn the_memory_guard_counts_the_uv_channel() {
+    let cube = data("uv_cube.obj");
+    let poly = halfedge::io::read_obj(&cube).expect("readable");
+    let layout = halfedge::stats::uv_layout_counts(&poly).expect("a layout");
+    let predicted = |args: &[&str]| -> u64 {
+        let mut all = vec!["--levels", "3", "--timings"];
+        all.extend_from_slice(args);
+        let (_, stderr, _) = subdivide(&cube, &all);
+        let json = stderr
+            .lines()
+            .find_map(|l| l.strip_prefix("timings: "))
+            .expect("a timings line");
+        let object: Value = serde_json::from_str(json).expect("timings JSON");
+        object["predicted_peak_bytes"].as_u64().expect("a number")
+    };
+    let uv = |rule: halfedge::Rule, scalar: usize| -> u64 {
+        let bytes = halfedge::memory::predicted_uv_bytes(rule, &layout, 3, scalar, false)
+            .expect("a prediction");
+        u64::try_from(bytes).expect("small")
+    };
+    let cc = ["--scheme", "catmull-clark"];
+    let f32 = ["--scheme", "catmull-clark", "--precision", "f32"];
+    let one_shot = predicted(&cc);
+    assert!(one_shot > predicted(&[&cc[..], &["--no-uv"]].concat()));
+    assert_eq!(
+        one_shot - predicted(&[&cc[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::CatmullClark, 8)
+    );
+    assert_eq!(
+        predicted(&f32) - predicted(&[&f32[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::CatmullClark, 4)
+    );
+    // Doo-Sabin writes without UVs: nothing added.
+    let doo_sabin = ["--scheme", "doo-sabin"];
+    assert_eq!(
+        predicted(&doo_sabin),
+        predicted(&[&doo_sabin[..], &["--no-uv"]].concat())
+    );
+}
