@@ -126,9 +126,8 @@ pub struct UvCounts {
     #[serde(skip)]
     pub used_vt: u64,
     /// The values OpenSubdiv's face-varying refinement adds to `V` before level 1 (its
-    /// "sibling" values; [`sibling_values`]): at a vertex whose faces, in OpenSubdiv's order
-    /// around it, use two values in the order A, B, A, B, the second run of B is a value of
-    /// its own. Loop and Catmull-Clark count from `V + split_values` (module docs).
+    /// "sibling" values): at a vertex whose faces, in OpenSubdiv's order around it, use two
+    /// values in the order A, B, A, B, the second run of B is a value of its own. Loop and Catmull-Clark count from `V + split_values` (module docs).
     #[serde(skip)]
     pub split_values: u64,
     /// Faces of the layout (the mesh's faces).
