@@ -512,6 +512,29 @@ impl UvCheck {
         Ok(measured)
     }
 
+    /// As [`UvCheck::measure`] on a raw face list: the distinct UV values the corners of
+    /// each level `1..=levels` of [`sub::subdivide_polygons`] (with the layout) use.
+    fn measure_polygons(
+        &self,
+        poly: &PolygonMesh,
+        rule: Rule,
+        levels: u32,
+        opts: &SubdivideOptions<'_>,
+        path: &MeshSource,
+    ) -> Result<Vec<u64>, Failure> {
+        let opts = opts.with_uvs(&self.layout);
+        let mut measured = Vec::with_capacity(levels as usize);
+        for level in 1..=levels {
+            let out = sub::subdivide_polygons(poly, rule, level, &opts)
+                .map_err(|e| located_failure(e, poly, path))?;
+            let uvs = out
+                .uvs()
+                .ok_or_else(|| halfedge_failure(halfedge::Error::NoUvs))?;
+            measured.push((uvs.coords().len() - uvs.unreferenced()) as u64);
+        }
+        Ok(measured)
+    }
+
     /// Appends `("UV", predicted)` and `("UV", measured)` to every report, `measured` being
     /// the values of levels `1..` ([`UvCheck::measure`]).
     fn extend(&self, reports: &mut [sub::LevelReport], measured: &[u64]) -> Result<(), Failure> {
@@ -587,14 +610,9 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         let reports = sub::verify_polygons(poly, scheme, levels, &opts)
             .map_err(|e| located_failure(e, poly, &args.mesh))?;
         if let Some(check) = &uv_check {
-            // UVs are refined on a half-edge mesh: measured when the face list is one.
-            match halfedge::HalfEdgeMesh::try_from(poly) {
-                Ok(mesh) => uv_measured = Some(check.measure(&mesh, rule, levels, &opts)?),
-                Err(_) => eprintln!(
-                    "note: {}: UV values are measured on a manifold mesh, and this one is not: no UV rows",
-                    mesh_label(&args.mesh)
-                ),
-            }
+            // The face-list subdividers refine the layout linearly with the faces: the
+            // values their written UVs use.
+            uv_measured = Some(check.measure_polygons(poly, rule, levels, &opts, &args.mesh)?);
         }
         reports
     } else {
@@ -702,7 +720,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     let mut face_list = on_face_list(&chosen, rule, &counts, args.scheme.scheme_file.is_some());
     // The UV layout to refine: none with --no-uv; vt at only some corners is written
     // without UVs, saying why.
-    let mut layout = if args.no_uv {
+    let layout = if args.no_uv {
         None
     } else {
         if let Some(partial) = poly.partial_uvs() {
@@ -710,19 +728,15 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         }
         poly.uv_layout()
     };
-    if layout.is_some() && face_list {
-        // UVs are refined on a half-edge mesh: the 1:N² splits (placed on the flat triangles
-        // either way) run there when the face list is one; the -general schemes and
-        // non-manifold input keep the raw face list, without UVs.
-        if matches!(rule, Rule::TriSplit(_)) && halfedge::HalfEdgeMesh::try_from(poly).is_ok() {
-            face_list = false;
-        } else {
-            eprintln!(
-                "note: {label}: {} runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs",
-                chosen.name()
-            );
-            layout = None;
-        }
+    if layout.is_some()
+        && face_list
+        && matches!(rule, Rule::TriSplit(_))
+        && halfedge::HalfEdgeMesh::try_from(poly).is_ok()
+    {
+        // The 1:N² splits (placed on the flat triangles either way) run on the half-edge
+        // mesh when the face list is one; the -general schemes and non-manifold input keep
+        // the raw face list, whose subdividers refine the UV layout linearly with it.
+        face_list = false;
     }
     let refine_once = args.frames > 0 || args.precision == Precision::F32;
     if refine_once && (face_list || args.no_preallocate) {
@@ -894,6 +908,10 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             .map(|(n, topology, evaluation)| (n, (topology + evaluation).as_secs_f64())),
         Output::Faces(level) => level
             .mesh
+            .uvs()
+            .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
+        // A level-0 copy keeps the file's UVs, written as read.
+        Output::Polygons(p) if levels > 0 => p
             .uvs()
             .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
         _ => None,

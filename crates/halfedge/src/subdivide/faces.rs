@@ -12,11 +12,11 @@
 //! - Catmull-Clark: old vertices, then one point per edge, then one per face; the corner `k` of
 //!   face `f` becomes the quad (corner, point of side `k`, face point, point of side `k - 1`).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::build::StepContext;
 use super::trisplit::PointRef;
-use super::{sizes, Algorithm, LevelDone, Plan, SubdivideOptions, Template};
+use super::{sizes, Algorithm, LevelDone, Plan, Rule, SubdivideOptions, Template};
 use crate::error::FaceVertices;
 use crate::mesh::INVALID;
 use crate::{Error, PolygonMesh, Result};
@@ -336,4 +336,121 @@ pub(super) fn run_levels(
         current = Some(next);
     }
     Ok(current.unwrap_or_else(|| mesh.clone()))
+}
+
+/// The UVs of the last level `last` of `mesh` refined by `plan`: the layout refined as a face
+/// list of its own (its values as vertices at their UV, `z = 0`; its faces the value-index
+/// faces) by the same subdivider `levels` times. The face-list subdividers are per-face
+/// refinements with linear points, so a child value lands where its child vertex does in
+/// its face (an edge midpoint or a point on the edge, a face centroid, a point on the flat
+/// triangle), and the layout level has the faces of `last` in the same order with the same
+/// sizes (checked: a mismatch is a bug, [`Error::InvalidOutput`]). Two faces that disagree
+/// at an end of a shared edge give it a child value each. `written`: the faces of `last`
+/// that are written (holes), whose corners alone are kept, values renumbered in order of
+/// first use.
+pub(super) fn refined_uvs(
+    plan: &Plan,
+    mesh: &PolygonMesh,
+    layout: &crate::uv::UvLayout,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+    last: &PolygonMesh,
+    written: Option<&[bool]>,
+) -> Result<crate::uv::Uvs> {
+    if layout.corners().len() != mesh.n_corners() {
+        return Err(Error::UvLayoutMismatch {
+            reason: format!(
+                "{} layout corners for a mesh with {} face corners",
+                layout.corners().len(),
+                mesh.n_corners()
+            ),
+        });
+    }
+    let values: Vec<DVec3> = layout
+        .values()
+        .iter()
+        .map(|uv| DVec3::new(uv.x, uv.y, 0.0))
+        .collect();
+    let flat = PolygonMesh::from_raw_parts(
+        values,
+        mesh.face_offsets().to_vec(),
+        layout.corners().to_vec(),
+    );
+    // The layout is sized by the rule's matrix for any face list: the layout of a manifold
+    // mesh may itself be non-manifold, or the other way round.
+    let scheme = match plan.rule {
+        Rule::TriSplit(_) => plan.scheme.clone(),
+        Rule::CatmullClark => schemes::builtin("catmull-clark-general")?,
+        _ => schemes::builtin("loop-general")?,
+    };
+    let layout_plan = Plan {
+        rule: plan.rule,
+        name: format!("{} (UV layout)", plan.name),
+        scheme,
+        algorithm: plan.algorithm,
+    };
+    let layout_opts = SubdivideOptions {
+        progress: None,
+        holes: None,
+        uvs: None,
+        ..*opts
+    };
+    let refined = run_levels(&layout_plan, &flat, levels, &layout_opts, |_, _| Ok(()))?;
+    let mismatch = |what: String| Error::InvalidOutput {
+        scheme: plan.name.clone(),
+        level: levels,
+        what,
+    };
+    if refined.n_faces() != last.n_faces() {
+        return Err(mismatch(format!(
+            "the UV layout refined to {} faces, the mesh to {}",
+            refined.n_faces(),
+            last.n_faces()
+        )));
+    }
+    if refined.face_offsets() != last.face_offsets() {
+        return Err(mismatch(
+            "the UV layout's faces differ in size from the mesh's".into(),
+        ));
+    }
+    let coords = |v: u32| {
+        let p = refined.positions[v as usize];
+        DVec2::new(p.x, p.y)
+    };
+    let uvs = match written {
+        None => crate::uv::Uvs::new(
+            refined
+                .positions
+                .iter()
+                .map(|p| DVec2::new(p.x, p.y))
+                .collect(),
+            refined.face_indices().to_vec(),
+        ),
+        Some(mask) => {
+            if mask.len() != refined.n_faces() {
+                return Err(mismatch(format!(
+                    "{} faces where the holes' descendants were counted on {}",
+                    refined.n_faces(),
+                    mask.len()
+                )));
+            }
+            let mut id = vec![INVALID; refined.positions.len()];
+            let mut kept = Vec::new();
+            let mut corners = Vec::new();
+            for (face, _) in refined.faces().zip(mask).filter(|(_, &w)| w) {
+                for &v in face {
+                    let slot = &mut id[v as usize];
+                    if *slot == INVALID {
+                        *slot = kept.len() as u32;
+                        kept.push(coords(v));
+                    }
+                    corners.push(*slot);
+                }
+            }
+            crate::uv::Uvs::new(kept, corners)
+        }
+    };
+    uvs.map_err(|e| Error::UvLayoutMismatch {
+        reason: e.to_string(),
+    })
 }

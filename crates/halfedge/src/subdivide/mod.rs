@@ -13,7 +13,8 @@
 //!
 //! [`subdivide_polygons`] does the same on raw face lists ([`PolygonMesh`]), including
 //! non-manifold ones, for the rules whose topology is a per-face refinement (4:1, 1:N²,
-//! Catmull-Clark); [`verify`] and [`verify_polygons`] take a [`Scheme`] (a built-in, or a
+//! Catmull-Clark), carrying UVs ([`SubdivideOptions::uvs`]) refined linearly with the
+//! positions; [`verify`] and [`verify_polygons`] take a [`Scheme`] (a built-in, or a
 //! custom matrix whose file names its `topology`), really subdivide by its rule and compare,
 //! level by level, every state component the scheme predicts with the real mesh.
 //! [`checked_rule`] is the bridge from a scheme the user named to the rule to run.
@@ -157,8 +158,10 @@ pub struct SubdivideOptions<'a> {
     /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
     /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
     /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; √3, Doo-Sabin and
-    /// mid-edge refuse it ([`Error::UvsNotSupported`]). [`subdivide`] and [`verify`] (half-edge
-    /// meshes, which carry no UVs) and the face-list subdividers do not read it.
+    /// mid-edge refuse it ([`Error::UvsNotSupported`]). [`subdivide_polygons`] refines it
+    /// as a face list by the same linear per-face refinement as the positions and writes the
+    /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
+    /// and [`verify_polygons`] do not read it.
     pub uvs: Option<&'a crate::uv::UvLayout>,
 }
 
@@ -973,6 +976,18 @@ fn verify_plan_with_holes(
 ///
 /// From level 1 on, vertices no face uses are dropped (level 0 is a copy of the input).
 ///
+/// With [`SubdivideOptions::uvs`] (the layout of `mesh`, [`PolygonMesh::uv_layout`]) the
+/// layout is refined as a face list of its own (its values as vertices at their UV, its
+/// value-index faces) by the same subdivider and levels, so each child value is placed as its
+/// child vertex is, within its face: the edge midpoint and the face centroid under the 4:1
+/// family and Catmull-Clark, the points `k / N` on the edge and on the flat triangle under
+/// 1:N². Faces that disagree at an end of a shared edge (a seam) give it a child value each.
+/// The refined layout must have the output's faces in the same order with the same sizes (a
+/// mismatch is a bug, [`Error::InvalidOutput`]); the output then carries its corners' values
+/// as [`PolygonMesh::uvs`] (with holes, the written faces' values, renumbered in order of
+/// first use). The value counts are `schemes::uv`'s from `UV0 = V` (the layout refined as a
+/// mesh; OpenSubdiv's sibling values are not split here).
+///
 /// # Errors
 ///
 /// As [`subdivide`] ([`Error::Scheme`] when the face list is outside the rule's class), and
@@ -998,12 +1013,40 @@ pub fn subdivide_polygons(
 ) -> Result<PolygonMesh> {
     let plan = plan(rule, &crate::stats::face_list_counts(mesh))?;
     let Some(holes) = crate::holes::active(opts.holes, rule, mesh.n_faces())? else {
-        return faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()));
+        let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
+        return match opts.uvs {
+            Some(layout) => {
+                let uvs = faces::refined_uvs(&plan, mesh, layout, levels, opts, &last, None)?;
+                with_uvs(last, uvs)
+            }
+            None => Ok(last),
+        };
     };
     let predicted = written_prediction(&plan, &holes.written_counts(mesh), levels)?;
     let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
     let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
-    Ok(keep_written(last, holes, &degrees, &plan, levels, &predicted)?.mesh)
+    let uvs = match opts.uvs {
+        Some(layout) => {
+            let mask = holes.written_at(plan.rule, &degrees, levels)?;
+            let uvs = faces::refined_uvs(&plan, mesh, layout, levels, opts, &last, Some(&mask))?;
+            Some(uvs)
+        }
+        None => None,
+    };
+    let written = keep_written(last, holes, &degrees, &plan, levels, &predicted)?.mesh;
+    match uvs {
+        Some(uvs) => with_uvs(written, uvs),
+        None => Ok(written),
+    }
+}
+
+/// `mesh` with the refined UVs `uvs` of its corners.
+fn with_uvs(mut mesh: PolygonMesh, uvs: crate::uv::Uvs) -> Result<PolygonMesh> {
+    mesh.set_uvs(Some(uvs))
+        .map_err(|e| Error::UvLayoutMismatch {
+            reason: e.to_string(),
+        })?;
+    Ok(mesh)
 }
 
 /// [`verify`] for raw face lists: really subdivides with [`subdivide_polygons`] and compares

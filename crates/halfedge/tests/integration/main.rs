@@ -10,4 +10,5 @@ mod tags;
 mod uv_counts;
 mod uv_io;
 mod uv_memory;
+mod uv_polygons;
 mod uv_refine;

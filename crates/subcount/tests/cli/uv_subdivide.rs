@@ -310,12 +310,17 @@ fn rules_without_uvs_write_without_them_saying_so() {
         assert!(!summary.contains("UV"), "{summary}");
         assert!(!written.contains("vt "));
     }
-    let (summary, stderr, _) = subdivide(
+    // A -general scheme runs on the raw face list, which refines the UVs linearly with it.
+    let (summary, stderr, written) = subdivide(
         &cube,
         &["--scheme", "catmull-clark-general", "--levels", "1"],
     );
-    assert_eq!(stderr, format!("note: {cube}: catmull-clark-general runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs\n"));
-    assert!(!summary.contains("UV"), "{summary}");
+    assert_eq!(stderr, "");
+    assert_eq!(
+        summary,
+        "level 1: V = 26, E = 48, F = 24, UV = 45; wrote OUT\n"
+    );
+    assert_eq!(written.lines().filter(|l| l.starts_with("vt ")).count(), 45);
 }
 
 #[test]
@@ -422,29 +427,61 @@ fn verify_checks_the_uv_values_of_every_level() {
 }
 
 #[test]
-fn a_non_manifold_face_list_is_subdivided_and_verified_without_uvs_saying_so() {
+fn a_non_manifold_face_list_is_subdivided_and_verified_with_uvs() {
     let book = data("uv_book.obj");
-    let run = subcount(&[
-        "verify",
-        "--mesh",
-        &book,
-        "--scheme",
-        "tri-split-2",
-        "--levels",
-        "1",
-    ]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(
-        run.stderr,
-        format!("note: {book}: UV values are measured on a manifold mesh, and this one is not: no UV rows\n")
-    );
-    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+    // The face-list subdividers refine the layout with the faces: the UV rows are measured
+    // on the written UVs and match the prediction.
+    for (scheme, rows) in [
+        (
+            "tri-split-2",
+            [
+                "    1         UV         15        15\n",
+                "    2         UV         40        40\n",
+            ],
+        ),
+        (
+            "tri-split-3",
+            [
+                "    1         UV         26        26\n",
+                "    2         UV        155       155\n",
+            ],
+        ),
+        (
+            "loop-general",
+            [
+                "    1         UV         15        15\n",
+                "    2         UV         40        40\n",
+            ],
+        ),
+    ] {
+        let run = subcount(&[
+            "verify", "--mesh", &book, "--scheme", scheme, "--levels", "2",
+        ]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        assert_eq!(run.stderr, "", "{scheme}");
+        for row in rows {
+            assert!(run.stdout.contains(row), "{scheme}: {}", run.stdout);
+        }
+    }
     let (summary, stderr, written) =
         subdivide(&book, &["--scheme", "tri-split-3", "--levels", "1"]);
+    assert_eq!(stderr, "");
     assert_eq!(
-        stderr,
-        format!("note: {book}: tri-split-3 runs on the raw face list (non-manifold input or a -general scheme), which does not carry UVs: writing without UVs\n")
+        summary,
+        "level 1: V = 22, E = 48, F = 27, UV = 26; wrote OUT\n"
     );
+    assert_eq!(written.lines().filter(|l| l.starts_with("vt ")).count(), 26);
+    let faces: Vec<&str> = written.lines().filter(|l| l.starts_with("f ")).collect();
+    assert_eq!(faces.len(), 27);
+    assert!(faces
+        .iter()
+        .all(|f| f.split(' ').skip(1).all(|c| c.contains('/'))));
+    // --no-uv: as before, no UVs.
+    let (summary, stderr, written) = subdivide(
+        &book,
+        &["--scheme", "tri-split-3", "--levels", "1", "--no-uv"],
+    );
+    assert_eq!(stderr, "");
     assert_eq!(summary, "level 1: V = 22, E = 48, F = 27; wrote OUT\n");
     assert!(!written.contains("vt "));
 }
