@@ -904,3 +904,30 @@ fn the_memory_guard_counts_the_uv_channel() {
         predicted(&[&doo_sabin[..], &["--no-uv"]].concat())
     );
 }
+
+#[test]
+fn the_face_list_path_predicts_uv_values_without_sibling_splits() {
+    // A, B, A, B around one vertex: OpenSubdiv's rules (catmull-clark, loop) split a sibling
+    // value; the face-list subdividers refine the layout as a mesh and do not (UV0 = V).
+    let fan = data("uv_abab_fan.obj");
+    for (scheme, row) in [
+        ("catmull-clark", "    1         UV         23        23\n"),
+        (
+            "catmull-clark-general",
+            "    1         UV         22        22\n",
+        ),
+        ("loop", "    1         UV         19        19\n"),
+        ("loop-general", "    1         UV         18        18\n"),
+    ] {
+        let run = subcount(&[
+            "verify", "--mesh", &fan, "--scheme", scheme, "--levels", "2",
+        ]);
+        assert_eq!(run.code, 0, "{scheme}: {}{}", run.stdout, run.stderr);
+        assert!(run.stdout.contains(row), "{scheme}: {}", run.stdout);
+        assert!(
+            run.stdout.ends_with("all counts match the prediction\n"),
+            "{scheme}: {}",
+            run.stdout
+        );
+    }
+}
