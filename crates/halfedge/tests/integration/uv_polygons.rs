@@ -187,3 +187,34 @@ fn uv_polygons_seam_sides_stay_apart() {
         }
     }
 }
+
+/// With holes the written faces carry their values alone (renumbered), counted by the layout
+/// of the written faces: a non-manifold book and grids with a seam.
+#[test]
+fn uv_polygons_holes_write_the_written_faces_values() {
+    for (mesh, rule, hole) in [
+        (quad_book(false), Rule::CatmullClark, 1),
+        (grid(4, 3, false, Some(2)), Rule::CatmullClark, 5),
+        (grid(4, 3, true, Some(2)), Rule::TriSplit(3), 7),
+    ] {
+        let holes = halfedge::holes::HoleSet::new(mesh.n_faces(), [hole]).unwrap();
+        let layout = mesh.uv_layout().unwrap();
+        let opts = SubdivideOptions::default()
+            .with_uvs(&layout)
+            .with_holes(&holes);
+        let uv = holes.written_uv_counts(&mesh).expect("uv counts");
+        assert_eq!(uv.split_values, 0);
+        let scheme = uv_scheme(rule).unwrap();
+        for level in 1..=2 {
+            let out = subdivide_polygons(&mesh, rule, level, &opts).unwrap();
+            let uvs = out.uvs().expect("UVs written");
+            assert_eq!(uvs.unreferenced(), 0);
+            assert_eq!(uvs.corners().len(), out.n_corners());
+            assert_eq!(
+                BigInt::from(used_values(&out)),
+                scheme.values_at(&uv, u64::from(level)).unwrap(),
+                "{rule}, level {level}"
+            );
+        }
+    }
+}
