@@ -853,7 +853,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         None => (None, Default::default()),
     };
     if layout.is_some() {
-        options = options.with_face_varying(uv_interpolation(&args, &loaded, rule, &label));
+        options =
+            options.with_face_varying(uv_interpolation(&args, &loaded, rule, &label, face_list));
     }
     let mut opts = SubdivideOptions::default()
         .with_threads(args.threads)
@@ -999,6 +1000,7 @@ fn uv_interpolation(
     loaded: &LoadedMesh,
     rule: Rule,
     label: &str,
+    face_list: bool,
 ) -> FaceVaryingInterpolation {
     let resolved = loaded.options.face_varying;
     let Some(flag) = args.uv_interpolation else {
@@ -1013,6 +1015,10 @@ fn uv_interpolation(
     if !matches!(rule, Rule::Loop | Rule::CatmullClark) {
         eprintln!(
             "note: {label}: --uv-interpolation is a mode of loop and catmull-clark, not applied by {rule}"
+        );
+    } else if face_list {
+        eprintln!(
+            "note: {label}: --uv-interpolation is not applied on the raw face list, which refines UVs linearly"
         );
     }
     flag

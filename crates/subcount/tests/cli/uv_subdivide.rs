@@ -931,3 +931,27 @@ fn the_face_list_path_predicts_uv_values_without_sibling_splits() {
         );
     }
 }
+
+#[test]
+fn uv_interpolation_is_noted_as_not_applied_on_the_raw_face_list() {
+    let book = data("uv_book.obj");
+    let (summary, stderr, _) = subdivide(
+        &book,
+        &[
+            "--scheme",
+            "loop-general",
+            "--levels",
+            "1",
+            "--uv-interpolation",
+            "all",
+        ],
+    );
+    assert_eq!(
+        stderr,
+        format!("note: {book}: --uv-interpolation is not applied on the raw face list, which refines UVs linearly\n")
+    );
+    assert_eq!(
+        summary,
+        "level 1: V = 12, E = 23, F = 12, UV = 15; wrote OUT\n"
+    );
+}
