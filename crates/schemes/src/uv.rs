@@ -514,6 +514,8 @@ pub const UV_STATE: [&str; 5] = ["UV", "UE", "UBE", "F", "H"];
 pub struct UvScheme {
     rule: Rule,
     recurrence: Recurrence,
+    /// Whether the values start from OpenSubdiv's sibling values ([`UvScheme::splits_siblings`]).
+    siblings: bool,
 }
 
 /// A rule (or a scheme) whose UV values are not counted: √3, Doo-Sabin and mid-edge, whose UV
@@ -550,7 +552,11 @@ pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
         Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge => return Err(not),
     };
     let recurrence = with_boundary_edges(general.matrix(), split).ok_or(not)?;
-    Ok(UvScheme { rule, recurrence })
+    Ok(UvScheme {
+        rule,
+        recurrence,
+        siblings: matches!(rule, Rule::Loop | Rule::CatmullClark),
+    })
 }
 
 /// The general matrix over `V, E, F[, H]` with `BE` inserted after `E` (its own component,
@@ -577,13 +583,18 @@ impl UvScheme {
     /// vertices).
     pub const VALID_FROM: u64 = 1;
 
-    /// The UV recurrence of a scheme's rule ([`uv_scheme`]).
+    /// The UV recurrence of a scheme's rule ([`uv_scheme`]). A scheme for any face list (one
+    /// whose [`MeshClass`](crate::MeshClass) does not need a manifold mesh: `loop-general`,
+    /// `catmull-clark-general`, `catmull-clark-quad`) is run by the face-list subdividers, which refine the layout as
+    /// a mesh: its values start from `V`, without OpenSubdiv's sibling values.
     ///
     /// # Errors
     ///
     /// [`NotCounted`] for a scheme without a rule or whose rule has no UV recurrence.
     pub fn for_scheme(scheme: &Scheme) -> std::result::Result<UvScheme, NotCounted> {
-        uv_scheme(scheme.subdivision_rule().ok_or(NotCounted { rule: None })?)
+        let mut uv = uv_scheme(scheme.subdivision_rule().ok_or(NotCounted { rule: None })?)?;
+        uv.siblings &= scheme.mesh_class().needs_manifold();
+        Ok(uv)
     }
 
     /// The rule.
@@ -596,11 +607,12 @@ impl UvScheme {
         &self.recurrence
     }
 
-    /// Whether the rule's face-varying refinement is OpenSubdiv's (Loop and Catmull-Clark),
-    /// which starts from its sibling values ([`UvCounts::split_values`]); the other rules
-    /// refine the layout as a mesh, from its values `V`.
+    /// Whether the face-varying refinement is OpenSubdiv's (Loop and Catmull-Clark on a
+    /// manifold mesh), which starts from its sibling values ([`UvCounts::split_values`]); the
+    /// other rules, and the face-list schemes ([`UvScheme::for_scheme`]), refine the layout as
+    /// a mesh, from its values `V`.
     pub fn splits_siblings(&self) -> bool {
-        matches!(self.rule, Rule::Loop | Rule::CatmullClark)
+        self.siblings
     }
 
     /// The initial state from the layout's statistics: `[UV0, E, BE, F]` or
@@ -997,6 +1009,26 @@ mod tests {
             UvScheme::for_scheme(&cc).unwrap().rule(),
             Rule::CatmullClark
         );
+        // OpenSubdiv's sibling values on a manifold mesh only: the face-list schemes refine
+        // the layout as a mesh.
+        for name in ["catmull-clark", "loop", "loop-boundary"] {
+            let manifold = builtin(name).unwrap();
+            assert!(
+                UvScheme::for_scheme(&manifold).unwrap().splits_siblings(),
+                "{name}"
+            );
+        }
+        for name in [
+            "catmull-clark-quad",
+            "catmull-clark-general",
+            "loop-general",
+        ] {
+            let general = builtin(name).unwrap();
+            assert!(
+                !UvScheme::for_scheme(&general).unwrap().splits_siblings(),
+                "{name}"
+            );
+        }
     }
 
     /// A layout without seams is the mesh itself: the UV values are the scheme's vertices.

@@ -449,7 +449,6 @@ impl UvCheck {
         loaded: &LoadedMesh,
         scheme: &Scheme,
         holes: Option<&halfedge::holes::HoleSet>,
-        face_list: bool,
     ) -> Result<Option<UvCheck>, Failure> {
         let poly = &loaded.poly;
         let (Some(layout), Some(uvs)) = (poly.uv_layout(), poly.uvs()) else {
@@ -459,14 +458,9 @@ impl UvCheck {
             Some(holes) => holes.written_uv_counts(poly),
             None => halfedge::stats::uv_counts(poly),
         };
-        let Some(mut counts) = counts else {
+        let Some(counts) = counts else {
             return Ok(None);
         };
-        if face_list {
-            // The face-list subdividers refine the layout as a mesh: no OpenSubdiv sibling
-            // values, UV0 = V (schemes::uv).
-            counts.split_values = 0;
-        }
         let counter = match UvCounter::new(&Plan::single(scheme.clone()), counts) {
             Ok(counter) => counter,
             Err(not) => {
@@ -596,7 +590,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     } else {
         halfedge::memory::predicted_peak_bytes(&sizing, &counts, levels, None).map_err(Into::into)
     };
-    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref(), face_list)?;
+    let uv_check = UvCheck::new(&loaded, scheme, chosen.holes.as_ref())?;
     // The UV component refines the layout with the surface (a refinement with UVs per level,
     // the largest the last).
     let need = match &uv_check {

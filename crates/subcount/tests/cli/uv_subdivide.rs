@@ -928,7 +928,14 @@ fn the_face_list_path_predicts_uv_values_without_sibling_splits() {
             run.stdout.ends_with("all counts match the prediction\n"),
             "{scheme}: {}",
             run.stdout
-        );
+        ); // `table` counts the same values: the face-list schemes start from UV0 = V.
+        let value = row.split_whitespace().nth(2).unwrap();
+        let table = ok(&[
+            "table", "--mesh", &fan, "--scheme", scheme, "--levels", "1", "--format", "csv",
+        ]);
+        let last = table.lines().last().unwrap();
+        assert!(last.starts_with("1,"), "{scheme}: {table}");
+        assert_eq!(last.rsplit(',').next(), Some(value), "{scheme}: {table}");
     }
 }
 
