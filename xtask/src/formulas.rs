@@ -341,8 +341,10 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
          value of its own, which every level keeps. `UvCounts::split_values` counts these \
          (osd_catmark_bishop: 3244 (vertex, `vt`) pairs, 39 split values, 7991 values at level \
          1; none on spot, blub, cylinder_ngon, the pawn). Loop and Catmull-Clark, OpenSubdiv's \
-         rules, start from `UV0 = V + split_values`; the other rules refine the layout as a \
-         mesh and start from `UV0 = V`.\n\n\
+         rules on a manifold mesh, start from `UV0 = V + split_values`; the other rules, and \
+         the face-list schemes (`loop-general`, `catmull-clark-general`, \
+         `catmull-clark-quad`, run by the face-list subdividers), refine the layout as a mesh \
+         and start from `UV0 = V`.\n\n\
          **Level 0** is the number of `vt` entries that some corner uses. The recurrences \
          start from `UV0` and give the real count from level 1 on; the two agree at level 0 as \
          well when no `vt` is shared by two vertices and nothing is split. OpenSubdiv's level 0 counts the file's whole `vt` list, unused entries \
