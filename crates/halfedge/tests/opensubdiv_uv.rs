@@ -11,7 +11,6 @@
 #[allow(dead_code)]
 mod osd_support;
 
-use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use halfedge::glam::{DVec2, DVec3};
@@ -21,7 +20,7 @@ use halfedge::subdivide::{Sharpness, SubdivideOptions};
 use halfedge::tags::{FaceVaryingInterpolation, SubdivisionOptions};
 use halfedge::{io, HalfEdgeMesh, PolygonMesh, Rule};
 
-use osd_support::fvar::{opensubdiv_fvar, FvarLevel};
+use osd_support::fvar::{corner_uv_error, opensubdiv_fvar};
 use osd_support::{
     bounding_box_diagonal, correspondence, driver, without_bare_vertices, Osd, TOLERANCE,
 };
@@ -129,76 +128,15 @@ fn compare(
     let to_ours = correspondence(&their_mesh, &ours, TOLERANCE * diagonal)
         .unwrap_or_else(|e| panic!("{what}: positions: {e}"));
     Compared {
-        worst: corner_error(
-            &theirs,
-            &their_mesh,
-            &ours,
-            &offsets,
-            &uvs,
-            &uv_indices,
-            &to_ours,
-            &what,
-        ),
+        worst: {
+            let (worst, at) = corner_uv_error(&theirs, &their_mesh, &ours, &to_ours, |g, k| {
+                DVec2::from(uvs[uv_indices[offsets[g] as usize + k] as usize])
+            })
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(worst <= 1e-12, "{what}: {at}");
+            worst
+        },
     }
-}
-
-/// The largest difference of corner UVs, relative to the UV bounding box's diagonal; panics
-/// above 1e-12.
-#[allow(clippy::too_many_arguments)]
-fn corner_error(
-    theirs: &FvarLevel,
-    their_mesh: &PolygonMesh,
-    ours: &PolygonMesh,
-    offsets: &[u32],
-    uvs: &[[f64; 2]],
-    uv_indices: &[u32],
-    to_ours: &[u32],
-    what: &str,
-) -> f64 {
-    // Our faces by their vertex cycle from its smallest vertex.
-    let key = |face: &[u32]| {
-        let start = (0..face.len()).min_by_key(|&i| face[i]).unwrap_or(0);
-        let cycle: Vec<u32> = (0..face.len())
-            .map(|j| face[(start + j) % face.len()])
-            .collect();
-        (cycle, start)
-    };
-    let mut faces: HashMap<Vec<u32>, (usize, usize)> = HashMap::new();
-    for f in 0..ours.n_faces() {
-        let (cycle, start) = key(ours.face(f));
-        faces.insert(cycle, (f, start));
-    }
-    let (lo, hi) = theirs.values().iter().fold(
-        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &p| (lo.min(p), hi.max(p)),
-    );
-    let scale = (hi - lo).length().max(f64::MIN_POSITIVE);
-    let mut worst = 0.0f64;
-    for f in 0..theirs.mesh.n_faces() {
-        let mapped: Vec<u32> = their_mesh
-            .face(f)
-            .iter()
-            .map(|&v| to_ours[v as usize])
-            .collect();
-        let (cycle, start) = key(&mapped);
-        let &(g, our_start) = faces
-            .get(&cycle)
-            .unwrap_or_else(|| panic!("{what}: OpenSubdiv's face {f} is not one of ours"));
-        let n = mapped.len();
-        let values = theirs.face_values(f);
-        for j in 0..n {
-            let theirs_uv = theirs.values()[values[(start + j) % n] as usize];
-            let corner = offsets[g] as usize + (our_start + j) % n;
-            let ours_uv = DVec2::from(uvs[uv_indices[corner] as usize]);
-            let e = theirs_uv.distance(ours_uv) / scale;
-            assert!(
-                e <= 1e-12,
-                "{what}: face {f} corner {j}: OpenSubdiv {theirs_uv}, ours {ours_uv} ({e:e} of the UV box)"
-            );
-            worst = worst.max(e);
-        }
-    }
-    worst
 }
 
 /// The shared meshes with `vt` on every corner, and the scheme each is compared under.

@@ -336,3 +336,67 @@ pub(crate) fn opensubdiv_fvar_counts(
     );
     FvarCounts { mode, values }
 }
+
+/// The largest difference between OpenSubdiv's corner UVs and ours, relative to the diagonal of
+/// OpenSubdiv's UV bounding box, and where it is. Faces are matched by their vertex cycle
+/// (`to_ours` maps `their_mesh`'s vertices to `ours`', as `correspondence` gives it), corners
+/// along the cycle; `our_uv(g, k)` is our UV at corner `k` of our face `g`.
+///
+/// # Errors
+///
+/// An OpenSubdiv face that is none of ours.
+// Used by `tests/opensubdiv_uv.rs` and the CLI's `uv_subdivide.rs`, not by `tests/opensubdiv.rs`.
+#[allow(dead_code)]
+pub(crate) fn corner_uv_error(
+    theirs: &FvarLevel,
+    their_mesh: &PolygonMesh,
+    ours: &PolygonMesh,
+    to_ours: &[u32],
+    our_uv: impl Fn(usize, usize) -> DVec2,
+) -> Result<(f64, String), String> {
+    // A face by its vertex cycle from its smallest vertex, and where that starts.
+    let key = |face: &[u32]| {
+        let start = (0..face.len()).min_by_key(|&i| face[i]).unwrap_or(0);
+        let cycle: Vec<u32> = (0..face.len())
+            .map(|j| face[(start + j) % face.len()])
+            .collect();
+        (cycle, start)
+    };
+    let faces: std::collections::HashMap<Vec<u32>, (usize, usize)> = (0..ours.n_faces())
+        .map(|f| {
+            let (cycle, start) = key(ours.face(f));
+            (cycle, (f, start))
+        })
+        .collect();
+    let (lo, hi) = theirs.values().iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let scale = (hi - lo).length().max(f64::MIN_POSITIVE);
+    let (mut worst, mut at) = (0.0f64, String::from("no corners"));
+    for f in 0..their_mesh.n_faces() {
+        let mapped: Vec<u32> = their_mesh
+            .face(f)
+            .iter()
+            .map(|&v| to_ours[v as usize])
+            .collect();
+        let (cycle, start) = key(&mapped);
+        let &(g, our_start) = faces
+            .get(&cycle)
+            .ok_or_else(|| format!("OpenSubdiv's face {f} is not one of ours"))?;
+        let n = mapped.len();
+        let values = theirs.face_values(f);
+        for j in 0..n {
+            let theirs_uv = theirs.values()[values[(start + j) % n] as usize];
+            let ours_uv = our_uv(g, (our_start + j) % n);
+            let e = theirs_uv.distance(ours_uv) / scale;
+            if e > worst || at == "no corners" {
+                worst = worst.max(e);
+                at = format!(
+                    "face {f} corner {j}: OpenSubdiv {theirs_uv}, ours {ours_uv} ({e:e} of the UV box)"
+                );
+            }
+        }
+    }
+    Ok((worst, at))
+}

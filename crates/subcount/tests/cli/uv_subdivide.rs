@@ -759,11 +759,9 @@ fn spot_level_2_reads_back_with_its_3225_uv_values() {
 #[test]
 #[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER) and SUBCOUNT_MESHES"]
 fn written_uvs_match_opensubdiv_in_every_mode() {
-    use crate::creases::osd_support::{self, fvar::opensubdiv_fvar};
-    use halfedge::glam::DVec2;
+    use crate::creases::osd_support::{self, fvar::corner_uv_error, fvar::opensubdiv_fvar};
     use halfedge::tags::FaceVaryingInterpolation;
     use osd_support::{bounding_box_diagonal, correspondence, without_bare_vertices, Osd};
-    use std::collections::HashMap;
 
     osd_support::driver();
     let dir = tempfile::tempdir().expect("a temporary folder");
@@ -778,11 +776,6 @@ fn written_uvs_match_opensubdiv_in_every_mode() {
             let running = opensubdiv_fvar(&[], osd, level, &path, None, mode.into());
             let theirs = running.fvar_level();
             let their_mesh = without_bare_vertices(&theirs.mesh);
-            let (lo, hi) = theirs.values().iter().fold(
-                (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-                |(lo, hi), &p| (lo.min(p), hi.max(p)),
-            );
-            let scale = (hi - lo).length();
             for (precision, tolerance) in [("f64", 1e-12), ("f32", 1e-6)] {
                 let what = format!("{file} {scheme} level {level} {} {precision}", mode.name());
                 let out = dir
@@ -814,45 +807,14 @@ fn written_uvs_match_opensubdiv_in_every_mode() {
                 );
                 let to_ours = correspondence(&their_mesh, &ours, 1e-6 * diagonal)
                     .unwrap_or_else(|e| panic!("{what}: positions: {e}"));
-                // Our faces by their vertex cycle from its smallest vertex.
-                let key = |face: &[u32]| {
-                    let start = (0..face.len()).min_by_key(|&i| face[i]).unwrap_or(0);
-                    let cycle: Vec<u32> = (0..face.len())
-                        .map(|j| face[(start + j) % face.len()])
-                        .collect();
-                    (cycle, start)
-                };
                 let offsets = ours.face_offsets();
-                let faces: HashMap<Vec<u32>, (usize, usize)> = (0..ours.n_faces())
-                    .map(|f| {
-                        let (cycle, start) = key(ours.face(f));
-                        (cycle, (f, start))
-                    })
-                    .collect();
-                let mut worst = 0.0f64;
-                for f in 0..theirs.mesh.n_faces() {
-                    let mapped: Vec<u32> = their_mesh
-                        .face(f)
-                        .iter()
-                        .map(|&v| to_ours[v as usize])
-                        .collect();
-                    let (cycle, their_start) = key(&mapped);
-                    let &(g, our_start) = faces
-                        .get(&cycle)
-                        .unwrap_or_else(|| panic!("{what}: face {f} has no match"));
-                    let n = mapped.len();
-                    for j in 0..n {
-                        let their_corner = (their_start + j) % n;
-                        let our_corner = (our_start + j) % n;
-                        let t = theirs.values()[theirs.face_values(f)[their_corner] as usize];
-                        let o =
-                            our_uvs.coords()[our_uvs.corners()[offsets[g] + our_corner] as usize];
-                        worst = worst.max((t - o).length() / scale);
-                    }
-                }
+                let (worst, at) = corner_uv_error(&theirs, &their_mesh, &ours, &to_ours, |g, k| {
+                    our_uvs.coords()[our_uvs.corners()[offsets[g] + k] as usize]
+                })
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
                 assert!(
                     worst <= tolerance,
-                    "{what}: UVs differ by {worst:.3e} of the diagonal"
+                    "{what}: UVs differ by {worst:.3e} of the UV box's diagonal ({at})"
                 );
                 eprintln!("{what}: max UV deviation {worst:.3e}");
             }
