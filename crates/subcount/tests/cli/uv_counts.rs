@@ -292,7 +292,7 @@ fn table_at_and_plot_gain_a_uv_column() {
 
 #[test]
 fn schemes_without_uv_counts_print_no_column_and_say_why() {
-    // The charted cube's faces triangulated: sqrt3 applies but does not count UV values.
+    // The charted cube's faces triangulated: doo-sabin applies but does not count UV values.
     let mut text = CUBE_V.to_string();
     let quads = [
         [1, 4, 3, 2],
@@ -319,7 +319,15 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     }
     let (_dir, mesh) = file("tris.obj", &text);
     let run = subcount(&[
-        "table", "--mesh", &mesh, "--scheme", "sqrt3", "--levels", "0..=2", "--format", "csv",
+        "table",
+        "--mesh",
+        &mesh,
+        "--scheme",
+        "doo-sabin",
+        "--levels",
+        "0..=2",
+        "--format",
+        "csv",
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert_eq!(
@@ -330,7 +338,16 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     );
     assert_eq!(
         run.stderr,
-        "note: sqrt3 does not count UV values (no UV rule yet): no UV column\n"
+        "note: doo-sabin does not count UV values (no UV rule yet): no UV column\n"
+    );
+    // sqrt3 counts them: 24 values, 24 layout boundary edges, 12 seam edges (the cube's
+    // edges; the diagonals lie inside a chart), 12 faces: UV' = UV + 2 S + F.
+    let sqrt3 = ok(&[
+        "table", "--mesh", &mesh, "--scheme", "sqrt3", "--levels", "0..=2", "--format", "csv",
+    ]);
+    assert_eq!(
+        sqrt3,
+        "level,V,E,F,UV\n0,8,18,12,24\n1,20,54,36,60\n2,56,162,108,168\n"
     );
     // Loop counts them.
     let loop_csv = ok(&[
@@ -342,10 +359,16 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     );
     fails(
         &[
-            "fit", "--mesh", &mesh, "--scheme", "sqrt3", "--max-uv", "100",
+            "fit",
+            "--mesh",
+            &mesh,
+            "--scheme",
+            "doo-sabin",
+            "--max-uv",
+            "100",
         ],
         2,
-        "--max-uv: sqrt3 does not count UV values",
+        "--max-uv: doo-sabin does not count UV values",
     );
 }
 
