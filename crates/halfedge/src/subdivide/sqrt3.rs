@@ -158,6 +158,12 @@ impl StepB {
     /// The tables of `t` (after step A every face has at most one boundary edge: more is an
     /// [`crate::Error::InvalidOutput`]).
     pub(crate) fn new(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<StepB> {
+        StepB::build(t, |what| ctx.invalid(what))
+    }
+
+    /// [`StepB::new`] with `invalid` making the error of a face with two or three boundary
+    /// edges.
+    fn build(t: &Topo<'_>, invalid: impl Fn(String) -> crate::Error) -> Result<StepB> {
         let nf = t.nf() as u32;
         let mut boundary_of = super::alloc::filled(INVALID, nf as usize, "boundary faces")?;
         let mut number_of = super::alloc::filled(INVALID, nf as usize, "boundary face numbers")?;
@@ -172,7 +178,7 @@ impl StepB {
                 }
             });
             if count > 1 {
-                return Err(ctx.invalid(format!(
+                return Err(invalid(format!(
                     "face {f} has {count} boundary edges in a trisecting step (step A leaves at most one)"
                 )));
             }
