@@ -111,7 +111,7 @@ fn the_uv_prediction_bounds_the_channel_on_a_grid_with_seams() {
 fn the_uv_prediction_refuses_rules_without_uvs() {
     let quads = grid_of_four_charts(4, 4, false);
     let counts = stats::uv_layout_counts(&quads).expect("layout counts");
-    let err = predicted_uv_bytes(Rule::DooSabin, &counts, 2, 8, false).unwrap_err();
+    let err = predicted_uv_bytes(Rule::Sqrt3, &counts, 2, 8, false).unwrap_err();
     assert!(
         matches!(err, halfedge::Error::UvsNotSupported { .. }),
         "{err}"
