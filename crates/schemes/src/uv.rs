@@ -53,13 +53,20 @@
 //! `V`, `E`, `F`; their split values are the siblings of the whole mesh (holes are refined
 //! too) that written faces use ([`UvCounts::kept_split_values`]).
 //!
+//! **The dual rules** (Doo-Sabin, mid-edge) do not refine the layout as a mesh: their faces
+//! straddle the old edges and vertices, so their UVs are propagated corner by corner on the
+//! surface's own refinement (`halfedge::refine::face_varying`), and their values follow the
+//! surface's counts plus what the seams add. Their state is the layout's `UE`, `UBE` and the
+//! seam edges `S` ([`UV_SEAM_STATE`]; the surface's `E = UE - S` and `BE = UBE - 2 S`), see
+//! [`UvScheme`]. A composition chaining a dual rule with a rule of the other kind is not
+//! counted (one state does not give the other: [`NotCounted::composed_with`]).
+//!
 //! √3 does not refine faces on their own; its UV rule (linear, every new face in one chart,
 //! seam midpoints) counts over the layout's values, boundary edges, seam edges and faces
 //! ([`SQRT3_UV_STATE`]; the derivation is in [`uv_scheme`]'s √3 matrices, [`UvScheme`]),
 //! alternating two matrices with the boundary (`sqrt3-boundary`).
 //!
-//! Doo-Sabin and mid-edge have no UV geometry yet: [`uv_scheme`] answers
-//! [`NotCounted`] for them, and for a scheme without a rule.
+//! A scheme without a rule is [`NotCounted`].
 //!
 //! # Example: a cube with one seam
 //!
@@ -87,7 +94,7 @@
 //! assert_eq!(cc.recurrence().names(), ["UV", "UE", "UBE", "F", "H"]);
 //! // Level 1: a value per old value, per layout edge and per face.
 //! assert_eq!(cc.values_at(&uv, 1)?, BigInt::from(12 + 16 + 6));
-//! assert!(uv_scheme(Rule::DooSabin).is_err());
+//! assert!(uv_scheme(Rule::TriSplit(1)).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -499,6 +506,36 @@ pub const UV_STATE: [&str; 5] = ["UV", "UE", "UBE", "F", "H"];
 ///   `n` quads. State `(UV, UE, UBE, F, H)`, `H` the corners:
 ///   `UV' = UV + UE + F`, `UE' = 2 UE + H`, `UBE' = 2 UBE`, `F' = H`, `H' = 4 H`.
 ///
+/// The dual rules carry UVs corner by corner on the surface's refinement (the rules in
+/// `halfedge::refine::face_varying`), so the count is the surface's plus what the seams add.
+/// Write `S` for the seam edges (interior edges whose two faces disagree at either end;
+/// surface boundary edges are not seams), `E`, `BE` for the surface's edges and boundary
+/// edges; the layout has `UE = E + S` edges (a seam is two layout edges) and
+/// `UBE = BE + 2 S` boundary edges (both sides of every seam). State `(UV, UE, UBE, S)`
+/// ([`UV_SEAM_STATE`]), from the layout's `V`, `E`, `BE` and `seam_edges`:
+///
+/// - **Doo-Sabin** (`doo-sabin`, `doo-sabin-boundary`): one value per new vertex (a face
+///   corner's Doo-Sabin point in its face's chart, a boundary Chaikin point in the chart of
+///   its edge's face): `V' = 2E + BE`; the edge face of a seam edge takes the chart of one of
+///   its faces, whose Chaikin points replace the two corners from the other face: 2 more per
+///   seam, so `UV' = 2E + BE + 2S`. Seams of the next level: each seam edge's edge face
+///   disagrees with the other face's shrunken face along one edge and with the two vertex
+///   faces at its ends along one edge each (they keep the corners' own values); non-seam and
+///   boundary edges give none: `S' = 3S`. With `E' = 4E + BE`, `BE' = 2BE`:
+///   `UV' = 2UE + UBE - 2S`, `UE' = 4UE + UBE - 3S`, `UBE' = 2UBE + 2S`, `S' = 3S`, so
+///   `UV(s) = V(s) + 2 * 3^(s-1) * S0` for `s >= 1`.
+/// - **Mid-edge** (`mid-edge`, `mid-edge-boundary`): one value per (edge, side), the
+///   midpoint in that face's chart, one for an edge that is not a seam and two for a seam
+///   (`UE`), and with boundary one per kept boundary vertex (its value unchanged): `UV' = E +
+///   S + BE`. Seams of the next level: the vertex face at `v` takes the value of each edge on
+///   the side of the face of the half-edge leaving `v` along it, so the new edge between a
+///   face face and a vertex face is a seam exactly when the old edge it crosses is: two per
+///   seam, `S' = 2S`. With `E' = 2E + BE`, `BE' = 2BE`: `UV' = UE + UBE - 2S`,
+///   `UE' = 2UE + UBE - 2S`, `UBE' = 2UBE`, `S' = 2S`.
+///
+/// Without seams both give the surface's vertices from level 1 on. The `UV` column of the
+/// matrix is zero (the values of a level follow from the level before's edges and seams).
+///
 /// The `UV` component equals the real count from level [`UvScheme::VALID_FROM`] on; level 0
 /// is [`UvCounts::used_vt`] ([`UvScheme::values_at`] gives both).
 ///
@@ -524,21 +561,40 @@ pub struct UvScheme {
     siblings: bool,
     /// The step matrices in turn (one, that of `recurrence`, unless the rule alternates).
     steps: StepRule,
+    /// Whether the state is [`UV_SEAM_STATE`] (the dual rules) rather than [`UV_STATE`].
+    seams: bool,
 }
 
-/// A rule (or a scheme) whose UV values are not counted: Doo-Sabin and mid-edge, whose UV
-/// geometry is not designed yet, and schemes without a subdivision rule.
+/// A rule (or a scheme) whose UV values are not counted: schemes without a subdivision rule,
+/// `TriSplit(n)` with `n < 2`, and compositions that chain a dual rule (Doo-Sabin, mid-edge)
+/// with a rule of the other kind (their UV states do not convert: [`UvCounter`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub struct NotCounted {
     /// The rule, when there is one.
     pub rule: Option<Rule>,
+    /// In a composition, the rule of the other kind chained with `rule`.
+    pub composed_with: Option<Rule>,
+}
+
+impl NotCounted {
+    /// `rule` (or a scheme without a rule) does not count UV values.
+    pub fn rule(rule: Option<Rule>) -> NotCounted {
+        NotCounted {
+            rule,
+            composed_with: None,
+        }
+    }
 }
 
 impl fmt::Display for NotCounted {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.rule {
-            Some(rule) => write!(f, "{rule} does not count UV values (no UV rule yet)"),
-            None => f.write_str("a scheme without a subdivision rule does not count UV values"),
+        match (self.rule, self.composed_with) {
+            (Some(rule), Some(other)) => write!(
+                f,
+                "{rule} does not count UV values composed with {other} (their UV states do not convert)"
+            ),
+            (Some(rule), None) => write!(f, "{rule} does not count UV values (no UV rule yet)"),
+            (None, _) => f.write_str("a scheme without a subdivision rule does not count UV values"),
         }
     }
 }
@@ -547,8 +603,7 @@ impl fmt::Display for NotCounted {
 ///
 /// # Errors
 ///
-/// [`NotCounted`] for Doo-Sabin and mid-edge, and for `TriSplit(n)` with `n < 2` or too
-/// large for its matrix.
+/// [`NotCounted`] for `TriSplit(n)` with `n < 2` or too large for its matrix.
 ///
 /// √3 is the cycle `[A, B]` of `sqrt3-boundary` over [`SQRT3_UV_STATE`] (on a closed mesh
 /// both steps count alike; [`UvScheme::for_scheme`] gives `sqrt3` step A alone):
@@ -570,7 +625,7 @@ impl fmt::Display for NotCounted {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
-    let not = NotCounted { rule: Some(rule) };
+    let not = NotCounted::rule(Some(rule));
     // The rule's scheme for any face list, and how many boundary edges a layout boundary
     // edge splits into.
     let (general, split): (Scheme, i64) = match rule {
@@ -578,7 +633,8 @@ pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
         Rule::TriSplit(n) => (tri_split(u64::from(n)).map_err(|_| not)?, i64::from(n)),
         Rule::CatmullClark => (catmull_clark_general(), 2),
         Rule::Sqrt3 => return sqrt3_uv_scheme(&[sqrt3_step_a(), sqrt3_step_b()]).ok_or(not),
-        Rule::DooSabin | Rule::MidEdge => return Err(not),
+        Rule::DooSabin => return dual_uv_scheme(rule, &DOO_SABIN_UV),
+        Rule::MidEdge => return dual_uv_scheme(rule, &MID_EDGE_UV),
     };
     let recurrence = with_boundary_edges(general.matrix(), split).ok_or(not)?;
     Ok(UvScheme {
@@ -586,6 +642,30 @@ pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
         steps: StepRule::single(recurrence.matrix().clone()),
         recurrence,
         siblings: matches!(rule, Rule::Loop | Rule::CatmullClark),
+        seams: false,
+    })
+}
+
+/// The names of the UV state of the dual rules (Doo-Sabin, mid-edge): `UV` values, `UE`
+/// layout edges, `UBE` layout boundary edges, `S` seam edges.
+pub const UV_SEAM_STATE: [&str; 4] = ["UV", "UE", "UBE", "S"];
+
+/// Doo-Sabin's UV matrix over [`UV_SEAM_STATE`] ([`UvScheme`]).
+const DOO_SABIN_UV: [[i64; 4]; 4] = [[0, 2, 1, -2], [0, 4, 1, -3], [0, 0, 2, 2], [0, 0, 0, 3]];
+
+/// Mid-edge's UV matrix over [`UV_SEAM_STATE`] ([`UvScheme`]).
+const MID_EDGE_UV: [[i64; 4]; 4] = [[0, 1, 1, -2], [0, 2, 1, -2], [0, 0, 2, 0], [0, 0, 0, 2]];
+
+fn dual_uv_scheme(rule: Rule, rows: &[[i64; 4]; 4]) -> std::result::Result<UvScheme, NotCounted> {
+    let matrix = IntMatrix::from_fn(4, |i, j| rows[i][j]);
+    let recurrence =
+        Recurrence::with_names(matrix, UV_SEAM_STATE).map_err(|_| NotCounted::rule(Some(rule)))?;
+    Ok(UvScheme {
+        rule,
+        steps: StepRule::single(recurrence.matrix().clone()),
+        recurrence,
+        siblings: false,
+        seams: true,
     })
 }
 
@@ -660,6 +740,7 @@ fn sqrt3_uv_scheme(steps: &[IntMatrix]) -> Option<UvScheme> {
         recurrence: Recurrence::with_names(period, SQRT3_UV_STATE).ok()?,
         siblings: false,
         steps,
+        seams: false,
     })
 }
 
@@ -699,9 +780,9 @@ impl UvScheme {
     /// √3 alternates its steps A and B only on meshes with a boundary (`sqrt3-boundary`); a
     /// scheme of period 1 with the √3 rule (`sqrt3`, closed meshes) counts with step A alone.
     pub fn for_scheme(scheme: &Scheme) -> std::result::Result<UvScheme, NotCounted> {
-        let rule = scheme.subdivision_rule().ok_or(NotCounted { rule: None })?;
+        let rule = scheme.subdivision_rule().ok_or(NotCounted::rule(None))?;
         if rule == Rule::Sqrt3 && scheme.period() == 1 {
-            return sqrt3_uv_scheme(&[sqrt3_step_a()]).ok_or(NotCounted { rule: Some(rule) });
+            return sqrt3_uv_scheme(&[sqrt3_step_a()]).ok_or(NotCounted::rule(Some(rule)));
         }
         let mut uv = uv_scheme(rule)?;
         uv.siblings &= scheme.mesh_class().needs_manifold();
@@ -774,7 +855,8 @@ impl UvScheme {
 
     /// The initial state from the layout's statistics: `[UV0, E, BE, F]` or
     /// `[UV0, E, BE, F, H]`, `UV0` being `V + split_values` for Loop and Catmull-Clark
-    /// ([`splits_siblings`](Self::splits_siblings)) and `V` for the other rules.
+    /// ([`splits_siblings`](Self::splits_siblings)) and `V` for the other rules; for the dual
+    /// rules `[V, E, BE, seam_edges]`.
     pub fn initial_state(&self, uv: &UvCounts) -> Vec<BigInt> {
         let split = if self.splits_siblings() {
             uv.split_values
@@ -785,6 +867,12 @@ impl UvScheme {
             return [uv.values, uv.boundary_edges, uv.seam_edges, uv.faces]
                 .map(BigInt::from)
                 .to_vec();
+        }
+        if self.seams {
+            return [uv.values, uv.edges, uv.boundary_edges, uv.seam_edges]
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect();
         }
         [
             uv.values + split,
@@ -831,6 +919,8 @@ impl UvScheme {
 /// At a stage boundary the next stage starts from the state reached, the corners `H` (when
 /// the next stage is Catmull-Clark and the previous one a triangle split) being `3 F`: a
 /// triangle split makes triangles.
+/// The dual rules' state ([`UV_SEAM_STATE`]) converts between Doo-Sabin and mid-edge
+/// stages only.
 ///
 /// ```
 /// use schemes::uv::UvCounts;
@@ -855,24 +945,23 @@ impl UvCounter {
     ///
     /// # Errors
     ///
-    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence.
+    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence, and for a
+    /// composition of a dual rule with a rule of the other kind.
     pub fn new(plan: &Plan, uv: UvCounts) -> std::result::Result<UvCounter, NotCounted> {
-        let stages = plan
+        let stages: Vec<(UvScheme, Option<u64>)> = plan
             .stages()
             .iter()
             .map(|st| Ok((UvScheme::for_scheme(st.scheme())?, st.levels())))
-            .collect::<std::result::Result<Vec<(UvScheme, Option<u64>)>, NotCounted>>()?;
-        // A √3 stage after others needs the seam edges reached: every earlier stage must
-        // multiply them by a known factor.
-        if let Some(k) = stages.iter().rposition(|(s, _)| s.rule == Rule::Sqrt3) {
-            if let Some((earlier, _)) = stages[..k]
-                .iter()
-                .find(|(s, _)| seam_factor(s.rule).is_none())
-            {
-                return Err(NotCounted {
-                    rule: Some(earlier.rule),
-                });
-            }
+            .collect::<std::result::Result<_, NotCounted>>()?;
+        // The dual rules' state (seams) and the others' (faces, corners) do not convert.
+        if let (Some(dual), Some(other)) = (
+            stages.iter().find(|(s, _)| s.seams),
+            stages.iter().find(|(s, _)| !s.seams),
+        ) {
+            return Err(NotCounted {
+                rule: Some(dual.0.rule),
+                composed_with: Some(other.0.rule),
+            });
         }
         Ok(UvCounter { stages, uv })
     }
@@ -910,8 +999,12 @@ impl UvCounter {
                 return Err(Error::LevelBeyondPlan { level, last: end });
             };
             let reached = scheme.advance(&state, end - start)?;
-            if let (Some(factor), Ok(k)) = (seam_factor(scheme.rule), u32::try_from(end - start)) {
-                seams *= BigInt::from(factor).pow(k);
+            if next.rule == Rule::Sqrt3 {
+                let k = u32::try_from(end - start).map_err(|_| Error::LevelBeyondPlan {
+                    level,
+                    last: u64::from(u32::MAX),
+                })?;
+                seams *= BigInt::from(seam_factor(scheme.rule)).pow(k);
             }
             state = next.convert(scheme.recurrence.names(), reached, &seams);
             start = end;
@@ -1049,18 +1142,20 @@ impl UvScheme {
     }
 }
 
-/// How many seam edges each seam edge of the surface becomes in one step of `rule` (`None`
-/// when not derived here: Doo-Sabin, mid-edge): the face-refining rules split it in `N`
-/// (their other new edges lie inside one face and join values of that face), √3 makes three
-/// of it ([`sqrt3_uv_scheme`]).
-fn seam_factor(rule: Rule) -> Option<u32> {
+/// How many seam edges each seam edge of the surface becomes in one step of `rule`: the
+/// face-refining rules split it in `N` (their other new edges lie inside one face and join
+/// values of that face), √3 makes three of it ([`sqrt3_uv_scheme`]), Doo-Sabin three and
+/// mid-edge two ([`UvScheme`]).
+fn seam_factor(rule: Rule) -> u32 {
     match rule {
-        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere | Rule::CatmullClark => {
-            Some(2)
-        }
-        Rule::TriSplit(n) => Some(n),
-        Rule::Sqrt3 => Some(3),
-        Rule::DooSabin | Rule::MidEdge => None,
+        Rule::Loop
+        | Rule::Midpoint
+        | Rule::Butterfly
+        | Rule::Icosphere
+        | Rule::CatmullClark
+        | Rule::MidEdge => 2,
+        Rule::TriSplit(n) => n,
+        Rule::Sqrt3 | Rule::DooSabin => 3,
     }
 }
 
@@ -1205,22 +1300,34 @@ mod tests {
             // B A: one period of sqrt3-boundary.
             [[1, 1, 6, 4], [0, 3, 12, 0], [0, 0, 9, 0], [0, 0, 0, 9]]
         );
-        for rule in [Rule::DooSabin, Rule::MidEdge, Rule::TriSplit(1)] {
-            assert_eq!(uv_scheme(rule), Err(NotCounted { rule: Some(rule) }));
-        }
         assert_eq!(
-            NotCounted {
-                rule: Some(Rule::DooSabin)
-            }
-            .to_string(),
-            "doo-sabin does not count UV values (no UV rule yet)"
+            uv_scheme(Rule::TriSplit(1)),
+            Err(NotCounted::rule(Some(Rule::TriSplit(1))))
         );
+        assert_eq!(
+            NotCounted::rule(Some(Rule::Sqrt3)).to_string(),
+            "sqrt3 does not count UV values (no UV rule yet)"
+        );
+        // The dual rules count over the layout and its seams.
+        assert_eq!(
+            rows(Rule::DooSabin),
+            [[0, 2, 1, -2], [0, 4, 1, -3], [0, 0, 2, 2], [0, 0, 0, 3]]
+        );
+        assert_eq!(
+            rows(Rule::MidEdge),
+            [[0, 1, 1, -2], [0, 2, 1, -2], [0, 0, 2, 0], [0, 0, 0, 2]]
+        );
+        for rule in [Rule::DooSabin, Rule::MidEdge] {
+            let uv = uv_scheme(rule).unwrap();
+            assert_eq!(uv.recurrence().names(), UV_SEAM_STATE);
+            assert!(!uv.splits_siblings());
+        }
         // A custom scheme without a `topology` key has no rule.
         let fib = Scheme::from_toml(
             "name = \"fib\"\nstate = [\"a\", \"b\"]\nmatrix = [[1, 1], [1, 0]]\n",
         )
         .unwrap();
-        assert_eq!(UvScheme::for_scheme(&fib), Err(NotCounted { rule: None }));
+        assert_eq!(UvScheme::for_scheme(&fib), Err(NotCounted::rule(None)));
         let cc = builtin("catmull-clark-quad").unwrap();
         assert_eq!(
             UvScheme::for_scheme(&cc).unwrap().rule(),
@@ -1259,6 +1366,10 @@ mod tests {
             (&quads[..], Rule::CatmullClark),
             (&tris[..], Rule::Loop),
             (&tris[..], Rule::TriSplit(4)),
+            (&quads[..], Rule::DooSabin),
+            (&tris[..], Rule::DooSabin),
+            (&quads[..], Rule::MidEdge),
+            (&tris[..], Rule::MidEdge),
         ] {
             let uv = layout(faces, faces, &vts).unwrap();
             assert_eq!(uv.seam_edges, 0);
@@ -1322,7 +1433,22 @@ mod tests {
         let err = bounded.uv_counter(&uv).unwrap().values_at(3).unwrap_err();
         assert_eq!(err, Error::LevelBeyondPlan { level: 3, last: 2 });
         let matrix = crate::Counter::from(Recurrence::new(IntMatrix::identity(2)));
-        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted { rule: None }));
+        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted::rule(None)));
+        // A dual rule chained with a rule of the other kind: their states do not convert.
+        let mixed =
+            crate::Counter::from(Plan::parse("loop-boundary:1,doo-sabin-boundary").unwrap());
+        let err = mixed.uv_counter(&uv).unwrap_err();
+        assert_eq!(
+            err,
+            NotCounted {
+                rule: Some(Rule::DooSabin),
+                composed_with: Some(Rule::Loop)
+            }
+        );
+        assert_eq!(
+            err.to_string(),
+            "doo-sabin does not count UV values composed with loop (their UV states do not convert)"
+        );
     }
 
     /// √3 without seams counts the surface's vertices, alone, periodic, and composed with

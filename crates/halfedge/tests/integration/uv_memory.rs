@@ -107,15 +107,23 @@ fn the_uv_prediction_bounds_the_channel_on_a_grid_with_seams() {
     }
 }
 
+/// √3 carries UVs on the corner channel, whose prediction is an estimate from the layout's
+/// statistics (they do not separate seams from the surface's boundary) that also counts the
+/// surface refinement the one-shot path builds to carry the channel: on the grid cut into
+/// four charts it is at least what the channel and the buffers measure, and at most three
+/// times it.
 #[test]
-fn the_uv_prediction_refuses_rules_without_uvs() {
-    let quads = grid_of_four_charts(4, 4, false);
-    let counts = stats::uv_layout_counts(&quads).expect("layout counts");
-    let err = predicted_uv_bytes(Rule::DooSabin, &counts, 2, 8, false).unwrap_err();
-    assert!(
-        matches!(err, halfedge::Error::UvsNotSupported { .. }),
-        "{err}"
-    );
+fn the_uv_prediction_of_sqrt3_covers_the_channel() {
+    let triangles = grid_of_four_charts(12, 8, true);
+    for levels in 1..=4 {
+        let (measured, predicted) = measured_and_predicted(&triangles, Rule::Sqrt3, levels);
+        println!("sqrt3 level {levels}: measured {measured}, predicted {predicted}");
+        assert!(predicted >= measured, "{levels}: {predicted} < {measured}");
+        assert!(
+            predicted <= &measured * 3u32,
+            "{levels}: {predicted} > 3 x {measured}"
+        );
+    }
 }
 
 #[test]

@@ -299,16 +299,47 @@ fn partial_texture_coordinates_are_written_without_uvs_saying_why() {
 }
 
 #[test]
-fn rules_without_uvs_write_without_them_saying_so() {
+fn the_dual_rules_write_their_uvs() {
+    // uv_cube has 9 seam edges (the top's and the bottom's sides, the strip's cut).
     let cube = data("uv_cube.obj");
-    for scheme in ["doo-sabin", "mid-edge"] {
+    for (scheme, summary_line, values) in [
+        (
+            "doo-sabin",
+            "level 1: V = 24, E = 48, F = 26, UV = 42; wrote OUT\n",
+            42,
+        ),
+        (
+            "mid-edge",
+            "level 1: V = 12, E = 24, F = 14, UV = 21; wrote OUT\n",
+            21,
+        ),
+    ] {
         let (summary, stderr, written) = subdivide(&cube, &["--scheme", scheme, "--levels", "1"]);
+        assert_eq!(stderr, "", "{scheme}");
+        assert_eq!(summary, summary_line);
         assert_eq!(
-            stderr,
-            format!("note: {cube}: UVs are not refined under {scheme} (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
+            written.lines().filter(|l| l.starts_with("vt ")).count(),
+            values,
+            "{scheme}"
         );
-        assert!(!summary.contains("UV"), "{summary}");
-        assert!(!written.contains("vt "));
+        assert!(
+            written
+                .lines()
+                .filter(|l| l.starts_with("f "))
+                .all(|l| l.split_whitespace().skip(1).all(|c| c.contains('/'))),
+            "{scheme}"
+        );
+        // The same values when refined once into f32 buffers.
+        let (summary, _, written) = subdivide(
+            &cube,
+            &["--scheme", scheme, "--levels", "1", "--precision", "f32"],
+        );
+        assert_eq!(summary, summary_line, "{scheme} f32");
+        assert_eq!(
+            written.lines().filter(|l| l.starts_with("vt ")).count(),
+            values,
+            "{scheme} f32"
+        );
     }
     // A -general scheme runs on the raw face list, which refines the UVs linearly with it.
     let (summary, stderr, written) = subdivide(
@@ -408,22 +439,35 @@ fn verify_checks_the_uv_values_of_every_level() {
         text.contains("    1         UV         45        45\n"),
         "{text}"
     );
-    // A scheme that does not count UVs: a note, no UV rows.
-    let run = subcount(&[
-        "verify",
-        "--mesh",
-        &cube,
-        "--scheme",
-        "doo-sabin",
-        "--levels",
-        "1",
-    ]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(
-        run.stderr,
-        "note: doo-sabin does not count UV values (no UV rule yet): no UV rows\n"
-    );
-    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+    // The dual rules: predicted by their recurrences over the layout and its 9 seams,
+    // measured on the corner channel.
+    for (scheme, values) in [
+        ("doo-sabin", [18, 42, 150, 546]),
+        ("mid-edge", [18, 21, 42, 84]),
+    ] {
+        let rows = verify_uv(&cube, scheme, "3");
+        let expected: Vec<(Value, Value)> = values
+            .iter()
+            .map(|&v| (Value::from(v), Value::from(v)))
+            .collect();
+        assert_eq!(rows, expected, "{scheme}");
+        for (level, &v) in values.iter().enumerate() {
+            assert_eq!(predicted_uv(&cube, scheme, level as u64), v, "{scheme}");
+        }
+    }
+    // √3 on the triangulated cube of three charts (18 values, 9 seams, 12 faces): predicted
+    // by UV' = UV + 2 S + F, measured on the corner channel.
+    let tri = data("uv_cube_tri.obj");
+    let values = [18, 48, 138, 408];
+    let rows = verify_uv(&tri, "sqrt3", "3");
+    let expected: Vec<(Value, Value)> = values
+        .iter()
+        .map(|&v| (Value::from(v), Value::from(v)))
+        .collect();
+    assert_eq!(rows, expected);
+    for (level, &v) in values.iter().enumerate() {
+        assert_eq!(predicted_uv(&tri, "sqrt3", level as u64), v);
+    }
 }
 
 #[test]
@@ -559,19 +603,74 @@ fn verify_matches_opensubdivs_uv_counts_on_spot() {
 
 #[test]
 #[ignore = "needs SUBCOUNT_MESHES"]
-fn sqrt3_on_spot_writes_without_uvs_saying_so() {
+fn sqrt3_on_spot_writes_its_uvs() {
     let triangulated = shared("spot_triangulated.obj");
     let (summary, stderr, written) =
         subdivide(&triangulated, &["--scheme", "sqrt3", "--levels", "1"]);
-    assert_eq!(
-        stderr,
-        format!("note: {triangulated}: UVs are not refined under sqrt3 (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
-    );
+    assert_eq!(stderr, "");
     assert_eq!(
         summary,
-        "level 1: V = 8786, E = 26352, F = 17568; wrote OUT\n"
+        "level 1: V = 8786, E = 26352, F = 17568, UV = 9657; wrote OUT\n"
     );
-    assert!(!written.contains("vt "));
+    assert_eq!(
+        written.lines().filter(|l| l.starts_with("vt ")).count(),
+        9657
+    );
+    assert_eq!(predicted_uv(&triangulated, "sqrt3", 1), 9657);
+    let rows = verify_uv(&triangulated, "sqrt3", "3");
+    let uv: Vec<u64> = rows
+        .iter()
+        .map(|(p, m)| {
+            assert_eq!(p, m);
+            p.as_u64().expect("a count")
+        })
+        .collect();
+    assert_eq!(uv, [3225, 9657, 28953, 86841]);
+}
+
+/// `sqrt3-boundary` (steps A and B) on the triangulated cube of three charts with two faces
+/// left out: the UVs are written (`f v/vt`, one `vt` per value), the summary's `UV = N` is the
+/// count `table` predicts, and `verify`'s UV rows match at every level.
+#[test]
+fn sqrt3_boundary_writes_and_verifies_its_uvs() {
+    let text = std::fs::read_to_string(data("uv_cube_tri.obj")).expect("the fixture");
+    let faces = text.lines().filter(|l| l.starts_with("f ")).count();
+    let mut kept = 0;
+    let open: String = text
+        .lines()
+        .filter(|l| {
+            if !l.starts_with("f ") {
+                return true;
+            }
+            kept += 1;
+            kept <= faces - 2
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("open.obj");
+    std::fs::write(&path, open).expect("written");
+    let mesh = path.to_str().expect("a UTF-8 path");
+    for level in 1..=3u64 {
+        let (summary, stderr, written) = subdivide(
+            mesh,
+            &["--scheme", "sqrt3-boundary", "--levels", &level.to_string()],
+        );
+        assert_eq!(stderr, "");
+        let uv = predicted_uv(mesh, "sqrt3-boundary", level);
+        assert_eq!(summary_uv(&summary), Some(uv), "{summary}");
+        assert_eq!(
+            written.lines().filter(|l| l.starts_with("vt ")).count() as u64,
+            uv
+        );
+        assert!(written
+            .lines()
+            .filter(|l| l.starts_with("f "))
+            .all(|l| l.split_whitespace().skip(1).all(|c| c.contains('/'))));
+    }
+    let rows = verify_uv(mesh, "sqrt3-boundary", "4");
+    assert_eq!(rows.len(), 5);
+    assert!(rows.iter().all(|(p, m)| p == m), "{rows:?}");
 }
 
 /// The `vt`, `vn` and face lines of an OBJ text, and the forms of its face corners: how many
@@ -859,11 +958,16 @@ fn the_memory_guard_counts_the_uv_channel() {
         predicted(&f32) - predicted(&[&f32[..], &["--no-uv"]].concat()),
         uv(halfedge::Rule::CatmullClark, 4)
     );
-    // Doo-Sabin writes without UVs: nothing added.
+    // Doo-Sabin's corner channel, on the one-shot path and refined once.
     let doo_sabin = ["--scheme", "doo-sabin"];
     assert_eq!(
-        predicted(&doo_sabin),
-        predicted(&[&doo_sabin[..], &["--no-uv"]].concat())
+        predicted(&doo_sabin) - predicted(&[&doo_sabin[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::DooSabin, 8)
+    );
+    let f32 = ["--scheme", "mid-edge", "--precision", "f32"];
+    assert_eq!(
+        predicted(&f32) - predicted(&[&f32[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::MidEdge, 4)
     );
 }
 

@@ -61,6 +61,7 @@
 //! Evaluation does not check that the results are finite (the one-shot subdivision does):
 //! data near the overflow limit of `T` can give infinities.
 
+pub(crate) mod corners;
 mod data;
 pub mod face_varying;
 mod oneshot;
@@ -353,13 +354,18 @@ impl Refinement {
     ) -> Result<Refinement> {
         // Refused before any topology is built.
         if opts.uvs.is_some() {
-            face_varying::channel_rule(rule)?;
+            face_varying::channel_kind(rule)?;
         }
         let creases = || Creases::new(mesh, rule, opts.sharpness, &opts.subdivision);
         let mut refinement = Refinement::with_creases(mesh, rule, levels, opts, creases)?;
         if let Some(layout) = opts.uvs {
             refinement.uvs = Some(Box::new(face_varying::UvChannel::new(
-                mesh, layout, rule, levels, opts,
+                mesh,
+                layout,
+                rule,
+                levels,
+                opts,
+                &refinement,
             )?));
         }
         Ok(refinement)
