@@ -107,22 +107,30 @@ fn the_uv_prediction_bounds_the_channel_on_a_grid_with_seams() {
     }
 }
 
-/// √3 carries UVs on the corner channel, whose prediction is an estimate from the layout's
-/// statistics (they do not separate seams from the surface's boundary) that also counts the
-/// surface refinement the one-shot path builds to carry the channel: on the grid cut into
-/// four charts it is at least what the channel and the buffers measure, and at most three
-/// times it.
+/// The corner channel's estimate (Doo-Sabin, mid-edge, √3 on the triangles) against the channel's heap and the
+/// caller's buffers: at least it, at most three times it (it also counts the surface
+/// refinement the one-shot path builds, and sizes the values from the extreme layouts;
+/// measured 1.6 to 2.6 times).
 #[test]
-fn the_uv_prediction_of_sqrt3_covers_the_channel() {
-    let triangles = grid_of_four_charts(12, 8, true);
-    for levels in 1..=4 {
-        let (measured, predicted) = measured_and_predicted(&triangles, Rule::Sqrt3, levels);
-        println!("sqrt3 level {levels}: measured {measured}, predicted {predicted}");
-        assert!(predicted >= measured, "{levels}: {predicted} < {measured}");
-        assert!(
-            predicted <= &measured * 3u32,
-            "{levels}: {predicted} > 3 x {measured}"
-        );
+fn the_corner_channel_estimate_is_near_what_it_keeps() {
+    for (name, poly) in [
+        ("quads", grid_of_four_charts(12, 8, false)),
+        ("triangles", grid_of_four_charts(12, 8, true)),
+    ] {
+        let mut rules = vec![Rule::DooSabin, Rule::MidEdge];
+        if name == "triangles" {
+            rules.push(Rule::Sqrt3);
+        }
+        for rule in rules {
+            for levels in 1..=3 {
+                let (measured, predicted) = measured_and_predicted(&poly, rule, levels);
+                println!(
+                    "{name} {rule} level {levels}: measured {measured}, predicted {predicted}"
+                );
+                assert!(predicted >= measured, "{name} {rule} {levels}");
+                assert!(predicted <= &measured * 3u32, "{name} {rule} {levels}");
+            }
+        }
     }
 }
 

@@ -28,7 +28,8 @@ pub(crate) struct CornerStep<'a> {
 
 /// The corner step of `rule` from level `s` (`t`, its corner values `values` by half-edge:
 /// the value of the corner at the source of each half-edge inside its face, `INVALID` on a
-/// boundary half-edge; `n_values` values) to level `child = s + 1`.
+/// boundary half-edge; `n_values` values) to level `child = s + 1` (for rules whose steps
+/// alternate, as √3's with boundary). A new rule adds its arm here.
 ///
 /// # Errors
 ///
