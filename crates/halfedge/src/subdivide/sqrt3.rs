@@ -32,6 +32,9 @@
 //! `α = (4 - 2 cos(2π/n)) / 9`; boundary vertices stay in step A, and in step B the boundary
 //! polygon is refined by Kobbelt's ternary cubic B-spline rule: old vertices
 //! `(4 l + 19 v + 4 r) / 27`, new points `(l + 16 a + 10 b) / 27` and `(10 a + 16 b + r) / 27`.
+//!
+//! UVs: [`sqrt3_uv_step`], the corner channel's step of the linear UV rule of the
+//! [`face_varying`](crate::refine::face_varying) module docs, on the same numbering.
 
 use std::f64::consts::PI;
 

@@ -236,6 +236,33 @@ fn centroids_of_affine_uvs_are_the_images_of_the_centroids() {
     }
 }
 
+/// A closed mesh without seams (one `vt` per vertex): one value per vertex at every level
+/// (`sqrt3`: `UV' = UV + F`, as `V' = V + F`).
+#[test]
+fn a_closed_mesh_without_seams_has_a_value_per_vertex() {
+    for mut mesh in [shapes::icosahedron(), shapes::torus(1).expect("a torus")] {
+        let n = mesh.positions.len() as u32;
+        let coords = (0..n).map(|i| DVec2::new(f64::from(i), 0.5)).collect();
+        let corners: Vec<u32> = mesh.faces().flat_map(|f| f.to_vec()).collect();
+        mesh.set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
+            .expect("one vt per corner");
+        assert_eq!(stats::uv_counts(&mesh).expect("a layout").seam_edges, 0);
+        let half = HalfEdgeMesh::try_from(&mesh).expect("valid");
+        let layout = mesh.uv_layout().expect("a layout");
+        let r = Refinement::new(
+            &half,
+            Rule::Sqrt3,
+            4,
+            &SubdivideOptions::default().with_uvs(&layout),
+        )
+        .expect("refined");
+        for s in 0..=4 {
+            assert_eq!(r.n_uvs(s), r.n_vertices(s), "level {s}");
+        }
+        check(&mesh, 4).unwrap_or_else(|e| panic!("{e}"));
+    }
+}
+
 /// The shared triangle meshes with `vt`: the values written and the written layout are the
 /// counts at levels 1-4 (`sqrt3` or `sqrt3-boundary` as the mesh has a boundary).
 #[test]
