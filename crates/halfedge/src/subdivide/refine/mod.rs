@@ -212,12 +212,26 @@ impl Fast {
             None => None,
             Some(LevelTable::Dense(weights)) => Some(dense(weights)),
             Some(LevelTable::Overrides(base, weights)) => {
-                let base_bytes = Fast::base_bytes(base, algorithm, t);
+                // A refinement's tables are built and measured, the one-shot subdivision's
+                // (which keeps none) counted.
+                let tables = if tables {
+                    Some(Fast::base(base, algorithm, t, true, parallel)?)
+                } else {
+                    None
+                };
+                let base_bytes = match &tables {
+                    Some(b) => b.as_ref().map_or(0, |b| b.bytes()),
+                    None => Fast::base_bytes(base, algorithm, t),
+                };
+                debug_assert_eq!(base_bytes, Fast::base_bytes(base, algorithm, t));
                 if base_bytes + weights.bytes() <= creases.budget(level) {
-                    let base = Fast::base(base, algorithm, t, tables, parallel)?;
-                    debug_assert!(base.as_ref().map_or(true, |b| b.bytes() == base_bytes));
+                    let base = match tables {
+                        Some(b) => b,
+                        None => Fast::base(base, algorithm, t, false, parallel)?,
+                    };
                     Some(Fast::Creased { base, weights })
                 } else {
+                    drop(tables);
                     drop(weights);
                     match creases.level_table(level, t, parallel, |_, _| false)? {
                         Some(LevelTable::Dense(weights) | LevelTable::Overrides(_, weights)) => {

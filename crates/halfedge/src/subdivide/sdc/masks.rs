@@ -353,14 +353,11 @@ impl<'a> LevelBuilder<'a> {
         // A vertex with a sharp edge or a sharpness of its own (or on the boundary, whose
         // edges are infinitely sharp); the others are smooth, and so are their edges' children
         // at them, at this level and every later one.
-        let mut touched = vec![false; nv];
+        // Boundary vertices are touched through their boundary edges, infinitely sharp at
+        // every level.
+        let mut touched: Vec<bool> = sharp.vertices.iter().map(|&s| is_sharp(s)).collect();
         // Per vertex: its sharp edges (saturated).
         let mut sharp_edges = vec![0u8; nv];
-        for (v, &s) in sharp.vertices.iter().enumerate() {
-            if is_sharp(s) || t.is_boundary_vertex(v as u32) {
-                touched[v] = true;
-            }
-        }
         for (e, &s) in sharp.edges.iter().enumerate() {
             if is_sharp(s) {
                 let h = 2 * e as u32;
@@ -370,6 +367,7 @@ impl<'a> LevelBuilder<'a> {
                 }
             }
         }
+        debug_assert!((0..nv as u32).all(|v| touched[v as usize] || !t.is_boundary_vertex(v)));
         // The touched vertices whose mask is the rule's kernel all the same: a boundary vertex
         // whose only sharp edges are its two boundary edges (the crease rule along them at
         // both ends of the level, as the kernels' boundary rule), an interior vertex of one
