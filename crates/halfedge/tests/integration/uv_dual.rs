@@ -283,6 +283,19 @@ fn buffers_of_the_wrong_length_are_refused() {
     }
 }
 
+/// Level 0 is the layout itself: its values and its corners.
+#[test]
+fn level_zero_is_the_layout() {
+    let cube = cube_of_charts();
+    let layout = cube.uv_layout().expect("a layout");
+    for rule in DUAL {
+        let c = corners(&cube, rule, 0);
+        assert_eq!(c.uv_indices, layout.corners(), "{rule}");
+        let values: Vec<[f64; 2]> = layout.values().iter().map(|v| v.to_array()).collect();
+        assert_eq!(c.uvs, values, "{rule}");
+    }
+}
+
 /// The dual rules refuse holes, with UVs as without.
 #[test]
 fn holes_are_refused_with_uvs_too() {
