@@ -42,8 +42,15 @@ fn corner_step<'a>(
     n_values: usize,
     child: u32,
 ) -> Result<CornerStep<'a>> {
-    let _ = child;
     match rule {
+        // Step B at even steps on a mesh with a boundary, as the surface's refinement.
+        Rule::Sqrt3 => crate::subdivide::sqrt3::sqrt3_uv_step(
+            t,
+            values,
+            n_values,
+            child % 2 == 0 && !t.is_closed(),
+            child,
+        ),
         Rule::DooSabin => crate::subdivide::dual::doo_sabin_uv_step(t, values, n_values),
         Rule::MidEdge => crate::subdivide::dual::mid_edge_uv_step(t, values, n_values),
         other => Err(Error::UvsNotSupported {
