@@ -444,8 +444,10 @@ pub fn predicted_refinement_peak_bytes(
 /// Not counted: the layout's sibling values (a value used in several runs around a vertex is
 /// a vertex of the channel per run, a few per mesh) and the transient arrays of building the
 /// channel's base (a face list and a half-edge mesh of the layout, freed before its levels
-/// are built). Against the channel's heap and the caller's buffers it is 1.3 to 1.7 times
-/// what is measured (`tests/integration/uv_memory.rs`: at least it, at most twice). Measured
+/// are built). Against the channel's heap and the caller's buffers it is 1.5 to 2.6 times
+/// what is measured (`tests/integration/uv_memory.rs`: at least it, at most three times): it
+/// bounds the channel's crease tables by dense weight tables (a channel whose every edge is
+/// semi-sharp), where seams and corners alone keep the flattened tables and a few rows. Measured
 /// as a peak (`subcount subdivide --timings --threads 1`, debug build; more threads add
 /// glibc's per-thread arenas, a few MB either way), the UVs' share (the peak with UVs minus
 /// the peak with `--no-uv`): `spot_quadrangulated` at Catmull-Clark level 3, 36.3 MB on the

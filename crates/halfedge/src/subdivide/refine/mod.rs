@@ -77,10 +77,10 @@ pub(crate) use self::data::{Sparse, Support, Vector};
 pub(crate) use self::oneshot::{one_shot, OneShot};
 pub use self::stencil::{StencilSizes, StencilTable};
 
-use self::tables::{CcTables, LoopTables};
+use self::tables::{CcTables, LinearTables, LoopTables};
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
-use super::sdc::{Creases, WeightTable};
+use super::sdc::{Base, Creases, LevelTable, WeightTable};
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
 use super::trisplit::{Template, TriRule};
@@ -111,6 +111,7 @@ struct Level {
 
 /// A level as the evaluation reads it: borrowed from a [`Level`] the refinement keeps, or
 /// from the half-edge mesh of the level the one-shot subdivision holds.
+#[derive(Clone, Copy)]
 struct LevelRef<'a> {
     topology: Option<Topo<'a>>,
     step_b: Option<&'a StepB>,
@@ -130,8 +131,16 @@ enum Next {
 enum Fast {
     Loop(LoopTables),
     CatmullClark(CcTables),
-    /// A Loop or Catmull-Clark level under crease rules: sparse weights per child vertex.
-    Creased(WeightTable),
+    /// A face-varying channel's level under linear interpolation (`all`).
+    Linear(LinearTables),
+    /// A Loop or Catmull-Clark level under crease rules: sparse weights per child vertex,
+    /// of every child vertex (a dense table, `base` unused) or of the child vertices where the
+    /// crease rules differ from `base` (the rule's tables, or its half-edge kernels on the
+    /// level's topology when `None`), written over its values.
+    Creased {
+        base: Option<Box<Fast>>,
+        weights: WeightTable,
+    },
 }
 
 impl Fast {
@@ -139,9 +148,114 @@ impl Fast {
         match self {
             Fast::Loop(t) => t.bytes(),
             Fast::CatmullClark(t) => t.bytes(),
-            Fast::Creased(t) => t.bytes(),
+            Fast::Linear(t) => t.bytes(),
+            Fast::Creased { base, weights } => {
+                base.as_ref().map_or(0, |b| b.bytes()) + weights.bytes()
+            }
         }
     }
+
+    /// The flattened tables of `t` for `algorithm` (Loop or Catmull-Clark).
+    fn tables(algorithm: Algorithm, t: &Topo<'_>, parallel: bool) -> Result<Fast> {
+        Ok(match algorithm {
+            Algorithm::CatmullClark => Fast::CatmullClark(CcTables::new(t, parallel)?),
+            _ => Fast::Loop(LoopTables::new(t, parallel)?),
+        })
+    }
+
+    /// The tables computing the child vertices of `t` outside a crease table's rows: the
+    /// rule's (`None` with `tables` false: the half-edge kernels), or the linear ones.
+    fn base(
+        base: Base,
+        algorithm: Algorithm,
+        t: &Topo<'_>,
+        tables: bool,
+        parallel: bool,
+    ) -> Result<Option<Box<Fast>>> {
+        let cc = algorithm == Algorithm::CatmullClark;
+        Ok(match base {
+            Base::Linear => Some(Box::new(Fast::Linear(LinearTables::new(t, cc, parallel)?))),
+            Base::Rule if tables => Some(Box::new(Fast::tables(algorithm, t, parallel)?)),
+            Base::Rule => None,
+        })
+    }
+
+    /// The bytes of the tables a [`Refinement`] keeps under the rows of a sparse crease table
+    /// of `t` ([`Fast::base`] with tables).
+    fn base_bytes(base: Base, algorithm: Algorithm, t: &Topo<'_>) -> usize {
+        let cc = algorithm == Algorithm::CatmullClark;
+        match base {
+            Base::Linear => LinearTables::bytes_of(t, cc),
+            Base::Rule if cc => CcTables::bytes_of(t),
+            Base::Rule => LoopTables::bytes_of(t),
+        }
+    }
+
+    /// What refines level `level` (`t`) under `creases`: the rows where the crease rules differ
+    /// from the level's base over its tables (`tables`, a refinement's) or its half-edge kernels
+    /// (the one-shot subdivision's), when they are at most half the child vertices and hold,
+    /// with the tables a refinement keeps, no more than the level's budget (the bound of the
+    /// dense table); else the dense table. The level's sharpness is kept.
+    fn creased(
+        creases: &Creases,
+        level: usize,
+        t: &Topo<'_>,
+        algorithm: Algorithm,
+        tables: bool,
+        parallel: bool,
+    ) -> Result<Option<Fast>> {
+        let sparse = |rows: usize, children: usize| 2 * rows <= children;
+        let dense = |weights| Fast::Creased {
+            base: None,
+            weights,
+        };
+        Ok(match creases.level_table(level, t, parallel, sparse)? {
+            None => None,
+            Some(LevelTable::Dense(weights)) => Some(dense(weights)),
+            Some(LevelTable::Overrides(base, weights)) => {
+                // A refinement's tables are built and measured, the one-shot subdivision's
+                // (which keeps none) counted.
+                let tables = if tables {
+                    Some(Fast::base(base, algorithm, t, true, parallel)?)
+                } else {
+                    None
+                };
+                let base_bytes = match &tables {
+                    Some(b) => b.as_ref().map_or(0, |b| b.bytes()),
+                    None => Fast::base_bytes(base, algorithm, t),
+                };
+                debug_assert_eq!(base_bytes, Fast::base_bytes(base, algorithm, t));
+                if base_bytes + weights.bytes() <= creases.budget(level) {
+                    let base = match tables {
+                        Some(b) => b,
+                        None => Fast::base(base, algorithm, t, false, parallel)?,
+                    };
+                    Some(Fast::Creased { base, weights })
+                } else {
+                    drop(tables);
+                    drop(weights);
+                    match creases.level_table(level, t, parallel, |_, _| false)? {
+                        Some(LevelTable::Dense(weights) | LevelTable::Overrides(_, weights)) => {
+                            Some(dense(weights))
+                        }
+                        None => None,
+                    }
+                }
+            }
+        })
+    }
+}
+
+/// The budget of each level's tables under crease rules (`levels` of `plan` on a mesh with
+/// `counts`): the bound of its dense weight table, what
+/// [`Refinement::predicted_bytes_with_creases`] counts for it.
+fn crease_budgets(plan: &Plan, counts: &MeshCounts, levels: u32) -> Result<Vec<usize>> {
+    let mut budgets = Vec::with_capacity(levels.min(64) as usize);
+    for s in 0..levels {
+        let bound = crease_table_bytes(plan, counts, s)?.unwrap_or_default();
+        budgets.push(usize::try_from(bound).unwrap_or(usize::MAX));
+    }
+    Ok(budgets)
 }
 
 /// The faces of the last level, when they are kept as a list (rules whose last level is
@@ -172,11 +286,18 @@ struct Polygons {
 /// (`n_vertices(s)` entries for `s < levels`, two buffers in all) on every call; an
 /// [`Evaluator`] keeps them between calls.
 ///
-/// Under crease rules ([`sdc`](super::sdc)) each Loop or Catmull-Clark level keeps a sparse
-/// weight table instead of its flattened tables: 12 bytes per weight (Loop about 5 per child
-/// vertex, Catmull-Clark about 6 on quads, its face points
-/// expanded into their corners) and 4 per child vertex; [`Refinement::predicted_bytes`] does
-/// not count them, [`Refinement::predicted_bytes_with_creases`] bounds them.
+/// Under crease rules ([`sdc`](super::sdc)) each Loop or Catmull-Clark level keeps its
+/// flattened tables and a sparse weight table of the child vertices whose crease mask is not
+/// the rule's (the children of sharp vertices, of vertices on sharp edges other than plain
+/// boundary and dart vertices, of interior sharp edges, of the edges of triangles under
+/// Catmark's smooth-triangle rule): 12 bytes per weight and 8 per row; a level refined
+/// linearly (a face-varying channel under `all`) keeps only its edges' ends (8 bytes per
+/// edge) and, for Catmull-Clark, its face corners. A level where those rows are more than half
+/// the child vertices, or would exceed the bound below, keeps instead one dense weight table
+/// of every child vertex (12 bytes per weight, Loop about 5 per child vertex, Catmull-Clark
+/// about 6 on quads, its face points expanded into their corners, and 4 per child vertex).
+/// [`Refinement::predicted_bytes`] does not count the weight tables,
+/// [`Refinement::predicted_bytes_with_creases`] bounds every case by the dense tables.
 ///
 /// With UVs ([`SubdivideOptions::uvs`]) the refinement also keeps the UV layout's own
 /// refinement ([`face_varying`]): the bytes above for a mesh whose vertices are the layout's
@@ -385,7 +506,10 @@ impl Refinement {
         let plan = super::plan(rule, &counts)?;
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
-        let creases = creases()?;
+        let mut creases = creases()?;
+        if let Some(creases) = creases.as_mut() {
+            creases.set_budgets(crease_budgets(&plan, &counts, levels)?);
+        }
         let planned = plan_sizes(&plan, &counts, levels, !direct(plan.algorithm))?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
@@ -670,24 +794,19 @@ impl Refinement {
         };
         if level.fast.is_none() {
             if let (Some(c), Some(creases)) = (&level.topology, self.creases.as_mut()) {
-                let table = creases.weights(i, &c.topo(), parallel)?.ok_or_else(|| {
-                    Error::InvalidOutput {
-                        scheme: self.name.clone(),
-                        level: i as u32 + 1,
-                        what: "no sharpness for the level refined".into(),
-                    }
+                let fast = Fast::creased(creases, i, &c.topo(), algorithm, true, parallel)?;
+                let fast = fast.ok_or_else(|| Error::InvalidOutput {
+                    scheme: self.name.clone(),
+                    level: i as u32 + 1,
+                    what: "no sharpness for the level refined".into(),
                 })?;
-                level.fast = Some(Fast::Creased(table));
+                creases.release(i);
+                level.fast = Some(fast);
             }
         }
         if level.fast.is_none() {
             if let Some(c) = &level.topology {
-                level.fast = Some(match algorithm {
-                    Algorithm::CatmullClark => {
-                        Fast::CatmullClark(CcTables::new(&c.topo(), parallel)?)
-                    }
-                    _ => Fast::Loop(LoopTables::new(&c.topo(), parallel)?),
-                });
+                level.fast = Some(Fast::tables(algorithm, &c.topo(), parallel)?);
             }
         }
         if !keep {
@@ -988,10 +1107,13 @@ impl Refinement {
 
     /// An upper bound of the bytes [`Refinement::new`] keeps for `rule` (Loop or
     /// Catmull-Clark) at `levels` under crease rules ([`sdc`](super::sdc)): as
-    /// [`Refinement::predicted_bytes`], with each level's weight table bounded by its full
-    /// smooth rows (a vertex's distinct neighbours through its faces, an edge's two faces'
-    /// corners); within about 15 % on quad and triangle meshes. Other rules: as
-    /// [`Refinement::predicted_bytes`].
+    /// [`Refinement::predicted_bytes`], with each level's tables bounded by a dense weight
+    /// table of full smooth rows (a vertex's distinct neighbours through its faces, an edge's
+    /// two faces' corners); within about 15 % of a level whose every row is semi-sharp and
+    /// blended with its smooth mask, on quad and triangle meshes. A level whose rows mostly
+    /// keep the rule's masks (a few creases, a UV channel's seams) keeps the flattened tables
+    /// and its sharp rows ([Memory](Refinement#memory)), far below: about
+    /// [`Refinement::predicted_bytes`]. Other rules: as [`Refinement::predicted_bytes`].
     ///
     /// ```
     /// use halfedge::refine::Refinement;
@@ -1224,7 +1346,19 @@ impl Refinement {
         match before.fast {
             Some(Fast::Loop(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
             Some(Fast::CatmullClark(fast)) => return fast.fill(src, dst, parallel),
-            Some(Fast::Creased(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
+            Some(Fast::Linear(fast)) => return fast.points(src, &mut Slots::new(dst), parallel),
+            Some(Fast::Creased { weights, .. }) if weights.is_dense() => {
+                return weights.points(src, &mut Slots::new(dst), parallel)
+            }
+            Some(Fast::Creased { base, weights }) => {
+                let base = LevelRef {
+                    fast: base.as_deref(),
+                    ..*before
+                };
+                self.fill_from(&base, src, dst);
+                weights.apply(src, dst, parallel);
+                return;
+            }
             None => {}
         }
         let Some(t) = before.topology else {
@@ -1293,9 +1427,23 @@ impl Refinement {
                 fast.fill(src, &mut out, parallel);
                 return Ok(out);
             }
-            Some(Fast::Creased(fast)) => {
+            Some(Fast::Linear(fast)) => {
                 let mut out = out()?;
                 fast.points(src, &mut out, parallel);
+                return Ok(out);
+            }
+            Some(Fast::Creased { weights, .. }) if weights.is_dense() => {
+                let mut out = out()?;
+                weights.points(src, &mut out, parallel);
+                return Ok(out);
+            }
+            Some(Fast::Creased { base, weights }) => {
+                let base = LevelRef {
+                    fast: base.as_deref(),
+                    ..*before
+                };
+                let mut out = self.values_after(&base, src, n, grow, what)?;
+                weights.apply(src, &mut out, parallel);
                 return Ok(out);
             }
             None => {}

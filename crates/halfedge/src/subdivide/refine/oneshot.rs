@@ -16,8 +16,9 @@
 //!
 //! Under crease rules ([`SubdivideOptions::sharpness`], [`SubdivideOptions::subdivision`]:
 //! the same [`Creases`] that [`Refinement::new`] builds, or none when they change nothing)
-//! each level's positions come from the crease weight table of the level refined
-//! ([`Creases::table`], the table [`Refinement::new`] keeps for it), built just before and
+//! each level's positions come from the rule's half-edge kernels and the crease weight rows of
+//! the level refined written over them (or a dense weight table of every child vertex: the
+//! choice [`Refinement::new`] makes for that level, `Fast::creased`), built just before and
 //! dropped before the next level's topology; the child's sharpness is then recorded from
 //! the two levels ([`Creases::push_child`]) and the parent's dropped, so only the sharpness of
 //! the last two levels is alive. In `f64` the positions are those of
@@ -26,7 +27,7 @@
 use glam::DVec3;
 use schemes::MeshCounts;
 
-use super::{direct, plan_sizes, Fast, LevelRef, Next, Refinement};
+use super::{crease_budgets, direct, plan_sizes, Fast, LevelRef, Next, Refinement};
 use crate::subdivide::build::Sizes;
 use crate::subdivide::sdc::Creases;
 use crate::subdivide::topo::Topo;
@@ -59,7 +60,11 @@ pub(crate) fn one_shot(
 ) -> Result<OneShot> {
     plan.scheme.initial_state(counts)?;
     crate::subdivide::check_mesh(plan, mesh)?;
-    let creases = Creases::new(mesh, plan.rule, opts.sharpness, &opts.subdivision)?;
+    let mut creases = Creases::new(mesh, plan.rule, opts.sharpness, &opts.subdivision)?;
+    if let Some(creases) = creases.as_mut() {
+        // The choices of `Refinement::new`, whose tables are bounded per level.
+        creases.set_budgets(crease_budgets(plan, counts, levels)?);
+    }
     let grow = !opts.preallocate;
     let faces = faces && !grow && direct(plan.algorithm);
     let planned = plan_sizes(plan, counts, levels, !faces)?;
@@ -186,14 +191,15 @@ impl Refinement {
         }
     }
 
-    /// The crease weight table refining level `s - 1` (`t`) under crease rules, as
-    /// [`Refinement::new`] builds it for that level; `None` without crease rules.
+    /// What refines level `s - 1` (`t`) under crease rules, as [`Refinement::new`] builds it
+    /// for that level but with the half-edge kernels of the rule in place of its flattened
+    /// tables; `None` without crease rules.
     fn crease_table(&self, s: u32, t: &Topo<'_>, parallel: bool) -> Result<Option<Fast>> {
         let Some(creases) = &self.creases else {
             return Ok(None);
         };
-        match creases.table(s as usize - 1, t, parallel)? {
-            Some(table) => Ok(Some(Fast::Creased(table))),
+        match Fast::creased(creases, s as usize - 1, t, self.algorithm, false, parallel)? {
+            Some(fast) => Ok(Some(fast)),
             None => Err(crate::Error::InvalidOutput {
                 scheme: self.name.clone(),
                 level: s,

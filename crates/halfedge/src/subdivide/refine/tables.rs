@@ -84,6 +84,11 @@ impl LoopTables {
             + self.boundary.len()
     }
 
+    /// The bytes of the tables of `t`, before they are built.
+    pub(super) fn bytes_of(t: &Topo<'_>) -> usize {
+        16 * t.ne() + 4 * (t.nv() + 1 + ring_entries(t)) + t.nv()
+    }
+
     /// The points of the next Loop level from `src`, appended to `out`: the moved old
     /// vertices, then the edge points.
     pub(super) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
@@ -198,6 +203,14 @@ impl CcTables {
             + self.boundary.len()
     }
 
+    /// The bytes of the tables of `t`, before they are built.
+    pub(super) fn bytes_of(t: &Topo<'_>) -> usize {
+        16 * t.ne()
+            + 4 * (t.nv() + 1 + t.nf() + 1 + super::corners_of(t))
+            + 8 * ring_entries(t)
+            + t.nv()
+    }
+
     /// The points of the next Catmull-Clark level from `src` into `dst` (exactly
     /// `V + E + F` values): the face points first, at the end, then the moved vertices and
     /// the edge points, as `catmull_clark::cc_fill`.
@@ -248,6 +261,105 @@ impl CcTables {
             }
         });
     }
+}
+
+/// A level refined linearly (a face-varying channel under `all`): vertices stay, edge points
+/// are midpoints and, for Catmull-Clark, face points the centroids of their corners.
+#[derive(Debug)]
+pub(super) struct LinearTables {
+    /// The number of vertices.
+    vertices: usize,
+    /// Per edge: its ends.
+    edges: Vec<[u32; 2]>,
+    /// Start of each face's corners in `corners` (`F + 1` entries; empty without face points).
+    face_offsets: Vec<u32>,
+    /// The vertices of each face, ascending (the order of a crease weight table's row).
+    corners: Vec<u32>,
+}
+
+impl LinearTables {
+    /// The tables of the level `t`, with face points when `faces` (Catmull-Clark).
+    pub(super) fn new(t: &Topo<'_>, faces: bool, parallel: bool) -> Result<LinearTables> {
+        let t = *t;
+        let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+        let edges = par::collect(Some(ne), ne, parallel, "linear edge table", |e| {
+            let h = 2 * e as u32;
+            [t.source(h), t.target(h)]
+        })?;
+        let (corners, face_offsets) = if faces {
+            let face_of = |range: std::ops::Range<usize>| {
+                let mut corners = Vec::with_capacity(4 * range.len());
+                let mut ends = Vec::with_capacity(range.len());
+                for f in range {
+                    let start = corners.len();
+                    t.for_face(f as u32, |h| corners.push(t.source(h)));
+                    corners[start..].sort_unstable();
+                    ends.push(corners.len() as u32);
+                }
+                (corners, ends)
+            };
+            concat(nf, parallel, face_of, "face corners")?
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        Ok(LinearTables {
+            vertices: nv,
+            edges,
+            face_offsets,
+            corners,
+        })
+    }
+
+    /// Bytes held.
+    pub(super) fn bytes(&self) -> usize {
+        8 * self.edges.len() + 4 * (self.face_offsets.len() + self.corners.len())
+    }
+
+    /// The bytes of the tables of `t` (with face points when `faces`), before they are built.
+    pub(super) fn bytes_of(t: &Topo<'_>, faces: bool) -> usize {
+        8 * t.ne()
+            + if faces {
+                4 * (t.nf() + 1 + super::corners_of(t))
+            } else {
+                0
+            }
+    }
+
+    /// The points of the next level from `src`, appended to `out`: the vertices, the edge
+    /// points, then the face points; each summed as a crease weight table sums its row.
+    pub(super) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
+        let pos = |v: u32| src[v as usize].clone();
+        out.append(self.vertices, parallel, |v| src[v].clone());
+        out.append(self.edges.len(), parallel, |e| {
+            let [a, b] = self.edges[e];
+            pos(a).scale(0.5).add(pos(b).scale(0.5))
+        });
+        let faces = self.face_offsets.len().saturating_sub(1);
+        out.append(faces, parallel, |f| {
+            let (a, b) = (
+                self.face_offsets[f] as usize,
+                self.face_offsets[f + 1] as usize,
+            );
+            let each = 1.0 / (b - a) as f64;
+            let mut sum = V::zero();
+            for &v in &self.corners[a..b] {
+                sum = sum.add(pos(v).scale(each));
+            }
+            sum
+        });
+    }
+}
+
+/// The entries of the vertex rings of `t`: a boundary vertex's two neighbours, an interior
+/// vertex's valence.
+fn ring_entries(t: &Topo<'_>) -> usize {
+    let mut entries = 2 * t.ne();
+    for v in 0..t.nv() as u32 {
+        if t.is_boundary_vertex(v) {
+            entries = entries + 2 - t.valence(v);
+        }
+    }
+    entries
 }
 
 /// The lists `part(range)` of `n` elements (each with the running end of every element's

@@ -1,8 +1,15 @@
 //! One level of Loop or Catmull-Clark with creases, as OpenSubdiv's `Sdc::Scheme` computes
 //! it (`ComputeEdgeVertexMask`, `ComputeVertexVertexMask`, the schemes' smooth, crease and
 //! corner masks, Catmark's smooth-triangle edge weights), flattened into a sparse table:
-//! every child vertex as weights of the parent's vertices. Face points inside the masks of
+//! child vertices as weights of the parent's vertices. Face points inside the masks of
 //! Catmull-Clark are expanded into their corners, so a row reads the parent level only.
+//!
+//! The table holds every child vertex (dense), or only those whose mask is not what the
+//! level's [`Base`] computes (the rows written over its values: the rule's own kernels, which
+//! give the smooth and dart masks inside and the crease rule along a boundary whose edges are
+//! the only sharp ones, or linear interpolation). A vertex with no sharp edge and no
+//! sharpness is smooth at every later level too (its children's edges are smooth), so only
+//! the vertices on sharp edges (and sharp or boundary ones) are looked at.
 //!
 //! The child vertices are numbered as the half-edge builders number them: the children of
 //! the parent's vertices (same index), then those of its edges (`nv + e`), then, under
@@ -122,21 +129,29 @@ impl LevelSharpness {
     }
 }
 
-/// A level's child vertices as sparse weights of the parent's vertices (rows in child order).
+/// A level's child vertices as sparse weights of the parent's vertices: every child vertex
+/// (a dense table, rows in child order), or only the child vertices whose crease mask is not
+/// the one of the level's [`Base`] (the rows overriding it, in ascending child order).
 #[derive(Debug, Default)]
 pub(crate) struct WeightTable {
+    /// The child vertex of each row, ascending; `None` for a dense table (row `r` is child `r`).
+    rows: Option<Vec<u32>>,
     offsets: Vec<u32>,
     index: Vec<u32>,
     weight: Vec<f64>,
 }
 
+/// Rows per task when the overriding rows are evaluated in parallel.
+const APPLY_CHUNK: usize = 1 << 12;
+
 impl WeightTable {
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        4 * (self.offsets.len() + self.index.len()) + 8 * self.weight.len()
+        4 * (self.offsets.len() + self.index.len() + self.rows.as_ref().map_or(0, Vec::len))
+            + 8 * self.weight.len()
     }
 
-    /// The number of child vertices.
+    /// The number of rows.
     pub(crate) fn rows(&self) -> usize {
         self.offsets.len().saturating_sub(1)
     }
@@ -153,6 +168,7 @@ impl WeightTable {
         let mut offsets = crate::subdivide::alloc::with_capacity(rows + 1, what)?;
         offsets.push(0);
         Ok(WeightTable {
+            rows: None,
             offsets,
             index: crate::subdivide::alloc::with_capacity(entries, what)?,
             weight: crate::subdivide::alloc::with_capacity(entries, what)?,
@@ -175,17 +191,63 @@ impl WeightTable {
         Ok(())
     }
 
-    /// The child vertices from the parent's data `src`, appended to `out`.
-    pub(crate) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
-        out.append(self.rows(), parallel, |r| {
-            let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
-            let mut sum = V::zero();
-            for (&i, &w) in self.index[a..b].iter().zip(&self.weight[a..b]) {
-                sum = sum.add(src[i as usize].clone().scale(w));
-            }
-            sum
-        });
+    /// Whether the table has a row for every child vertex.
+    pub(crate) fn is_dense(&self) -> bool {
+        self.rows.is_none()
     }
+
+    /// Row `r` from the parent's data `src`.
+    #[inline]
+    fn row<V: Vector>(&self, r: usize, src: &[V]) -> V {
+        let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
+        let mut sum = V::zero();
+        for (&i, &w) in self.index[a..b].iter().zip(&self.weight[a..b]) {
+            sum = sum.add(src[i as usize].clone().scale(w));
+        }
+        sum
+    }
+
+    /// The child vertices of a dense table from the parent's data `src`, appended to `out`.
+    pub(crate) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
+        out.append(self.rows(), parallel, |r| self.row(r, src));
+    }
+
+    /// Overwrites the child vertices of the rows of a sparse table in `dst` (the whole child
+    /// level, its other vertices computed by the base rule) from the parent's data `src`.
+    pub(crate) fn apply<V: Vector>(&self, src: &[V], dst: &mut [V], parallel: bool) {
+        let Some(rows) = &self.rows else {
+            return;
+        };
+        if parallel && rows.len() >= 2 * APPLY_CHUNK {
+            use rayon::prelude::*;
+            let values: Vec<V> = (0..rows.len())
+                .into_par_iter()
+                .with_min_len(APPLY_CHUNK)
+                .map(|k| self.row(k, src))
+                .collect();
+            for (&r, v) in rows.iter().zip(values) {
+                if let Some(d) = dst.get_mut(r as usize) {
+                    *d = v;
+                }
+            }
+        } else {
+            for (k, &r) in rows.iter().enumerate() {
+                if let Some(d) = dst.get_mut(r as usize) {
+                    *d = self.row(k, src);
+                }
+            }
+        }
+    }
+}
+
+/// What computes the child vertices a sparse [`WeightTable`] has no row for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Base {
+    /// The rule's own kernels (smooth Loop or Catmull-Clark, the boundary's crease rule).
+    Rule,
+    /// Linear interpolation: vertices stay, edge points are midpoints, face points centroids
+    /// (a face-varying channel under `all`).
+    Linear,
 }
 
 /// Appends `row` to `index` and `weight`, equal vertices merged (sorted by vertex), and
@@ -307,6 +369,8 @@ pub(crate) struct LevelBuilder<'a> {
     smooth_triangles: bool,
     /// Per half-edge `h`: the sharpness of the child of edge `h >> 1` at `source(h)`.
     child_at: Vec<f32>,
+    /// Per vertex: whether its child's crease mask differs from the rule's kernel.
+    differs: Vec<bool>,
     /// A face-varying channel's linear interpolation.
     linear: Linear,
 }
@@ -320,10 +384,46 @@ impl<'a> LevelBuilder<'a> {
         linear: Linear,
     ) -> LevelBuilder<'a> {
         let method = options.crease_method;
-        let mut child_at = vec![0.0f32; 2 * t.ne()];
+        let (nv, ne) = (t.nv(), t.ne());
+        // A vertex with a sharp edge or a sharpness of its own (or on the boundary, whose
+        // edges are infinitely sharp); the others are smooth, and so are their edges' children
+        // at them, at this level and every later one.
+        // Boundary vertices are touched through their boundary edges, infinitely sharp at
+        // every level.
+        let mut touched: Vec<bool> = sharp.vertices.iter().map(|&s| is_sharp(s)).collect();
+        // Per vertex: its sharp edges (saturated).
+        let mut sharp_edges = vec![0u8; nv];
+        for (e, &s) in sharp.edges.iter().enumerate() {
+            if is_sharp(s) {
+                let h = 2 * e as u32;
+                for v in [t.source(h), t.target(h)] {
+                    touched[v as usize] = true;
+                    sharp_edges[v as usize] = sharp_edges[v as usize].saturating_add(1);
+                }
+            }
+        }
+        debug_assert!((0..nv as u32).all(|v| touched[v as usize] || !t.is_boundary_vertex(v)));
+        // The touched vertices whose mask is the rule's kernel all the same: a boundary vertex
+        // whose only sharp edges are its two boundary edges (the crease rule along them at
+        // both ends of the level, as the kernels' boundary rule), an interior vertex of one
+        // sharp edge (a dart at both ends: the smooth mask); neither sharp itself nor linear.
+        let boundaries = linear == Linear::Boundaries;
+        let mut differs = touched.clone();
+        for (v, d) in differs.iter_mut().enumerate() {
+            if *d && !is_sharp(sharp.vertices[v]) {
+                let boundary = t.is_boundary_vertex(v as u32);
+                let plain = if boundary {
+                    !boundaries && sharp_edges[v] == 2
+                } else {
+                    sharp_edges[v] == 1
+                };
+                *d = !plain;
+            }
+        }
+        let mut child_at = vec![0.0f32; 2 * ne];
         let mut ring = Vec::new();
         let mut edge_sharpness = Vec::new();
-        for v in 0..t.nv() as u32 {
+        for v in (0..nv as u32).filter(|&v| touched[v as usize]) {
             ccw_ring(&t, v, sharp.first[v as usize], &mut ring);
             edge_sharpness.clear();
             edge_sharpness.extend(ring.iter().map(|&h| sharp.edges[(h >> 1) as usize]));
@@ -339,25 +439,80 @@ impl<'a> LevelBuilder<'a> {
             smooth_triangles: scheme == Scheme::CatmullClark
                 && options.triangle_rule == TriangleRule::Smooth,
             child_at,
+            differs,
             linear,
         }
     }
 
-    /// The weight table of the child vertices, built in chunks of rows (in parallel when
+    /// The number of child vertices.
+    pub(crate) fn n_rows(&self) -> usize {
+        let t = &self.t;
+        match self.scheme {
+            Scheme::Loop => t.nv() + t.ne(),
+            Scheme::CatmullClark => t.nv() + t.ne() + t.nf(),
+        }
+    }
+
+    /// The weight table of every child vertex, built in chunks of rows (in parallel when
     /// `parallel`).
     pub(crate) fn weights(&self, parallel: bool) -> Result<WeightTable> {
+        self.build(None, parallel)
+    }
+
+    /// What computes the child vertices other than those of [`LevelBuilder::overrides`].
+    pub(crate) fn base(&self) -> Base {
+        if self.linear == Linear::All {
+            Base::Linear
+        } else {
+            Base::Rule
+        }
+    }
+
+    /// The child vertices whose crease mask is not the [`LevelBuilder::base`] one, ascending:
+    /// under the rule's kernels, the children of the sharp vertices, of the vertices on sharp
+    /// edges (but boundary vertices on their two boundary edges alone and darts), of every
+    /// boundary vertex under linear boundaries, of the interior edges with a sharpness and,
+    /// under Catmark's smooth-triangle rule, of the interior edges of a triangle; none under
+    /// linear interpolation (every vertex, edge and face point of `all` is linear).
+    pub(crate) fn override_rows(&self) -> Vec<u32> {
+        if self.base() == Base::Linear {
+            return Vec::new();
+        }
         let t = &self.t;
-        let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
-        let rows = match self.scheme {
-            Scheme::Loop => nv + ne,
-            Scheme::CatmullClark => nv + ne + nf,
-        };
+        let nv = t.nv();
+        let tri = |f: u32| f != INVALID && t.face_degree(f) == 3;
+        let vertices = (0..nv as u32).filter(|&v| self.differs[v as usize]);
+        let edges = (0..t.ne() as u32).filter(|&e| {
+            let h = 2 * e;
+            if t.is_boundary(h) || t.is_boundary(h ^ 1) {
+                return false;
+            }
+            is_sharp(self.sharp.edges[e as usize])
+                || (self.smooth_triangles && (tri(t.face(h)) || tri(t.face(h ^ 1))))
+        });
+        // Below the child count, which fits u32.
+        vertices.chain(edges.map(|e| nv as u32 + e)).collect()
+    }
+
+    /// The weight table of the child vertices `rows` only ([`LevelBuilder::override_rows`]).
+    pub(crate) fn overrides(&self, rows: Vec<u32>, parallel: bool) -> Result<WeightTable> {
+        self.build(Some(rows), parallel)
+    }
+
+    /// The weight table of the child vertices `rows` (all of them when `None`), built in
+    /// chunks of rows (in parallel when `parallel`).
+    fn build(&self, rows: Option<Vec<u32>>, parallel: bool) -> Result<WeightTable> {
+        let t = &self.t;
+        let (nv, ne) = (t.nv(), t.ne());
+        let n = rows.as_ref().map_or_else(|| self.n_rows(), Vec::len);
+        let child = |k: usize| rows.as_ref().map_or(k, |r| r[k] as usize);
         let part = |range: std::ops::Range<usize>| {
             let mut scratch = Scratch::default();
             let mut index = Vec::with_capacity(8 * range.len());
             let mut weight = Vec::with_capacity(8 * range.len());
             let mut ends = Vec::with_capacity(range.len());
-            for r in range {
+            for k in range {
+                let r = child(k);
                 let mut row = std::mem::take(&mut scratch.row);
                 if r < nv {
                     self.vertex_row(r as u32, &mut scratch, &mut row);
@@ -372,14 +527,14 @@ impl<'a> LevelBuilder<'a> {
             }
             (index, weight, ends)
         };
-        let chunks: Vec<(Vec<u32>, Vec<f64>, Vec<usize>)> = if parallel && rows >= 2 * ROW_CHUNK {
+        let chunks: Vec<(Vec<u32>, Vec<f64>, Vec<usize>)> = if parallel && n >= 2 * ROW_CHUNK {
             use rayon::prelude::*;
-            (0..rows.div_ceil(ROW_CHUNK))
+            (0..n.div_ceil(ROW_CHUNK))
                 .into_par_iter()
-                .map(|c| part(c * ROW_CHUNK..((c + 1) * ROW_CHUNK).min(rows)))
+                .map(|c| part(c * ROW_CHUNK..((c + 1) * ROW_CHUNK).min(n)))
                 .collect()
         } else {
-            vec![part(0..rows)]
+            vec![part(0..n)]
         };
         let total: usize = chunks.iter().map(|(i, _, _)| i.len()).sum();
         u32::try_from(total).map_err(|_| Error::IndexOverflow {
@@ -388,7 +543,8 @@ impl<'a> LevelBuilder<'a> {
         })?;
         let what = "a crease weight table";
         let mut table = WeightTable {
-            offsets: crate::subdivide::alloc::with_capacity(rows + 1, what)?,
+            rows: None,
+            offsets: crate::subdivide::alloc::with_capacity(n + 1, what)?,
             index: crate::subdivide::alloc::with_capacity(total, what)?,
             weight: crate::subdivide::alloc::with_capacity(total, what)?,
         };
@@ -402,6 +558,7 @@ impl<'a> LevelBuilder<'a> {
             table.index.extend_from_slice(&index);
             table.weight.extend_from_slice(&weight);
         }
+        table.rows = rows;
         Ok(table)
     }
 

@@ -77,7 +77,7 @@ use crate::subdivide::topo::Topo;
 use crate::tags::{BoundaryInterpolation, SubdivisionOptions, Tags, TriangleRule};
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result, Rule};
 
-pub(crate) use self::masks::{boundary_first, ccw_ring, WeightTable};
+pub(crate) use self::masks::{boundary_first, ccw_ring, Base, WeightTable};
 use self::masks::{LevelBuilder, LevelSharpness, Scheme};
 
 #[cfg(doc)]
@@ -315,6 +315,16 @@ pub(crate) enum Linear {
     All,
 }
 
+/// How a level under crease rules is refined.
+#[derive(Debug)]
+pub(crate) enum LevelTable {
+    /// Every child vertex as weights of the parent's vertices.
+    Dense(WeightTable),
+    /// The base rule, then the rows of the table (the child vertices where the crease rules
+    /// differ from it) written over its values.
+    Overrides(Base, WeightTable),
+}
+
 /// The crease rules of a refinement: the sharpness of the levels still to be flattened.
 #[derive(Debug)]
 pub(crate) struct Creases {
@@ -323,6 +333,8 @@ pub(crate) struct Creases {
     linear: Linear,
     /// Per level: its sharpness, until its weight table is built.
     levels: Vec<Option<LevelSharpness>>,
+    /// Per level: the bytes a refinement may keep for it ([`Creases::set_budgets`]).
+    budgets: Vec<usize>,
 }
 
 impl Creases {
@@ -389,6 +401,7 @@ impl Creases {
             options: *options,
             linear: Linear::Nothing,
             levels: vec![Some(base)],
+            budgets: Vec::new(),
         }))
     }
 
@@ -433,6 +446,7 @@ impl Creases {
             options,
             linear,
             levels: vec![Some(base)],
+            budgets: Vec::new(),
         }))
     }
 
@@ -452,34 +466,38 @@ impl Creases {
         self.levels[level + 1] = Some(next);
     }
 
-    /// The weight table that refines level `level` (`t`) into the next one; the level's
-    /// sharpness is dropped (the next level's was recorded before).
-    pub(crate) fn weights(
-        &mut self,
-        level: usize,
-        t: &Topo<'_>,
-        parallel: bool,
-    ) -> Result<Option<WeightTable>> {
-        let table = self.table(level, t, parallel)?;
-        self.release(level);
-        Ok(table)
+    /// Sets the bytes a refinement may keep for each level's tables (entry `s`: level `s`,
+    /// the bound of [`table_bytes_bound`]); a level without one has no limit.
+    pub(crate) fn set_budgets(&mut self, budgets: Vec<usize>) {
+        self.budgets = budgets;
     }
 
-    /// The weight table that refines level `level` (`t`) into the next one, the level's
-    /// sharpness kept (the one-shot subdivision evaluates a level before it builds the next
-    /// one, whose sharpness [`Creases::push_child`] reads off this one's).
-    pub(crate) fn table(
+    /// The bytes a refinement may keep for level `level`'s tables.
+    pub(crate) fn budget(&self, level: usize) -> usize {
+        self.budgets.get(level).copied().unwrap_or(usize::MAX)
+    }
+
+    /// What refines level `level` (`t`) into the next one, the level's sharpness kept: the rows
+    /// where the crease rules do not give what the level's [`Base`] gives, when
+    /// `sparse(rows, children)` accepts their number, else every child vertex's row; `None`
+    /// for a level without sharpness.
+    pub(crate) fn level_table(
         &self,
         level: usize,
         t: &Topo<'_>,
         parallel: bool,
-    ) -> Result<Option<WeightTable>> {
+        sparse: impl FnOnce(usize, usize) -> bool,
+    ) -> Result<Option<LevelTable>> {
         let Some(Some(sharp)) = self.levels.get(level) else {
             return Ok(None);
         };
-        LevelBuilder::new(*t, sharp, self.scheme, &self.options, self.linear)
-            .weights(parallel)
-            .map(Some)
+        let builder = LevelBuilder::new(*t, sharp, self.scheme, &self.options, self.linear);
+        let rows = builder.override_rows();
+        Ok(Some(if sparse(rows.len(), builder.n_rows()) {
+            LevelTable::Overrides(builder.base(), builder.overrides(rows, parallel)?)
+        } else {
+            LevelTable::Dense(builder.weights(parallel)?)
+        }))
     }
 
     /// Drops the sharpness of level `level` (its table is built, its child's recorded).
