@@ -356,7 +356,17 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
          layout of the written faces (their corners' values) counts the written UV values \
          exactly, as their `MeshCounts` count `V`, `E`, `F` (`HoleSet::written_uv_counts`); \
          its split values are the siblings of the whole mesh (holes are refined too) that \
-         written faces use.\n\n",
+         written faces use.\n\n\
+         **The dual rules propagate corners.** Doo-Sabin's and mid-edge's new faces straddle \
+         old edges and vertices, so the layout does not refine as a mesh: the values are \
+         propagated face corner by face corner on the surface's own refinement, each new value \
+         an affine combination of one face's values (`halfedge::refine::face_varying`, the \
+         corner channel), and their number is the surface's vertices plus what the seams add. \
+         With `S` the seam edges (`S0 = UE0 - E0`, the layout's `seam_edges`), the surface's \
+         `E = UE - S` and `BE = UBE - 2 S`, the state is `(UV, UE, UBE, S)`; it holds from \
+         level 1 on, level 0 being the used `vt`. A composition chaining a dual rule with a \
+         rule of the other kind is not counted (neither state gives the other); Doo-Sabin and \
+         mid-edge chain with each other. Holes are refused by both rules.\n\n",
     );
     let mut not_counted = Vec::new();
     for rule in schemes::Rule::ALL {
@@ -366,9 +376,9 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
     }
     let _ = writeln!(
         out,
-        "**Not counted yet:** {} (and their boundary variants): their UV geometry is still to \
+        "**Not counted yet:** {} (and its boundary variant): its UV geometry is still to \
          be designed, so `schemes::uv::uv_scheme` answers `NotCounted` and the commands print \
-         no `UV` column for them.\n",
+         no `UV` column for it.\n",
         not_counted.join(", ")
     );
     for (rule, title, derivation) in [
@@ -394,6 +404,30 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
              `UV' = UV + UE + F`; each layout edge splits in two and a face of degree `n` adds \
              `n` interior edges: `UE' = 2 UE + H`, `UBE' = 2 UBE`; it becomes `n` quads: \
              `F' = H`, `H' = 4 H`.",
+        ),
+        (
+            Rule::DooSabin,
+            "Doo-Sabin (`doo-sabin`, `doo-sabin-boundary`)",
+            "A value per new vertex (a face corner's Doo-Sabin point in its face's chart, a \
+             boundary Chaikin point in the chart of its edge's face), `V' = 2E + BE`, and two \
+             per seam edge (its edge face takes the chart of one face, whose Chaikin points \
+             replace the other face's two corners): `UV' = 2E + BE + 2S`. Each seam's edge \
+             face disagrees with the other face's shrunken face and with the vertex faces at \
+             its two ends: `S' = 3S`; `E' = 4E + BE`, `BE' = 2BE`. In the layout's terms \
+             `UV' = 2 UE + UBE - 2 S`, `UE' = 4 UE + UBE - 3 S`, `UBE' = 2 UBE + 2 S`, so \
+             `UV(s) = V(s) + 2 * 3^(s-1) * S0`. Vertex faces at a vertex where a seam passes \
+             take the corners' own values and span the charts meeting there.",
+        ),
+        (
+            Rule::MidEdge,
+            "Mid-edge (`mid-edge`, `mid-edge-boundary`)",
+            "A value per (edge, side), the midpoint in that face's chart: one per edge that is \
+             not a seam, two per seam (`UE`), and with boundary one per kept boundary vertex \
+             (its value kept): `UV' = E + S + BE`. The vertex face at `v` takes each edge's \
+             value on the side of the half-edge leaving `v`, so the new edge between a face \
+             face and a vertex face is a seam exactly when the old edge is: `S' = 2 S`; \
+             `E' = 2E + BE`, `BE' = 2BE`. In the layout's terms `UV' = UE + UBE - 2 S`, \
+             `UE' = 2 UE + UBE - 2 S`, `UBE' = 2 UBE`.",
         ),
     ] {
         let scheme = uv_scheme(rule)?;
@@ -492,6 +526,32 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
             "| {s} | {} | {} |",
             cc.values_at(&uv, s)?,
             surface.counts_at(&mesh, s)?.vertices
+        );
+    }
+    out.push('\n');
+    // The same cube under the dual rules: closed, 4 seam edges.
+    let _ = writeln!(
+        out,
+        "The same cube under the dual rules ({} seam edges):\n",
+        uv.seam_edges
+    );
+    out.push_str(
+        "| s | UV (Doo-Sabin) | V (Doo-Sabin) | UV (mid-edge) | V (mid-edge) |\n\
+         |---|---:|---:|---:|---:|\n",
+    );
+    let (ds, me) = (uv_scheme(Rule::DooSabin)?, uv_scheme(Rule::MidEdge)?);
+    let (ds_surface, me_surface) = (
+        schemes::builtin("doo-sabin")?,
+        schemes::builtin("mid-edge")?,
+    );
+    for s in 0..=TABLE_LEVELS {
+        let _ = writeln!(
+            out,
+            "| {s} | {} | {} | {} | {} |",
+            ds.values_at(&uv, s)?,
+            ds_surface.counts_at(&mesh, s)?.vertices,
+            me.values_at(&uv, s)?,
+            me_surface.counts_at(&mesh, s)?.vertices
         );
     }
     out.push('\n');

@@ -624,8 +624,8 @@ pub enum Error {
         /// Vertices of the mesh.
         mesh_vertices: usize,
     },
-    /// UVs asked of a rule that does not refine them yet (√3, Doo-Sabin, mid-edge).
-    #[error("UVs are not refined under {rule} (Loop, Catmull-Clark and the triangle splits refine them)")]
+    /// UVs asked of a rule that does not refine them yet (√3).
+    #[error("UVs are not refined under {rule} (Loop, Catmull-Clark, the triangle splits, Doo-Sabin and mid-edge refine them)")]
     UvsNotSupported {
         /// The rule.
         rule: String,

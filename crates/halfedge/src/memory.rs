@@ -427,6 +427,18 @@ pub fn predicted_refinement_peak_bytes(
 /// - with `holes`, the written corners' UV indices and the channel's last face list read to
 ///   find them (4 bytes per corner, twice, and per face).
 ///
+/// Doo-Sabin and mid-edge carry UVs by the corner channel on the surface's own levels
+/// instead, which the layout's statistics size only approximately (they do not separate
+/// seams from the surface's boundary): the surface refinement the one-shot path builds for
+/// it (bounded by the layout's), each level's weight table (4 bytes per value, 12 per
+/// weight; values the larger of the two extreme layouts, no seam or every layout boundary
+/// edge a seam side; 2 weights per value under mid-edge, the largest base face degree, at
+/// least 4, under Doo-Sabin), 8 bytes per corner of the last level (its values and the
+/// caller's index buffer) and 4 per corner of the level before (its values while the last
+/// is built), and the evaluation buffers: an estimate, not a bound (on grids cut into four
+/// charts, 1.6 to 2.6 times what the channel and the caller's buffers hold,
+/// `tests/integration/uv_memory.rs`).
+///
 /// The last level's corners are `d` per face for the rules that write `d`-gons
 /// ([`direct_face_degree`](crate::subdivide::direct_face_degree)), else bounded by `2E`.
 /// Not counted: the layout's sibling values (a value used in several runs around a vertex is
@@ -459,9 +471,9 @@ pub fn predicted_refinement_peak_bytes(
 ///
 /// # Errors
 ///
-/// [`Error::UvsNotSupported`](crate::Error::UvsNotSupported) for √3, Doo-Sabin and mid-edge
-/// (no face-varying rule), [`Error::Scheme`](crate::Error::Scheme) when the channel's rule does
-/// not apply to the layout.
+/// [`Error::UvsNotSupported`](crate::Error::UvsNotSupported) for √3 (no face-varying rule),
+/// [`Error::Scheme`](crate::Error::Scheme) when the channel's rule does not apply to the
+/// layout.
 pub fn predicted_uv_bytes(
     rule: crate::Rule,
     layout: &MeshCounts,
@@ -469,7 +481,11 @@ pub fn predicted_uv_bytes(
     scalar_bytes: usize,
     holes: bool,
 ) -> crate::Result<BigInt> {
-    let channel = crate::refine::face_varying::channel_rule(rule)?;
+    use crate::refine::face_varying::{channel_kind, ChannelKind};
+    let channel = match channel_kind(rule)? {
+        ChannelKind::Layout(channel) => channel,
+        ChannelKind::Corners => return corner_uv_bytes(rule, layout, levels, scalar_bytes),
+    };
     let scheme = channel.scheme_for(layout)?;
     let heap = crate::Refinement::predicted_bytes_with_creases(channel, layout, levels)?;
     let level = |s: u32| scheme.counts_at(layout, u64::from(s));
@@ -500,6 +516,85 @@ pub fn predicted_uv_bytes(
         BigInt::from(0)
     };
     Ok(heap + numbering + evaluation + indices + written)
+}
+
+/// [`predicted_uv_bytes`] of the corner channel (Doo-Sabin, mid-edge: values propagated on
+/// the surface's own refinement): an estimate from the layout's statistics alone, which do
+/// not separate seams from the surface's boundary. The sum of
+///
+/// - the surface's refinement that the one-shot path builds to carry the channel
+///   ([`Refinement::predicted_bytes`](crate::Refinement::predicted_bytes) of the layout as a
+///   mesh, which has at least the surface's vertices, edges and faces; on the refined path it
+///   is the caller's own refinement, counted twice);
+/// - each level's weight table: 4 bytes per value and 12 per weight, the values being the
+///   larger of the two extreme layouts (no seam; every layout boundary edge a side of a seam)
+///   under [`schemes::uv::uv_scheme`], the weights per value 2 under mid-edge and, under
+///   Doo-Sabin, the largest face degree of the base (at least 4: from level 1 on the faces
+///   are quads but the face faces and the faces of the base vertices, whose degree is their
+///   valence, not counted beyond it);
+/// - the last level's corner values, the caller's index buffer and the corner values of the
+///   level before it while it is refined (4 bytes per corner; corners bounded by `2E` of the
+///   layout refined as a mesh);
+/// - the evaluation: base and output values, two intermediate levels (`2 * scalar_bytes`
+///   per value).
+fn corner_uv_bytes(
+    rule: crate::Rule,
+    layout: &MeshCounts,
+    levels: u32,
+    scalar_bytes: usize,
+) -> crate::Result<BigInt> {
+    let not = || crate::Error::UvsNotSupported {
+        rule: rule.to_string(),
+    };
+    let uv = schemes::uv::uv_scheme(rule).map_err(|_| not())?;
+    let scheme = rule.scheme_for(layout)?;
+    let extremes = [0, layout.boundary_edges / 2].map(|seams| schemes::uv::UvCounts {
+        values: layout.vertices,
+        edges: layout.edges,
+        boundary_edges: layout.boundary_edges,
+        seam_edges: seams,
+        used_vt: layout.vertices,
+        faces: layout.faces,
+        corners: layout.corners,
+        ..schemes::uv::UvCounts::default()
+    });
+    let values = |s: u32| -> crate::Result<BigInt> {
+        let [a, b] = &extremes;
+        let (a, b) = (
+            uv.values_at(a, u64::from(s))?,
+            uv.values_at(b, u64::from(s))?,
+        );
+        Ok(a.max(b))
+    };
+    let degree = layout
+        .faces_by_degree
+        .keys()
+        .next_back()
+        .map_or(4, |&d| d.max(4));
+    let weights = BigInt::from(match rule {
+        crate::Rule::DooSabin => degree,
+        _ => 2,
+    });
+    let mut bytes = crate::Refinement::predicted_bytes(rule, layout, levels)?;
+    let mut intermediate = BigInt::from(0);
+    for s in 1..=levels {
+        let v = values(s)?;
+        bytes += &v * 4u32 + &v * &weights * 12u32;
+        if s < levels {
+            intermediate = intermediate.max(v);
+        }
+    }
+    let corners = |s: u32| -> crate::Result<BigInt> {
+        Ok(if s == 0 {
+            BigInt::from(layout.corners)
+        } else {
+            BigInt::from(2) * scheme.counts_at(layout, u64::from(s))?.edges
+        })
+    };
+    bytes += corners(levels)? * 8u32 + corners(levels.saturating_sub(1))? * 4u32;
+    let value = BigInt::from(2 * scalar_bytes);
+    bytes += value * (BigInt::from(layout.vertices) + values(levels)? + intermediate * 2u32);
+    Ok(bytes)
 }
 
 /// `need` if it is at most `limit`, else [`Error::OverMemoryLimit`](crate::Error::OverMemoryLimit)

@@ -745,8 +745,9 @@ fn boundary_polygon_scheme(
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`: `V(s) =
 /// 2 * 4^(s-1) E0` only from `s = 1`), 0 for `E` (`E(s) = 4^s E0`).
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** counted by [`crate::uv::uv_scheme`]`(Rule::DooSabin)` over the layout and
+/// its seams (`UV(s) = V(s) + 2 * 3^(s-1) * S0` from level 1 on; derived on
+/// [`crate::uv::UvScheme`]).
 pub fn doo_sabin() -> Scheme {
     closed_polygon_scheme(
         "doo-sabin",
@@ -811,8 +812,9 @@ pub fn doo_sabin() -> Scheme {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** counted by [`crate::uv::uv_scheme`]`(Rule::DooSabin)` over the layout and
+/// its seams (`UV(s) = V(s) + 2 * 3^(s-1) * S0` from level 1 on; derived on
+/// [`crate::uv::UvScheme`]).
 pub fn doo_sabin_boundary() -> Scheme {
     boundary_polygon_scheme(
         "doo-sabin-boundary",
@@ -839,8 +841,9 @@ pub fn doo_sabin_boundary() -> Scheme {
 ///
 /// `valid_from`: 1 for `V` and `F` (eigenvalue 0, eigenvector `(1, 0, -1)`), 0 for `E`.
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** counted by [`crate::uv::uv_scheme`]`(Rule::MidEdge)` over the layout and
+/// its seams (`UV(s+1) = E(s) + S(s) + BE(s)`, `S(s) = 2^s S0`, from level 1 on; derived on
+/// [`crate::uv::UvScheme`]).
 pub fn mid_edge() -> Scheme {
     closed_polygon_scheme(
         "mid-edge",
@@ -897,8 +900,9 @@ pub fn mid_edge() -> Scheme {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** counted by [`crate::uv::uv_scheme`]`(Rule::MidEdge)` over the layout and
+/// its seams (`UV(s+1) = E(s) + S(s) + BE(s)`, `S(s) = 2^s S0`, from level 1 on; derived on
+/// [`crate::uv::UvScheme`]).
 pub fn mid_edge_boundary() -> Scheme {
     boundary_polygon_scheme(
         "mid-edge-boundary",

@@ -153,7 +153,7 @@ impl Counter {
         uv: &crate::uv::UvCounts,
     ) -> std::result::Result<crate::uv::UvCounter, crate::uv::NotCounted> {
         match self {
-            Counter::Matrix(_) => Err(crate::uv::NotCounted { rule: None }),
+            Counter::Matrix(_) => Err(crate::uv::NotCounted::rule(None)),
             Counter::Plan(plan) => crate::uv::UvCounter::new(plan, uv.clone()),
         }
     }

@@ -53,8 +53,16 @@
 //! `V`, `E`, `F`; their split values are the siblings of the whole mesh (holes are refined
 //! too) that written faces use ([`UvCounts::kept_split_values`]).
 //!
-//! √3, Doo-Sabin and mid-edge have no UV geometry yet: [`uv_scheme`] answers
-//! [`NotCounted`] for them, and for a scheme without a rule.
+//! **The dual rules** (Doo-Sabin, mid-edge) do not refine the layout as a mesh: their faces
+//! straddle the old edges and vertices, so their UVs are propagated corner by corner on the
+//! surface's own refinement (`halfedge::refine::face_varying`), and their values follow the
+//! surface's counts plus what the seams add. Their state is the layout's `UE`, `UBE` and the
+//! seam edges `S` ([`UV_SEAM_STATE`]; the surface's `E = UE - S` and `BE = UBE - 2 S`), see
+//! [`UvScheme`]. A composition chaining a dual rule with a rule of the other kind is not
+//! counted (one state does not give the other: [`NotCounted::composed_with`]).
+//!
+//! √3 has no UV geometry yet: [`uv_scheme`] answers [`NotCounted`] for it, and for a scheme
+//! without a rule.
 //!
 //! # Example: a cube with one seam
 //!
@@ -494,6 +502,36 @@ pub const UV_STATE: [&str; 5] = ["UV", "UE", "UBE", "F", "H"];
 ///   `n` quads. State `(UV, UE, UBE, F, H)`, `H` the corners:
 ///   `UV' = UV + UE + F`, `UE' = 2 UE + H`, `UBE' = 2 UBE`, `F' = H`, `H' = 4 H`.
 ///
+/// The dual rules carry UVs corner by corner on the surface's refinement (the rules in
+/// `halfedge::refine::face_varying`), so the count is the surface's plus what the seams add.
+/// Write `S` for the seam edges (interior edges whose two faces disagree at either end;
+/// surface boundary edges are not seams), `E`, `BE` for the surface's edges and boundary
+/// edges; the layout has `UE = E + S` edges (a seam is two layout edges) and
+/// `UBE = BE + 2 S` boundary edges (both sides of every seam). State `(UV, UE, UBE, S)`
+/// ([`UV_SEAM_STATE`]), from the layout's `V`, `E`, `BE` and `seam_edges`:
+///
+/// - **Doo-Sabin** (`doo-sabin`, `doo-sabin-boundary`): one value per new vertex (a face
+///   corner's Doo-Sabin point in its face's chart, a boundary Chaikin point in the chart of
+///   its edge's face): `V' = 2E + BE`; the edge face of a seam edge takes the chart of one of
+///   its faces, whose Chaikin points replace the two corners from the other face: 2 more per
+///   seam, so `UV' = 2E + BE + 2S`. Seams of the next level: each seam edge's edge face
+///   disagrees with the other face's shrunken face along one edge and with the two vertex
+///   faces at its ends along one edge each (they keep the corners' own values); non-seam and
+///   boundary edges give none: `S' = 3S`. With `E' = 4E + BE`, `BE' = 2BE`:
+///   `UV' = 2UE + UBE - 2S`, `UE' = 4UE + UBE - 3S`, `UBE' = 2UBE + 2S`, `S' = 3S`, so
+///   `UV(s) = V(s) + 2 * 3^(s-1) * S0` for `s >= 1`.
+/// - **Mid-edge** (`mid-edge`, `mid-edge-boundary`): one value per (edge, side), the
+///   midpoint in that face's chart, one for an edge that is not a seam and two for a seam
+///   (`UE`), and with boundary one per kept boundary vertex (its value unchanged): `UV' = E +
+///   S + BE`. Seams of the next level: the vertex face at `v` takes the value of each edge on
+///   the side of the face of the half-edge leaving `v` along it, so the new edge between a
+///   face face and a vertex face is a seam exactly when the old edge it crosses is: two per
+///   seam, `S' = 2S`. With `E' = 2E + BE`, `BE' = 2BE`: `UV' = UE + UBE - 2S`,
+///   `UE' = 2UE + UBE - 2S`, `UBE' = 2UBE`, `S' = 2S`.
+///
+/// Without seams both give the surface's vertices from level 1 on. The `UV` column of the
+/// matrix is zero (the values of a level follow from the level before's edges and seams).
+///
 /// The `UV` component equals the real count from level [`UvScheme::VALID_FROM`] on; level 0
 /// is [`UvCounts::used_vt`] ([`UvScheme::values_at`] gives both).
 ///
@@ -516,21 +554,41 @@ pub struct UvScheme {
     recurrence: Recurrence,
     /// Whether the values start from OpenSubdiv's sibling values ([`UvScheme::splits_siblings`]).
     siblings: bool,
+    /// Whether the state is [`UV_SEAM_STATE`] (the dual rules) rather than [`UV_STATE`].
+    seams: bool,
 }
 
-/// A rule (or a scheme) whose UV values are not counted: √3, Doo-Sabin and mid-edge, whose UV
-/// geometry is not designed yet, and schemes without a subdivision rule.
+/// A rule (or a scheme) whose UV values are not counted: √3, whose UV geometry is not
+/// designed yet, schemes without a subdivision rule, and compositions that chain a dual
+/// rule (Doo-Sabin, mid-edge) with a rule of the other kind (their UV states do not convert:
+/// [`UvCounter`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub struct NotCounted {
     /// The rule, when there is one.
     pub rule: Option<Rule>,
+    /// In a composition, the rule of the other kind chained with `rule`.
+    pub composed_with: Option<Rule>,
+}
+
+impl NotCounted {
+    /// `rule` (or a scheme without a rule) does not count UV values.
+    pub fn rule(rule: Option<Rule>) -> NotCounted {
+        NotCounted {
+            rule,
+            composed_with: None,
+        }
+    }
 }
 
 impl fmt::Display for NotCounted {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.rule {
-            Some(rule) => write!(f, "{rule} does not count UV values (no UV rule yet)"),
-            None => f.write_str("a scheme without a subdivision rule does not count UV values"),
+        match (self.rule, self.composed_with) {
+            (Some(rule), Some(other)) => write!(
+                f,
+                "{rule} does not count UV values composed with {other} (their UV states do not convert)"
+            ),
+            (Some(rule), None) => write!(f, "{rule} does not count UV values (no UV rule yet)"),
+            (None, _) => f.write_str("a scheme without a subdivision rule does not count UV values"),
         }
     }
 }
@@ -539,23 +597,47 @@ impl fmt::Display for NotCounted {
 ///
 /// # Errors
 ///
-/// [`NotCounted`] for √3, Doo-Sabin and mid-edge, and for `TriSplit(n)` with `n < 2` or too
-/// large for its matrix.
+/// [`NotCounted`] for √3, and for `TriSplit(n)` with `n < 2` or too large for its matrix.
 pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
-    let not = NotCounted { rule: Some(rule) };
+    let not = NotCounted::rule(Some(rule));
     // The rule's scheme for any face list, and how many boundary edges a layout boundary
     // edge splits into.
     let (general, split): (Scheme, i64) = match rule {
         Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere => (loop_general(), 2),
         Rule::TriSplit(n) => (tri_split(u64::from(n)).map_err(|_| not)?, i64::from(n)),
         Rule::CatmullClark => (catmull_clark_general(), 2),
-        Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge => return Err(not),
+        Rule::DooSabin => return dual_uv_scheme(rule, &DOO_SABIN_UV),
+        Rule::MidEdge => return dual_uv_scheme(rule, &MID_EDGE_UV),
+        Rule::Sqrt3 => return Err(not),
     };
     let recurrence = with_boundary_edges(general.matrix(), split).ok_or(not)?;
     Ok(UvScheme {
         rule,
         recurrence,
         siblings: matches!(rule, Rule::Loop | Rule::CatmullClark),
+        seams: false,
+    })
+}
+
+/// The names of the UV state of the dual rules (Doo-Sabin, mid-edge): `UV` values, `UE`
+/// layout edges, `UBE` layout boundary edges, `S` seam edges.
+pub const UV_SEAM_STATE: [&str; 4] = ["UV", "UE", "UBE", "S"];
+
+/// Doo-Sabin's UV matrix over [`UV_SEAM_STATE`] ([`UvScheme`]).
+const DOO_SABIN_UV: [[i64; 4]; 4] = [[0, 2, 1, -2], [0, 4, 1, -3], [0, 0, 2, 2], [0, 0, 0, 3]];
+
+/// Mid-edge's UV matrix over [`UV_SEAM_STATE`] ([`UvScheme`]).
+const MID_EDGE_UV: [[i64; 4]; 4] = [[0, 1, 1, -2], [0, 2, 1, -2], [0, 0, 2, 0], [0, 0, 0, 2]];
+
+fn dual_uv_scheme(rule: Rule, rows: &[[i64; 4]; 4]) -> std::result::Result<UvScheme, NotCounted> {
+    let matrix = IntMatrix::from_fn(4, |i, j| rows[i][j]);
+    let recurrence =
+        Recurrence::with_names(matrix, UV_SEAM_STATE).map_err(|_| NotCounted::rule(Some(rule)))?;
+    Ok(UvScheme {
+        rule,
+        recurrence,
+        siblings: false,
+        seams: true,
     })
 }
 
@@ -592,7 +674,7 @@ impl UvScheme {
     ///
     /// [`NotCounted`] for a scheme without a rule or whose rule has no UV recurrence.
     pub fn for_scheme(scheme: &Scheme) -> std::result::Result<UvScheme, NotCounted> {
-        let mut uv = uv_scheme(scheme.subdivision_rule().ok_or(NotCounted { rule: None })?)?;
+        let mut uv = uv_scheme(scheme.subdivision_rule().ok_or(NotCounted::rule(None))?)?;
         uv.siblings &= scheme.mesh_class().needs_manifold();
         Ok(uv)
     }
@@ -617,13 +699,20 @@ impl UvScheme {
 
     /// The initial state from the layout's statistics: `[UV0, E, BE, F]` or
     /// `[UV0, E, BE, F, H]`, `UV0` being `V + split_values` for Loop and Catmull-Clark
-    /// ([`splits_siblings`](Self::splits_siblings)) and `V` for the other rules.
+    /// ([`splits_siblings`](Self::splits_siblings)) and `V` for the other rules; for the dual
+    /// rules `[V, E, BE, seam_edges]`.
     pub fn initial_state(&self, uv: &UvCounts) -> Vec<BigInt> {
         let split = if self.splits_siblings() {
             uv.split_values
         } else {
             0
         };
+        if self.seams {
+            return [uv.values, uv.edges, uv.boundary_edges, uv.seam_edges]
+                .iter()
+                .map(|&x| BigInt::from(x))
+                .collect();
+        }
         [
             uv.values + split,
             uv.edges,
@@ -669,6 +758,8 @@ impl UvScheme {
 /// At a stage boundary the next stage starts from the state reached, the corners `H` (when
 /// the next stage is Catmull-Clark and the previous one a triangle split) being `3 F`: a
 /// triangle split makes triangles.
+/// The dual rules' state ([`UV_SEAM_STATE`]) converts between Doo-Sabin and mid-edge
+/// stages only.
 ///
 /// ```
 /// use schemes::uv::UvCounts;
@@ -693,13 +784,24 @@ impl UvCounter {
     ///
     /// # Errors
     ///
-    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence.
+    /// [`NotCounted`] for the first stage whose scheme has no UV recurrence, and for a
+    /// composition of a dual rule with a rule of the other kind.
     pub fn new(plan: &Plan, uv: UvCounts) -> std::result::Result<UvCounter, NotCounted> {
-        let stages = plan
+        let stages: Vec<(UvScheme, Option<u64>)> = plan
             .stages()
             .iter()
             .map(|st| Ok((UvScheme::for_scheme(st.scheme())?, st.levels())))
             .collect::<std::result::Result<_, NotCounted>>()?;
+        // The dual rules' state (seams) and the others' (faces, corners) do not convert.
+        if let (Some(dual), Some(other)) = (
+            stages.iter().find(|(s, _)| s.seams),
+            stages.iter().find(|(s, _)| !s.seams),
+        ) {
+            return Err(NotCounted {
+                rule: Some(dual.0.rule),
+                composed_with: Some(other.0.rule),
+            });
+        }
         Ok(UvCounter { stages, uv })
     }
 
@@ -983,27 +1085,33 @@ mod tests {
                 [0, 0, 0, 0, 4]
             ]
         );
-        for rule in [
-            Rule::Sqrt3,
-            Rule::DooSabin,
-            Rule::MidEdge,
-            Rule::TriSplit(1),
-        ] {
-            assert_eq!(uv_scheme(rule), Err(NotCounted { rule: Some(rule) }));
+        for rule in [Rule::Sqrt3, Rule::TriSplit(1)] {
+            assert_eq!(uv_scheme(rule), Err(NotCounted::rule(Some(rule))));
         }
         assert_eq!(
-            NotCounted {
-                rule: Some(Rule::Sqrt3)
-            }
-            .to_string(),
+            NotCounted::rule(Some(Rule::Sqrt3)).to_string(),
             "sqrt3 does not count UV values (no UV rule yet)"
         );
+        // The dual rules count over the layout and its seams.
+        assert_eq!(
+            rows(Rule::DooSabin),
+            [[0, 2, 1, -2], [0, 4, 1, -3], [0, 0, 2, 2], [0, 0, 0, 3]]
+        );
+        assert_eq!(
+            rows(Rule::MidEdge),
+            [[0, 1, 1, -2], [0, 2, 1, -2], [0, 0, 2, 0], [0, 0, 0, 2]]
+        );
+        for rule in [Rule::DooSabin, Rule::MidEdge] {
+            let uv = uv_scheme(rule).unwrap();
+            assert_eq!(uv.recurrence().names(), UV_SEAM_STATE);
+            assert!(!uv.splits_siblings());
+        }
         // A custom scheme without a `topology` key has no rule.
         let fib = Scheme::from_toml(
             "name = \"fib\"\nstate = [\"a\", \"b\"]\nmatrix = [[1, 1], [1, 0]]\n",
         )
         .unwrap();
-        assert_eq!(UvScheme::for_scheme(&fib), Err(NotCounted { rule: None }));
+        assert_eq!(UvScheme::for_scheme(&fib), Err(NotCounted::rule(None)));
         let cc = builtin("catmull-clark-quad").unwrap();
         assert_eq!(
             UvScheme::for_scheme(&cc).unwrap().rule(),
@@ -1042,6 +1150,10 @@ mod tests {
             (&quads[..], Rule::CatmullClark),
             (&tris[..], Rule::Loop),
             (&tris[..], Rule::TriSplit(4)),
+            (&quads[..], Rule::DooSabin),
+            (&tris[..], Rule::DooSabin),
+            (&quads[..], Rule::MidEdge),
+            (&tris[..], Rule::MidEdge),
         ] {
             let uv = layout(faces, faces, &vts).unwrap();
             assert_eq!(uv.seam_edges, 0);
@@ -1105,13 +1217,26 @@ mod tests {
         let err = bounded.uv_counter(&uv).unwrap().values_at(3).unwrap_err();
         assert_eq!(err, Error::LevelBeyondPlan { level: 3, last: 2 });
         let matrix = crate::Counter::from(Recurrence::new(IntMatrix::identity(2)));
-        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted { rule: None }));
+        assert_eq!(matrix.uv_counter(&uv), Err(NotCounted::rule(None)));
         let sqrt3 = crate::Counter::from(Plan::parse("loop-boundary:1,sqrt3-boundary").unwrap());
         assert_eq!(
             sqrt3.uv_counter(&uv),
-            Err(NotCounted {
-                rule: Some(Rule::Sqrt3)
-            })
+            Err(NotCounted::rule(Some(Rule::Sqrt3)))
+        );
+        // A dual rule chained with a rule of the other kind: their states do not convert.
+        let mixed =
+            crate::Counter::from(Plan::parse("loop-boundary:1,doo-sabin-boundary").unwrap());
+        let err = mixed.uv_counter(&uv).unwrap_err();
+        assert_eq!(
+            err,
+            NotCounted {
+                rule: Some(Rule::DooSabin),
+                composed_with: Some(Rule::Loop)
+            }
+        );
+        assert_eq!(
+            err.to_string(),
+            "doo-sabin does not count UV values composed with loop (their UV states do not convert)"
         );
     }
 

@@ -228,8 +228,13 @@ fn uv_formula(
             let numbers =
                 schemes::specialized_line_from(&form, uv_index, &x0, "s", valid_from, &early)
                     .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
+            let over = if single.recurrence().names() == schemes::uv::UV_SEAM_STATE {
+                "UV values over the UV layout and its seams: UV0 values (the (vertex, vt) pairs), UE0 layout edges, UBE0 layout boundary edges, S0 seam edges"
+            } else {
+                "UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges"
+            };
             format!(
-                "{text}\n\n# UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges; UV(0) is the number of vt the faces use\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
+                "{text}\n\n# {over}; UV(0) is the number of vt the faces use\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
                 line(false)?,
                 given.join(", "),
                 layout.used_vt,
@@ -240,8 +245,8 @@ fn uv_formula(
             let counts = format!("{fn_base}_uv_counts");
             let dim = single.recurrence().dim();
             format!(
-                "{text}\n\n/// UV values: the state (UV, UE, UBE, F{}) of the UV layout, `UV` from level {valid_from} on.\n{}\n\n/// The UV values at level `s`: `used_vt` (the `vt` the faces use) at level 0, the `UV` of\n/// `{counts}` from level {valid_from} on.\npub fn {fn_base}_uv_values(x0: [i128; {dim}], used_vt: i128, s: u64) -> Option<i128> {{\n    if s < {valid_from} {{\n        return Some(used_vt);\n    }}\n    {counts}(x0, s).map(|x| x[{uv_index}])\n}}",
-                if dim > 4 { ", H" } else { "" },
+                "{text}\n\n/// UV values: the state ({}) of the UV layout, `UV` from level {valid_from} on.\n{}\n\n/// The UV values at level `s`: `used_vt` (the `vt` the faces use) at level 0, the `UV` of\n/// `{counts}` from level {valid_from} on.\npub fn {fn_base}_uv_values(x0: [i128; {dim}], used_vt: i128, s: u64) -> Option<i128> {{\n    if s < {valid_from} {{\n        return Some(used_vt);\n    }}\n    {counts}(x0, s).map(|x| x[{uv_index}])\n}}",
+                single.recurrence().names().join(", "),
                 form.to_rust(&counts).trim_end()
             )
         }

@@ -47,7 +47,9 @@ use glam::DVec3;
 
 use super::build::{Builder, StepContext};
 use super::par::Sink;
+use super::refine::corners::{seam_ranks, CornerStep};
 use super::refine::Vector;
+use super::sdc::WeightTable;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 use crate::mesh::INVALID;
@@ -310,20 +312,188 @@ pub(crate) fn mid_edge_points<V: Vector>(
     }
 }
 
+/// The Doo-Sabin weight of the corner `j` steps after the corner computed in an `n`-gon:
+/// `(n + 5) / (4n)` for `j = 0`, `(3 + 2 cos(2πj/n)) / (4n)` otherwise (they sum to 1).
+fn doo_sabin_weight(n: usize, j: usize) -> f64 {
+    let nf = n as f64;
+    if j == 0 {
+        (nf + 5.0) / (4.0 * nf)
+    } else {
+        (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
+    }
+}
+
 /// The Doo-Sabin point of the corner at the source of `h` in its face.
 fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
     let n = t.face_degree(t.face(h));
-    let nf = n as f64;
     let mut sum = V::zero();
     let mut g = h;
     for j in 0..n {
-        let w = if j == 0 {
-            (nf + 5.0) / (4.0 * nf)
-        } else {
-            (3.0 + 2.0 * (2.0 * PI * j as f64 / nf).cos()) / (4.0 * nf)
-        };
+        let w = doo_sabin_weight(n, j);
         sum = sum.add(src[t.source(g) as usize].clone().scale(w));
         g = t.next(g);
     }
     sum
+}
+
+/// The number of boundary half-edges of `t`.
+fn n_boundary(t: &Topo<'_>) -> usize {
+    if t.is_closed() {
+        0
+    } else {
+        t.boundary_edges()
+    }
+}
+
+/// The Doo-Sabin step of the UV corner channel (the rule of the
+/// [`face_varying`](crate::refine::face_varying) module docs) from `t` and its corner values
+/// `cv` (by half-edge).
+///
+/// Values: `0..2E` the new vertices' (vertex `h`: the Doo-Sabin point of face corner `h` in
+/// its face's chart, or on a boundary half-edge its Chaikin point near the source in the chart
+/// of the edge's face), `2E + r` the Chaikin point near the target of boundary half-edge `r`,
+/// then two per seam edge `e` (in increasing order): the Chaikin points of `e` near the source
+/// and near the target of half-edge `2e`, in the chart of its face.
+pub(crate) fn doo_sabin_uv_step<'a>(
+    t: &'a Topo<'a>,
+    cv: &'a [u32],
+    _n_values: usize,
+) -> Result<CornerStep<'a>> {
+    let (ne, nf) = (t.ne() as u32, t.nf() as u32);
+    let nb = n_boundary(t);
+    let vertices = 2 * t.ne() + nb;
+    let (seams, n_seams) = seam_ranks(t, cv)?;
+    let rows = vertices + 2 * n_seams;
+    let mut table = WeightTable::with_room(rows, 4 * rows)?;
+    let mut row = Vec::new();
+    // The Chaikin point near `a` of the side from `a` to `b` of a face (its corners' values).
+    let chaikin_row = |row: &mut Vec<(u32, f64)>, a: u32, b: u32| {
+        row.push((a, 0.75));
+        row.push((b, 0.25));
+    };
+    for h in 0..2 * ne {
+        if t.is_boundary(h) {
+            // g = twin: from target(h) to source(h) in its face.
+            let g = h ^ 1;
+            chaikin_row(&mut row, cv[t.next(g) as usize], cv[g as usize]);
+        } else {
+            let n = t.face_degree(t.face(h));
+            let mut g = h;
+            for j in 0..n {
+                row.push((cv[g as usize], doo_sabin_weight(n, j)));
+                g = t.next(g);
+            }
+        }
+        table.push_row(&mut row)?;
+    }
+    for h in (0..2 * ne).filter(|&h| t.is_boundary(h)) {
+        let g = h ^ 1;
+        chaikin_row(&mut row, cv[g as usize], cv[t.next(g) as usize]);
+        table.push_row(&mut row)?;
+    }
+    for e in (0..ne).filter(|&e| seams[e as usize] != INVALID) {
+        let h = 2 * e;
+        let (a, b) = (cv[h as usize], cv[t.next(h) as usize]);
+        chaikin_row(&mut row, a, b);
+        table.push_row(&mut row)?;
+        chaikin_row(&mut row, b, a);
+        table.push_row(&mut row)?;
+    }
+    let corner = move |face: u32, vertex: u32| {
+        if face < nf || face >= nf + ne {
+            return vertex;
+        }
+        // The edge face of a seam edge: the corners from the face of 2e + 1 take the
+        // Chaikin points in the chart of the face of 2e.
+        let e = face - nf;
+        let k = seams[e as usize];
+        let tw = 2 * e + 1;
+        if k == INVALID {
+            vertex
+        } else if vertex == t.next(tw) {
+            vertices as u32 + 2 * k
+        } else if vertex == tw {
+            vertices as u32 + 2 * k + 1
+        } else {
+            vertex
+        }
+    };
+    Ok(CornerStep {
+        values: table,
+        corner: Box::new(corner),
+    })
+}
+
+/// The mid-edge step of the UV corner channel (the rule of the
+/// [`face_varying`](crate::refine::face_varying) module docs) from `t` and its corner values
+/// `cv` (by half-edge).
+///
+/// Values: `e` (`0..E`) the midpoint of edge `e` in the chart of the face of half-edge `2e`
+/// (of `2e + 1` when `2e` is a boundary half-edge), `E + k` the midpoint of seam edge `k` (in
+/// increasing order) in the chart of the face of `2e + 1`, `E + S + r` the kept source of
+/// boundary half-edge `r`, its value in the face of the boundary edge leaving it.
+pub(crate) fn mid_edge_uv_step<'a>(
+    t: &'a Topo<'a>,
+    cv: &'a [u32],
+    _n_values: usize,
+) -> Result<CornerStep<'a>> {
+    let (ne, nf) = (t.ne() as u32, t.nf() as u32);
+    let nb = n_boundary(t);
+    let (seams, n_seams) = seam_ranks(t, cv)?;
+    let rows = t.ne() + n_seams + nb;
+    let mut table = WeightTable::with_room(rows, 2 * rows)?;
+    let mut row = Vec::new();
+    let midpoint = |row: &mut Vec<(u32, f64)>, h: u32| {
+        row.push((cv[h as usize], 0.5));
+        row.push((cv[t.next(h) as usize], 0.5));
+    };
+    for e in 0..ne {
+        let h = if t.is_boundary(2 * e) {
+            2 * e + 1
+        } else {
+            2 * e
+        };
+        midpoint(&mut row, h);
+        table.push_row(&mut row)?;
+    }
+    for e in (0..ne).filter(|&e| seams[e as usize] != INVALID) {
+        midpoint(&mut row, 2 * e + 1);
+        table.push_row(&mut row)?;
+    }
+    for h in (0..2 * ne).filter(|&h| t.is_boundary(h)) {
+        // The face side `h ^ 1` ends at the source of h: its next corner is there.
+        row.push((cv[t.next(h ^ 1) as usize], 1.0));
+        table.push_row(&mut row)?;
+    }
+    let side = move |e: u32, face: u32| {
+        let k = seams[e as usize];
+        if k != INVALID && t.face(2 * e + 1) == face {
+            ne + k
+        } else {
+            e
+        }
+    };
+    let kept = ne + n_seams as u32;
+    let corner = move |face: u32, vertex: u32| {
+        if face < nf {
+            return side(vertex, face);
+        }
+        if vertex >= ne {
+            return kept + (vertex - ne);
+        }
+        // The face of the half-edge leaving the old vertex along the edge (its twin's on the
+        // boundary).
+        let v = face - nf;
+        let h = if t.source(2 * vertex) == v {
+            2 * vertex
+        } else {
+            2 * vertex + 1
+        };
+        let g = if t.is_boundary(h) { h ^ 1 } else { h };
+        side(vertex, t.face(g))
+    };
+    Ok(CornerStep {
+        values: table,
+        corner: Box::new(corner),
+    })
 }

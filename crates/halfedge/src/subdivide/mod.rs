@@ -157,8 +157,9 @@ pub struct SubdivideOptions<'a> {
     /// too ([`Refinement::evaluate_uvs`](crate::Refinement::evaluate_uvs)) and
     /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
     /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
-    /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; √3, Doo-Sabin and
-    /// mid-edge refuse it ([`Error::UvsNotSupported`]). [`subdivide_polygons`] refines it
+    /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; Doo-Sabin and
+    /// mid-edge carry it corner by corner ([`refine::face_varying`]'s corner channel); √3
+    /// refuses it ([`Error::UvsNotSupported`]). [`subdivide_polygons`] refines it
     /// as a face list by the same linear per-face refinement as the positions and writes the
     /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
     /// and [`verify_polygons`] do not read it.
@@ -612,7 +613,7 @@ pub fn subdivide_to_face_list(
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
     if opts.uvs.is_some() {
-        refine::face_varying::channel_rule(rule)?;
+        refine::face_varying::channel_kind(rule)?;
     }
     let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
     let written = match holes {

@@ -8,6 +8,7 @@ mod roundtrip;
 mod shared_meshes;
 mod tags;
 mod uv_counts;
+mod uv_dual;
 mod uv_io;
 mod uv_memory;
 mod uv_polygons;

@@ -19,7 +19,11 @@ fn read_with_uvs(path: &Path) -> PolygonMesh {
     mesh
 }
 
-fn values(rule: Rule, uv: &UvCounts, levels: std::ops::RangeInclusive<u64>) -> Vec<BigInt> {
+pub(crate) fn values(
+    rule: Rule,
+    uv: &UvCounts,
+    levels: std::ops::RangeInclusive<u64>,
+) -> Vec<BigInt> {
     let scheme = uv_scheme(rule).unwrap_or_else(|e| panic!("{e}"));
     levels
         .map(|s| scheme.values_at(uv, s).unwrap_or_else(|e| panic!("{e}")))
@@ -145,7 +149,7 @@ fn written_faces_have_the_layout_of_the_mesh_made_of_them() {
 /// A `w` x `h` grid of quads (optionally each split into two triangles) whose corners use
 /// `vt` chosen by `picks`: 0 the corner's vertex's own `vt`, 1-3 one of three `vt` shared by
 /// every vertex (as the pawn's four), so seams and shared `vt` fall anywhere.
-fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh {
+pub(crate) fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh {
     grid_with_shared_runs(w, h, triangles, picks, &[false])
 }
 
@@ -153,7 +157,7 @@ fn grid_with_seams(w: u32, h: u32, triangles: bool, picks: &[u8]) -> PolygonMesh
 /// use the shared `vt` 0 or 1 by the checkerboard parity of their face (of their quad, plus
 /// the triangle's index in it), so an interior vertex of the quad grid sees A, B, A, B
 /// around it and the triangle grid's see longer alternations.
-fn grid_with_shared_runs(
+pub(crate) fn grid_with_shared_runs(
     w: u32,
     h: u32,
     triangles: bool,
@@ -204,7 +208,7 @@ fn grid_with_shared_runs(
 
 /// The UV values the real face-varying refinement writes at `level`: the distinct indices of
 /// [`halfedge::refine::Refinement::write_uv_indices`] (checked against `n_uvs`).
-fn written_values(mesh: &PolygonMesh, rule: Rule, level: u32) -> Result<u64, String> {
+pub(crate) fn written_values(mesh: &PolygonMesh, rule: Rule, level: u32) -> Result<u64, String> {
     use halfedge::refine::Refinement;
     use halfedge::subdivide::SubdivideOptions;
     let layout = mesh.uv_layout().expect("a layout");

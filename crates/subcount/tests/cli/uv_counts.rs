@@ -480,6 +480,77 @@ fn formula_gives_uv_of_s_in_every_format() {
     );
 }
 
+/// The dual rules count UVs over the layout and its seams: the cube of charts has 12 seam
+/// edges, so Doo-Sabin gives `V(s) + 2 * 3^(s-1) * 12 = 6*4^s + 8*3^s` and mid-edge
+/// `E(s-1) + S(s-1) = 12*2^s` from level 1 on; `table`, `at` and `formula` agree.
+#[test]
+fn the_dual_rules_count_uv_values_in_table_at_and_formula() {
+    let (_dir, cube) = file("charts.obj", &cube_of_charts());
+    for (scheme, uv, form) in [
+        (
+            "doo-sabin",
+            [24, 48, 168, 600],
+            "\nUV(s) = 6*4^s + 8*3^s for s >= 1; UV(0) = 24",
+        ),
+        (
+            "mid-edge",
+            [24, 24, 48, 96],
+            "\nUV(s) = 12*2^s for s >= 1; UV(0) = 24",
+        ),
+    ] {
+        let csv = ok(&[
+            "table", "--mesh", &cube, "--scheme", scheme, "--levels", "0..=3", "--format", "csv",
+        ]);
+        let mut lines = csv.lines();
+        assert_eq!(lines.next(), Some("level,V,E,F,UV"), "{csv}");
+        let column: Vec<u64> = lines
+            .map(|l| l.rsplit(',').next().unwrap().parse().unwrap())
+            .collect();
+        assert_eq!(column, uv, "{scheme}");
+        let at = ok(&["at", "--mesh", &cube, "--scheme", scheme, "--level", "3"]);
+        assert!(at.ends_with(&format!("UV = {}\n", uv[3])), "{at}");
+        let text = ok(&["formula", "--mesh", &cube, "--scheme", scheme]);
+        assert!(text.contains(form), "{text}");
+        assert!(text.contains("S0 seam edges"), "{text}");
+        assert!(text.contains("S0 = 12"), "{text}");
+        let rust = ok(&[
+            "formula", "--mesh", &cube, "--scheme", scheme, "--format", "rust",
+        ]);
+        assert!(rust.contains("the state (UV, UE, UBE, S)"), "{rust}");
+    }
+    // Chained with a rule of the other kind: no UV column, and why.
+    let run = subcount(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "doo-sabin:1,catmull-clark",
+        "--levels",
+        "2",
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+    assert_eq!(
+        run.stderr,
+        "note: doo-sabin does not count UV values composed with catmull-clark (their UV states do not convert): no UV column\n"
+    );
+    // Two dual stages share the state.
+    let csv = ok(&[
+        "table",
+        "--mesh",
+        &cube,
+        "--scheme",
+        "doo-sabin:1,mid-edge",
+        "--levels",
+        "0..=2",
+        "--format",
+        "csv",
+    ]);
+    let last: Vec<&str> = csv.lines().map(|l| l.rsplit(',').next().unwrap()).collect();
+    // Level 2: mid-edge on Doo-Sabin's level 1 (48 edges, 36 seams).
+    assert_eq!(last, ["UV", "24", "48", "84"], "{csv}");
+}
+
 // ---- spot_control_mesh ($SUBCOUNT_MESHES) ----
 
 fn spot() -> String {

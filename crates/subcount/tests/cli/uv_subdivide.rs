@@ -299,16 +299,47 @@ fn partial_texture_coordinates_are_written_without_uvs_saying_why() {
 }
 
 #[test]
-fn rules_without_uvs_write_without_them_saying_so() {
+fn the_dual_rules_write_their_uvs() {
+    // uv_cube has 9 seam edges (the top's and the bottom's sides, the strip's cut).
     let cube = data("uv_cube.obj");
-    for scheme in ["doo-sabin", "mid-edge"] {
+    for (scheme, summary_line, values) in [
+        (
+            "doo-sabin",
+            "level 1: V = 24, E = 48, F = 26, UV = 42; wrote OUT\n",
+            42,
+        ),
+        (
+            "mid-edge",
+            "level 1: V = 12, E = 24, F = 14, UV = 21; wrote OUT\n",
+            21,
+        ),
+    ] {
         let (summary, stderr, written) = subdivide(&cube, &["--scheme", scheme, "--levels", "1"]);
+        assert_eq!(stderr, "", "{scheme}");
+        assert_eq!(summary, summary_line);
         assert_eq!(
-            stderr,
-            format!("note: {cube}: UVs are not refined under {scheme} (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
+            written.lines().filter(|l| l.starts_with("vt ")).count(),
+            values,
+            "{scheme}"
         );
-        assert!(!summary.contains("UV"), "{summary}");
-        assert!(!written.contains("vt "));
+        assert!(
+            written
+                .lines()
+                .filter(|l| l.starts_with("f "))
+                .all(|l| l.split_whitespace().skip(1).all(|c| c.contains('/'))),
+            "{scheme}"
+        );
+        // The same values when refined once into f32 buffers.
+        let (summary, _, written) = subdivide(
+            &cube,
+            &["--scheme", scheme, "--levels", "1", "--precision", "f32"],
+        );
+        assert_eq!(summary, summary_line, "{scheme} f32");
+        assert_eq!(
+            written.lines().filter(|l| l.starts_with("vt ")).count(),
+            values,
+            "{scheme} f32"
+        );
     }
     // A -general scheme runs on the raw face list, which refines the UVs linearly with it.
     let (summary, stderr, written) = subdivide(
@@ -408,20 +439,31 @@ fn verify_checks_the_uv_values_of_every_level() {
         text.contains("    1         UV         45        45\n"),
         "{text}"
     );
+    // The dual rules: predicted by their recurrences over the layout and its 9 seams,
+    // measured on the corner channel.
+    for (scheme, values) in [
+        ("doo-sabin", [18, 42, 150, 546]),
+        ("mid-edge", [18, 21, 42, 84]),
+    ] {
+        let rows = verify_uv(&cube, scheme, "3");
+        let expected: Vec<(Value, Value)> = values
+            .iter()
+            .map(|&v| (Value::from(v), Value::from(v)))
+            .collect();
+        assert_eq!(rows, expected, "{scheme}");
+        for (level, &v) in values.iter().enumerate() {
+            assert_eq!(predicted_uv(&cube, scheme, level as u64), v, "{scheme}");
+        }
+    }
     // A scheme that does not count UVs: a note, no UV rows.
+    let tri = data("uv_cube_tri.obj");
     let run = subcount(&[
-        "verify",
-        "--mesh",
-        &cube,
-        "--scheme",
-        "doo-sabin",
-        "--levels",
-        "1",
+        "verify", "--mesh", &tri, "--scheme", "sqrt3", "--levels", "1",
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert_eq!(
         run.stderr,
-        "note: doo-sabin does not count UV values (no UV rule yet): no UV rows\n"
+        "note: sqrt3 does not count UV values (no UV rule yet): no UV rows\n"
     );
     assert!(!run.stdout.contains("UV"), "{}", run.stdout);
 }
@@ -565,7 +607,7 @@ fn sqrt3_on_spot_writes_without_uvs_saying_so() {
         subdivide(&triangulated, &["--scheme", "sqrt3", "--levels", "1"]);
     assert_eq!(
         stderr,
-        format!("note: {triangulated}: UVs are not refined under sqrt3 (Loop, Catmull-Clark and the triangle splits refine them): writing without UVs\n")
+        format!("note: {triangulated}: UVs are not refined under sqrt3 (Loop, Catmull-Clark, the triangle splits, Doo-Sabin and mid-edge refine them): writing without UVs\n")
     );
     assert_eq!(
         summary,
@@ -859,11 +901,16 @@ fn the_memory_guard_counts_the_uv_channel() {
         predicted(&f32) - predicted(&[&f32[..], &["--no-uv"]].concat()),
         uv(halfedge::Rule::CatmullClark, 4)
     );
-    // Doo-Sabin writes without UVs: nothing added.
+    // Doo-Sabin's corner channel, on the one-shot path and refined once.
     let doo_sabin = ["--scheme", "doo-sabin"];
     assert_eq!(
-        predicted(&doo_sabin),
-        predicted(&[&doo_sabin[..], &["--no-uv"]].concat())
+        predicted(&doo_sabin) - predicted(&[&doo_sabin[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::DooSabin, 8)
+    );
+    let f32 = ["--scheme", "mid-edge", "--precision", "f32"];
+    assert_eq!(
+        predicted(&f32) - predicted(&[&f32[..], &["--no-uv"]].concat()),
+        uv(halfedge::Rule::MidEdge, 4)
     );
 }
 

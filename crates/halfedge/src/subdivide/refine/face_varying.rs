@@ -42,7 +42,15 @@
 //!
 //! # The channel
 //!
-//! The layout is refined as a mesh of its own: its faces are the surface's faces with the
+//! Two kinds. For the rules whose faces nest (the 4:1 family, the 1:N² splits,
+//! Catmull-Clark) the layout is refined as a mesh of its own (below); for the dual rules
+//! (Doo-Sabin, mid-edge), whose new faces straddle old edges and vertices, the values are
+//! propagated corner by corner on the surface's own refinement ([the corner
+//! channel](#the-corner-channel-doo-sabin-mid-edge)). [`Refinement::has_uvs`],
+//! [`Refinement::n_uvs`], [`Refinement::evaluate_uvs`] and [`Refinement::write_uv_indices`]
+//! (buffers `uv base`, `uv out`, `uv indices`) behave the same for both.
+//!
+//! For the rules whose faces nest, the layout is refined as a mesh of its own: its faces are the surface's faces with the
 //! layout's values as corners, so its boundary is the surface's boundary plus both sides of
 //! every seam. It is refined by the same rule, the same number of levels and the same
 //! [`Refinement`] machinery (topology, flattened tables, crease weight tables, evaluation);
@@ -95,12 +103,94 @@
 //! child is the midpoint of its two values, old values stay (the midpoint rule on the
 //! channel: neither butterfly's weights nor the sphere projection apply to texture
 //! coordinates). The 1:N² splits put each new value on the flat UV triangle of its face, as
-//! they put positions. √3, Doo-Sabin and mid-edge do not refine UVs yet
-//! ([`Error::UvsNotSupported`]); a linear rule for them goes in the private `channel_rule`.
+//! they put positions. √3 does not refine UVs yet ([`Error::UvsNotSupported`]).
+//!
+//! # The corner channel (Doo-Sabin, mid-edge)
+//!
+//! At each level `s` every face corner has a value index, and every value of level `s + 1`
+//! is an affine combination (a sparse row of weights summing to 1) of values of level `s`.
+//! A rule supplies one step (the private `corners::CornerStep`), from the parent level's
+//! topology and the value of each of its face corners (by half-edge: the corner at the
+//! half-edge's source in its face): the new values' weight rows (a `sdc::WeightTable`, as the
+//! crease rules use for positions) and the value of each child corner, asked as (child face,
+//! child vertex) in the rule's numbering of faces and vertices (`subdivide/dual.rs`'s module
+//! docs), so the step does not depend on the order in which a level's half-edges are written.
+//! The channel runs the steps on the levels the surface's [`Refinement`] keeps, reads the
+//! child corners off the child's half-edges (levels before the last) or off the last level's
+//! face list (the order of [`Refinement::write_polygons`]), and checks that every value a
+//! step creates is used by some corner and that every corner names a value of its level
+//! (else [`Error::InvalidOutput`]: a bug). The values of a level are the distinct indices
+//! written, so [`Refinement::n_uvs`] is the number of rows; [`Refinement::evaluate_uvs`]
+//! applies the tables in turn. The UVs are linear (affine combinations of a face's own
+//! values), not smoothed.
+//!
+//! Notation: `λ_f(v)` is the value of face `f`'s corner at vertex `v` (level `s`). A **seam**
+//! is an interior edge whose two faces disagree at either end; surface boundary edges are
+//! not seams. Edge `e` has the half-edges `2e` and `2e + 1`.
+//!
+//! **Doo-Sabin.**
+//! (a) The corner of face `f` at `v` (the new vertex of that face half-edge) gets
+//! `Σ w_j λ_f(p_j)` with the Doo-Sabin weights of the positions (`w_0 = (n + 5) / (4n)`,
+//! `w_j = (3 + 2 cos(2πj/n)) / (4n)`): one value per face corner, used by the face's shrunken
+//! face, the edge faces of its two sides and the vertex face.
+//! (b) On a surface boundary edge of face `f` its two Chaikin points (new vertices) get
+//! `(3 λ_f(x) + λ_f(y)) / 4` near end `x`, in `f`'s chart: one value each, shared by the
+//! boundary quad and the vertex faces that use the same vertex.
+//! (c) The edge face of a seam edge `e` takes the chart of the face `f` of half-edge `2e`:
+//! its two corners from `f` keep their own values, its two corners from the other face are
+//! replaced by the Chaikin points of `e` in `f`'s chart, `(3 λ_f(x) + λ_f(y)) / 4` at end
+//! `x`: two new values per seam edge.
+//! (d) A vertex face takes each corner's own value. **Limitation:** at a vertex where a seam
+//! passes, its corners come from the faces around the vertex, so its UV polygon spans the
+//! charts meeting there (on a seam between two distant charts it stretches across the
+//! texture, and may be flipped). At level 1 the other faces lie in one chart each; from
+//! level 2 on the faces descending from a straddling face (its shrunken face, the edge faces
+//! beside it, whose values are combinations of its values) straddle too, over a shrinking
+//! part of the surface. Measured on spot_control_mesh (UV diameter above 0.1 of the unit
+//! square, where the base's faces reach 0.19): level 1, 57 of its 188 vertex faces and 1 of
+//! the 546 other faces; level 2, 176 of 734 vertex faces and 104 of 2196 other faces.
+//!
+//! Counts: the values are the new vertices, `V_(s+1) = 2E_s` closed and `2E_s + BE_s` with
+//! boundary, plus `2 S_s`; the seams of level `s + 1` are, per seam edge, the side its edge
+//! face shares with the other face's shrunken face and the two sides it shares with the
+//! vertex faces at its ends (which keep the corners' values), while edges that are not seams
+//! give none: `S_(s+1) = 3 S_s`. So `UV(s) = V(s) + 2 * 3^(s-1) * S_0` for `s >= 1`, `S_0`
+//! the layout's seam edges (`UE_0 - E_0`): `schemes::uv::uv_scheme(Rule::DooSabin)`.
+//!
+//! **Mid-edge.**
+//! (a) One value per (edge, side): the midpoint `(λ_f(a) + λ_f(b)) / 2` of the edge's end
+//! values in that face's chart: one for an interior edge that is not a seam and for a
+//! boundary edge, two for a seam (`UE_s` values), used by the face faces.
+//! (b) The vertex face at `v`: its corner at edge `e` takes `e`'s value on the side of the
+//! face of the half-edge leaving `v` along `e`, or, when that half-edge is a surface boundary
+//! half-edge, of its twin's face. **Limitation:** at a vertex where a seam passes, the vertex
+//! face takes its corners from the faces around it and spans their charts (spot_control_mesh,
+//! level 1: 60 of 188 vertex faces span more than 0.1 of the unit square); the face faces of
+//! later levels inside such a face inherit it.
+//! (c) With boundary, the kept boundary vertex `E + r` (the source `v` of boundary half-edge
+//! `r`, `r` its rank among the boundary half-edges in increasing order) keeps `λ_f(v)`,
+//! `f` the face of the boundary edge leaving `v` (the twin of half-edge `r`), unchanged
+//! (linear: its position moves by the cubic B-spline rule, its UV does not): one value per
+//! boundary vertex.
+//!
+//! Counts: `UV_(s+1) = UE_s + BE_s = E_s + S_s + BE_s`; the new edge between a face face and
+//! a vertex face is a seam exactly when the old edge it crosses is (by (b), the vertex face
+//! uses the other side's value there), two new edges per old edge: `S_(s+1) = 2 S_s`.
+//!
+//! Without seams (one value per vertex) both give one value per vertex from level 1 on, and
+//! UVs that are an affine image of the positions stay one (mid-edge: except near the
+//! boundary from level 2 on, since the kept boundary vertices keep their UVs). Holes are
+//! refused by both rules ([`Error::HolesNeedNestedFaces`]), with UVs or without.
 //!
 //! # Memory
 //!
-//! The channel is a [`Refinement`] of the layout: its [heap](Refinement#memory) is that of a
+//! The corner channel keeps, per level, its weight table (4 bytes per value, 12 per weight:
+//! Doo-Sabin about `n` weights per value of an `n`-gon's corner, mid-edge 2) and the last
+//! level's value indices (4 bytes per corner); building it holds one level's corner values
+//! (4 bytes per half-edge) at a time. It runs on the surface's refinement, which keeps every
+//! level's connectivity for these rules anyway.
+//!
+//! The layout channel is a [`Refinement`] of the layout: its [heap](Refinement#memory) is that of a
 //! refinement of a mesh with the layout's values as vertices (a little more than the surface's
 //! vertices on meshes with seams), plus, when values have several runs, 4 bytes per value of
 //! the last level (the merged numbering) and, with holes, 4 bytes per written corner (the
@@ -133,17 +223,30 @@ use crate::tags::SubdivisionOptions;
 
 use super::{check_len, Refinement, Scalar};
 
-/// The rule that refines the UV layout under `rule`: the rule itself for Loop, Catmull-Clark
-/// and the 1:N² splits, the midpoint rule for the other 4:1 rules (linear UVs).
+/// How the UVs of a rule are refined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum ChannelKind {
+    /// The layout refined as a mesh of its own by this rule.
+    Layout(Rule),
+    /// The corner channel on the surface's own refinement ([`super::corners`]).
+    Corners,
+}
+
+/// How the UV layout is refined under `rule`: as a mesh of its own by the rule itself for
+/// Loop, Catmull-Clark and the 1:N² splits, by the midpoint rule for the other 4:1 rules
+/// (linear UVs); by the corner channel for Doo-Sabin and mid-edge.
 ///
 /// # Errors
 ///
-/// [`Error::UvsNotSupported`] for √3, Doo-Sabin and mid-edge.
-pub(crate) fn channel_rule(rule: Rule) -> Result<Rule> {
+/// [`Error::UvsNotSupported`] for √3.
+pub(crate) fn channel_kind(rule: Rule) -> Result<ChannelKind> {
     match rule {
-        Rule::Loop | Rule::CatmullClark | Rule::Midpoint | Rule::TriSplit(_) => Ok(rule),
-        Rule::Butterfly | Rule::Icosphere => Ok(Rule::Midpoint),
-        Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge => Err(Error::UvsNotSupported {
+        Rule::Loop | Rule::CatmullClark | Rule::Midpoint | Rule::TriSplit(_) => {
+            Ok(ChannelKind::Layout(rule))
+        }
+        Rule::Butterfly | Rule::Icosphere => Ok(ChannelKind::Layout(Rule::Midpoint)),
+        Rule::DooSabin | Rule::MidEdge => Ok(ChannelKind::Corners),
+        Rule::Sqrt3 => Err(Error::UvsNotSupported {
             rule: rule.to_string(),
         }),
     }
@@ -159,25 +262,111 @@ pub(crate) fn refined_uvs(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<crate::uv::Uvs> {
-    let channel = UvChannel::new(mesh, layout, rule, levels, opts)?;
     let base: Vec<[f64; 2]> = layout.values().iter().map(|v| v.to_array()).collect();
-    let mut values = super::super::alloc::filled([0.0; 2], channel.n_uvs(levels), "uv values")?;
-    channel.evaluate(&base, &mut values)?;
-    let corners = match &channel.written_corners {
-        Some(c) => c.len(),
-        None => channel.refinement.n_corners(levels),
+    let (values, indices) = match channel_kind(rule)? {
+        ChannelKind::Layout(_) => {
+            let channel = LayoutChannel::new(mesh, layout, rule, levels, opts)?;
+            let mut values =
+                super::super::alloc::filled([0.0; 2], channel.n_uvs(levels), "uv values")?;
+            channel.evaluate(&base, &mut values)?;
+            let corners = match &channel.written_corners {
+                Some(c) => c.len(),
+                None => channel.refinement.n_corners(levels),
+            };
+            let mut indices = super::super::alloc::filled(0u32, corners, "uv indices")?;
+            channel.write_indices(&mut indices, corners)?;
+            (values, indices)
+        }
+        ChannelKind::Corners => {
+            // The surface's refinement carries the channel.
+            let opts = SubdivideOptions {
+                uvs: Some(layout),
+                ..*opts
+            };
+            let r = Refinement::new(mesh, rule, levels, &opts)?;
+            let mut values = super::super::alloc::filled([0.0; 2], r.n_uvs(levels), "uv values")?;
+            r.evaluate_uvs(&base, &mut values)?;
+            let mut indices = super::super::alloc::filled(0u32, r.n_corners(levels), "uv indices")?;
+            r.write_uv_indices(&mut indices)?;
+            (values, indices)
+        }
     };
-    let mut indices = super::super::alloc::filled(0u32, corners, "uv indices")?;
-    channel.write_indices(&mut indices, corners)?;
     let coords = values.into_iter().map(glam::DVec2::from).collect();
     crate::uv::Uvs::new(coords, indices).map_err(|e| Error::UvLayoutMismatch {
         reason: e.to_string(),
     })
 }
 
-/// The face-varying channel of a refinement: the layout refined as its own mesh.
+/// The face-varying channel of a refinement.
 #[derive(Debug)]
-pub(crate) struct UvChannel {
+pub(crate) enum UvChannel {
+    /// The layout refined as a mesh of its own.
+    Layout(Box<LayoutChannel>),
+    /// Values propagated corner by corner on the surface's refinement.
+    Corners(super::corners::CornerChannel),
+}
+
+impl UvChannel {
+    /// The channel of `layout` on `mesh` under `rule` at `levels` with the surface's options;
+    /// `surface` is the surface's refinement (the corner channel runs on its levels).
+    pub(crate) fn new(
+        mesh: &HalfEdgeMesh,
+        layout: &UvLayout,
+        rule: Rule,
+        levels: u32,
+        opts: &SubdivideOptions<'_>,
+        surface: &Refinement,
+    ) -> Result<UvChannel> {
+        Ok(match channel_kind(rule)? {
+            ChannelKind::Layout(_) => UvChannel::Layout(Box::new(LayoutChannel::new(
+                mesh, layout, rule, levels, opts,
+            )?)),
+            ChannelKind::Corners => {
+                let t = Topo::new(mesh);
+                let cv = corner_values(&t, layout, mesh.unreferenced_vertices())?;
+                UvChannel::Corners(super::corners::CornerChannel::new(
+                    surface,
+                    rule,
+                    cv,
+                    layout.n_values(),
+                )?)
+            }
+        })
+    }
+
+    /// The UV values of level `level`.
+    pub(crate) fn n_uvs(&self, level: u32) -> usize {
+        match self {
+            UvChannel::Layout(c) => c.n_uvs(level),
+            UvChannel::Corners(c) => c.n_uvs(level),
+        }
+    }
+
+    pub(crate) fn heap_bytes(&self) -> usize {
+        match self {
+            UvChannel::Layout(c) => c.heap_bytes(),
+            UvChannel::Corners(c) => c.heap_bytes(),
+        }
+    }
+
+    pub(crate) fn evaluate<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        match self {
+            UvChannel::Layout(c) => c.evaluate(base, out),
+            UvChannel::Corners(c) => c.evaluate(base, out),
+        }
+    }
+
+    pub(crate) fn write_indices(&self, out: &mut [u32], expected: usize) -> Result<()> {
+        match self {
+            UvChannel::Layout(c) => c.write_indices(out, expected),
+            UvChannel::Corners(c) => c.write_indices(out, expected),
+        }
+    }
+}
+
+/// The face-varying channel of the rules whose faces nest: the layout refined as its own mesh.
+#[derive(Debug)]
+pub(crate) struct LayoutChannel {
     /// The layout's refinement (no holes, no UVs).
     refinement: Refinement,
     /// The layout's values (level 0).
@@ -282,16 +471,20 @@ struct Run {
     inf_sharp_inside: bool,
 }
 
-impl UvChannel {
+impl LayoutChannel {
     /// The channel of `layout` on `mesh` under `rule` at `levels` with the surface's options.
-    pub(crate) fn new(
+    fn new(
         mesh: &HalfEdgeMesh,
         layout: &UvLayout,
         rule: Rule,
         levels: u32,
         opts: &SubdivideOptions<'_>,
-    ) -> Result<UvChannel> {
-        let channel = channel_rule(rule)?;
+    ) -> Result<LayoutChannel> {
+        let ChannelKind::Layout(channel) = channel_kind(rule)? else {
+            return Err(Error::UvsNotSupported {
+                rule: rule.to_string(),
+            });
+        };
         let t = Topo::new(mesh);
         let cv = corner_values(&t, layout, mesh.unreferenced_vertices())?;
         let n_values = layout.n_values();
@@ -605,7 +798,7 @@ impl UvChannel {
                 sibling_value[rep as usize - n_values]
             });
         }
-        let mut uv = UvChannel {
+        let mut uv = LayoutChannel {
             refinement,
             n_values,
             n_repeated: n_values + siblings.len() - next as usize,

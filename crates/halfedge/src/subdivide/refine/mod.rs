@@ -61,6 +61,7 @@
 //! Evaluation does not check that the results are finite (the one-shot subdivision does):
 //! data near the overflow limit of `T` can give infinities.
 
+pub(crate) mod corners;
 mod data;
 pub mod face_varying;
 mod oneshot;
@@ -302,8 +303,9 @@ struct Polygons {
 /// refinement ([`face_varying`]): the bytes above for a mesh whose vertices are the layout's
 /// values (the surface's vertices plus one per extra value along seams), and 8 bytes per
 /// extra run of a value, 4 per vertex of the last level when runs are merged, 4 per written
-/// corner with holes; [`Refinement::heap_bytes`] counts them, [`Refinement::predicted_bytes`]
-/// does not.
+/// corner with holes; under Doo-Sabin and mid-edge instead the corner channel's weight table
+/// per level (4 bytes per value, 12 per weight) and 4 bytes per corner of the last level.
+/// [`Refinement::heap_bytes`] counts them, [`Refinement::predicted_bytes`] does not.
 ///
 /// For Loop at 3 levels on the 81,920-face icosphere the refinement holds 137 MB (a
 /// half-edge mesh of the 5.2 M output triangles alone would take 250 MB), for Catmull-Clark
@@ -474,13 +476,18 @@ impl Refinement {
     ) -> Result<Refinement> {
         // Refused before any topology is built.
         if opts.uvs.is_some() {
-            face_varying::channel_rule(rule)?;
+            face_varying::channel_kind(rule)?;
         }
         let creases = || Creases::new(mesh, rule, opts.sharpness, &opts.subdivision);
         let mut refinement = Refinement::with_creases(mesh, rule, levels, opts, creases)?;
         if let Some(layout) = opts.uvs {
             refinement.uvs = Some(Box::new(face_varying::UvChannel::new(
-                mesh, layout, rule, levels, opts,
+                mesh,
+                layout,
+                rule,
+                levels,
+                opts,
+                &refinement,
             )?));
         }
         Ok(refinement)

@@ -161,6 +161,41 @@ impl WeightTable {
         self.rows.is_none()
     }
 
+    /// An empty dense table with room for `rows` rows and `entries` weights, rows then pushed
+    /// one by one ([`WeightTable::push_row`]): a face-varying corner channel's new values
+    /// ([`face_varying`](crate::refine::face_varying)).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::AllocationFailed`].
+    pub(crate) fn with_room(rows: usize, entries: usize) -> Result<WeightTable> {
+        let what = "a face-varying weight table";
+        let mut offsets = crate::subdivide::alloc::with_capacity(rows + 1, what)?;
+        offsets.push(0);
+        Ok(WeightTable {
+            rows: None,
+            offsets,
+            index: crate::subdivide::alloc::with_capacity(entries, what)?,
+            weight: crate::subdivide::alloc::with_capacity(entries, what)?,
+        })
+    }
+
+    /// Appends `row` (parent index, weight) as the next row, equal indices merged, and
+    /// clears it.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::IndexOverflow`] past `u32::MAX` entries.
+    pub(crate) fn push_row(&mut self, row: &mut Vec<(u32, f64)>) -> Result<()> {
+        merge_row(row, &mut self.index, &mut self.weight);
+        let end = u32::try_from(self.index.len()).map_err(|_| Error::IndexOverflow {
+            what: "face-varying weight table entries",
+            count: self.index.len() as u128,
+        })?;
+        self.offsets.push(end);
+        Ok(())
+    }
+
     /// Row `r` from the parent's data `src`.
     #[inline]
     fn row<V: Vector>(&self, r: usize, src: &[V]) -> V {

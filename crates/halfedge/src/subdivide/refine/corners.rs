@@ -1,0 +1,234 @@
+//! The corner channel: face-varying values propagated face corner by face corner on the
+//! surface's own refinement, for the rules whose new faces straddle old edges and vertices
+//! (the dual rules; the [`face_varying`](super::face_varying) module docs, "The corner
+//! channel").
+//!
+//! A rule supplies one [`CornerStep`] per level from the parent level's topology and the
+//! value of each of its face corners; this module runs the steps on the levels the
+//! [`Refinement`] keeps, numbers the child's corners in the order its faces are written, checks
+//! that every value a step creates is used by some corner, and keeps the steps' weight tables
+//! for the evaluation and the last level's corner values for the index buffer.
+
+use super::{check_len, Refinement, Scalar};
+use crate::mesh::INVALID;
+use crate::subdivide::sdc::WeightTable;
+use crate::subdivide::topo::Topo;
+use crate::{Error, Result, Rule};
+
+/// One step of a corner rule, from level `s` (the parent) to level `s + 1` (the child).
+pub(crate) struct CornerStep<'a> {
+    /// The child level's values: row `i` is value `i`, an affine combination (weights
+    /// summing to 1) of the parent level's values.
+    pub(crate) values: WeightTable,
+    /// The value of the child's face corner of face `face` at vertex `vertex` (child ids, in
+    /// the rule's numbering of faces and vertices): a face visits a vertex once, so the pair
+    /// names the corner whatever the order the step writes the face's half-edges in.
+    pub(crate) corner: Box<dyn Fn(u32, u32) -> u32 + Send + Sync + 'a>,
+}
+
+/// The corner step of `rule` from level `s` (`t`, its corner values `values` by half-edge:
+/// the value of the corner at the source of each half-edge inside its face, `INVALID` on a
+/// boundary half-edge; `n_values` values) to level `child = s + 1` (for rules whose steps
+/// alternate, as √3's with boundary). A new rule adds its arm here.
+///
+/// # Errors
+///
+/// [`Error::UvsNotSupported`] for a rule without a corner rule; [`Error::AllocationFailed`],
+/// [`Error::IndexOverflow`].
+fn corner_step<'a>(
+    rule: Rule,
+    t: &'a Topo<'a>,
+    values: &'a [u32],
+    n_values: usize,
+    child: u32,
+) -> Result<CornerStep<'a>> {
+    let _ = child;
+    match rule {
+        Rule::DooSabin => crate::subdivide::dual::doo_sabin_uv_step(t, values, n_values),
+        Rule::MidEdge => crate::subdivide::dual::mid_edge_uv_step(t, values, n_values),
+        other => Err(Error::UvsNotSupported {
+            rule: other.to_string(),
+        }),
+    }
+}
+
+/// Whether the interior edge of half-edge `h` is a seam of the corner values `cv` (by
+/// half-edge): its two faces disagree at either end. Surface boundary edges are not seams.
+pub(crate) fn is_seam(t: &Topo<'_>, cv: &[u32], h: u32) -> bool {
+    let g = h ^ 1;
+    !t.is_boundary(h)
+        && !t.is_boundary(g)
+        && (cv[h as usize] != cv[t.next(g) as usize] || cv[t.next(h) as usize] != cv[g as usize])
+}
+
+/// The rank of every seam edge of `t` among the seam edges in increasing order (`INVALID`
+/// on the other edges), and their number.
+pub(crate) fn seam_ranks(t: &Topo<'_>, cv: &[u32]) -> Result<(Vec<u32>, usize)> {
+    let mut rank = crate::subdivide::alloc::filled(INVALID, t.ne(), "seam ranks")?;
+    let mut next = 0u32;
+    for e in 0..t.ne() as u32 {
+        if is_seam(t, cv, 2 * e) {
+            rank[e as usize] = next;
+            next += 1;
+        }
+    }
+    Ok((rank, next as usize))
+}
+
+/// The face-varying channel of a corner rule on a refinement.
+#[derive(Debug)]
+pub(crate) struct CornerChannel {
+    /// The layout's values (level 0).
+    n_values: usize,
+    /// Level `s` to `s + 1`: the new values as weights of the old.
+    tables: Vec<WeightTable>,
+    /// The value of every corner of the last level, in the order its faces are written.
+    last: Vec<u32>,
+    /// Whether evaluations may run in parallel.
+    parallel: bool,
+}
+
+impl CornerChannel {
+    /// Runs `rule`'s corner steps on the levels of `r` (its topology built from the mesh
+    /// whose corner values `base` are, by half-edge; `n_values` values at level 0).
+    pub(crate) fn new(r: &Refinement, rule: Rule, base: Vec<u32>, n_values: usize) -> Result<Self> {
+        let levels = r.levels;
+        let invalid = |level: u32, what: String| Error::InvalidOutput {
+            scheme: r.name.clone(),
+            level,
+            what,
+        };
+        let topo = |s: u32| {
+            r.topology
+                .get(s as usize)
+                .and_then(|l| l.topology.as_ref())
+                .map(|c| c.topo())
+                .ok_or_else(|| invalid(s, "no connectivity kept for the UV corners".into()))
+        };
+        let polygons = r
+            .polygons
+            .as_ref()
+            .ok_or_else(|| invalid(levels, "no face list kept for the UV corners".into()))?;
+        let mut tables = Vec::with_capacity(levels as usize);
+        let mut cv = base;
+        let mut n = n_values;
+        let mut last = Vec::new();
+        if levels == 0 {
+            // The base corners in the order of the face list (each face from its half-edge).
+            let t = topo(0)?;
+            last = crate::subdivide::alloc::with_capacity(polygons.indices.len(), "uv corners")?;
+            for f in 0..t.nf() as u32 {
+                t.for_face(f, |h| last.push(cv[h as usize]));
+            }
+        }
+        for s in 0..levels {
+            let child = s + 1;
+            let t = topo(s)?;
+            let (table, next) = {
+                let CornerStep {
+                    values: table,
+                    corner,
+                } = corner_step(rule, &t, &cv, n, child)?;
+                let rows = table.rows();
+                let mut used = crate::subdivide::alloc::filled(false, rows, "uv values used")?;
+                let mut bad = None;
+                let mut value = |face: u32, vertex: u32| {
+                    let v = corner(face, vertex);
+                    match used.get_mut(v as usize) {
+                        Some(u) => *u = true,
+                        None => {
+                            bad.get_or_insert((face, vertex, v));
+                        }
+                    }
+                    v
+                };
+                let next = if child < levels {
+                    let ct = topo(child)?;
+                    let mut next =
+                        crate::subdivide::alloc::filled(INVALID, 2 * ct.ne(), "uv corners")?;
+                    for h in 0..2 * ct.ne() as u32 {
+                        if !ct.is_boundary(h) {
+                            next[h as usize] = value(ct.face(h), ct.source(h));
+                        }
+                    }
+                    next
+                } else {
+                    let mut out = crate::subdivide::alloc::with_capacity(
+                        polygons.indices.len(),
+                        "uv corners",
+                    )?;
+                    for (f, w) in polygons.offsets.windows(2).enumerate() {
+                        for &vertex in &polygons.indices[w[0] as usize..w[1] as usize] {
+                            out.push(value(f as u32, vertex));
+                        }
+                    }
+                    out
+                };
+                if let Some((face, vertex, v)) = bad {
+                    return Err(invalid(
+                        child,
+                        format!("UV value {v} of face {face} at vertex {vertex}, of {rows}"),
+                    ));
+                }
+                if let Some(v) = used.iter().position(|&u| !u) {
+                    return Err(invalid(
+                        child,
+                        format!("UV value {v} of {rows} is used by no corner"),
+                    ));
+                }
+                (table, next)
+            };
+            n = table.rows();
+            tables.push(table);
+            if child < levels {
+                cv = next;
+            } else {
+                last = next;
+            }
+        }
+        Ok(CornerChannel {
+            n_values,
+            tables,
+            last,
+            parallel: r.threads != 1,
+        })
+    }
+
+    /// The UV values of level `level` (0 beyond the last level).
+    pub(crate) fn n_uvs(&self, level: u32) -> usize {
+        match level {
+            0 => self.n_values,
+            s => self.tables.get(s as usize - 1).map_or(0, WeightTable::rows),
+        }
+    }
+
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.tables.iter().map(WeightTable::bytes).sum::<usize>() + 4 * self.last.len()
+    }
+
+    pub(crate) fn evaluate<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        let levels = self.tables.len() as u32;
+        check_len("uv base", self.n_values, base.len())?;
+        check_len("uv out", self.n_uvs(levels), out.len())?;
+        let Some((last, before)) = self.tables.split_last() else {
+            out.copy_from_slice(base);
+            return Ok(());
+        };
+        let mut current: Vec<[T; 2]> = Vec::new();
+        for table in before {
+            let mut next = crate::subdivide::alloc::with_capacity(table.rows(), "uv level")?;
+            let src = if current.is_empty() { base } else { &current };
+            table.points(src, &mut next, self.parallel);
+            current = next;
+        }
+        let src = if before.is_empty() { base } else { &current };
+        last.points(src, &mut super::Slots::new(out), self.parallel);
+        Ok(())
+    }
+
+    pub(crate) fn write_indices(&self, out: &mut [u32], expected: usize) -> Result<()> {
+        check_len("uv indices", expected, out.len())?;
+        out.copy_from_slice(&self.last);
+        Ok(())
+    }
+}
