@@ -374,13 +374,15 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
             not_counted.push(format!("`{rule}`"));
         }
     }
-    let _ = writeln!(
-        out,
-        "**Not counted yet:** {} (and its boundary variant): its UV geometry is still to \
-         be designed, so `schemes::uv::uv_scheme` answers `NotCounted` and the commands print \
-         no `UV` column for it.\n",
-        not_counted.join(", ")
-    );
+    // Every built-in rule counts UV values now; a rule without them would be listed.
+    if !not_counted.is_empty() {
+        let _ = writeln!(
+            out,
+            "**Not counted yet:** {}: no UV geometry, so `schemes::uv::uv_scheme` answers \
+             `NotCounted` and the commands print no `UV` column for them.\n",
+            not_counted.join(", ")
+        );
+    }
     for (rule, title, derivation) in [
         (
             Rule::Loop,
@@ -457,6 +459,8 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
             schemes::uv::UvScheme::VALID_FROM
         );
     }
+
+    sqrt3_uv_section(out)?;
 
     // Reference layouts: spot_control_mesh's (pinned by issue 14 and read from the file by
     // crates/halfedge/tests/integration/uv_counts.rs), and the cube cut into charts, computed.
@@ -657,6 +661,66 @@ fn phase_forms(out: &mut String, phase: &Phase) {
         ),
     );
     validity(out, &form, variable);
+}
+
+/// √3's UV recurrence: its two step matrices over `(UV, UBE, S, F)` and the closed forms of
+/// each phase of `sqrt3-boundary` (and of `sqrt3`'s single step).
+fn sqrt3_uv_section(out: &mut String) -> anyhow::Result<()> {
+    use schemes::uv::{uv_scheme, UvScheme};
+    use schemes::Rule;
+
+    let periodic = uv_scheme(Rule::Sqrt3)?;
+    let names = periodic.recurrence().names();
+    out.push_str(
+        "### √3 (`sqrt3`, `sqrt3-boundary`)\n\n\
+         √3 does not refine faces on their own, so its UVs get a rule of their own (linear: old \
+         values stay, positions are smoothed and UVs are not). The centroid of a face gets the \
+         mean of its three values; the triangle of an interior half-edge `g` (its target and \
+         the two points the flipped edge joins) lies in one chart, that of `g`'s face in a plain \
+         step or step A and that of the face across `g` in step B, and its point from the other \
+         face is replaced by the midpoint of the edge in its own chart when the edge is a \
+         **seam** (faces disagreeing at either end; boundary edges are not seams): two values \
+         per seam edge. Step B's trisection points of a boundary edge `a -> b` get \
+         `(2a + b)/3` and `(a + 2b)/3` of their face. The state is `UV` values, `UBE` layout \
+         boundary edges (`BE + 2 S`), `S` seam edges, `F` faces.\n\n\
+         **Plain step, step A.** `F` centroids and `2 S` midpoints; every old value stays used. \
+         A new edge is a seam when it is the flip of a seam or the spoke from a corner `v` to \
+         its face's centroid when the face's edge leaving `v` is a seam: `S' = 3 S`; boundary \
+         edges stay, so `UBE' = UBE + 4 S`.\n\n\
+         **Step B.** The `BE` faces with a boundary edge get two trisection points instead of \
+         a centroid: `UV' = UV + F + BE + 2 S = UV + UBE + F`. With the chart across `g`, the \
+         only corner no triangle uses is at the source `a` of a boundary edge `a -> b` in its \
+         face, the last face around `a`; after step A the last two faces around every boundary \
+         vertex are one old face's and share its value, so no value is lost (with `g`'s own \
+         chart, the first face around a boundary vertex would lose its corner, and its value \
+         with it when no other face there has it). The edge entering `a` on a trisected face \
+         is a spoke of step A beside the boundary, never a seam, so `S' = 3 S` again and \
+         `UBE' = 3 UBE`. On a closed mesh `UBE = 2 S` and both steps count alike; `sqrt3` \
+         counts with step A. Both hold from level 1 on, from `UV0 = V`.\n\n",
+    );
+    for i in 1..=2 {
+        let _ = writeln!(out, "Step {}:\n", if i == 1 { "A" } else { "B" });
+        math_block(out, &step_equation(names, periodic.matrix_of_step(i)));
+    }
+    let _ = writeln!(out, "Closed forms (`sqrt3-boundary`):\n");
+    for phase in &periodic.phases() {
+        phase_forms(out, phase);
+    }
+    let closed = UvScheme::for_scheme(&schemes::builtin("sqrt3")?)?;
+    let _ = writeln!(
+        out,
+        "Closed forms (`sqrt3`, closed meshes: step A alone):\n"
+    );
+    for phase in &closed.phases() {
+        phase_forms(out, phase);
+    }
+    let _ = writeln!(
+        out,
+        "These forms give the recurrence's state; its `UV` is the number of UV values from \
+         level {} on (level 0 counts the used `vt` entries).\n",
+        UvScheme::VALID_FROM
+    );
+    Ok(())
 }
 
 /// `valid_from` of every component and the explicit early levels.

@@ -624,8 +624,9 @@ pub enum Error {
         /// Vertices of the mesh.
         mesh_vertices: usize,
     },
-    /// UVs asked of a rule that does not refine them yet (√3).
-    #[error("UVs are not refined under {rule} (Loop, Catmull-Clark, the triangle splits, Doo-Sabin and mid-edge refine them)")]
+    /// UVs asked of a rule that does not refine them (every built-in rule refines them: a
+    /// rule without a face-varying step, or OpenSubdiv's channel asked of another rule).
+    #[error("UVs are not refined under {rule} (no face-varying rule)")]
     UvsNotSupported {
         /// The rule.
         rule: String,

@@ -427,13 +427,13 @@ pub fn predicted_refinement_peak_bytes(
 /// - with `holes`, the written corners' UV indices and the channel's last face list read to
 ///   find them (4 bytes per corner, twice, and per face).
 ///
-/// Doo-Sabin and mid-edge carry UVs by the corner channel on the surface's own levels
+/// √3, Doo-Sabin and mid-edge carry UVs by the corner channel on the surface's own levels
 /// instead, which the layout's statistics size only approximately (they do not separate
 /// seams from the surface's boundary): the surface refinement the one-shot path builds for
 /// it (bounded by the layout's), each level's weight table (4 bytes per value, 12 per
 /// weight; values the larger of the two extreme layouts, no seam or every layout boundary
-/// edge a seam side; 2 weights per value under mid-edge, the largest base face degree, at
-/// least 4, under Doo-Sabin), 8 bytes per corner of the last level (its values and the
+/// edge a seam side; 2 weights per value under mid-edge, 3 under √3, the largest base face
+/// degree, at least 4, under Doo-Sabin), 8 bytes per corner of the last level (its values and the
 /// caller's index buffer) and 4 per corner of the level before (its values while the last
 /// is built), and the evaluation buffers: an estimate, not a bound (on grids cut into four
 /// charts, 1.6 to 2.6 times what the channel and the caller's buffers hold,
@@ -467,13 +467,14 @@ pub fn predicted_refinement_peak_bytes(
 /// // Values of levels 0, 1 and 2 (24, 54, 150), the last one twice: 4 bytes less per
 /// // coordinate.
 /// assert_eq!(f64_bytes - f32_bytes, (8 * (24 + 54 + 2 * 150)).into());
-/// assert!(predicted_uv_bytes(Rule::Sqrt3, &layout, 2, 8, false).is_err());
+/// // √3 carries UVs on the corner channel: the layout of two triangles, each its own chart.
+/// let two = schemes::MeshCounts::from_polygons(&[[0, 1, 2], [3, 4, 5]])?;
+/// assert!(predicted_uv_bytes(Rule::Sqrt3, &two, 2, 8, false)? > 0.into());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
 /// # Errors
 ///
-/// [`Error::UvsNotSupported`](crate::Error::UvsNotSupported) for √3 (no face-varying rule),
 /// [`Error::Scheme`](crate::Error::Scheme) when the channel's rule does not apply to the
 /// layout.
 pub fn predicted_uv_bytes(
@@ -520,7 +521,7 @@ pub fn predicted_uv_bytes(
     Ok(heap + numbering + evaluation + indices + written)
 }
 
-/// [`predicted_uv_bytes`] of the corner channel (Doo-Sabin, mid-edge: values propagated on
+/// [`predicted_uv_bytes`] of the corner channel (√3, Doo-Sabin, mid-edge: values propagated on
 /// the surface's own refinement): an estimate from the layout's statistics alone, which do
 /// not separate seams from the surface's boundary. The sum of
 ///
@@ -530,7 +531,8 @@ pub fn predicted_uv_bytes(
 ///   is the caller's own refinement, counted twice);
 /// - each level's weight table: 4 bytes per value and 12 per weight, the values being the
 ///   larger of the two extreme layouts (no seam; every layout boundary edge a side of a seam)
-///   under [`schemes::uv::uv_scheme`], the weights per value 2 under mid-edge and, under
+///   under [`schemes::uv::uv_scheme`], the weights per value 2 under mid-edge, 3 under √3
+///   (a centroid) and, under
 ///   Doo-Sabin, the largest face degree of the base (at least 4: from level 1 on the faces
 ///   are quads but the face faces and the faces of the base vertices, whose degree is their
 ///   valence, not counted beyond it);
@@ -575,6 +577,7 @@ fn corner_uv_bytes(
         .map_or(4, |&d| d.max(4));
     let weights = BigInt::from(match rule {
         crate::Rule::DooSabin => degree,
+        crate::Rule::Sqrt3 => 3,
         _ => 2,
     });
     let mut bytes = crate::Refinement::predicted_bytes(rule, layout, levels)?;

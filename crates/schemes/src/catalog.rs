@@ -591,8 +591,9 @@ pub fn catmull_clark_general() -> Scheme {
 ///
 /// `valid_from`: 0 for every component (eigenvalues 1, 1, 3; diagonalizable).
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** [`crate::uv::uv_scheme`] (`Rule::Sqrt3`): over the layout's values,
+/// boundary edges, seam edges `S` and faces, `UV' = UV + 2 S + F` (old values, centroids, two
+/// seam midpoints per seam edge), `S' = 3 S`.
 pub fn sqrt3() -> Scheme {
     build(Def {
         name: "sqrt3",
@@ -651,8 +652,9 @@ pub fn sqrt3() -> Scheme {
 ///
 /// `valid_from`: 0 for every component (no eigenvalue 0).
 ///
-/// **UV values:** not counted yet ([`crate::uv::NotCounted`]): the rule's UV geometry is
-/// still to be designed.
+/// **UV values:** [`crate::uv::uv_scheme`] (`Rule::Sqrt3`), the same two steps over the
+/// layout's values, boundary edges `UBE`, seam edges `S` and faces: step A
+/// `UV' = UV + 2 S + F`, step B `UV' = UV + UBE + F`.
 pub fn sqrt3_boundary() -> Scheme {
     let a = matrix(&[&[1, 0, 0, 1], &[0, 1, 0, 3], &[0, 0, 1, 0], &[0, 0, 0, 3]]);
     let b = matrix(&[&[1, 0, 1, 1], &[0, 1, -1, 3], &[0, 0, 3, 0], &[0, 0, 0, 3]]);

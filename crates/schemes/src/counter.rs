@@ -147,7 +147,8 @@ impl Counter {
     /// # Errors
     ///
     /// [`NotCounted`](crate::uv::NotCounted) for a bare matrix and for a plan with a stage
-    /// whose rule has no UV recurrence (√3, Doo-Sabin, mid-edge, a scheme without a rule).
+    /// without a UV recurrence (a scheme without a rule, a composition of a dual rule with a
+    /// rule of the other kind: [`NotCounted`](crate::uv::NotCounted)).
     pub fn uv_counter(
         &self,
         uv: &crate::uv::UvCounts,

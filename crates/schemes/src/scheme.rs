@@ -106,7 +106,7 @@ impl StepRule {
 
     /// The product of the cycle from position `r` on, wrapping around: the matrix that takes
     /// level `cycle_start + r + p t` to `cycle_start + r + p (t + 1)`. `None` on `i64` overflow.
-    fn rotated_product(&self, r: usize) -> Option<IntMatrix> {
+    pub(crate) fn rotated_product(&self, r: usize) -> Option<IntMatrix> {
         let p = self.cycle.len();
         let mut acc = self.cycle[r % p].clone();
         for k in 1..p {
@@ -977,7 +977,7 @@ impl Scheme {
     }
 }
 
-fn phase_text(p: u64, first: u64) -> String {
+pub(crate) fn phase_text(p: u64, first: u64) -> String {
     let t = if p == 1 {
         "t".to_string()
     } else {

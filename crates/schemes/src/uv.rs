@@ -61,8 +61,12 @@
 //! [`UvScheme`]. A composition chaining a dual rule with a rule of the other kind is not
 //! counted (one state does not give the other: [`NotCounted::composed_with`]).
 //!
-//! √3 has no UV geometry yet: [`uv_scheme`] answers [`NotCounted`] for it, and for a scheme
-//! without a rule.
+//! √3 does not refine faces on their own; its UV rule (linear, every new face in one chart,
+//! seam midpoints) counts over the layout's values, boundary edges, seam edges and faces
+//! ([`SQRT3_UV_STATE`]; the derivation is in [`uv_scheme`]'s √3 matrices, [`UvScheme`]),
+//! alternating two matrices with the boundary (`sqrt3-boundary`).
+//!
+//! A scheme without a rule is [`NotCounted`].
 //!
 //! # Example: a cube with one seam
 //!
@@ -90,7 +94,7 @@
 //! assert_eq!(cc.recurrence().names(), ["UV", "UE", "UBE", "F", "H"]);
 //! // Level 1: a value per old value, per layout edge and per face.
 //! assert_eq!(cc.values_at(&uv, 1)?, BigInt::from(12 + 16 + 6));
-//! assert!(uv_scheme(Rule::Sqrt3).is_err());
+//! assert!(uv_scheme(Rule::TriSplit(1)).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
@@ -101,7 +105,7 @@ use recurrence::{IntMatrix, Recurrence};
 use serde::Serialize;
 
 use crate::catalog::{catmull_clark_general, loop_general, tri_split};
-use crate::{Error, MeshCounts, Plan, Result, Row, Rule, Scheme};
+use crate::{Error, MeshCounts, Plan, Result, Row, Rule, Scheme, StepRule};
 
 /// The statistics of a UV layout (module docs for the definitions), computed by
 /// [`UvCounts::from_layout`].
@@ -551,17 +555,19 @@ pub const UV_STATE: [&str; 5] = ["UV", "UE", "UBE", "F", "H"];
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct UvScheme {
     rule: Rule,
+    /// The recurrence over one period (the step matrix unless the rule alternates steps).
     recurrence: Recurrence,
     /// Whether the values start from OpenSubdiv's sibling values ([`UvScheme::splits_siblings`]).
     siblings: bool,
+    /// The step matrices in turn (one, that of `recurrence`, unless the rule alternates).
+    steps: StepRule,
     /// Whether the state is [`UV_SEAM_STATE`] (the dual rules) rather than [`UV_STATE`].
     seams: bool,
 }
 
-/// A rule (or a scheme) whose UV values are not counted: √3, whose UV geometry is not
-/// designed yet, schemes without a subdivision rule, and compositions that chain a dual
-/// rule (Doo-Sabin, mid-edge) with a rule of the other kind (their UV states do not convert:
-/// [`UvCounter`]).
+/// A rule (or a scheme) whose UV values are not counted: schemes without a subdivision rule,
+/// `TriSplit(n)` with `n < 2`, and compositions that chain a dual rule (Doo-Sabin, mid-edge)
+/// with a rule of the other kind (their UV states do not convert: [`UvCounter`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
 pub struct NotCounted {
     /// The rule, when there is one.
@@ -597,7 +603,27 @@ impl fmt::Display for NotCounted {
 ///
 /// # Errors
 ///
-/// [`NotCounted`] for √3, and for `TriSplit(n)` with `n < 2` or too large for its matrix.
+/// [`NotCounted`] for `TriSplit(n)` with `n < 2` or too large for its matrix.
+///
+/// √3 is the cycle `[A, B]` of `sqrt3-boundary` over [`SQRT3_UV_STATE`] (on a closed mesh
+/// both steps count alike; [`UvScheme::for_scheme`] gives `sqrt3` step A alone):
+///
+/// ```
+/// use schemes::uv::{uv_scheme, UvCounts};
+/// use schemes::{BigInt, Rule};
+///
+/// // One triangle, its own chart: 3 values, 3 boundary edges, no seam.
+/// let tri = UvCounts { values: 3, edges: 3, boundary_edges: 3, used_vt: 3, faces: 1,
+///                      corners: 3, ..UvCounts::default() };
+/// let sqrt3 = uv_scheme(Rule::Sqrt3)?;
+/// assert_eq!(sqrt3.recurrence().names(), ["UV", "UBE", "S", "F"]);
+/// assert_eq!(sqrt3.period(), 2);
+/// // Step A adds the centroid; step B the 3 centroids less the 3 boundary faces, plus two
+/// // trisection points on each: as the surface's vertices without seams.
+/// let uv: Vec<BigInt> = (1..=3).map(|s| sqrt3.values_at(&tri, s)).collect::<Result<_, _>>()?;
+/// assert_eq!(uv, [4, 10, 19].map(BigInt::from));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
     let not = NotCounted::rule(Some(rule));
     // The rule's scheme for any face list, and how many boundary edges a layout boundary
@@ -606,13 +632,14 @@ pub fn uv_scheme(rule: Rule) -> std::result::Result<UvScheme, NotCounted> {
         Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere => (loop_general(), 2),
         Rule::TriSplit(n) => (tri_split(u64::from(n)).map_err(|_| not)?, i64::from(n)),
         Rule::CatmullClark => (catmull_clark_general(), 2),
+        Rule::Sqrt3 => return sqrt3_uv_scheme(&[sqrt3_step_a(), sqrt3_step_b()]).ok_or(not),
         Rule::DooSabin => return dual_uv_scheme(rule, &DOO_SABIN_UV),
         Rule::MidEdge => return dual_uv_scheme(rule, &MID_EDGE_UV),
-        Rule::Sqrt3 => return Err(not),
     };
     let recurrence = with_boundary_edges(general.matrix(), split).ok_or(not)?;
     Ok(UvScheme {
         rule,
+        steps: StepRule::single(recurrence.matrix().clone()),
         recurrence,
         siblings: matches!(rule, Rule::Loop | Rule::CatmullClark),
         seams: false,
@@ -635,9 +662,85 @@ fn dual_uv_scheme(rule: Rule, rows: &[[i64; 4]; 4]) -> std::result::Result<UvSch
         Recurrence::with_names(matrix, UV_SEAM_STATE).map_err(|_| NotCounted::rule(Some(rule)))?;
     Ok(UvScheme {
         rule,
+        steps: StepRule::single(recurrence.matrix().clone()),
         recurrence,
         siblings: false,
         seams: true,
+    })
+}
+
+/// The names of √3's UV state: `UV` values, `UBE` layout boundary edges, `S` seam edges and
+/// `F` faces.
+pub const SQRT3_UV_STATE: [&str; 4] = ["UV", "UBE", "S", "F"];
+
+/// √3's plain step (`sqrt3`, and step A of `sqrt3-boundary`) over [`SQRT3_UV_STATE`]:
+/// `UV' = UV + 2 S + F`, `UBE' = UBE + 4 S`, `S' = 3 S`, `F' = 3 F` ([`sqrt3_uv_scheme`]).
+fn sqrt3_step_a() -> IntMatrix {
+    rows4([[1, 0, 2, 1], [0, 1, 4, 0], [0, 0, 3, 0], [0, 0, 0, 3]])
+}
+
+/// √3's step B (boundary edges trisected) over [`SQRT3_UV_STATE`]:
+/// `UV' = UV + UBE + F`, `UBE' = 3 UBE`, `S' = 3 S`, `F' = 3 F` ([`sqrt3_uv_scheme`]).
+fn sqrt3_step_b() -> IntMatrix {
+    rows4([[1, 1, 0, 1], [0, 3, 0, 0], [0, 0, 3, 0], [0, 0, 0, 3]])
+}
+
+/// A 4x4 matrix from its rows.
+fn rows4(rows: [[i64; 4]; 4]) -> IntMatrix {
+    IntMatrix::from_fn(4, |i, j| rows[i][j])
+}
+
+/// The UV recurrence of √3 (Kobbelt's rule, UVs linear), over the state
+/// `(UV, UBE, S, F)` ([`SQRT3_UV_STATE`]): `steps` are `[A]` for `sqrt3` (closed meshes) and
+/// `[A, B]` for `sqrt3-boundary` (steps A and B alternate, A first).
+///
+/// **The UV rule** (`halfedge::refine::face_varying`): old values stay; the centroid of a
+/// face gets the mean of its three values; the triangle of an interior half-edge `g` (its
+/// target, `rep(g)`, `rep(twin g)`) lies in one chart, that of `g`'s face in a plain step or
+/// step A and that of the face across `g` in step B, and its point from the other face is
+/// replaced by the midpoint of the edge in its own chart when the edge is a **seam** (its
+/// faces disagree at either end; a boundary edge is none). Step B's trisection points of a
+/// boundary edge `a -> b` get `(2a + b)/3` and `(a + 2b)/3` in their face's chart.
+///
+/// **Plain step / step A.** Every face adds its centroid (`F` values) and every seam edge two
+/// midpoints, one per side (`2 S`); every old value stays used (a corner at `v` of face `f` is
+/// a corner of the triangle of `f`'s half-edge ending at `v`, or of a boundary triangle). A new
+/// edge is a seam when it is the flip of a seam edge, or the spoke from a corner `v` of `f` to
+/// its centroid when `f`'s edge leaving `v` is a seam: `S' = 3 S`. Boundary edges stay
+/// (`BE' = BE`) and the layout's boundary is the surface's plus both sides of every seam,
+/// `UBE = BE + 2 S`: `UBE' = UBE + 4 S`. So `UV' = UV + 2 S + F`, `F' = 3 F`.
+///
+/// **Step B.** A face with a boundary edge (one each after step A: `BE` of them) adds two
+/// trisection points instead of a centroid: `F - BE + 2 BE` values, and `2 S` midpoints, so
+/// `UV' = UV + F + BE + 2 S = UV + UBE + F`. Homes: in step B the triangle of `g` takes the
+/// chart of the face across `g`, so a corner is unused only at the source `a` of a boundary
+/// edge `a -> b` in its face; that face is the last of the fan around `a`, and after step A
+/// the last two faces of every boundary fan are one old face's and share its value, so every
+/// old value stays used (with the chart of `g`'s own face the first face of each fan would
+/// lose its corner, and its value when no other face at the vertex has it). Seams: flips of
+/// seams, and the spoke at `v` when the face's edge entering `v` is a seam; on a trisected
+/// face the edge entering `a` is the spoke of step A from `a` to the centroid beside the
+/// boundary edge, never a seam, so again `S' = 3 S`; `BE' = 3 BE`, so `UBE' = 3 UBE`.
+///
+/// On a closed mesh `UBE = 2 S` and both steps give the same counts. Each step holds from
+/// level 1 on from `UV0 = V` (no sibling values); the `F` and `BE` of the surface follow
+/// [`crate::catalog::sqrt3_boundary`]. Holes are refused with √3 (its faces do not nest).
+///
+/// ```text
+///        A = [1 0 2 1]        B = [1 1 0 1]
+///            [0 1 4 0]            [0 3 0 0]
+///            [0 0 3 0]            [0 0 3 0]
+///            [0 0 0 3]            [0 0 0 3]
+/// ```
+fn sqrt3_uv_scheme(steps: &[IntMatrix]) -> Option<UvScheme> {
+    let steps = StepRule::try_new(None, steps.to_vec()).ok()?;
+    let period = steps.rotated_product(0)?;
+    Some(UvScheme {
+        rule: Rule::Sqrt3,
+        recurrence: Recurrence::with_names(period, SQRT3_UV_STATE).ok()?,
+        siblings: false,
+        steps,
+        seams: false,
     })
 }
 
@@ -673,8 +776,15 @@ impl UvScheme {
     /// # Errors
     ///
     /// [`NotCounted`] for a scheme without a rule or whose rule has no UV recurrence.
+    ///
+    /// √3 alternates its steps A and B only on meshes with a boundary (`sqrt3-boundary`); a
+    /// scheme of period 1 with the √3 rule (`sqrt3`, closed meshes) counts with step A alone.
     pub fn for_scheme(scheme: &Scheme) -> std::result::Result<UvScheme, NotCounted> {
-        let mut uv = uv_scheme(scheme.subdivision_rule().ok_or(NotCounted::rule(None))?)?;
+        let rule = scheme.subdivision_rule().ok_or(NotCounted::rule(None))?;
+        if rule == Rule::Sqrt3 && scheme.period() == 1 {
+            return sqrt3_uv_scheme(&[sqrt3_step_a()]).ok_or(NotCounted::rule(Some(rule)));
+        }
+        let mut uv = uv_scheme(rule)?;
         uv.siblings &= scheme.mesh_class().needs_manifold();
         Ok(uv)
     }
@@ -684,9 +794,55 @@ impl UvScheme {
         self.rule
     }
 
-    /// The recurrence over `UV, UE, UBE, F` (and `H` for Catmull-Clark).
+    /// The recurrence over `UV, UE, UBE, F` (and `H` for Catmull-Clark; `UV, UBE, S, F` for
+    /// √3, [`SQRT3_UV_STATE`]): the step matrix, or for a rule that alternates steps
+    /// ([`period`](Self::period) > 1) the matrix over one period (see [`phases`](Self::phases)).
     pub fn recurrence(&self) -> &Recurrence {
         &self.recurrence
+    }
+
+    /// The number of step matrices applied in turn: 2 for `sqrt3-boundary`, else 1.
+    pub fn period(&self) -> u64 {
+        self.steps.period()
+    }
+
+    /// The matrix of step `i` (from level `i - 1` to level `i`, `i >= 1`).
+    ///
+    /// # Panics
+    ///
+    /// Panics if `i` is zero.
+    pub fn matrix_of_step(&self, i: u64) -> &IntMatrix {
+        self.steps.matrix_of_step(i)
+    }
+
+    /// One closed-form phase per residue class of the period, as [`Scheme::phases`]: for
+    /// `s = first_level + period t` the state is the phase's recurrence powered `t` times from
+    /// the state at `first_level` ([`state_at`](Self::state_at)).
+    pub fn phases(&self) -> Vec<crate::Phase> {
+        let p = self.period();
+        (0..p)
+            .filter_map(|r| {
+                let m = self.steps.rotated_product(r as usize)?;
+                Some(crate::Phase {
+                    description: crate::scheme::phase_text(p, r),
+                    recurrence: Recurrence::with_names(m, self.recurrence.names().iter()).ok()?,
+                    first_level: r,
+                    period: p,
+                    last_level: None,
+                    stage: 0,
+                })
+            })
+            .collect()
+    }
+
+    /// `state` advanced by `steps` steps from the start of the cycle.
+    fn advance(&self, state: &[BigInt], steps: u64) -> Result<Vec<BigInt>> {
+        let p = self.period();
+        let mut x = self.recurrence.state_at(state, steps / p)?;
+        for m in &self.steps.cycle()[..(steps % p) as usize] {
+            x = crate::scheme::apply(m, &x);
+        }
+        Ok(x)
     }
 
     /// Whether the face-varying refinement is OpenSubdiv's (Loop and Catmull-Clark on a
@@ -707,6 +863,11 @@ impl UvScheme {
         } else {
             0
         };
+        if self.rule == Rule::Sqrt3 {
+            return [uv.values, uv.boundary_edges, uv.seam_edges, uv.faces]
+                .map(BigInt::from)
+                .to_vec();
+        }
         if self.seams {
             return [uv.values, uv.edges, uv.boundary_edges, uv.seam_edges]
                 .iter()
@@ -732,7 +893,7 @@ impl UvScheme {
     /// None in practice (the state has the recurrence's length); [`Error::Recurrence`] from
     /// the powering.
     pub fn state_at(&self, uv: &UvCounts, level: u64) -> Result<Vec<BigInt>> {
-        Ok(self.recurrence.state_at(&self.initial_state(uv), level)?)
+        self.advance(&self.initial_state(uv), level)
     }
 
     /// The number of UV values at `level`: [`UvCounts::used_vt`] at level 0, the recurrence's
@@ -827,6 +988,8 @@ impl UvCounter {
     fn stage_state(&self, level: u64) -> Result<(usize, u64, Vec<BigInt>)> {
         let mut state = self.stages[0].0.initial_state(&self.uv);
         let mut start = 0u64;
+        // The surface's seam edges at `start` (for a √3 stage after another).
+        let mut seams = BigInt::from(self.uv.seam_edges);
         for (i, (scheme, levels)) in self.stages.iter().enumerate() {
             let end = levels.map_or(u64::MAX, |k| start.saturating_add(k));
             if level <= end {
@@ -835,8 +998,15 @@ impl UvCounter {
             let Some((next, _)) = self.stages.get(i + 1) else {
                 return Err(Error::LevelBeyondPlan { level, last: end });
             };
-            let reached = scheme.recurrence.state_at(&state, end - start)?;
-            state = next.convert(reached);
+            let reached = scheme.advance(&state, end - start)?;
+            if next.rule == Rule::Sqrt3 {
+                let k = u32::try_from(end - start).map_err(|_| Error::LevelBeyondPlan {
+                    level,
+                    last: u64::from(u32::MAX),
+                })?;
+                seams *= BigInt::from(seam_factor(scheme.rule)).pow(k);
+            }
+            state = next.convert(scheme.recurrence.names(), reached, &seams);
             start = end;
         }
         // The last stage is unbounded or has returned the error above.
@@ -850,10 +1020,7 @@ impl UvCounter {
     /// [`Error::LevelBeyondPlan`] past a bounded plan; [`Error::Recurrence`] from powering.
     pub fn state_at(&self, level: u64) -> Result<Vec<BigInt>> {
         let (i, start, state) = self.stage_state(level)?;
-        Ok(self.stages[i]
-            .0
-            .recurrence
-            .state_at(&state, level - start)?)
+        self.stages[i].0.advance(&state, level - start)
     }
 
     /// The number of UV values at `level` ([`UvCounts::used_vt`] at level 0).
@@ -895,7 +1062,10 @@ impl UvCounter {
             let stage = ends.iter().position(|&e| level <= e);
             let state = match (&previous, stage) {
                 (Some((l, i, state)), Some(stage)) if l + 1 == level && *i == stage => {
-                    self.stages[stage].0.recurrence.state_at(state, 1)?
+                    // Step `level - start` of the stage.
+                    let start = if stage == 0 { 0 } else { ends[stage - 1] };
+                    let m = self.stages[stage].0.matrix_of_step(level - start);
+                    crate::scheme::apply(m, state)
                 }
                 _ => self.state_at(level)?,
             };
@@ -913,9 +1083,14 @@ impl UvCounter {
             return Some(recurrence::digit_summary(&v, crate::SUMMARY_DIGITS));
         }
         let single = self.single()?;
-        let form = single.recurrence.closed_form();
-        let x0 = single.initial_state(&self.uv);
-        let mut sums = form.summary_at(&x0, level, crate::SUMMARY_DIGITS).ok()?;
+        // The phase of `level` (the only one unless the rule alternates steps).
+        let p = single.period();
+        let phase = single.phases().into_iter().nth((level % p) as usize)?;
+        let x0 = single.state_at(&self.uv, phase.first_level).ok()?;
+        let form = phase.recurrence.closed_form();
+        let mut sums = form
+            .summary_at(&x0, level / p, crate::SUMMARY_DIGITS)
+            .ok()?;
         Some(sums.swap_remove(0))
     }
 
@@ -928,8 +1103,11 @@ impl UvCounter {
     /// As [`state_at`](Self::state_at).
     pub fn estimated_log10(&self, level: u64) -> Result<f64> {
         let (i, start, state) = self.stage_state(level)?;
-        let counter = crate::Counter::from(self.stages[i].0.recurrence.clone());
-        counter.estimated_log10(&state, level - start)
+        let scheme = &self.stages[i].0;
+        let counter = crate::Counter::from(scheme.recurrence.clone());
+        // Whole periods of the stage's recurrence, rounded up: at least the state reached.
+        let p = scheme.period();
+        counter.estimated_log10(&state, (level - start).div_ceil(p))
     }
 }
 
@@ -937,15 +1115,47 @@ impl UvCounter {
 pub const UV_COLUMN: &str = "UV";
 
 impl UvScheme {
-    /// `state` (another UV scheme's) in this scheme's names: the common components kept,
-    /// `H = 3 F` added when missing (a triangle split's output), `H` dropped when unused.
-    fn convert(&self, mut state: Vec<BigInt>) -> Vec<BigInt> {
-        if state.len() < self.recurrence.dim() {
-            let corners = BigInt::from(3) * &state[3];
-            state.push(corners);
-        }
-        state.truncate(self.recurrence.dim());
-        state
+    /// `state` (another UV scheme's, over `names`) in this scheme's names: the common
+    /// components kept, `H = 3 F` added when missing (a triangle split's output), `H`
+    /// dropped when unused; into √3's state the surface's `seams` (`S`), out of it
+    /// `UE = (3 F + UBE) / 2` (a layout of triangles).
+    fn convert(&self, names: &[String], state: Vec<BigInt>, seams: &BigInt) -> Vec<BigInt> {
+        let get = |name: &str| {
+            names
+                .iter()
+                .position(|n| n == name)
+                .map(|i| state[i].clone())
+        };
+        let faces = get("F").unwrap_or_default();
+        self.recurrence
+            .names()
+            .iter()
+            .map(|name| {
+                get(name).unwrap_or_else(|| match name.as_str() {
+                    "H" => BigInt::from(3) * &faces,
+                    "S" => seams.clone(),
+                    "UE" => (BigInt::from(3) * &faces + get("UBE").unwrap_or_default()) / 2,
+                    _ => BigInt::default(),
+                })
+            })
+            .collect()
+    }
+}
+
+/// How many seam edges each seam edge of the surface becomes in one step of `rule`: the
+/// face-refining rules split it in `N` (their other new edges lie inside one face and join
+/// values of that face), √3 makes three of it ([`sqrt3_uv_scheme`]), Doo-Sabin three and
+/// mid-edge two ([`UvScheme`]).
+fn seam_factor(rule: Rule) -> u32 {
+    match rule {
+        Rule::Loop
+        | Rule::Midpoint
+        | Rule::Butterfly
+        | Rule::Icosphere
+        | Rule::CatmullClark
+        | Rule::MidEdge => 2,
+        Rule::TriSplit(n) => n,
+        Rule::Sqrt3 | Rule::DooSabin => 3,
     }
 }
 
@@ -1085,9 +1295,15 @@ mod tests {
                 [0, 0, 0, 0, 4]
             ]
         );
-        for rule in [Rule::Sqrt3, Rule::TriSplit(1)] {
-            assert_eq!(uv_scheme(rule), Err(NotCounted::rule(Some(rule))));
-        }
+        assert_eq!(
+            rows(Rule::Sqrt3),
+            // B A: one period of sqrt3-boundary.
+            [[1, 1, 6, 4], [0, 3, 12, 0], [0, 0, 9, 0], [0, 0, 0, 9]]
+        );
+        assert_eq!(
+            uv_scheme(Rule::TriSplit(1)),
+            Err(NotCounted::rule(Some(Rule::TriSplit(1))))
+        );
         assert_eq!(
             NotCounted::rule(Some(Rule::Sqrt3)).to_string(),
             "sqrt3 does not count UV values (no UV rule yet)"
@@ -1218,11 +1434,6 @@ mod tests {
         assert_eq!(err, Error::LevelBeyondPlan { level: 3, last: 2 });
         let matrix = crate::Counter::from(Recurrence::new(IntMatrix::identity(2)));
         assert_eq!(matrix.uv_counter(&uv), Err(NotCounted::rule(None)));
-        let sqrt3 = crate::Counter::from(Plan::parse("loop-boundary:1,sqrt3-boundary").unwrap());
-        assert_eq!(
-            sqrt3.uv_counter(&uv),
-            Err(NotCounted::rule(Some(Rule::Sqrt3)))
-        );
         // A dual rule chained with a rule of the other kind: their states do not convert.
         let mixed =
             crate::Counter::from(Plan::parse("loop-boundary:1,doo-sabin-boundary").unwrap());
@@ -1238,6 +1449,128 @@ mod tests {
             err.to_string(),
             "doo-sabin does not count UV values composed with loop (their UV states do not convert)"
         );
+    }
+
+    /// √3 without seams counts the surface's vertices, alone, periodic, and composed with
+    /// the other rules both ways (the seams carried across a stage boundary, `UE` rebuilt from
+    /// a triangle layout).
+    #[test]
+    fn sqrt3_without_seams_counts_like_the_mesh() {
+        let strip: [&[u32]; 4] = [&[0, 1, 4], &[0, 4, 3], &[1, 2, 5], &[1, 5, 4]];
+        let tetra: [&[u32]; 4] = [&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[0, 3, 2]];
+        for (faces, plans) in [
+            (
+                &strip[..],
+                &[
+                    "sqrt3-boundary",
+                    "loop-boundary:1,sqrt3-boundary",
+                    "sqrt3-boundary:3,loop-boundary",
+                    "sqrt3-boundary:1,loop-boundary:1,sqrt3-boundary",
+                ][..],
+            ),
+            (
+                &tetra[..],
+                &["sqrt3", "sqrt3:2,catmull-clark", "loop:1,sqrt3"][..],
+            ),
+        ] {
+            let uv = layout(faces, faces, &[0, 1, 2, 3, 4, 5][..faces.len() + 2]).unwrap();
+            assert_eq!(uv.seam_edges, 0);
+            let mesh = MeshCounts::from_polygons(faces).unwrap();
+            for text in plans {
+                let plan = Plan::parse(text).unwrap();
+                let uvc = crate::Counter::from(plan.clone()).uv_counter(&uv).unwrap();
+                let counter = crate::Counter::from(plan.clone());
+                let x0 = plan.initial_state(&mesh).unwrap();
+                let mut rows = counter.rows(&x0, 0..=7).unwrap();
+                let mut columns = counter.columns();
+                uvc.extend_rows(&mut columns, &mut rows).unwrap();
+                let v = columns.iter().position(|c| c == "V").unwrap();
+                for s in 0..=7 {
+                    let vertices = plan.counts_at(&mesh, s).unwrap().vertices;
+                    assert_eq!(uvc.values_at(s).unwrap(), vertices, "{text} level {s}");
+                    let row = &rows[s as usize];
+                    assert_eq!(
+                        row.values.last(),
+                        Some(&row.values[v].clone()),
+                        "{text} {s}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// √3 with seams: step by step by hand, the periodic closed forms and the summaries
+    /// agree with powering.
+    #[test]
+    fn sqrt3_counts_seams_per_step() {
+        // Two triangles of the strip, the second its own chart along their common edge 0-4:
+        // one seam, 6 values, 6 layout boundary edges, 2 faces.
+        let uv = layout(
+            &[&[0, 1, 4], &[0, 4, 3]],
+            &[&[0, 1, 2], &[3, 4, 5]],
+            &[0, 1, 2, 3, 4, 5],
+        )
+        .unwrap();
+        assert_eq!(
+            (uv.values, uv.boundary_edges, uv.seam_edges, uv.faces),
+            (6, 6, 1, 2)
+        );
+        let scheme = uv_scheme(Rule::Sqrt3).unwrap();
+        assert_eq!(scheme.initial_state(&uv), [6, 6, 1, 2].map(BigInt::from));
+        // A: 6 + 2 (seam midpoints) + 2 (centroids); B: + 6 (UBE) + 6 (F).
+        let mut expected = vec![BigInt::from(6)];
+        let mut x = [6i64, 6, 1, 2];
+        for step in 1..=9u64 {
+            x = if step % 2 == 1 {
+                [x[0] + 2 * x[2] + x[3], x[1] + 4 * x[2], 3 * x[2], 3 * x[3]]
+            } else {
+                [x[0] + x[1] + x[3], 3 * x[1], 3 * x[2], 3 * x[3]]
+            };
+            expected.push(BigInt::from(x[0]));
+        }
+        assert_eq!(expected[1..3], [BigInt::from(10), BigInt::from(26)]);
+        let counter = crate::Counter::from(builtin("sqrt3-boundary").unwrap());
+        let uvc = counter.uv_counter(&uv).unwrap();
+        for (s, e) in expected.iter().enumerate().skip(1) {
+            assert_eq!(&scheme.values_at(&uv, s as u64).unwrap(), e, "level {s}");
+            assert_eq!(&uvc.values_at(s as u64).unwrap(), e, "level {s}");
+            let sum = uvc.summary_at(s as u64).unwrap();
+            assert_eq!(
+                sum,
+                recurrence::digit_summary(e, crate::SUMMARY_DIGITS),
+                "{s}"
+            );
+            let log = uvc.estimated_log10(s as u64).unwrap();
+            assert!(log >= crate::log10_abs(e) - 1e-9, "{s}: {log}");
+        }
+        // The phases: s = 2t from level 0, s = 2t + 1 from level 1.
+        let phases = scheme.phases();
+        assert_eq!(phases.len(), 2);
+        for phase in &phases {
+            let x0 = scheme.state_at(&uv, phase.first_level).unwrap();
+            for t in 0..4u64 {
+                let s = phase.first_level + 2 * t;
+                let form = phase.closed_form().evaluate(&x0, t).unwrap();
+                assert_eq!(
+                    form,
+                    scheme.state_at(&uv, s).unwrap(),
+                    "{}",
+                    phase.description
+                );
+            }
+        }
+        // `sqrt3` (closed meshes) is step A alone.
+        let closed = UvScheme::for_scheme(&builtin("sqrt3").unwrap()).unwrap();
+        assert_eq!(closed.period(), 1);
+        assert_eq!(
+            closed.values_at(&uv, 2).unwrap(),
+            BigInt::from(10 + 2 * 3 + 6)
+        );
+        // A √3 stage after a rule whose seams are not derived here is not counted.
+        let dual = Plan::parse("doo-sabin:1,sqrt3");
+        if let Ok(plan) = dual {
+            assert!(crate::Counter::from(plan).uv_counter(&uv).is_err());
+        }
     }
 
     #[test]

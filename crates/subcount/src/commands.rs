@@ -198,6 +198,9 @@ fn uv_formula(
         );
         return Ok(text);
     };
+    if single.period() > 1 {
+        return uv_phase_formula(uv, single, format, text, fn_base);
+    }
     let form = verified_form(single.recurrence(), format)?;
     let layout = uv.uv_counts();
     // The UV values: the recurrence's first component (`UV`) from `VALID_FROM` on (or later,
@@ -228,8 +231,11 @@ fn uv_formula(
             let numbers =
                 schemes::specialized_line_from(&form, uv_index, &x0, "s", valid_from, &early)
                     .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
+            let sqrt3 = format!("UV values over the UV layout: {SQRT3_UV_STATE_TEXT}");
             let over = if single.recurrence().names() == schemes::uv::UV_SEAM_STATE {
                 "UV values over the UV layout and its seams: UV0 values (the (vertex, vt) pairs), UE0 layout edges, UBE0 layout boundary edges, S0 seam edges"
+            } else if single.rule() == schemes::Rule::Sqrt3 {
+                &sqrt3
             } else {
                 "UV values over the UV layout: UV0 values (the (vertex, vt) pairs, with OpenSubdiv's split values), UE0 layout edges, UBE0 layout boundary edges"
             };
@@ -275,6 +281,65 @@ fn uv_formula(
             }
             pretty(&value)?
         }
+    })
+}
+
+/// What √3's UV state counts (`formula --mesh`).
+const SQRT3_UV_STATE_TEXT: &str =
+    "UV0 values (the (vertex, vt) pairs), UBE0 layout boundary edges, S0 seam edges, F0 faces";
+
+/// [`uv_formula`] for a UV recurrence that alternates steps (`sqrt3-boundary`): one closed
+/// form of the UV state per phase, as the counts' phases ([`render_phases`]), in `t` with the
+/// state at the phase's first level (the text gives those states); JSON appends
+/// `{"UV": [phases]}`. Level 0's UV count is the `vt` the faces use.
+fn uv_phase_formula(
+    uv: &schemes::uv::UvCounter,
+    single: &schemes::uv::UvScheme,
+    format: FormulaFormat,
+    text: String,
+    fn_base: &str,
+) -> Result<String, Failure> {
+    let phases = single.phases();
+    let layout = uv.uv_counts();
+    let body = render_phases(&phases, format, &format!("{fn_base}_uv"))?;
+    let text = text.trim_end();
+    Ok(match format {
+        FormulaFormat::Json => {
+            let mut value: Value =
+                serde_json::from_str(text).map_err(|e| Failure::new(Kind::Input, e))?;
+            let forms: Value =
+                serde_json::from_str(&body).map_err(|e| Failure::new(Kind::Input, e))?;
+            let uv_value = json!({ "phases": forms, "level0": layout.used_vt.to_string() });
+            match &mut value {
+                Value::Array(list) => list.push(json!({ "UV": uv_value })),
+                other => *other = json!({ "forms": other.clone(), "UV": uv_value }),
+            }
+            pretty(&value)?
+        }
+        FormulaFormat::Text => {
+            let mut starts = Vec::new();
+            for phase in &phases {
+                let x = single
+                    .state_at(layout, phase.first_level)
+                    .map_err(crate::failure::scheme_failure)?;
+                let given: Vec<String> = single
+                    .recurrence()
+                    .names()
+                    .iter()
+                    .zip(&x)
+                    .map(|(n, v)| format!("{n}0 = {v}"))
+                    .collect();
+                starts.push(format!("# {}: {}", phase.description, given.join(", ")));
+            }
+            format!(
+                "{text}\n\n# UV values over the UV layout: {SQRT3_UV_STATE_TEXT}; the UV of each phase from level {} on; UV(0) is the {} vt the faces use\n{}\n\n# the state at each phase's first level\n{}",
+                schemes::uv::UvScheme::VALID_FROM,
+                layout.used_vt,
+                body.trim_end(),
+                starts.join("\n")
+            )
+        }
+        _ => format!("{text}\n\n{}", body.trim_end()),
     })
 }
 

@@ -115,10 +115,10 @@ impl<'a> Input<'a> {
     /// The UV values under `counter` of the mesh's layout ([`Input::uv_counts`]), for the
     /// `UV` column of `table`, `at` and `plot`: `Ok(None)` without a mesh, on a mesh without
     /// a UV layout, and when the counter does not count UV values
-    /// ([`schemes::uv::NotCounted`]: √3, a scheme without a rule, a composition of a dual
+    /// ([`schemes::uv::NotCounted`]: a scheme without a rule, a composition of a dual
     /// rule with a rule of the other kind). The
     /// last, and a mesh with `vt` at only some corners, say so in one note on stderr
-    /// (`note: sqrt3 does not count UV values (no UV rule yet): no UV column`, `note: FILE: 4
+    /// (`note: a scheme without a subdivision rule does not count UV values: no UV column`, `note: FILE: 4
     /// of 24 face corners have texture coordinates: no UV layout: no UV column`), so that a
     /// missing column is explained; stdout is what it is without UVs.
     pub(crate) fn uv_counter(&self, counter: &Counter) -> Result<Option<UvCounter>, Failure> {

@@ -158,8 +158,8 @@ pub struct SubdivideOptions<'a> {
     /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
     /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
     /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; Doo-Sabin and
-    /// mid-edge carry it corner by corner ([`refine::face_varying`]'s corner channel); √3
-    /// refuses it ([`Error::UvsNotSupported`]). [`subdivide_polygons`] refines it
+    /// mid-edge, and √3, carry it corner by corner ([`refine::face_varying`]'s corner
+    /// channel). [`subdivide_polygons`] refines it
     /// as a face list by the same linear per-face refinement as the positions and writes the
     /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
     /// and [`verify_polygons`] do not read it.

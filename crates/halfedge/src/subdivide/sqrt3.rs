@@ -39,7 +39,9 @@ use glam::DVec3;
 
 use super::build::{Builder, StepContext};
 use super::par::Sink;
+use super::refine::corners::{seam_ranks, CornerStep};
 use super::refine::Vector;
+use super::sdc::WeightTable;
 use super::topo::Topo;
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
@@ -158,6 +160,12 @@ impl StepB {
     /// The tables of `t` (after step A every face has at most one boundary edge: more is an
     /// [`crate::Error::InvalidOutput`]).
     pub(crate) fn new(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<StepB> {
+        StepB::build(t, |what| ctx.invalid(what))
+    }
+
+    /// [`StepB::new`] with `invalid` making the error of a face with two or three boundary
+    /// edges.
+    fn build(t: &Topo<'_>, invalid: impl Fn(String) -> crate::Error) -> Result<StepB> {
         let nf = t.nf() as u32;
         let mut boundary_of = super::alloc::filled(INVALID, nf as usize, "boundary faces")?;
         let mut number_of = super::alloc::filled(INVALID, nf as usize, "boundary face numbers")?;
@@ -172,7 +180,7 @@ impl StepB {
                 }
             });
             if count > 1 {
-                return Err(ctx.invalid(format!(
+                return Err(invalid(format!(
                     "face {f} has {count} boundary edges in a trisecting step (step A leaves at most one)"
                 )));
             }
@@ -278,4 +286,142 @@ pub(crate) fn centroid<V: Vector>(t: &Topo<'_>, src: &[V], f: u32) -> V {
         .add(src[t.target(g) as usize].clone())
         .add(src[t.target(t.next(g)) as usize].clone())
         .div(3.0)
+}
+
+/// The √3 step of the UV corner channel (the rule of the
+/// [`face_varying`](crate::refine::face_varying) module docs, "√3") from `t` and its corner
+/// values `cv` (by half-edge; `n_values` values); `step_b`: Kobbelt's trisecting step.
+///
+/// Values: `0..n` the old values, kept; `n + f` the centroid of face `f` in its chart, or on a
+/// step-B boundary face `(a, b, c)` (boundary half-edge `a -> b`) `p1 = (2a + b) / 3`;
+/// `n + F + i` the `p2 = (a + 2b) / 3` of the `i`-th step-B boundary face; then two per seam
+/// edge `e` (in increasing order): its midpoint in the chart of the face of `2e`, then of
+/// `2e + 1`. Child faces and vertices are [`sqrt3_step`]'s: the triangle of half-edge `g`
+/// (corner `c = 3f + k`) is face `c`.
+pub(crate) fn sqrt3_uv_step<'a>(
+    t: &'a Topo<'a>,
+    cv: &'a [u32],
+    n_values: usize,
+    step_b: bool,
+    child: u32,
+) -> Result<CornerStep<'a>> {
+    let t = *t;
+    let (nv, nf) = (t.nv() as u32, t.nf() as u32);
+    let tables = if step_b {
+        StepB::build(&t, |what| crate::Error::InvalidOutput {
+            scheme: "sqrt3-boundary".into(),
+            level: child,
+            what,
+        })?
+    } else {
+        StepB::default()
+    };
+    let nb = tables.boundary_faces.len();
+    let (seams, n_seams) = seam_ranks(&t, cv)?;
+    let n = u32::try_from(n_values).map_err(|_| crate::Error::IndexOverflow {
+        what: "uv values",
+        count: n_values as u128,
+    })?;
+    let rows = n_values + nf as usize + nb + 2 * n_seams;
+    let mut table = WeightTable::with_room(rows, n_values + 3 * nf as usize + 4 * n_seams)?;
+    let mut row = Vec::new();
+    for v in 0..n {
+        row.push((v, 1.0));
+        table.push_row(&mut row)?;
+    }
+    let value = |h: u32| cv[h as usize];
+    for f in 0..nf {
+        match tables.boundary_of.get(f as usize) {
+            Some(&gb) if gb != INVALID => {
+                row.push((value(gb), 2.0 / 3.0));
+                row.push((value(t.next(gb)), 1.0 / 3.0));
+            }
+            _ => t.for_face(f, |g| row.push((value(g), 1.0 / 3.0))),
+        }
+        table.push_row(&mut row)?;
+    }
+    for &gb in &tables.boundary_faces {
+        row.push((value(gb), 1.0 / 3.0));
+        row.push((value(t.next(gb)), 2.0 / 3.0));
+        table.push_row(&mut row)?;
+    }
+    for e in (0..t.ne() as u32).filter(|&e| seams[e as usize] != INVALID) {
+        for h in [2 * e, 2 * e + 1] {
+            row.push((value(h), 0.5));
+            row.push((value(t.next(h)), 0.5));
+            table.push_row(&mut row)?;
+        }
+    }
+    let first_mid = n + nf + nb as u32;
+    let corner = move |face: u32, vertex: u32| -> u32 {
+        let (f, k) = (face / 3, face % 3);
+        let g0 = t.face_halfedge(f);
+        let g = match k {
+            0 => g0,
+            1 => t.next(g0),
+            _ => t.prev(g0),
+        };
+        // The trisected face of half-edge h and h's role in it (0: the boundary half-edge,
+        // 1: next of it, 2: prev of it).
+        let role = |h: u32| -> Option<(u32, u32)> {
+            let gb = *tables.boundary_of.get(t.face(h) as usize)?;
+            if gb == INVALID {
+                None
+            } else if h == gb {
+                Some((0, gb))
+            } else if h == t.next(gb) {
+                Some((1, gb))
+            } else {
+                Some((2, gb))
+            }
+        };
+        let number = |gb: u32| tables.number_of[t.face(gb) as usize];
+        // The vertex rep(h) and its value in the chart of h's face.
+        let rep = |h: u32| match role(h) {
+            Some((1, gb)) => (nv + nf + number(gb), n + nf + number(gb)),
+            _ => (nv + t.face(h), n + t.face(h)),
+        };
+        let mid = |h: u32| first_mid + 2 * seams[(h >> 1) as usize] + (h & 1);
+        let tw = g ^ 1;
+        if !t.is_boundary(tw) {
+            let seam = seams[(g >> 1) as usize] != INVALID;
+            // The chart: g's face in a plain step or step A, the face across g in step B.
+            let (home, other) = if step_b { (tw, g) } else { (g, tw) };
+            let (own_vertex, own_value) = rep(home);
+            if vertex == t.target(g) {
+                // The corner at target(g): source of tw in its face, of next(g) in g's.
+                if step_b {
+                    value(tw)
+                } else {
+                    value(t.next(g))
+                }
+            } else if vertex == own_vertex {
+                own_value
+            } else if seam {
+                mid(home)
+            } else {
+                rep(other).1
+            }
+        } else if !step_b {
+            // The old boundary edge with the centroid.
+            if vertex == t.source(g) {
+                value(g)
+            } else if vertex == t.target(g) {
+                value(t.next(g))
+            } else {
+                n + f
+            }
+        } else if vertex == nv + f {
+            n + f
+        } else if vertex == nv + nf + number(g) {
+            n + nf + number(g)
+        } else {
+            // The opposite corner c: the source of prev(g).
+            value(t.prev(g))
+        }
+    };
+    Ok(CornerStep {
+        values: table,
+        corner: Box::new(corner),
+    })
 }

@@ -13,3 +13,4 @@ mod uv_io;
 mod uv_memory;
 mod uv_polygons;
 mod uv_refine;
+mod uv_sqrt3;

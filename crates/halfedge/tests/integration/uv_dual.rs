@@ -283,6 +283,50 @@ fn buffers_of_the_wrong_length_are_refused() {
     }
 }
 
+/// The values do not depend on the threads (the weight tables are evaluated in parallel
+/// chunks past 16,384 values).
+#[test]
+fn uvs_do_not_depend_on_the_threads() {
+    let grid = grid_with_seams(60, 40, false, &[0, 0, 1, 0, 2, 0, 0, 3, 0]);
+    let half = HalfEdgeMesh::try_from(&grid).expect("manifold");
+    let layout = grid.uv_layout().expect("a layout");
+    let base: Vec<[f64; 2]> = layout
+        .values()
+        .iter()
+        .enumerate()
+        .map(|(i, _)| [(i as f64 * 0.37).sin(), (i as f64 * 0.11).cos()])
+        .collect();
+    for rule in DUAL {
+        let run = |threads: usize| {
+            let opts = SubdivideOptions::default()
+                .with_threads(threads)
+                .with_uvs(&layout);
+            let r = Refinement::new(&half, rule, 2, &opts).expect("refined");
+            let mut uvs = vec![[0.0; 2]; r.n_uvs(2)];
+            r.evaluate_uvs(&base, &mut uvs).expect("evaluated");
+            let mut indices = vec![0u32; r.n_corners(2)];
+            r.write_uv_indices(&mut indices).expect("indices");
+            (uvs, indices)
+        };
+        let one = run(1);
+        assert!(one.0.len() > 16_384, "{rule}: {}", one.0.len());
+        assert_eq!(one, run(2), "{rule}");
+    }
+}
+
+/// Level 0 is the layout itself: its values and its corners.
+#[test]
+fn level_zero_is_the_layout() {
+    let cube = cube_of_charts();
+    let layout = cube.uv_layout().expect("a layout");
+    for rule in DUAL {
+        let c = corners(&cube, rule, 0);
+        assert_eq!(c.uv_indices, layout.corners(), "{rule}");
+        let values: Vec<[f64; 2]> = layout.values().iter().map(|v| v.to_array()).collect();
+        assert_eq!(c.uvs, values, "{rule}");
+    }
+}
+
 /// The dual rules refuse holes, with UVs as without.
 #[test]
 fn holes_are_refused_with_uvs_too() {
@@ -417,8 +461,12 @@ fn dual_uv_counts_on_the_shared_meshes() {
             for s in 1..=levels {
                 let written = match written_values(&mesh, rule, s) {
                     Ok(n) => n,
-                    Err(e) if e.contains("does not apply") || e.contains("valence") => break,
-                    Err(e) => panic!("{name}: {e}"),
+                    Err(e) => {
+                        // Only a mesh the rule refuses without UVs too (a valence-2 vertex).
+                        let plain = Refinement::new(&half, rule, s, &SubdivideOptions::default());
+                        assert!(plain.is_err(), "{name}: {e}");
+                        break;
+                    }
                 };
                 let predicted = values(rule, &uv, u64::from(s)..=u64::from(s));
                 assert_eq!(

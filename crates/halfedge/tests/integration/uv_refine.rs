@@ -87,20 +87,11 @@ fn corner_uvs(r: &Refinement, layout: &UvLayout) -> Vec<[f64; 2]> {
 }
 
 #[test]
-fn rules_without_uv_rules_layouts_of_other_meshes_and_missing_uvs_are_refused() {
+fn layouts_of_other_meshes_and_missing_uvs_are_refused() {
     let grid = grid_with_uvs(4, 4, true);
     let layout = grid.uv_layout().expect("a layout");
     let mesh = HalfEdgeMesh::try_from(&grid).expect("valid");
     let opts = SubdivideOptions::default().with_uvs(&layout);
-    // √3 has no UV rule yet.
-    let rule = Rule::Sqrt3;
-    let err = Refinement::new(&mesh, rule, 1, &opts).unwrap_err();
-    assert!(
-        matches!(&err, Error::UvsNotSupported { rule: r } if *r == rule.to_string()),
-        "{err}"
-    );
-    let err = subdivide_to_face_list(&mesh, rule, 1, &opts).unwrap_err();
-    assert!(matches!(err, Error::UvsNotSupported { .. }), "{err}");
     // A layout of another mesh: other corners, or a value at two vertices.
     let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("valid");
     let err = Refinement::new(&ico, Rule::Loop, 1, &opts).unwrap_err();

@@ -292,7 +292,12 @@ fn table_at_and_plot_gain_a_uv_column() {
 
 #[test]
 fn schemes_without_uv_counts_print_no_column_and_say_why() {
-    // The charted cube's faces triangulated: sqrt3 applies but does not count UV values.
+    // The charted cube's faces triangulated, and a scheme without a subdivision rule (every
+    // built-in rule counts UV values).
+    let (_scheme_dir, still) = file(
+        "still.toml",
+        "name = \"still\"\nstate = [\"V\", \"E\", \"F\"]\nmatrix = [[1, 0, 0], [0, 1, 0], [0, 0, 1]]\n",
+    );
     let mut text = CUBE_V.to_string();
     let quads = [
         [1, 4, 3, 2],
@@ -319,7 +324,15 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     }
     let (_dir, mesh) = file("tris.obj", &text);
     let run = subcount(&[
-        "table", "--mesh", &mesh, "--scheme", "sqrt3", "--levels", "0..=2", "--format", "csv",
+        "table",
+        "--mesh",
+        &mesh,
+        "--scheme-file",
+        &still,
+        "--levels",
+        "0..=2",
+        "--format",
+        "csv",
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert_eq!(
@@ -330,7 +343,16 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     );
     assert_eq!(
         run.stderr,
-        "note: sqrt3 does not count UV values (no UV rule yet): no UV column\n"
+        "note: a scheme without a subdivision rule does not count UV values: no UV column\n"
+    );
+    // sqrt3 counts them: 24 values, 24 layout boundary edges, 12 seam edges (the cube's
+    // edges; the diagonals lie inside a chart), 12 faces: UV' = UV + 2 S + F.
+    let sqrt3 = ok(&[
+        "table", "--mesh", &mesh, "--scheme", "sqrt3", "--levels", "0..=2", "--format", "csv",
+    ]);
+    assert_eq!(
+        sqrt3,
+        "level,V,E,F,UV\n0,8,18,12,24\n1,20,54,36,60\n2,56,162,108,168\n"
     );
     // Loop counts them.
     let loop_csv = ok(&[
@@ -342,10 +364,16 @@ fn schemes_without_uv_counts_print_no_column_and_say_why() {
     );
     fails(
         &[
-            "fit", "--mesh", &mesh, "--scheme", "sqrt3", "--max-uv", "100",
+            "fit",
+            "--mesh",
+            &mesh,
+            "--scheme-file",
+            &still,
+            "--max-uv",
+            "100",
         ],
         2,
-        "--max-uv: sqrt3 does not count UV values",
+        "--max-uv: a scheme without a subdivision rule does not count UV values",
     );
 }
 
@@ -706,4 +734,109 @@ fn formula_states_uv_level_0_and_validity_in_every_format() {
         serde_json::json!({ "level": 0, "value": "1" }),
         "{json}"
     );
+}
+
+/// The cube's faces as triangle pairs, each face its own chart (its four `vt`), without the
+/// faces `dropped` (an open cube).
+fn triangulated_charts(dropped: &[usize]) -> String {
+    let quads = [
+        [1, 4, 3, 2],
+        [5, 6, 7, 8],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 4, 8, 7],
+        [4, 1, 5, 8],
+    ];
+    let mut text = CUBE_V.to_string();
+    for i in 0..24 {
+        text.push_str(&format!("vt {} {}\n", i % 4, i / 4));
+    }
+    for (f, q) in quads.iter().enumerate() {
+        if dropped.contains(&f) {
+            continue;
+        }
+        let c = |k: usize| format!("{}/{}", q[k], 4 * f + k + 1);
+        text.push_str(&format!(
+            "f {} {} {}\nf {} {} {}\n",
+            c(0),
+            c(1),
+            c(2),
+            c(0),
+            c(2),
+            c(3)
+        ));
+    }
+    text
+}
+
+/// √3's UV counts: `sqrt3` one form over `UV0, UBE0, S0, F0`, `sqrt3-boundary` one per phase
+/// (steps A and B alternate), with the states they start from; `table` and `at` agree.
+#[test]
+fn sqrt3_uv_formulas_per_phase() {
+    let (_dir, closed) = file("closed.obj", &triangulated_charts(&[]));
+    let text = ok(&["formula", "--mesh", &closed, "--scheme", "sqrt3"]);
+    assert!(
+        text.contains("UV(s) = UV0 + (3^s - 1) * S0 + (3^s - 1)/2 * F0 for s >= 1; UV(0) = 24\n"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("# with UV0 = 24, UBE0 = 24, S0 = 12, F0 = 12; the real count at level 0 is the 24 vt the faces use\nUV(s) = 18*3^s + 6 for s >= 1; UV(0) = 24\n"),
+        "{text}"
+    );
+    // The open cube: 5 charts, 8 seam edges, 4 boundary edges.
+    let (_dir, open) = file("open.obj", &triangulated_charts(&[1]));
+    let text = ok(&["formula", "--mesh", &open, "--scheme", "sqrt3-boundary"]);
+    assert!(
+        text.contains("# s = 2t + 1: level s = 1 + 2t; X0 below means the count X at level 1\nUV(t) = UV0 + (3^t - 1)/2 * UBE0 + (9^t - 3^t) * S0 + (9^t - 1)/2 * F0\n"),
+        "{text}"
+    );
+    assert!(
+        text.ends_with("# s = 2t: UV0 = 20, UBE0 = 20, S0 = 8, F0 = 10\n# s = 2t + 1: UV0 = 46, UBE0 = 52, S0 = 24, F0 = 30\n"),
+        "{text}"
+    );
+    // UV(3) from the phase s = 2t + 1 at t = 1: 46 + 52 + 8 * 24 ... as the table steps it.
+    let csv = ok(&[
+        "table",
+        "--mesh",
+        &open,
+        "--scheme",
+        "sqrt3-boundary",
+        "--levels",
+        "0..=5",
+        "--format",
+        "csv",
+    ]);
+    let uv: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.rsplit(',').next().unwrap())
+        .collect();
+    assert_eq!(uv, ["20", "46", "128", "362", "1076", "3182"], "{csv}");
+    let at = ok(&[
+        "at",
+        "--mesh",
+        &open,
+        "--scheme",
+        "sqrt3-boundary",
+        "--level",
+        "5",
+        "--format",
+        "json",
+    ]);
+    assert!(at.contains("\"UV\": 3182"), "{at}");
+    let json = ok(&[
+        "formula",
+        "--mesh",
+        &open,
+        "--scheme",
+        "sqrt3-boundary",
+        "--format",
+        "json",
+    ]);
+    let value: serde_json::Value = serde_json::from_str(&json).expect("json");
+    let uv = value
+        .as_array()
+        .and_then(|a| a.last())
+        .map(|c| c["UV"]["phases"].as_array().map(Vec::len));
+    assert_eq!(uv, Some(Some(2)), "{json}");
 }

@@ -455,17 +455,19 @@ fn verify_checks_the_uv_values_of_every_level() {
             assert_eq!(predicted_uv(&cube, scheme, level as u64), v, "{scheme}");
         }
     }
-    // A scheme that does not count UVs: a note, no UV rows.
+    // √3 on the triangulated cube of three charts (18 values, 9 seams, 12 faces): predicted
+    // by UV' = UV + 2 S + F, measured on the corner channel.
     let tri = data("uv_cube_tri.obj");
-    let run = subcount(&[
-        "verify", "--mesh", &tri, "--scheme", "sqrt3", "--levels", "1",
-    ]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(
-        run.stderr,
-        "note: sqrt3 does not count UV values (no UV rule yet): no UV rows\n"
-    );
-    assert!(!run.stdout.contains("UV"), "{}", run.stdout);
+    let values = [18, 48, 138, 408];
+    let rows = verify_uv(&tri, "sqrt3", "3");
+    let expected: Vec<(Value, Value)> = values
+        .iter()
+        .map(|&v| (Value::from(v), Value::from(v)))
+        .collect();
+    assert_eq!(rows, expected);
+    for (level, &v) in values.iter().enumerate() {
+        assert_eq!(predicted_uv(&tri, "sqrt3", level as u64), v);
+    }
 }
 
 #[test]
@@ -601,19 +603,74 @@ fn verify_matches_opensubdivs_uv_counts_on_spot() {
 
 #[test]
 #[ignore = "needs SUBCOUNT_MESHES"]
-fn sqrt3_on_spot_writes_without_uvs_saying_so() {
+fn sqrt3_on_spot_writes_its_uvs() {
     let triangulated = shared("spot_triangulated.obj");
     let (summary, stderr, written) =
         subdivide(&triangulated, &["--scheme", "sqrt3", "--levels", "1"]);
-    assert_eq!(
-        stderr,
-        format!("note: {triangulated}: UVs are not refined under sqrt3 (Loop, Catmull-Clark, the triangle splits, Doo-Sabin and mid-edge refine them): writing without UVs\n")
-    );
+    assert_eq!(stderr, "");
     assert_eq!(
         summary,
-        "level 1: V = 8786, E = 26352, F = 17568; wrote OUT\n"
+        "level 1: V = 8786, E = 26352, F = 17568, UV = 9657; wrote OUT\n"
     );
-    assert!(!written.contains("vt "));
+    assert_eq!(
+        written.lines().filter(|l| l.starts_with("vt ")).count(),
+        9657
+    );
+    assert_eq!(predicted_uv(&triangulated, "sqrt3", 1), 9657);
+    let rows = verify_uv(&triangulated, "sqrt3", "3");
+    let uv: Vec<u64> = rows
+        .iter()
+        .map(|(p, m)| {
+            assert_eq!(p, m);
+            p.as_u64().expect("a count")
+        })
+        .collect();
+    assert_eq!(uv, [3225, 9657, 28953, 86841]);
+}
+
+/// `sqrt3-boundary` (steps A and B) on the triangulated cube of three charts with two faces
+/// left out: the UVs are written (`f v/vt`, one `vt` per value), the summary's `UV = N` is the
+/// count `table` predicts, and `verify`'s UV rows match at every level.
+#[test]
+fn sqrt3_boundary_writes_and_verifies_its_uvs() {
+    let text = std::fs::read_to_string(data("uv_cube_tri.obj")).expect("the fixture");
+    let faces = text.lines().filter(|l| l.starts_with("f ")).count();
+    let mut kept = 0;
+    let open: String = text
+        .lines()
+        .filter(|l| {
+            if !l.starts_with("f ") {
+                return true;
+            }
+            kept += 1;
+            kept <= faces - 2
+        })
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let path = dir.path().join("open.obj");
+    std::fs::write(&path, open).expect("written");
+    let mesh = path.to_str().expect("a UTF-8 path");
+    for level in 1..=3u64 {
+        let (summary, stderr, written) = subdivide(
+            mesh,
+            &["--scheme", "sqrt3-boundary", "--levels", &level.to_string()],
+        );
+        assert_eq!(stderr, "");
+        let uv = predicted_uv(mesh, "sqrt3-boundary", level);
+        assert_eq!(summary_uv(&summary), Some(uv), "{summary}");
+        assert_eq!(
+            written.lines().filter(|l| l.starts_with("vt ")).count() as u64,
+            uv
+        );
+        assert!(written
+            .lines()
+            .filter(|l| l.starts_with("f "))
+            .all(|l| l.split_whitespace().skip(1).all(|c| c.contains('/'))));
+    }
+    let rows = verify_uv(mesh, "sqrt3-boundary", "4");
+    assert_eq!(rows.len(), 5);
+    assert!(rows.iter().all(|(p, m)| p == m), "{rows:?}");
 }
 
 /// The `vt`, `vn` and face lines of an OBJ text, and the forms of its face corners: how many

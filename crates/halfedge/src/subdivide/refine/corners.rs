@@ -42,8 +42,15 @@ fn corner_step<'a>(
     n_values: usize,
     child: u32,
 ) -> Result<CornerStep<'a>> {
-    let _ = child;
     match rule {
+        // Step B at even steps on a mesh with a boundary, as the surface's refinement.
+        Rule::Sqrt3 => crate::subdivide::sqrt3::sqrt3_uv_step(
+            t,
+            values,
+            n_values,
+            child % 2 == 0 && !t.is_closed(),
+            child,
+        ),
         Rule::DooSabin => crate::subdivide::dual::doo_sabin_uv_step(t, values, n_values),
         Rule::MidEdge => crate::subdivide::dual::mid_edge_uv_step(t, values, n_values),
         other => Err(Error::UvsNotSupported {
@@ -214,20 +221,21 @@ impl CornerChannel {
             out.copy_from_slice(base);
             return Ok(());
         };
-        let mut current: Vec<[T; 2]> = Vec::new();
+        let mut current: Option<Vec<[T; 2]>> = None;
         for table in before {
             let mut next = crate::subdivide::alloc::with_capacity(table.rows(), "uv level")?;
-            let src = if current.is_empty() { base } else { &current };
-            table.points(src, &mut next, self.parallel);
-            current = next;
+            table.points(current.as_deref().unwrap_or(base), &mut next, self.parallel);
+            current = Some(next);
         }
-        let src = if before.is_empty() { base } else { &current };
+        let src = current.as_deref().unwrap_or(base);
         last.points(src, &mut super::Slots::new(out), self.parallel);
         Ok(())
     }
 
     pub(crate) fn write_indices(&self, out: &mut [u32], expected: usize) -> Result<()> {
         check_len("uv indices", expected, out.len())?;
+        // The last level's corners are the refinement's (checked when they were numbered).
+        check_len("uv indices", self.last.len(), out.len())?;
         out.copy_from_slice(&self.last);
         Ok(())
     }

@@ -103,9 +103,9 @@
 //! child is the midpoint of its two values, old values stay (the midpoint rule on the
 //! channel: neither butterfly's weights nor the sphere projection apply to texture
 //! coordinates). The 1:N² splits put each new value on the flat UV triangle of its face, as
-//! they put positions. √3 does not refine UVs yet ([`Error::UvsNotSupported`]).
+//! they put positions. √3 runs on the corner channel (below).
 //!
-//! # The corner channel (Doo-Sabin, mid-edge)
+//! # The corner channel (Doo-Sabin, mid-edge, √3)
 //!
 //! At each level `s` every face corner has a value index, and every value of level `s + 1`
 //! is an affine combination (a sparse row of weights summing to 1) of values of level `s`.
@@ -182,10 +182,44 @@
 //! boundary from level 2 on, since the kept boundary vertices keep their UVs). Holes are
 //! refused by both rules ([`Error::HolesNeedNestedFaces`]), with UVs or without.
 //!
+//! **√3.** √3 flips every old edge, so its faces do not nest and its UVs run on the corner
+//! channel too, with a linear rule (positions are smoothed, UVs are not). `λ_f(v)` is the value of face
+//! `f`'s corner at `v`; an interior edge is a **seam** when its two faces disagree at either
+//! end (surface boundary edges are not seams). Each old face half-edge `g` (face `f`, target
+//! `v`) gives one new triangle (the numbering of `sqrt3.rs`): `(v, rep(g), rep(twin g))` for
+//! an interior edge, `rep(g)` being the point of `f` the flipped edge reaches.
+//!
+//! - Old values stay, one per value; the centroid of `f` gets the mean of `f`'s three values.
+//! - A plain step (`sqrt3`) and step A: the triangle of an interior `g` takes the chart of
+//!   `g`'s face `f`: `v` gets `λ_f(v)`, `rep(g)` its own value, and `rep(twin g)`, a point of
+//!   the other face, its own value when the edge is not a seam, else the midpoint of the edge
+//!   in `f`'s chart, `(λ_f(a) + λ_f(b)) / 2`: two new values per seam edge. Step A's boundary
+//!   triangle (an old boundary edge with the centroid) is in `f`'s chart.
+//! - Step B (a boundary face `(a, b, c)`, boundary half-edge `a -> b`): `p1` and `p2` get
+//!   `(2 λ_f(a) + λ_f(b)) / 3` and `(λ_f(a) + 2 λ_f(b)) / 3`; the middle triangle
+//!   `(p1, p2, c)` is in `f`'s chart. The triangle of an interior `g` takes the chart of the
+//!   face *across* `g` (its foreign point, `rep(g)`, replaced by the seam midpoint in that
+//!   chart). The choice keeps every value: a step-B face's corner at one end of its boundary
+//!   edge is used by none of its own triangles. With `g`'s own chart that corner is at `b`,
+//!   in the first face around `b`, which is often the only face there with its value (a seam
+//!   `b c`): the value would be lost. With the chart across `g` it is at `a`, in the last face
+//!   around `a`, and after step A the last two faces around every boundary vertex are the two
+//!   triangles of one old face at it (the triangle of its half-edge entering the vertex and
+//!   the boundary triangle of its edge leaving it), in that face's chart, so the other one
+//!   uses the value.
+//!
+//! Every face lies in one chart (its values are affine combinations of one parent face's),
+//! and every value a step keeps or creates is used by a corner (the channel checks it). The
+//! counts are `schemes::uv`'s √3 recurrence, from level 1 on: `UV' = UV + F + 2 S` (plain
+//! step, step A) and `UV' = UV + F + BE + 2 S` (step B: the `BE` boundary faces get two
+//! points instead of a centroid), and `S' = 3 S` for both (the flips of seams, and per seam
+//! side one spoke of its face). √3 refuses holes, with and without UVs.
+//!
 //! # Memory
 //!
 //! The corner channel keeps, per level, its weight table (4 bytes per value, 12 per weight:
-//! Doo-Sabin about `n` weights per value of an `n`-gon's corner, mid-edge 2) and the last
+//! Doo-Sabin about `n` weights per value of an `n`-gon's corner, mid-edge 2, √3 at most 3)
+//! and the last
 //! level's value indices (4 bytes per corner); building it holds one level's corner values
 //! (4 bytes per half-edge) at a time. It runs on the surface's refinement, which keeps every
 //! level's connectivity for these rules anyway.
@@ -235,21 +269,18 @@ pub(crate) enum ChannelKind {
 
 /// How the UV layout is refined under `rule`: as a mesh of its own by the rule itself for
 /// Loop, Catmull-Clark and the 1:N² splits, by the midpoint rule for the other 4:1 rules
-/// (linear UVs); by the corner channel for Doo-Sabin and mid-edge.
+/// (linear UVs); by the corner channel for √3, Doo-Sabin and mid-edge.
 ///
 /// # Errors
 ///
-/// [`Error::UvsNotSupported`] for √3.
+/// None today: every rule carries UVs (the `Result` is the callers' refusal point).
 pub(crate) fn channel_kind(rule: Rule) -> Result<ChannelKind> {
     match rule {
         Rule::Loop | Rule::CatmullClark | Rule::Midpoint | Rule::TriSplit(_) => {
             Ok(ChannelKind::Layout(rule))
         }
         Rule::Butterfly | Rule::Icosphere => Ok(ChannelKind::Layout(Rule::Midpoint)),
-        Rule::DooSabin | Rule::MidEdge => Ok(ChannelKind::Corners),
-        Rule::Sqrt3 => Err(Error::UvsNotSupported {
-            rule: rule.to_string(),
-        }),
+        Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge => Ok(ChannelKind::Corners),
     }
 }
 

@@ -156,13 +156,8 @@ impl WeightTable {
         self.offsets.len().saturating_sub(1)
     }
 
-    /// Whether the table has a row for every child vertex.
-    pub(crate) fn is_dense(&self) -> bool {
-        self.rows.is_none()
-    }
-
-    /// An empty dense table with room for `rows` rows and `entries` weights, rows then pushed
-    /// one by one ([`WeightTable::push_row`]): a face-varying corner channel's new values
+    /// An empty table with room for `rows` rows and `entries` weights, rows then pushed one
+    /// by one ([`WeightTable::push_row`]): a face-varying corner channel's new values
     /// ([`face_varying`](crate::refine::face_varying)).
     ///
     /// # Errors
@@ -194,6 +189,11 @@ impl WeightTable {
         })?;
         self.offsets.push(end);
         Ok(())
+    }
+
+    /// Whether the table has a row for every child vertex.
+    pub(crate) fn is_dense(&self) -> bool {
+        self.rows.is_none()
     }
 
     /// Row `r` from the parent's data `src`.
