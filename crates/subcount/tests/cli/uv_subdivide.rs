@@ -784,10 +784,20 @@ fn the_tag_sets_the_default_mode() {
     let args = ["--scheme", "catmull-clark", "--levels", "2"];
     let (_, stderr, from_tag) = subdivide(&tagged, &args);
     assert_eq!(stderr, "");
-    let mut all = args.to_vec();
-    all.extend(["--uv-interpolation", "all"]);
-    assert_eq!(from_tag, subdivide(&cube, &all).2);
-    assert_ne!(from_tag, subdivide(&cube, &args).2);
+    let with = |file: &str, mode: &str| {
+        let mut with = args.to_vec();
+        with.extend(["--uv-interpolation", mode]);
+        subdivide(file, &with).2
+    };
+    // The tag (5: `all`) is the file's default ...
+    assert_eq!(from_tag, with(&cube, "all"));
+    // ... which the flag overrides. (On this cube, whose strip's UVs are affine, the default
+    // `corners-plus1` gives the same values as `all`: every rule reproduces affine data, so
+    // the override is told apart with `none`, which smooths the chart corners.)
+    let none = with(&tagged, "none");
+    assert_eq!(none, with(&cube, "none"));
+    assert_ne!(none, from_tag);
+    assert_eq!(subdivide(&cube, &args).2, with(&cube, "corners-plus1"));
 }
 
 #[test]
