@@ -447,8 +447,10 @@ pub fn predicted_refinement_peak_bytes(
 /// are built). Against the channel's heap and the caller's buffers it is 1.5 to 2.6 times
 /// what is measured (`tests/integration/uv_memory.rs`: at least it, at most three times): it
 /// bounds the channel's crease tables by dense weight tables (a channel whose every edge is
-/// semi-sharp), where seams and corners alone keep the flattened tables and a few rows. Measured
-/// as a peak (`subcount subdivide --timings --threads 1`, debug build; more threads add
+/// semi-sharp), where seams and corners alone keep the flattened tables and a few rows.
+/// Measured while the channel still kept dense tables (its heap has since fallen from 32.5 MB
+/// to 18.5 MB on the first job below, from 30.7 MB to 20.4 MB on the second), as a peak
+/// (`subcount subdivide --timings --threads 1`, debug build; more threads add
 /// glibc's per-thread arenas, a few MB either way), the UVs' share (the peak with UVs minus
 /// the peak with `--no-uv`): `spot_quadrangulated` at Catmull-Clark level 3, 36.3 MB on the
 /// one-shot path and 31.1 MB with `--frames 2`, 38.3 MB predicted; `spot_triangulated` at

@@ -232,17 +232,18 @@
 //! levels on every call (as [`Refinement::evaluate`] does) and, with siblings or holes, the
 //! whole last level of the channel.
 //!
-//! One corner value (in most layouts: some value in every mode) sends the whole channel
-//! to the crease weight tables ([`sdc`](crate::subdivide::sdc)) instead of the flattened
-//! Loop and Catmull-Clark tables, which costs memory and time. Measured on
-//! spot_quadrangulated (2,928 quads, 3,225 values) under Catmull-Clark at level 3 (187,394
-//! vertices, 189,705 UV values; `cargo test` profile, `halfedge` at `opt-level = 2`, a busy
-//! two-core machine): the refinement holds 8.8 MB without UVs and 32.5 MB with them in the
-//! modes `none` to `corners-plus2` (32.3 MB `boundaries`, 20.7 MB `all`); building it takes
-//! about 130 ms with UVs against 20 ms without; `evaluate_uvs` in `f32` takes 8-12 ms
-//! (2.5 ms under `all`) where an [`Evaluator`](super::Evaluator) of `f32` positions takes
-//! 2-3 ms. spot_triangulated under Loop at level 3: 9.8 MB and 30.7 MB (21.9 MB `all`),
-//! `evaluate_uvs` 8-10 ms against 2 ms.
+//! Under Loop and Catmull-Clark the channel's corners, seams and the surface's creases are
+//! crease rules ([`sdc`](crate::subdivide::sdc)): each level keeps the flattened Loop or
+//! Catmull-Clark tables and the rows of the few values whose mask differs (corners, values on
+//! the surface's creases; seams and layout boundaries take the tables' boundary rule), or, under
+//! `all`, linear tables (edge ends and face corners). Measured on spot_quadrangulated (2,928
+//! quads, 3,225 values) under Catmull-Clark at level 3 (187,394 vertices, 189,705 UV values;
+//! `cargo test` profile): the refinement holds 8.85 MB without UVs and 18.5 MB with them in the
+//! modes `none` to `corners-plus2` (18.6 MB `boundaries`, 15.3 MB `all`); spot_triangulated
+//! under Loop at level 3: 9.79 MB and 20.4 MB (17.2 MB `all`). In release (BENCHMARKS.md)
+//! building it takes 9.7 ms with UVs against 3.2 ms without, and `evaluate_uvs` in `f32`
+//! 1.4 ms where an [`Evaluator`](super::Evaluator) of `f32` positions takes 1.0 ms (Loop: 13 ms
+//! against 4 ms, 1.6 ms against 1.0 ms).
 
 use crate::mesh::INVALID;
 use crate::subdivide::sdc::{boundary_first, ccw_ring, Creases, Linear};
