@@ -321,7 +321,7 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
          statistics (`schemes::uv::UvCounts`) are `UV0` values, `UE0` edges and `UBE0` \
          boundary edges of the layout, with its faces `F0` and corners `H0` (the mesh's), \
          counted by `MeshCounts::from_face_list` on the faces written with value indices.\n\n\
-         **The layout refines as a mesh.** The rules below refine each face on its own and \
+         **The layout refines as a mesh.** The primal rules below (the 4:1 family, the 1:N² splits, Catmull-Clark; not √3, Doo-Sabin and mid-edge, whose own rules follow) refine each face on its own and \
          carry UVs within each face, so a child value lies on a parent value, on a layout edge \
          or in a face exactly as a child vertex lies on a parent vertex, edge or face: two \
          faces that disagree at an end of their common edge give it a child value each (its \
