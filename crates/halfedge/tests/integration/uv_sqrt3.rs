@@ -220,19 +220,7 @@ fn centroids_of_affine_uvs_are_the_images_of_the_centroids() {
             }
         }
         // One value per vertex at every level (no seams).
-        let half = HalfEdgeMesh::try_from(&mesh).expect("valid");
-        let layout = mesh.uv_layout().expect("a layout");
-        let r = Refinement::new(
-            &half,
-            Rule::Sqrt3,
-            4,
-            &SubdivideOptions::default().with_uvs(&layout),
-        )
-        .expect("refined");
-        for s in 0..=4 {
-            assert_eq!(r.n_uvs(s), r.n_vertices(s), "level {s}");
-        }
-        check(&mesh, 4).unwrap_or_else(|e| panic!("{e}"));
+        assert_a_value_per_vertex(&mesh);
     }
 }
 
@@ -247,19 +235,7 @@ fn a_closed_mesh_without_seams_has_a_value_per_vertex() {
         mesh.set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
             .expect("one vt per corner");
         assert_eq!(stats::uv_counts(&mesh).expect("a layout").seam_edges, 0);
-        let half = HalfEdgeMesh::try_from(&mesh).expect("valid");
-        let layout = mesh.uv_layout().expect("a layout");
-        let r = Refinement::new(
-            &half,
-            Rule::Sqrt3,
-            4,
-            &SubdivideOptions::default().with_uvs(&layout),
-        )
-        .expect("refined");
-        for s in 0..=4 {
-            assert_eq!(r.n_uvs(s), r.n_vertices(s), "level {s}");
-        }
-        check(&mesh, 4).unwrap_or_else(|e| panic!("{e}"));
+        assert_a_value_per_vertex(&mesh);
     }
 }
 
@@ -284,4 +260,22 @@ fn shared_triangle_meshes_with_uvs_are_counted_at_levels_1_to_4() {
             assert_eq!(predicted, BigInt::from(written), "{file} level {s}");
         }
     }
+}
+
+/// A mesh without seams under √3 to level 4: as many values as vertices at every level, and
+/// the written values and layout are the counts (`check`).
+fn assert_a_value_per_vertex(mesh: &PolygonMesh) {
+    let half = HalfEdgeMesh::try_from(mesh).expect("valid");
+    let layout = mesh.uv_layout().expect("a layout");
+    let r = Refinement::new(
+        &half,
+        Rule::Sqrt3,
+        4,
+        &SubdivideOptions::default().with_uvs(&layout),
+    )
+    .expect("refined");
+    for s in 0..=4 {
+        assert_eq!(r.n_uvs(s), r.n_vertices(s), "level {s}");
+    }
+    check(mesh, 4).unwrap_or_else(|e| panic!("{e}"));
 }
