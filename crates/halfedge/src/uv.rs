@@ -88,6 +88,49 @@ impl Uvs {
         used.iter().filter(|&&u| !u).count()
     }
 
+    /// The texture coordinates of the faces `written` keeps, as read: the corners of those
+    /// faces (in order) and the `vt` entries they use, in file order, renumbered; entries no
+    /// kept corner uses are left out. `face_offsets` delimits each face's corners, as
+    /// [`PolygonMesh::face_offsets`](crate::PolygonMesh::face_offsets). Level 0 of a
+    /// subdivision writes these, so its `vt` lines are what `table` counts at level 0 (the
+    /// `vt` entries the written corners use).
+    ///
+    /// ```
+    /// use halfedge::glam::DVec2;
+    /// use halfedge::uv::Uvs;
+    ///
+    /// let coords = vec![DVec2::ZERO, DVec2::X, DVec2::Y, DVec2::ONE];
+    /// // Two triangles; the second is left out, and with it vt 3.
+    /// let uvs = Uvs::new(coords, vec![0, 1, 2, 1, 3, 2])?;
+    /// let kept = uvs.of_written_faces(&[0, 3, 6], |f| f == 0);
+    /// assert_eq!((kept.coords().len(), kept.corners()), (3, &[0, 1, 2][..]));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn of_written_faces(&self, face_offsets: &[usize], written: impl Fn(usize) -> bool) -> Uvs {
+        const UNUSED: u32 = u32::MAX;
+        let faces = face_offsets
+            .windows(2)
+            .enumerate()
+            .filter(|&(f, _)| written(f));
+        let mut map = vec![UNUSED; self.coords.len()];
+        for (_, w) in faces.clone() {
+            for &c in &self.corners[w[0]..w[1]] {
+                map[c as usize] = 0;
+            }
+        }
+        let mut coords = Vec::new();
+        for (vt, slot) in map.iter_mut().enumerate() {
+            if *slot != UNUSED {
+                *slot = coords.len() as u32;
+                coords.push(self.coords[vt]);
+            }
+        }
+        let corners = faces
+            .flat_map(|(_, w)| self.corners[w[0]..w[1]].iter().map(|&c| map[c as usize]))
+            .collect();
+        Uvs { coords, corners }
+    }
+
     /// The coordinates and corners.
     pub fn into_parts(self) -> (Vec<DVec2>, Vec<u32>) {
         (self.coords, self.corners)

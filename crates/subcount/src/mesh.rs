@@ -861,6 +861,17 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     if let Some(holes) = &holes {
         opts = opts.with_holes(holes);
     }
+    // Level 0 writes the file's UVs as read: the `vt` entries its written corners use, which
+    // is what `table` counts at level 0 (the layout's values split a `vt` used at several
+    // vertices).
+    let as_read = match (&layout, poly.uvs()) {
+        (Some(_), Some(uvs)) if levels == 0 => {
+            Some(uvs.of_written_faces(poly.face_offsets(), |f| {
+                holes.as_ref().map_or(true, |h| !h.contains(f as u32))
+            }))
+        }
+        _ => None,
+    };
     let t1 = Instant::now();
     let run = |opts: &SubdivideOptions<'_>| match &mesh {
         Some(mesh) if refine_once => refined::run(
@@ -871,6 +882,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             args.frames,
             opts,
             &clock,
+            as_read.as_ref(),
         )
         .map(Output::Refined),
         // With UVs the last level is a face list carrying them.
@@ -880,7 +892,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         Some(mesh) => sub::subdivide(mesh, rule, levels, opts).map(Output::Mesh),
         None => sub::subdivide_polygons(poly, rule, levels, opts).map(Output::Polygons),
     };
-    let result = match &layout {
+    let mut result = match &layout {
         Some(layout) => match run(&opts.with_uvs(layout)) {
             // Refused before anything is built: the rule has no face-varying rule.
             Err(e @ halfedge::Error::UvsNotSupported { .. }) => {
@@ -892,6 +904,20 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         None => run(&opts),
     }
     .map_err(|e| located_failure(e, poly, &args.mesh))?;
+    if let Some(as_read) = &as_read {
+        let written = match &mut result {
+            Output::Faces(level) => Some(&mut level.mesh),
+            Output::Polygons(p) => Some(p),
+            Output::Refined(_) | Output::Mesh(_) => None,
+        };
+        if let Some(m) = written.filter(|m| m.uvs().is_some()) {
+            m.set_uvs(Some(as_read.clone())).map_err(|e| {
+                halfedge_failure(halfedge::Error::UvLayoutMismatch {
+                    reason: e.to_string(),
+                })
+            })?;
+        }
+    }
     let end = Instant::now();
     let subdivide_s = match &result {
         Output::Refined(r) => {
@@ -911,8 +937,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             .mesh
             .uvs()
             .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
-        // A level-0 copy keeps the file's UVs, written as read.
-        Output::Polygons(p) if levels > 0 => p
+        // A level-0 copy keeps the file's UVs (the layout's values), as the other levels do.
+        Output::Polygons(p) => p
             .uvs()
             .map(|u| (u.coords().len(), clock.since_surface(t1, end).as_secs_f64())),
         _ => None,

@@ -45,7 +45,9 @@ impl Refined {
 
 /// Refines `mesh` by `rule` to `levels` once, evaluates its positions in `precision`, then
 /// `frames` more times from moved base positions (timed; the output keeps the first,
-/// unmoved evaluation).
+/// unmoved evaluation). `as_read`: at level 0, the UVs to write (the file's, as read) in
+/// place of the layout's values.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn run(
     mesh: &HalfEdgeMesh,
     rule: Rule,
@@ -54,10 +56,11 @@ pub(crate) fn run(
     frames: u32,
     opts: &SubdivideOptions<'_>,
     clock: &SurfaceClock,
+    as_read: Option<&halfedge::uv::Uvs>,
 ) -> halfedge::Result<Refined> {
     match precision {
-        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts, clock),
-        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts, clock),
+        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts, clock, as_read),
+        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts, clock, as_read),
     }
 }
 
@@ -105,6 +108,7 @@ fn run_in<T: Scalar>(
     frames: u32,
     opts: &SubdivideOptions<'_>,
     clock: &SurfaceClock,
+    as_read: Option<&halfedge::uv::Uvs>,
 ) -> halfedge::Result<Refined> {
     let t0 = Instant::now();
     let refinement = Refinement::new(mesh, rule, levels, opts)?;
@@ -169,6 +173,23 @@ fn run_in<T: Scalar>(
             refinement.evaluate_uvs(&base, &mut values)?;
             let mut corners = vec![0u32; refinement.n_corners(levels)];
             refinement.write_uv_indices(&mut corners)?;
+            if let Some(read) = as_read {
+                if read.corners().len() != corners.len() {
+                    return Err(halfedge::Error::UvLayoutMismatch {
+                        reason: format!(
+                            "{} texture-coordinate corners for {} written corners at level 0",
+                            read.corners().len(),
+                            corners.len()
+                        ),
+                    });
+                }
+                values = read
+                    .coords()
+                    .iter()
+                    .map(|v| [T::from_f64(v.x), T::from_f64(v.y)])
+                    .collect();
+                corners.copy_from_slice(read.corners());
+            }
             Some((values, corners, t.elapsed()))
         }
         None => None,

@@ -335,7 +335,12 @@ pub(super) fn run_levels(
         }
         current = Some(next);
     }
-    Ok(current.unwrap_or_else(|| mesh.clone()))
+    match current {
+        Some(last) => Ok(last),
+        // Level 0 is the face list as written: the vertices no face uses are left out, as
+        // every later level (and the half-edge path) leaves them out.
+        None => crate::holes::written_part(mesh.clone(), &vec![true; mesh.n_faces()]),
+    }
 }
 
 /// The UVs of the last level `last` of `mesh` refined by `plan`: the layout refined as a face

@@ -3,6 +3,7 @@
 mod budget;
 mod creases;
 mod hostile;
+mod level_zero;
 mod matrix;
 mod meshes;
 mod plot;
