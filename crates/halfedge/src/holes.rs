@@ -32,8 +32,37 @@ use crate::mesh::FaceId;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// The faces of `mesh` that have a vertex on a boundary edge (an edge of exactly one face), in
-/// order: the faces OpenSubdiv makes holes under `VTX_BOUNDARY_NONE` (Loop and Catmull-Clark).
+/// order: the faces OpenSubdiv makes holes under `VTX_BOUNDARY_NONE` (Loop and Catmull-Clark)
+/// on a mesh without creases. [`boundary_faces_with`] follows the file's creases.
 pub fn boundary_faces(mesh: &PolygonMesh) -> Vec<u32> {
+    boundary_faces_with(mesh, &crate::tags::Tags::default())
+}
+
+/// The faces OpenSubdiv makes holes under `VTX_BOUNDARY_NONE` (Loop and Catmull-Clark), in
+/// order: every face at a vertex with an incident boundary edge (an edge of exactly one
+/// face) that `tags` does not make infinitely sharp (sharpness 10 or more: OpenSubdiv's
+/// `Sdc::Crease::IsInfinite`), as `Far::TopologyRefinerFactory` tags them before it sharpens
+/// the boundary. A vertex whose boundary edges are all infinitely sharp keeps its faces;
+/// non-manifold vertices follow the same rule.
+///
+/// ```
+/// use halfedge::holes::boundary_faces_with;
+/// use halfedge::shapes;
+/// use halfedge::tags::Tags;
+///
+/// // A 2x1 strip of quads (vertices 0 1 2 / 3 4 5): with the whole boundary infinitely
+/// // sharp no face is a hole; with one boundary edge left smooth, the faces at its ends are.
+/// let strip = shapes::quad_grid(2, 1)?;
+/// let mut tags = Tags::default();
+/// for (a, b) in [(0, 1), (1, 2), (2, 5), (5, 4), (4, 3), (3, 0)] {
+///     tags.add_crease(a, b, 10.0)?;
+/// }
+/// assert!(boundary_faces_with(&strip, &tags).is_empty());
+/// tags.add_crease(0, 3, 2.0)?;
+/// assert_eq!(boundary_faces_with(&strip, &tags), [0]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn boundary_faces_with(mesh: &PolygonMesh, tags: &crate::tags::Tags) -> Vec<u32> {
     let n = mesh.positions.len().max(
         (0..mesh.n_faces())
             .flat_map(|f| mesh.face(f).iter().map(|&v| v as usize + 1))
@@ -52,6 +81,13 @@ pub fn boundary_faces(mesh: &PolygonMesh) -> Vec<u32> {
         }
     }
     sides.sort_unstable();
+    // The infinitely sharp edges, sorted as the sides are (the last sharpness given wins).
+    let infinite: Vec<(u32, u32)> = tags
+        .sharp_edges()
+        .into_iter()
+        .filter(|c| crate::subdivide::sdc::is_infinite(c.sharpness))
+        .map(|c| (c.a, c.b))
+        .collect();
     let mut on_boundary = vec![false; n];
     let mut i = 0;
     while i < sides.len() {
@@ -59,7 +95,7 @@ pub fn boundary_faces(mesh: &PolygonMesh) -> Vec<u32> {
         while j < sides.len() && sides[j] == sides[i] {
             j += 1;
         }
-        if j - i == 1 {
+        if j - i == 1 && infinite.binary_search(&sides[i]).is_err() {
             on_boundary[sides[i].0 as usize] = true;
             on_boundary[sides[i].1 as usize] = true;
         }

@@ -936,7 +936,8 @@ fn missing_creases_are_told_apart() {
 /// only they use left out) against OpenSubdiv's faces not tagged as holes, vertex for vertex
 /// to 1e-12 of the diagonal and face for face. Generated meshes: bumpy quad and triangle
 /// grids with a single hole, adjacent holes, holes at the boundary and a vertex surrounded by
-/// holes; a closed cube and icosahedron with holes; the grids under boundary `none`. Loop and
+/// holes; a closed cube and icosahedron with holes; the grids under boundary `none`, also with
+/// infinitely sharp and semi-sharp boundary creases (which keep or do not keep faces). Loop and
 /// Catmull-Clark, levels 1-3.
 #[test]
 #[ignore = "needs the OpenSubdiv driver"]
@@ -1066,6 +1067,45 @@ fn holes_match_opensubdiv_on_generated_meshes() {
         let holes = HoleSet::new(mesh.n_faces(), boundary_faces(mesh)).expect("in range");
         check(&g, scheme, &holes, None, "none");
     }
+    // VTX_BOUNDARY_NONE with creased boundaries: a vertex whose boundary edges are all
+    // infinitely sharp keeps its faces (the whole boundary at 10; the bottom row at 10, so the
+    // faces at its inner vertices stay; the bottom row at 9.99, not infinite: all holes).
+    let (bottom, ring): (Vec<(u32, u32)>, Vec<(u32, u32)>) = {
+        let id = |i: u32, j: u32| j * 5 + i;
+        let bottom: Vec<_> = (0..4).map(|i| (id(i, 0), id(i + 1, 0))).collect();
+        let mut ring = bottom.clone();
+        ring.extend((0..4).map(|i| (id(i, 4), id(i + 1, 4))));
+        ring.extend((0..4).map(|j| (id(0, j), id(0, j + 1))));
+        ring.extend((0..4).map(|j| (id(4, j), id(4, j + 1))));
+        (bottom, ring)
+    };
+    let mut kept_by_creases = 0;
+    for (name, mesh, scheme) in [
+        ("quads", &quads, Osd::Catmark),
+        ("triangles", &triangles, Osd::Loop),
+        ("triangles", &triangles, Osd::Catmark),
+    ] {
+        for (k, (edges, sharpness)) in [(&ring, 10.0), (&bottom, 10.0), (&bottom, 9.99)]
+            .into_iter()
+            .enumerate()
+        {
+            let mut tags = Tags::default();
+            for &(a, b) in edges {
+                tags.add_crease(a, b, sharpness).expect("a valid sharpness");
+            }
+            let g = Generated::new(
+                &format!("none-creased-{name}-{k}"),
+                mesh.clone(),
+                tags.clone(),
+            );
+            let faces = halfedge::holes::boundary_faces_with(mesh, &tags);
+            kept_by_creases += boundary_faces(mesh).len() - faces.len();
+            let holes = HoleSet::new(mesh.n_faces(), faces).expect("in range");
+            let sharp = Sharpness::from_tags(&g.base.mesh, &tags).expect("edges of the mesh");
+            check(&g, scheme, &holes, Some(&sharp), "none");
+        }
+    }
+    assert!(kept_by_creases > 0, "no creased boundary kept a face");
     // Holes beside creases and a corner: the crease row y = 2 (vertices 10-14) runs along the
     // hole's corner 12, semi-sharp then infinitely sharp; vertex 0 a corner.
     for (name, mesh, scheme, hole) in [

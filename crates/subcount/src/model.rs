@@ -378,8 +378,9 @@ impl LoadedMesh {
     /// The faces that are holes when `stages` (each stage's name and rule; `scheme` names
     /// them all) run on this mesh, whose faces have the statistics `counts`: the file's hole
     /// tags, and the faces at the boundary under boundary interpolation `none` (OpenSubdiv's
-    /// `VTX_BOUNDARY_NONE`, Loop and Catmull-Clark: [`halfedge::holes::boundary_faces`]).
-    /// `None` when there are none.
+    /// `VTX_BOUNDARY_NONE`, Loop and Catmull-Clark: [`halfedge::holes::boundary_faces_with`],
+    /// which keeps the faces at vertices whose boundary edges the file makes infinitely
+    /// sharp). `None` when there are none.
     ///
     /// # Errors
     ///
@@ -426,7 +427,10 @@ impl LoadedMesh {
                     counts.boundary_edges
                 ));
             }
-            faces.extend(halfedge::holes::boundary_faces(&self.poly));
+            faces.extend(halfedge::holes::boundary_faces_with(
+                &self.poly,
+                self.tags(),
+            ));
         }
         if faces.is_empty() {
             return Ok(None);

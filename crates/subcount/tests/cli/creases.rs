@@ -502,3 +502,50 @@ fn subdivide_matches_opensubdiv_on_every_tagged_shared_mesh() {
         }
     }
 }
+
+/// OpenSubdiv's `VTX_BOUNDARY_NONE` holes only the faces at a vertex with a boundary edge that
+/// is not infinitely sharp: a 2x2 grid whose whole boundary is creased at 10 keeps its four
+/// faces (16 at level 1, as OpenSubdiv writes), at 9.99 it keeps none; counts, `verify` and
+/// the written file agree.
+#[test]
+fn boundary_none_keeps_the_faces_of_an_infinitely_sharp_boundary() {
+    let grid = |sharpness: &str| {
+        format!(
+            "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 0 2 0\nv 1 2 0\nv 2 2 0\n\
+             f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\nf 5 6 9 8\n\
+             t crease 16/1/0 0 1 1 2 2 5 5 8 8 7 7 6 6 3 3 0 {sharpness}\n\
+             t interpolateboundary 1/0/0 0\n"
+        )
+    };
+    for (sharpness, faces) in [("10.0", 16), ("1e3", 16), ("9.99", 0)] {
+        let (dir, mesh) = file("grid.obj", &grid(sharpness));
+        {
+            let scheme = "catmull-clark";
+            let table = ok(&["at", "--mesh", &mesh, "--scheme", scheme, "--level", "1"]);
+            assert!(
+                table.contains(&format!("F = {faces}")),
+                "{sharpness}: {table}"
+            );
+            let verify = ok(&[
+                "verify", "--mesh", &mesh, "--scheme", scheme, "--levels", "2",
+            ]);
+            assert!(verify.contains("all counts match"), "{verify}");
+            let out = dir.path().join("out.obj");
+            let summary = ok(&[
+                "subdivide",
+                "--mesh",
+                &mesh,
+                "--scheme",
+                scheme,
+                "--levels",
+                "1",
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            assert!(summary.contains(&format!("F = {faces}")), "{summary}");
+            let written = std::fs::read_to_string(&out).unwrap();
+            let n = written.lines().filter(|l| l.starts_with("f ")).count();
+            assert_eq!(n, faces, "{sharpness}: {written}");
+        }
+    }
+}

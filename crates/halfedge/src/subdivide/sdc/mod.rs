@@ -77,6 +77,7 @@ use crate::subdivide::topo::Topo;
 use crate::tags::{BoundaryInterpolation, SubdivisionOptions, Tags, TriangleRule};
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result, Rule};
 
+pub(crate) use self::crease::is_infinite;
 pub(crate) use self::masks::{boundary_first, ccw_ring, Base, WeightTable};
 use self::masks::{LevelBuilder, LevelSharpness, Scheme};
 
