@@ -455,6 +455,15 @@ pub enum Error {
         /// What the subdivision built.
         actual: u64,
     },
+    /// A composition of schemes (`loop:1,sqrt3`) asked to carry what one rule defines alone
+    /// (creases and corners, holes) from one stage to the next.
+    #[error("{scheme}: a composition does not carry {what} from one stage to the next; use one scheme, or drop them (--ignore-tags for the file's tags)")]
+    NotComposable {
+        /// The composition.
+        scheme: String,
+        /// What it would have to carry.
+        what: String,
+    },
     /// The subdivision built an inconsistent mesh (a bug).
     #[error("internal error: {scheme} level {level}: {what} (please report this)")]
     InvalidOutput {

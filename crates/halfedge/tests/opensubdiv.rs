@@ -1070,9 +1070,9 @@ fn holes_match_opensubdiv_on_generated_meshes() {
     // VTX_BOUNDARY_NONE with creased boundaries: a vertex whose boundary edges are all
     // infinitely sharp keeps its faces (the whole boundary at 10; the bottom row at 10, so the
     // faces at its inner vertices stay; the bottom row at 9.99, not infinite: all holes).
-    let (bottom, ring): (Vec<(u32, u32)>, Vec<(u32, u32)>) = {
+    let (bottom, ring) = {
         let id = |i: u32, j: u32| j * 5 + i;
-        let bottom: Vec<_> = (0..4).map(|i| (id(i, 0), id(i + 1, 0))).collect();
+        let bottom: Vec<(u32, u32)> = (0..4).map(|i| (id(i, 0), id(i + 1, 0))).collect();
         let mut ring = bottom.clone();
         ring.extend((0..4).map(|i| (id(i, 4), id(i + 1, 4))));
         ring.extend((0..4).map(|j| (id(0, j), id(0, j + 1))));

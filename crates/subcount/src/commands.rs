@@ -25,8 +25,14 @@ pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure>
         Command::Density(args) => crate::report::density(args, out),
         Command::Schemes(args) => crate::report::list_schemes(args, out),
         Command::Stats(args) => crate::mesh::stats(args, out),
-        Command::Verify(args) => crate::mesh::verify(args, out),
-        Command::Subdivide(args) => crate::mesh::subdivide(args, out),
+        Command::Verify(args) => match crate::compose::composition(&args.scheme)? {
+            Some(plan) => crate::compose::verify(args, plan, out),
+            None => crate::mesh::verify(args, out),
+        },
+        Command::Subdivide(args) => match crate::compose::composition(&args.scheme)? {
+            Some(plan) => crate::compose::subdivide(args, plan, out),
+            None => crate::mesh::subdivide(args, out),
+        },
         Command::Plot(args) => crate::plot::plot(args, out),
     }
 }

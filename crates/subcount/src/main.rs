@@ -6,6 +6,7 @@
 
 mod args;
 mod commands;
+mod compose;
 mod failure;
 mod guard;
 mod levels;

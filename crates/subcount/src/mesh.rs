@@ -30,16 +30,16 @@ use crate::output::json_text;
 /// The most levels `verify` picks by itself from `--max-faces`.
 const MAX_VERIFY_LEVELS: u64 = 64;
 
-fn required_mesh(mesh: &MeshSource) -> Result<LoadedMesh, Failure> {
+pub(crate) fn required_mesh(mesh: &MeshSource) -> Result<LoadedMesh, Failure> {
     load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
 }
 
 /// Maps a `halfedge` error to an exit code.
-fn halfedge_failure(e: halfedge::Error) -> Failure {
+pub(crate) fn halfedge_failure(e: halfedge::Error) -> Failure {
     use halfedge::Error as E;
     let kind = match &e {
         E::Scheme(inner) => return scheme_failure(inner.clone()),
-        E::NoSubdivision { .. } => Kind::Usage,
+        E::NoSubdivision { .. } | E::NotComposable { .. } => Kind::Usage,
         E::CreasesNotSupported { .. } => {
             return Failure::new(
                 Kind::Input,
@@ -375,7 +375,7 @@ fn on_face_list(scheme: &Scheme, rule: Rule, counts: &MeshCounts, custom: bool) 
 /// The last level of a real subdivision: at most 64, refused (exit 4) before any count is
 /// computed, since every rule at least doubles the faces per level and level 65 could not be
 /// indexed by 32-bit integers (and its exact counts would take long to compute).
-fn real_levels(text: &str) -> Result<u32, Failure> {
+pub(crate) fn real_levels(text: &str) -> Result<u32, Failure> {
     let levels = parse_levels_count(text)?;
     if levels > 64 {
         return Err(Failure::new(
@@ -402,13 +402,19 @@ fn guard_memory(
         halfedge::memory::peak_limit()
     };
     need.and_then(|need| halfedge::memory::within_limit(need, scheme, levels, limit))
-        .map_err(|e| match e {
-            halfedge::Error::OverMemoryLimit { .. } => Failure::new(
-                Kind::Guard,
-                anyhow::anyhow!("{e}; use fewer levels, or --allow-large to try anyway"),
-            ),
-            e => halfedge_failure(e),
-        })
+        .map_err(guard_failure)
+}
+
+/// The memory guard's refusal (exit 4, saying how to lift it); other errors as
+/// [`halfedge_failure`].
+pub(crate) fn guard_failure(e: halfedge::Error) -> Failure {
+    match e {
+        halfedge::Error::OverMemoryLimit { .. } => Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!("{e}; use fewer levels, or --allow-large to try anyway"),
+        ),
+        e => halfedge_failure(e),
+    }
 }
 
 /// What refining the UV layout of `poly` adds to the memory guard's need
@@ -632,8 +638,28 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     if let (Some(check), Some(measured)) = (&uv_check, &uv_measured) {
         check.extend(&mut reports, measured)?;
     }
+    write_reports(
+        &reports,
+        scheme.name(),
+        &args.mesh,
+        levels,
+        args.format,
+        out,
+    )
+}
+
+/// Writes `verify`'s reports (text or JSON) and returns its exit code: 0 when every level
+/// matches, [`Kind::Mismatch`] otherwise.
+pub(crate) fn write_reports(
+    reports: &[sub::LevelReport],
+    name: &str,
+    mesh: &MeshSource,
+    levels: u32,
+    format: ReportFormat,
+    out: &mut impl Write,
+) -> Result<u8, Failure> {
     let all_match = reports.iter().all(|r| r.is_match());
-    let text = match args.format {
+    let text = match format {
         ReportFormat::Json => {
             // Counts of a mesh in memory fit in u64; a larger one would be written as a string.
             let object = |pairs: &[(String, BigInt)]| -> Value {
@@ -662,14 +688,14 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
         ReportFormat::Text => {
             let mut t = format!(
                 "{} on {} levels 0..={levels}\n",
-                scheme.name(),
-                args.mesh.mesh.as_ref().map_or_else(
-                    || args.mesh.base.clone().unwrap_or_default(),
+                name,
+                mesh.mesh.as_ref().map_or_else(
+                    || mesh.base.clone().unwrap_or_default(),
                     |p| p.display().to_string()
                 )
             );
             t.push_str("level  component  predicted  measured\n");
-            for r in &reports {
+            for r in reports {
                 for ((name, p), (_, m)) in r.predicted.iter().zip(&r.measured) {
                     let flag = if p == m { "" } else { "  MISMATCH" };
                     t.push_str(&format!(
@@ -692,10 +718,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     } else {
         Err(Failure::new(
             Kind::Mismatch,
-            anyhow::anyhow!(
-                "{}: real subdivision disagrees with the prediction",
-                scheme.name()
-            ),
+            anyhow::anyhow!("{}: real subdivision disagrees with the prediction", name),
         ))
     }
 }

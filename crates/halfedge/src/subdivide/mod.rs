@@ -93,6 +93,7 @@ mod par;
 pub mod refine;
 pub mod sdc;
 mod sqrt3;
+mod stages;
 mod to_faces;
 mod topo;
 mod trisplit;
@@ -101,6 +102,7 @@ use num_bigint::BigInt;
 pub use schemes::Rule;
 
 pub use self::sdc::Sharpness;
+pub use self::stages::{subdivide_stages, StageStart, StagedRun};
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
 use self::build::Sizes;
@@ -816,7 +818,7 @@ fn run_levels(
 
 /// The components a report lists: the state, then `V`, `E`, `F` when not in the state (and
 /// the scheme derives them).
-fn report_names(scheme: &Scheme) -> Vec<String> {
+pub(super) fn report_names(scheme: &Scheme) -> Vec<String> {
     let mut names: Vec<String> = scheme.state_names().to_vec();
     if scheme.has_mesh_counts() {
         for extra in ["V", "E", "F"] {

@@ -519,33 +519,31 @@ fn boundary_none_keeps_the_faces_of_an_infinitely_sharp_boundary() {
     };
     for (sharpness, faces) in [("10.0", 16), ("1e3", 16), ("9.99", 0)] {
         let (dir, mesh) = file("grid.obj", &grid(sharpness));
-        {
-            let scheme = "catmull-clark";
-            let table = ok(&["at", "--mesh", &mesh, "--scheme", scheme, "--level", "1"]);
-            assert!(
-                table.contains(&format!("F = {faces}")),
-                "{sharpness}: {table}"
-            );
-            let verify = ok(&[
-                "verify", "--mesh", &mesh, "--scheme", scheme, "--levels", "2",
-            ]);
-            assert!(verify.contains("all counts match"), "{verify}");
-            let out = dir.path().join("out.obj");
-            let summary = ok(&[
-                "subdivide",
-                "--mesh",
-                &mesh,
-                "--scheme",
-                scheme,
-                "--levels",
-                "1",
-                "-o",
-                out.to_str().unwrap(),
-            ]);
-            assert!(summary.contains(&format!("F = {faces}")), "{summary}");
-            let written = std::fs::read_to_string(&out).unwrap();
-            let n = written.lines().filter(|l| l.starts_with("f ")).count();
-            assert_eq!(n, faces, "{sharpness}: {written}");
-        }
+        let scheme = "catmull-clark";
+        let table = ok(&["at", "--mesh", &mesh, "--scheme", scheme, "--level", "1"]);
+        assert!(
+            table.contains(&format!("F = {faces}")),
+            "{sharpness}: {table}"
+        );
+        let verify = ok(&[
+            "verify", "--mesh", &mesh, "--scheme", scheme, "--levels", "2",
+        ]);
+        assert!(verify.contains("all counts match"), "{verify}");
+        let out = dir.path().join("out.obj");
+        let summary = ok(&[
+            "subdivide",
+            "--mesh",
+            &mesh,
+            "--scheme",
+            scheme,
+            "--levels",
+            "1",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(summary.contains(&format!("F = {faces}")), "{summary}");
+        let written = std::fs::read_to_string(&out).unwrap();
+        let n = written.lines().filter(|l| l.starts_with("f ")).count();
+        assert_eq!(n, faces, "{sharpness}: {written}");
     }
 }

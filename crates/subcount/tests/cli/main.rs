@@ -1,6 +1,7 @@
 //! End-to-end tests of the `subcount` binary.
 
 mod budget;
+mod compositions;
 mod creases;
 mod hostile;
 mod level_zero;

@@ -1,0 +1,219 @@
+//! Compositions (`loop:1,sqrt3`, a [`schemes::Plan`] of several stages): each stage
+//! subdivides, by its own rule, the last level of the stage before, and every level is checked
+//! against the composition's own prediction from the input's counts.
+//!
+//! A stage runs on the half-edge path when its scheme needs a manifold mesh, on the raw face
+//! list otherwise (as [`subdivide_polygons`] and [`verify_polygons`] do); UVs
+//! ([`SubdivideOptions::uvs`]) are carried from stage to stage (each stage refines the layout
+//! of what the stage before wrote). Creases, corners and holes are not: a stage's sharpness
+//! and a hole's descendants are defined within one rule, so a composition with them is
+//! refused ([`Error::NotComposable`]).
+//!
+//! ```
+//! use halfedge::subdivide::{subdivide_stages, SubdivideOptions};
+//! use halfedge::shapes;
+//!
+//! let plan = schemes::Plan::parse("loop:1,sqrt3")?;
+//! let ico = shapes::icosahedron();
+//! let run = subdivide_stages(&ico, &plan, 3, &SubdivideOptions::default(), false, &mut |_| Ok(()))?;
+//! // 20 faces, 80 after Loop, then x3 per √3 level.
+//! let last = run.mesh.expect("kept without the check");
+//! assert_eq!(last.n_faces(), 80 * 9);
+//!
+//! // Every level counted against the composition's prediction.
+//! let run = subdivide_stages(&ico, &plan, 3, &SubdivideOptions::default(), true, &mut |_| Ok(()))?;
+//! assert_eq!(run.reports.len(), 4);
+//! assert!(run.reports.iter().all(|r| r.is_match()));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use num_bigint::BigInt;
+use schemes::{MeshCounts, Plan, Scheme};
+
+use super::{
+    checked_rule, report_names, subdivide_polygons, subdivide_to_face_list, verify,
+    verify_polygons, LevelReport, SubdivideOptions,
+};
+use crate::{Error, HalfEdgeMesh, PolygonMesh, Result, Rule};
+
+/// What [`subdivide_stages`] built.
+#[derive(Debug)]
+pub struct StagedRun {
+    /// The last level, with its UVs when they were carried; `None` with `check` (the levels
+    /// are counted, the last one is not kept).
+    pub mesh: Option<PolygonMesh>,
+    /// With `check`: one report per level `0..=levels`, the composition's prediction (in the
+    /// names of the stage that built the level) against the real level; empty otherwise.
+    pub reports: Vec<LevelReport>,
+}
+
+/// One stage about to run, for the caller's checks (a memory guard): its scheme, rule and
+/// levels, and the statistics of the mesh it starts from.
+#[derive(Debug)]
+pub struct StageStart<'a> {
+    /// The stage's scheme (as it counts this mesh).
+    pub scheme: &'a Scheme,
+    /// The rule that subdivides it.
+    pub rule: Rule,
+    /// The levels it runs.
+    pub levels: u32,
+    /// The statistics of the mesh it starts from.
+    pub counts: &'a MeshCounts,
+    /// Whether it runs on the raw face list (else on a half-edge mesh).
+    pub face_list: bool,
+}
+
+/// Subdivides `mesh` by the composition `plan` to `levels`, each stage in turn on the last
+/// level of the one before. `before_stage` is called before each stage runs (an error stops
+/// the run). With `check`, every level's statistics are measured and reported against the
+/// plan's prediction from `mesh`'s counts ([`StagedRun::reports`]); without it the last level
+/// alone is compared with the prediction ([`Error::PredictionMismatch`]).
+///
+/// # Errors
+///
+/// [`Error::NotComposable`] for creases, corners or holes in `opts`; the errors of
+/// [`checked_rule`], [`subdivide_to_face_list`], [`subdivide_polygons`], [`verify`] and
+/// [`verify_polygons`] for each stage; `before_stage`'s.
+pub fn subdivide_stages(
+    mesh: &PolygonMesh,
+    plan: &Plan,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+    check: bool,
+    before_stage: &mut dyn FnMut(&StageStart<'_>) -> Result<()>,
+) -> Result<StagedRun> {
+    if opts.sharpness.is_some_and(|s| !s.is_smooth()) {
+        return Err(Error::NotComposable {
+            scheme: plan.name(),
+            what: "creases and corners".into(),
+        });
+    }
+    if opts.holes.is_some_and(|h| !h.is_empty()) {
+        return Err(Error::NotComposable {
+            scheme: plan.name(),
+            what: "holes".into(),
+        });
+    }
+    let counts0 = crate::stats::face_list_counts(mesh);
+    let plan = plan.for_mesh(&counts0);
+    let x0 = plan.initial_state(&counts0)?;
+    let carry_uvs = opts.uvs.is_some();
+    let mut current = mesh.clone();
+    if !carry_uvs {
+        current.set_uvs(None).ok();
+    }
+    let mut reports = Vec::new();
+    let mut start = 0u32;
+    for (i, stage) in plan.stages().iter().enumerate() {
+        let last_stage = i + 1 == plan.stages().len();
+        let n = match stage.levels() {
+            Some(k) if !last_stage => u32::try_from(k).unwrap_or(u32::MAX).min(levels - start),
+            _ => levels - start,
+        };
+        if n == 0 && !(check && i == 0) {
+            continue;
+        }
+        let counts = crate::stats::face_list_counts(&current);
+        let scheme = stage.scheme().for_mesh(&counts);
+        let rule = checked_rule(&scheme, &counts)?;
+        let face_list =
+            !scheme.mesh_class().needs_manifold() && rule.refines_faces() || !is_manifold(&current);
+        before_stage(&StageStart {
+            scheme: &scheme,
+            rule,
+            levels: n,
+            counts: &counts,
+            face_list,
+        })?;
+        let layout = current.uv_layout();
+        let stage_opts = match &layout {
+            Some(layout) => opts.with_uvs(layout),
+            None => *opts,
+        };
+        let he = if face_list {
+            None
+        } else {
+            Some(HalfEdgeMesh::try_from(&current)?)
+        };
+        if check {
+            let stage_reports = match &he {
+                Some(he) => verify(he, &scheme, n, &stage_opts)?,
+                None => verify_polygons(&current, &scheme, n, &stage_opts)?,
+            };
+            let skip = usize::from(i > 0 || start > 0);
+            for r in stage_reports.into_iter().skip(skip) {
+                let level = start + r.level;
+                reports.push(plan_report(&plan, &x0, level, &scheme, r.measured)?);
+            }
+        }
+        if n > 0 && (!check || !last_stage) {
+            current = match &he {
+                Some(he) => subdivide_to_face_list(he, rule, n, &stage_opts)?.mesh,
+                None => subdivide_polygons(&current, rule, n, &stage_opts)?,
+            };
+        }
+        start += n;
+    }
+    if !check {
+        let predicted = plan.counts_at(&counts0, u64::from(levels))?;
+        let measured = crate::stats::face_list_counts(&current);
+        let pairs = [
+            ("vertices", predicted.vertices, measured.vertices),
+            ("edges", predicted.edges, measured.edges),
+            ("faces", predicted.faces, measured.faces),
+        ];
+        for (what, predicted, actual) in pairs {
+            if predicted != BigInt::from(actual) {
+                return Err(Error::PredictionMismatch {
+                    scheme: plan.name(),
+                    level: levels,
+                    what,
+                    predicted,
+                    actual,
+                });
+            }
+        }
+    }
+    Ok(StagedRun {
+        mesh: (!check).then_some(current),
+        reports,
+    })
+}
+
+/// Whether every edge of `mesh` has one or two faces and the half-edge mesh builds.
+fn is_manifold(mesh: &PolygonMesh) -> bool {
+    HalfEdgeMesh::try_from(mesh).is_ok()
+}
+
+/// The report of `level`: the plan's prediction from `x0` in the names of `scheme` (the
+/// stage's) against `measured`.
+fn plan_report(
+    plan: &Plan,
+    x0: &[BigInt],
+    level: u32,
+    scheme: &Scheme,
+    measured: Vec<(String, BigInt)>,
+) -> Result<LevelReport> {
+    let c = plan.level_counts(x0, u64::from(level))?;
+    let names = plan.state_names_at(u64::from(level))?.to_vec();
+    let predicted = report_names(scheme)
+        .into_iter()
+        .filter_map(|n| {
+            let v = match names.iter().position(|m| *m == n) {
+                Some(i) => c.state[i].clone(),
+                None => match n.as_str() {
+                    "V" => c.vertices.clone(),
+                    "E" => c.edges.clone(),
+                    "F" => c.faces.clone(),
+                    _ => return None,
+                },
+            };
+            Some((n, v))
+        })
+        .collect();
+    Ok(LevelReport {
+        level,
+        predicted,
+        measured,
+    })
+}
