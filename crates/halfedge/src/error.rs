@@ -151,8 +151,8 @@ pub enum ParseError {
     TagValueCount {
         /// The tag.
         name: String,
-        /// nInts + nFloats + nStrings.
-        declared: u64,
+        /// nInts + nFloats + nStrings (three `u64` counts: their sum may pass `u64::MAX`).
+        declared: u128,
         /// The values on the line.
         found: u64,
     },

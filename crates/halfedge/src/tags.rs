@@ -377,6 +377,19 @@ impl Tags {
         Ok(())
     }
 
+    /// Room for `creases`, `corners` and `holes` more entries, or the allocator's refusal
+    /// (the OBJ reader reserves a tag line's entries before adding them).
+    pub(crate) fn try_reserve(
+        &mut self,
+        creases: usize,
+        corners: usize,
+        holes: usize,
+    ) -> Result<(), std::collections::TryReserveError> {
+        self.creases.try_reserve(creases)?;
+        self.corners.try_reserve(corners)?;
+        self.holes.try_reserve(holes)
+    }
+
     /// Marks face `face` as a hole.
     pub fn add_hole(&mut self, face: u32) {
         self.holes.push(face);

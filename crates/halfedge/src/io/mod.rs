@@ -272,18 +272,37 @@ impl Budget {
         }
     }
 
-    /// Refuses once `mesh` and `extra` bytes (the tags read so far) occupy more than the
-    /// budget.
+    /// Refuses once `mesh` and `extra` bytes (the reader's other lists: tags, texture
+    /// coordinates, forward references) occupy more than the budget.
     fn check<R>(self, mesh: &PolygonMesh, extra: usize, lines: &Lines<R>) -> Result<()> {
-        if mesh.heap_bytes().saturating_add(extra) as u64 > self.bytes {
-            return Err(Error::MeshTooLarge {
-                file: lines.name.clone(),
-                line: lines.line,
-                limit: self.bytes,
-            });
+        if mesh.heap_bytes() as u128 + extra as u128 > u128::from(self.bytes) {
+            return Err(self.refused(lines));
         }
         Ok(())
     }
+
+    /// The bytes the budget still has room for once `mesh` and `extra` bytes occupy it.
+    fn room(self, mesh: &PolygonMesh, extra: usize) -> u128 {
+        u128::from(self.bytes).saturating_sub(mesh.heap_bytes() as u128 + extra as u128)
+    }
+
+    /// The refusal of the mesh read so far, where the reader got to.
+    fn refused<R>(self, lines: &Lines<R>) -> Error {
+        Error::MeshTooLarge {
+            file: lines.name.clone(),
+            line: lines.line,
+            limit: self.bytes,
+        }
+    }
+}
+
+/// Room for `additional` more elements in a reader's growing list: a refused allocation (an
+/// address-space limit tighter than the budget saw) is [`Error::AllocationFailed`] naming the
+/// file and line, never an abort.
+fn grow<T, R>(list: &mut Vec<T>, additional: usize, lines: &Lines<R>) -> Result<()> {
+    list.try_reserve(additional).map_err(|e| {
+        lines.allocation_failed(additional as u128 * std::mem::size_of::<T>() as u128, e)
+    })
 }
 
 /// Reads lines as bytes, tracks line numbers, strips comments, rejects binary data and joins
@@ -296,14 +315,13 @@ struct Lines<R> {
     line: u64,
 }
 
-impl<R: BufRead> Lines<R> {
-    fn new(reader: R, name: &str) -> Self {
-        Lines {
-            reader,
-            name: name.to_string(),
-            buf: Vec::new(),
-            text: String::new(),
-            line: 0,
+impl<R> Lines<R> {
+    /// A refused allocation of `bytes` more bytes while reading this line.
+    fn allocation_failed(&self, bytes: u128, e: std::collections::TryReserveError) -> Error {
+        Error::AllocationFailed {
+            what: format!("the mesh read from {} (line {})", self.name, self.line),
+            bytes,
+            reason: e.to_string(),
         }
     }
 
@@ -312,6 +330,18 @@ impl<R: BufRead> Lines<R> {
             file: self.name.clone(),
             line: self.line,
             kind,
+        }
+    }
+}
+
+impl<R: BufRead> Lines<R> {
+    fn new(reader: R, name: &str) -> Self {
+        Lines {
+            reader,
+            name: name.to_string(),
+            buf: Vec::new(),
+            text: String::new(),
+            line: 0,
         }
     }
 
@@ -434,6 +464,44 @@ mod tests {
             matches!(err, Error::MeshTooLarge { line: 502, .. }),
             "{err}"
         );
+    }
+
+    /// Issue 24: the reader's list of forward references (16 bytes a corner) was outside its
+    /// budget and grew infallibly: 2 M faces before their vertices aborted the process. Only
+    /// increasing references are kept now, and what is kept counts against the budget, as do
+    /// a tag line's entries before they are added.
+    #[test]
+    fn forward_references_and_tag_entries_count_against_the_budget() {
+        let budget = Budget { bytes: 1_000_000 };
+        let read = |text: &str| {
+            obj::read_obj_within(text.as_bytes(), "f.obj", budget, &ReadOptions::default())
+        };
+        // 20,000 faces of the same three forward references (28 bytes a face): read within
+        // the budget.
+        let same = format!("{}v 0 0 0\nv 1 0 0\nv 0 1 0\n", "f 1 2 3\n".repeat(20_000));
+        assert_eq!(read(&same).expect("within the budget").n_faces(), 20_000);
+        // Ever larger forward references: the list counts, refused where it outgrows it.
+        let rising: String = (1..=30_000u32)
+            .map(|k| format!("f {} {} {}\n", 3 * k - 2, 3 * k - 1, 3 * k))
+            .collect();
+        let err = read(&rising).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { .. }), "{err}");
+        assert!(err.is_resource_limit());
+        // The faces alone would fit (30,000 * 28 = 840,000 bytes); the list adds three
+        // entries of 16 bytes a face: 76 bytes a face in all.
+        let Error::MeshTooLarge { line, .. } = err else {
+            unreachable!()
+        };
+        assert_eq!(line, 1_000_000 / 76 + 1, "refused at line {line}");
+        // A tag line whose entries would not fit is refused before they are added.
+        let mesh = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let pairs = 60_000;
+        let tag = format!("t crease {}/1/0 {}10\n", 2 * pairs, "0 1 ".repeat(pairs));
+        let err = read(&format!("{mesh}{tag}")).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { line: 5, .. }), "{err}");
+        let hole = format!("t hole {}/0/0 {}\n", 2 * pairs, "0 ".repeat(2 * pairs));
+        let err = read(&format!("{mesh}{hole}")).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { line: 5, .. }), "{err}");
     }
 
     #[test]
