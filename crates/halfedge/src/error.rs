@@ -520,6 +520,23 @@ pub enum Error {
         /// Its z coordinate.
         z: f64,
     },
+    /// A subdivision step computed a texture coordinate that is not finite (an overflow of
+    /// huge `vt` values, or a value beyond the range of `f32`): refused, nothing is written.
+    #[error("{scheme} level {level}: UV value {value} ({origin}) would be at ({u}, {v}), not a finite point")]
+    NonFiniteUv {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// The UV value of that level (an index into its texture coordinates).
+        value: u32,
+        /// What it is computed from.
+        origin: String,
+        /// Its u coordinate.
+        u: f64,
+        /// Its v coordinate.
+        v: f64,
+    },
     /// A caller's buffer of the wrong length for a refinement
     /// ([`crate::refine::Refinement`]): nothing is written.
     #[error("{what} buffer has {given} entries, expected {expected}")]

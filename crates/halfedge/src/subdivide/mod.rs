@@ -100,6 +100,7 @@ mod trisplit;
 use num_bigint::BigInt;
 pub use schemes::Rule;
 
+pub use self::finite::check_uvs;
 pub use self::sdc::Sharpness;
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
