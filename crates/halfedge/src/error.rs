@@ -206,7 +206,7 @@ pub enum ParseError {
 #[non_exhaustive]
 pub enum Error {
     /// Reading or writing a file failed.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {source}", crate::io::escape_controls(&path.display().to_string()))]
     Io {
         /// The file.
         path: PathBuf,
@@ -216,7 +216,7 @@ pub enum Error {
     },
     /// An output file the user may not write: it is left as it is (see
     /// [`crate::io::write_atomically`]).
-    #[error("{}: refusing to write over it: {reason}", path.display())]
+    #[error("{}: refusing to write over it: {reason}", crate::io::escape_controls(&path.display().to_string()))]
     WriteProtected {
         /// The file as given.
         path: PathBuf,
@@ -225,7 +225,7 @@ pub enum Error {
     },
     /// A mesh file larger than the memory this process may allocate, refused before it is
     /// read (a resource guard: see [`Error::is_resource_limit`]).
-    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", path.display())]
+    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", crate::io::escape_controls(&path.display().to_string()))]
     FileTooLarge {
         /// The file.
         path: PathBuf,
@@ -263,7 +263,7 @@ pub enum Error {
         file: String,
     },
     /// A mesh file whose format cannot be told from its extension.
-    #[error("{}: unknown mesh format (expected .obj or .off)", path.display())]
+    #[error("{}: unknown mesh format (expected .obj or .off)", crate::io::escape_controls(&path.display().to_string()))]
     UnknownFormat {
         /// The file.
         path: PathBuf,

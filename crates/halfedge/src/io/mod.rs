@@ -105,10 +105,11 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file,
-    write_buffers_obj_file_with, write_buffers_obj_with, write_obj, write_obj_file,
-    write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
+    check_output, unwritten_mesh_format, write_atomically, write_buffers_obj,
+    write_buffers_obj_file, write_buffers_obj_file_with, write_buffers_obj_with, write_obj,
+    write_obj_file, write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
     write_polygon_obj_file_with, write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
+    UNWRITTEN_MESH_FORMATS,
 };
 
 use std::io::{BufRead, Read};
@@ -338,7 +339,7 @@ impl<R: BufRead> Lines<R> {
     fn new(reader: R, name: &str) -> Self {
         Lines {
             reader,
-            name: name.to_string(),
+            name: escape_controls(name).into_owned(),
             buf: Vec::new(),
             text: String::new(),
             line: 0,
@@ -408,15 +409,42 @@ impl<R: BufRead> Lines<R> {
     }
 }
 
-/// Shortens a token for an error message.
+/// Shortens a token for an error message, its control characters escaped.
 fn shorten(token: &str) -> String {
     const MAX: usize = 40;
     if token.chars().count() <= MAX {
-        token.to_string()
+        escape_controls(token).into_owned()
     } else {
         let head: String = token.chars().take(MAX).collect();
-        format!("{head}...")
+        format!("{}...", escape_controls(&head))
     }
+}
+
+/// `text` with every control character (`char::is_control`: C0, DEL, C1) escaped as Rust's
+/// `escape_debug` writes it (`\u{1b}`, `\t`, `\n`, `\r`, `\0`), everything else as it is:
+/// the one escape of text from a file (a token, a tag name, a file name) before it is
+/// echoed in a message, so that `ESC[2J` in a file cannot clear the terminal. Idempotent on
+/// its own output, which has no control characters.
+///
+/// ```
+/// use halfedge::io::escape_controls;
+/// assert_eq!(escape_controls("\u{1b}[2Jevil"), "\\u{1b}[2Jevil");
+/// assert_eq!(escape_controls("tab\there"), "tab\\there");
+/// assert_eq!(escape_controls("plain `ok` é"), "plain `ok` é");
+/// ```
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Parses a finite coordinate.

@@ -284,19 +284,19 @@ pub(crate) fn read_obj_within(
     };
     if let Some((line, kind)) = error {
         return Err(Error::Parse {
-            file: name.to_string(),
+            file: lines.name.clone(),
             line,
             kind,
         });
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {
-            file: name.to_string(),
+            file: lines.name.clone(),
         });
     }
     tags.finish(&mut mesh)
         .map_err(|(line, kind)| Error::Parse {
-            file: name.to_string(),
+            file: lines.name.clone(),
             line,
             kind,
         })?;
@@ -518,14 +518,14 @@ impl TagReader {
                 Ok(())
             } else {
                 Err(ParseError::TagForm {
-                    name: name.to_string(),
+                    name: shorten(name),
                     counts: shorten(counts_token),
                     expected,
                 })
             }
         };
         let option_value = |what: Option<&str>, expected: &'static str| ParseError::TagOption {
-            name: name.to_string(),
+            name: shorten(name),
             value: shorten(what.unwrap_or("")),
             expected,
         };
@@ -682,7 +682,7 @@ fn parse_tag_index(
     match token.parse::<u32>() {
         Ok(i) if i < u32::MAX => Ok(i),
         _ => Err(ParseError::TagIndexTooLarge {
-            name: name.to_string(),
+            name: shorten(name),
             token: shorten(token),
         }),
     }
@@ -751,7 +751,7 @@ fn parse_sharpness(name: &str, token: &str) -> std::result::Result<f32, ParseErr
 
 fn sharpness_error(name: &str, token: &str) -> ParseError {
     ParseError::TagSharpness {
-        name: name.to_string(),
+        name: shorten(name),
         token: shorten(token),
     }
 }

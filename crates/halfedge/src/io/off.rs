@@ -67,7 +67,7 @@ pub(crate) fn read_off_within(
     loop {
         if !lines.next_line()? {
             return Err(Error::NoFaces {
-                file: name.to_string(),
+                file: lines.name.clone(),
             });
         }
         let line = lines.text.as_str();
@@ -195,7 +195,7 @@ pub(crate) fn read_off_within(
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {
-            file: name.to_string(),
+            file: lines.name.clone(),
         });
     }
     Ok(mesh)
