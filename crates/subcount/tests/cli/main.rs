@@ -3,6 +3,7 @@
 mod budget;
 mod creases;
 mod hostile;
+mod hostile3;
 mod matrix;
 mod meshes;
 mod plot;
