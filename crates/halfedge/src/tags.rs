@@ -20,7 +20,9 @@
 //!
 //! Sharpness values are `f32`, as in OpenSubdiv, so that their decay from level to level is
 //! computed with the same arithmetic: 0 is smooth, 10 and above ([`INFINITELY_SHARP`]) is
-//! infinitely sharp, values between are semi-sharp.
+//! infinitely sharp, values between are semi-sharp. The OBJ reader reads a tag's sharpness in
+//! `f64` and clamps values above 10 to 10, as OpenSubdiv clamps to `[0, 10]` (the surface is
+//! the same: 10 and above is infinitely sharp either way).
 //!
 //! ```
 //! use halfedge::tags::{BoundaryInterpolation, CreaseMethod, Tags};

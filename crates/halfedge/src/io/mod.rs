@@ -60,13 +60,24 @@
 //! ([`PolygonMesh::ignored_tags`]) and prints nothing. The reader is deliberately stricter
 //! than OpenSubdiv's (which skips or aborts): every tag line must follow the grammar (the
 //! counts must match the values on the line), a known tag must have the form the table gives
-//! with valid values (integers, finite sharpness `>= 0`, an option value in range), and its
+//! with valid values (integers, sharpness a finite `f64` `>= 0`, clamped to
+//! [`crate::tags::INFINITELY_SHARP`] as OpenSubdiv clamps, an option value in range), and its
 //! vertices, faces and edges must exist in the file (a crease's two vertices must be the ends
 //! of a side of some face); otherwise the read fails with [`Error::Parse`] naming the file and
 //! the tag's line ([`ParseError::TagIncomplete`], [`ParseError::TagCounts`], [`ParseError::TagValueCount`],
 //! [`ParseError::TagForm`], [`ParseError::TagOption`], [`ParseError::TagSharpness`],
 //! [`ParseError::Tag`], ...). [`ReadOptions::without_tags`] skips `t` lines unread, as this
-//! crate did before it read tags.
+//! crate did before it read tags. Text from the file echoed in a message (a token, a tag's
+//! name, an ignored tag's name) has its control characters escaped ([`escape_controls`]).
+//!
+//! # Memory
+//!
+//! Everything a reader keeps grows inside its budget (half the memory available to the
+//! process): the mesh, the texture coordinates, the tags (a tag line's entries are checked
+//! before they are added) and the forward references of `f` lines (only those larger than
+//! every earlier one are kept: the first beyond the file's vertices is the first bad one).
+//! Past it the read is [`Error::MeshTooLarge`]; every list grows by a fallible reservation,
+//! so an allocation refused below the budget is [`Error::AllocationFailed`], never an abort.
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
 //! open; a mesh with texture coordinates also gets its `vt` lines and `f v/vt` corners, so it
