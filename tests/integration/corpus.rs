@@ -187,10 +187,38 @@ fn corpus_seeds_load_as_expected() {
     let err = load("tags-counts-overflow.obj").unwrap_err();
     assert!(
         err.ends_with(
-            "line 6: tag `crease` declares 18446744073709551615 values but the line has 1"
+            "line 6: tag `crease` declares 55340232221128654845 values but the line has 1"
         ),
         "{err}"
     );
+    // Issue 24: the true total of declared counts past 2^64, huge sharpness clamped to 10,
+    // escaped control characters, a vt beyond f32 read (refused later, when converted), and
+    // faces before their vertices.
+    let err = load("tags-counts-sum-2-pow-64.obj").unwrap_err();
+    assert!(
+        err.ends_with(
+            "line 5: tag `crease` declares 18446744073709551616 values but the line has 2"
+        ),
+        "{err}"
+    );
+    let err = load("tags-crease-huge-sharpness.obj").unwrap_err();
+    assert!(
+        err.ends_with(
+            "line 8: tag `crease`: sharpness `1e309` is not valid (expected a finite number >= 0)"
+        ),
+        "{err}"
+    );
+    let names = load("tags-control-characters-in-name.obj").expect("unknown tags are ignored");
+    let names: Vec<&str> = names
+        .ignored_tags()
+        .iter()
+        .map(|t| t.name.as_str())
+        .collect();
+    assert_eq!(names, ["\\u{1b}[2Jevil", "crease\\u{7}"]);
+    let vt = load("vt-1e39.obj").expect("1e39 is finite in f64");
+    assert_eq!(vt.uvs().expect("uvs").coords()[0].x, 1e39);
+    let forward = load("faces-before-vertices-forward-references.obj").expect("valid");
+    assert_eq!(forward.n_faces(), 201);
     let err = load("tags-crease-not-an-edge.obj").unwrap_err();
     assert!(
         err.ends_with("line 6: tag `crease`: vertices 0 and 2 are not an edge of the mesh's faces"),

@@ -151,8 +151,8 @@ pub enum ParseError {
     TagValueCount {
         /// The tag.
         name: String,
-        /// nInts + nFloats + nStrings.
-        declared: u64,
+        /// nInts + nFloats + nStrings (three `u64` counts: their sum may pass `u64::MAX`).
+        declared: u128,
         /// The values on the line.
         found: u64,
     },
@@ -206,7 +206,7 @@ pub enum ParseError {
 #[non_exhaustive]
 pub enum Error {
     /// Reading or writing a file failed.
-    #[error("{}: {source}", path.display())]
+    #[error("{}: {source}", crate::io::escape_controls(&path.display().to_string()))]
     Io {
         /// The file.
         path: PathBuf,
@@ -216,7 +216,7 @@ pub enum Error {
     },
     /// An output file the user may not write: it is left as it is (see
     /// [`crate::io::write_atomically`]).
-    #[error("{}: refusing to write over it: {reason}", path.display())]
+    #[error("{}: refusing to write over it: {reason}", crate::io::escape_controls(&path.display().to_string()))]
     WriteProtected {
         /// The file as given.
         path: PathBuf,
@@ -225,7 +225,7 @@ pub enum Error {
     },
     /// A mesh file larger than the memory this process may allocate, refused before it is
     /// read (a resource guard: see [`Error::is_resource_limit`]).
-    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", path.display())]
+    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", crate::io::escape_controls(&path.display().to_string()))]
     FileTooLarge {
         /// The file.
         path: PathBuf,
@@ -263,7 +263,7 @@ pub enum Error {
         file: String,
     },
     /// A mesh file whose format cannot be told from its extension.
-    #[error("{}: unknown mesh format (expected .obj or .off)", path.display())]
+    #[error("{}: unknown mesh format (expected .obj or .off)", crate::io::escape_controls(&path.display().to_string()))]
     UnknownFormat {
         /// The file.
         path: PathBuf,
@@ -528,6 +528,23 @@ pub enum Error {
         y: f64,
         /// Its z coordinate.
         z: f64,
+    },
+    /// A subdivision step computed a texture coordinate that is not finite (an overflow of
+    /// huge `vt` values, or a value beyond the range of `f32`): refused, nothing is written.
+    #[error("{scheme} level {level}: UV value {value} ({origin}) would be at ({u}, {v}), not a finite point")]
+    NonFiniteUv {
+        /// The scheme.
+        scheme: String,
+        /// The level being built.
+        level: u32,
+        /// The UV value of that level (an index into its texture coordinates).
+        value: u32,
+        /// What it is computed from.
+        origin: String,
+        /// Its u coordinate.
+        u: f64,
+        /// Its v coordinate.
+        v: f64,
     },
     /// A caller's buffer of the wrong length for a refinement
     /// ([`crate::refine::Refinement`]): nothing is written.

@@ -175,11 +175,23 @@ impl PolygonMesh {
         self.face_offsets.push(self.face_indices.len());
     }
 
-    /// Appends a face read from line `line` of a file (see [`PolygonMesh::face_line`]).
-    pub(crate) fn push_face_from_line(&mut self, vertices: &[u32], line: u64) {
-        self.face_lines.resize(self.n_faces(), 0);
+    /// Appends a face read from line `line` of a file (see [`PolygonMesh::face_line`]),
+    /// reporting a refused allocation instead of aborting (the readers' lists grow with the
+    /// file).
+    pub(crate) fn try_push_face_from_line(
+        &mut self,
+        vertices: &[u32],
+        line: u64,
+    ) -> std::result::Result<(), std::collections::TryReserveError> {
+        let faces = self.n_faces();
+        self.face_lines
+            .try_reserve((faces + 1).saturating_sub(self.face_lines.len()))?;
+        self.face_offsets.try_reserve(1)?;
+        self.face_indices.try_reserve(vertices.len())?;
+        self.face_lines.resize(faces, 0);
         self.face_lines.push(line);
         self.push_face(vertices);
+        Ok(())
     }
 
     /// The 1-based line of the file face `f` was read from, for meshes read by [`crate::io`]

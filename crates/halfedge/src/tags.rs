@@ -20,7 +20,9 @@
 //!
 //! Sharpness values are `f32`, as in OpenSubdiv, so that their decay from level to level is
 //! computed with the same arithmetic: 0 is smooth, 10 and above ([`INFINITELY_SHARP`]) is
-//! infinitely sharp, values between are semi-sharp.
+//! infinitely sharp, values between are semi-sharp. The OBJ reader reads a tag's sharpness in
+//! `f64` and clamps values above 10 to 10, as OpenSubdiv clamps to `[0, 10]` (the surface is
+//! the same: 10 and above is infinitely sharp either way).
 //!
 //! ```
 //! use halfedge::tags::{BoundaryInterpolation, CreaseMethod, Tags};
@@ -375,6 +377,19 @@ impl Tags {
         check_sharpness(sharpness)?;
         self.corners.push(Corner { vertex, sharpness });
         Ok(())
+    }
+
+    /// Room for `creases`, `corners` and `holes` more entries, or the allocator's refusal
+    /// (the OBJ reader reserves a tag line's entries before adding them).
+    pub(crate) fn try_reserve(
+        &mut self,
+        creases: usize,
+        corners: usize,
+        holes: usize,
+    ) -> Result<(), std::collections::TryReserveError> {
+        self.creases.try_reserve(creases)?;
+        self.corners.try_reserve(corners)?;
+        self.holes.try_reserve(holes)
     }
 
     /// Marks face `face` as a hole.

@@ -96,7 +96,8 @@ fn one_line(error: &anyhow::Error) -> String {
         }
         message.push_str(&text);
     }
-    message.replace('\n', " ")
+    // Control characters from a file (a name, a token) are never echoed raw to the terminal.
+    halfedge::io::escape_controls(&message.replace('\n', " ")).into_owned()
 }
 
 fn is_broken_pipe(e: &anyhow::Error) -> bool {

@@ -725,6 +725,16 @@ pub(crate) fn write_reports(
 
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
+    // OBJ text in a file named for another mesh format would mislead whatever opens it.
+    if let Some(path) = &args.output {
+        if let Some(format) = halfedge::io::unwritten_mesh_format(path) {
+            return Err(usage!(
+                "-o {}: subdivide does not write {} files; it writes OBJ (name the output .obj, or anything that is not another mesh format's extension)",
+                path.display(),
+                format.to_ascii_uppercase()
+            ));
+        }
+    }
     let start = Instant::now();
     // `loaded.tags()` (creases and corners; holes, left out of what is written) and
     // `loaded.options` (resolved boundary, crease method, triangle rule) are what the geometry
@@ -773,8 +783,12 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             }
         ));
     }
-    // The rule's own scheme sizes the output (a custom matrix may be wrong).
+    // The rule's own scheme sizes the output (a custom matrix may be wrong); one that does
+    // not apply (a scheme file's `topology = "loop"` on quads) names the mesh, as `verify`.
     let scheme = rule.scheme_for(&counts).map_err(scheme_failure)?;
+    scheme
+        .initial_state(&counts)
+        .map_err(|e| not_applicable(&args.mesh, e))?;
     // Manifold input, preallocated: the 4:1 family and Catmull-Clark write the last level
     // straight into a face list (half the peak memory of a half-edge last level).
     let last_faces = (!face_list && !args.no_preallocate)

@@ -616,7 +616,7 @@ fn mesh_failure(e: halfedge::Error, otherwise: Kind) -> Failure {
 /// How errors name the mesh: its path, or `base mesh NAME`.
 pub(crate) fn mesh_label(mesh: &MeshSource) -> String {
     match (&mesh.mesh, &mesh.base) {
-        (Some(path), _) => path.display().to_string(),
+        (Some(path), _) => halfedge::io::escape_controls(&path.display().to_string()).into_owned(),
         (None, Some(name)) => format!("base mesh {name}"),
         (None, None) => "the mesh".to_string(),
     }

@@ -3,6 +3,7 @@
 //! `f64`, once or once per frame; with a UV layout ([`SubdivideOptions::uvs`]) the UVs
 //! refined by the same refinement, evaluated into caller-owned buffers and written.
 
+use std::any::type_name;
 use std::path::Path;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
@@ -169,8 +170,15 @@ fn run_in<T: Scalar>(
                 .iter()
                 .map(|v| [T::from_f64(v.x), T::from_f64(v.y)])
                 .collect();
+            // A `vt` beyond the range of `T` (1e39 in `f32`), or sums that overflow: refused
+            // before anything is written, as positions are.
+            let scheme = rule.to_string();
+            let beyond = format!("the input value, beyond the range of {}", type_name::<T>());
+            halfedge::subdivide::check_uvs(&scheme, 0, &base, &beyond)?;
             let mut values = vec![[T::ZERO; 2]; refinement.n_uvs(levels)];
             refinement.evaluate_uvs(&base, &mut values)?;
+            let computed = format!("computed in {}", type_name::<T>());
+            halfedge::subdivide::check_uvs(&scheme, levels, &values, &computed)?;
             let mut corners = vec![0u32; refinement.n_corners(levels)];
             refinement.write_uv_indices(&mut corners)?;
             if let Some(read) = as_read {

@@ -60,13 +60,24 @@
 //! ([`PolygonMesh::ignored_tags`]) and prints nothing. The reader is deliberately stricter
 //! than OpenSubdiv's (which skips or aborts): every tag line must follow the grammar (the
 //! counts must match the values on the line), a known tag must have the form the table gives
-//! with valid values (integers, finite sharpness `>= 0`, an option value in range), and its
+//! with valid values (integers, sharpness a finite `f64` `>= 0`, clamped to
+//! [`crate::tags::INFINITELY_SHARP`] as OpenSubdiv clamps, an option value in range), and its
 //! vertices, faces and edges must exist in the file (a crease's two vertices must be the ends
 //! of a side of some face); otherwise the read fails with [`Error::Parse`] naming the file and
 //! the tag's line ([`ParseError::TagIncomplete`], [`ParseError::TagCounts`], [`ParseError::TagValueCount`],
 //! [`ParseError::TagForm`], [`ParseError::TagOption`], [`ParseError::TagSharpness`],
 //! [`ParseError::Tag`], ...). [`ReadOptions::without_tags`] skips `t` lines unread, as this
-//! crate did before it read tags.
+//! crate did before it read tags. Text from the file echoed in a message (a token, a tag's
+//! name, an ignored tag's name) has its control characters escaped ([`escape_controls`]).
+//!
+//! # Memory
+//!
+//! Everything a reader keeps grows inside its budget (half the memory available to the
+//! process): the mesh, the texture coordinates, the tags (a tag line's entries are checked
+//! before they are added) and the forward references of `f` lines (only those larger than
+//! every earlier one are kept: the first beyond the file's vertices is the first bad one).
+//! Past it the read is [`Error::MeshTooLarge`]; every list grows by a fallible reservation,
+//! so an allocation refused below the budget is [`Error::AllocationFailed`], never an abort.
 //!
 //! Writing produces plain OBJ (`v` and `f` lines, n-gons kept) that Blender and MeshLab
 //! open; a mesh with texture coordinates also gets its `vt` lines and `f v/vt` corners, so it
@@ -105,10 +116,11 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, write_atomically, write_buffers_obj, write_buffers_obj_file,
-    write_buffers_obj_file_with, write_buffers_obj_with, write_obj, write_obj_file,
-    write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
+    check_output, unwritten_mesh_format, write_atomically, write_buffers_obj,
+    write_buffers_obj_file, write_buffers_obj_file_with, write_buffers_obj_with, write_obj,
+    write_obj_file, write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
     write_polygon_obj_file_with, write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
+    UNWRITTEN_MESH_FORMATS,
 };
 
 use std::io::{BufRead, Read};
@@ -272,18 +284,37 @@ impl Budget {
         }
     }
 
-    /// Refuses once `mesh` and `extra` bytes (the tags read so far) occupy more than the
-    /// budget.
+    /// Refuses once `mesh` and `extra` bytes (the reader's other lists: tags, texture
+    /// coordinates, forward references) occupy more than the budget.
     fn check<R>(self, mesh: &PolygonMesh, extra: usize, lines: &Lines<R>) -> Result<()> {
-        if mesh.heap_bytes().saturating_add(extra) as u64 > self.bytes {
-            return Err(Error::MeshTooLarge {
-                file: lines.name.clone(),
-                line: lines.line,
-                limit: self.bytes,
-            });
+        if mesh.heap_bytes() as u128 + extra as u128 > u128::from(self.bytes) {
+            return Err(self.refused(lines));
         }
         Ok(())
     }
+
+    /// The bytes the budget still has room for once `mesh` and `extra` bytes occupy it.
+    fn room(self, mesh: &PolygonMesh, extra: usize) -> u128 {
+        u128::from(self.bytes).saturating_sub(mesh.heap_bytes() as u128 + extra as u128)
+    }
+
+    /// The refusal of the mesh read so far, where the reader got to.
+    fn refused<R>(self, lines: &Lines<R>) -> Error {
+        Error::MeshTooLarge {
+            file: lines.name.clone(),
+            line: lines.line,
+            limit: self.bytes,
+        }
+    }
+}
+
+/// Room for `additional` more elements in a reader's growing list: a refused allocation (an
+/// address-space limit tighter than the budget saw) is [`Error::AllocationFailed`] naming the
+/// file and line, never an abort.
+fn grow<T, R>(list: &mut Vec<T>, additional: usize, lines: &Lines<R>) -> Result<()> {
+    list.try_reserve(additional).map_err(|e| {
+        lines.allocation_failed(additional as u128 * std::mem::size_of::<T>() as u128, e)
+    })
 }
 
 /// Reads lines as bytes, tracks line numbers, strips comments, rejects binary data and joins
@@ -296,14 +327,13 @@ struct Lines<R> {
     line: u64,
 }
 
-impl<R: BufRead> Lines<R> {
-    fn new(reader: R, name: &str) -> Self {
-        Lines {
-            reader,
-            name: name.to_string(),
-            buf: Vec::new(),
-            text: String::new(),
-            line: 0,
+impl<R> Lines<R> {
+    /// A refused allocation of `bytes` more bytes while reading this line.
+    fn allocation_failed(&self, bytes: u128, e: std::collections::TryReserveError) -> Error {
+        Error::AllocationFailed {
+            what: format!("the mesh read from {} (line {})", self.name, self.line),
+            bytes,
+            reason: e.to_string(),
         }
     }
 
@@ -312,6 +342,18 @@ impl<R: BufRead> Lines<R> {
             file: self.name.clone(),
             line: self.line,
             kind,
+        }
+    }
+}
+
+impl<R: BufRead> Lines<R> {
+    fn new(reader: R, name: &str) -> Self {
+        Lines {
+            reader,
+            name: escape_controls(name).into_owned(),
+            buf: Vec::new(),
+            text: String::new(),
+            line: 0,
         }
     }
 
@@ -378,15 +420,42 @@ impl<R: BufRead> Lines<R> {
     }
 }
 
-/// Shortens a token for an error message.
+/// Shortens a token for an error message, its control characters escaped.
 fn shorten(token: &str) -> String {
     const MAX: usize = 40;
     if token.chars().count() <= MAX {
-        token.to_string()
+        escape_controls(token).into_owned()
     } else {
         let head: String = token.chars().take(MAX).collect();
-        format!("{head}...")
+        format!("{}...", escape_controls(&head))
     }
+}
+
+/// `text` with every control character (`char::is_control`: C0, DEL, C1) escaped as Rust's
+/// `escape_debug` writes it (`\u{1b}`, `\t`, `\n`, `\r`, `\0`), everything else as it is:
+/// the one escape of text from a file (a token, a tag name, a file name) before it is
+/// echoed in a message, so that `ESC[2J` in a file cannot clear the terminal. Idempotent on
+/// its own output, which has no control characters.
+///
+/// ```
+/// use halfedge::io::escape_controls;
+/// assert_eq!(escape_controls("\u{1b}[2Jevil"), "\\u{1b}[2Jevil");
+/// assert_eq!(escape_controls("tab\there"), "tab\\there");
+/// assert_eq!(escape_controls("plain `ok` é"), "plain `ok` é");
+/// ```
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Parses a finite coordinate.
@@ -434,6 +503,44 @@ mod tests {
             matches!(err, Error::MeshTooLarge { line: 502, .. }),
             "{err}"
         );
+    }
+
+    /// Issue 24: the reader's list of forward references (16 bytes a corner) was outside its
+    /// budget and grew infallibly: 2 M faces before their vertices aborted the process. Only
+    /// increasing references are kept now, and what is kept counts against the budget, as do
+    /// a tag line's entries before they are added.
+    #[test]
+    fn forward_references_and_tag_entries_count_against_the_budget() {
+        let budget = Budget { bytes: 1_000_000 };
+        let read = |text: &str| {
+            obj::read_obj_within(text.as_bytes(), "f.obj", budget, &ReadOptions::default())
+        };
+        // 20,000 faces of the same three forward references (28 bytes a face): read within
+        // the budget.
+        let same = format!("{}v 0 0 0\nv 1 0 0\nv 0 1 0\n", "f 1 2 3\n".repeat(20_000));
+        assert_eq!(read(&same).expect("within the budget").n_faces(), 20_000);
+        // Ever larger forward references: the list counts, refused where it outgrows it.
+        let rising: String = (1..=30_000u32)
+            .map(|k| format!("f {} {} {}\n", 3 * k - 2, 3 * k - 1, 3 * k))
+            .collect();
+        let err = read(&rising).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { .. }), "{err}");
+        assert!(err.is_resource_limit());
+        // The faces alone would fit (30,000 * 28 = 840,000 bytes); the list adds three
+        // entries of 16 bytes a face: 76 bytes a face in all.
+        let Error::MeshTooLarge { line, .. } = err else {
+            unreachable!()
+        };
+        assert_eq!(line, 1_000_000 / 76 + 1, "refused at line {line}");
+        // A tag line whose entries would not fit is refused before they are added.
+        let mesh = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let pairs = 60_000;
+        let tag = format!("t crease {}/1/0 {}10\n", 2 * pairs, "0 1 ".repeat(pairs));
+        let err = read(&format!("{mesh}{tag}")).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { line: 5, .. }), "{err}");
+        let hole = format!("t hole {}/0/0 {}\n", 2 * pairs, "0 ".repeat(2 * pairs));
+        let err = read(&format!("{mesh}{hole}")).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { line: 5, .. }), "{err}");
     }
 
     #[test]

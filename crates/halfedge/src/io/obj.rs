@@ -6,12 +6,12 @@ use std::path::Path;
 
 use glam::{DVec2, DVec3};
 
-use super::{open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
+use super::{grow, open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 use crate::tags::{
-    BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, IgnoredTag, TagError, Tags,
-    TriangleRule,
+    BoundaryInterpolation, Corner, Crease, CreaseMethod, FaceVaryingInterpolation, IgnoredTag,
+    TagError, Tags, TriangleRule, INFINITELY_SHARP,
 };
 use crate::uv::{PartialUvs, Uvs};
 
@@ -137,8 +137,15 @@ pub(crate) fn read_obj_within(
     let mut uv = UvReader::default();
     // The `vt` of the corners of one face line that have one.
     let mut face_vts: Vec<u32> = Vec::new();
-    // Positive indices beyond the vertices read so far: checked at the end.
+    // Positive indices beyond the vertices read so far (line, index), each larger than every
+    // earlier one: the first of them beyond the file's count is the file's first bad forward
+    // reference (an earlier, smaller one is within it). A file of faces before their vertices
+    // keeps a few entries, not one per corner.
     let mut forward: Vec<(u64, i64)> = Vec::new();
+    // Every list the reader grows besides the mesh counts against the budget.
+    let extra = |tags: &TagReader, uv: &UvReader, forward: &[(u64, i64)], scratch: usize| {
+        tags.heap_bytes() + uv.heap_bytes() + std::mem::size_of_val(forward) + scratch
+    };
     loop {
         if !lines.next_line()? {
             break;
@@ -148,6 +155,8 @@ pub(crate) fn read_obj_within(
         let Some(keyword) = tokens.next() else {
             continue;
         };
+        // The per-line lists (bounded by the line's length) count as what they hold.
+        let scratch = 4 * (corners.capacity() + face_vts.capacity());
         match keyword {
             "v" => {
                 let mut xyz = [0.0f64; 3];
@@ -164,8 +173,9 @@ pub(crate) fn read_obj_within(
                         count: mesh.positions.len() as u64 + 1,
                     });
                 }
+                grow(&mut mesh.positions, 1, &lines)?;
                 mesh.positions.push(DVec3::from_array(xyz));
-                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             "vt" => {
                 let mut st = [0.0f64; 2];
@@ -182,8 +192,9 @@ pub(crate) fn read_obj_within(
                         count: uv.coords.len() as u64 + 1,
                     });
                 }
+                grow(&mut uv.coords, 1, &lines)?;
                 uv.coords.push(DVec2::from_array(st));
-                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             "f" => {
                 corners.clear();
@@ -204,17 +215,19 @@ pub(crate) fn read_obj_within(
                         }
                         count - back
                     } else {
-                        if index as u64 > count {
+                        if index as u64 > count && forward.last().map_or(true, |&(_, i)| index > i)
+                        {
+                            grow(&mut forward, 1, &lines)?;
                             forward.push((lines.line, index));
                         }
                         index as u64 - 1
                     };
+                    grow(&mut corners, 1, &lines)?;
                     corners.push(resolved as u32);
                     match fields.next() {
                         Some(vt) if !vt.is_empty() => {
-                            let t = uv
-                                .resolve(vt, k + 1, lines.line)
-                                .map_err(|kind| lines.error(kind))?;
+                            let t = uv.resolve(vt, k + 1, &lines)?;
+                            grow(&mut face_vts, 1, &lines)?;
                             face_vts.push(t);
                         }
                         _ => {}
@@ -226,14 +239,29 @@ pub(crate) fn read_obj_within(
                     };
                     return Err(lines.error(kind));
                 }
-                mesh.push_face_from_line(&corners, lines.line);
-                uv.push_face(&face_vts, corners.len());
-                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
+                let scratch = 4 * (corners.capacity() + face_vts.capacity());
+                // The face's corners, offset and line, and its corners' vt.
+                let adding =
+                    (corners.len() + face_vts.len()) * 4 + std::mem::size_of::<usize>() + 8;
+                if budget.room(&mesh, extra(&tags, &uv, &forward, scratch)) < adding as u128 {
+                    return Err(budget.refused(&lines));
+                }
+                mesh.try_push_face_from_line(&corners, lines.line)
+                    .map_err(|e| lines.allocation_failed(adding as u128, e))?;
+                uv.push_face(&face_vts, corners.len(), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             "t" if options.tags => {
-                tags.read(tokens, lines.line)
-                    .map_err(|kind| lines.error(kind))?;
-                budget.check(&mesh, tags.heap_bytes() + uv.heap_bytes(), &lines)?;
+                let room = budget.room(&mesh, extra(&tags, &uv, &forward, scratch));
+                tags.read(tokens, lines.line, room)
+                    .map_err(|failure| match failure {
+                        TagFailure::Parse(kind) => lines.error(kind),
+                        TagFailure::OverBudget => budget.refused(&lines),
+                        TagFailure::Allocation { bytes, error } => {
+                            lines.allocation_failed(bytes, error)
+                        }
+                    })?;
+                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             _ => {}
         }
@@ -256,19 +284,19 @@ pub(crate) fn read_obj_within(
     };
     if let Some((line, kind)) = error {
         return Err(Error::Parse {
-            file: name.to_string(),
+            file: lines.name.clone(),
             line,
             kind,
         });
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {
-            file: name.to_string(),
+            file: lines.name.clone(),
         });
     }
     tags.finish(&mut mesh)
         .map_err(|(line, kind)| Error::Parse {
-            file: name.to_string(),
+            file: lines.name.clone(),
             line,
             kind,
         })?;
@@ -300,50 +328,51 @@ impl UvReader {
             + std::mem::size_of_val(self.forward.as_slice())
     }
 
-    /// The 0-based `vt` of a corner's `vt` field (corner `corner` of the face on `line`).
-    fn resolve(
-        &mut self,
-        field: &str,
-        corner: usize,
-        line: u64,
-    ) -> std::result::Result<u32, ParseError> {
-        let index = parse_index(field).map_err(|e| match e {
-            ParseError::IndexTooLarge { token } => {
-                ParseError::TexCoordIndexTooLarge { corner, token }
-            }
-            _ => ParseError::InvalidTexCoordIndex {
-                corner,
-                token: shorten(field),
-            },
+    /// The 0-based `vt` of a corner's `vt` field (corner `corner` of the face on the line
+    /// `lines` is at).
+    fn resolve<R>(&mut self, field: &str, corner: usize, lines: &Lines<R>) -> Result<u32> {
+        let index = parse_index(field).map_err(|e| {
+            lines.error(match e {
+                ParseError::IndexTooLarge { token } => {
+                    ParseError::TexCoordIndexTooLarge { corner, token }
+                }
+                _ => ParseError::InvalidTexCoordIndex {
+                    corner,
+                    token: shorten(field),
+                },
+            })
         })?;
         let count = self.coords.len() as u64;
         if index < 0 {
             let back = index.unsigned_abs();
             if back > count {
-                return Err(ParseError::TexCoordIndexOutOfRange {
+                return Err(lines.error(ParseError::TexCoordIndexOutOfRange {
                     corner,
                     index,
                     count,
-                });
+                }));
             }
             return Ok((count - back) as u32);
         }
         if index as u64 > count && self.forward.last().map_or(true, |&(_, _, i)| index > i) {
-            self.forward.push((line, corner, index));
+            grow(&mut self.forward, 1, lines)?;
+            self.forward.push((lines.line, corner, index));
         }
         Ok(index as u32 - 1)
     }
 
     /// Records a face of `corners` corners whose corners with a `vt` have `vts`.
-    fn push_face(&mut self, vts: &[u32], corners: usize) {
+    fn push_face<R>(&mut self, vts: &[u32], corners: usize, lines: &Lines<R>) -> Result<()> {
         let all_so_far = self.with_vt == self.corners;
         self.with_vt += vts.len();
         self.corners += corners;
         if all_so_far && vts.len() == corners {
+            grow(&mut self.vts, vts.len(), lines)?;
             self.vts.extend_from_slice(vts);
         } else if !self.vts.is_empty() {
             self.vts = Vec::new();
         }
+        Ok(())
     }
 
     /// The first corner naming a `vt` beyond the file's, with its line.
@@ -402,7 +431,52 @@ const HOLE_FORM: &str = "face indices only (k/0/0, k >= 1)";
 const ONE_INT_FORM: &str = "one integer (1/0/0)";
 const ONE_STRING_FORM: &str = "one string (0/0/1)";
 
+/// Why a tag line was not taken.
+enum TagFailure {
+    /// The line is malformed.
+    Parse(ParseError),
+    /// Its entries would take more memory than the reader's budget has room for.
+    OverBudget,
+    /// The allocator refused room for its entries.
+    Allocation {
+        bytes: u128,
+        error: std::collections::TryReserveError,
+    },
+}
+
+impl From<ParseError> for TagFailure {
+    fn from(kind: ParseError) -> Self {
+        TagFailure::Parse(kind)
+    }
+}
+
+/// The bytes one entry of each list takes in the reader (the entry and its line).
+const CREASE_ENTRY: usize = std::mem::size_of::<Crease>() + std::mem::size_of::<u64>();
+const CORNER_ENTRY: usize = std::mem::size_of::<Corner>() + std::mem::size_of::<u64>();
+const HOLE_ENTRY: usize = std::mem::size_of::<u32>() + std::mem::size_of::<u64>();
+
 impl TagReader {
+    /// Room for a line's `creases`, `corners` and `holes` before any is added: refused when
+    /// they take more than `room` bytes (the budget's) or the allocator refuses them.
+    fn reserve(
+        &mut self,
+        [creases, corners, holes]: [usize; 3],
+        room: u128,
+    ) -> std::result::Result<(), TagFailure> {
+        let bytes = creases as u128 * CREASE_ENTRY as u128
+            + corners as u128 * CORNER_ENTRY as u128
+            + holes as u128 * HOLE_ENTRY as u128;
+        if bytes > room {
+            return Err(TagFailure::OverBudget);
+        }
+        self.tags
+            .try_reserve(creases, corners, holes)
+            .and_then(|()| self.crease_lines.try_reserve(creases))
+            .and_then(|()| self.corner_lines.try_reserve(corners))
+            .and_then(|()| self.hole_lines.try_reserve(holes))
+            .map_err(|error| TagFailure::Allocation { bytes, error })
+    }
+
     fn heap_bytes(&self) -> usize {
         self.tags.heap_bytes()
             + (self.crease_lines.len() + self.corner_lines.len() + self.hole_lines.len())
@@ -410,27 +484,30 @@ impl TagReader {
             + self.ignored_bytes
     }
 
-    /// Reads one `t` line (the tokens after `t`).
+    /// Reads one `t` line (the tokens after `t`); its entries may take at most `room` bytes.
     fn read(
         &mut self,
         mut tokens: std::str::SplitAsciiWhitespace<'_>,
         line: u64,
-    ) -> std::result::Result<(), ParseError> {
+        room: u128,
+    ) -> std::result::Result<(), TagFailure> {
         let (Some(name), Some(counts_token)) = (tokens.next(), tokens.next()) else {
-            return Err(ParseError::TagIncomplete);
+            return Err(ParseError::TagIncomplete.into());
         };
         let counts = parse_counts(counts_token).ok_or_else(|| ParseError::TagCounts {
             token: shorten(counts_token),
         })?;
         // The values are walked, never collected: a 16 MiB line of indices stays 16 MiB.
         let found = tokens.clone().count() as u64;
-        let declared = counts.iter().fold(0u64, |a, &c| a.saturating_add(c));
-        if found != declared {
+        // Three u64 counts: their sum may pass 2^64 (and is then never the values found).
+        let declared = counts.iter().map(|&c| u128::from(c)).sum::<u128>();
+        if u128::from(found) != declared {
             return Err(ParseError::TagValueCount {
                 name: shorten(name),
                 declared,
                 found,
-            });
+            }
+            .into());
         }
         let [n_ints, n_floats, n_strings] = counts.map(|c| c as usize);
         let mut ints = tokens.clone().take(n_ints);
@@ -441,14 +518,14 @@ impl TagReader {
                 Ok(())
             } else {
                 Err(ParseError::TagForm {
-                    name: name.to_string(),
+                    name: shorten(name),
                     counts: shorten(counts_token),
                     expected,
                 })
             }
         };
         let option_value = |what: Option<&str>, expected: &'static str| ParseError::TagOption {
-            name: name.to_string(),
+            name: shorten(name),
             value: shorten(what.unwrap_or("")),
             expected,
         };
@@ -462,17 +539,16 @@ impl TagReader {
                         && n_strings == 0,
                     CREASE_FORM,
                 )?;
-                let sharpness = parse_sharpnesses(name, floats)?;
-                let mut k = 0;
+                let mut sharpness = sharpnesses(name, floats)?;
+                self.reserve([pairs, 0, 0], room)?;
                 while let (Some(a), Some(b)) = (ints.next(), ints.next()) {
                     let a = parse_tag_index(name, a, "0-based vertex index")?;
                     let b = parse_tag_index(name, b, "0-based vertex index")?;
-                    let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
+                    let s = sharpness.next_value(name)?;
                     self.tags
                         .add_crease(a, b, s)
                         .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
                     self.crease_lines.push(line);
-                    k += 1;
                 }
             }
             "corner" => {
@@ -480,10 +556,11 @@ impl TagReader {
                     n_ints >= 1 && (n_floats == 1 || n_floats == n_ints) && n_strings == 0,
                     CORNER_FORM,
                 )?;
-                let sharpness = parse_sharpnesses(name, floats)?;
-                for (k, token) in ints.enumerate() {
+                let mut sharpness = sharpnesses(name, floats)?;
+                self.reserve([0, n_ints, 0], room)?;
+                for token in ints {
                     let v = parse_tag_index(name, token, "0-based vertex index")?;
-                    let s = sharpness[if sharpness.len() == 1 { 0 } else { k }];
+                    let s = sharpness.next_value(name)?;
                     self.tags
                         .add_corner(v, s)
                         .map_err(|e| sharpness_error(name, &e.value.to_string()))?;
@@ -492,6 +569,7 @@ impl TagReader {
             }
             "hole" => {
                 form(n_ints >= 1 && n_floats == 0 && n_strings == 0, HOLE_FORM)?;
+                self.reserve([0, 0, n_ints], room)?;
                 for token in ints {
                     let f = parse_tag_index(name, token, "0-based face index")?;
                     self.tags.add_hole(f);
@@ -604,7 +682,7 @@ fn parse_tag_index(
     match token.parse::<u32>() {
         Ok(i) if i < u32::MAX => Ok(i),
         _ => Err(ParseError::TagIndexTooLarge {
-            name: name.to_string(),
+            name: shorten(name),
             token: shorten(token),
         }),
     }
@@ -615,26 +693,65 @@ fn option_int(token: &str) -> Option<i64> {
     token.parse().ok()
 }
 
-/// Parses a tag's sharpness values (finite, `>= 0`).
-fn parse_sharpnesses<'a>(
+/// A tag's sharpness values, each checked once before any entry is added, then handed out
+/// one per entry (or the one value for every entry), walked again rather than collected.
+struct Sharpnesses<I> {
+    tokens: I,
+    one: Option<f32>,
+}
+
+impl<'a, I: Iterator<Item = &'a str>> Sharpnesses<I> {
+    /// The next entry's sharpness.
+    fn next_value(&mut self, name: &str) -> std::result::Result<f32, ParseError> {
+        match (self.one, self.tokens.next()) {
+            (Some(s), _) => Ok(s),
+            (None, Some(token)) => parse_sharpness(name, token),
+            // The form checked one value per entry.
+            (None, None) => Err(ParseError::TagIncomplete),
+        }
+    }
+}
+
+/// Checks a tag's sharpness values (`tokens`, one for all entries or one per entry) and
+/// walks them.
+fn sharpnesses<'a, I: Iterator<Item = &'a str> + Clone>(
     name: &str,
-    tokens: impl Iterator<Item = &'a str>,
-) -> std::result::Result<Vec<f32>, ParseError> {
-    tokens
-        .map(|t| match t.parse::<f32>() {
-            Ok(s) if s.is_finite() && s >= 0.0 => Ok(s),
-            Ok(_) => Err(sharpness_error(name, t)),
-            Err(_) => Err(ParseError::InvalidNumber {
-                token: shorten(t),
-                expected: "sharpness",
-            }),
-        })
-        .collect()
+    tokens: I,
+) -> std::result::Result<Sharpnesses<I>, ParseError> {
+    let mut count = 0;
+    let mut first = None;
+    for token in tokens.clone() {
+        let s = parse_sharpness(name, token)?;
+        first.get_or_insert(s);
+        count += 1;
+    }
+    Ok(Sharpnesses {
+        tokens,
+        one: if count == 1 { first } else { None },
+    })
+}
+
+/// Parses a tag's sharpness: read in `f64`, so any finite value `>= 0` is accepted, and one
+/// above [`INFINITELY_SHARP`] is clamped to it (OpenSubdiv's `Sdc::Crease` clamps to
+/// `[0, SHARPNESS_INFINITE]`; either is infinitely sharp). A value up to it is parsed as
+/// `f32` from its text, the rounding it always had, so the crease arithmetic is unchanged.
+fn parse_sharpness(name: &str, token: &str) -> std::result::Result<f32, ParseError> {
+    match token.parse::<f64>() {
+        Ok(s) if s.is_finite() && s > f64::from(INFINITELY_SHARP) => Ok(INFINITELY_SHARP),
+        Ok(s) if s.is_finite() && s >= 0.0 => token
+            .parse::<f32>()
+            .map_err(|_| sharpness_error(name, token)),
+        Ok(_) => Err(sharpness_error(name, token)),
+        Err(_) => Err(ParseError::InvalidNumber {
+            token: shorten(token),
+            expected: "sharpness",
+        }),
+    }
 }
 
 fn sharpness_error(name: &str, token: &str) -> ParseError {
     ParseError::TagSharpness {
-        name: name.to_string(),
+        name: shorten(name),
         token: shorten(token),
     }
 }
@@ -925,6 +1042,41 @@ mod tests {
         assert_eq!(s, [3.0, 4.0]);
     }
 
+    /// Issue 24: sharpness was read as `f32`, so `1e308` was refused while `3.4e38` was
+    /// accepted. It is read in `f64` and clamped to [`INFINITELY_SHARP`] as OpenSubdiv
+    /// clamps; values up to it keep the `f32` they always had.
+    #[test]
+    fn sharpness_is_read_in_f64_and_clamped_to_infinitely_sharp() {
+        for (token, expected) in [
+            ("1e308", INFINITELY_SHARP),
+            ("3.4e38", INFINITELY_SHARP),
+            ("1e39", INFINITELY_SHARP),
+            ("10.000001", INFINITELY_SHARP),
+            ("10", 10.0),
+            ("2.5", 2.5),
+            ("0.1", 0.1f32),
+            ("0", 0.0),
+        ] {
+            let mesh = read(&strip(&format!(
+                "t crease 2/1/0 0 1 {token}\nt corner 1/1/0 2 {token}\n"
+            )))
+            .expect(token);
+            assert_eq!(mesh.tags().creases()[0].sharpness, expected, "{token}");
+            assert_eq!(mesh.tags().corners()[0].sharpness, expected, "{token}");
+        }
+        // Per-pair values, each clamped on its own.
+        let mesh = read(&strip("t crease 4/2/0 0 1 1 4 1e300 1.5\n")).expect("valid");
+        let s: Vec<f32> = mesh.tags().creases().iter().map(|c| c.sharpness).collect();
+        assert_eq!(s, [INFINITELY_SHARP, 1.5]);
+        for token in ["1e309", "inf", "nan", "-1e-300", "-5"] {
+            let err = read(&strip(&format!("t crease 2/1/0 0 1 {token}\n"))).unwrap_err();
+            assert_eq!(
+                err.to_string(),
+                format!("t.obj: line 9: tag `crease`: sharpness `{token}` is not valid (expected a finite number >= 0)")
+            );
+        }
+    }
+
     #[test]
     fn tags_are_compared_and_can_be_skipped() {
         let tagged = read(&strip("t crease 2/1/0 0 1 10\n")).expect("valid");
@@ -957,7 +1109,8 @@ mod tests {
             ("t crease 2/1/0 0 1\n", "tag `crease` declares 3 values but the line has 2"),
             ("t crease 2/1/0 0 1 1 7\n", "tag `crease` declares 3 values but the line has 4"),
             ("t vertexedit 99999999999999999999/0/0 1\n", "`99999999999999999999/0/0` is not a tag's value counts (expected t NAME nInts/nFloats/nStrings, e.g. t crease 2/1/0 0 1 10)"),
-            ("t vertexedit 18446744073709551615/18446744073709551615/2 1\n", "tag `vertexedit` declares 18446744073709551615 values but the line has 1"),
+            ("t vertexedit 18446744073709551615/18446744073709551615/2 1\n", "tag `vertexedit` declares 36893488147419103232 values but the line has 1"),
+            ("t vertexedit 18446744073709551615/1/0 1\n", "tag `vertexedit` declares 18446744073709551616 values but the line has 1"),
             ("t crease 3/1/0 0 1 4 1\n", "tag `crease` has 3/1/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
             ("t crease 4/3/0 0 1 1 4 1 1 1\n", "tag `crease` has 4/3/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
             ("t crease 2/0/0 0 1\n", "tag `crease` has 2/0/0 values: expected vertex pairs and one sharpness for all pairs or one per pair (2k/1/0 or 2k/k/0, k >= 1)"),
@@ -972,7 +1125,8 @@ mod tests {
             ("t crease 2/1/0 0 1 sharp\n", "`sharp` is not a valid sharpness"),
             ("t crease 2/1/0 0 1 -1\n", "tag `crease`: sharpness `-1` is not valid (expected a finite number >= 0)"),
             ("t corner 1/1/0 0 nan\n", "tag `corner`: sharpness `nan` is not valid (expected a finite number >= 0)"),
-            ("t corner 1/1/0 0 1e39\n", "tag `corner`: sharpness `1e39` is not valid (expected a finite number >= 0)"),
+            ("t corner 1/1/0 0 1e309\n", "tag `corner`: sharpness `1e309` is not valid (expected a finite number >= 0)"),
+            ("t corner 1/1/0 0 -inf\n", "tag `corner`: sharpness `-inf` is not valid (expected a finite number >= 0)"),
             ("t hole 1/0/0 4294967295\n", "tag `hole`: index `4294967295` is too large"),
             ("t hole 1/0/0 1.0\n", "`1.0` is not a valid 0-based face index"),
             ("t interpolateboundary 1/0/0 3\n", "tag `interpolateboundary`: `3` is not a valid value (expected 0 none, 1 edge-and-corner, 2 edge-only)"),

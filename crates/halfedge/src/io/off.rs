@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{open, parse_coordinate, shorten, Budget, Lines};
+use super::{grow, open, parse_coordinate, shorten, Budget, Lines};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
@@ -67,7 +67,7 @@ pub(crate) fn read_off_within(
     loop {
         if !lines.next_line()? {
             return Err(Error::NoFaces {
-                file: name.to_string(),
+                file: lines.name.clone(),
             });
         }
         let line = lines.text.as_str();
@@ -108,10 +108,12 @@ pub(crate) fn read_off_within(
     let n_vertices = parse_count(&counts[0]).map_err(|kind| lines.error(kind))?;
     let n_faces = parse_count(&counts[1]).map_err(|kind| lines.error(kind))?;
 
-    // Do not trust the counts for preallocation beyond a sane bound.
-    let mut mesh =
-        PolygonMesh::with_positions(Vec::with_capacity(n_vertices.min(1 << 20) as usize));
-    mesh.reserve_faces(n_faces.min(1 << 20) as usize, 0);
+    // Do not trust the counts for preallocation beyond a sane bound (and what the budget
+    // holds); a refused reservation only leaves the lists to grow, each step checked.
+    let mut mesh = PolygonMesh::default();
+    let cap = |n: u32, bytes: u64| (n.min(1 << 20) as u64).min(budget.bytes / 4 / bytes) as usize;
+    let _ = mesh.positions.try_reserve_exact(cap(n_vertices, 24));
+    let _ = mesh.try_reserve_faces(cap(n_faces, 8), 0);
     while mesh.positions.len() < n_vertices as usize {
         if !lines.next_line()? {
             let what = format!("{} of {n_vertices} vertices read", mesh.positions.len());
@@ -129,6 +131,7 @@ pub(crate) fn read_off_within(
             };
             *slot = parse_coordinate(token).map_err(|kind| lines.error(kind))?;
         }
+        grow(&mut mesh.positions, 1, &lines)?;
         mesh.positions.push(DVec3::from_array(xyz));
         budget.check(&mesh, 0, &lines)?;
     }
@@ -179,14 +182,20 @@ pub(crate) fn read_off_within(
                 };
                 return Err(lines.error(kind));
             }
+            grow(&mut corners, 1, &lines)?;
             corners.push(index as u32);
         }
-        mesh.push_face_from_line(&corners, lines.line);
-        budget.check(&mesh, 0, &lines)?;
+        let adding = corners.len() * 4 + std::mem::size_of::<usize>() + 8;
+        if budget.room(&mesh, 4 * corners.capacity()) < adding as u128 {
+            return Err(budget.refused(&lines));
+        }
+        mesh.try_push_face_from_line(&corners, lines.line)
+            .map_err(|e| lines.allocation_failed(adding as u128, e))?;
+        budget.check(&mesh, 4 * corners.capacity(), &lines)?;
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {
-            file: name.to_string(),
+            file: lines.name.clone(),
         });
     }
     Ok(mesh)

@@ -575,6 +575,30 @@ pub fn write_atomically(
     }
 }
 
+/// The mesh formats an output name's extension may name that the writers do not write
+/// (they write OBJ): a file named `out.ply` holding OBJ text would mislead every program that
+/// opens it.
+pub const UNWRITTEN_MESH_FORMATS: &[&str] = &[
+    "ply", "stl", "off", "glb", "gltf", "fbx", "usd", "usda", "usdc", "3ds", "dae",
+];
+
+/// The extension of `path` (lowercase) when it names a mesh format the writers do not write
+/// ([`UNWRITTEN_MESH_FORMATS`]); `None` for `.obj` and every other name, written as OBJ.
+///
+/// ```
+/// use halfedge::io::unwritten_mesh_format;
+/// use std::path::Path;
+/// assert_eq!(unwritten_mesh_format(Path::new("out.PLY")).as_deref(), Some("ply"));
+/// assert_eq!(unwritten_mesh_format(Path::new("out.obj")), None);
+/// assert_eq!(unwritten_mesh_format(Path::new("out.txt")), None);
+/// ```
+pub fn unwritten_mesh_format(path: &Path) -> Option<String> {
+    let extension = path.extension()?.to_str()?.to_ascii_lowercase();
+    UNWRITTEN_MESH_FORMATS
+        .contains(&extension.as_str())
+        .then_some(extension)
+}
+
 /// Checks up front what [`write_atomically`] would refuse without writing anything: a
 /// write-protected target or a folder, so that a long computation is not wasted on an output
 /// that cannot be written. Everything else (`-`, a new file, a special file) passes.

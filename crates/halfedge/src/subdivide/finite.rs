@@ -1,7 +1,9 @@
 //! Every level's positions are checked before they are returned: a non-finite point (huge
 //! coordinates whose weighted sums overflow, a point at the origin that the icosphere rule
 //! cannot project onto the sphere) is [`Error::NonFinitePosition`], naming the vertex and the
-//! element of the level before it was computed from.
+//! element of the level before it was computed from. Texture coordinates are checked the
+//! same way ([`check_uvs`]: [`Error::NonFiniteUv`]), in `f64` here and in `f32` or `f64` by a
+//! refinement's caller.
 
 use glam::DVec3;
 
@@ -113,4 +115,34 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
         },
         _ => format!("computed from {}", of.trim_start_matches("of ")),
     }
+}
+
+/// Refuses the first non-finite texture coordinate among `values`, the UV values of level
+/// `level` (computed in `f32` or `f64`, or converted to it at level 0): `origin` says from
+/// what.
+///
+/// # Errors
+///
+/// [`Error::NonFiniteUv`] naming the scheme, level and value.
+pub fn check_uvs<T: crate::Scalar>(
+    scheme: &str,
+    level: u32,
+    values: &[[T; 2]],
+    origin: &str,
+) -> Result<()> {
+    let Some(k) = values
+        .iter()
+        .position(|uv| uv.iter().any(|x| !x.to_f64().is_finite()))
+    else {
+        return Ok(());
+    };
+    let [u, v] = values[k].map(T::to_f64);
+    Err(Error::NonFiniteUv {
+        scheme: scheme.to_string(),
+        level,
+        value: k as u32,
+        origin: origin.to_string(),
+        u,
+        v,
+    })
 }

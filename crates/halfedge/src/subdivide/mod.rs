@@ -101,6 +101,7 @@ mod trisplit;
 use num_bigint::BigInt;
 pub use schemes::Rule;
 
+pub use self::finite::check_uvs;
 pub use self::sdc::Sharpness;
 pub use self::stages::{subdivide_stages, StageStart, StagedRun};
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};

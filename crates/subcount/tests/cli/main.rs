@@ -4,6 +4,7 @@ mod budget;
 mod compositions;
 mod creases;
 mod hostile;
+mod hostile3;
 mod level_zero;
 mod matrix;
 mod meshes;

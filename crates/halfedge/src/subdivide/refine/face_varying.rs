@@ -323,6 +323,8 @@ pub(crate) fn refined_uvs(
             (values, indices)
         }
     };
+    // Huge `vt` values whose weighted sums overflow: refused as positions are.
+    crate::subdivide::check_uvs(&rule.to_string(), levels, &values, "computed in f64")?;
     let coords = values.into_iter().map(glam::DVec2::from).collect();
     crate::uv::Uvs::new(coords, indices).map_err(|e| Error::UvLayoutMismatch {
         reason: e.to_string(),
