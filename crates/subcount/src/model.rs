@@ -493,6 +493,22 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
         }
     };
     let label = mesh_label(mesh);
+    // Every command analyses the face list it read (counts, problems, a half-edge mesh):
+    // refused here, before that analysis allocates, when it would not fit.
+    let need = poly.heap_bytes() as u128 + halfedge::memory::face_list_analysis_bytes(&poly);
+    let limit = halfedge::memory::peak_limit();
+    if need > limit {
+        return Err(Failure::new(
+            Kind::Guard,
+            anyhow::anyhow!(
+                "{label}: analysing the mesh ({} faces, {} corners) needs about {}, more than half of the memory available to this process ({} is half)",
+                poly.n_faces(),
+                poly.n_corners(),
+                halfedge::memory::human_bytes(need as f64),
+                halfedge::memory::human_bytes(limit as f64)
+            ),
+        ));
+    }
     let mut notes = Vec::new();
     if !poly.ignored_tags().is_empty() {
         let total: u64 = poly.ignored_tags().iter().map(|t| t.count).sum();
