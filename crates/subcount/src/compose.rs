@@ -8,11 +8,11 @@ use std::time::Instant;
 use halfedge::io::ObjWriteOptions;
 use halfedge::subdivide::{self as sub, StageStart, SubdivideOptions};
 use num_bigint::BigInt;
-use schemes::{Budget, Plan};
+use schemes::Plan;
 
 use crate::args::{Precision, SchemeChoice, SubdivideArgs, VerifyArgs};
 use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
-use crate::mesh::{guard_failure, real_levels, required_mesh, write_reports};
+use crate::mesh::{guard_failure, real_levels, required_mesh, verify_levels, write_reports};
 use crate::model::{mesh_label, not_applicable, refuse_degenerate_faces, LoadedMesh};
 
 /// The composition `--scheme` names (two or more stages), if it names one.
@@ -106,18 +106,8 @@ fn guard_stage(
 pub(crate) fn verify(args: VerifyArgs, plan: Plan, out: &mut impl Write) -> Result<u8, Failure> {
     let (loaded, plan) = load(&args.mesh, &plan)?;
     let counts = halfedge::stats::face_list_counts(&loaded.poly);
-    let levels = match &args.levels {
-        Some(t) => real_levels(t)?,
-        None => {
-            let budget = Budget {
-                max_faces: Some(BigInt::from(args.max_faces)),
-                ..Budget::default()
-            };
-            let x0 = plan.initial_state(&counts).map_err(scheme_failure)?;
-            let fit = schemes::fit(&plan, &x0, &budget)?;
-            fit.highest_level(64).unwrap_or(0) as u32
-        }
-    };
+    let x0 = plan.initial_state(&counts).map_err(scheme_failure)?;
+    let levels = verify_levels(&args, &plan, &x0)?;
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let mut peak = BigInt::from(0);
     let mut guard = |s: &StageStart<'_>| guard_stage(s, args.allow_large, &mut peak);

@@ -563,6 +563,22 @@ impl UvCheck {
     }
 }
 
+/// The last level `verify` checks: `--levels`, or the highest level whose predicted face
+/// count under `plan` from `x0` stays within `--max-faces` (at most 64).
+pub(crate) fn verify_levels(args: &VerifyArgs, plan: &Plan, x0: &[BigInt]) -> Result<u32, Failure> {
+    match &args.levels {
+        Some(t) => real_levels(t),
+        None => {
+            let budget = Budget {
+                max_faces: Some(BigInt::from(args.max_faces)),
+                ..Budget::default()
+            };
+            let fit = schemes::fit(plan, x0, &budget)?;
+            Ok(fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32)
+        }
+    }
+}
+
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let loaded = required_mesh(&args.mesh)?;
     let poly = &loaded.poly;
@@ -577,18 +593,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
     let x0 = sizing
         .initial_state(&counts)
         .map_err(|e| not_applicable(&args.mesh, e))?;
-    let levels = match &args.levels {
-        Some(t) => real_levels(t)?,
-        None => {
-            // The highest level whose predicted face count stays within the cap (at most 64).
-            let budget = Budget {
-                max_faces: Some(BigInt::from(args.max_faces)),
-                ..Budget::default()
-            };
-            let fit = schemes::fit(&Plan::single(sizing.clone()), &x0, &budget)?;
-            fit.highest_level(MAX_VERIFY_LEVELS).unwrap_or(0) as u32
-        }
-    };
+    let levels = verify_levels(&args, &Plan::single(sizing.clone()), &x0)?;
     let custom = args.scheme.scheme_file.is_some();
     let face_list = on_face_list(scheme, rule, &counts, custom);
     let need = if loaded.has_crease_rules(rule) && !face_list {

@@ -9,26 +9,30 @@ use std::path::{Path, PathBuf};
 use crate::util::{fails, ok, subcount};
 
 /// A temporary folder holding the files of one test.
-struct Files {
+pub(crate) struct Files {
     dir: tempfile::TempDir,
 }
 
 impl Files {
-    fn new() -> Files {
+    pub(crate) fn new() -> Files {
         Files {
             dir: tempfile::tempdir().expect("a temporary folder"),
         }
     }
 
     /// Writes `bytes` to `name` in the folder and returns its path as text.
-    fn write(&self, name: &str, bytes: &[u8]) -> String {
+    pub(crate) fn write(&self, name: &str, bytes: &[u8]) -> String {
         let path = self.dir.path().join(name);
         std::fs::write(&path, bytes).expect("the test file is written");
         path.display().to_string()
     }
 
-    fn path(&self, name: &str) -> PathBuf {
+    pub(crate) fn path(&self, name: &str) -> PathBuf {
         self.dir.path().join(name)
+    }
+
+    pub(crate) fn dir(&self) -> &Path {
+        self.dir.path()
     }
 }
 

@@ -2,37 +2,8 @@
 //! limit, non-finite UVs, huge sharpness, control characters and counts past 2^64 in
 //! messages, and output names of mesh formats that are not written.
 
-use std::path::{Path, PathBuf};
-
+use crate::hostile::Files;
 use crate::util::{fails, file_names, ok, subcount};
-
-/// A temporary folder holding the files of one test.
-struct Files {
-    dir: tempfile::TempDir,
-}
-
-impl Files {
-    fn new() -> Files {
-        Files {
-            dir: tempfile::tempdir().expect("a temporary folder"),
-        }
-    }
-
-    /// Writes `bytes` to `name` in the folder and returns its path as text.
-    fn write(&self, name: &str, bytes: &[u8]) -> String {
-        let path = self.dir.path().join(name);
-        std::fs::write(&path, bytes).expect("the test file is written");
-        path.display().to_string()
-    }
-
-    fn path(&self, name: &str) -> PathBuf {
-        self.dir.path().join(name)
-    }
-
-    fn dir(&self) -> &Path {
-        self.dir.path()
-    }
-}
 
 /// Runs `subcount` under `prlimit --as=BYTES` (util-linux, on every Linux machine this
 /// project builds on: a missing `prlimit` fails the test).
