@@ -486,11 +486,14 @@ fn n_boundary(t: &Topo<'_>) -> usize {
 /// its face's chart, or on a boundary half-edge its Chaikin point near the source in the chart
 /// of the edge's face), `2E + r` the Chaikin point near the target of boundary half-edge `r`,
 /// then two per seam edge `e` (in increasing order): the Chaikin points of `e` near the source
-/// and near the target of half-edge `2e`, in the chart of its face.
+/// and near the target of half-edge `2e`, in the chart of its face. A corner of a face of
+/// more than [`DIRECT_MAX_DEGREE`] sides is a row of 4 weights over its own value and the
+/// face's three face-wide sums (the step's auxiliary values, [`CornerStep::aux`]), so the
+/// table is linear in the corners whatever the faces' degrees.
 pub(crate) fn doo_sabin_uv_step<'a>(
     t: &'a Topo<'a>,
     cv: &'a [u32],
-    _n_values: usize,
+    n_values: usize,
 ) -> Result<CornerStep<'a>> {
     let (ne, nf) = (t.ne() as u32, t.nf() as u32);
     let nb = n_boundary(t);
@@ -499,6 +502,30 @@ pub(crate) fn doo_sabin_uv_step<'a>(
     let rows = vertices + 2 * n_seams;
     let mut table = WeightTable::with_room(rows, 4 * rows)?;
     let mut row = Vec::new();
+    // A wide face's corners are 4-entry rows over its value, then its three face-wide sums,
+    // computed first as the step's auxiliary values `n_values + 3 slot + (0, 1, 2)`.
+    let wide = WideFaces::of(t);
+    let aux = match &wide {
+        Some(w) => {
+            let n_corners: usize = (0..w.len()).map(|slot| w.degree(slot) as usize).sum();
+            let mut aux = WeightTable::with_room(3 * w.len(), 3 * n_corners)?;
+            for slot in 0..w.len() {
+                let n = w.degree(slot);
+                let each = 1.0 / f64::from(n);
+                for k in 0..3 {
+                    w.for_corners(t, slot, |j, h| {
+                        let (sin, cos) = corner_angle(n, j).sin_cos();
+                        let weight = [each, cos * each, sin * each][k];
+                        row.push((cv[h as usize], weight));
+                    });
+                    aux.push_row(&mut row)?;
+                }
+            }
+            Some(aux)
+        }
+        None => None,
+    };
+    let aux_value = |slot: usize, k: usize| (n_values + 3 * slot + k) as u32;
     // The Chaikin point near `a` of the side from `a` to `b` of a face (its corners' values).
     let chaikin_row = |row: &mut Vec<(u32, f64)>, a: u32, b: u32| {
         row.push((a, 0.75));
@@ -509,6 +536,13 @@ pub(crate) fn doo_sabin_uv_step<'a>(
             // g = twin: from target(h) to source(h) in its face.
             let g = h ^ 1;
             chaikin_row(&mut row, cv[t.next(g) as usize], cv[g as usize]);
+        } else if let Some((slot, i)) = wide.as_ref().and_then(|w| w.corner(h)) {
+            let n = wide.as_ref().map_or(0, |w| w.degree(slot));
+            let (sin, cos) = corner_angle(n, i).sin_cos();
+            row.push((cv[h as usize], 0.25));
+            row.push((aux_value(slot, 0), 0.75));
+            row.push((aux_value(slot, 1), 0.5 * cos));
+            row.push((aux_value(slot, 2), 0.5 * sin));
         } else {
             let n = t.face_degree(t.face(h));
             let mut g = h;
@@ -552,6 +586,7 @@ pub(crate) fn doo_sabin_uv_step<'a>(
         }
     };
     Ok(CornerStep {
+        aux,
         values: table,
         corner: Box::new(corner),
     })
@@ -626,6 +661,7 @@ pub(crate) fn mid_edge_uv_step<'a>(
         side(vertex, t.face(g))
     };
     Ok(CornerStep {
+        aux: None,
         values: table,
         corner: Box::new(corner),
     })
