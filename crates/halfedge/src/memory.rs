@@ -490,7 +490,7 @@ pub fn predicted_uv_bytes(
         ChannelKind::Corners => return corner_uv_bytes(rule, layout, levels, scalar_bytes),
     };
     let scheme = channel.scheme_for(layout)?;
-    let heap = crate::Refinement::predicted_bytes_with_creases(channel, layout, levels)?;
+    let heap = crate::Refinement::predicted_channel_bytes(channel, layout, levels)?;
     let level = |s: u32| scheme.counts_at(layout, u64::from(s));
     let last = level(levels)?;
     let corners = match crate::subdivide::direct_face_degree(channel) {
@@ -575,7 +575,11 @@ fn corner_uv_bytes(
         .keys()
         .next_back()
         .map_or(4, |&d| d.max(4));
+    // Doo-Sabin: a corner of a face of at most 32 sides is a row over the face's corners, one
+    // of a wider face 4 weights and its share of the face's three sums (`dual.rs`).
+    let wide = degree as usize > crate::subdivide::dual::DIRECT_MAX_DEGREE;
     let weights = BigInt::from(match rule {
+        crate::Rule::DooSabin if wide => 7,
         crate::Rule::DooSabin => degree,
         crate::Rule::Sqrt3 => 3,
         _ => 2,
