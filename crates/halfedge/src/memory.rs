@@ -84,8 +84,10 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 /// guard, the sum of
 ///
 /// - [`PROCESS_BYTES`];
-/// - the input, as the face list it was read into ([`PolygonMesh::bytes_for`]) and as a
-///   half-edge mesh ([`HalfEdgeMesh::bytes_for`]);
+/// - the input, as the face list it was read into ([`PolygonMesh::bytes_for`]; a file's
+///   lines and UVs are the caller's: [`read_extra_bytes`]) and as a half-edge mesh
+///   ([`HalfEdgeMesh::bytes_for`]), and the transient arrays of building the latter
+///   ([`halfedge_build_bytes`]);
 /// - the two levels alive at once at the end (levels `levels - 1` and `levels`, the largest
 ///   two; only level 1 when `levels = 1`): with `last_faces = Some(d)` the last level is a face
 ///   list of `d`-gons as [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list)
@@ -98,7 +100,7 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 ///   armadillo.obj (2 levels): within 5 % of the peak `/usr/bin/time -v` reports.
 ///
 /// Computed on big integers, so a level far beyond any memory is a number, not an overflow.
-/// `levels = 0`: the process and the input.
+/// `levels = 0`: the process, the input and the face list written from its half-edge mesh.
 ///
 /// # Errors
 ///
@@ -115,7 +117,9 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 /// let levels = [(12, 30, 20), (42, 120, 80), (162, 480, 320), (642, 1920, 1280)];
 /// let sum: u128 = levels.iter().map(|&(v, e, f)| HalfEdgeMesh::bytes_for(v, e, f)).sum();
 /// let input = PolygonMesh::bytes_for(12, 20, 60);
-/// assert_eq!(peak, (u128::from(PROCESS_BYTES) + input + sum).into());
+/// // Building the input's half-edge mesh: 20 bytes per corner, 8 per vertex.
+/// let build = 20 * 60 + 8 * 12;
+/// assert_eq!(peak, (u128::from(PROCESS_BYTES) + input + build + sum).into());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn predicted_peak_bytes(
@@ -127,7 +131,7 @@ pub fn predicted_peak_bytes(
     let arrays = arrays_peak_bytes(scheme, counts, levels, last_faces)?;
     let c = scheme.counts_at(counts, 0)?;
     // PolygonMesh::bytes_for on big integers.
-    let input_faces = BigInt::from(24) * &c.vertices
+    let input_faces: BigInt = BigInt::from(24) * &c.vertices
         + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
         + BigInt::from(4) * counts.corners;
     let freed = if levels >= 3 {
@@ -135,7 +139,49 @@ pub fn predicted_peak_bytes(
     } else {
         BigInt::from(0)
     };
-    Ok(arrays + input_faces + freed + PROCESS_BYTES)
+    // Level 0 is written from a face list of the input's half-edge mesh.
+    let copy = if levels == 0 {
+        input_faces.clone()
+    } else {
+        BigInt::from(0)
+    };
+    Ok(arrays + input_faces + copy + freed + halfedge_build_bytes(counts) + PROCESS_BYTES)
+}
+
+/// The transient arrays of building the input's half-edge mesh from its face list (the
+/// crate's `build.rs`), alive next to the face list and the half-edge arrays: each corner's
+/// sort key and tag (16 bytes) and half-edge (4), and the vertices' renumbering both ways (8
+/// per vertex). Freed once the mesh is built, but arrays below glibc's 32 MiB mmap threshold
+/// stay resident, and at level 0 they are the peak: counted always. Without them
+/// `subdivide --levels 0` of a 314 MB quad grid peaked at 2.2 times the prediction.
+///
+/// ```
+/// use halfedge::memory::halfedge_build_bytes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// assert_eq!(halfedge_build_bytes(&cube), (20 * 24 + 8 * 8).into());
+/// ```
+pub fn halfedge_build_bytes(counts: &MeshCounts) -> BigInt {
+    BigInt::from(20) * counts.corners + BigInt::from(8) * counts.vertices
+}
+
+/// What the face list `poly` holds as it was read beyond the arrays
+/// [`PolygonMesh::bytes_for`] counts from its statistics (what [`predicted_peak_bytes`]
+/// counts for the input): the file line of each face (8 bytes), positions no face uses (24
+/// each) and its UVs, `vt` and the `vt` of each corner (16 and 4 bytes). The caller adds it
+/// to a prediction made from the counts alone.
+///
+/// ```
+/// use halfedge::memory::read_extra_bytes;
+/// // A generated mesh: no file lines, no UVs.
+/// assert_eq!(read_extra_bytes(&halfedge::shapes::cube()), 0);
+/// ```
+pub fn read_extra_bytes(poly: &PolygonMesh) -> u128 {
+    let referenced = crate::stats::face_list_counts(poly).vertices;
+    let unreferenced = (poly.positions.len() as u64).saturating_sub(referenced);
+    let uvs = poly.uvs().map_or(0, |u| {
+        16 * u.coords().len() as u128 + 4 * u.corners().len() as u128
+    });
+    8 * poly.face_lines_len() as u128 + 24 * u128::from(unreferenced) + uvs
 }
 
 /// [`predicted_peak_bytes`] of `rule`'s counting scheme ([`Rule::scheme_for`](crate::Rule::scheme_for))
@@ -364,7 +410,10 @@ pub fn check_peak(
 }
 
 /// The peak of refining once ([`crate::Refinement`]) by `rule` to `levels` and evaluating
-/// positions of `scalar_bytes` per coordinate into caller buffers: the larger of the arrays
+/// positions of `scalar_bytes` per coordinate into caller buffers: [`PROCESS_BYTES`], the
+/// input's face list and the transients of building its half-edge mesh
+/// ([`halfedge_build_bytes`]; a file's lines and UVs are the caller's, [`read_extra_bytes`]),
+/// plus the larger of the arrays
 /// alive while the levels are built (the input and the last two levels, the last as a face
 /// list, as in [`predicted_peak_bytes`] without its process, face-list and freed-level terms)
 /// and the input, the refinement kept ([`crate::Refinement::predicted_bytes`], or with
@@ -397,9 +446,16 @@ pub fn predicted_refinement_peak_bytes(
         + BigInt::from(4 * 4) * &c.faces
         + &point * counts.vertices * u32::from(frames);
     // While levels are built the refinement's tables are filled level by level; afterwards
-    // the refinement and the buffers are alive with the input: the larger of the two.
+    // the refinement and the buffers are alive with the input: the larger of the two. The
+    // process, the input's face list (kept by the caller) and the transients of building its
+    // half-edge mesh come on top of either.
     let input = arrays_peak_bytes(&scheme, counts, 0, None)?;
-    Ok(building.max(kept + buffers + input))
+    let c = scheme.counts_at(counts, 0)?;
+    let input_faces = BigInt::from(24) * &c.vertices
+        + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+        + BigInt::from(4) * counts.corners;
+    let around = input_faces + halfedge_build_bytes(counts) + PROCESS_BYTES;
+    Ok(building.max(kept + buffers + input) + around)
 }
 
 /// What refining a UV layout with the surface adds to a peak: the face-varying channel of
@@ -518,7 +574,15 @@ pub fn predicted_uv_bytes(
     } else {
         BigInt::from(0)
     };
-    Ok(heap + numbering + evaluation + indices + written)
+    // The channel's base, built before its levels: the layout as a face list and a half-edge
+    // mesh, and the transients of building the latter (freed, but at low levels the peak).
+    let base = BigInt::from(PolygonMesh::bytes_for(
+        layout.vertices,
+        layout.faces,
+        layout.corners,
+    )) + HalfEdgeMesh::bytes_for(layout.vertices, layout.edges, layout.faces)
+        + halfedge_build_bytes(layout);
+    Ok(heap + numbering + evaluation + indices + written + base)
 }
 
 /// [`predicted_uv_bytes`] of the corner channel (√3, Doo-Sabin, mid-edge: values propagated on
@@ -834,7 +898,16 @@ mod tests {
                     0..=2 => BigInt::from(0),
                     _ => bytes(&level(levels - 2)),
                 };
-                let expected = &input - bytes(&mesh) + arrays(None).expect("arrays") + freed;
+                // Level 0 is written from a face list of the input.
+                let copy = match levels {
+                    0 => BigInt::from(poly.heap_bytes()),
+                    _ => BigInt::from(0),
+                };
+                let expected = &input - bytes(&mesh)
+                    + arrays(None).expect("arrays")
+                    + freed
+                    + copy
+                    + halfedge_build_bytes(&mesh.counts());
                 assert_eq!(peak(None).expect("peak"), expected, "{name} {levels}");
             }
         }

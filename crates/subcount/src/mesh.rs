@@ -598,6 +598,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             .and_then(|need| Ok(need + uv_bytes(poly, rule, levels, 8, chosen.holes.is_some())?)),
         None => need,
     };
+    let need = need.map(|need| need + halfedge::memory::read_extra_bytes(poly));
     guard_memory(need, sizing.name(), levels, args.allow_large)?;
     let mut opts = SubdivideOptions::default().with_threads(args.threads);
     if let Some(holes) = &chosen.holes {
@@ -805,6 +806,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         }),
         None => need,
     };
+    // The face list as read holds its file lines and UVs beyond what its counts predict.
+    let need = need.map(|need| need + halfedge::memory::read_extra_bytes(poly));
     let predicted = guard_memory(need, scheme.name(), levels, args.allow_large)?;
     if let Some(path) = &args.output {
         halfedge::io::check_output(path).map_err(|e| Failure::new(Kind::Input, e))?;
