@@ -322,6 +322,37 @@ pub fn peak_limit() -> u128 {
     u128::from(available_bytes().unwrap_or(8 << 30)) / 2
 }
 
+/// What writing a last level built as a half-edge mesh (`last_faces` `None` in
+/// [`predicted_peak_bytes`]: √3, the dual rules, the general subdividers) adds to the peak of
+/// [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list): its face list, made
+/// while the mesh is alive (at most `2E` corners). 0 at level 0 (counted there already).
+///
+/// ```
+/// use halfedge::memory::face_list_copy_bytes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let ds = schemes::builtin("doo-sabin")?;
+/// // Level 1: 24 vertices, 48 edges, 26 faces.
+/// assert_eq!(face_list_copy_bytes(&ds, &cube, 1)?, (24 * 24 + 8 * 27 + 4 * 96).into());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`predicted_peak_bytes`].
+pub fn face_list_copy_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+) -> Result<BigInt, schemes::Error> {
+    if levels == 0 {
+        return Ok(BigInt::from(0));
+    }
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    Ok(BigInt::from(24) * &c.vertices
+        + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+        + BigInt::from(8) * &c.edges)
+}
+
 /// The bytes leaving holes out of the last level adds to [`predicted_peak_bytes`] (the face
 /// list is compacted in place, [`crate::holes`]): the new number of every vertex of the
 /// whole level and the old index of each kept one (4 bytes each per vertex), which faces
@@ -433,7 +464,15 @@ pub fn predicted_refinement_peak_bytes(
     creases: bool,
 ) -> crate::Result<BigInt> {
     let scheme = rule.scheme_for(counts)?;
-    let building = arrays_peak_bytes(&scheme, counts, levels, Some(4))?;
+    let mut building = arrays_peak_bytes(&scheme, counts, levels, Some(4))?;
+    if levels > 0
+        && counts.boundary_edges > 0
+        && matches!(rule, crate::Rule::DooSabin | crate::Rule::MidEdge)
+    {
+        // With a boundary the dual rules build each level face by face as a half-edge mesh
+        // (on zero positions) and copy its connectivity.
+        building += halfedge_bytes(&scheme, counts, u64::from(levels))?;
+    }
     let kept = if creases {
         crate::Refinement::predicted_bytes_with_creases(rule, counts, levels)?
     } else {

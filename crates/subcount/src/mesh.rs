@@ -787,6 +787,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
                 .map_err(Into::into)
         };
+        // A last level built as a half-edge mesh is copied into the face list written.
+        let levels_bytes = match last_faces {
+            None if !face_list => levels_bytes.and_then(|bytes| {
+                Ok(bytes + halfedge::memory::face_list_copy_bytes(&scheme, &counts, levels)?)
+            }),
+            _ => levels_bytes,
+        };
         levels_bytes.and_then(|bytes| match holes {
             Some(_) => halfedge::memory::hole_filter_bytes(&scheme, &counts, levels, last_faces)
                 .map(|filter| bytes + filter)
