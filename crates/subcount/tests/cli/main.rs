@@ -3,6 +3,7 @@
 mod budget;
 mod creases;
 mod hostile;
+mod hostile_dual;
 mod matrix;
 mod meshes;
 mod plot;
