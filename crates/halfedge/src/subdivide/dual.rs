@@ -666,3 +666,59 @@ pub(crate) fn mid_edge_uv_step<'a>(
         corner: Box::new(corner),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Just above the threshold (and further up) the face-wide form equals the direct sum
+    /// over the face to 1e-12 of the face's size, for every corner.
+    #[test]
+    fn the_face_wide_form_agrees_with_the_direct_sum() {
+        for n in [DIRECT_MAX_DEGREE + 1, 40, 257] {
+            // A wavy n-gon, off-centre, so that no symmetry hides an error.
+            let positions: Vec<DVec3> = (0..n)
+                .map(|i| {
+                    let a = 2.0 * PI * i as f64 / n as f64;
+                    let r = 1.0 + 0.3 * (3.0 * a).sin();
+                    DVec3::new(5.0 + r * a.cos(), -2.0 + r * a.sin(), 0.1 * (7.0 * a).cos())
+                })
+                .collect();
+            let face: Vec<u32> = (0..n as u32).collect();
+            let mesh = HalfEdgeMesh::try_from_polygons(positions.clone(), &[face]).expect("mesh");
+            let t = Topo::new(&mesh);
+            let src = &mesh.positions;
+            let wide = WideFaces::of(&t).expect("one wide face");
+            assert_eq!(wide.len(), 1);
+            let mut out: Vec<DVec3> = Vec::new();
+            doo_sabin_points(&t, src, &mut out, false);
+            let mut checked = 0;
+            for h in 0..2 * t.ne() as u32 {
+                if t.is_boundary(h) {
+                    continue;
+                }
+                assert!(wide.corner(h).is_some());
+                let direct = doo_sabin_point(&t, src, h);
+                let error = (out[h as usize] - direct).length();
+                assert!(error <= 1e-12 * 5.0, "{n}-gon, corner {h}: {error:e}");
+                checked += 1;
+            }
+            assert_eq!(checked, n);
+        }
+    }
+
+    /// At the threshold the direct sums serve: no wide face.
+    #[test]
+    fn a_face_at_the_threshold_is_summed_directly() {
+        let n = DIRECT_MAX_DEGREE;
+        let positions: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / n as f64;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let face: Vec<u32> = (0..n as u32).collect();
+        let mesh = HalfEdgeMesh::try_from_polygons(positions, &[face]).expect("mesh");
+        assert!(WideFaces::of(&Topo::new(&mesh)).is_none());
+    }
+}
