@@ -510,8 +510,11 @@ pub fn predicted_refinement_peak_bytes(
 ///
 /// - the channel, a refinement of the layout by its own rule (the rule itself for Loop,
 ///   Catmull-Clark and the 1:N² splits, midpoint for butterfly and the icosphere) under its
-///   crease rules ([`Refinement::predicted_bytes_with_creases`](crate::Refinement::predicted_bytes_with_creases)
-///   of the layout: seams and layout corners make the channel's vertices sharp), plus the
+///   crease rules (the bound of [`Refinement::predicted_bytes_with_creases`](crate::Refinement::predicted_bytes_with_creases)
+///   of the layout, with a face of degree `d` counting `d min(d, 32)` rather than `d²`: a
+///   level with a face of more than 32 sides never gets the dense table, whose Catmull-Clark
+///   rows expand the face points, and the channel's own rows are short; seams and layout
+///   corners make the channel's vertices sharp), plus the
 ///   merged numbering of its last level and the corner buffer it is computed from (4 bytes per
 ///   vertex and per corner of the last level: kept when values have several runs around a
 ///   vertex, counted always);
@@ -520,7 +523,10 @@ pub fn predicted_refinement_peak_bytes(
 ///   below `levels`) and the whole last level before it is merged (counted always);
 /// - the UV index of every corner of the last level (4 bytes each);
 /// - with `holes`, the written corners' UV indices and the channel's last face list read to
-///   find them (4 bytes per corner, twice, and per face).
+///   find them (4 bytes per corner, twice, and per face);
+/// - the channel's base, built before its levels: the layout as a face list and a half-edge
+///   mesh, and the arrays that build the latter ([`halfedge_build_bytes`]): transient, but
+///   the peak at low levels (at level 0 of a 314 MB quad grid with `vt`).
 ///
 /// √3, Doo-Sabin and mid-edge carry UVs by the corner channel on the surface's own levels
 /// instead, which the layout's statistics size only approximately (they do not separate
@@ -528,7 +534,8 @@ pub fn predicted_refinement_peak_bytes(
 /// it (bounded by the layout's), each level's weight table (4 bytes per value, 12 per
 /// weight; values the larger of the two extreme layouts, no seam or every layout boundary
 /// edge a seam side; 2 weights per value under mid-edge, 3 under √3, the largest base face
-/// degree, at least 4, under Doo-Sabin), 8 bytes per corner of the last level (its values and the
+/// degree, at least 4, under Doo-Sabin, and 7 when a face has more than 32 sides: its
+/// corners are 4-entry rows over three face-wide sums), 8 bytes per corner of the last level (its values and the
 /// caller's index buffer) and 4 per corner of the level before (its values while the last
 /// is built), and the evaluation buffers: an estimate, not a bound (on grids cut into four
 /// charts, 1.6 to 2.6 times what the channel and the caller's buffers hold,
@@ -537,10 +544,9 @@ pub fn predicted_refinement_peak_bytes(
 /// The last level's corners are `d` per face for the rules that write `d`-gons
 /// ([`direct_face_degree`](crate::subdivide::direct_face_degree)), else bounded by `2E`.
 /// Not counted: the layout's sibling values (a value used in several runs around a vertex is
-/// a vertex of the channel per run, a few per mesh) and the transient arrays of building the
-/// channel's base (a face list and a half-edge mesh of the layout, freed before its levels
-/// are built). Against the channel's heap and the caller's buffers it is 1.5 to 2.6 times
-/// what is measured (`tests/integration/uv_memory.rs`: at least it, at most three times): it
+/// a vertex of the channel per run, a few per mesh). Against the channel's heap and the
+/// caller's buffers it is 1.5 to 3.2 times what is measured (`tests/integration/uv_memory.rs`:
+/// at least it, at most four times; the base is transient, not in the heap): it
 /// bounds the channel's crease tables by dense weight tables (a channel whose every edge is
 /// semi-sharp), where seams and corners alone keep the flattened tables and a few rows.
 /// Measured while the channel still kept dense tables (its heap has since fallen from 32.5 MB
@@ -638,7 +644,9 @@ pub fn predicted_uv_bytes(
 ///   (a centroid) and, under
 ///   Doo-Sabin, the largest face degree of the base (at least 4: from level 1 on the faces
 ///   are quads but the face faces and the faces of the base vertices, whose degree is their
-///   valence, not counted beyond it);
+///   valence, not counted beyond it), or 7 when a face has more than 32 sides (a corner of
+///   such a face is 4 weights over its value and the face's three sums, which take 3 weights
+///   per corner: `dual.rs`'s `DIRECT_MAX_DEGREE`);
 /// - the last level's corner values, the caller's index buffer and the corner values of the
 ///   level before it while it is refined (4 bytes per corner; corners bounded by `2E` of the
 ///   layout refined as a mesh);

@@ -24,7 +24,10 @@
 //! `p_0, ..., p_{n-1}` is `Σ w_j p_j` with `w_0 = (n + 5) / (4n)` and
 //! `w_j = (3 + 2 cos(2πj/n)) / (4n)`, for every face, boundary or not; the boundary points
 //! are Chaikin's, so the boundary converges to the quadratic B-spline of the boundary polygon
-//! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]).
+//! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]). A face of more than
+//! [`DIRECT_MAX_DEGREE`] sides gets its corners from three face-wide sums instead of a sum
+//! over the face per corner (the same weights, `O(n)` rather than `O(n²)` per face), positions
+//! and UVs alike.
 //!
 //! # Mid-edge numbering
 //!
