@@ -268,7 +268,7 @@ pub(crate) fn doo_sabin_points<V: Vector>(
             return chaikin(src, t.source(h), t.target(h));
         }
         if let (Some(w), Some(sums)) = (&wide, &sums) {
-            if let Some((slot, i)) = w.corner(h) {
+            if let Some((slot, i)) = w.corner(t, h) {
                 let (n, [mean, c, d]) = (w.degree(slot), &sums[slot]);
                 let (sin, cos) = corner_angle(n, i).sin_cos();
                 return src[t.source(h) as usize]
@@ -362,14 +362,18 @@ fn corner_angle(n: u32, i: u32) -> f64 {
 }
 
 /// The faces of `t` with more than [`DIRECT_MAX_DEGREE`] sides, for the face-wide form of
-/// their Doo-Sabin points and UV rows: `O(corners)` to build, `O(log)` per corner to look up,
-/// 12 bytes per corner of a wide face and 8 per wide face.
+/// their Doo-Sabin points and UV rows: `O(corners)` to build, `O(log)` per corner of a wide
+/// face to look up (a bit per face tells the others), 12 bytes per corner of a wide face, 8
+/// per wide face and a bit per face.
 pub(crate) struct WideFaces {
     /// Each wide face's first half-edge (corner 0, its [`Topo::face_halfedge`]) and degree.
     faces: Vec<(u32, u32)>,
     /// Each corner of a wide face: (its half-edge, the face's slot in `faces`, its index from
     /// corner 0), by half-edge.
     corners: Vec<(u32, u32, u32)>,
+    /// One bit per face of `t`, set on the wide ones: most corners are told apart without a
+    /// search.
+    is_wide: Vec<u64>,
 }
 
 impl WideFaces {
@@ -388,8 +392,11 @@ impl WideFaces {
         }
         let mut faces = Vec::new();
         let mut corners = Vec::new();
+        let mut is_wide = Vec::new();
         faces.try_reserve_exact(count.0).ok()?;
         corners.try_reserve_exact(count.1).ok()?;
+        is_wide.try_reserve_exact(t.nf().div_ceil(64)).ok()?;
+        is_wide.resize(t.nf().div_ceil(64), 0u64);
         for f in 0..t.nf() as u32 {
             let n = t.face_degree(f);
             if n <= DIRECT_MAX_DEGREE {
@@ -397,6 +404,7 @@ impl WideFaces {
             }
             let slot = faces.len() as u32;
             faces.push((t.face_halfedge(f), n as u32));
+            is_wide[f as usize / 64] |= 1 << (f % 64);
             let mut i = 0u32;
             t.for_face(f, |h| {
                 corners.push((h, slot, i));
@@ -404,7 +412,11 @@ impl WideFaces {
             });
         }
         corners.sort_unstable_by_key(|c| c.0);
-        Some(WideFaces { faces, corners })
+        Some(WideFaces {
+            faces,
+            corners,
+            is_wide,
+        })
     }
 
     /// The number of wide faces.
@@ -417,9 +429,13 @@ impl WideFaces {
         self.faces[slot].1
     }
 
-    /// The slot of the face of half-edge `h` and the index of its corner there, if the face
-    /// is wide.
-    pub(crate) fn corner(&self, h: u32) -> Option<(usize, u32)> {
+    /// The slot of the face of half-edge `h` (of `t`, not a boundary half-edge) and the index
+    /// of its corner there, if the face is wide.
+    pub(crate) fn corner(&self, t: &Topo<'_>, h: u32) -> Option<(usize, u32)> {
+        let f = t.face(h) as usize;
+        if self.is_wide.get(f / 64).map_or(0, |w| w & (1 << (f % 64))) == 0 {
+            return None;
+        }
         let k = self.corners.binary_search_by_key(&h, |c| c.0).ok()?;
         let (_, slot, i) = self.corners[k];
         Some((slot as usize, i))
@@ -539,7 +555,7 @@ pub(crate) fn doo_sabin_uv_step<'a>(
             // g = twin: from target(h) to source(h) in its face.
             let g = h ^ 1;
             chaikin_row(&mut row, cv[t.next(g) as usize], cv[g as usize]);
-        } else if let Some((slot, i)) = wide.as_ref().and_then(|w| w.corner(h)) {
+        } else if let Some((slot, i)) = wide.as_ref().and_then(|w| w.corner(t, h)) {
             let n = wide.as_ref().map_or(0, |w| w.degree(slot));
             let (sin, cos) = corner_angle(n, i).sin_cos();
             row.push((cv[h as usize], 0.25));
@@ -700,7 +716,7 @@ mod tests {
                 if t.is_boundary(h) {
                     continue;
                 }
-                assert!(wide.corner(h).is_some());
+                assert!(wide.corner(&t, h).is_some());
                 let direct = doo_sabin_point(&t, src, h);
                 let error = (out[h as usize] - direct).length();
                 assert!(error <= 1e-12 * 5.0, "{n}-gon, corner {h}: {error:e}");
