@@ -84,8 +84,10 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 /// guard, the sum of
 ///
 /// - [`PROCESS_BYTES`];
-/// - the input, as the face list it was read into ([`PolygonMesh::bytes_for`]) and as a
-///   half-edge mesh ([`HalfEdgeMesh::bytes_for`]);
+/// - the input, as the face list it was read into ([`PolygonMesh::bytes_for`]; a file's
+///   lines and UVs are the caller's: [`read_extra_bytes`]) and as a half-edge mesh
+///   ([`HalfEdgeMesh::bytes_for`]), and the transient arrays of building the latter
+///   ([`halfedge_build_bytes`]);
 /// - the two levels alive at once at the end (levels `levels - 1` and `levels`, the largest
 ///   two; only level 1 when `levels = 1`): with `last_faces = Some(d)` the last level is a face
 ///   list of `d`-gons as [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list)
@@ -98,7 +100,7 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 ///   armadillo.obj (2 levels): within 5 % of the peak `/usr/bin/time -v` reports.
 ///
 /// Computed on big integers, so a level far beyond any memory is a number, not an overflow.
-/// `levels = 0`: the process and the input.
+/// `levels = 0`: the process, the input and the face list written from its half-edge mesh.
 ///
 /// # Errors
 ///
@@ -115,7 +117,9 @@ pub const PROCESS_BYTES: u64 = 6 << 20;
 /// let levels = [(12, 30, 20), (42, 120, 80), (162, 480, 320), (642, 1920, 1280)];
 /// let sum: u128 = levels.iter().map(|&(v, e, f)| HalfEdgeMesh::bytes_for(v, e, f)).sum();
 /// let input = PolygonMesh::bytes_for(12, 20, 60);
-/// assert_eq!(peak, (u128::from(PROCESS_BYTES) + input + sum).into());
+/// // Building the input's half-edge mesh: 20 bytes per corner, 8 per vertex.
+/// let build = 20 * 60 + 8 * 12;
+/// assert_eq!(peak, (u128::from(PROCESS_BYTES) + input + build + sum).into());
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn predicted_peak_bytes(
@@ -127,7 +131,7 @@ pub fn predicted_peak_bytes(
     let arrays = arrays_peak_bytes(scheme, counts, levels, last_faces)?;
     let c = scheme.counts_at(counts, 0)?;
     // PolygonMesh::bytes_for on big integers.
-    let input_faces = BigInt::from(24) * &c.vertices
+    let input_faces: BigInt = BigInt::from(24) * &c.vertices
         + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
         + BigInt::from(4) * counts.corners;
     let freed = if levels >= 3 {
@@ -135,7 +139,49 @@ pub fn predicted_peak_bytes(
     } else {
         BigInt::from(0)
     };
-    Ok(arrays + input_faces + freed + PROCESS_BYTES)
+    // Level 0 is written from a face list of the input's half-edge mesh.
+    let copy = if levels == 0 {
+        input_faces.clone()
+    } else {
+        BigInt::from(0)
+    };
+    Ok(arrays + input_faces + copy + freed + halfedge_build_bytes(counts) + PROCESS_BYTES)
+}
+
+/// The transient arrays of building the input's half-edge mesh from its face list (the
+/// crate's `build.rs`), alive next to the face list and the half-edge arrays: each corner's
+/// sort key and tag (16 bytes) and half-edge (4), and the vertices' renumbering both ways (8
+/// per vertex). Freed once the mesh is built, but arrays below glibc's 32 MiB mmap threshold
+/// stay resident, and at level 0 they are the peak: counted always. Without them
+/// `subdivide --levels 0` of a 314 MB quad grid peaked at 2.2 times the prediction.
+///
+/// ```
+/// use halfedge::memory::halfedge_build_bytes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// assert_eq!(halfedge_build_bytes(&cube), (20 * 24 + 8 * 8).into());
+/// ```
+pub fn halfedge_build_bytes(counts: &MeshCounts) -> BigInt {
+    BigInt::from(20) * counts.corners + BigInt::from(8) * counts.vertices
+}
+
+/// What the face list `poly` holds as it was read beyond the arrays
+/// [`PolygonMesh::bytes_for`] counts from its statistics (what [`predicted_peak_bytes`]
+/// counts for the input): the file line of each face (8 bytes), positions no face uses (24
+/// each) and its UVs, `vt` and the `vt` of each corner (16 and 4 bytes). The caller adds it
+/// to a prediction made from the counts alone.
+///
+/// ```
+/// use halfedge::memory::read_extra_bytes;
+/// // A generated mesh: no file lines, no UVs.
+/// assert_eq!(read_extra_bytes(&halfedge::shapes::cube()), 0);
+/// ```
+pub fn read_extra_bytes(poly: &PolygonMesh) -> u128 {
+    let referenced = crate::stats::face_list_counts(poly).vertices;
+    let unreferenced = (poly.positions.len() as u64).saturating_sub(referenced);
+    let uvs = poly.uvs().map_or(0, |u| {
+        16 * u.coords().len() as u128 + 4 * u.corners().len() as u128
+    });
+    8 * poly.face_lines_len() as u128 + 24 * u128::from(unreferenced) + uvs
 }
 
 /// [`predicted_peak_bytes`] of `rule`'s counting scheme ([`Rule::scheme_for`](crate::Rule::scheme_for))
@@ -276,6 +322,37 @@ pub fn peak_limit() -> u128 {
     u128::from(available_bytes().unwrap_or(8 << 30)) / 2
 }
 
+/// What writing a last level built as a half-edge mesh (`last_faces` `None` in
+/// [`predicted_peak_bytes`]: √3, the dual rules, the general subdividers) adds to the peak of
+/// [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list): its face list, made
+/// while the mesh is alive (at most `2E` corners). 0 at level 0 (counted there already).
+///
+/// ```
+/// use halfedge::memory::face_list_copy_bytes;
+/// let cube = halfedge::stats::face_list_counts(&halfedge::shapes::cube());
+/// let ds = schemes::builtin("doo-sabin")?;
+/// // Level 1: 24 vertices, 48 edges, 26 faces.
+/// assert_eq!(face_list_copy_bytes(&ds, &cube, 1)?, (24 * 24 + 8 * 27 + 4 * 96).into());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+///
+/// As [`predicted_peak_bytes`].
+pub fn face_list_copy_bytes(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    levels: u32,
+) -> Result<BigInt, schemes::Error> {
+    if levels == 0 {
+        return Ok(BigInt::from(0));
+    }
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    Ok(BigInt::from(24) * &c.vertices
+        + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+        + BigInt::from(8) * &c.edges)
+}
+
 /// The bytes leaving holes out of the last level adds to [`predicted_peak_bytes`] (the face
 /// list is compacted in place, [`crate::holes`]): the new number of every vertex of the
 /// whole level and the old index of each kept one (4 bytes each per vertex), which faces
@@ -364,7 +441,10 @@ pub fn check_peak(
 }
 
 /// The peak of refining once ([`crate::Refinement`]) by `rule` to `levels` and evaluating
-/// positions of `scalar_bytes` per coordinate into caller buffers: the larger of the arrays
+/// positions of `scalar_bytes` per coordinate into caller buffers: [`PROCESS_BYTES`], the
+/// input's face list and the transients of building its half-edge mesh
+/// ([`halfedge_build_bytes`]; a file's lines and UVs are the caller's, [`read_extra_bytes`]),
+/// plus the larger of the arrays
 /// alive while the levels are built (the input and the last two levels, the last as a face
 /// list, as in [`predicted_peak_bytes`] without its process, face-list and freed-level terms)
 /// and the input, the refinement kept ([`crate::Refinement::predicted_bytes`], or with
@@ -384,7 +464,15 @@ pub fn predicted_refinement_peak_bytes(
     creases: bool,
 ) -> crate::Result<BigInt> {
     let scheme = rule.scheme_for(counts)?;
-    let building = arrays_peak_bytes(&scheme, counts, levels, Some(4))?;
+    let mut building = arrays_peak_bytes(&scheme, counts, levels, Some(4))?;
+    if levels > 0
+        && counts.boundary_edges > 0
+        && matches!(rule, crate::Rule::DooSabin | crate::Rule::MidEdge)
+    {
+        // With a boundary the dual rules build each level face by face as a half-edge mesh
+        // (on zero positions) and copy its connectivity.
+        building += halfedge_bytes(&scheme, counts, u64::from(levels))?;
+    }
     let kept = if creases {
         crate::Refinement::predicted_bytes_with_creases(rule, counts, levels)?
     } else {
@@ -397,9 +485,16 @@ pub fn predicted_refinement_peak_bytes(
         + BigInt::from(4 * 4) * &c.faces
         + &point * counts.vertices * u32::from(frames);
     // While levels are built the refinement's tables are filled level by level; afterwards
-    // the refinement and the buffers are alive with the input: the larger of the two.
+    // the refinement and the buffers are alive with the input: the larger of the two. The
+    // process, the input's face list (kept by the caller) and the transients of building its
+    // half-edge mesh come on top of either.
     let input = arrays_peak_bytes(&scheme, counts, 0, None)?;
-    Ok(building.max(kept + buffers + input))
+    let c = scheme.counts_at(counts, 0)?;
+    let input_faces = BigInt::from(24) * &c.vertices
+        + BigInt::from(std::mem::size_of::<usize>()) * (&c.faces + 1)
+        + BigInt::from(4) * counts.corners;
+    let around = input_faces + halfedge_build_bytes(counts) + PROCESS_BYTES;
+    Ok(building.max(kept + buffers + input) + around)
 }
 
 /// What refining a UV layout with the surface adds to a peak: the face-varying channel of
@@ -415,8 +510,11 @@ pub fn predicted_refinement_peak_bytes(
 ///
 /// - the channel, a refinement of the layout by its own rule (the rule itself for Loop,
 ///   Catmull-Clark and the 1:N² splits, midpoint for butterfly and the icosphere) under its
-///   crease rules ([`Refinement::predicted_bytes_with_creases`](crate::Refinement::predicted_bytes_with_creases)
-///   of the layout: seams and layout corners make the channel's vertices sharp), plus the
+///   crease rules (the bound of [`Refinement::predicted_bytes_with_creases`](crate::Refinement::predicted_bytes_with_creases)
+///   of the layout, with a face of degree `d` counting `d min(d, 32)` rather than `d²`: a
+///   level with a face of more than 32 sides never gets the dense table, whose Catmull-Clark
+///   rows expand the face points, and the channel's own rows are short; seams and layout
+///   corners make the channel's vertices sharp), plus the
 ///   merged numbering of its last level and the corner buffer it is computed from (4 bytes per
 ///   vertex and per corner of the last level: kept when values have several runs around a
 ///   vertex, counted always);
@@ -425,7 +523,10 @@ pub fn predicted_refinement_peak_bytes(
 ///   below `levels`) and the whole last level before it is merged (counted always);
 /// - the UV index of every corner of the last level (4 bytes each);
 /// - with `holes`, the written corners' UV indices and the channel's last face list read to
-///   find them (4 bytes per corner, twice, and per face).
+///   find them (4 bytes per corner, twice, and per face);
+/// - the channel's base, built before its levels: the layout as a face list and a half-edge
+///   mesh, and the arrays that build the latter ([`halfedge_build_bytes`]): transient, but
+///   the peak at low levels (at level 0 of a 314 MB quad grid with `vt`).
 ///
 /// √3, Doo-Sabin and mid-edge carry UVs by the corner channel on the surface's own levels
 /// instead, which the layout's statistics size only approximately (they do not separate
@@ -433,7 +534,8 @@ pub fn predicted_refinement_peak_bytes(
 /// it (bounded by the layout's), each level's weight table (4 bytes per value, 12 per
 /// weight; values the larger of the two extreme layouts, no seam or every layout boundary
 /// edge a seam side; 2 weights per value under mid-edge, 3 under √3, the largest base face
-/// degree, at least 4, under Doo-Sabin), 8 bytes per corner of the last level (its values and the
+/// degree, at least 4, under Doo-Sabin, and 7 when a face has more than 32 sides: its
+/// corners are 4-entry rows over three face-wide sums), 8 bytes per corner of the last level (its values and the
 /// caller's index buffer) and 4 per corner of the level before (its values while the last
 /// is built), and the evaluation buffers: an estimate, not a bound (on grids cut into four
 /// charts, 1.6 to 2.6 times what the channel and the caller's buffers hold,
@@ -442,10 +544,9 @@ pub fn predicted_refinement_peak_bytes(
 /// The last level's corners are `d` per face for the rules that write `d`-gons
 /// ([`direct_face_degree`](crate::subdivide::direct_face_degree)), else bounded by `2E`.
 /// Not counted: the layout's sibling values (a value used in several runs around a vertex is
-/// a vertex of the channel per run, a few per mesh) and the transient arrays of building the
-/// channel's base (a face list and a half-edge mesh of the layout, freed before its levels
-/// are built). Against the channel's heap and the caller's buffers it is 1.5 to 2.6 times
-/// what is measured (`tests/integration/uv_memory.rs`: at least it, at most three times): it
+/// a vertex of the channel per run, a few per mesh). Against the channel's heap and the
+/// caller's buffers it is 1.5 to 3.2 times what is measured (`tests/integration/uv_memory.rs`:
+/// at least it, at most four times; the base is transient, not in the heap): it
 /// bounds the channel's crease tables by dense weight tables (a channel whose every edge is
 /// semi-sharp), where seams and corners alone keep the flattened tables and a few rows.
 /// Measured while the channel still kept dense tables (its heap has since fallen from 32.5 MB
@@ -490,7 +591,7 @@ pub fn predicted_uv_bytes(
         ChannelKind::Corners => return corner_uv_bytes(rule, layout, levels, scalar_bytes),
     };
     let scheme = channel.scheme_for(layout)?;
-    let heap = crate::Refinement::predicted_bytes_with_creases(channel, layout, levels)?;
+    let heap = crate::Refinement::predicted_channel_bytes(channel, layout, levels)?;
     let level = |s: u32| scheme.counts_at(layout, u64::from(s));
     let last = level(levels)?;
     let corners = match crate::subdivide::direct_face_degree(channel) {
@@ -518,7 +619,15 @@ pub fn predicted_uv_bytes(
     } else {
         BigInt::from(0)
     };
-    Ok(heap + numbering + evaluation + indices + written)
+    // The channel's base, built before its levels: the layout as a face list and a half-edge
+    // mesh, and the transients of building the latter (freed, but at low levels the peak).
+    let base = BigInt::from(PolygonMesh::bytes_for(
+        layout.vertices,
+        layout.faces,
+        layout.corners,
+    )) + HalfEdgeMesh::bytes_for(layout.vertices, layout.edges, layout.faces)
+        + halfedge_build_bytes(layout);
+    Ok(heap + numbering + evaluation + indices + written + base)
 }
 
 /// [`predicted_uv_bytes`] of the corner channel (√3, Doo-Sabin, mid-edge: values propagated on
@@ -535,7 +644,9 @@ pub fn predicted_uv_bytes(
 ///   (a centroid) and, under
 ///   Doo-Sabin, the largest face degree of the base (at least 4: from level 1 on the faces
 ///   are quads but the face faces and the faces of the base vertices, whose degree is their
-///   valence, not counted beyond it);
+///   valence, not counted beyond it), or 7 when a face has more than 32 sides (a corner of
+///   such a face is 4 weights over its value and the face's three sums, which take 3 weights
+///   per corner: `dual.rs`'s `DIRECT_MAX_DEGREE`);
 /// - the last level's corner values, the caller's index buffer and the corner values of the
 ///   level before it while it is refined (4 bytes per corner; corners bounded by `2E` of the
 ///   layout refined as a mesh);
@@ -575,7 +686,11 @@ fn corner_uv_bytes(
         .keys()
         .next_back()
         .map_or(4, |&d| d.max(4));
+    // Doo-Sabin: a corner of a face of at most 32 sides is a row over the face's corners, one
+    // of a wider face 4 weights and its share of the face's three sums (`dual.rs`).
+    let wide = degree as usize > crate::subdivide::dual::DIRECT_MAX_DEGREE;
     let weights = BigInt::from(match rule {
+        crate::Rule::DooSabin if wide => 7,
         crate::Rule::DooSabin => degree,
         crate::Rule::Sqrt3 => 3,
         _ => 2,
@@ -847,7 +962,16 @@ mod tests {
                     0..=2 => BigInt::from(0),
                     _ => bytes(&level(levels - 2)),
                 };
-                let expected = &input - bytes(&mesh) + arrays(None).expect("arrays") + freed;
+                // Level 0 is written from a face list of the input.
+                let copy = match levels {
+                    0 => BigInt::from(poly.heap_bytes()),
+                    _ => BigInt::from(0),
+                };
+                let expected = &input - bytes(&mesh)
+                    + arrays(None).expect("arrays")
+                    + freed
+                    + copy
+                    + halfedge_build_bytes(&mesh.counts());
                 assert_eq!(peak(None).expect("peak"), expected, "{name} {levels}");
             }
         }

@@ -609,6 +609,7 @@ pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failu
             .and_then(|need| Ok(need + uv_bytes(poly, rule, levels, 8, chosen.holes.is_some())?)),
         None => need,
     };
+    let need = need.map(|need| need + halfedge::memory::read_extra_bytes(poly));
     guard_memory(need, sizing.name(), levels, args.allow_large)?;
     let mut opts = SubdivideOptions::default().with_threads(args.threads);
     if let Some(holes) = &chosen.holes {
@@ -828,6 +829,13 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             halfedge::memory::predicted_peak_bytes(&scheme, &counts, levels, last_faces)
                 .map_err(Into::into)
         };
+        // A last level built as a half-edge mesh is copied into the face list written.
+        let levels_bytes = match last_faces {
+            None if !face_list => levels_bytes.and_then(|bytes| {
+                Ok(bytes + halfedge::memory::face_list_copy_bytes(&scheme, &counts, levels)?)
+            }),
+            _ => levels_bytes,
+        };
         levels_bytes.and_then(|bytes| match holes {
             Some(_) => halfedge::memory::hole_filter_bytes(&scheme, &counts, levels, last_faces)
                 .map(|filter| bytes + filter)
@@ -847,6 +855,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         }),
         None => need,
     };
+    // The face list as read holds its file lines and UVs beyond what its counts predict.
+    let need = need.map(|need| need + halfedge::memory::read_extra_bytes(poly));
     let predicted = guard_memory(need, scheme.name(), levels, args.allow_large)?;
     if let Some(path) = &args.output {
         halfedge::io::check_output(path).map_err(|e| Failure::new(Kind::Input, e))?;

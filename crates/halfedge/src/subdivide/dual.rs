@@ -24,7 +24,10 @@
 //! `p_0, ..., p_{n-1}` is `Σ w_j p_j` with `w_0 = (n + 5) / (4n)` and
 //! `w_j = (3 + 2 cos(2πj/n)) / (4n)`, for every face, boundary or not; the boundary points
 //! are Chaikin's, so the boundary converges to the quadratic B-spline of the boundary polygon
-//! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]).
+//! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]). A face of more than
+//! [`DIRECT_MAX_DEGREE`] sides gets its corners from three face-wide sums instead of a sum
+//! over the face per corner (the same weights, `O(n)` rather than `O(n²)` per face), positions
+//! and UVs alike.
 //!
 //! # Mid-edge numbering
 //!
@@ -257,13 +260,26 @@ pub(crate) fn doo_sabin_points<V: Vector>(
     out: &mut impl Sink<V>,
     parallel: bool,
 ) {
+    let wide = WideFaces::of(t);
+    let sums = wide.as_ref().map(|w| w.sums(t, src));
     out.append(2 * t.ne(), parallel, |h| {
         let h = h as u32;
         if t.is_boundary(h) {
-            chaikin(src, t.source(h), t.target(h))
-        } else {
-            doo_sabin_point(t, src, h)
+            return chaikin(src, t.source(h), t.target(h));
         }
+        if let (Some(w), Some(sums)) = (&wide, &sums) {
+            if let Some((slot, i)) = w.corner(t, h) {
+                let (n, [mean, c, d]) = (w.degree(slot), &sums[slot]);
+                let (sin, cos) = corner_angle(n, i).sin_cos();
+                return src[t.source(h) as usize]
+                    .clone()
+                    .scale(0.25)
+                    .add(mean.clone().scale(0.75))
+                    .add(c.clone().scale(0.5 * cos))
+                    .add(d.clone().scale(0.5 * sin));
+            }
+        }
+        doo_sabin_point(t, src, h)
     });
     if !t.is_closed() {
         let boundary = boundary_halfedges(t);
@@ -323,7 +339,143 @@ fn doo_sabin_weight(n: usize, j: usize) -> f64 {
     }
 }
 
-/// The Doo-Sabin point of the corner at the source of `h` in its face.
+/// The largest face degree whose Doo-Sabin points are direct sums over the face
+/// ([`doo_sabin_point`], `n` products per corner: `n²` per face); a face of more sides gets
+/// them from three face-wide sums ([`WideFaces`]), `O(n)` per face. Rewriting the weight
+/// `(3 + 2 cos(2π(j - i)/n)) / (4n)` of corner `j` in the point of corner `i` as
+/// `3/(4n) + (cos θ_i cos θ_j + sin θ_i sin θ_j) / (2n)`, `θ_j = 2πj/n` from the face's own
+/// first corner, the point is
+///
+/// `p_i = v_i / 4 + (3/4) mean + (1/2)(cos θ_i C + sin θ_i D)`,
+/// `C = (1/n) Σ cos θ_j v_j`, `D = (1/n) Σ sin θ_j v_j`,
+///
+/// equal to the direct sum up to rounding (about `n` ulps; the tests hold them to 1e-12
+/// relative just above the threshold). 32 keeps every ordinary mesh's output bit for bit what
+/// it was (the shared meshes' faces have at most 16 sides; a Doo-Sabin level's faces are
+/// the base's faces, quads and the base's vertex rings), while a face of 33 sides costs at
+/// most 33 products per corner, never more than about five times the face-wide form.
+pub(crate) const DIRECT_MAX_DEGREE: usize = 32;
+
+/// The angle `θ_i = 2πi/n` of corner `i` of an `n`-gon in the face-wide form.
+fn corner_angle(n: u32, i: u32) -> f64 {
+    2.0 * PI * f64::from(i) / f64::from(n)
+}
+
+/// The faces of `t` with more than [`DIRECT_MAX_DEGREE`] sides, for the face-wide form of
+/// their Doo-Sabin points and UV rows: `O(corners)` to build, `O(log)` per corner of a wide
+/// face to look up (a bit per face tells the others), 12 bytes per corner of a wide face, 8
+/// per wide face and a bit per face.
+pub(crate) struct WideFaces {
+    /// Each wide face's first half-edge (corner 0, its [`Topo::face_halfedge`]) and degree.
+    faces: Vec<(u32, u32)>,
+    /// Each corner of a wide face: (its half-edge, the face's slot in `faces`, its index from
+    /// corner 0), by half-edge.
+    corners: Vec<(u32, u32, u32)>,
+    /// One bit per face of `t`, set on the wide ones: most corners are told apart without a
+    /// search.
+    is_wide: Vec<u64>,
+}
+
+impl WideFaces {
+    /// The wide faces of `t`; `None` when there is none or the room for them is refused (the
+    /// direct sums then serve every face, in quadratic time rather than an abort).
+    pub(crate) fn of(t: &Topo<'_>) -> Option<WideFaces> {
+        let mut count = (0usize, 0usize);
+        for f in 0..t.nf() as u32 {
+            let n = t.face_degree(f);
+            if n > DIRECT_MAX_DEGREE {
+                count = (count.0 + 1, count.1 + n);
+            }
+        }
+        if count.0 == 0 {
+            return None;
+        }
+        let mut faces = Vec::new();
+        let mut corners = Vec::new();
+        let mut is_wide = Vec::new();
+        faces.try_reserve_exact(count.0).ok()?;
+        corners.try_reserve_exact(count.1).ok()?;
+        is_wide.try_reserve_exact(t.nf().div_ceil(64)).ok()?;
+        is_wide.resize(t.nf().div_ceil(64), 0u64);
+        for f in 0..t.nf() as u32 {
+            let n = t.face_degree(f);
+            if n <= DIRECT_MAX_DEGREE {
+                continue;
+            }
+            let slot = faces.len() as u32;
+            faces.push((t.face_halfedge(f), n as u32));
+            is_wide[f as usize / 64] |= 1 << (f % 64);
+            let mut i = 0u32;
+            t.for_face(f, |h| {
+                corners.push((h, slot, i));
+                i += 1;
+            });
+        }
+        corners.sort_unstable_by_key(|c| c.0);
+        Some(WideFaces {
+            faces,
+            corners,
+            is_wide,
+        })
+    }
+
+    /// The number of wide faces.
+    pub(crate) fn len(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// The degree of the wide face in slot `slot`.
+    pub(crate) fn degree(&self, slot: usize) -> u32 {
+        self.faces[slot].1
+    }
+
+    /// The slot of the face of half-edge `h` (of `t`, not a boundary half-edge) and the index
+    /// of its corner there, if the face is wide.
+    pub(crate) fn corner(&self, t: &Topo<'_>, h: u32) -> Option<(usize, u32)> {
+        let f = t.face(h) as usize;
+        if self.is_wide.get(f / 64).map_or(0, |w| w & (1 << (f % 64))) == 0 {
+            return None;
+        }
+        let k = self.corners.binary_search_by_key(&h, |c| c.0).ok()?;
+        let (_, slot, i) = self.corners[k];
+        Some((slot as usize, i))
+    }
+
+    /// Calls `f(j, h)` on each corner of the wide face in slot `slot`, from corner 0.
+    pub(crate) fn for_corners(&self, t: &Topo<'_>, slot: usize, mut f: impl FnMut(u32, u32)) {
+        let (mut h, n) = self.faces[slot];
+        for j in 0..n {
+            f(j, h);
+            h = t.next(h);
+        }
+    }
+
+    /// Each wide face's `[mean, C, D]` of `src`.
+    fn sums<V: Vector>(&self, t: &Topo<'_>, src: &[V]) -> Vec<[V; 3]> {
+        (0..self.len())
+            .map(|slot| {
+                let n = self.degree(slot);
+                let each = 1.0 / f64::from(n);
+                let mut sums = [V::zero(), V::zero(), V::zero()];
+                self.for_corners(t, slot, |j, h| {
+                    let (sin, cos) = corner_angle(n, j).sin_cos();
+                    let v = &src[t.source(h) as usize];
+                    let zero = [V::zero(), V::zero(), V::zero()];
+                    let [mean, c, d] = std::mem::replace(&mut sums, zero);
+                    sums = [
+                        mean.add(v.clone().scale(each)),
+                        c.add(v.clone().scale(cos * each)),
+                        d.add(v.clone().scale(sin * each)),
+                    ];
+                });
+                sums
+            })
+            .collect()
+    }
+}
+
+/// The Doo-Sabin point of the corner at the source of `h` in its face, as a direct sum over
+/// the face (faces of at most [`DIRECT_MAX_DEGREE`] sides).
 fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
     let n = t.face_degree(t.face(h));
     let mut sum = V::zero();
@@ -353,11 +505,14 @@ fn n_boundary(t: &Topo<'_>) -> usize {
 /// its face's chart, or on a boundary half-edge its Chaikin point near the source in the chart
 /// of the edge's face), `2E + r` the Chaikin point near the target of boundary half-edge `r`,
 /// then two per seam edge `e` (in increasing order): the Chaikin points of `e` near the source
-/// and near the target of half-edge `2e`, in the chart of its face.
+/// and near the target of half-edge `2e`, in the chart of its face. A corner of a face of
+/// more than [`DIRECT_MAX_DEGREE`] sides is a row of 4 weights over its own value and the
+/// face's three face-wide sums (the step's auxiliary values, [`CornerStep::aux`]), so the
+/// table is linear in the corners whatever the faces' degrees.
 pub(crate) fn doo_sabin_uv_step<'a>(
     t: &'a Topo<'a>,
     cv: &'a [u32],
-    _n_values: usize,
+    n_values: usize,
 ) -> Result<CornerStep<'a>> {
     let (ne, nf) = (t.ne() as u32, t.nf() as u32);
     let nb = n_boundary(t);
@@ -366,6 +521,30 @@ pub(crate) fn doo_sabin_uv_step<'a>(
     let rows = vertices + 2 * n_seams;
     let mut table = WeightTable::with_room(rows, 4 * rows)?;
     let mut row = Vec::new();
+    // A wide face's corners are 4-entry rows over its value, then its three face-wide sums,
+    // computed first as the step's auxiliary values `n_values + 3 slot + (0, 1, 2)`.
+    let wide = WideFaces::of(t);
+    let aux = match &wide {
+        Some(w) => {
+            let n_corners: usize = (0..w.len()).map(|slot| w.degree(slot) as usize).sum();
+            let mut aux = WeightTable::with_room(3 * w.len(), 3 * n_corners)?;
+            for slot in 0..w.len() {
+                let n = w.degree(slot);
+                let each = 1.0 / f64::from(n);
+                for k in 0..3 {
+                    w.for_corners(t, slot, |j, h| {
+                        let (sin, cos) = corner_angle(n, j).sin_cos();
+                        let weight = [each, cos * each, sin * each][k];
+                        row.push((cv[h as usize], weight));
+                    });
+                    aux.push_row(&mut row)?;
+                }
+            }
+            Some(aux)
+        }
+        None => None,
+    };
+    let aux_value = |slot: usize, k: usize| (n_values + 3 * slot + k) as u32;
     // The Chaikin point near `a` of the side from `a` to `b` of a face (its corners' values).
     let chaikin_row = |row: &mut Vec<(u32, f64)>, a: u32, b: u32| {
         row.push((a, 0.75));
@@ -376,6 +555,13 @@ pub(crate) fn doo_sabin_uv_step<'a>(
             // g = twin: from target(h) to source(h) in its face.
             let g = h ^ 1;
             chaikin_row(&mut row, cv[t.next(g) as usize], cv[g as usize]);
+        } else if let Some((slot, i)) = wide.as_ref().and_then(|w| w.corner(t, h)) {
+            let n = wide.as_ref().map_or(0, |w| w.degree(slot));
+            let (sin, cos) = corner_angle(n, i).sin_cos();
+            row.push((cv[h as usize], 0.25));
+            row.push((aux_value(slot, 0), 0.75));
+            row.push((aux_value(slot, 1), 0.5 * cos));
+            row.push((aux_value(slot, 2), 0.5 * sin));
         } else {
             let n = t.face_degree(t.face(h));
             let mut g = h;
@@ -419,6 +605,7 @@ pub(crate) fn doo_sabin_uv_step<'a>(
         }
     };
     Ok(CornerStep {
+        aux,
         values: table,
         corner: Box::new(corner),
     })
@@ -493,7 +680,64 @@ pub(crate) fn mid_edge_uv_step<'a>(
         side(vertex, t.face(g))
     };
     Ok(CornerStep {
+        aux: None,
         values: table,
         corner: Box::new(corner),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Just above the threshold (and further up) the face-wide form equals the direct sum
+    /// over the face to 1e-12 of the face's size, for every corner.
+    #[test]
+    fn the_face_wide_form_agrees_with_the_direct_sum() {
+        for n in [DIRECT_MAX_DEGREE + 1, 40, 257] {
+            // A wavy n-gon, off-centre, so that no symmetry hides an error.
+            let positions: Vec<DVec3> = (0..n)
+                .map(|i| {
+                    let a = 2.0 * PI * i as f64 / n as f64;
+                    let r = 1.0 + 0.3 * (3.0 * a).sin();
+                    DVec3::new(5.0 + r * a.cos(), -2.0 + r * a.sin(), 0.1 * (7.0 * a).cos())
+                })
+                .collect();
+            let face: Vec<u32> = (0..n as u32).collect();
+            let mesh = HalfEdgeMesh::try_from_polygons(positions.clone(), &[face]).expect("mesh");
+            let t = Topo::new(&mesh);
+            let src = &mesh.positions;
+            let wide = WideFaces::of(&t).expect("one wide face");
+            assert_eq!(wide.len(), 1);
+            let mut out: Vec<DVec3> = Vec::new();
+            doo_sabin_points(&t, src, &mut out, false);
+            let mut checked = 0;
+            for h in 0..2 * t.ne() as u32 {
+                if t.is_boundary(h) {
+                    continue;
+                }
+                assert!(wide.corner(&t, h).is_some());
+                let direct = doo_sabin_point(&t, src, h);
+                let error = (out[h as usize] - direct).length();
+                assert!(error <= 1e-12 * 5.0, "{n}-gon, corner {h}: {error:e}");
+                checked += 1;
+            }
+            assert_eq!(checked, n);
+        }
+    }
+
+    /// At the threshold the direct sums serve: no wide face.
+    #[test]
+    fn a_face_at_the_threshold_is_summed_directly() {
+        let n = DIRECT_MAX_DEGREE;
+        let positions: Vec<DVec3> = (0..n)
+            .map(|i| {
+                let a = 2.0 * PI * i as f64 / n as f64;
+                DVec3::new(a.cos(), a.sin(), 0.0)
+            })
+            .collect();
+        let face: Vec<u32> = (0..n as u32).collect();
+        let mesh = HalfEdgeMesh::try_from_polygons(positions, &[face]).expect("mesh");
+        assert!(WideFaces::of(&Topo::new(&mesh)).is_none());
+    }
 }

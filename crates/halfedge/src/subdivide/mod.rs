@@ -83,7 +83,7 @@
 pub(crate) mod alloc;
 mod build;
 mod catmull_clark;
-mod dual;
+pub(crate) mod dual;
 mod faces;
 mod finite;
 mod gather;

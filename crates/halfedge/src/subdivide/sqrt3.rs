@@ -424,6 +424,7 @@ pub(crate) fn sqrt3_uv_step<'a>(
         }
     };
     Ok(CornerStep {
+        aux: None,
         values: table,
         corner: Box::new(corner),
     })

@@ -4,9 +4,11 @@
 //! and corner indices).
 //!
 //! Tolerance: the prediction is at least what is measured (the channel's heap and the
-//! caller's buffers) and at most three times it: it also counts the evaluation's intermediate
-//! levels and whole last level, the merged numbering and the corner buffer it is built from
-//! (freed or transient, so not in `heap_bytes`), and bounds the crease tables by the dense
+//! caller's buffers) and at most four times it: it also counts the evaluation's intermediate
+//! levels and whole last level, the merged numbering and the corner buffer it is built from,
+//! the channel's base (the layout as a face list and a half-edge mesh, and the arrays that
+//! build the latter: the peak at low levels) (freed or transient, so not in `heap_bytes`),
+//! and bounds the crease tables by the dense
 //! weight table of every child vertex (what a channel whose every edge is sharp keeps), where
 //! a channel whose only sharp edges are its boundary keeps the flattened Loop or Catmull-Clark
 //! tables and the rows of its corners.
@@ -39,8 +41,8 @@ fn assert_within(name: &str, rule: Rule, levels: u32, measured: &BigInt, predict
         "{name} {rule} {levels}: {predicted} < {measured}"
     );
     assert!(
-        *predicted <= measured * 3u32,
-        "{name} {rule} {levels}: {predicted} > 3 x {measured}"
+        *predicted <= measured * 4u32,
+        "{name} {rule} {levels}: {predicted} > 4 x {measured}"
     );
 }
 

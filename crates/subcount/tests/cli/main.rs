@@ -6,6 +6,7 @@ mod creases;
 mod hostile;
 mod hostile3;
 mod level_zero;
+mod hostile_dual;
 mod matrix;
 mod meshes;
 mod plot;

@@ -7,7 +7,9 @@
 //! value of each of its face corners; this module runs the steps on the levels the
 //! [`Refinement`] keeps, numbers the child's corners in the order its faces are written, checks
 //! that every value a step creates is used by some corner, and keeps the steps' weight tables
-//! for the evaluation and the last level's corner values for the index buffer.
+//! (with, for a step that has them, the table of its auxiliary values, evaluated first and
+//! numbered after the parent's values) for the evaluation and the last level's corner values
+//! for the index buffer.
 
 use super::{check_len, Refinement, Scalar};
 use crate::mesh::INVALID;
@@ -17,8 +19,13 @@ use crate::{Error, Result, Rule};
 
 /// One step of a corner rule, from level `s` (the parent) to level `s + 1` (the child).
 pub(crate) struct CornerStep<'a> {
+    /// Auxiliary values, linear combinations of the parent level's values computed before the
+    /// child's and numbered after the parent's (`n_values + k` for row `k`): a rule whose
+    /// rows would each span a whole large face (Doo-Sabin's) writes the face-wide sums once
+    /// here and short rows over them, so the tables stay linear in the corners.
+    pub(crate) aux: Option<WeightTable>,
     /// The child level's values: row `i` is value `i`, an affine combination (weights
-    /// summing to 1) of the parent level's values.
+    /// summing to 1) of the parent level's values, then the auxiliary ones.
     pub(crate) values: WeightTable,
     /// The value of the child's face corner of face `face` at vertex `vertex` (child ids, in
     /// the rule's numbering of faces and vertices): a face visits a vertex once, so the pair
@@ -87,8 +94,9 @@ pub(crate) fn seam_ranks(t: &Topo<'_>, cv: &[u32]) -> Result<(Vec<u32>, usize)> 
 pub(crate) struct CornerChannel {
     /// The layout's values (level 0).
     n_values: usize,
-    /// Level `s` to `s + 1`: the new values as weights of the old.
-    tables: Vec<WeightTable>,
+    /// Level `s` to `s + 1`: the auxiliary values ([`CornerStep::aux`]) and the new values
+    /// as weights of the old and the auxiliary ones.
+    tables: Vec<(Option<WeightTable>, WeightTable)>,
     /// The value of every corner of the last level, in the order its faces are written.
     last: Vec<u32>,
     /// Whether evaluations may run in parallel.
@@ -133,6 +141,7 @@ impl CornerChannel {
             let t = topo(s)?;
             let (table, next) = {
                 let CornerStep {
+                    aux,
                     values: table,
                     corner,
                 } = corner_step(rule, &t, &cv, n, child)?;
@@ -183,9 +192,9 @@ impl CornerChannel {
                         format!("UV value {v} of {rows} is used by no corner"),
                     ));
                 }
-                (table, next)
+                ((aux, table), next)
             };
-            n = table.rows();
+            n = table.1.rows();
             tables.push(table);
             if child < levels {
                 cv = next;
@@ -205,30 +214,61 @@ impl CornerChannel {
     pub(crate) fn n_uvs(&self, level: u32) -> usize {
         match level {
             0 => self.n_values,
-            s => self.tables.get(s as usize - 1).map_or(0, WeightTable::rows),
+            s => self.tables.get(s as usize - 1).map_or(0, |(_, t)| t.rows()),
         }
     }
 
     pub(crate) fn heap_bytes(&self) -> usize {
-        self.tables.iter().map(WeightTable::bytes).sum::<usize>() + 4 * self.last.len()
+        let bytes = |(aux, t): &(Option<WeightTable>, WeightTable)| {
+            t.bytes() + aux.as_ref().map_or(0, WeightTable::bytes)
+        };
+        self.tables.iter().map(bytes).sum::<usize>() + 4 * self.last.len()
     }
 
     pub(crate) fn evaluate<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
         let levels = self.tables.len() as u32;
         check_len("uv base", self.n_values, base.len())?;
         check_len("uv out", self.n_uvs(levels), out.len())?;
-        let Some((last, before)) = self.tables.split_last() else {
+        if self.tables.is_empty() {
             out.copy_from_slice(base);
             return Ok(());
+        }
+        let aux_rows = |k: usize| {
+            self.tables
+                .get(k)
+                .and_then(|(aux, _)| aux.as_ref())
+                .map_or(0, WeightTable::rows)
         };
+        // Each level's values, with room after them for the next step's auxiliary values.
         let mut current: Option<Vec<[T; 2]>> = None;
-        for table in before {
-            let mut next = crate::subdivide::alloc::with_capacity(table.rows(), "uv level")?;
-            table.points(current.as_deref().unwrap_or(base), &mut next, self.parallel);
+        for (k, (aux, table)) in self.tables.iter().enumerate() {
+            if let Some(aux) = aux {
+                let mut src = match current.take() {
+                    Some(v) => v,
+                    None => {
+                        let mut v = crate::subdivide::alloc::with_capacity(
+                            base.len() + aux.rows(),
+                            "uv level",
+                        )?;
+                        v.extend_from_slice(base);
+                        v
+                    }
+                };
+                let mut sums = crate::subdivide::alloc::with_capacity(aux.rows(), "uv sums")?;
+                aux.points(&src, &mut sums, self.parallel);
+                src.extend_from_slice(&sums);
+                current = Some(src);
+            }
+            let src = current.as_deref().unwrap_or(base);
+            if k + 1 == self.tables.len() {
+                table.points(src, &mut super::Slots::new(out), self.parallel);
+                break;
+            }
+            let room = table.rows() + aux_rows(k + 1);
+            let mut next = crate::subdivide::alloc::with_capacity(room, "uv level")?;
+            table.points(src, &mut next, self.parallel);
             current = Some(next);
         }
-        let src = current.as_deref().unwrap_or(base);
-        last.points(src, &mut super::Slots::new(out), self.parallel);
         Ok(())
     }
 

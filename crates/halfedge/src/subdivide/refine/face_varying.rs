@@ -132,7 +132,11 @@
 //! (a) The corner of face `f` at `v` (the new vertex of that face half-edge) gets
 //! `Σ w_j λ_f(p_j)` with the Doo-Sabin weights of the positions (`w_0 = (n + 5) / (4n)`,
 //! `w_j = (3 + 2 cos(2πj/n)) / (4n)`): one value per face corner, used by the face's shrunken
-//! face, the edge faces of its two sides and the vertex face.
+//! face, the edge faces of its two sides and the vertex face. For a face of more than 32
+//! sides the row is `λ_f(v)/4 + (3/4) mean + (1/2)(cos θ_i C + sin θ_i D)` over the face's
+//! three sums (the mean and the `cos θ_j`- and `sin θ_j`-weighted means of its values,
+//! `θ_j = 2πj/n`), computed once per face as the step's auxiliary values: the same weights up
+//! to rounding, 4 per corner rather than `n` (`dual.rs`'s `DIRECT_MAX_DEGREE`).
 //! (b) On a surface boundary edge of face `f` its two Chaikin points (new vertices) get
 //! `(3 λ_f(x) + λ_f(y)) / 4` near end `x`, in `f`'s chart: one value each, shared by the
 //! boundary quad and the vertex faces that use the same vertex.
@@ -218,8 +222,8 @@
 //! # Memory
 //!
 //! The corner channel keeps, per level, its weight table (4 bytes per value, 12 per weight:
-//! Doo-Sabin about `n` weights per value of an `n`-gon's corner, mid-edge 2, √3 at most 3)
-//! and the last
+//! Doo-Sabin `n` weights per value of an `n`-gon's corner up to 32 sides, 4 beyond and 3 per
+//! corner for the face's sums, mid-edge 2, √3 at most 3) and the last
 //! level's value indices (4 bytes per corner); building it holds one level's corner values
 //! (4 bytes per half-edge) at a time. It runs on the surface's refinement, which keeps every
 //! level's connectivity for these rules anyway.

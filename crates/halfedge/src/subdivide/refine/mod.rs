@@ -204,7 +204,9 @@ impl Fast {
         tables: bool,
         parallel: bool,
     ) -> Result<Option<Fast>> {
-        let sparse = |rows: usize, children: usize| 2 * rows <= children;
+        // A dense table of a level with a wide face would be quadratic in its degree.
+        let wide = super::sdc::has_wide_face(t);
+        let sparse = |rows: usize, children: usize| wide || 2 * rows <= children;
         let dense = |weights| Fast::Creased {
             base: None,
             weights,
@@ -225,7 +227,7 @@ impl Fast {
                     None => Fast::base_bytes(base, algorithm, t),
                 };
                 debug_assert_eq!(base_bytes, Fast::base_bytes(base, algorithm, t));
-                if base_bytes + weights.bytes() <= creases.budget(level) {
+                if wide || base_bytes + weights.bytes() <= creases.budget(level) {
                     let base = match tables {
                         Some(b) => b,
                         None => Fast::base(base, algorithm, t, false, parallel)?,
@@ -393,6 +395,16 @@ fn crease_table_bytes(
     counts: &MeshCounts,
     level: u32,
 ) -> Result<Option<num_bigint::BigInt>> {
+    table_bytes(plan, counts, level, false)
+}
+
+/// [`crease_table_bytes`], with `dense_only_narrow` as [`super::sdc::table_bytes_bound`]'s.
+fn table_bytes(
+    plan: &Plan,
+    counts: &MeshCounts,
+    level: u32,
+    dense_only_narrow: bool,
+) -> Result<Option<num_bigint::BigInt>> {
     let scheme = match plan.algorithm {
         Algorithm::Tri(TriRule::Loop, 2) => super::sdc::TableScheme::Loop,
         Algorithm::CatmullClark => super::sdc::TableScheme::CatmullClark,
@@ -400,7 +412,11 @@ fn crease_table_bytes(
     };
     let c = plan.scheme.counts_at(counts, u64::from(level))?;
     Ok(Some(super::sdc::table_bytes_bound(
-        scheme, counts, level, &c,
+        scheme,
+        counts,
+        level,
+        &c,
+        dense_only_narrow,
     )))
 }
 
@@ -1140,6 +1156,27 @@ impl Refinement {
         counts: &MeshCounts,
         levels: u32,
     ) -> Result<num_bigint::BigInt> {
+        Refinement::tables_bound(rule, counts, levels, false)
+    }
+
+    /// [`Refinement::predicted_bytes_with_creases`] for a face-varying channel whose surface
+    /// has no crease rules (its sharpness is its corners, seams and boundary, infinitely
+    /// sharp: override rows of at most 3 entries): a level with a face of more than 32 sides
+    /// never gets a dense table, so each face counts at most 32 entries per side.
+    pub(crate) fn predicted_channel_bytes(
+        rule: Rule,
+        counts: &MeshCounts,
+        levels: u32,
+    ) -> Result<num_bigint::BigInt> {
+        Refinement::tables_bound(rule, counts, levels, true)
+    }
+
+    fn tables_bound(
+        rule: Rule,
+        counts: &MeshCounts,
+        levels: u32,
+        dense_only_narrow: bool,
+    ) -> Result<num_bigint::BigInt> {
         use num_bigint::BigInt;
         let plan = super::plan(rule, counts)?;
         if levels == 0 || crease_table_bytes(&plan, counts, 0)?.is_none() {
@@ -1147,7 +1184,7 @@ impl Refinement {
         }
         let mut bytes = BigInt::from(0u32);
         for s in 0..levels {
-            bytes += crease_table_bytes(&plan, counts, s)?.unwrap_or_default();
+            bytes += table_bytes(&plan, counts, s, dense_only_narrow)?.unwrap_or_default();
         }
         // The last parent level keeps its connectivity for the index buffers.
         let c = plan.scheme.counts_at(counts, u64::from(levels - 1))?;

@@ -66,10 +66,16 @@ pub(crate) fn one_shot(
         creases.set_budgets(crease_budgets(plan, counts, levels)?);
     }
     let grow = !opts.preallocate;
+    let as_faces = faces;
     let faces = faces && !grow && direct(plan.algorithm);
     let planned = plan_sizes(plan, counts, levels, !faces)?;
     if levels == 0 {
-        return Ok(OneShot::Mesh(mesh.clone()));
+        // A face list asked for is the input's, without a copy of its half-edge mesh first.
+        return Ok(if as_faces {
+            OneShot::Faces(mesh.to_polygon_mesh(), mesh.n_edges())
+        } else {
+            OneShot::Mesh(mesh.clone())
+        });
     }
     let mut r = Refinement::streaming(plan, levels, opts.threads, creases);
     crate::subdivide::with_threads(opts.threads, || {

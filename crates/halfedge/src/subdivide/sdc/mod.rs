@@ -256,6 +256,18 @@ impl Sharpness {
     }
 }
 
+/// The largest face degree of a level that may be refined by a dense weight table: its
+/// Catmull-Clark rows expand the face points, so a face of degree `d` puts `d` entries in each
+/// of its `d` edge rows and `d` vertex rows, `d²` in all. A level with a wider face keeps the
+/// rule's tables and overrides the rows that differ, whatever their number (linear in the
+/// degree for the infinitely sharp and crease rows of a face-varying channel).
+pub(crate) const DENSE_MAX_DEGREE: usize = 32;
+
+/// Whether level `t` has a face of more than [`DENSE_MAX_DEGREE`] sides.
+pub(crate) fn has_wide_face(t: &Topo<'_>) -> bool {
+    (0..t.nf() as u32).any(|f| t.face_degree(f) > DENSE_MAX_DEGREE)
+}
+
 /// The scheme of a weight table, for [`table_bytes_bound`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum TableScheme {
@@ -271,11 +283,17 @@ pub(crate) enum TableScheme {
 /// faces (`deg f1 + deg f2 - 2`, 2 on the boundary), a face row its corners. The sums of
 /// squared face degrees come from the base's faces by degree at level 0 and are `16 F` (quads)
 /// after. 12 bytes per entry, 4 per row and one.
+///
+/// With `dense_only_narrow` (a level with a face of more than [`DENSE_MAX_DEGREE`] sides never
+/// gets the dense table, and its override rows are short: a face-varying channel without
+/// semi-sharp creases) a face of degree `d` counts `d min(d, DENSE_MAX_DEGREE)` instead of
+/// `d²`: linear in the degree.
 pub(crate) fn table_bytes_bound(
     scheme: TableScheme,
     base: &schemes::MeshCounts,
     level: u32,
     c: &schemes::LevelCounts,
+    dense_only_narrow: bool,
 ) -> num_bigint::BigInt {
     use num_bigint::BigInt;
     let (v, e, f) = (&c.vertices, &c.edges, &c.faces);
@@ -289,7 +307,14 @@ pub(crate) fn table_bytes_bound(
                 let squares: BigInt = base
                     .faces_by_degree
                     .iter()
-                    .map(|(&d, &n)| BigInt::from(d) * d * n)
+                    .map(|(&d, &n)| {
+                        let cap = if dense_only_narrow {
+                            d.min(DENSE_MAX_DEGREE as u32)
+                        } else {
+                            d
+                        };
+                        BigInt::from(d) * cap * n
+                    })
                     .sum();
                 (squares, BigInt::from(base.corners))
             } else {
