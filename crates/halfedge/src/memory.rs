@@ -646,7 +646,7 @@ pub fn predicted_uv_bytes(
 ///   are quads but the face faces and the faces of the base vertices, whose degree is their
 ///   valence, not counted beyond it), or 7 when a face has more than 32 sides (a corner of
 ///   such a face is 4 weights over its value and the face's three sums, which take 3 weights
-///   per corner: `dual.rs`'s `DIRECT_MAX_DEGREE`);
+///   per corner: `wide.rs`'s `DIRECT_MAX`);
 /// - the last level's corner values, the caller's index buffer and the corner values of the
 ///   level before it while it is refined (4 bytes per corner; corners bounded by `2E` of the
 ///   layout refined as a mesh);
@@ -688,7 +688,7 @@ fn corner_uv_bytes(
         .map_or(4, |&d| d.max(4));
     // Doo-Sabin: a corner of a face of at most 32 sides is a row over the face's corners, one
     // of a wider face 4 weights and its share of the face's three sums (`dual.rs`).
-    let wide = degree as usize > crate::subdivide::dual::DIRECT_MAX_DEGREE;
+    let wide = degree as usize > crate::subdivide::wide::DIRECT_MAX;
     let weights = BigInt::from(match rule {
         crate::Rule::DooSabin if wide => 7,
         crate::Rule::DooSabin => degree,

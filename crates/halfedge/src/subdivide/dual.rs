@@ -25,7 +25,7 @@
 //! `w_j = (3 + 2 cos(2πj/n)) / (4n)`, for every face, boundary or not; the boundary points
 //! are Chaikin's, so the boundary converges to the quadratic B-spline of the boundary polygon
 //! (the rule and its sources: [`schemes::catalog::doo_sabin_boundary`]). A face of more than
-//! [`DIRECT_MAX_DEGREE`] sides gets its corners from three face-wide sums instead of a sum
+//! [`DIRECT_MAX`](super::wide::DIRECT_MAX) sides gets its corners from three face-wide sums instead of a sum
 //! over the face per corner (the same weights, `O(n)` rather than `O(n²)` per face), positions
 //! and UVs alike.
 //!
@@ -55,6 +55,7 @@ use super::refine::Vector;
 use super::sdc::WeightTable;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
+use super::wide::{angle, Ring, Wide};
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
@@ -253,15 +254,25 @@ fn vertex_faces<const GROW: bool>(
 }
 
 /// The Doo-Sabin points of a step, appended to `out` (corners and, with boundary, Chaikin
-/// points).
+/// points). A face of more than [`DIRECT_MAX`](super::wide::DIRECT_MAX) sides gets its corners from three face-wide
+/// sums ([`Wide::sums`]): rewriting the weight `(3 + 2 cos(2π(j - i)/n)) / (4n)` of corner
+/// `j` in the point of corner `i` as `3/(4n) + (cos θ_i cos θ_j + sin θ_i sin θ_j) / (2n)`,
+/// `θ_j = 2πj/n` from the face's own first corner, the point is
+/// `p_i = v_i / 4 + (3/4) mean + (1/2)(cos θ_i C + sin θ_i D)` with
+/// `C = (1/n) Σ cos θ_j v_j`, `D = (1/n) Σ sin θ_j v_j`: `O(n)` per face, equal to the direct
+/// sum ([`doo_sabin_point`]) up to rounding (the tests hold them to 1e-12 relative).
 pub(crate) fn doo_sabin_points<V: Vector>(
     t: &Topo<'_>,
     src: &[V],
     out: &mut impl Sink<V>,
     parallel: bool,
 ) {
-    let wide = WideFaces::of(t);
-    let sums = wide.as_ref().map(|w| w.sums(t, src));
+    let wide = Wide::of(t, Ring::Faces);
+    let sums: Option<Vec<Vec<V>>> = wide.as_ref().map(|w| {
+        (0..w.len())
+            .map(|slot| w.sums(t, slot, 1, |h| src[t.source(h) as usize].clone()))
+            .collect()
+    });
     out.append(2 * t.ne(), parallel, |h| {
         let h = h as u32;
         if t.is_boundary(h) {
@@ -269,8 +280,10 @@ pub(crate) fn doo_sabin_points<V: Vector>(
         }
         if let (Some(w), Some(sums)) = (&wide, &sums) {
             if let Some((slot, i)) = w.corner(t, h) {
-                let (n, [mean, c, d]) = (w.degree(slot), &sums[slot]);
-                let (sin, cos) = corner_angle(n, i).sin_cos();
+                let (n, [mean, c, d]) = (w.size(slot), &sums[slot][..]) else {
+                    unreachable!("three sums")
+                };
+                let (sin, cos) = angle(n, i).sin_cos();
                 return src[t.source(h) as usize]
                     .clone()
                     .scale(0.25)
@@ -339,143 +352,8 @@ fn doo_sabin_weight(n: usize, j: usize) -> f64 {
     }
 }
 
-/// The largest face degree whose Doo-Sabin points are direct sums over the face
-/// ([`doo_sabin_point`], `n` products per corner: `n²` per face); a face of more sides gets
-/// them from three face-wide sums ([`WideFaces`]), `O(n)` per face. Rewriting the weight
-/// `(3 + 2 cos(2π(j - i)/n)) / (4n)` of corner `j` in the point of corner `i` as
-/// `3/(4n) + (cos θ_i cos θ_j + sin θ_i sin θ_j) / (2n)`, `θ_j = 2πj/n` from the face's own
-/// first corner, the point is
-///
-/// `p_i = v_i / 4 + (3/4) mean + (1/2)(cos θ_i C + sin θ_i D)`,
-/// `C = (1/n) Σ cos θ_j v_j`, `D = (1/n) Σ sin θ_j v_j`,
-///
-/// equal to the direct sum up to rounding (about `n` ulps; the tests hold them to 1e-12
-/// relative just above the threshold). 32 keeps every ordinary mesh's output bit for bit what
-/// it was (the shared meshes' faces have at most 16 sides; a Doo-Sabin level's faces are
-/// the base's faces, quads and the base's vertex rings), while a face of 33 sides costs at
-/// most 33 products per corner, never more than about five times the face-wide form.
-pub(crate) const DIRECT_MAX_DEGREE: usize = 32;
-
-/// The angle `θ_i = 2πi/n` of corner `i` of an `n`-gon in the face-wide form.
-fn corner_angle(n: u32, i: u32) -> f64 {
-    2.0 * PI * f64::from(i) / f64::from(n)
-}
-
-/// The faces of `t` with more than [`DIRECT_MAX_DEGREE`] sides, for the face-wide form of
-/// their Doo-Sabin points and UV rows: `O(corners)` to build, `O(log)` per corner of a wide
-/// face to look up (a bit per face tells the others), 12 bytes per corner of a wide face, 8
-/// per wide face and a bit per face.
-pub(crate) struct WideFaces {
-    /// Each wide face's first half-edge (corner 0, its [`Topo::face_halfedge`]) and degree.
-    faces: Vec<(u32, u32)>,
-    /// Each corner of a wide face: (its half-edge, the face's slot in `faces`, its index from
-    /// corner 0), by half-edge.
-    corners: Vec<(u32, u32, u32)>,
-    /// One bit per face of `t`, set on the wide ones: most corners are told apart without a
-    /// search.
-    is_wide: Vec<u64>,
-}
-
-impl WideFaces {
-    /// The wide faces of `t`; `None` when there is none or the room for them is refused (the
-    /// direct sums then serve every face, in quadratic time rather than an abort).
-    pub(crate) fn of(t: &Topo<'_>) -> Option<WideFaces> {
-        let mut count = (0usize, 0usize);
-        for f in 0..t.nf() as u32 {
-            let n = t.face_degree(f);
-            if n > DIRECT_MAX_DEGREE {
-                count = (count.0 + 1, count.1 + n);
-            }
-        }
-        if count.0 == 0 {
-            return None;
-        }
-        let mut faces = Vec::new();
-        let mut corners = Vec::new();
-        let mut is_wide = Vec::new();
-        faces.try_reserve_exact(count.0).ok()?;
-        corners.try_reserve_exact(count.1).ok()?;
-        is_wide.try_reserve_exact(t.nf().div_ceil(64)).ok()?;
-        is_wide.resize(t.nf().div_ceil(64), 0u64);
-        for f in 0..t.nf() as u32 {
-            let n = t.face_degree(f);
-            if n <= DIRECT_MAX_DEGREE {
-                continue;
-            }
-            let slot = faces.len() as u32;
-            faces.push((t.face_halfedge(f), n as u32));
-            is_wide[f as usize / 64] |= 1 << (f % 64);
-            let mut i = 0u32;
-            t.for_face(f, |h| {
-                corners.push((h, slot, i));
-                i += 1;
-            });
-        }
-        corners.sort_unstable_by_key(|c| c.0);
-        Some(WideFaces {
-            faces,
-            corners,
-            is_wide,
-        })
-    }
-
-    /// The number of wide faces.
-    pub(crate) fn len(&self) -> usize {
-        self.faces.len()
-    }
-
-    /// The degree of the wide face in slot `slot`.
-    pub(crate) fn degree(&self, slot: usize) -> u32 {
-        self.faces[slot].1
-    }
-
-    /// The slot of the face of half-edge `h` (of `t`, not a boundary half-edge) and the index
-    /// of its corner there, if the face is wide.
-    pub(crate) fn corner(&self, t: &Topo<'_>, h: u32) -> Option<(usize, u32)> {
-        let f = t.face(h) as usize;
-        if self.is_wide.get(f / 64).map_or(0, |w| w & (1 << (f % 64))) == 0 {
-            return None;
-        }
-        let k = self.corners.binary_search_by_key(&h, |c| c.0).ok()?;
-        let (_, slot, i) = self.corners[k];
-        Some((slot as usize, i))
-    }
-
-    /// Calls `f(j, h)` on each corner of the wide face in slot `slot`, from corner 0.
-    pub(crate) fn for_corners(&self, t: &Topo<'_>, slot: usize, mut f: impl FnMut(u32, u32)) {
-        let (mut h, n) = self.faces[slot];
-        for j in 0..n {
-            f(j, h);
-            h = t.next(h);
-        }
-    }
-
-    /// Each wide face's `[mean, C, D]` of `src`.
-    fn sums<V: Vector>(&self, t: &Topo<'_>, src: &[V]) -> Vec<[V; 3]> {
-        (0..self.len())
-            .map(|slot| {
-                let n = self.degree(slot);
-                let each = 1.0 / f64::from(n);
-                let mut sums = [V::zero(), V::zero(), V::zero()];
-                self.for_corners(t, slot, |j, h| {
-                    let (sin, cos) = corner_angle(n, j).sin_cos();
-                    let v = &src[t.source(h) as usize];
-                    let zero = [V::zero(), V::zero(), V::zero()];
-                    let [mean, c, d] = std::mem::replace(&mut sums, zero);
-                    sums = [
-                        mean.add(v.clone().scale(each)),
-                        c.add(v.clone().scale(cos * each)),
-                        d.add(v.clone().scale(sin * each)),
-                    ];
-                });
-                sums
-            })
-            .collect()
-    }
-}
-
 /// The Doo-Sabin point of the corner at the source of `h` in its face, as a direct sum over
-/// the face (faces of at most [`DIRECT_MAX_DEGREE`] sides).
+/// the face (faces of at most [`DIRECT_MAX`](super::wide::DIRECT_MAX) sides).
 fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
     let n = t.face_degree(t.face(h));
     let mut sum = V::zero();
@@ -506,7 +384,7 @@ fn n_boundary(t: &Topo<'_>) -> usize {
 /// of the edge's face), `2E + r` the Chaikin point near the target of boundary half-edge `r`,
 /// then two per seam edge `e` (in increasing order): the Chaikin points of `e` near the source
 /// and near the target of half-edge `2e`, in the chart of its face. A corner of a face of
-/// more than [`DIRECT_MAX_DEGREE`] sides is a row of 4 weights over its own value and the
+/// more than [`DIRECT_MAX`](super::wide::DIRECT_MAX) sides is a row of 4 weights over its own value and the
 /// face's three face-wide sums (the step's auxiliary values, [`CornerStep::aux`]), so the
 /// table is linear in the corners whatever the faces' degrees.
 pub(crate) fn doo_sabin_uv_step<'a>(
@@ -523,17 +401,17 @@ pub(crate) fn doo_sabin_uv_step<'a>(
     let mut row = Vec::new();
     // A wide face's corners are 4-entry rows over its value, then its three face-wide sums,
     // computed first as the step's auxiliary values `n_values + 3 slot + (0, 1, 2)`.
-    let wide = WideFaces::of(t);
+    let wide = Wide::of(t, Ring::Faces);
     let aux = match &wide {
         Some(w) => {
-            let n_corners: usize = (0..w.len()).map(|slot| w.degree(slot) as usize).sum();
+            let n_corners: usize = (0..w.len()).map(|slot| w.size(slot) as usize).sum();
             let mut aux = WeightTable::with_room(3 * w.len(), 3 * n_corners)?;
             for slot in 0..w.len() {
-                let n = w.degree(slot);
+                let n = w.size(slot);
                 let each = 1.0 / f64::from(n);
                 for k in 0..3 {
                     w.for_corners(t, slot, |j, h| {
-                        let (sin, cos) = corner_angle(n, j).sin_cos();
+                        let (sin, cos) = angle(n, j).sin_cos();
                         let weight = [each, cos * each, sin * each][k];
                         row.push((cv[h as usize], weight));
                     });
@@ -556,8 +434,8 @@ pub(crate) fn doo_sabin_uv_step<'a>(
             let g = h ^ 1;
             chaikin_row(&mut row, cv[t.next(g) as usize], cv[g as usize]);
         } else if let Some((slot, i)) = wide.as_ref().and_then(|w| w.corner(t, h)) {
-            let n = wide.as_ref().map_or(0, |w| w.degree(slot));
-            let (sin, cos) = corner_angle(n, i).sin_cos();
+            let n = wide.as_ref().map_or(0, |w| w.size(slot));
+            let (sin, cos) = angle(n, i).sin_cos();
             row.push((cv[h as usize], 0.25));
             row.push((aux_value(slot, 0), 0.75));
             row.push((aux_value(slot, 1), 0.5 * cos));
@@ -689,12 +567,13 @@ pub(crate) fn mid_edge_uv_step<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::subdivide::wide::DIRECT_MAX;
 
     /// Just above the threshold (and further up) the face-wide form equals the direct sum
     /// over the face to 1e-12 of the face's size, for every corner.
     #[test]
     fn the_face_wide_form_agrees_with_the_direct_sum() {
-        for n in [DIRECT_MAX_DEGREE + 1, 40, 257] {
+        for n in [DIRECT_MAX + 1, 40, 257] {
             // A wavy n-gon, off-centre, so that no symmetry hides an error.
             let positions: Vec<DVec3> = (0..n)
                 .map(|i| {
@@ -707,7 +586,7 @@ mod tests {
             let mesh = HalfEdgeMesh::try_from_polygons(positions.clone(), &[face]).expect("mesh");
             let t = Topo::new(&mesh);
             let src = &mesh.positions;
-            let wide = WideFaces::of(&t).expect("one wide face");
+            let wide = Wide::of(&t, Ring::Faces).expect("one wide face");
             assert_eq!(wide.len(), 1);
             let mut out: Vec<DVec3> = Vec::new();
             doo_sabin_points(&t, src, &mut out, false);
@@ -729,7 +608,7 @@ mod tests {
     /// At the threshold the direct sums serve: no wide face.
     #[test]
     fn a_face_at_the_threshold_is_summed_directly() {
-        let n = DIRECT_MAX_DEGREE;
+        let n = DIRECT_MAX;
         let positions: Vec<DVec3> = (0..n)
             .map(|i| {
                 let a = 2.0 * PI * i as f64 / n as f64;
@@ -738,6 +617,6 @@ mod tests {
             .collect();
         let face: Vec<u32> = (0..n as u32).collect();
         let mesh = HalfEdgeMesh::try_from_polygons(positions, &[face]).expect("mesh");
-        assert!(WideFaces::of(&Topo::new(&mesh)).is_none());
+        assert!(Wide::of(&Topo::new(&mesh), Ring::Faces).is_none());
     }
 }

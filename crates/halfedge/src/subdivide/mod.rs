@@ -97,6 +97,7 @@ mod stages;
 mod to_faces;
 mod topo;
 mod trisplit;
+pub(crate) mod wide;
 
 use num_bigint::BigInt;
 pub use schemes::Rule;

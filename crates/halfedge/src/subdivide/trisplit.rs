@@ -21,6 +21,7 @@ use super::build::{Builder, StepContext};
 use super::par::Sink;
 use super::refine::Vector;
 use super::topo::Topo;
+use super::wide::{angle, Ring, Wide};
 use crate::{HalfEdgeMesh, Result};
 
 /// Where a new edge point goes (the 4:1 schemes differ only in geometry).
@@ -244,7 +245,10 @@ pub(crate) fn tri_points<V: Vector>(
     } else {
         out.append(nv as usize, parallel, |v| pos(v as u32));
     }
-    // Edge points.
+    // Edge points (the butterfly's wide vertex rings summed once, not once per edge).
+    let rings = (rule == TriRule::Butterfly)
+        .then(|| WideRings::of(&t, src))
+        .flatten();
     let per_edge = (n - 1) as usize;
     out.append(ne as usize * per_edge, parallel, |i| {
         let e = (i / per_edge) as u32;
@@ -252,7 +256,7 @@ pub(crate) fn tri_points<V: Vector>(
             TriRule::Loop => loop_edge(&t, src, e),
             TriRule::Midpoint => midpoint(&t, src, e),
             TriRule::Icosphere => midpoint(&t, src, e).project_to_sphere(),
-            TriRule::Butterfly => butterfly_edge(&t, src, e),
+            TriRule::Butterfly => butterfly_edge(&t, src, rings.as_ref(), e),
             TriRule::Linear => {
                 let k = (i % per_edge) as f64 + 1.0;
                 let a = pos(t.source(2 * e));
@@ -365,7 +369,15 @@ pub(crate) fn loop_interior_edge<V: Vector>(a: V, b: V, c: V, d: V) -> V {
 /// - Simplifications (documented): an interior edge with exactly one boundary end uses the
 ///   one-ring stencil of its interior end (regular or not); an interior edge whose two ends
 ///   are both on the boundary takes the midpoint.
-pub(crate) fn butterfly_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
+///
+/// `rings`: the wide vertex rings ([`WideRings`]), whose one-ring stencils are read off their
+/// ring-wide sums.
+pub(crate) fn butterfly_edge<V: Vector>(
+    t: &Topo<'_>,
+    src: &[V],
+    rings: Option<&WideRings<V>>,
+    e: u32,
+) -> V {
     let pos = |v: u32| src[v as usize].clone();
     let h = 2 * e;
     let (va, vb) = (t.source(h), t.target(h));
@@ -384,8 +396,12 @@ pub(crate) fn butterfly_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
     let b_in = !t.is_boundary_vertex(vb);
     match (a_in, b_in) {
         (true, true) => {
-            let ka = t.valence(va);
-            let kb = t.valence(vb);
+            let valence = |v: u32, g: u32| match rings.and_then(|r| r.wide.corner(t, g)) {
+                Some((slot, _)) => rings.map_or(0, |r| r.wide.size(slot) as usize),
+                None => t.valence(v),
+            };
+            let ka = valence(va, h);
+            let kb = valence(vb, h ^ 1);
             match (ka == 6, kb == 6) {
                 (true, true) => {
                     let c = pos(t.target(t.next(h)));
@@ -400,24 +416,63 @@ pub(crate) fn butterfly_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
                         .add(c.add(d).scale(0.125))
                         .sub(w.scale(1.0 / 16.0))
                 }
-                (false, true) => one_ring_stencil(t, src, h),
-                (true, false) => one_ring_stencil(t, src, h ^ 1),
-                (false, false) => one_ring_stencil(t, src, h)
-                    .add(one_ring_stencil(t, src, h ^ 1))
+                (false, true) => one_ring_stencil(t, src, rings, h),
+                (true, false) => one_ring_stencil(t, src, rings, h ^ 1),
+                (false, false) => one_ring_stencil(t, src, rings, h)
+                    .add(one_ring_stencil(t, src, rings, h ^ 1))
                     .scale(0.5),
             }
         }
-        (true, false) => one_ring_stencil(t, src, h),
-        (false, true) => one_ring_stencil(t, src, h ^ 1),
+        (true, false) => one_ring_stencil(t, src, rings, h),
+        (false, true) => one_ring_stencil(t, src, rings, h ^ 1),
         (false, false) => a.add(b).scale(0.5),
+    }
+}
+
+/// The interior vertices of a level whose valence is over [`DIRECT_MAX`](super::wide::DIRECT_MAX) and their
+/// ring-wide sums (mean and the first two harmonics of their neighbours' positions), for the
+/// butterfly's one-ring stencil in `O(1)` per edge rather than `O(k)`.
+pub(crate) struct WideRings<V> {
+    wide: Wide,
+    sums: Vec<Vec<V>>,
+}
+
+impl<V: Vector> WideRings<V> {
+    /// `None` when no interior vertex of `t` is wide.
+    fn of(t: &Topo<'_>, src: &[V]) -> Option<WideRings<V>> {
+        let wide = Wide::of(t, Ring::Vertices)?;
+        let sums = (0..wide.len())
+            .map(|slot| wide.sums(t, slot, 2, |h| src[t.target(h) as usize].clone()))
+            .collect();
+        Some(WideRings { wide, sums })
     }
 }
 
 /// Zorin's stencil around the (interior) source `x` of `g`, valence `k`: `3/4 x + Σ s_j p_j`,
 /// `p_0` the target of `g`; `k = 3`: `5/12, -1/12, -1/12`; `k = 4`: `3/8, 0, -1/8, 0`;
 /// `k >= 5`: `s_j = (1/4 + cos(2πj/k) + 1/2 cos(4πj/k)) / k`.
-fn one_ring_stencil<V: Vector>(t: &Topo<'_>, src: &[V], g: u32) -> V {
+///
+/// Around a wide vertex (valence over [`DIRECT_MAX`](super::wide::DIRECT_MAX)) the same stencil from its ring-wide
+/// sums, `O(1)`: with `θ_j = 2πj/k` from the ring's own first half-edge and `g` its corner
+/// `i`, `Σ s_(j-i) p_j = M/4 + cos θ_i C1 + sin θ_i S1 + (cos 2θ_i C2 + sin 2θ_i S2) / 2`,
+/// `M` the ring's mean, `C1, S1, C2, S2` its `(1/k) Σ cos(θ_j) p_j`, ... ([`Wide::sums`]).
+fn one_ring_stencil<V: Vector>(t: &Topo<'_>, src: &[V], rings: Option<&WideRings<V>>, g: u32) -> V {
     let x = src[t.source(g) as usize].clone();
+    if let Some((r, (slot, i))) = rings.and_then(|r| Some((r, r.wide.corner(t, g)?))) {
+        let [m, c1, s1, c2, s2] = &r.sums[slot][..] else {
+            unreachable!("five sums")
+        };
+        let k = r.wide.size(slot);
+        let (sin, cos) = angle(k, i).sin_cos();
+        let (sin2, cos2) = angle(k, (2 * i) % k).sin_cos();
+        return x
+            .scale(0.75)
+            .add(m.clone().scale(0.25))
+            .add(c1.clone().scale(cos))
+            .add(s1.clone().scale(sin))
+            .add(c2.clone().scale(0.5 * cos2))
+            .add(s2.clone().scale(0.5 * sin2));
+    }
     let k = t.valence(t.source(g));
     let mut sum = V::zero();
     let mut h = g;
@@ -438,4 +493,61 @@ fn one_ring_stencil<V: Vector>(t: &Topo<'_>, src: &[V], g: u32) -> V {
         h = t.next(h ^ 1);
     }
     x.scale(0.75).add(sum)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::subdivide::wide::DIRECT_MAX;
+    use glam::DVec3;
+
+    /// A wavy bipyramid: apexes 0 (top) and `k + 1` (bottom) of valence `k`, ring `1..=k`.
+    fn bipyramid(k: usize) -> HalfEdgeMesh {
+        let mut positions = vec![DVec3::new(0.2, -0.1, 1.0)];
+        positions.extend((0..k).map(|i| {
+            let a = 2.0 * PI * i as f64 / k as f64;
+            let r = 1.0 + 0.3 * (3.0 * a).sin();
+            DVec3::new(r * a.cos(), r * a.sin(), 0.1 * (5.0 * a).cos())
+        }));
+        positions.push(DVec3::new(-0.1, 0.3, -1.2));
+        let ring = |i: usize| (1 + i % k) as u32;
+        let bottom = (k + 1) as u32;
+        let faces: Vec<Vec<u32>> = (0..k)
+            .flat_map(|i| {
+                [
+                    vec![0, ring(i), ring(i + 1)],
+                    vec![bottom, ring(i + 1), ring(i)],
+                ]
+            })
+            .collect();
+        HalfEdgeMesh::try_from_polygons(positions, &faces).expect("a closed bipyramid")
+    }
+
+    /// Around a wide vertex the one-ring stencil from the ring-wide sums equals the direct
+    /// sum over the ring to 1e-12, from every half-edge; at the threshold no ring is wide.
+    #[test]
+    fn the_ring_wide_stencil_agrees_with_the_direct_sum() {
+        for k in [DIRECT_MAX + 1, 40, 257] {
+            let mesh = bipyramid(k);
+            let t = Topo::new(&mesh);
+            let src = &mesh.positions;
+            let rings = WideRings::of(&t, src).expect("two wide apexes");
+            assert_eq!(rings.wide.len(), 2);
+            let mut checked = 0;
+            for g in 0..2 * t.ne() as u32 {
+                let v = t.source(g);
+                if v != 0 && v != (k + 1) as u32 {
+                    continue;
+                }
+                let wide = one_ring_stencil(&t, src, Some(&rings), g);
+                let direct = one_ring_stencil(&t, src, None, g);
+                let error = (wide - direct).length();
+                assert!(error <= 1e-12, "valence {k}, half-edge {g}: {error:e}");
+                checked += 1;
+            }
+            assert_eq!(checked, 2 * k);
+        }
+        let mesh = bipyramid(DIRECT_MAX);
+        assert!(WideRings::of(&Topo::new(&mesh), &mesh.positions).is_none());
+    }
 }

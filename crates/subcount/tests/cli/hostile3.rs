@@ -360,3 +360,50 @@ fn outputs_named_for_other_mesh_formats_are_refused() {
         assert!(text.starts_with("v "), "{name}: {text}");
     }
 }
+
+/// Every pass is linear in a vertex's valence under every scheme: a bipyramid whose two apexes
+/// have valence 16,000, subdivided to level 2 by each scheme that applies to it. The modified
+/// butterfly summed each apex's ring once per edge (10.5 s in release); its wide rings are
+/// summed once per level now (0.19 s). A quadratic pass in any scheme breaks the bound.
+#[test]
+fn high_valence_vertices_cost_linear_time_under_every_scheme() {
+    let files = Files::new();
+    let k = 16_000;
+    let mut text = String::new();
+    for i in 0..k {
+        let a = std::f64::consts::TAU * f64::from(i) / f64::from(k);
+        text.push_str(&format!("v {} {} 0\n", a.cos(), a.sin()));
+    }
+    text.push_str("v 0 0 1\nv 0 0 -1\n");
+    for i in 0..k {
+        let (a, b) = (i + 1, (i + 1) % k + 1);
+        text.push_str(&format!("f {a} {b} {}\nf {b} {a} {}\n", k + 1, k + 2));
+    }
+    let mesh = files.write("bipyramid.obj", text.as_bytes());
+    for scheme in [
+        "loop",
+        "butterfly",
+        "midpoint",
+        "icosphere",
+        "sqrt3",
+        "catmull-clark",
+        "doo-sabin",
+        "mid-edge",
+        "loop-general",
+        "catmull-clark-general",
+    ] {
+        let start = std::time::Instant::now();
+        let summary = ok(&[
+            "subdivide",
+            "--mesh",
+            &mesh,
+            "--scheme",
+            scheme,
+            "--levels",
+            "2",
+        ]);
+        let seconds = start.elapsed().as_secs_f64();
+        assert!(summary.starts_with("level 2: "), "{scheme}: {summary}");
+        assert!(seconds < 4.0, "{scheme} took {seconds:.1} s on valence {k}");
+    }
+}

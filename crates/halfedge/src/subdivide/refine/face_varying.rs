@@ -136,7 +136,7 @@
 //! sides the row is `λ_f(v)/4 + (3/4) mean + (1/2)(cos θ_i C + sin θ_i D)` over the face's
 //! three sums (the mean and the `cos θ_j`- and `sin θ_j`-weighted means of its values,
 //! `θ_j = 2πj/n`), computed once per face as the step's auxiliary values: the same weights up
-//! to rounding, 4 per corner rather than `n` (`dual.rs`'s `DIRECT_MAX_DEGREE`).
+//! to rounding, 4 per corner rather than `n` (`wide.rs`'s `DIRECT_MAX`).
 //! (b) On a surface boundary edge of face `f` its two Chaikin points (new vertices) get
 //! `(3 λ_f(x) + λ_f(y)) / 4` near end `x`, in `f`'s chart: one value each, shared by the
 //! boundary quad and the vertex faces that use the same vertex.
