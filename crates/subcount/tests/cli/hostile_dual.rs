@@ -331,3 +331,52 @@ fn the_guard_counts_level_0() {
         assert_predicted(&format!("grid level 0 {uv:?}"), peak, predicted);
     }
 }
+
+/// Issue 24: a crease-tagged 80,000-gon under Catmull-Clark. The guard bounded each face's
+/// crease table rows by `d²` (286 GiB predicted, refused without `--allow-large`); an
+/// overriding row now names a face of more than 32 sides by its child point, so the rows and
+/// the bound are linear in the degree. Semi-sharp (2.0) and fractional (0.5) creases on every
+/// edge and a few sharp corners, one-shot and refined once in `f32`.
+#[test]
+fn crease_tags_on_an_80000_gon_are_linear() {
+    let n = 80_000;
+    for sharpness in ["2.0", "0.5"] {
+        let mut text = ngon(n);
+        write!(text, "t crease {}/1/0", 2 * n).expect("text");
+        for i in 0..n {
+            write!(text, " {i} {}", (i + 1) % n).expect("text");
+        }
+        writeln!(text, " {sharpness}").expect("text");
+        writeln!(text, "t corner 3/3/0 0 1 40000 3.0 3.0 3.0").expect("text");
+        let mesh = Generated::new(&text);
+        let (path, out) = (mesh.path(), mesh.out());
+        let base = [
+            "--mesh",
+            &path,
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "-o",
+            &out,
+        ];
+        for extra in [&[][..], &["--precision", "f32"]] {
+            let mut args = base.to_vec();
+            args.extend_from_slice(extra);
+            let (elapsed, peak, predicted) = timed(&args);
+            assert!(
+                elapsed < Duration::from_secs(3),
+                "{sharpness} {extra:?}: {elapsed:?} on an 80,000-gon"
+            );
+            assert!(
+                peak < 150_000_000,
+                "{sharpness} {extra:?}: a peak of {peak} bytes"
+            );
+            assert_predicted(
+                &format!("80,000-gon {sharpness} {extra:?}"),
+                peak,
+                predicted,
+            );
+        }
+    }
+}

@@ -1125,7 +1125,8 @@ impl Refinement {
     /// Catmull-Clark) at `levels` under crease rules ([`sdc`](super::sdc)): as
     /// [`Refinement::predicted_bytes`], with each level's tables bounded by a dense weight
     /// table of full smooth rows (a vertex's distinct neighbours through its faces, an edge's
-    /// two faces' corners); within about 15 % of a level whose every row is semi-sharp and
+    /// two faces' corners; a face of more than 32 sides, which an overriding row names by its
+    /// child point, counting 4 entries per side rather than its degree: linear in it); within about 15 % of a level whose every row is semi-sharp and
     /// blended with its smooth mask, on quad and triangle meshes. A level whose rows mostly
     /// keep the rule's masks (a few creases, a UV channel's seams) keeps the flattened tables
     /// and its sharp rows ([Memory](Refinement#memory)), far below: about

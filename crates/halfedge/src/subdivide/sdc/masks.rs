@@ -28,7 +28,7 @@ use std::f64::consts::PI;
 use super::crease::{
     child_edge_sharpness, decrement, fractional_weight, is_sharp, vertex_rule_of, VertexRule,
 };
-use super::Linear;
+use super::{Linear, DENSE_MAX_DEGREE};
 use crate::mesh::INVALID;
 use crate::subdivide::par::Sink;
 use crate::subdivide::refine::Vector;
@@ -196,34 +196,42 @@ impl WeightTable {
         self.rows.is_none()
     }
 
-    /// Row `r` from the parent's data `src`.
+    /// Row `r` from the parent's data `src`; an index past `src` is a child vertex of
+    /// `child` (a wide face's point, computed by the base rule before the overriding rows).
     #[inline]
-    fn row<V: Vector>(&self, r: usize, src: &[V]) -> V {
+    fn row<V: Vector>(&self, r: usize, src: &[V], child: &[V]) -> V {
         let (a, b) = (self.offsets[r] as usize, self.offsets[r + 1] as usize);
         let mut sum = V::zero();
         for (&i, &w) in self.index[a..b].iter().zip(&self.weight[a..b]) {
-            sum = sum.add(src[i as usize].clone().scale(w));
+            let i = i as usize;
+            let value = match src.get(i) {
+                Some(v) => v.clone(),
+                None => child[i].clone(),
+            };
+            sum = sum.add(value.scale(w));
         }
         sum
     }
 
     /// The child vertices of a dense table from the parent's data `src`, appended to `out`.
     pub(crate) fn points<V: Vector>(&self, src: &[V], out: &mut impl Sink<V>, parallel: bool) {
-        out.append(self.rows(), parallel, |r| self.row(r, src));
+        out.append(self.rows(), parallel, |r| self.row(r, src, &[]));
     }
 
     /// Overwrites the child vertices of the rows of a sparse table in `dst` (the whole child
-    /// level, its other vertices computed by the base rule) from the parent's data `src`.
+    /// level, its other vertices computed by the base rule) from the parent's data `src` and
+    /// the face points of `dst` (a wide face's, never overridden).
     pub(crate) fn apply<V: Vector>(&self, src: &[V], dst: &mut [V], parallel: bool) {
         let Some(rows) = &self.rows else {
             return;
         };
         if parallel && rows.len() >= 2 * APPLY_CHUNK {
             use rayon::prelude::*;
+            let child = &*dst;
             let values: Vec<V> = (0..rows.len())
                 .into_par_iter()
                 .with_min_len(APPLY_CHUNK)
-                .map(|k| self.row(k, src))
+                .map(|k| self.row(k, src, child))
                 .collect();
             for (&r, v) in rows.iter().zip(values) {
                 if let Some(d) = dst.get_mut(r as usize) {
@@ -232,8 +240,9 @@ impl WeightTable {
             }
         } else {
             for (k, &r) in rows.iter().enumerate() {
+                let value = self.row(k, src, dst);
                 if let Some(d) = dst.get_mut(r as usize) {
-                    *d = self.row(k, src);
+                    *d = value;
                 }
             }
         }
@@ -506,6 +515,9 @@ impl<'a> LevelBuilder<'a> {
         let (nv, ne) = (t.nv(), t.ne());
         let n = rows.as_ref().map_or_else(|| self.n_rows(), Vec::len);
         let child = |k: usize| rows.as_ref().map_or(k, |r| r[k] as usize);
+        // Overriding rows name a wide face by its child point (computed by the base rule
+        // first): linear in the face's degree.
+        let refs = rows.is_some();
         let part = |range: std::ops::Range<usize>| {
             let mut scratch = Scratch::default();
             let mut index = Vec::with_capacity(8 * range.len());
@@ -515,11 +527,11 @@ impl<'a> LevelBuilder<'a> {
                 let r = child(k);
                 let mut row = std::mem::take(&mut scratch.row);
                 if r < nv {
-                    self.vertex_row(r as u32, &mut scratch, &mut row);
+                    self.vertex_row(r as u32, refs, &mut scratch, &mut row);
                 } else if r < nv + ne {
-                    self.edge_row((r - nv) as u32, &mut row);
+                    self.edge_row((r - nv) as u32, refs, &mut row);
                 } else {
-                    self.face_centre((r - nv - ne) as u32, 1.0, &mut row);
+                    self.face_centre((r - nv - ne) as u32, 1.0, false, &mut row);
                 }
                 merge_row(&mut row, &mut index, &mut weight);
                 ends.push(index.len());
@@ -562,14 +574,25 @@ impl<'a> LevelBuilder<'a> {
         Ok(table)
     }
 
-    /// Adds `w` times the centre of face `f` (its corners, `w / degree` each).
-    fn face_centre(&self, f: u32, w: f64, row: &mut Vec<(u32, f64)>) {
+    /// Adds `w` times the centre of face `f`: its corners, `w / degree` each, or with `refs`
+    /// for a face of more than [`DENSE_MAX_DEGREE`] sides its child point (index
+    /// `nv + ne + f`, past the parent's vertices), nothing when `w` is 0 (a term `0 * p`
+    /// changes no sum), so that a row is linear in the face's degree.
+    fn face_centre(&self, f: u32, w: f64, refs: bool, row: &mut Vec<(u32, f64)>) {
         let t = &self.t;
-        let each = 1.0 / t.face_degree(f) as f64;
+        let degree = t.face_degree(f);
+        if refs && degree > DENSE_MAX_DEGREE {
+            if w != 0.0 {
+                // Below the child count, which fits u32.
+                row.push(((t.nv() + t.ne()) as u32 + f, w));
+            }
+            return;
+        }
+        let each = 1.0 / degree as f64;
         t.for_face(f, |h| row.push((t.source(h), w * each)));
     }
 
-    fn vertex_row(&self, v: u32, scratch: &mut Scratch, row: &mut Vec<(u32, f64)>) {
+    fn vertex_row(&self, v: u32, refs: bool, scratch: &mut Scratch, row: &mut Vec<(u32, f64)>) {
         let t = &self.t;
         if self.linear == Linear::All
             || (self.linear == Linear::Boundaries && t.is_boundary_vertex(v))
@@ -614,12 +637,12 @@ impl<'a> LevelBuilder<'a> {
         }
         if self.scheme == Scheme::CatmullClark {
             for (&f, &w) in faces.iter().zip(&mask.faces) {
-                self.face_centre(f, w, row);
+                self.face_centre(f, w, refs, row);
             }
         }
     }
 
-    fn edge_row(&self, e: u32, row: &mut Vec<(u32, f64)>) {
+    fn edge_row(&self, e: u32, refs: bool, row: &mut Vec<(u32, f64)>) {
         let t = &self.t;
         let h = 2 * e;
         let (a, b) = (t.source(h), t.target(h));
@@ -666,7 +689,7 @@ impl<'a> LevelBuilder<'a> {
             Scheme::CatmullClark => {
                 for (f, w) in faces.into_iter().zip(fw) {
                     if f != INVALID {
-                        self.face_centre(f, w, row);
+                        self.face_centre(f, w, refs, row);
                     }
                 }
             }

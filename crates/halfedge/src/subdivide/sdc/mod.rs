@@ -263,6 +263,11 @@ impl Sharpness {
 /// degree for the infinitely sharp and crease rows of a face-varying channel).
 pub(crate) const DENSE_MAX_DEGREE: usize = 32;
 
+/// The entries a face of more than [`DENSE_MAX_DEGREE`] sides counts per side in
+/// [`table_bytes_bound`] (in place of its degree): an overriding row names it by its child
+/// point, one entry, next to the row's own vertices.
+const WIDE_FACE_ENTRIES: u32 = 4;
+
 /// Whether level `t` has a face of more than [`DENSE_MAX_DEGREE`] sides.
 pub(crate) fn has_wide_face(t: &Topo<'_>) -> bool {
     (0..t.nf() as u32).any(|f| t.face_degree(f) > DENSE_MAX_DEGREE)
@@ -284,10 +289,12 @@ pub(crate) enum TableScheme {
 /// squared face degrees come from the base's faces by degree at level 0 and are `16 F` (quads)
 /// after. 12 bytes per entry, 4 per row and one.
 ///
-/// With `dense_only_narrow` (a level with a face of more than [`DENSE_MAX_DEGREE`] sides never
-/// gets the dense table, and its override rows are short: a face-varying channel without
-/// semi-sharp creases) a face of degree `d` counts `d min(d, DENSE_MAX_DEGREE)` instead of
-/// `d²`: linear in the degree.
+/// A level with a face of more than [`DENSE_MAX_DEGREE`] sides never gets the dense table, and
+/// its overriding rows name such a face by its child point, one entry, rather than by its
+/// corners: a wide face of degree `d` counts `d WIDE_FACE_ENTRIES` instead of `d²` (linear in
+/// the degree: per corner, the face's entry in the vertex row, and per side its entry in the
+/// edge row with the two ends the sums above count once). With `dense_only_narrow` (a
+/// face-varying channel) it counts `d min(d, DENSE_MAX_DEGREE)`, as before.
 pub(crate) fn table_bytes_bound(
     scheme: TableScheme,
     base: &schemes::MeshCounts,
@@ -310,6 +317,8 @@ pub(crate) fn table_bytes_bound(
                     .map(|(&d, &n)| {
                         let cap = if dense_only_narrow {
                             d.min(DENSE_MAX_DEGREE as u32)
+                        } else if d > DENSE_MAX_DEGREE as u32 {
+                            WIDE_FACE_ENTRIES
                         } else {
                             d
                         };
