@@ -12,7 +12,9 @@ use schemes::Plan;
 
 use crate::args::{Precision, SchemeChoice, SubdivideArgs, VerifyArgs};
 use crate::failure::{scheme_failure, usage, write_failure, Failure, Kind};
-use crate::mesh::{guard_failure, real_levels, required_mesh, verify_levels, write_reports};
+use crate::mesh::{
+    guard_failure, real_levels, required_mesh, uv_bytes, verify_levels, write_reports,
+};
 use crate::model::{mesh_label, not_applicable, refuse_degenerate_faces, LoadedMesh};
 
 /// The composition `--scheme` names (two or more stages), if it names one.
@@ -81,16 +83,34 @@ fn stage_rules(plan: &Plan) -> Vec<(&str, Option<halfedge::Rule>)> {
         .collect()
 }
 
-/// The memory guard of one stage: the peak of subdividing its mesh, plus the mesh it starts
-/// from (held until the stage is done); the largest need of the stages so far in `peak`.
+/// The memory guard of one stage, as `subdivide`'s of one scheme: the peak of subdividing
+/// its mesh to a face list (the input, its half-edge build, the levels), the UV channel's
+/// share when UVs are carried, the mesh as read (its file lines and `vt`), and from the
+/// second stage on the mesh as read held beside the stage's own; the largest need of the
+/// stages so far in `peak`.
 fn guard_stage(
     stage: &StageStart<'_>,
+    base: &halfedge::PolygonMesh,
+    uvs: bool,
     allow_large: bool,
     peak: &mut BigInt,
 ) -> halfedge::Result<()> {
     let sizing = stage.rule.scheme_for(stage.counts)?;
-    let need = halfedge::memory::predicted_peak_bytes(&sizing, stage.counts, stage.levels, None)?
-        + halfedge::memory::predicted_peak_bytes(&sizing, stage.counts, 0, None)?;
+    let last_faces = (!stage.face_list)
+        .then(|| sub::direct_face_degree(stage.rule))
+        .flatten();
+    let mut need =
+        halfedge::memory::predicted_peak_bytes(&sizing, stage.counts, stage.levels, last_faces)?;
+    if !stage.face_list && last_faces.is_none() {
+        need += halfedge::memory::face_list_copy_bytes(&sizing, stage.counts, stage.levels)?;
+    }
+    if uvs {
+        need += uv_bytes(stage.mesh, stage.rule, stage.levels, 8, false)?;
+    }
+    need += halfedge::memory::read_extra_bytes(base);
+    if stage.index > 0 {
+        need += BigInt::from(base.heap_bytes());
+    }
     let limit = if allow_large {
         u128::MAX
     } else {
@@ -110,7 +130,8 @@ pub(crate) fn verify(args: VerifyArgs, plan: Plan, out: &mut impl Write) -> Resu
     let levels = verify_levels(&args, &plan, &x0)?;
     let opts = SubdivideOptions::default().with_threads(args.threads);
     let mut peak = BigInt::from(0);
-    let mut guard = |s: &StageStart<'_>| guard_stage(s, args.allow_large, &mut peak);
+    let mut guard =
+        |s: &StageStart<'_>| guard_stage(s, &loaded.poly, false, args.allow_large, &mut peak);
     let run = sub::subdivide_stages(&loaded.poly, &plan, levels, &opts, true, &mut guard)
         .map_err(guard_failure)?;
     write_reports(
@@ -168,7 +189,9 @@ pub(crate) fn subdivide(
     let load_s = start.elapsed().as_secs_f64();
     let t1 = Instant::now();
     let mut peak = BigInt::from(0);
-    let mut guard = |s: &StageStart<'_>| guard_stage(s, args.allow_large, &mut peak);
+    let uvs = layout.is_some();
+    let mut guard =
+        |s: &StageStart<'_>| guard_stage(s, &loaded.poly, uvs, args.allow_large, &mut peak);
     let run = sub::subdivide_stages(&loaded.poly, &plan, levels, &opts, false, &mut guard)
         .map_err(guard_failure)?;
     let subdivide_s = t1.elapsed().as_secs_f64();

@@ -420,7 +420,7 @@ pub(crate) fn guard_failure(e: halfedge::Error) -> Failure {
 /// What refining the UV layout of `poly` adds to the memory guard's need
 /// ([`halfedge::memory::predicted_uv_bytes`] of its layout's statistics); 0 for a rule without
 /// a face-varying rule (it writes without UVs) or a mesh without a layout.
-fn uv_bytes(
+pub(crate) fn uv_bytes(
     poly: &PolygonMesh,
     rule: Rule,
     levels: u32,

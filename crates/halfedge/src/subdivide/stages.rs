@@ -48,9 +48,14 @@ pub struct StagedRun {
 }
 
 /// One stage about to run, for the caller's checks (a memory guard): its scheme, rule and
-/// levels, and the statistics of the mesh it starts from.
+/// levels, and the mesh it starts from with its statistics.
 #[derive(Debug)]
 pub struct StageStart<'a> {
+    /// The stage's place in the plan (0 the first: its mesh is the caller's).
+    pub index: usize,
+    /// The mesh it starts from (the caller's, or the last level of the stage before, which
+    /// the run holds besides the caller's mesh).
+    pub mesh: &'a PolygonMesh,
     /// The stage's scheme (as it counts this mesh).
     pub scheme: &'a Scheme,
     /// The rule that subdivides it.
@@ -98,10 +103,8 @@ pub fn subdivide_stages(
     let plan = plan.for_mesh(&counts0);
     let x0 = plan.initial_state(&counts0)?;
     let carry_uvs = opts.uvs.is_some();
-    let mut current = mesh.clone();
-    if !carry_uvs {
-        current.set_uvs(None).ok();
-    }
+    // The last level of the stage before; `mesh` until a stage has run.
+    let mut last: Option<PolygonMesh> = None;
     let mut reports = Vec::new();
     let mut start = 0u32;
     for (i, stage) in plan.stages().iter().enumerate() {
@@ -113,19 +116,22 @@ pub fn subdivide_stages(
         if n == 0 && !(check && i == 0) {
             continue;
         }
-        let counts = crate::stats::face_list_counts(&current);
+        let current = last.as_ref().unwrap_or(mesh);
+        let counts = crate::stats::face_list_counts(current);
         let scheme = stage.scheme().for_mesh(&counts);
         let rule = checked_rule(&scheme, &counts)?;
         let face_list =
-            !scheme.mesh_class().needs_manifold() && rule.refines_faces() || !is_manifold(&current);
+            !scheme.mesh_class().needs_manifold() && rule.refines_faces() || !is_manifold(current);
         before_stage(&StageStart {
+            index: i,
+            mesh: current,
             scheme: &scheme,
             rule,
             levels: n,
             counts: &counts,
             face_list,
         })?;
-        let layout = current.uv_layout();
+        let layout = if carry_uvs { current.uv_layout() } else { None };
         let stage_opts = match &layout {
             Some(layout) => opts.with_uvs(layout),
             None => *opts,
@@ -133,12 +139,12 @@ pub fn subdivide_stages(
         let he = if face_list {
             None
         } else {
-            Some(HalfEdgeMesh::try_from(&current)?)
+            Some(HalfEdgeMesh::try_from(current)?)
         };
         if check {
             let stage_reports = match &he {
                 Some(he) => verify(he, &scheme, n, &stage_opts)?,
-                None => verify_polygons(&current, &scheme, n, &stage_opts)?,
+                None => verify_polygons(current, &scheme, n, &stage_opts)?,
             };
             let skip = usize::from(i > 0 || start > 0);
             for r in stage_reports.into_iter().skip(skip) {
@@ -147,16 +153,18 @@ pub fn subdivide_stages(
             }
         }
         if n > 0 && (!check || !last_stage) {
-            current = match &he {
+            let next = match &he {
                 Some(he) => subdivide_to_face_list(he, rule, n, &stage_opts)?.mesh,
-                None => subdivide_polygons(&current, rule, n, &stage_opts)?,
+                None => subdivide_polygons(current, rule, n, &stage_opts)?,
             };
+            drop(he);
+            last = Some(next);
         }
         start += n;
     }
     if !check {
         let predicted = plan.counts_at(&counts0, u64::from(levels))?;
-        let measured = crate::stats::face_list_counts(&current);
+        let measured = crate::stats::face_list_counts(last.as_ref().unwrap_or(mesh));
         let pairs = [
             ("vertices", predicted.vertices, measured.vertices),
             ("edges", predicted.edges, measured.edges),
@@ -174,10 +182,18 @@ pub fn subdivide_stages(
             }
         }
     }
-    Ok(StagedRun {
-        mesh: (!check).then_some(current),
-        reports,
-    })
+    let mesh = match last {
+        _ if check => None,
+        Some(last) => Some(last),
+        None => {
+            let mut level0 = mesh.clone();
+            if !carry_uvs {
+                level0.set_uvs(None).ok();
+            }
+            Some(level0)
+        }
+    };
+    Ok(StagedRun { mesh, reports })
 }
 
 /// Whether every edge of `mesh` has one or two faces and the half-edge mesh builds.
