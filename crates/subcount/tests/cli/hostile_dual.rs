@@ -380,3 +380,57 @@ fn crease_tags_on_an_80000_gon_are_linear() {
         }
     }
 }
+
+/// A bipyramid over an `n`-gon without UVs (two apexes of valence `n`).
+fn bare_bipyramid(n: usize) -> String {
+    let mut s = String::new();
+    for i in 0..n {
+        let a = std::f64::consts::TAU * i as f64 / n as f64;
+        writeln!(s, "v {:.9} {:.9} 0", a.cos(), a.sin()).expect("text");
+    }
+    s.push_str("v 0 0 1\nv 0 0 -1\n");
+    let (top, bottom) = (n + 1, n + 2);
+    for i in 0..n {
+        let (a, b) = (i + 1, (i + 1) % n + 1);
+        writeln!(s, "f {a} {b} {top}\nf {b} {a} {bottom}").expect("text");
+    }
+    s
+}
+
+/// Issue 24: refined once in `f32`, the guard's prediction on two vertices of valence 16,000
+/// (√3, Doo-Sabin and mid-edge build their last level's whole connectivity, and the freed
+/// connectivity stays resident: 0.71 to 0.86 of the peak before).
+#[test]
+fn the_refine_once_guard_predicts_a_valence_16000_bipyramid() {
+    let mesh = Generated::new(&bare_bipyramid(16_000));
+    let (path, out) = (mesh.path(), mesh.out());
+    for scheme in [
+        "loop",
+        "catmull-clark",
+        "butterfly",
+        "sqrt3",
+        "doo-sabin",
+        "mid-edge",
+    ] {
+        for levels in ["1", "2"] {
+            let args = [
+                "--mesh",
+                &path,
+                "--scheme",
+                scheme,
+                "--levels",
+                levels,
+                "--precision",
+                "f32",
+                "-o",
+                &out,
+            ];
+            let (_, peak, predicted) = timed(&args);
+            assert_predicted(
+                &format!("valence 16,000, {scheme} {levels}, f32"),
+                peak,
+                predicted,
+            );
+        }
+    }
+}
