@@ -214,3 +214,24 @@ fn a_composition_refuses_what_its_later_stages_cannot_follow() {
         "loop needs a triangle mesh, but catmull-clark produces quads",
     );
 }
+
+/// The memory guard of a composition (one per stage) predicts within -10 % / +2x of the peak,
+/// with and without UVs.
+#[test]
+fn the_guard_predicts_a_composition_within_bounds() {
+    use crate::hostile_dual::{assert_predicted, timed};
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.obj");
+    let out = out.to_str().unwrap();
+    let tri = data("uv_cube_tri.obj");
+    for (source, scheme, levels) in [
+        (&["--base", "icosahedron"][..], "loop:3,sqrt3", "8"),
+        (&["--mesh", &tri][..], "loop:3,sqrt3", "8"),
+        (&["--mesh", &tri, "--no-uv"][..], "sqrt3:2,loop", "7"),
+    ] {
+        let mut args = vec!["--scheme", scheme, "--levels", levels, "-o", out];
+        args.extend_from_slice(source);
+        let (_, peak, predicted) = timed(&args);
+        assert_predicted(&format!("{scheme} {source:?}"), peak, predicted);
+    }
+}

@@ -139,7 +139,7 @@ fn grid(k: usize) -> String {
 
 /// A successful `subdivide ... --timings`: its wall time, `peak_bytes` and
 /// `predicted_peak_bytes`.
-fn timed(args: &[&str]) -> (Duration, u64, u64) {
+pub(crate) fn timed(args: &[&str]) -> (Duration, u64, u64) {
     let mut all = vec!["subdivide", "--timings"];
     all.extend_from_slice(args);
     let start = Instant::now();
@@ -171,7 +171,7 @@ fn process_bytes() -> u64 {
 /// The guard's prediction is never more than 10 % under the measured peak nor more than
 /// twice it, with the process's own bytes those of this build ([`process_bytes`]). A system
 /// that reports no peak (`peak_bytes` 0) is skipped.
-fn assert_predicted(what: &str, peak: u64, predicted: u64) {
+pub(crate) fn assert_predicted(what: &str, peak: u64, predicted: u64) {
     eprintln!("{what}: peak {peak}, predicted {predicted}");
     if peak == 0 {
         return;
