@@ -24,6 +24,29 @@
 //! ```
 //!
 //! [`BoundaryInterpolation::None`]: crate::tags::BoundaryInterpolation::None
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Holes (`SubdivideOptions::holes`, the rules whose faces nest): the whole mesh is refined, so
+//! the surface around a hole is unchanged, and only the output is filtered.
+//! `subdivide_to_face_list`, `subdivide_polygons` and `Refinement::new` predict what is written
+//! (the rule's scheme on the written faces' statistics, `HoleSet::written_level`) and check it
+//! fits before building; the last level's faces descending from holes (`HoleSet::written_at`:
+//! children contiguous per parent) are then dropped and the vertices renumbered in place
+//! (`holes::compact_faces`, no second copy), and the written vertices and faces are checked
+//! against the prediction (`Error::PredictionMismatch`). A refinement with holes keeps the written
+//! face list and the index of each written vertex, evaluates the whole last level and gathers;
+//! `n_vertices`, `n_faces`, `n_edges`, `n_corners` of the last level are the written counts.
+//! `verify` counts the written faces of every level. The library's `subdivide` builds a half-edge
+//! mesh of the written faces (refused when they meet at a vertex between holes); the CLI always
+//! writes holes through the face list, which takes such a vertex.
+//!
+//! Owner of holes: which faces are holes (`boundary_faces_with` under `VTX_BOUNDARY_NONE`: faces
+//! at a vertex with a boundary edge that is not infinitely sharp), the written faces' statistics,
+//! which faces of a level descend from holes, leaving them (and the vertices only they use) out of
+//! an output, in place: `halfedge::holes` (`holes.rs`: `HoleSet`, `written_at`, `written_level`,
+//! `compact_faces`); subdivisions take them through `SubdivideOptions::holes`; the recurrence of
+//! what holes remove (`HV, HE, HF, HH`) and `nests_faces`: `schemes::holes`.
 
 use schemes::holes::{nests_faces, HoleCounts};
 use schemes::{LevelCounts, MeshCounts, Rule};

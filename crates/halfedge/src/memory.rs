@@ -3,6 +3,27 @@
 //! bytes this process may still allocate ([`available_bytes`]), so that a subdivision, a base
 //! mesh or a mesh file is refused before it is built. Refining UVs adds their face-varying
 //! channel ([`predicted_uv_bytes`]) to either path's peak.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `memory.rs`: the bytes of a mesh for given counts, `predicted_peak_bytes` (the peak resident
+//! set of a one-shot run from the exact counts, what the CLI's guard compares: the process's 6
+//! MiB, the input as face list and half-edge mesh and the arrays that build the latter
+//! (`halfedge_build_bytes`), the last two levels (at level 0 the face list written), and the
+//! arrays below glibc's 32 MiB mmap threshold of level `L - 2`, freed but still resident; within 5
+//! % of `/usr/bin/time -v` on the icosphere and armadillo jobs; the CLI adds what the file's face
+//! list holds beyond its counts (`read_extra_bytes`: file lines, `vt`) and the face list copied
+//! from a last level built as a half-edge mesh (`face_list_copy_bytes`);
+//! `predicted_peak_bytes_with_creases` adds the last parent level's crease weight table while it
+//! is built, `Refinement::one_shot_crease_bytes`, against the last level), `hole_filter_bytes` and
+//! `refinement_hole_bytes` (what leaving holes out of a one-shot or refined output adds) and
+//! `available_bytes` (the least of MemAvailable, RLIMIT_AS minus VmSize and the cgroup limit), for
+//! the resource guards.
+//!
+//! Owner of memory available to the process, bytes of a mesh, the peak resident size, the
+//! predicted peaks of the memory guards (the surface's, and what the UV channel adds:
+//! `predicted_uv_bytes` of the layout's `MeshCounts`, `halfedge::stats::uv_layout_counts`):
+//! `halfedge::memory`.
 
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;

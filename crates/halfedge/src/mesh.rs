@@ -5,6 +5,14 @@
 //! There is no twin array and no edge array. A boundary half-edge has no face (stored as the
 //! sentinel `u32::MAX`, returned as `None`); boundary half-edges are linked by `next`/`prev`
 //! around each hole, so every `next` cycle is either a face or a boundary loop.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `build.rs` and `mesh.rs`: `HalfEdgeMesh` stores typed `u32` handles in parallel arrays;
+//! half-edges come in pairs, so the twin of `h` is `h ^ 1` and its edge is `h >> 1` (as in
+//! pmp-library). Construction validates once (range, degenerate and duplicate faces, non-manifold
+//! edges and vertices, orientation) and reports the first problem with the face it names, so
+//! circulators never spin.
 
 use glam::DVec3;
 

@@ -27,6 +27,12 @@
 //! assert_eq!(normals[2], DVec3::Z);
 //! assert!((normals[0] - DVec3::new(0.0, -1.0, 1.0).normalize()).length() < 1e-15);
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of vertex normals (a polygon's area vector by Newell's method, area-weighted vertex
+//! normals, the `+Z` fallback): `halfedge::normals` (`normals.rs`: `area_vector`,
+//! `vertex_normals`, `vertex_normals_by`); the writers call it for `vn`.
 
 use glam::DVec3;
 

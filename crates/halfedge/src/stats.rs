@@ -18,6 +18,14 @@
 //! assert_eq!(HalfEdgeMesh::try_from(&cube)?.counts(), counts);
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `stats.rs`: `face_list_counts` (works on any face list) and `HalfEdgeMesh::counts`, both thin
+//! calls of `schemes::MeshCounts::from_face_list`, the one owner of the statistics (the half-edge
+//! mesh adds only the number of vertices it dropped); `face_list_problems` counts every defect at
+//! once, and its duplicate-face search (hash, then a sort of equal-hash faces: `n log n` on a file
+//! of identical faces) is the one validation uses too.
 
 use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};

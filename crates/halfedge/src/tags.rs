@@ -37,6 +37,11 @@
 //! assert!(tags.add_crease(1, 2, f32::NAN).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of creases, corners, holes and subdivision options as a type (`Tags`, `TagOptions`,
+//! `SubdivisionOptions` and their command-line names): `halfedge::tags` (`tags.rs`).
 
 use std::collections::{BTreeMap, HashMap};
 use std::fmt;

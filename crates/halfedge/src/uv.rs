@@ -8,6 +8,13 @@
 //! (one `vt` used at several vertices is one value per vertex); its faces are the mesh's faces
 //! with values as corners. A surface edge is a **seam** when its two faces do not agree on
 //! the values at both of its ends; a seam edge is two boundary edges of the layout.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of texture coordinates as face-varying data: a `vt` per face corner, the UV layout
+//! (values = distinct (vertex, `vt`) pairs, a value per corner): `halfedge::uv` (`uv.rs`: `Uvs`,
+//! `UvLayout`, `PartialUvs`); a mesh carries them as `PolygonMesh::uvs` (read from OBJ `vt`; when
+//! only some corners have one, `PolygonMesh::partial_uvs` says how many).
 
 use glam::DVec2;
 

@@ -1,5 +1,17 @@
 //! [`Matrix`], the crate's one dense matrix type (its `i64` instance [`IntMatrix`] is the
 //! input of every recurrence), and the bracketed text form `[[1, 1], [0, 4]]`.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Exact linear recurrences over `IntMatrix`. `matrix.rs` holds the crate's one dense matrix type,
+//! `Matrix<T>` (`IntMatrix` is `Matrix<i64>`, square and non-empty from every public constructor),
+//! and writes its arithmetic once over `num_traits` bounds: `checked_mul`, `checked_apply`,
+//! `checked_pow` need `Zero + CheckedAdd + CheckedMul` (and `One`), so `i64` and `i128` report
+//! overflow while `BigInt`, the rationals, `QuadraticSurd`, `Z[sqrt d]` and `Complex64` never do.
+//! Powering (`power.rs`, `CheckedRing` adds only the conversion of `i64` entries), the
+//! characteristic polynomial, Horner's rule in a field, the fraction-free spectra and the early
+//! levels of a closed form all multiply through it; nalgebra's `DMatrix` is used only for the
+//! Schur decomposition of companion matrices (`eigen.rs`).
 
 use std::fmt;
 

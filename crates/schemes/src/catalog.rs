@@ -8,6 +8,27 @@
 //!
 //! Use [`builtin`] to look a scheme up by name (aliases included) and [`builtins`] for the
 //! list of canonical schemes.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `catalog.rs` builds every built-in `Scheme`, and each constructor's doc comment derives its
+//! matrix from what the rule inserts (the identities it relies on, each component's `valid_from`).
+//! `loop` (and its 4:1 aliases), `doo-sabin` and `mid-edge` have a boundary twin (`loop-boundary`,
+//! `doo-sabin-boundary`, `mid-edge-boundary`) that `Scheme::for_mesh` / `for_counts` return on a
+//! mesh with boundary, so their closed state is unchanged on closed meshes. A `Scheme` has a
+//! `StepRule`: one matrix, an optional different first step, or a cycle of matrices
+//! (`sqrt3-boundary`). `Plan` is a single scheme or a composition `A:k,B`; `phases()` gives one
+//! recurrence per residue class or stage for closed forms. `input.rs` fills a state from typed
+//! counts using only documented identities (`CountsInput`) and parses a plain state (`parse_init`,
+//! the grammar of `--init`). `custom.rs` parses scheme TOML *text* with line:column errors; its
+//! caller owns the path.
+//!
+//! Owner of scheme names, their matrices and their subdivision rules (the one table: name ->
+//! matrix, topology and geometry): `schemes::builtin` / `schemes::builtins` (`catalog.rs`): every
+//! built-in carries its `schemes::Rule` (`rule.rs`; re-exported as `halfedge::Rule`), a scheme
+//! file gets one from its `topology` key; `Rule::scheme_for` is the way back (the scheme that
+//! counts a rule on a mesh); compositions `Plan::parse`. `halfedge::subdivide` takes a `Rule` and
+//! knows no scheme name.
 
 use recurrence::IntMatrix;
 

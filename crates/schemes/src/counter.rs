@@ -3,6 +3,28 @@
 //! counts: the choice between powering and the closed form, the table's columns and rows,
 //! size estimates for resource guards, digit summaries of levels too high to materialize,
 //! and closed forms with an initial state substituted.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `Counter` (`counter.rs`) is **the counting object**: a bare matrix with named components
+//! (`Counter::Matrix`) or a `Plan` (`Counter::Plan`), and the one owner of
+//!
+//! - counting: `state_at` powers the matrix, or past level 64 evaluates the exact closed form
+//!   (powers of two become shifts), within `CLOSED_FORM_LIMIT`;
+//! - table columns and rows: `columns` (every stage's state, then the V, E, F it lacks),
+//!   `row_from_state`, `row_at`, `rows`;
+//! - size estimates for resource guards: `estimated_log10`, exact up to 64 levels past the last
+//!   change of rule of the stage that produces the level, then `ClosedForm::estimated_bits` of
+//!   that stage's steady rule (a later stage starting from counts of more than 10^5 digits grows
+//!   from the estimate there; nothing huge is materialized, no level arithmetic wraps);
+//! - digit summaries of levels too high to materialize: `summaries` (derived V, E, F through an
+//!   augmented recurrence `y_(s+1) = c M x_s` and an exact division of the summary);
+//! - closed forms with an initial state substituted: `specialized_text`, and
+//!   `specialized_lines` in any variable name (`s`, or `t` within a phase).
+//!
+//! Owner of counting (a matrix, a scheme, a custom scheme or a composition): powering vs closed
+//! form, table columns and rows, size estimates, digit summaries of huge levels, closed forms with
+//! a state substituted: `schemes::Counter` (`crates/schemes/src/counter.rs`).
 
 use std::ops::RangeInclusive;
 

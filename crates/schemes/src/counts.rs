@@ -1,4 +1,22 @@
 //! [`MeshCounts`]: the statistics of a mesh that subdivision counting needs.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Subdivision schemes as matrices. `MeshCounts` is the plain-number statistics of a mesh (V, E,
+//! IE, BE, NME, F, H, faces by degree, boundary loops, components, Euler characteristic,
+//! unreferenced vertices); `Stat` names its short keys. `counts.rs` is the one owner of mesh
+//! statistics: `MeshCounts::from_face_list` (faces as slices or iterators of indices, plus the
+//! number of positions) is the only code that computes them, for `halfedge`'s face lists and
+//! half-edge meshes alike, in `O(H log d)`; it also holds the workspace's one disjoint-set
+//! structure (`DisjointSets`) and `first_repeated_vertex`. One semantics, documented on
+//! `MeshCounts`: a face list is counted as it is, never refused (a repeated vertex is a corner
+//! each time, a side from a vertex to itself is no edge, a face running along an edge twice counts
+//! twice); `V` is the vertices faces use and positions no face uses are `unreferenced_vertices`,
+//! outside every other count. `MeshCounts::from_polygons` validates first (at least three corners,
+//! no repeated vertex) because a prediction from such a face is meaningless.
+//!
+//! Owner of mesh statistics (`MeshCounts` from any face list; one disjoint-set structure):
+//! `schemes::MeshCounts::from_face_list` (`counts.rs`); `halfedge::stats` only calls it.
 
 use std::borrow::Borrow;
 use std::collections::BTreeMap;

@@ -29,6 +29,12 @@
 //! as a resource guard, a probe whose state would exceed 2^26 bits is refused with
 //! [`Error::SearchTooLarge`]: that happens only when the limited quantity grows
 //! polynomially while another state component grows exponentially.)
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `fit.rs` holds **the one budget search** (`fit`, answering `Fit::Level`, `Fit::Unbounded` or
+//! `Fit::NoneFits`; `Fit::highest_level` caps it for `subcount verify` and `cargo xtask verify`),
+//! byte sizes and the paper's eq. (1) (`density`, `level_for_area`).
 
 use num_bigint::BigInt;
 use num_traits::{ToPrimitive, Zero};

@@ -97,6 +97,22 @@
 //! assert!(uv_scheme(Rule::TriSplit(1)).is_err());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of UV counting: the UV layout's statistics (`UvCounts`: values, layout edges and boundary
+//! edges, seam edges, boundary loops, charts, unused `vt`; through `MeshCounts::from_face_list` on
+//! the layout's faces), OpenSubdiv's sibling values (`UvCounts::split_values`: the values its
+//! face-varying refinement splits off where a vertex's faces use two `vt` in the order A, B, A, B;
+//! `kept_split_values` with holes), each rule's UV recurrence (`UvScheme`, `uv_scheme`: over the
+//! layout's `UV, UE, UBE, F[, H]`, for the dual rules over `UV, UE, UBE, S` with `S` the seam
+//! edges, for √3 over `UV, UBE, S, F`, periodic (steps A and B) under `sqrt3-boundary`:
+//! `UvScheme::period`, `phases`; `NotCounted` for a scheme without a rule and for a composition
+//! chaining a dual rule with a rule of the other kind), the UV values under a plan and the `UV`
+//! column of a counter's rows (`UvCounter`, `Counter::uv_counter`): `schemes::uv`
+//! (`crates/schemes/src/uv.rs`); a mesh's layout statistics: `halfedge::stats::uv_counts` (the
+//! layout as a mesh of its own, `MeshCounts`: `uv_layout_counts`), of the written faces with
+//! holes: `HoleSet::written_uv_counts`.
 
 use std::fmt;
 

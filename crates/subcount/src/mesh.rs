@@ -1,4 +1,18 @@
 //! `stats`, `verify` and `subdivide`: real meshes and real subdivision.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of UVs through `subdivide` and `verify`: the layout refined or why not (`--no-uv`,
+//! partial `vt`, a rule without UVs: one note each; the raw face-list path writes UVs refined by
+//! `subdivide_polygons`), `--uv-interpolation` over the tag, the summary's `UV = N`, the memory
+//! guard's UV share (`mesh.rs`'s `uv_bytes`, when UVs will be refined), `--timings`' `uv_s`
+//! (`refined::SurfaceClock`: the surface's last level reported splits its work from the UVs'),
+//! `verify`'s `UV` component (`UvCheck`: predicted by `schemes::uv::UvCounter`, measured as the
+//! distinct values the corners of a `Refinement` with UVs use at each level, or on the face-list
+//! path those of `subdivide_polygons`' written UVs, predicted from `UV0 = V`):
+//! `crates/subcount/src/mesh.rs` (`subdivide`, `uv_interpolation`, `UvCheck`) and `refined.rs`
+//! (UVs of the refine-once path into caller-owned buffers); the refinement itself:
+//! `halfedge::refine::face_varying`.
 
 use std::io::Write;
 use std::time::{Duration, Instant};

@@ -8,6 +8,20 @@
 //! holes (the file's hole tags, and under `--boundary none` the faces at the boundary): every
 //! command counts what is written, the statistics of the faces that are not holes, and
 //! refuses holes under a scheme whose faces do not nest.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of the subdivision options of a run (flag over tag over default), the notes about ignored
+//! and overridden tags, the holes of a run (hole tags, boundary `none` for Loop and Catmull-Clark;
+//! refused under schemes whose faces do not nest) and `--triangle-rule` with triangle schemes, the
+//! tags' sharpness on the mesh subdivided: `crates/subcount/src/model.rs` (`load_mesh`,
+//! `resolve_options`, `LoadedMesh::holes`, `refuse_triangle_rule`, `LoadedMesh::sharpness`): every
+//! command reads its mesh through `load_mesh` and counts what is written.
+//!
+//! Owner of the UV layout a command counts (written faces with holes), the `UV` column of `table`,
+//! `at`, `plot`, `fit`, the note when a scheme does not count UVs: `crates/subcount/src/model.rs`
+//! (`Input::uv_counts`, `Input::uv_counter`); `stats`' layout line and `"uv"` object: `mesh.rs`
+//! (`uv_layout_text`); `formula`'s `UV(s)`: `commands.rs` (`uv_formula`).
 
 use std::cell::OnceCell;
 

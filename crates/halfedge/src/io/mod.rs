@@ -108,6 +108,46 @@
 //! assert_eq!(err.to_string(), "bad.obj: line 2: face index 2 is out of range (the file has 1 vertices)");
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `io/`: OBJ and OFF read in one streaming pass into a `PolygonMesh` (the raw face list, which
+//! may be non-manifold), with errors naming file and line. OBJ's OpenSubdiv tags (`t crease 2/1/0
+//! 0 1 10`, ...) are read by default into `PolygonMesh::tags` (a `halfedge::tags::Tags`), strictly
+//! (a malformed tag, an index out of range or a crease off the faces' edges is a `ParseError` with
+//! the tag's line); unknown tags are returned (`PolygonMesh::ignored_tags`), never printed;
+//! `ReadOptions::without_tags` skips them. OFF has no tags. OBJ `vt` become `PolygonMesh::uvs`
+//! when every corner has one (else `PolygonMesh::partial_uvs` records how many do; a bad `vt`
+//! index names the file, line and corner); `vn` are not read. Sharpness is read in `f64` and
+//! clamped to 10 (`INFINITELY_SHARP`). Text from a file echoed in a message goes through
+//! `io::escape_controls` (the one escape of control characters; the CLI's error line too). The OBJ
+//! writers write `vt` and `f v/vt` for a mesh with UVs (`ObjWriteOptions::uvs`, default on;
+//! `UvBuffers` for caller-owned UV values) and, with `ObjWriteOptions::normals`, `vn` from
+//! `normals.rs`'s area-weighted vertex normals. OBJ is parsed here rather than with tobj, because
+//! tobj renumbers vertices per `o`/`g` group, drops unreferenced vertices and reports no line
+//! numbers; the tests compare both readers on every shared mesh. Readers refuse a file larger than
+//! the available memory and stop once the mesh outgrows half of it. Everything a reader keeps
+//! (mesh, `vt`, tags, the rising forward references) counts against that half and grows by
+//! fallible reservations (`Error::AllocationFailed`, never an abort). `write_atomically` is the
+//! one writer of output files (OBJ and plots): a temporary file in the target's folder, then a
+//! rename over the resolved target; `-` is standard output, special files are written directly,
+//! write-protected targets are refused, and a signal handler thread (signal-hook) removes live
+//! temporary files on SIGINT/SIGTERM/SIGHUP.
+//!
+//! Owner of reading OpenSubdiv's OBJ tags (`t` lines: grammar, forms, range and edge checks,
+//! ignored tags): `halfedge::io`'s `obj.rs` (`TagReader`), checking through `Tags::check_against`.
+//!
+//! Owner of reading OBJ texture coordinates (`vt`, the corner forms `v/vt`, `v/vt/vn`, `v//vn`,
+//! negative and forward `vt` indices, the errors naming file, line and corner): `halfedge::io`'s
+//! `obj.rs` (`UvReader`).
+//!
+//! Owner of OBJ text (every writer: half-edge meshes, face lists, caller-owned `f32`/`f64`
+//! buffers; `vt` and `f v/vt` for texture coordinates, `vn` on request: `ObjWriteOptions`,
+//! `UvBuffers`): `halfedge::io`'s `write.rs` (`write_coordinates`).
+//!
+//! Owner of writing an output file (`-o`): `halfedge::io::write_atomically` (OBJ and plot output
+//! alike); mesh formats not written (`-o out.ply` is a usage error):
+//! `halfedge::io::unwritten_mesh_format`.
 
 mod obj;
 mod off;

@@ -79,6 +79,50 @@
 //! }
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `subdivide/`: real subdivision by every `Rule` (the typed rule of `schemes`, re-exported:
+//! `subdivide(&mesh, Rule::Loop, levels, &opts)`; the module has no scheme names). The rule's
+//! counting scheme for the mesh (`Rule::scheme_for`: Loop on a mesh with boundary is counted by
+//! `loop-boundary`) sizes the arrays; `verify` takes a `Scheme` (built-in or custom with a
+//! `topology`), runs its rule and compares the scheme's own predictions with the real mesh, so a
+//! wrong custom matrix is a mismatch, not a crash. Each level's arrays are allocated once from
+//! `Scheme::counts_at` and checked afterwards (length equals prediction, capacity did not grow); a
+//! mismatch is `Error::PredictionMismatch`, a bug. Topology is built by index arithmetic (each
+//! module documents its numbering); only levels `s - 1` and `s` are alive. `subdivide`,
+//! `subdivide_to_face_list` and `verify` are a thin wrapper over the refinement (below): its
+//! private streaming mode (`refine/oneshot.rs`) runs the refinement's own size checks, topology
+//! steps (`Refinement::next_level`), geometry (`Refinement::values_after`, the dispatch the
+//! stencils use) and index buffers (`to_faces::faces_after`), keeping only the level it refines
+//! (as a half-edge mesh with its positions) and the one it builds and flattening nothing into fast
+//! tables, so a rule changed in the refinement changes the one-shot subdivision too; its output is
+//! hashed to the bit for every rule at levels 1-3 (`subdivide/oneshot_hashes.rs`). Under crease
+//! rules it takes the same `Creases` as `Refinement::new` (`SubdivideOptions::sharpness` and
+//! `subdivision`): each level's positions come from the half-edge kernels and the crease rows of
+//! the level refined written over them, or its dense weight table, as `Refinement::new` chooses
+//! (`Fast::creased`, built just before and dropped before the next level's topology), then the
+//! child's sharpness is pushed (`Creases::push_child`) and the parent's released, so only the last
+//! two levels' sharpness is alive; in `f64` it equals `Refinement::evaluate` to the bit
+//! (`tests/integration/creases.rs`). `verify` still visits every level as a half-edge mesh (it
+//! counts the real mesh). Doo-Sabin and mid-edge on a mesh with boundary (`dual.rs`, counted by
+//! `doo-sabin-boundary` and `mid-edge-boundary`) number their boundary points by the rank of each
+//! boundary half-edge, so they are built face by face into the predicted arrays rather than
+//! gathered; closed meshes keep the gathered path and its numbering. `subdivide_to_face_list`
+//! (what `subcount subdivide` runs) writes the last level of the 4:1 family and Catmull-Clark
+//! straight into a `PolygonMesh` (`to_faces.rs`: positions and corners only, identical to
+//! converting the half-edge result, half the peak memory); that last level needs only its vertex
+//! indices to fit `u32`, not half-edge handles. The face-list subdividers serve the non-manifold
+//! schemes (`loop-general`, `catmull-clark-general`, `tri-split-N`), and carry UVs by refining the
+//! layout as a face list of its own through the same subdivider (`faces.rs`' `refined_uvs`: same
+//! faces, same order, checked). Large buffers are reserved fallibly (`alloc.rs`: a refused
+//! allocation is `Error::AllocationFailed`), and every level's positions are checked for
+//! finiteness (`finite.rs`: `Error::NonFinitePosition` names the vertex and its origin; UVs by
+//! `check_uvs`, `Error::NonFiniteUv`, on the one-shot path and by `refined.rs` in `f32`/`f64`).
+//!
+//! Owner of which schemes apply to a mesh and can run on it:
+//! `halfedge::subdivide::applicable_schemes`; a scheme named by a user to the rule to run:
+//! `halfedge::subdivide::checked_rule`.
 
 pub(crate) mod alloc;
 mod build;

@@ -26,6 +26,13 @@
 //! assert!(run.reports.iter().all(|r| r.is_match()));
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of compositions really subdivided (`verify` and `subdivide` of `A:k,B`: each stage on
+//! what the one before wrote, every level against the plan's prediction, UVs carried; creases and
+//! holes refused): `halfedge::subdivide::subdivide_stages` (`stages.rs`); the CLI's `compose.rs`
+//! (its memory guard per stage).
 
 use num_bigint::BigInt;
 use schemes::{MeshCounts, Plan, Scheme};

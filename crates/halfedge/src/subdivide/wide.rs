@@ -7,6 +7,12 @@
 //! Elements of at most [`DIRECT_MAX`] corners keep the direct sums, so every ordinary mesh's
 //! output is what it always was, bit for bit (a wide element's corners agree with the direct
 //! sums up to rounding, about `n` ulps).
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Owner of wide faces and vertex rings (more than 32 corners: element-wide sums instead of a sum
+//! per corner, so Doo-Sabin and the butterfly stay linear): `halfedge::subdivide`'s `wide.rs`
+//! (`Wide`, `Ring`, `DIRECT_MAX`).
 
 use std::f64::consts::PI;
 

@@ -248,6 +248,42 @@
 //! building it takes 9.7 ms with UVs against 3.2 ms without, and `evaluate_uvs` in `f32`
 //! 1.4 ms where an [`Evaluator`](super::Evaluator) of `f32` positions takes 1.0 ms (Loop: 13 ms
 //! against 4 ms, 1.6 ms against 1.0 ms).
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! Face-varying UVs (`SubdivideOptions::uvs`, `refine/face_varying.rs`): the UV layout is refined
+//! as a mesh of its own (its faces the surface's faces with values as corners, its boundary the
+//! surface's plus both sides of every seam) by the same `Refinement` machinery and the same rule
+//! (the midpoint rule for butterfly and the icosphere); the 4:1 family, the 1:N² splits and
+//! Catmull-Clark number child faces from the parent face alone, so the channel's faces are the
+//! surface's, corner for corner. Under Loop and Catmull-Clark each base value is classified once
+//! as OpenSubdiv's `FVarLevel` does (corner, crease or matching the surface, per
+//! `FaceVaryingInterpolation`) and the channel's sharpness says it (`Creases::for_channel`:
+//! corners infinitely sharp, the surface's creases on the layout's interior edges, `Linear` for
+//! `boundaries` and `all`); a value in several runs around its vertex is one vertex of the channel
+//! per run, merged back when counted (OpenSubdiv's sibling values, its A-B-A-B quirk included).
+//! Compared value for value with OpenSubdiv in `tests/opensubdiv_uv.rs`. Doo-Sabin and mid-edge,
+//! whose faces do not nest, use the corner channel instead (`refine/corners.rs`): each rule's step
+//! (`dual.rs`: `doo_sabin_uv_step`, `mid_edge_uv_step`) gives, from a level's topology and corner
+//! values, the new values as weight rows and the value of each child corner by (child face, child
+//! vertex); the channel runs it on the refinement's kept levels, checks that every value is used,
+//! and evaluates the tables in turn (a step may first compute auxiliary values, numbered after the
+//! parent's: Doo-Sabin's three face-wide sums of each face of more than 32 sides, so that its
+//! corners are 4-entry rows and the tables stay linear in a face's degree). √3 runs on it too
+//! (`sqrt3.rs`: `sqrt3_uv_step`, linear: centroids, step B's trisection points, two midpoints per
+//! seam edge; in step B a triangle takes the chart of the face across its half-edge so that no
+//! value goes unused).
+//!
+//! Owner of face-varying refinement of UVs (OpenSubdiv's linear-interpolation modes and value
+//! classification, sibling values, the UV index buffer, linear UVs under the other triangle rules,
+//! the corner channel of the dual rules): `halfedge::refine::face_varying`
+//! (`subdivide/refine/face_varying.rs`: `UvChannel`, either the layout refined as its own
+//! `Refinement` with `sdc::Creases::for_channel`, or, for √3, Doo-Sabin and mid-edge,
+//! `refine/corners.rs`'s `CornerChannel`: values propagated corner by corner on the surface's own
+//! levels, one `sdc::WeightTable` per level, the rules' steps in `sqrt3.rs` (`sqrt3_uv_step`) and
+//! `dual.rs` next to their geometry); asked through `SubdivideOptions::uvs`, read through
+//! `Refinement::evaluate_uvs` / `write_uv_indices`, written by `subdivide_to_face_list` into its
+//! mesh's `uvs`.
 
 use crate::mesh::INVALID;
 use crate::subdivide::sdc::{boundary_first, ccw_ring, Creases, Linear};

@@ -60,6 +60,30 @@
 //!
 //! Evaluation does not check that the results are finite (the one-shot subdivision does):
 //! data near the overflow limit of `T` can give infinities.
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `subdivide/refine/` (`halfedge::refine`, also `halfedge::{Refinement, StencilTable, Scalar}`):
+//! refine once, evaluate many (OpenSubdiv's `TopologyRefiner` + `PrimvarRefiner` / `StencilTable`
+//! split). `Refinement::new` checks every level's size from the counts, then builds the
+//! connectivity of levels `0..L` only (`topo.rs`'s positionless `Connectivity`, from the
+//! index-arithmetic builders of `gather.rs` or, face by face, `build.rs`'s `Builder`, which take
+//! the positions the refinement computed); the last level's index buffers are written from level
+//! `L - 1` for the 4:1 family and Catmull-Clark (bounded by `u32` vertex indices, not half-edge
+//! handles), from a kept face list for the other rules. Loop and Catmull-Clark levels are
+//! flattened instead (`tables.rs`: edge stencils, vertex rings, face corners), so an evaluation is
+//! streaming gathers with no half-edge walk; `Refinement::predicted_bytes` gives what a refinement
+//! keeps before it is built. `evaluate` / `evaluate_level` / `evaluate_strided` / `Evaluator`
+//! refine `[T; N]` (`T: Scalar`, `f32` or `f64`) into the caller's slices; `stencils` runs the
+//! same kernels on sparse sums (`data.rs`'s `Sparse`) and is refused for the icosphere rule;
+//! `stencil_sizes` counts the table's rows and entries first (the same kernels on `data.rs`'s
+//! `Support`, the sums' vertex sets), so the table is allocated once, exactly. **Architecture
+//! Invariant:** one implementation of each rule's geometry. The kernels in `trisplit.rs`,
+//! `catmull_clark.rs`, `sqrt3.rs`, `dual.rs` are generic over `data::Vector` (`DVec3` for the
+//! one-shot subdivision, `[T; N]`, `Sparse`) and write through `par::Sink` (a growing `Vec` or the
+//! caller's slice), every operation componentwise and in one order, so in `f64` a refinement's
+//! evaluation equals `subdivide`'s positions to the bit for every rule and thread count
+//! (`tests/refine.rs`); the flattened tables call the same kernel functions in the same order.
 
 pub(crate) mod corners;
 mod data;

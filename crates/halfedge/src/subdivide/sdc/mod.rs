@@ -68,6 +68,35 @@
 //! The weights are computed in `f64` from the `f32` sharpness values and fractional weights,
 //! as OpenSubdiv's `PrimvarRefinerReal<double>` does; positions agree with it to about 1e-15
 //! of the bounding box (`tests/opensubdiv.rs`).
+//!
+//! # Design notes (moved from ARCHITECTURE.md)
+//!
+//! `subdivide/sdc/` (`halfedge::subdivide::sdc`): creases and corners for Loop and Catmull-Clark
+//! by OpenSubdiv 3.5's `Sdc` rules. `Refinement::new` takes a `Sharpness` and `SubdivisionOptions`
+//! from `SubdivideOptions`; when they change something on the mesh (`Creases::new` decides), each
+//! level keeps its flattened tables (or, for a face-varying channel under `all`, linear ones:
+//! `tables.rs`' `LinearTables`) and a sparse `WeightTable` of the child vertices whose crease mask
+//! differs from the rule's, written over the tables' values (`Creases::level_table`,
+//! `LevelTable::Overrides`); a level where they are more than half the rows, or the two together
+//! exceed the bound of `predicted_bytes_with_creases`, is one dense `WeightTable` instead (every
+//! child vertex as sparse weights of the parent's vertices, Catmull-Clark's face points expanded),
+//! except on a level with a face of more than 32 sides (`sdc::DENSE_MAX_DEGREE`), where expanding
+//! its face point would be quadratic in its degree: that level keeps the overrides, and an
+//! overriding row names such a face by its child point (one entry, read from the child level the
+//! base rule has just computed; a zero weight names nothing), so that its rows and the guard's
+//! bound (4 entries per side of a wide face instead of `d`) are linear in the degree. The rows are
+//! built from the parent's connectivity and its `LevelSharpness` (per edge and vertex, and the
+//! edge order OpenSubdiv sums `f32` sharpness in); the next level's sharpness is read off the
+//! child's edges by their end vertices (vertex child and edge child). Otherwise the fast path
+//! above runs unchanged. The differential tests hold it to OpenSubdiv on the tagged shared meshes
+//! and generated grids (`tests/opensubdiv.rs`); `tests/integration/creases.rs` keeps values
+//! recorded from OpenSubdiv for `cargo test` alone.
+//!
+//! Owner of crease rules: sharpness resolved on a mesh, OpenSubdiv's vertex rules, sharpness decay
+//! (uniform, Chaikin), fractional blending, boundary modes, smooth triangles:
+//! `halfedge::subdivide::sdc` (`crates/halfedge/src/subdivide/sdc/`: `Sharpness`, `crease.rs` the
+//! `f32` arithmetic, `masks.rs` the per-level weight tables); `halfedge::tags` describes creases
+//! and options.
 
 mod crease;
 mod masks;
