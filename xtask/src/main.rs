@@ -8,8 +8,12 @@
 //!   `DIR` (and of `DIR/broken`) with every applicable built-in scheme, level by level up to a
 //!   face cap, and prints a pass/fail table; it exits non-zero on any failure. It re-runs
 //!   itself in release mode when built in debug.
+//! - `cargo xtask golden OLD_BIN NEW_BIN [--meshes DIR]` runs a fixed matrix of commands on
+//!   two `subcount` binaries and prints every difference in exit code, stdout, stderr and
+//!   output files (see `golden.rs` and `docs/golden.md`).
 
 mod formulas;
+mod golden;
 mod paper;
 mod verify;
 
@@ -20,7 +24,9 @@ usage: cargo xtask <task>
 
 tasks:
   formulas [--check]                          regenerate docs/formulas.md (--check: fail when stale)
-  verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts";
+  verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts
+  golden OLD_BIN NEW_BIN [--meshes DIR] [--cases DIR] [--record] [--no-errors] [--list]
+                                              run a fixed matrix on two binaries, print every difference";
 
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
@@ -36,6 +42,7 @@ fn main() -> anyhow::Result<()> {
             formulas::generate(check)
         }
         Some("verify") => verify::run(&rest),
+        Some("golden") => golden::run(&rest),
         Some("help" | "--help" | "-h") => {
             println!("{USAGE}");
             Ok(())

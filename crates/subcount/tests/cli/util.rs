@@ -17,11 +17,58 @@ pub(crate) fn subcount(args: &[&str]) -> Run {
         .stdin(std::process::Stdio::null())
         .output()
         .expect("the subcount binary runs");
+    record(None, args, &output);
     Run {
         code: output.status.code().unwrap_or(-1),
         stdout: String::from_utf8(output.stdout).expect("stdout is UTF-8"),
         stderr: String::from_utf8(output.stderr).expect("stderr is UTF-8"),
     }
+}
+
+/// Test-only: with `SUBCOUNT_GOLDEN_RECORD=DIR` set, a run that exited non-zero is written to
+/// `DIR/runs/<hash>.run` (NUL-separated: the test's name, the exit code, the arguments) for
+/// `cargo xtask golden` to replay on two binaries. An argument naming a file (at most 16 MB;
+/// relative ones taken from `cwd`) is copied to `DIR/files/` and written as `@FILES@/<copy>`.
+fn record(cwd: Option<&std::path::Path>, args: &[&str], output: &Output) {
+    use std::hash::{Hash, Hasher};
+    let Some(dir) = std::env::var_os("SUBCOUNT_GOLDEN_RECORD") else {
+        return;
+    };
+    let code = output.status.code().unwrap_or(-1);
+    if code == 0 {
+        return;
+    }
+    let dir = PathBuf::from(dir);
+    let hash = |bytes: &[u8]| {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        bytes.hash(&mut h);
+        format!("{:016x}", h.finish())
+    };
+    let test = std::thread::current()
+        .name()
+        .unwrap_or("unnamed")
+        .to_string();
+    let mut fields = vec![test, code.to_string()];
+    for arg in args {
+        let path = cwd.map_or_else(|| PathBuf::from(arg), |cwd| cwd.join(arg));
+        let small = std::fs::metadata(&path).is_ok_and(|m| m.is_file() && m.len() <= 16 << 20);
+        let copied = small
+            .then(|| std::fs::read(&path).ok())
+            .flatten()
+            .and_then(|bytes| {
+                let name = path.file_name()?.to_string_lossy().into_owned();
+                let copy = format!("{}-{name}", hash(&bytes));
+                std::fs::create_dir_all(dir.join("files")).ok()?;
+                std::fs::write(dir.join("files").join(&copy), bytes).ok()?;
+                Some(format!("@FILES@/{copy}"))
+            });
+        fields.push(copied.unwrap_or_else(|| (*arg).to_string()));
+    }
+    let text = fields.join("\0");
+    let runs = dir.join("runs");
+    std::fs::create_dir_all(&runs).expect("the recording folder can be created");
+    std::fs::write(runs.join(format!("{}.run", hash(text.as_bytes()))), text)
+        .expect("the recording is written");
 }
 
 /// Runs and asserts success with an empty stderr; returns stdout.
@@ -106,6 +153,7 @@ pub(crate) fn subcount_in(dir: &std::path::Path, args: &[&str]) -> Run {
         .stdin(std::process::Stdio::null())
         .output()
         .expect("the subcount binary runs");
+    record(Some(dir), args, &output);
     Run {
         code: output.status.code().unwrap_or(-1),
         stdout: String::from_utf8(output.stdout).expect("stdout is UTF-8"),
