@@ -8,9 +8,12 @@
 //!   `DIR` (and of `DIR/broken`) with every applicable built-in scheme, level by level up to a
 //!   face cap, and prints a pass/fail table; it exits non-zero on any failure. It re-runs
 //!   itself in release mode when built in debug.
+//! - `cargo xtask tidy` fails on import cycles between files, a crate depending on one of its
+//!   own layer or above, and the budgets (the CLI's size, README.md and ARCHITECTURE.md).
 
 mod formulas;
 mod paper;
+mod tidy;
 mod verify;
 
 use std::path::{Path, PathBuf};
@@ -20,7 +23,8 @@ usage: cargo xtask <task>
 
 tasks:
   formulas [--check]                          regenerate docs/formulas.md (--check: fail when stale)
-  verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts";
+  verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts
+  tidy                                        structure checks: import cycles, layers, budgets";
 
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
@@ -36,6 +40,7 @@ fn main() -> anyhow::Result<()> {
             formulas::generate(check)
         }
         Some("verify") => verify::run(&rest),
+        Some("tidy") => tidy::run(&project_root()),
         Some("help" | "--help" | "-h") => {
             println!("{USAGE}");
             Ok(())
