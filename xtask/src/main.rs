@@ -11,10 +11,13 @@
 //! - `cargo xtask golden OLD_BIN NEW_BIN [--meshes DIR]` runs a fixed matrix of commands on
 //!   two `subcount` binaries and prints every difference in exit code, stdout, stderr and
 //!   output files (see `golden.rs` and `docs/golden.md`).
+//! - `cargo xtask tidy` fails on import cycles between files, a crate depending on one of its
+//!   own layer or above, and the budgets (the CLI's size, README.md and ARCHITECTURE.md).
 
 mod formulas;
 mod golden;
 mod paper;
+mod tidy;
 mod verify;
 
 use std::path::{Path, PathBuf};
@@ -26,7 +29,8 @@ tasks:
   formulas [--check]                          regenerate docs/formulas.md (--check: fail when stale)
   verify DIR [--max-faces N] [--schemes a,b]  subdivide every mesh of DIR and DIR/broken, compare counts
   golden OLD_BIN NEW_BIN [--meshes DIR] [--cases DIR] [--record] [--no-errors] [--list]
-                                              run a fixed matrix on two binaries, print every difference";
+                                              run a fixed matrix on two binaries, print every difference
+  tidy                                        structure checks: import cycles, layers, budgets";
 
 fn main() -> anyhow::Result<()> {
     let mut args = std::env::args().skip(1);
@@ -43,6 +47,7 @@ fn main() -> anyhow::Result<()> {
         }
         Some("verify") => verify::run(&rest),
         Some("golden") => golden::run(&rest),
+        Some("tidy") => tidy::run(&project_root()),
         Some("help" | "--help" | "-h") => {
             println!("{USAGE}");
             Ok(())

@@ -262,15 +262,6 @@ pub(crate) fn build(
     Ok(mesh)
 }
 
-/// A well-mixed 64-bit value of a vertex index (splitmix64), summed over a face to get a
-/// hash of its vertex set that does not depend on the order.
-pub(crate) fn mix(v: u32) -> u64 {
-    let mut z = u64::from(v).wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
-
 fn check_duplicate_faces<'a>(n_faces: usize, face: &impl Fn(usize) -> &'a [u32]) -> Result<()> {
     match crate::stats::duplicate_faces(n_faces, face).first_pair {
         Some((first, second)) => Err(Error::DuplicateFace {

@@ -206,7 +206,7 @@ pub enum ParseError {
 #[non_exhaustive]
 pub enum Error {
     /// Reading or writing a file failed.
-    #[error("{}: {source}", crate::io::escape_controls(&path.display().to_string()))]
+    #[error("{}: {source}", escape_controls(&path.display().to_string()))]
     Io {
         /// The file.
         path: PathBuf,
@@ -216,7 +216,7 @@ pub enum Error {
     },
     /// An output file the user may not write: it is left as it is (see
     /// [`crate::io::write_atomically`]).
-    #[error("{}: refusing to write over it: {reason}", crate::io::escape_controls(&path.display().to_string()))]
+    #[error("{}: refusing to write over it: {reason}", escape_controls(&path.display().to_string()))]
     WriteProtected {
         /// The file as given.
         path: PathBuf,
@@ -225,7 +225,7 @@ pub enum Error {
     },
     /// A mesh file larger than the memory this process may allocate, refused before it is
     /// read (a resource guard: see [`Error::is_resource_limit`]).
-    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", crate::io::escape_controls(&path.display().to_string()))]
+    #[error("{}: the file is {size} bytes, more than the {limit} bytes of memory available to this process", escape_controls(&path.display().to_string()))]
     FileTooLarge {
         /// The file.
         path: PathBuf,
@@ -263,7 +263,7 @@ pub enum Error {
         file: String,
     },
     /// A mesh file whose format cannot be told from its extension.
-    #[error("{}: unknown mesh format (expected .obj or .off)", crate::io::escape_controls(&path.display().to_string()))]
+    #[error("{}: unknown mesh format (expected .obj or .off)", escape_controls(&path.display().to_string()))]
     UnknownFormat {
         /// The file.
         path: PathBuf,
@@ -710,4 +710,31 @@ impl Error {
             _ => None,
         }
     }
+}
+
+/// `text` with every control character (`char::is_control`: C0, DEL, C1) escaped as Rust's
+/// `escape_debug` writes it (`\u{1b}`, `\t`, `\n`, `\r`, `\0`), everything else as it is:
+/// the one escape of text from a file (a token, a tag name, a file name) before it is
+/// echoed in a message, so that `ESC[2J` in a file cannot clear the terminal. Idempotent on
+/// its own output, which has no control characters.
+///
+/// ```
+/// use halfedge::io::escape_controls;
+/// assert_eq!(escape_controls("\u{1b}[2Jevil"), "\\u{1b}[2Jevil");
+/// assert_eq!(escape_controls("tab\there"), "tab\\there");
+/// assert_eq!(escape_controls("plain `ok` é"), "plain `ok` é");
+/// ```
+pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }

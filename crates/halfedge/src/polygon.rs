@@ -1,5 +1,7 @@
 //! [`PolygonMesh`]: a raw face list, as read from a file, before any validation.
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 
 use crate::tags::{IgnoredTag, TagError, Tags};
@@ -417,6 +419,99 @@ impl<'a> Iterator for PolygonFaces<'a> {
 }
 
 impl ExactSizeIterator for PolygonFaces<'_> {}
+
+// In this module rather than `tags.rs`, so that `tags` does not import `polygon` (which holds
+// a mesh's `Tags`): the tags are checked against the face list they describe.
+impl Tags {
+    /// Checks the tags against a mesh: every crease and corner vertex exists, every hole
+    /// face exists, and every crease joins the two ends of a side of some face (in either
+    /// direction; a side from a vertex to itself, as in a face that repeats a vertex, joins
+    /// nothing).
+    ///
+    /// # Errors
+    ///
+    /// The first problem as a [`TagError`] naming the entry (its position in
+    /// [`creases`](Self::creases), [`corners`](Self::corners) or [`holes`](Self::holes)):
+    /// creases are checked first, then corners, then holes.
+    ///
+    /// ```
+    /// use halfedge::{shapes, tags::{TagError, Tags}};
+    ///
+    /// let cube = shapes::cube();
+    /// let mut tags = Tags::default();
+    /// tags.add_crease(0, 1, 10.0)?;
+    /// assert_eq!(tags.check_against(&cube), Ok(()));
+    /// tags.add_crease(0, 6, 1.0)?; // a diagonal: no face has the side (0, 6)
+    /// assert_eq!(tags.check_against(&cube), Err(TagError::NotAnEdge { entry: 1, a: 0, b: 6 }));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn check_against(&self, mesh: &PolygonMesh) -> Result<(), TagError> {
+        let vertices = mesh.n_vertices();
+        let in_range = |v: u32| (v as usize) < vertices;
+        for (entry, c) in self.creases().iter().enumerate() {
+            if let Some(vertex) = [c.a, c.b].into_iter().find(|&v| !in_range(v)) {
+                return Err(TagError::VertexOutOfRange {
+                    tag: "crease",
+                    entry,
+                    vertex,
+                    vertices,
+                });
+            }
+        }
+        if !self.creases().is_empty() {
+            // Each wanted edge once, with its first entry; the sides of the faces mark them.
+            // A side from a vertex to itself (a face repeating a vertex, `f 1 2 2`) is no
+            // edge: a crease `v v` is refused even on such a face.
+            let mut wanted: HashMap<(u32, u32), (usize, bool)> = HashMap::new();
+            for (entry, c) in self.creases().iter().enumerate() {
+                wanted
+                    .entry((c.a.min(c.b), c.a.max(c.b)))
+                    .or_insert((entry, false));
+            }
+            for face in mesh.faces() {
+                for (i, &a) in face.iter().enumerate() {
+                    let b = face[(i + 1) % face.len()];
+                    if a == b {
+                        continue;
+                    }
+                    if let Some(found) = wanted.get_mut(&(a.min(b), a.max(b))) {
+                        found.1 = true;
+                    }
+                }
+            }
+            if let Some(&entry) = wanted
+                .values()
+                .filter(|(_, found)| !found)
+                .map(|(entry, _)| entry)
+                .min()
+            {
+                let c = self.creases()[entry];
+                return Err(TagError::NotAnEdge {
+                    entry,
+                    a: c.a,
+                    b: c.b,
+                });
+            }
+        }
+        for (entry, c) in self.corners().iter().enumerate() {
+            if !in_range(c.vertex) {
+                return Err(TagError::VertexOutOfRange {
+                    tag: "corner",
+                    entry,
+                    vertex: c.vertex,
+                    vertices,
+                });
+            }
+        }
+        let faces = mesh.n_faces();
+        for (entry, &face) in self.holes().iter().enumerate() {
+            if face as usize >= faces {
+                return Err(TagError::FaceOutOfRange { entry, face, faces });
+            }
+        }
+        Ok(())
+    }
+}
 
 #[cfg(test)]
 mod tests {

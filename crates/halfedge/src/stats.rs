@@ -338,6 +338,15 @@ pub(crate) struct DuplicateFaces {
     pub(crate) first_pair: Option<(u32, u32)>,
 }
 
+/// A well-mixed 64-bit value of a vertex index (splitmix64), summed over a face to get a
+/// hash of its vertex set that does not depend on the order.
+fn mix(v: u32) -> u64 {
+    let mut z = u64::from(v).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
 /// Finds the faces on equal vertex sets in `O(H log H)`: faces are sorted by a hash of their
 /// set, and only faces of equal hash are compared, by sorting their sets (so a file of
 /// identical faces costs one sort, not a comparison of every pair).
@@ -355,8 +364,7 @@ pub(crate) fn duplicate_faces<'a>(
         .map(|f| {
             let set = distinct_set(f);
             let hash = set.iter().fold(set.len() as u64, |h, &v| {
-                h.wrapping_mul(0x100_0000_01b3)
-                    .wrapping_add(crate::build::mix(v))
+                h.wrapping_mul(0x100_0000_01b3).wrapping_add(mix(v))
             });
             (hash, f)
         })
