@@ -97,7 +97,7 @@
 //! stencils use) and index buffers (`to_faces::faces_after`), keeping only the level it refines
 //! (as a half-edge mesh with its positions) and the one it builds and flattening nothing into fast
 //! tables, so a rule changed in the refinement changes the one-shot subdivision too; its output is
-//! hashed to the bit for every rule at levels 1-3 (`subdivide/oneshot_hashes.rs`). Under crease
+//! hashed to the bit for every rule at levels 1-3 (`tests/integration/oneshot_hashes.rs`). Under crease
 //! rules it takes the same `Creases` as `Refinement::new` (`SubdivideOptions::sharpness` and
 //! `subdivision`): each level's positions come from the half-edge kernels and the crease rows of
 //! the level refined written over them, or its dense weight table, as `Refinement::new` chooses
@@ -131,8 +131,6 @@ pub(crate) mod dual;
 mod faces;
 mod finite;
 mod gather;
-#[cfg(test)]
-mod oneshot_hashes;
 mod par;
 pub mod refine;
 pub mod sdc;

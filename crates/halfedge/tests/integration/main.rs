@@ -3,6 +3,7 @@
 mod creases;
 mod holes;
 mod invalid_obj;
+mod oneshot_hashes;
 mod properties;
 mod roundtrip;
 mod shared_meshes;

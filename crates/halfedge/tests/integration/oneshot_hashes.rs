@@ -3,11 +3,11 @@
 //! the returned [`HalfEdgeMesh`] (so its half-edge numbering), and the face list of
 //! [`subdivide_to_face_list`] (face order, corner order, positions). The expected hashes were
 //! computed on the one-shot code before it became a wrapper over the refinement; a change in
-//! any bit of any output changes them.
+//! any bit of any output changes them. Through the public API only (a test of what users get).
 
-use super::*;
-use crate::shapes;
-use glam::DVec3;
+use halfedge::glam::DVec3;
+use halfedge::subdivide::{subdivide, subdivide_to_face_list, FaceListLevel, SubdivideOptions};
+use halfedge::{shapes, HalfEdgeMesh, PolygonMesh, Rule};
 
 /// FNV-1a, 64 bits (stable across Rust versions, unlike `DefaultHasher`).
 struct Fnv(u64);
@@ -41,15 +41,26 @@ impl Fnv {
     }
 }
 
+/// The positions and the six half-edge arrays of `m` (read through its accessors: a
+/// boundary half-edge's face is `u32::MAX`, as the arrays hold it).
 fn hash_mesh(h: &mut Fnv, m: &HalfEdgeMesh) {
-    h.points(&m.positions);
+    h.points(m.positions());
+    let vertex_halfedge: Vec<u32> = m.vertices().map(|v| m.vertex_halfedge(v).0).collect();
+    let halfedge_vertex: Vec<u32> = m.halfedges().map(|e| m.to_vertex(e).0).collect();
+    let halfedge_face: Vec<u32> = m
+        .halfedges()
+        .map(|e| m.face(e).map_or(u32::MAX, |f| f.0))
+        .collect();
+    let halfedge_next: Vec<u32> = m.halfedges().map(|e| m.next(e).0).collect();
+    let halfedge_prev: Vec<u32> = m.halfedges().map(|e| m.prev(e).0).collect();
+    let face_halfedge: Vec<u32> = m.faces().map(|f| m.face_halfedge(f).0).collect();
     for a in [
-        &m.vertex_halfedge,
-        &m.halfedge_vertex,
-        &m.halfedge_face,
-        &m.halfedge_next,
-        &m.halfedge_prev,
-        &m.face_halfedge,
+        &vertex_halfedge,
+        &halfedge_vertex,
+        &halfedge_face,
+        &halfedge_next,
+        &halfedge_prev,
+        &face_halfedge,
     ] {
         h.u32s(a);
     }
