@@ -46,6 +46,9 @@ const VARIANTS: [&[&str]; 6] = [
 const OUT: &str = "{OUT}";
 /// Stands for the recorded-files folder in a recorded error case's arguments.
 const FILES: &str = "@FILES@";
+/// In a recorded error case, the run's own scratch folder (an `-o` path of the test's temporary
+/// folder, gone when the harness replays it, is recorded under this).
+const SCRATCH: &str = "@SCRATCH@";
 /// Stands for a run's scratch folder in its normalised output.
 const DIR_PLACEHOLDER: &str = "<DIR>";
 
@@ -427,7 +430,11 @@ fn run_case(bin: &Path, case: &Case, dir: &Path, files: &Path) -> Outcome {
     let args: Vec<String> = case
         .args
         .iter()
-        .map(|a| a.replace(OUT, &out_file).replace(FILES, &files))
+        .map(|a| {
+            a.replace(OUT, &out_file)
+                .replace(FILES, &files)
+                .replace(SCRATCH, &dir.to_string_lossy())
+        })
         .collect();
     let outcome = match Command::new(bin)
         .args(&args)

@@ -49,7 +49,18 @@ fn record(cwd: Option<&std::path::Path>, args: &[&str], output: &Output) {
         .unwrap_or("unnamed")
         .to_string();
     let mut fields = vec![test, code.to_string()];
+    let mut output_next = false;
     for arg in args {
+        // An output path of the test's temporary folder (gone when the harness replays the
+        // run): the replaying run's own folder, under the same file name.
+        if std::mem::take(&mut output_next) && *arg != "-" {
+            let name = std::path::Path::new(arg)
+                .file_name()
+                .map_or_else(|| "out".to_owned(), |n| n.to_string_lossy().into_owned());
+            fields.push(format!("@SCRATCH@/{name}"));
+            continue;
+        }
+        output_next = matches!(*arg, "-o" | "--output");
         let path = cwd.map_or_else(|| PathBuf::from(arg), |cwd| cwd.join(arg));
         let small = std::fs::metadata(&path).is_ok_and(|m| m.is_file() && m.len() <= 16 << 20);
         let copied = small
