@@ -564,13 +564,16 @@ mod tests {
         assert_eq!(doc_problems("README.md", &"a\n".repeat(200), 200).len(), 1);
     }
 
-    /// The workspace as it is: every problem tidy finds. Issue 25 makes this pass (the CLI
-    /// moved under 3,000 lines); `.ci/run` runs
-    /// `cargo xtask tidy` from then on.
+    /// The workspace holds every check but the CLI's size, which issue 25 brings under its
+    /// budget (`.ci/run` runs `cargo xtask tidy` from then on): a new import cycle, a crate
+    /// above its layer, a file only for tests or README.md / ARCHITECTURE.md over budget fails
+    /// `cargo test` now.
     #[test]
-    #[ignore = "issue 25: fails until the CLI's src/ is under 3,000 lines"]
-    fn the_workspace_is_tidy() {
-        let problems = check(&crate::project_root());
+    fn the_workspace_is_tidy_but_for_the_cli_size() {
+        let problems: Vec<String> = check(&crate::project_root())
+            .into_iter()
+            .filter(|p| !p.starts_with("crates/subcount/src is "))
+            .collect();
         assert!(problems.is_empty(), "{}", problems.join("\n"));
     }
 }
