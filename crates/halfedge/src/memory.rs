@@ -268,7 +268,8 @@ pub fn predicted_peak_bytes_with_creases(
 const MMAP_THRESHOLD_MAX: u64 = 32 << 20;
 
 /// The arrays of the half-edge mesh of level `s` that stay resident once freed: the ones
-/// below [`MMAP_THRESHOLD_MAX`] (positions, vertex half-edges, the four half-edge arrays, face
+/// below [`MMAP_THRESHOLD_MAX`] (positions, then the connectivity of
+/// [`connectivity_resident_bytes`]: vertex half-edges, the four half-edge arrays, face
 /// half-edges).
 fn heap_resident_bytes(
     scheme: &Scheme,
@@ -276,19 +277,28 @@ fn heap_resident_bytes(
     s: u64,
 ) -> Result<BigInt, schemes::Error> {
     let c = scheme.counts_at(counts, s)?;
-    let halfedge_array = BigInt::from(8) * &c.edges;
-    let arrays = [
-        (BigInt::from(24) * &c.vertices, 1u32),
-        (BigInt::from(4) * &c.vertices, 1),
-        (halfedge_array, 4),
-        (BigInt::from(4) * &c.faces, 1),
-    ];
+    Ok(below_mmap_threshold([(BigInt::from(24) * &c.vertices, 1)]) + connectivity_resident(&c))
+}
+
+/// The total of `(bytes, copies)` arrays whose size is below [`MMAP_THRESHOLD_MAX`]: what
+/// stays resident of them once freed.
+fn below_mmap_threshold<const N: usize>(arrays: [(BigInt, u32); N]) -> BigInt {
     let limit = BigInt::from(MMAP_THRESHOLD_MAX);
-    Ok(arrays
+    arrays
         .into_iter()
         .filter(|(bytes, _)| *bytes < limit)
         .map(|(bytes, n)| bytes * n)
-        .sum())
+        .sum()
+}
+
+/// The connectivity arrays of a level with counts `c` (4 bytes per vertex and per face, four
+/// arrays of 8 bytes per edge) that stay resident once freed.
+fn connectivity_resident(c: &schemes::LevelCounts) -> BigInt {
+    below_mmap_threshold([
+        (BigInt::from(4) * &c.vertices, 1),
+        (BigInt::from(8) * &c.edges, 4),
+        (BigInt::from(4) * &c.faces, 1),
+    ])
 }
 
 /// The bytes of the half-edge mesh of level `s` of `scheme` ([`HalfEdgeMesh::bytes_for`]).
@@ -554,26 +564,16 @@ pub fn predicted_refinement_peak_bytes(
     Ok(building.max(kept + buffers + input + resident) + around)
 }
 
-/// The arrays of a refinement's connectivity of level `s` ([`crate::Refinement`]: 4 bytes
-/// per vertex and per face, four arrays of 8 bytes per edge) that stay resident once freed:
-/// the ones below [`MMAP_THRESHOLD_MAX`] (as [`heap_resident_bytes`]).
+/// The arrays of a refinement's connectivity of level `s` ([`crate::Refinement`], laid out as
+/// a half-edge mesh's) that stay resident once freed ([`connectivity_resident`]).
 fn connectivity_resident_bytes(
     scheme: &Scheme,
     counts: &MeshCounts,
     s: u32,
 ) -> Result<BigInt, schemes::Error> {
-    let c = scheme.counts_at(counts, u64::from(s))?;
-    let arrays = [
-        (BigInt::from(4) * &c.vertices, 1u32),
-        (BigInt::from(8) * &c.edges, 4),
-        (BigInt::from(4) * &c.faces, 1),
-    ];
-    let limit = BigInt::from(MMAP_THRESHOLD_MAX);
-    Ok(arrays
-        .into_iter()
-        .filter(|(bytes, _)| *bytes < limit)
-        .map(|(bytes, n)| bytes * n)
-        .sum())
+    Ok(connectivity_resident(
+        &scheme.counts_at(counts, u64::from(s))?,
+    ))
 }
 
 /// What refining a UV layout with the surface adds to a peak: the face-varying channel of

@@ -127,8 +127,10 @@ pub fn subdivide_stages(
         let counts = crate::stats::face_list_counts(current);
         let scheme = stage.scheme().for_mesh(&counts);
         let rule = checked_rule(&scheme, &counts)?;
-        let face_list =
-            !scheme.mesh_class().needs_manifold() && rule.refines_faces() || !is_manifold(current);
+        // As `subdivide` of one scheme: the raw face list for the schemes that refine each face
+        // on its own and accept any face list; a half-edge mesh (built after the guard, its
+        // errors the mesh's) for the others.
+        let face_list = !scheme.mesh_class().needs_manifold() && rule.refines_faces();
         before_stage(&StageStart {
             index: i,
             mesh: current,
@@ -201,11 +203,6 @@ pub fn subdivide_stages(
         }
     };
     Ok(StagedRun { mesh, reports })
-}
-
-/// Whether every edge of `mesh` has one or two faces and the half-edge mesh builds.
-fn is_manifold(mesh: &PolygonMesh) -> bool {
-    HalfEdgeMesh::try_from(mesh).is_ok()
 }
 
 /// The report of `level`: the plan's prediction from `x0` in the names of `scheme` (the

@@ -48,7 +48,7 @@ fn ngon(n: usize) -> String {
 }
 
 /// A bipyramid over an `n`-gon (two apexes of valence `n`), a `vt` per vertex.
-fn bipyramid(n: usize) -> String {
+pub(crate) fn bipyramid(n: usize) -> String {
     let mut s = String::new();
     for i in 0..n {
         let a = std::f64::consts::TAU * i as f64 / n as f64;
