@@ -214,8 +214,8 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
-    /// An output file the user may not write: it is left as it is (see
-    /// [`crate::io::write_atomically`]).
+    /// An output file the user may not write: it is left as it is (the front ends' writer,
+    /// `driver::output::write_atomically`, refuses it).
     #[error("{}: refusing to write over it: {reason}", escape_controls(&path.display().to_string()))]
     WriteProtected {
         /// The file as given.
@@ -231,11 +231,11 @@ pub enum Error {
         path: PathBuf,
         /// Its size in bytes.
         size: u64,
-        /// The bytes available ([`crate::memory::available_bytes`]).
+        /// The bytes available ([`crate::io::ReadOptions::available_bytes`]).
         limit: u64,
     },
     /// A mesh file whose faces and vertices need more memory than a reader may fill (half
-    /// of [`crate::memory::available_bytes`]), refused where the reader got to (a resource
+    /// of [`crate::io::ReadOptions::available_bytes`]), refused where the reader got to (a resource
     /// guard).
     #[error("{file}: line {line}: the mesh read so far needs more than {limit} bytes of memory, half of what is available to this process")]
     MeshTooLarge {
@@ -488,8 +488,8 @@ pub enum Error {
         /// The predicted count.
         count: num_bigint::BigInt,
     },
-    /// A generated base mesh larger than the memory this process may allocate (half of
-    /// [`crate::memory::available_bytes`]), refused before it is built.
+    /// A generated base mesh larger than half the memory this process may allocate (as
+    /// given to [`crate::shapes::from_name_within`]), refused before it is built.
     #[error("base mesh `{name}` would need {bytes} bytes of memory, more than the limit of {limit} bytes (half the memory available to this process)")]
     ShapeTooLarge {
         /// The name as given.

@@ -2,7 +2,7 @@
 //! them with every built-in scheme, write them back.
 //!
 //! - [`io`] reads OBJ and OFF into a [`PolygonMesh`] — the raw face list, polygons kept, every
-//!   vertex kept — with errors that name the file and line, and writes OBJ atomically.
+//!   vertex kept — with errors that name the file and line, and writes OBJ into any `Write`.
 //! - [`HalfEdgeMesh`] is the validated, index-based half-edge structure (`u32` handles into
 //!   parallel arrays, half-edges stored in pairs, after pmp-library's `SurfaceMesh`). Building
 //!   it from a face list checks everything a manifold, oriented surface needs and names the

@@ -47,7 +47,8 @@ pub const MAX_ICOSAHEDRON_HOLES: u32 = 4;
 ///
 /// [`Error::UnknownShape`] for another name, [`Error::InvalidShapeParameter`] for a missing,
 /// malformed or out-of-range parameter, [`Error::ShapeTooLarge`] for a mesh that would need
-/// more than half the memory available to the process (checked before allocating).
+/// more than half of `available` bytes (with [`from_name_within`]; checked before
+/// allocating).
 ///
 /// # Example
 ///
@@ -59,6 +60,23 @@ pub const MAX_ICOSAHEDRON_HOLES: u32 = 4;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn from_name(name: &str) -> Result<PolygonMesh> {
+    from_name_within(name, None)
+}
+
+/// [`from_name`] for a process that may still allocate `available` bytes (as its caller
+/// measured them, e.g. `driver::system::available_bytes`): a mesh whose face list would need
+/// more than half of them is [`Error::ShapeTooLarge`], refused before anything is allocated.
+/// `None`: no limit but [`MAX_CELLS`].
+///
+/// # Errors
+///
+/// As [`from_name`].
+///
+/// ```
+/// let err = halfedge::shapes::from_name_within("grid:1000x1000", Some(1 << 20)).unwrap_err();
+/// assert!(err.to_string().contains("half the memory available"), "{err}");
+/// ```
+pub fn from_name_within(name: &str, available: Option<u64>) -> Result<PolygonMesh> {
     let (base, parameter) = match name.split_once(':') {
         Some((b, p)) => (b, Some(p)),
         None => (name, None),
@@ -99,17 +117,17 @@ pub fn from_name(name: &str) -> Result<PolygonMesh> {
         "icosahedron" => no_parameter(icosahedron()),
         "cube" => no_parameter(cube()),
         "mixed" => no_parameter(mixed()),
-        "torus" => torus(count("G with the genus G >= 1")?).map_err(rename),
+        "torus" => torus_within(count("G with the genus G >= 1")?, available).map_err(rename),
         "icosahedron-holes" => {
             icosahedron_holes(count("K with K holes, 1 <= K <= 4")?).map_err(rename)
         }
         "grid" => {
             let (w, h) = size()?;
-            grid(w, h).map_err(rename)
+            grid_within(w, h, available).map_err(rename)
         }
         "quad-grid" => {
             let (w, h) = size()?;
-            quad_grid(w, h).map_err(rename)
+            quad_grid_within(w, h, available).map_err(rename)
         }
         _ => Err(Error::UnknownShape {
             name: name.to_string(),
@@ -315,11 +333,15 @@ fn check_cells(name: String, w: u64, h: u64) -> Result<()> {
 }
 
 /// Refuses a generated mesh of `vertices`, `faces` and `corners` whose face list would need
-/// more than half the memory this process may allocate (the rule the CLI applies to
-/// subdivision), before anything is allocated.
-fn guard_memory(name: String, vertices: u64, faces: u64, corners: u64) -> Result<()> {
+/// more than half of `available` bytes (the rule the CLI applies to subdivision), before
+/// anything is allocated.
+fn guard_memory(
+    name: String,
+    (vertices, faces, corners): (u64, u64, u64),
+    available: Option<u64>,
+) -> Result<()> {
     let bytes = PolygonMesh::bytes_for(vertices, faces, corners);
-    let limit = crate::memory::available_bytes().map_or(u64::MAX, |b| b / 2);
+    let limit = available.map_or(u64::MAX, |b| b / 2);
     if bytes > u128::from(limit) {
         return Err(Error::ShapeTooLarge { name, bytes, limit });
     }
@@ -335,13 +357,18 @@ fn grid_of(
     kind: &str,
     (w, h): (u32, u32),
     (faces_per_cell, corners): (u64, u64),
+    available: Option<u64>,
     cell: impl Fn(&mut PolygonMesh, [u32; 4]),
 ) -> Result<PolygonMesh> {
     let (w64, h64) = (u64::from(w), u64::from(h));
     check_cells(format!("{kind}:{w}x{h}"), w64, h64)?;
     let faces = faces_per_cell * w64 * h64;
     let vertices = (w64 + 1) * (h64 + 1);
-    guard_memory(format!("{kind}:{w}x{h}"), vertices, faces, corners * faces)?;
+    guard_memory(
+        format!("{kind}:{w}x{h}"),
+        (vertices, faces, corners * faces),
+        available,
+    )?;
     let mut positions = Vec::with_capacity(vertices as usize);
     for j in 0..=h {
         for i in 0..=w {
@@ -367,11 +394,14 @@ fn grid_of(
 ///
 /// # Errors
 ///
-/// [`Error::InvalidShapeParameter`] when `w` or `h` is 0 or `w * h > MAX_CELLS`,
-/// [`Error::ShapeTooLarge`] when the mesh would need more than half the memory available to
-/// the process ([`crate::memory::available_bytes`]).
+/// [`Error::InvalidShapeParameter`] when `w` or `h` is 0 or `w * h > MAX_CELLS`.
 pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    grid_of("grid", (w, h), (2, 3), |mesh, [a, b, c, d]| {
+    grid_within(w, h, None)
+}
+
+/// [`grid`], refused ([`Error::ShapeTooLarge`]) beyond half of `available` bytes.
+fn grid_within(w: u32, h: u32, available: Option<u64>) -> Result<PolygonMesh> {
+    grid_of("grid", (w, h), (2, 3), available, |mesh, [a, b, c, d]| {
         mesh.push_face(&[a, b, c]);
         mesh.push_face(&[a, c, d]);
     })
@@ -383,7 +413,12 @@ pub fn grid(w: u32, h: u32) -> Result<PolygonMesh> {
 ///
 /// As [`grid`].
 pub fn quad_grid(w: u32, h: u32) -> Result<PolygonMesh> {
-    grid_of("quad-grid", (w, h), (1, 4), |mesh, cell| {
+    quad_grid_within(w, h, None)
+}
+
+/// [`quad_grid`], refused ([`Error::ShapeTooLarge`]) beyond half of `available` bytes.
+fn quad_grid_within(w: u32, h: u32, available: Option<u64>) -> Result<PolygonMesh> {
+    grid_of("quad-grid", (w, h), (1, 4), available, |mesh, cell| {
         mesh.push_face(&cell)
     })
 }
@@ -397,9 +432,13 @@ pub fn quad_grid(w: u32, h: u32) -> Result<PolygonMesh> {
 ///
 /// # Errors
 ///
-/// [`Error::InvalidShapeParameter`] when `genus` is 0 or more than [`MAX_CELLS`] / 16, and
-/// [`Error::ShapeTooLarge`] as for [`grid`].
+/// [`Error::InvalidShapeParameter`] when `genus` is 0 or more than [`MAX_CELLS`] / 16.
 pub fn torus(genus: u32) -> Result<PolygonMesh> {
+    torus_within(genus, None)
+}
+
+/// [`torus`], refused ([`Error::ShapeTooLarge`]) beyond half of `available` bytes.
+fn torus_within(genus: u32, available: Option<u64>) -> Result<PolygonMesh> {
     if genus == 0 || u64::from(genus) > MAX_CELLS / 16 {
         return Err(Error::InvalidShapeParameter {
             name: format!("torus:{genus}"),
@@ -415,7 +454,11 @@ pub fn torus(genus: u32) -> Result<PolygonMesh> {
         // At most two vertices per grid point; four triangles per kept square.
         let points = u64::from(nx + 1) * u64::from(ny + 1);
         let faces = 4 * (u64::from(nx) * u64::from(ny) - u64::from(genus));
-        guard_memory(format!("torus:{genus}"), 2 * points, faces, 3 * faces)?;
+        guard_memory(
+            format!("torus:{genus}"),
+            (2 * points, faces, 3 * faces),
+            available,
+        )?;
     }
     let is_hole = |i: u32, j: u32| j == 2 && i >= 2 && i < 3 * genus + 2 && (i - 2) % 3 == 0;
     let hole_corner =

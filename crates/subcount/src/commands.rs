@@ -10,10 +10,10 @@ use serde_json::{json, Value};
 
 use crate::args::{AtArgs, AtFormat, Command, FormulaArgs, FormulaFormat, TableArgs, TableFormat};
 use crate::failure::{usage, write_failure, Failure, Kind};
-use crate::guard::{self, Hint};
 use crate::levels::{parse_level, parse_levels};
 use crate::model::Input;
 use crate::output::{self, Field};
+use driver::limits::{self as guard, Hint};
 
 /// Runs one subcommand, writing its result to `out`; returns the exit code.
 pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure> {

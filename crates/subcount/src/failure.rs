@@ -74,27 +74,51 @@ pub(crate) fn write_failure(e: std::io::Error) -> Failure {
     )
 }
 
-/// Maps a `schemes` error to an exit code: problems with the typed command line are usage
-/// errors (2); a scheme that does not apply or a bad scheme file is exit 3; a search that
-/// grew too large is exit 4.
+/// Maps a `schemes` error to an exit code ([`driver::Kind::of_scheme_error`]): problems with
+/// the typed command line are usage errors (2); a scheme that does not apply or a bad scheme
+/// file is exit 3; a search that grew too large is exit 4.
 pub(crate) fn scheme_failure(e: schemes::Error) -> Failure {
-    use schemes::Error as E;
-    let kind = match &e {
-        E::NotApplicable { .. }
-        | E::SchemeFile { .. }
-        | E::NoMeshCounts { .. }
-        | E::BadFace { .. }
-        | E::NothingFits { .. } => Kind::Input,
-        E::SearchTooLarge { .. } | E::SearchEstimateTooLarge { .. } | E::OutOfFloatRange { .. } => {
-            Kind::Guard
-        }
-        _ => Kind::Usage,
-    };
-    Failure::new(kind, e)
+    Failure::new(driver::Kind::of_scheme_error(&e).into(), e)
 }
 
 impl From<schemes::Error> for Failure {
     fn from(e: schemes::Error) -> Failure {
         scheme_failure(e)
+    }
+}
+
+impl From<driver::Kind> for Kind {
+    fn from(kind: driver::Kind) -> Kind {
+        match kind {
+            driver::Kind::Mismatch => Kind::Mismatch,
+            driver::Kind::Usage => Kind::Usage,
+            driver::Kind::Input => Kind::Input,
+            _ => Kind::Guard,
+        }
+    }
+}
+
+/// The driver's errors, with the command line's advice where a flag helps: the memory guard
+/// says how to lift it, crease input under a rule without creases how to drop it.
+impl From<driver::Error> for Failure {
+    fn from(e: driver::Error) -> Failure {
+        use halfedge::Error as E;
+        let kind = e.kind().into();
+        let advice = match &e {
+            driver::Error::Geometry(E::OverMemoryLimit { .. }) => {
+                "; use fewer levels, or --allow-large to try anyway"
+            }
+            driver::Error::Geometry(E::CreasesNotSupported { .. }) => {
+                ": use a Loop or Catmull-Clark scheme, --ignore-tags (for the file's tags), or drop the option flags"
+            }
+            _ => return Failure::new(kind, e),
+        };
+        Failure::new(kind, anyhow::anyhow!("{e}{advice}"))
+    }
+}
+
+impl From<halfedge::Error> for Failure {
+    fn from(e: halfedge::Error) -> Failure {
+        driver::Error::from(e).into()
     }
 }

@@ -31,13 +31,11 @@ mod args;
 mod commands;
 mod compose;
 mod failure;
-mod guard;
 mod levels;
 mod mesh;
 mod model;
 mod output;
 mod plot;
-mod refined;
 mod report;
 
 use std::io::{self, Write};

@@ -40,7 +40,7 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     let x0 = input.initial_state(&counter)?;
     // A mesh with a UV layout adds the UV values as a series of their own.
     let uv = input.uv_counter(&counter)?;
-    crate::guard::table(&counter, &x0, &levels, uv.as_ref())?;
+    driver::limits::table(&counter, &x0, &levels, uv.as_ref())?;
     let mut rows = counter.rows(&x0, levels.clone())?;
     let mut columns = counter.columns();
     if let Some(uv) = &uv {
@@ -73,9 +73,9 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
         chart::render_png(&chart)
     };
     let bytes = drawn.map_err(|e| input!("{e}"))?;
-    let written = halfedge::io::write_atomically(&args.output, |file| file.write_all(&bytes));
+    let written = driver::output::write_atomically(&args.output, |file| file.write_all(&bytes));
     written.map_err(|e| match e {
-        halfedge::Error::Io { path, source } => input!("cannot write {}: {source}", path.display()),
+        driver::Error::Io { path, source } => input!("cannot write {}: {source}", path.display()),
         other => input!("cannot write {}: {other}", args.output.display()),
     })?;
     let (path, n) = (args.output.display(), chart.series.len());

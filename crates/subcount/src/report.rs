@@ -8,10 +8,10 @@ use serde_json::Value;
 
 use crate::args::{DensityArgs, FitArgs, ReportFormat, SchemesArgs, SchemesFormat};
 use crate::failure::{input, scheme_failure, usage, write_failure, Failure, Kind};
-use crate::guard::{self, Hint};
 use crate::levels::parse_level;
 use crate::model::Input;
 use crate::output::{self, Field, Row};
+use driver::limits::{self as guard, Hint};
 
 fn plan_of(counter: Counter, command: &str) -> Result<Plan, Failure> {
     match counter {

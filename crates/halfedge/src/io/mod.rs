@@ -72,8 +72,9 @@
 //!
 //! # Memory
 //!
-//! Everything a reader keeps grows inside its budget (half the memory available to the
-//! process): the mesh, the texture coordinates, the tags (a tag line's entries are checked
+//! Everything a reader keeps grows inside its budget (half of
+//! [`ReadOptions::available_bytes`], the memory the caller says the process may still
+//! allocate; no budget without it): the mesh, the texture coordinates, the tags (a tag line's entries are checked
 //! before they are added) and the forward references of `f` lines (only those larger than
 //! every earlier one are kept: the first beyond the file's vertices is the first bad one).
 //! Past it the read is [`Error::MeshTooLarge`]; every list grows by a fallible reservation,
@@ -85,10 +86,9 @@
 //! normals ([`crate::normals`]) as `vn` lines with `f v/vt/vn` or `f v//vn` corners (the
 //! `vn` index is the vertex's); a mesh without texture coordinates and without normals is
 //! written exactly as before they existed. [`write_buffers_obj_with`] writes caller-owned
-//! buffers, UV values and a value per corner ([`UvBuffers`]) included. Files are written to a
-//! temporary file in the target folder and renamed over the target only when complete, so no
-//! partial output is ever left behind ([`write_atomically`]: also `-` for standard output,
-//! symbolic links, special files, write-protected targets and signals).
+//! buffers, UV values and a value per corner ([`UvBuffers`]) included. The writers take any
+//! [`std::io::Write`]; putting the text in a file (atomically, `-` for standard output, signals)
+//! is the front ends' (`driver::output`).
 //!
 //! # Example
 //!
@@ -125,14 +125,11 @@
 //! `UvBuffers` for caller-owned UV values) and, with `ObjWriteOptions::normals`, `vn` from
 //! `normals.rs`'s area-weighted vertex normals. OBJ is parsed here rather than with tobj, because
 //! tobj renumbers vertices per `o`/`g` group, drops unreferenced vertices and reports no line
-//! numbers; the tests compare both readers on every shared mesh. Readers refuse a file larger than
-//! the available memory and stop once the mesh outgrows half of it. Everything a reader keeps
+//! numbers; the tests compare both readers on every shared mesh. Given the available memory
+//! (`ReadOptions::available_bytes`, which the front ends measure), readers refuse a larger file
+//! and stop once the mesh outgrows half of it. Everything a reader keeps
 //! (mesh, `vt`, tags, the rising forward references) counts against that half and grows by
-//! fallible reservations (`Error::AllocationFailed`, never an abort). `write_atomically` is the
-//! one writer of output files (OBJ and plots): a temporary file in the target's folder, then a
-//! rename over the resolved target; `-` is standard output, special files are written directly,
-//! write-protected targets are refused, and a signal handler thread (signal-hook) removes live
-//! temporary files on SIGINT/SIGTERM/SIGHUP.
+//! fallible reservations (`Error::AllocationFailed`, never an abort).
 //!
 //! Owner of reading OpenSubdiv's OBJ tags (`t` lines: grammar, forms, range and edge checks,
 //! ignored tags): `halfedge::io`'s `obj.rs` (`TagReader`), checking through `Tags::check_against`.
@@ -145,9 +142,9 @@
 //! buffers; `vt` and `f v/vt` for texture coordinates, `vn` on request: `ObjWriteOptions`,
 //! `UvBuffers`): `halfedge::io`'s `write.rs` (`write_coordinates`).
 //!
-//! Owner of writing an output file (`-o`): `halfedge::io::write_atomically` (OBJ and plot output
-//! alike); mesh formats not written (`-o out.ply` is a usage error):
-//! `halfedge::io::unwritten_mesh_format`.
+//! Owner of writing an output file (`-o`): `driver::output::write_atomically` (OBJ and plot
+//! output alike); mesh formats not written (`-o out.ply` is a usage error):
+//! `driver::output::unwritten_mesh_format`.
 
 mod obj;
 mod off;
@@ -156,11 +153,8 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    check_output, unwritten_mesh_format, write_atomically, write_buffers_obj,
-    write_buffers_obj_file, write_buffers_obj_file_with, write_buffers_obj_with, write_obj,
-    write_obj_file, write_obj_file_with, write_obj_with, write_polygon_obj, write_polygon_obj_file,
-    write_polygon_obj_file_with, write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
-    UNWRITTEN_MESH_FORMATS,
+    write_buffers_obj, write_buffers_obj_with, write_obj, write_obj_with, write_polygon_obj,
+    write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
 };
 
 pub use crate::error::escape_controls;
@@ -212,7 +206,7 @@ pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<P
         .map(str::to_ascii_lowercase);
     match extension.as_deref() {
         Some("obj") => read_obj_with(path, options),
-        Some("off") => read_off(path),
+        Some("off") => off::read_off_with(path, options),
         _ => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),
@@ -226,15 +220,41 @@ pub struct ReadOptions {
     /// Read OpenSubdiv's `t` lines into [`PolygonMesh::tags`] (the default); when `false`
     /// they are skipped unread, malformed or not.
     pub tags: bool,
+    /// The bytes the process may still allocate, as its caller measured them (the front ends
+    /// ask the system: `driver::system::available_bytes`): a regular file larger than this is
+    /// refused before it is read ([`Error::FileTooLarge`]), and reading stops once the mesh
+    /// and the reader's lists outgrow half of it ([`Error::MeshTooLarge`]). `None` (the
+    /// default): no limit, as the kernel reads no system state.
+    pub available_bytes: Option<u64>,
 }
 
 impl ReadOptions {
-    /// Tags read (the default).
-    pub const DEFAULT: ReadOptions = ReadOptions { tags: true };
+    /// Tags read, no memory limit (the default).
+    pub const DEFAULT: ReadOptions = ReadOptions {
+        tags: true,
+        available_bytes: None,
+    };
 
     /// Tags skipped unread.
     pub fn without_tags() -> ReadOptions {
-        ReadOptions { tags: false }
+        ReadOptions {
+            tags: false,
+            ..ReadOptions::DEFAULT
+        }
+    }
+
+    /// These options with the memory limit of [`ReadOptions::available_bytes`].
+    ///
+    /// ```
+    /// use halfedge::io::{read_obj_from_with, ReadOptions};
+    /// let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".repeat(100);
+    /// let options = ReadOptions::default().with_available_bytes(Some(4096));
+    /// let err = read_obj_from_with(text.as_bytes(), "big.obj", &options).unwrap_err();
+    /// assert!(err.is_resource_limit(), "{err}");
+    /// ```
+    pub fn with_available_bytes(mut self, available_bytes: Option<u64>) -> ReadOptions {
+        self.available_bytes = available_bytes;
+        self
     }
 }
 
@@ -253,16 +273,16 @@ impl Default for ReadOptions {
 pub const MAX_LINE_BYTES: usize = 16 << 20;
 
 /// Opens a mesh file for buffered reading, with the path in the error; a regular file larger
-/// than the memory available to this process ([`crate::memory::available_bytes`]) is
-/// refused before it is read ([`Error::FileTooLarge`]).
-fn open(path: &Path) -> Result<std::io::BufReader<std::fs::File>> {
+/// than `available` bytes ([`ReadOptions::available_bytes`]) is refused before it is read
+/// ([`Error::FileTooLarge`]).
+fn open(path: &Path, available: Option<u64>) -> Result<std::io::BufReader<std::fs::File>> {
     let io_error = |source| Error::Io {
         path: path.to_path_buf(),
         source,
     };
     let file = std::fs::File::open(path).map_err(io_error)?;
     let metadata = file.metadata().map_err(io_error)?;
-    if let Some(limit) = crate::memory::available_bytes() {
+    if let Some(limit) = available {
         if metadata.is_file() && metadata.len() > limit {
             return Err(Error::FileTooLarge {
                 path: path.to_path_buf(),
@@ -311,17 +331,17 @@ pub fn read_text_capped(path: &Path, max_bytes: u64) -> std::io::Result<String> 
 }
 
 /// The memory a reader may fill with the mesh it reads: half of what the process may still
-/// allocate ([`crate::memory::available_bytes`]), leaving room for a vector's growth.
+/// allocate ([`ReadOptions::available_bytes`]), leaving room for a vector's growth.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Budget {
     bytes: u64,
 }
 
 impl Budget {
-    /// Half of [`crate::memory::available_bytes`] (no limit when it is unknown).
-    pub(crate) fn of_process() -> Budget {
+    /// Half of [`ReadOptions::available_bytes`] (no limit without it).
+    pub(crate) fn of(options: &ReadOptions) -> Budget {
         Budget {
-            bytes: crate::memory::available_bytes().map_or(u64::MAX, |b| b / 2),
+            bytes: options.available_bytes.map_or(u64::MAX, |b| b / 2),
         }
     }
 

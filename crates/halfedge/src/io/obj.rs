@@ -22,9 +22,9 @@ use crate::uv::{PartialUvs, Uvs};
 ///
 /// [`Error::Io`] when the file cannot be read, [`Error::Parse`] naming the file and line of
 /// the first malformed statement, [`Error::NoFaces`] for a file without faces,
-/// [`Error::FileTooLarge`] for a file larger than the memory available to the process
-/// (refused before reading), [`Error::MeshTooLarge`] once the mesh read so far needs more
-/// than half of it.
+/// With [`ReadOptions::available_bytes`] (the `_with` readers): [`Error::FileTooLarge`] for a
+/// file larger than those bytes (refused before reading), [`Error::MeshTooLarge`] once the
+/// mesh read so far needs more than half of them.
 ///
 /// # Example
 ///
@@ -45,9 +45,9 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<PolygonMesh> {
     let path = path.as_ref();
     read_obj_within(
-        open(path)?,
+        open(path, options.available_bytes)?,
         &path.display().to_string(),
-        Budget::of_process(),
+        Budget::of(options),
         options,
     )
 }
@@ -95,7 +95,12 @@ pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_obj_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
-    read_obj_within(reader, name, Budget::of_process(), &ReadOptions::default())
+    read_obj_within(
+        reader,
+        name,
+        Budget::of(&ReadOptions::DEFAULT),
+        &ReadOptions::DEFAULT,
+    )
 }
 
 /// [`read_obj_from`] with options.
@@ -120,7 +125,7 @@ pub fn read_obj_from_with(
     name: &str,
     options: &ReadOptions,
 ) -> Result<PolygonMesh> {
-    read_obj_within(reader, name, Budget::of_process(), options)
+    read_obj_within(reader, name, Budget::of(options), options)
 }
 
 /// [`read_obj_from_with`] with the mesh's memory limited to `budget`.

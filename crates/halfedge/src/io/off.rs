@@ -5,7 +5,7 @@ use std::path::Path;
 
 use glam::DVec3;
 
-use super::{grow, open, parse_coordinate, shorten, Budget, Lines};
+use super::{grow, open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
@@ -26,8 +26,17 @@ use crate::polygon::PolygonMesh;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_off(path: impl AsRef<Path>) -> Result<PolygonMesh> {
-    let path = path.as_ref();
-    read_off_from(open(path)?, &path.display().to_string())
+    read_off_with(path.as_ref(), &ReadOptions::DEFAULT)
+}
+
+/// [`read_off`] within the memory limit of `options` ([`ReadOptions::available_bytes`]; OFF
+/// has no tags).
+pub(crate) fn read_off_with(path: &Path, options: &ReadOptions) -> Result<PolygonMesh> {
+    read_off_within(
+        open(path, options.available_bytes)?,
+        &path.display().to_string(),
+        Budget::of(options),
+    )
 }
 
 /// Reads OFF text from any buffered reader; `name` is the file name used in error messages.
@@ -50,7 +59,7 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_off_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
-    read_off_within(reader, name, Budget::of_process())
+    read_off_within(reader, name, Budget::of(&ReadOptions::DEFAULT))
 }
 
 /// [`read_off_from`] with the mesh's memory limited to `budget`.

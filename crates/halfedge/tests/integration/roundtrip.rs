@@ -41,52 +41,6 @@ fn every_shape_survives_a_round_trip_exactly() {
 }
 
 #[test]
-fn files_are_written_atomically() {
-    let dir = temp_dir("atomic");
-    let target = dir.join("out.obj");
-    let mesh = HalfEdgeMesh::try_from(&shapes::cube()).expect("valid");
-    io::write_obj_file(&mesh, &target).expect("write");
-    let polygons = io::read_obj(&target).expect("read");
-    assert_eq!(polygons.n_faces(), 6);
-    // Overwriting works too, and leaves only the target in the folder.
-    let ico = HalfEdgeMesh::try_from(&shapes::icosahedron()).expect("valid");
-    io::write_obj_file(&ico, &target).expect("overwrite");
-    assert_eq!(io::read_obj(&target).expect("read").n_faces(), 20);
-    let names: Vec<_> = std::fs::read_dir(&dir)
-        .expect("list")
-        .map(|e| e.expect("entry").file_name())
-        .collect();
-    assert_eq!(names, vec![std::ffi::OsString::from("out.obj")]);
-
-    // A failing rename (the target is a non-empty directory) leaves no temporary file behind.
-    let blocked = dir.join("blocked.obj");
-    std::fs::create_dir_all(blocked.join("inside")).expect("dir");
-    let err = io::write_obj_file(&mesh, &blocked).unwrap_err();
-    assert!(
-        err.to_string()
-            .starts_with(&format!("{}: ", blocked.display())),
-        "{err}"
-    );
-    let mut names: Vec<_> = std::fs::read_dir(&dir)
-        .expect("list")
-        .map(|e| e.expect("entry").file_name())
-        .collect();
-    names.sort();
-    assert_eq!(
-        names,
-        vec![
-            std::ffi::OsString::from("blocked.obj"),
-            std::ffi::OsString::from("out.obj")
-        ]
-    );
-
-    // A folder that does not exist: an error naming the file, nothing written.
-    let err = io::write_obj_file(&mesh, dir.join("missing").join("x.obj")).unwrap_err();
-    assert!(err.to_string().contains("missing"), "{err}");
-    std::fs::remove_dir_all(&dir).expect("cleanup");
-}
-
-#[test]
 fn off_files_read_like_obj() {
     let dir = temp_dir("off");
     let path = dir.join("square.OFF");

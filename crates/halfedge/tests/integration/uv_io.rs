@@ -154,7 +154,8 @@ fn round_trip(mesh: &PolygonMesh, name: &str) {
         (ObjWriteOptions::default().with_uvs(false), "plain"),
     ] {
         let path = temp_obj(&format!("{name}-{tag}"));
-        io::write_polygon_obj_file_with(mesh, &path, &options).unwrap_or_else(|e| panic!("{e}"));
+        let file = std::fs::File::create(&path).unwrap_or_else(|e| panic!("{e}"));
+        io::write_polygon_obj_with(mesh, file, &options).unwrap_or_else(|e| panic!("{e}"));
         let uv = options.uvs.then(|| (uvs.coords(), uvs.corners()));
         let n = options.normals.then_some(computed.as_slice());
         check_with_tobj(&path, &mesh.positions, &faces, uv, n);
@@ -178,7 +179,8 @@ fn a_seamed_torus_round_trips_through_tobj() {
     // A mesh without uvs is written without vt, whatever the options say.
     let cube = shapes::cube();
     let path = temp_obj("cube");
-    io::write_polygon_obj_file_with(&cube, &path, &ObjWriteOptions::default())
+    let file = std::fs::File::create(&path).unwrap_or_else(|e| panic!("{e}"));
+    io::write_polygon_obj_with(&cube, file, &ObjWriteOptions::default())
         .unwrap_or_else(|e| panic!("{e}"));
     check_with_tobj(&path, &cube.positions, &faces_of(&cube), None, None);
     std::fs::remove_file(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -210,7 +212,8 @@ fn uv_buffers_round_trip_through_tobj() {
     };
     let path = temp_obj("buffers");
     let options = ObjWriteOptions::default().with_normals(true);
-    io::write_buffers_obj_file_with(&positions, faces, Some(uvs), &path, &options)
+    let file = std::fs::File::create(&path).unwrap_or_else(|e| panic!("{e}"));
+    io::write_buffers_obj_with(&positions, faces, Some(uvs), file, &options)
         .unwrap_or_else(|e| panic!("{e}"));
     let as_f64: Vec<DVec3> = positions
         .iter()

@@ -77,7 +77,8 @@ fn library(path: &str, rule: Rule, levels: u32, options: SubdivisionOptions) -> 
     let level = subdivide_to_face_list(&mesh, rule, levels, &opts).expect("subdivided");
     let dir = tempfile::tempdir().expect("a temporary folder");
     let out = dir.path().join("lib.obj");
-    halfedge::io::write_polygon_obj_file(&level.mesh, &out).expect("written");
+    halfedge::io::write_polygon_obj(&level.mesh, std::fs::File::create(&out).expect("created"))
+        .expect("written");
     std::fs::read_to_string(out).expect("the output")
 }
 
@@ -289,7 +290,8 @@ fn an_untagged_mesh_subdivides_as_before() {
                 .expect("subdivided");
         let dir = tempfile::tempdir().expect("a temporary folder");
         let out = dir.path().join("lib.obj");
-        halfedge::io::write_polygon_obj_file(&level.mesh, &out).expect("written");
+        halfedge::io::write_polygon_obj(&level.mesh, std::fs::File::create(&out).expect("created"))
+            .expect("written");
         std::fs::read_to_string(out).expect("the output")
     };
     assert_eq!(plain, lib);

@@ -1,37 +1,41 @@
-//! Resource guards: refuse (exit 4) before materializing counts, tables or closed forms
-//! too large for memory or time.
+//! The counting guards: refuse (a guard's refusal, exit 4) before materializing counts,
+//! tables or closed forms too large for memory or time. Every front end that prints exact
+//! counts at a level, a table of levels or a closed form asks these first.
 
 use std::ops::RangeInclusive;
 
 use num_bigint::BigInt;
 use schemes::{Counter, CLOSED_FORM_LIMIT};
 
-use crate::failure::{Failure, Kind};
+use crate::error::{Error, Result};
 
 /// Most decimal digits a count may have without `--allow-large`.
-const MAX_DIGITS: f64 = 1e7;
+pub const MAX_DIGITS: f64 = 1e7;
 /// Most decimal digits a table (all rows and columns together) may hold.
-const MAX_TABLE_DIGITS: f64 = 1e8;
+pub const MAX_TABLE_DIGITS: f64 = 1e8;
 /// Most cells a table may hold.
-const MAX_TABLE_CELLS: f64 = 1e7;
+pub const MAX_TABLE_CELLS: f64 = 1e7;
 
 /// What the digit guard suggests: `at` has `--summary` and `--allow-large`; the commands
 /// that print every level (`table`, `plot`, `density`) can only ask for fewer levels.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Hint {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Hint {
+    /// One level, printed whole (`at`).
     At,
+    /// One level, summarized (`at --summary`).
     AtSummary,
+    /// Every level of a range.
     Levels,
 }
 
-/// Refuses, with exit 4, counts of more than [`MAX_DIGITS`] decimal digits at level `s`.
-pub(crate) fn digits(
+/// Refuses ([`Error::TooManyDigits`]) counts of more than [`MAX_DIGITS`] decimal digits at level `s`.
+pub fn digits(
     counter: &Counter,
     x0: &[BigInt],
     s: u64,
     allow_large: bool,
     hint: Hint,
-) -> Result<(), Failure> {
+) -> Result<()> {
     if allow_large {
         return Ok(());
     }
@@ -43,14 +47,12 @@ pub(crate) fn digits(
             Hint::At => "use --summary, or --allow-large to try anyway",
             Hint::Levels => "ask for lower levels (or use `at --summary` for one huge level)",
         };
-        return Err(Failure::new(
-            Kind::Guard,
-            anyhow::anyhow!(
-                "the counts at level {s} would have about {:.3e} decimal digits ({} per count); the limit is 10^7 digits: {hint}",
-                worst.ceil(),
-                halfedge::memory::human_bytes(bytes)
-            ),
-        ));
+        return Err(Error::TooManyDigits {
+            level: s,
+            digits: worst.ceil(),
+            bytes: halfedge::memory::human_bytes(bytes),
+            hint,
+        });
     }
     Ok(())
 }
@@ -58,12 +60,12 @@ pub(crate) fn digits(
 /// The guard of the commands that hold every level of a range (`table`, `plot`): the largest
 /// count, then the whole table (rows times columns times digits), before anything is computed;
 /// with `uv`, its `UV` column counts too (one more column, digits the larger estimate).
-pub(crate) fn table(
+pub fn table(
     counter: &Counter,
     x0: &[BigInt],
     levels: &RangeInclusive<u64>,
     uv: Option<&schemes::uv::UvCounter>,
-) -> Result<(), Failure> {
+) -> Result<()> {
     digits(counter, x0, *levels.end(), false, Hint::Levels)?;
     // Exact for the message (up to 2^64 rows), as a float for the estimate.
     let rows = u128::from(*levels.end() - *levels.start()) + 1;
@@ -74,22 +76,18 @@ pub(crate) fn table(
         digits = digits.max(uv.estimated_log10(*levels.end())? + 1.0);
     }
     if cells > MAX_TABLE_CELLS || cells * digits > MAX_TABLE_DIGITS {
-        return Err(Failure::new(
-            Kind::Guard,
-            anyhow::anyhow!(
-                "levels {}..={} would make a table of {rows} rows and about {:.3e} decimal digits; the limits are 10^7 cells and 10^8 digits: ask for fewer levels",
-                levels.start(),
-                levels.end(),
-                (cells * digits).ceil()
-            ),
-        ));
+        return Err(Error::TableTooLarge {
+            levels: levels.clone(),
+            rows,
+            digits: (cells * digits).ceil(),
+        });
     }
     Ok(())
 }
 
-/// Refuses, with exit 4, closed forms whose cost estimate exceeds [`CLOSED_FORM_LIMIT`]
+/// Refuses ([`Error::ClosedFormTooCostly`]) closed forms whose cost estimate exceeds [`CLOSED_FORM_LIMIT`]
 /// (every phase of a plan), unless `allow_large`.
-pub(crate) fn closed_forms(counter: &Counter, allow_large: bool) -> Result<(), Failure> {
+pub fn closed_forms(counter: &Counter, allow_large: bool) -> Result<()> {
     if allow_large {
         return Ok(());
     }
@@ -101,14 +99,11 @@ pub(crate) fn closed_forms(counter: &Counter, allow_large: bool) -> Result<(), F
         };
         let cost = r.closed_form_cost();
         if cost > CLOSED_FORM_LIMIT {
-            return Err(Failure::new(
-                Kind::Guard,
-                anyhow::anyhow!(
-                    "{what}: the closed form of a {n}x{n} matrix would cost about {cost:.2e} work units (estimated from its size and entries), more than the limit of {CLOSED_FORM_LIMIT} (about 20 components): use `at` or `table` for exact counts (they power the matrix), or --allow-large to compute it anyway",
-                    n = r.dim(),
-                    cost = cost as f64,
-                ),
-            ));
+            return Err(Error::ClosedFormTooCostly {
+                what,
+                dim: r.dim(),
+                cost: cost as f64,
+            });
         }
     }
     Ok(())
@@ -139,7 +134,7 @@ mod tests {
         };
         assert!(closed_forms(&dense(20), false).is_ok());
         let refused = closed_forms(&dense(21), false).unwrap_err();
-        assert_eq!(refused.kind.exit_code(), 4);
+        assert_eq!(refused.kind(), crate::Kind::Guard);
         assert!(closed_forms(&dense(21), true).is_ok());
     }
 }

@@ -1,4 +1,4 @@
-//! `subdivide --precision f32` and `--frames N`: the topology refined once
+//! Refine once, evaluate many (`subdivide --precision f32`, `--frames N`): the topology refined once
 //! ([`halfedge::Refinement`]), positions evaluated into caller-owned buffers, in `f32` or
 //! `f64`, once or once per frame; with a UV layout ([`SubdivideOptions::uvs`]) the UVs
 //! refined by the same refinement, evaluated into caller-owned buffers and written.
@@ -13,33 +13,55 @@ use halfedge::io::{FaceBuffers, ObjWriteOptions, UvBuffers};
 use halfedge::subdivide::{LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
 
-use crate::args::Precision;
+/// The floating-point type a refine-once run computes and writes positions and UVs in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Precision {
+    /// `f32`.
+    F32,
+    /// `f64` (the default).
+    #[default]
+    F64,
+}
+
+impl Precision {
+    /// Bytes per coordinate.
+    pub fn bytes(self) -> usize {
+        match self {
+            Precision::F32 => 4,
+            Precision::F64 => 8,
+        }
+    }
+}
 
 /// Writes a level to a path, with the writer's options.
-type Writer = dyn Fn(&Path, &ObjWriteOptions) -> halfedge::Result<()>;
+type Writer = dyn Fn(&Path, &ObjWriteOptions) -> crate::Result<()>;
 
 /// What a refine-once run produced and measured.
-pub(crate) struct Refined {
+pub struct Refined {
     /// `[V, E, F]` of the last level.
-    pub(crate) vef: [usize; 3],
+    pub vef: [usize; 3],
     /// Building the topology.
-    pub(crate) refine_topology: Duration,
+    pub refine_topology: Duration,
     /// The first evaluation (of the unmoved base positions: what `-o` writes).
-    pub(crate) first_evaluation: Duration,
+    pub first_evaluation: Duration,
     /// The median of the per-frame evaluations (`None` without frames).
-    pub(crate) evaluate_median: Option<Duration>,
+    pub evaluate_median: Option<Duration>,
     /// With UVs: the UV values of the last level, the time the channel's topology took
     /// (part of `refine_topology`, after the surface's: [`SurfaceClock`]) and the time of
     /// their evaluation and index buffer.
-    pub(crate) uvs: Option<(usize, Duration, Duration)>,
+    pub uvs: Option<(usize, Duration, Duration)>,
     /// Writes the last level as OBJ.
     write: Box<Writer>,
 }
 
 impl Refined {
-    /// Writes the last level (atomically, through [`halfedge::io::write_atomically`]), its
+    /// Writes the last level (atomically, through [`crate::output::write_atomically`]), its
     /// UVs when they were refined and `options` asks for them, normals when it asks.
-    pub(crate) fn write(&self, path: &Path, options: &ObjWriteOptions) -> halfedge::Result<()> {
+    ///
+    /// # Errors
+    ///
+    /// As [`crate::output::write_buffers_obj_file`].
+    pub fn write(&self, path: &Path, options: &ObjWriteOptions) -> crate::Result<()> {
         (self.write)(path, options)
     }
 }
@@ -48,8 +70,13 @@ impl Refined {
 /// `frames` more times from moved base positions (timed; the output keeps the first,
 /// unmoved evaluation). `as_read`: at level 0, the UVs to write (the file's, as read) in
 /// place of the layout's values.
+///
+/// # Errors
+///
+/// The refinement's and the evaluation's errors; a position or UV beyond the range of the
+/// precision.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn run(
+pub fn run(
     mesh: &HalfEdgeMesh,
     rule: Rule,
     levels: u32,
@@ -68,13 +95,14 @@ pub(crate) fn run(
 /// When the surface's last level was built: a refinement (and a one-shot subdivision) with
 /// UVs reports the surface's levels to the progress callback, then its face-varying channel's,
 /// so the first report of the last level splits the surface's work from the UVs'.
-pub(crate) struct SurfaceClock {
+pub struct SurfaceClock {
     levels: u32,
     done: Mutex<Option<Instant>>,
 }
 
 impl SurfaceClock {
-    pub(crate) fn new(levels: u32) -> SurfaceClock {
+    /// A clock for a run to `levels`.
+    pub fn new(levels: u32) -> SurfaceClock {
         SurfaceClock {
             levels,
             done: Mutex::new(None),
@@ -83,7 +111,7 @@ impl SurfaceClock {
 
     /// Records a progress report; `true` while it is the surface's (the channel's reports
     /// come after its last level).
-    pub(crate) fn report(&self, done: &LevelDone) -> bool {
+    pub fn report(&self, done: &LevelDone) -> bool {
         let mut slot = self.done.lock().unwrap_or_else(|e| e.into_inner());
         if slot.is_some() {
             return false;
@@ -96,7 +124,7 @@ impl SurfaceClock {
 
     /// The time from the surface's last level (or from `start`, at level 0, which reports
     /// nothing) to `end`.
-    pub(crate) fn since_surface(&self, start: Instant, end: Instant) -> Duration {
+    pub fn since_surface(&self, start: Instant, end: Instant) -> Duration {
         let done = *self.done.lock().unwrap_or_else(|e| e.into_inner());
         end.saturating_duration_since(done.unwrap_or(start))
     }
@@ -234,7 +262,7 @@ fn run_in<T: Scalar>(
         let uvs = uvs
             .as_ref()
             .map(|(values, corners, _)| UvBuffers { values, corners });
-        halfedge::io::write_buffers_obj_file_with(&out, faces, uvs, path, options)
+        crate::output::write_buffers_obj_file(&out, faces, uvs, path, options)
     });
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],
