@@ -43,7 +43,14 @@ pub(crate) const LAYERS: &[(&str, &[&str])] = &[
     ("driver", &["recurrence", "schemes", "halfedge"]),
     (
         "subcount",
-        &["recurrence", "schemes", "halfedge", "driver", "decimal", "chart"],
+        &[
+            "recurrence",
+            "schemes",
+            "halfedge",
+            "driver",
+            "decimal",
+            "chart",
+        ],
     ),
     ("xtask", &["recurrence", "schemes", "halfedge"]),
 ];

@@ -74,15 +74,6 @@ pub enum Error {
     /// A scheme's error, as it is.
     #[error(transparent)]
     Scheme(#[from] schemes::Error),
-    /// Writing an output file failed; the target is untouched.
-    #[error("{}: {source}", escape_controls(&path.display().to_string()))]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The underlying error.
-        #[source]
-        source: std::io::Error,
-    },
     /// An output file the user may not write: it is left as it is.
     #[error("{}: refusing to write over it: {reason}", escape_controls(&path.display().to_string()))]
     WriteProtected {
@@ -272,8 +263,7 @@ impl Error {
             | Error::SchemeNotInFile { .. }
             | Error::RefineOnce { .. }
             | Error::RefineOnceComposition { .. } => Kind::Usage,
-            Error::Io { .. }
-            | Error::WriteProtected { .. }
+            Error::WriteProtected { .. }
             | Error::InMesh { .. }
             | Error::NotApplicable { .. }
             | Error::RepeatedVertex { .. }

@@ -30,7 +30,7 @@ use crate::error::{Error, Result};
 ///
 /// # Errors
 ///
-/// [`Error::Io`] naming the file, [`Error::WriteProtected`] for a target the user may not
+/// [`halfedge::Error::Io`] naming the file, [`Error::WriteProtected`] for a target the user may not
 /// write.
 pub fn write_obj_file(mesh: &HalfEdgeMesh, path: &Path, options: &ObjWriteOptions) -> Result<()> {
     write_atomically(path, |file| {
@@ -59,7 +59,7 @@ pub fn write_polygon_obj_file(
 ///
 /// # Errors
 ///
-/// As [`write_obj_file`], and [`Error::Io`] for inconsistent buffers.
+/// As [`write_obj_file`], and [`halfedge::Error::Io`] for inconsistent buffers.
 pub fn write_buffers_obj_file<T: Scalar>(
     positions: &[[T; 3]],
     faces: FaceBuffers<'_>,
@@ -102,7 +102,7 @@ pub fn write_buffers_obj_file<T: Scalar>(
 ///
 /// # Errors
 ///
-/// [`Error::Io`] naming `path` for any failure to open, write, sync or rename (the target is
+/// [`halfedge::Error::Io`] naming `path` for any failure to open, write, sync or rename (the target is
 /// then untouched, except for a special file, which is written as it goes), and
 /// [`Error::WriteProtected`].
 ///
@@ -122,9 +122,11 @@ pub fn write_atomically(
     path: &Path,
     body: impl FnOnce(&mut File) -> std::io::Result<()>,
 ) -> Result<()> {
-    let io_error = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
+    let io_error = |source| {
+        Error::Geometry(halfedge::Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     };
     if path.as_os_str() == "-" {
         return write_stdout(body).map_err(io_error);
@@ -177,14 +179,16 @@ pub fn unwritten_mesh_format(path: &Path) -> Option<String> {
 ///
 /// # Errors
 ///
-/// As [`write_atomically`]'s refusals: [`Error::WriteProtected`], [`Error::Io`].
+/// As [`write_atomically`]'s refusals: [`Error::WriteProtected`], [`halfedge::Error::Io`].
 pub fn check_output(path: &Path) -> Result<()> {
     if path.as_os_str() == "-" {
         return Ok(());
     }
-    let io_error = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
+    let io_error = |source| {
+        Error::Geometry(halfedge::Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
     };
     match resolve_target(path).map_err(io_error)? {
         Target::Regular {

@@ -514,7 +514,7 @@ impl Subdivided {
     ///
     /// # Errors
     ///
-    /// The output's errors ([`Error::Io`], [`Error::WriteProtected`]).
+    /// The output's errors ([`halfedge::Error::Io`], [`Error::WriteProtected`]).
     pub fn write(&self, path: &Path, options: &ObjWriteOptions) -> Result<()> {
         use crate::output::{write_obj_file, write_polygon_obj_file};
         match &self.output {

@@ -205,7 +205,7 @@ pub enum ParseError {
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum Error {
-    /// Reading or writing a file failed.
+    /// Reading or writing a file failed (writing: the front ends' `driver::output`).
     #[error("{}: {source}", escape_controls(&path.display().to_string()))]
     Io {
         /// The file.
@@ -213,15 +213,6 @@ pub enum Error {
         /// The underlying error.
         #[source]
         source: std::io::Error,
-    },
-    /// An output file the user may not write: it is left as it is (the front ends' writer,
-    /// `driver::output::write_atomically`, refuses it).
-    #[error("{}: refusing to write over it: {reason}", escape_controls(&path.display().to_string()))]
-    WriteProtected {
-        /// The file as given.
-        path: PathBuf,
-        /// Why it may not be written (its mode, or the system's answer).
-        reason: String,
     },
     /// A mesh file larger than the memory this process may allocate, refused before it is
     /// read (a resource guard: see [`Error::is_resource_limit`]).

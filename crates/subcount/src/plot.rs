@@ -75,7 +75,9 @@ pub(crate) fn plot(args: PlotArgs, out: &mut impl Write) -> Result<u8, Failure> 
     let bytes = drawn.map_err(|e| input!("{e}"))?;
     let written = driver::output::write_atomically(&args.output, |file| file.write_all(&bytes));
     written.map_err(|e| match e {
-        driver::Error::Io { path, source } => input!("cannot write {}: {source}", path.display()),
+        driver::Error::Geometry(halfedge::Error::Io { path, source }) => {
+            input!("cannot write {}: {source}", path.display())
+        }
         other => input!("cannot write {}: {other}", args.output.display()),
     })?;
     let (path, n) = (args.output.display(), chart.series.len());
