@@ -59,12 +59,7 @@ pub fn start<'m>(loaded: &'m LoadedMesh, plan: &Plan, notes: Notes<'_>) -> Resul
     if let Some(what) = what {
         return Err(refuse(what));
     }
-    let stages: Vec<_> = plan
-        .stages()
-        .iter()
-        .map(|s| (s.scheme().name(), s.scheme().subdivision_rule()))
-        .collect();
-    if loaded.holes(&counts, &plan.name(), &stages)?.is_some() {
+    if loaded.plan_holes(&counts, &plan)?.is_some() {
         return Err(refuse("the holes of boundary none"));
     }
     loaded.emit_notes(notes);

@@ -411,6 +411,38 @@ impl LoadedMesh {
         }
     }
 
+    /// The schemes that subdivide this mesh, whose faces have the statistics `counts`
+    /// (`manifold`: it builds a half-edge mesh): [`halfedge::subdivide::applicable_schemes`]
+    /// without those that would refuse the file's holes (their faces do not nest) or boundary
+    /// `none` on a mesh with boundary (a mode of Loop and Catmull-Clark only).
+    pub fn applicable_schemes(&self, counts: &MeshCounts, manifold: bool) -> Vec<schemes::Scheme> {
+        let holes = !self.tags().hole_faces().is_empty();
+        let none =
+            self.options.boundary == BoundaryInterpolation::None && counts.boundary_edges > 0;
+        halfedge::subdivide::applicable_schemes(counts, manifold)
+            .into_iter()
+            .filter(|s| {
+                let rule = s.subdivision_rule();
+                (!holes || rule.is_some_and(schemes::holes::nests_faces))
+                    && (!none || matches!(rule, Some(Rule::Loop | Rule::CatmullClark)))
+            })
+            .collect()
+    }
+
+    /// The faces that are holes under `plan` ([`LoadedMesh::holes`] of its stages).
+    ///
+    /// # Errors
+    ///
+    /// As [`LoadedMesh::holes`].
+    pub fn plan_holes(&self, counts: &MeshCounts, plan: &schemes::Plan) -> Result<Option<HoleSet>> {
+        let stages: Vec<(&str, Option<Rule>)> = plan
+            .stages()
+            .iter()
+            .map(|s| (s.scheme().name(), s.scheme().subdivision_rule()))
+            .collect();
+        self.holes(counts, &plan.name(), &stages)
+    }
+
     /// The faces that are holes when `stages` (each stage's name and rule; `scheme` names
     /// them all) run on this mesh, whose faces have the statistics `counts`: the file's hole
     /// tags, and the faces at the boundary under boundary interpolation `none` (OpenSubdiv's

@@ -7,25 +7,19 @@
 //! # Design notes (moved from ARCHITECTURE.md)
 //!
 //! The command-line program: argument parsing, printing and exit codes, nothing else; every count
-//! comes from `schemes::Counter`. `args.rs` holds the clap flags (a public contract); `model.rs`
-//! turns flags into a `Counter` and its initial state (`Input` reads the mesh at most once per
-//! command; `load_mesh` is the one mesh loader, resolving the file's tags against `--boundary`,
-//! `--crease-method`, `--triangle-rule`, `--ignore-tags` into a `LoadedMesh`, whose `sharpness`
-//! (`Sharpness::from_tags_of` of the validated mesh) and `options` `verify` and `subdivide` hand
-//! to `SubdivideOptions`, and `has_crease_rules` picks the memory guard's crease prediction);
-//! `commands.rs` dispatches and runs `table`, `at` and `formula`; `report.rs` (fit, density,
-//! schemes), `mesh.rs` (stats, verify, subdivide; `verify` and `subdivide` take `--scheme NAME` or
-//! `--scheme-file FILE` and run the scheme's rule through `halfedge::subdivide::checked_rule`),
-//! `compose.rs` (compositions, stage by stage), `refined.rs` (`subdivide --precision f32` and
-//! `--frames N`: a `halfedge::Refinement` built once, positions evaluated into buffers, the frames
-//! timed, with a UV layout the UVs evaluated by the same refinement, the buffers written by
-//! `halfedge::io::write_buffers_obj_file_with`, UVs and `--normals` through `ObjWriteOptions`) and
-//! `plot.rs` (log10 of each count, the series, legend labels and notes it gives the `chart` crate,
-//! which draws) call the libraries and format. The leaf modules they share import nothing back:
-//! `failure.rs` (errors to exit codes, `write_failure`, `scheme_failure`), `guard.rs` (the digit
-//! and table guards; the memory guard of real subdivision is `halfedge::memory`'s `check_peak` /
-//! `within_limit`), `levels.rs` (every level parser), `output.rs` (text, CSV and JSON: serde
-//! values in a `{"a": 1, "b": 2}` layout, counts as JSON integers of any size).
+//! comes from `schemes::Counter`, every mesh and real subdivision from the `driver` crate.
+//! `args.rs` holds the clap flags (a public contract); `model.rs` turns flags into a `Counter`
+//! and its initial state (`Input` reads the mesh at most once per command through `load_mesh`,
+//! which hands `--mesh`/`--base` and `--boundary`, `--crease-method`, `--triangle-rule`,
+//! `--ignore-tags` to `driver::load`); `commands.rs` dispatches and runs `table`, `at` and
+//! `formula`; `report.rs` (fit, density, schemes), `mesh.rs` (stats, verify, subdivide: the flags
+//! into `driver::subdivide::SubdivideJob` and `driver::SchemeChoice`, the summary and
+//! `--timings` out), `compose.rs` (compositions: `driver::compose`) and `plot.rs` (log10 of each
+//! count, the series, legend labels and notes it gives the `chart` crate, which draws) call the
+//! libraries and format. The leaf modules they share import nothing back: `failure.rs` (errors
+//! to exit codes: `driver::Kind`, the advice a flag gives), `levels.rs` (every level parser),
+//! `output.rs` (text, CSV and JSON: serde values in a `{"a": 1, "b": 2}` layout, counts as JSON
+//! integers of any size).
 
 mod args;
 mod commands;

@@ -8,7 +8,7 @@ use std::io::Write;
 use std::time::Instant;
 
 use halfedge::io::ObjWriteOptions;
-use halfedge::{PolygonMesh, Rule};
+use halfedge::PolygonMesh;
 use num_bigint::BigInt;
 use num_traits::ToPrimitive;
 use schemes::Plan;
@@ -39,18 +39,9 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()
     } else {
-        // Holes need faces that nest, boundary `none` (on a mesh with boundary) is a mode of
-        // Loop and Catmull-Clark: the schemes that would refuse them are not listed.
-        let holes = !loaded.tags().hole_faces().is_empty();
-        let none = loaded.options.boundary == halfedge::tags::BoundaryInterpolation::None
-            && counts.boundary_edges > 0;
-        halfedge::subdivide::applicable_schemes(&counts, validation.is_none())
+        loaded
+            .applicable_schemes(&counts, validation.is_none())
             .iter()
-            .filter(|s| {
-                let rule = s.subdivision_rule();
-                (!holes || rule.is_some_and(schemes::holes::nests_faces))
-                    && (!none || matches!(rule, Some(Rule::Loop | Rule::CatmullClark)))
-            })
             .map(|s| s.name().to_owned())
             .collect()
     };

@@ -18,7 +18,6 @@ use std::cell::OnceCell;
 
 pub(crate) use driver::LoadedMesh;
 use halfedge::holes::HoleSet;
-use halfedge::Rule;
 use num_bigint::BigInt;
 use recurrence::{IntMatrix, Recurrence};
 use schemes::uv::{UvCounter, UvCounts};
@@ -79,12 +78,7 @@ impl<'a> Input<'a> {
         }
         let counts = match self.loaded()? {
             Some((loaded, counts)) => {
-                let stages: Vec<(&str, Option<Rule>)> = plan
-                    .stages()
-                    .iter()
-                    .map(|s| (s.scheme().name(), s.scheme().subdivision_rule()))
-                    .collect();
-                let holes = loaded.holes(counts, &plan.name(), &stages)?;
+                let holes = loaded.plan_holes(counts, plan)?;
                 print_notes(loaded);
                 let written = match &holes {
                     Some(holes) => holes.written_counts(&loaded.poly),
