@@ -43,6 +43,17 @@ pub(crate) enum Scheme {
     CatmullClark,
 }
 
+impl Scheme {
+    /// The crease-aware scheme of `rule`: Loop and Catmull-Clark have one, other rules none.
+    pub(crate) fn of(rule: crate::Rule) -> Option<Scheme> {
+        match rule {
+            crate::Rule::Loop => Some(Scheme::Loop),
+            crate::Rule::CatmullClark => Some(Scheme::CatmullClark),
+            _ => None,
+        }
+    }
+}
+
 /// The sharpness of one level: per edge and per vertex, and the order in which OpenSubdiv
 /// lists each vertex's edges (its sums of `f32` values run in that order).
 #[derive(Clone, Debug)]
