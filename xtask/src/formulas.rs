@@ -234,22 +234,7 @@ fn holes_section(out: &mut String) -> anyhow::Result<()> {
         let r = hole_recurrence(rule).context("a nesting rule has a hole recurrence")?;
         let _ = writeln!(out, "### {title}\n");
         math_block(out, &step_equation(r.names(), r.matrix()));
-        let form = r.closed_form();
-        let mut lines = Vec::new();
-        for line in form.to_latex_in("s").lines() {
-            lines.push(match line.split_once(" = ") {
-                Some((lhs, rhs)) => format!("{lhs} &= {rhs}"),
-                None => line.to_string(),
-            });
-        }
-        math_block(
-            out,
-            &format!(
-                "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
-                lines.join(" \\\\\n")
-            ),
-        );
-        validity(out, &form, "s");
+        closed_form_block(out, &r.closed_form(), "s");
     }
 
     // The reference: a 4x4 quad grid whose faces 5 and 6 (side by side) are holes.
@@ -436,22 +421,7 @@ fn uv_section(out: &mut String) -> anyhow::Result<()> {
         let r = scheme.recurrence();
         let _ = writeln!(out, "### {title}\n\n{derivation}\n");
         math_block(out, &step_equation(r.names(), r.matrix()));
-        let form = r.closed_form();
-        let mut lines = Vec::new();
-        for line in form.to_latex_in("s").lines() {
-            lines.push(match line.split_once(" = ") {
-                Some((lhs, rhs)) => format!("{lhs} &= {rhs}"),
-                None => line.to_string(),
-            });
-        }
-        math_block(
-            out,
-            &format!(
-                "\\begin{{aligned}}\n{}\n\\end{{aligned}}",
-                lines.join(" \\\\\n")
-            ),
-        );
-        validity(out, &form, "s");
+        closed_form_block(out, &r.closed_form(), "s");
         let _ = writeln!(
             out,
             "These forms give the recurrence's state; its `UV` is the number of UV values from \
@@ -645,7 +615,12 @@ fn phase_forms(out: &mut String, phase: &Phase) {
             phase.description, phase.first_level, phase.period, phase.first_level
         );
     }
-    let variable = if plain { "s" } else { "t" };
+    closed_form_block(out, &form, if plain { "s" } else { "t" });
+}
+
+/// The closed forms of `form` in `variable` as one aligned math block (the `=` of each line
+/// aligned), then their validity.
+fn closed_form_block(out: &mut String, form: &ClosedForm, variable: &str) {
     let mut lines = Vec::new();
     for line in form.to_latex_in(variable).lines() {
         lines.push(match line.split_once(" = ") {
@@ -660,7 +635,7 @@ fn phase_forms(out: &mut String, phase: &Phase) {
             lines.join(" \\\\\n")
         ),
     );
-    validity(out, &form, variable);
+    validity(out, form, variable);
 }
 
 /// √3's UV recurrence: its two step matrices over `(UV, UBE, S, F)` and the closed forms of

@@ -387,22 +387,24 @@ pub(crate) fn strongly_connected(edges: &[BTreeSet<usize>]) -> Vec<Vec<usize>> {
         }
         // (node, its successors not yet visited)
         let mut work: Vec<(usize, Vec<usize>)> = Vec::new();
-        index[start] = next;
-        low[start] = next;
-        next += 1;
-        stack.push(start);
-        on_stack[start] = true;
-        work.push((start, edges[start].iter().copied().collect()));
-        while let Some((v, succ)) = work.last_mut() {
+        // The node to visit next: it gets the next index and goes on both stacks.
+        let mut enter = Some(start);
+        loop {
+            if let Some(v) = enter.take() {
+                index[v] = next;
+                low[v] = next;
+                next += 1;
+                stack.push(v);
+                on_stack[v] = true;
+                work.push((v, edges[v].iter().copied().collect()));
+            }
+            let Some((v, succ)) = work.last_mut() else {
+                break;
+            };
             let v = *v;
             if let Some(w) = succ.pop() {
                 if index[w] == usize::MAX {
-                    index[w] = next;
-                    low[w] = next;
-                    next += 1;
-                    stack.push(w);
-                    on_stack[w] = true;
-                    work.push((w, edges[w].iter().copied().collect()));
+                    enter = Some(w);
                 } else if on_stack[w] {
                     low[v] = low[v].min(index[w]);
                 }

@@ -177,20 +177,29 @@ fn forward(a: &mut [u64], prime: &Prime, tw: &[u64]) {
     }
 }
 
-/// One radix-2 stage of [`forward`] on blocks of `2 half` entries.
+/// One radix-2 stage on blocks of `2 half` entries: `butterfly(x, y, w)` on each pair of
+/// entries `half` apart, `w` the twiddle of the pair's place in its block.
 #[inline(always)]
-fn forward_stage(a: &mut [u64], half: usize, prime: &Prime, tw: &[u64]) {
-    let two_p = 2 * prime.p;
+fn stage(a: &mut [u64], half: usize, tw: &[u64], butterfly: impl Fn(&mut u64, &mut u64, u64)) {
     let w = &tw[half..2 * half];
     for block in a.chunks_exact_mut(2 * half) {
         let (x, y) = block.split_at_mut(half);
         for ((x, y), &w) in x.iter_mut().zip(y.iter_mut()).zip(w) {
-            let (u, v) = (*x, *y);
-            let s = u + v;
-            *x = if s >= two_p { s - two_p } else { s };
-            *y = prime.mont_mul(u + two_p - v, w);
+            butterfly(x, y, w);
         }
     }
+}
+
+/// One radix-2 stage of [`forward`] on blocks of `2 half` entries.
+#[inline(always)]
+fn forward_stage(a: &mut [u64], half: usize, prime: &Prime, tw: &[u64]) {
+    let two_p = 2 * prime.p;
+    stage(a, half, tw, |x, y, w| {
+        let (u, v) = (*x, *y);
+        let s = u + v;
+        *x = if s >= two_p { s - two_p } else { s };
+        *y = prime.mont_mul(u + two_p - v, w);
+    });
 }
 
 /// In-place decimation-in-time inverse transform (without the `1/n`): bit-reversed order
@@ -215,18 +224,14 @@ fn inverse(a: &mut [u64], prime: &Prime, tw: &[u64]) {
 #[inline(always)]
 fn inverse_stage(a: &mut [u64], half: usize, prime: &Prime, tw: &[u64]) {
     let two_p = 2 * prime.p;
-    let w = &tw[half..2 * half];
-    for block in a.chunks_exact_mut(2 * half) {
-        let (x, y) = block.split_at_mut(half);
-        for ((x, y), &w) in x.iter_mut().zip(y.iter_mut()).zip(w) {
-            let u = *x;
-            let t = prime.mont_mul(*y, w);
-            let s = u + t;
-            *x = if s >= two_p { s - two_p } else { s };
-            let d = u + two_p - t;
-            *y = if d >= two_p { d - two_p } else { d };
-        }
-    }
+    stage(a, half, tw, |x, y, w| {
+        let u = *x;
+        let t = prime.mont_mul(*y, w);
+        let s = u + t;
+        *x = if s >= two_p { s - two_p } else { s };
+        let d = u + two_p - t;
+        *y = if d >= two_p { d - two_p } else { d };
+    });
 }
 
 /// The limbs of `x` reduced into `[0, 2p)` and folded onto `len` slots (limb `i` adds into

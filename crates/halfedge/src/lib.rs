@@ -68,6 +68,28 @@
 //! ```
 #![deny(missing_docs)]
 
+/// The builder methods of an options struct, inside its `impl`: each `with_x(field: T)`
+/// returns the options with `field` set (to `Some(value)` when written `field: Some(T)`).
+macro_rules! with_setters {
+    () => {};
+    ($(#[$doc:meta])* $with:ident($field:ident: Some($ty:ty)); $($rest:tt)*) => {
+        $(#[$doc])*
+        pub fn $with(mut self, $field: $ty) -> Self {
+            self.$field = Some($field);
+            self
+        }
+        with_setters!($($rest)*);
+    };
+    ($(#[$doc:meta])* $with:ident($field:ident: $ty:ty); $($rest:tt)*) => {
+        $(#[$doc])*
+        pub fn $with(mut self, $field: $ty) -> Self {
+            self.$field = $field;
+            self
+        }
+        with_setters!($($rest)*);
+    };
+}
+
 mod build;
 mod error;
 pub mod holes;

@@ -374,41 +374,20 @@ pub(crate) fn duplicate_faces<'a>(
         count: 0,
         first_pair: None,
     };
-    let mut i = 0;
-    while i < sets.len() {
-        let mut j = i + 1;
-        while j < sets.len() && sets[j].0 == sets[i].0 {
-            j += 1;
+    // Sorted by hash: a run of one hash holds every face with that set (and any collision).
+    for run in sets.chunk_by(|x, y| x.0 == y.0).filter(|run| run.len() > 1) {
+        // Sorted by set, then by face: each run of one set starts with its two smallest faces.
+        let mut group: Vec<(Vec<u32>, u32)> =
+            run.iter().map(|&(_, f)| (distinct_set(f), f)).collect();
+        group.sort_unstable();
+        for same in group
+            .chunk_by(|x, y| x.0 == y.0)
+            .filter(|same| same.len() > 1)
+        {
+            found.count += same.len() as u64 - 1;
+            let candidate = (same[0].1, same[1].1);
+            found.first_pair = Some(found.first_pair.map_or(candidate, |p| p.min(candidate)));
         }
-        if j - i > 1 {
-            // Sorted by set, then by face: each run of one set starts with its two
-            // smallest faces.
-            let mut group: Vec<(Vec<u32>, u32)> = sets[i..j]
-                .iter()
-                .map(|&(_, f)| (distinct_set(f), f))
-                .collect();
-            group.sort_unstable();
-            for pair in group.windows(2) {
-                if pair[0].0 == pair[1].0 {
-                    found.count += 1;
-                }
-            }
-            let mut k = 0;
-            while k + 1 < group.len() {
-                if group[k].0 == group[k + 1].0 {
-                    let candidate = (group[k].1, group[k + 1].1);
-                    found.first_pair =
-                        Some(found.first_pair.map_or(candidate, |p| p.min(candidate)));
-                    let set = &group[k].0;
-                    while k < group.len() && group[k].0 == *set {
-                        k += 1;
-                    }
-                } else {
-                    k += 1;
-                }
-            }
-        }
-        i = j;
     }
     found
 }

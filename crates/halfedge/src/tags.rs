@@ -261,28 +261,15 @@ pub struct SubdivisionOptions {
 }
 
 impl SubdivisionOptions {
-    /// Sets [`SubdivisionOptions::boundary`].
-    pub fn with_boundary(mut self, boundary: BoundaryInterpolation) -> Self {
-        self.boundary = boundary;
-        self
-    }
-
-    /// Sets [`SubdivisionOptions::face_varying`].
-    pub fn with_face_varying(mut self, face_varying: FaceVaryingInterpolation) -> Self {
-        self.face_varying = face_varying;
-        self
-    }
-
-    /// Sets [`SubdivisionOptions::crease_method`].
-    pub fn with_crease_method(mut self, crease_method: CreaseMethod) -> Self {
-        self.crease_method = crease_method;
-        self
-    }
-
-    /// Sets [`SubdivisionOptions::triangle_rule`].
-    pub fn with_triangle_rule(mut self, triangle_rule: TriangleRule) -> Self {
-        self.triangle_rule = triangle_rule;
-        self
+    with_setters! {
+        /// Sets [`SubdivisionOptions::boundary`].
+        with_boundary(boundary: BoundaryInterpolation);
+        /// Sets [`SubdivisionOptions::face_varying`].
+        with_face_varying(face_varying: FaceVaryingInterpolation);
+        /// Sets [`SubdivisionOptions::crease_method`].
+        with_crease_method(crease_method: CreaseMethod);
+        /// Sets [`SubdivisionOptions::triangle_rule`].
+        with_triangle_rule(triangle_rule: TriangleRule);
     }
 }
 

@@ -237,19 +237,50 @@ impl One for QuadraticSurd {
     }
 }
 
-impl Add<&QuadraticSurd> for &QuadraticSurd {
-    type Output = QuadraticSurd;
-    fn add(self, rhs: &QuadraticSurd) -> QuadraticSurd {
-        QuadraticSurd::new(&self.a + &rhs.a, &self.b + &rhs.b, self.radicand(rhs))
-    }
-}
+/// `+`, `-` and unary `-` on references of a type `p + q sqrt(d)` with parts `p`, `q` and
+/// radicand `d`, part by part (`Type::new(p, q, radicand)` normalizes; `radicand` is the one
+/// the two operands share), and its checked `+` and `*`, which never fail (exact arithmetic).
+macro_rules! exact_ops {
+    ($t:ident { $p:ident, $q:ident }) => {
+        impl Add<&$t> for &$t {
+            type Output = $t;
+            fn add(self, rhs: &$t) -> $t {
+                $t::new(&self.$p + &rhs.$p, &self.$q + &rhs.$q, self.radicand(rhs))
+            }
+        }
 
-impl Sub<&QuadraticSurd> for &QuadraticSurd {
-    type Output = QuadraticSurd;
-    fn sub(self, rhs: &QuadraticSurd) -> QuadraticSurd {
-        QuadraticSurd::new(&self.a - &rhs.a, &self.b - &rhs.b, self.radicand(rhs))
-    }
+        impl Sub<&$t> for &$t {
+            type Output = $t;
+            fn sub(self, rhs: &$t) -> $t {
+                $t::new(&self.$p - &rhs.$p, &self.$q - &rhs.$q, self.radicand(rhs))
+            }
+        }
+
+        impl Neg for &$t {
+            type Output = $t;
+            fn neg(self) -> $t {
+                $t {
+                    $p: -&self.$p,
+                    $q: -&self.$q,
+                    d: self.d.clone(),
+                }
+            }
+        }
+
+        impl CheckedAdd for $t {
+            fn checked_add(&self, rhs: &Self) -> Option<Self> {
+                Some(self + rhs)
+            }
+        }
+
+        impl CheckedMul for $t {
+            fn checked_mul(&self, rhs: &Self) -> Option<Self> {
+                Some(self * rhs)
+            }
+        }
+    };
 }
+exact_ops!(QuadraticSurd { a, b });
 
 impl Mul<&QuadraticSurd> for &QuadraticSurd {
     type Output = QuadraticSurd;
@@ -274,17 +305,6 @@ impl Div<&QuadraticSurd> for &QuadraticSurd {
     }
 }
 
-impl Neg for &QuadraticSurd {
-    type Output = QuadraticSurd;
-    fn neg(self) -> QuadraticSurd {
-        QuadraticSurd {
-            a: -&self.a,
-            b: -&self.b,
-            d: self.d.clone(),
-        }
-    }
-}
-
 impl Neg for QuadraticSurd {
     type Output = QuadraticSurd;
     fn neg(self) -> QuadraticSurd {
@@ -292,30 +312,18 @@ impl Neg for QuadraticSurd {
     }
 }
 
-/// The by-value operators, forwarded to the by-reference ones.
+/// The by-value operators of `$t`, forwarded to the by-reference ones.
 macro_rules! forward_by_value {
-    ($($imp:ident $method:ident),*) => {$(
-        impl $imp for QuadraticSurd {
-            type Output = QuadraticSurd;
-            fn $method(self, rhs: QuadraticSurd) -> QuadraticSurd {
+    ($t:ident: $($imp:ident $method:ident),*) => {$(
+        impl $imp for $t {
+            type Output = $t;
+            fn $method(self, rhs: $t) -> $t {
                 (&self).$method(&rhs)
             }
         }
     )*};
 }
-forward_by_value!(Add add, Sub sub, Mul mul, Div div);
-
-impl CheckedAdd for QuadraticSurd {
-    fn checked_add(&self, rhs: &Self) -> Option<Self> {
-        Some(self + rhs)
-    }
-}
-
-impl CheckedMul for QuadraticSurd {
-    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
-        Some(self * rhs)
-    }
-}
+forward_by_value!(QuadraticSurd: Add add, Sub sub, Mul mul, Div div);
 
 impl Field for QuadraticSurd {
     fn from_rational(r: &BigRational) -> Self {
@@ -394,19 +402,7 @@ impl RingElem {
     }
 }
 
-impl Add<&RingElem> for &RingElem {
-    type Output = RingElem;
-    fn add(self, rhs: &RingElem) -> RingElem {
-        RingElem::new(&self.x + &rhs.x, &self.y + &rhs.y, self.radicand(rhs))
-    }
-}
-
-impl Sub<&RingElem> for &RingElem {
-    type Output = RingElem;
-    fn sub(self, rhs: &RingElem) -> RingElem {
-        RingElem::new(&self.x - &rhs.x, &self.y - &rhs.y, self.radicand(rhs))
-    }
-}
+exact_ops!(RingElem { x, y });
 
 impl Mul<&RingElem> for &RingElem {
     type Output = RingElem;
@@ -423,30 +419,7 @@ impl Mul<&RingElem> for &RingElem {
     }
 }
 
-impl Neg for &RingElem {
-    type Output = RingElem;
-    fn neg(self) -> RingElem {
-        RingElem {
-            x: -&self.x,
-            y: -&self.y,
-            d: self.d.clone(),
-        }
-    }
-}
-
-impl Add for RingElem {
-    type Output = RingElem;
-    fn add(self, rhs: RingElem) -> RingElem {
-        &self + &rhs
-    }
-}
-
-impl Mul for RingElem {
-    type Output = RingElem;
-    fn mul(self, rhs: RingElem) -> RingElem {
-        &self * &rhs
-    }
-}
+forward_by_value!(RingElem: Add add, Mul mul);
 
 impl Zero for RingElem {
     fn zero() -> Self {
@@ -460,18 +433,6 @@ impl Zero for RingElem {
 impl One for RingElem {
     fn one() -> Self {
         RingElem::int(BigInt::one())
-    }
-}
-
-impl CheckedAdd for RingElem {
-    fn checked_add(&self, rhs: &Self) -> Option<Self> {
-        Some(self + rhs)
-    }
-}
-
-impl CheckedMul for RingElem {
-    fn checked_mul(&self, rhs: &Self) -> Option<Self> {
-        Some(self * rhs)
     }
 }
 

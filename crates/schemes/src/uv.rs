@@ -483,19 +483,10 @@ fn seam_edges(offsets: &[usize], vertex_corners: &[u32], value_corners: &[u32]) 
     sides.sort_unstable();
     sides.dedup();
     // After dedup, a surface edge appearing twice carries two different value pairs.
-    let mut seams = 0u64;
-    let mut i = 0;
-    while i < sides.len() {
-        let mut j = i + 1;
-        while j < sides.len() && sides[j].0 == sides[i].0 {
-            j += 1;
-        }
-        if j - i > 1 {
-            seams += 1;
-        }
-        i = j;
-    }
-    seams
+    sides
+        .chunk_by(|a, b| a.0 == b.0)
+        .filter(|same_edge| same_edge.len() > 1)
+        .count() as u64
 }
 
 /// The names of a [`UvScheme`]'s state: `UV` values, `UE` layout edges, `UBE` layout

@@ -492,6 +492,33 @@ fn shorten(token: &str) -> String {
     }
 }
 
+/// The next `N` tokens of a line, each read by `parse`; a line with fewer is the error
+/// `missing(found)`.
+fn parse_values<'a, const N: usize, R>(
+    tokens: &mut impl Iterator<Item = &'a str>,
+    lines: &Lines<R>,
+    parse: fn(&str) -> std::result::Result<f64, ParseError>,
+    missing: fn(usize) -> ParseError,
+) -> Result<[f64; N]> {
+    let mut values = [0.0f64; N];
+    for (i, slot) in values.iter_mut().enumerate() {
+        let Some(token) = tokens.next() else {
+            return Err(lines.error(missing(i)));
+        };
+        *slot = parse(token).map_err(|kind| lines.error(kind))?;
+    }
+    Ok(values)
+}
+
+/// A vertex position: the next three tokens of a line, finite coordinates.
+fn parse_position<'a, R>(
+    tokens: &mut impl Iterator<Item = &'a str>,
+    lines: &Lines<R>,
+) -> Result<glam::DVec3> {
+    let missing = |found| ParseError::MissingCoordinates { found };
+    parse_values(tokens, lines, parse_coordinate, missing).map(glam::DVec3::from_array)
+}
+
 /// Parses a finite coordinate.
 fn parse_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
     match token.parse::<f64>() {

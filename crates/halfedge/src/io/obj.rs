@@ -4,9 +4,11 @@ use std::collections::BTreeMap;
 use std::io::BufRead;
 use std::path::Path;
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 
-use super::{grow, open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
+use super::{
+    grow, open, parse_coordinate, parse_position, parse_values, shorten, Budget, Lines, ReadOptions,
+};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 use crate::tags::{
@@ -164,41 +166,19 @@ pub(crate) fn read_obj_within(
         let scratch = 4 * (corners.capacity() + face_vts.capacity());
         match keyword {
             "v" => {
-                let mut xyz = [0.0f64; 3];
-                for (i, slot) in xyz.iter_mut().enumerate() {
-                    let Some(token) = tokens.next() else {
-                        let kind = ParseError::MissingCoordinates { found: i };
-                        return Err(lines.error(kind));
-                    };
-                    *slot = parse_coordinate(token).map_err(|kind| lines.error(kind))?;
-                }
-                if mesh.positions.len() >= u32::MAX as usize - 1 {
-                    return Err(Error::TooManyElements {
-                        what: "vertices",
-                        count: mesh.positions.len() as u64 + 1,
-                    });
-                }
-                grow(&mut mesh.positions, 1, &lines)?;
-                mesh.positions.push(DVec3::from_array(xyz));
+                let position = parse_position(&mut tokens, &lines)?;
+                push_element(&mut mesh.positions, position, "vertices", &lines)?;
                 budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             "vt" => {
-                let mut st = [0.0f64; 2];
-                for (i, slot) in st.iter_mut().enumerate() {
-                    let Some(token) = tokens.next() else {
-                        let kind = ParseError::MissingTexCoords { found: i };
-                        return Err(lines.error(kind));
-                    };
-                    *slot = parse_tex_coordinate(token).map_err(|kind| lines.error(kind))?;
-                }
-                if uv.coords.len() >= u32::MAX as usize - 1 {
-                    return Err(Error::TooManyElements {
-                        what: "texture coordinates",
-                        count: uv.coords.len() as u64 + 1,
-                    });
-                }
-                grow(&mut uv.coords, 1, &lines)?;
-                uv.coords.push(DVec2::from_array(st));
+                let missing = |found| ParseError::MissingTexCoords { found };
+                let st = parse_values(&mut tokens, &lines, parse_tex_coordinate, missing)?;
+                push_element(
+                    &mut uv.coords,
+                    DVec2::from_array(st),
+                    "texture coordinates",
+                    &lines,
+                )?;
                 budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
             }
             "f" => {
@@ -761,6 +741,25 @@ fn sharpness_error(name: &str, token: &str) -> ParseError {
     }
 }
 
+/// Appends `item` to `list`, the file's `what` (vertices or texture coordinates): at most
+/// `u32::MAX - 1` of them, so that an index and `INVALID` fit `u32`.
+fn push_element<T, R>(
+    list: &mut Vec<T>,
+    item: T,
+    what: &'static str,
+    lines: &Lines<R>,
+) -> Result<()> {
+    if list.len() >= u32::MAX as usize - 1 {
+        return Err(Error::TooManyElements {
+            what,
+            count: list.len() as u64 + 1,
+        });
+    }
+    grow(list, 1, lines)?;
+    list.push(item);
+    Ok(())
+}
+
 /// Parses a finite texture coordinate.
 fn parse_tex_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
     parse_coordinate(token).map_err(|kind| match kind {
@@ -797,6 +796,7 @@ fn parse_index(field: &str) -> std::result::Result<i64, ParseError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec3;
 
     #[test]
     fn corner_forms_groups_and_ignored_statements() {

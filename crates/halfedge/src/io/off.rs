@@ -3,9 +3,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use glam::DVec3;
-
-use super::{grow, open, parse_coordinate, shorten, Budget, Lines, ReadOptions};
+use super::{grow, open, parse_position, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
@@ -133,15 +131,9 @@ pub(crate) fn read_off_within(
         if tokens.peek().is_none() {
             continue;
         }
-        let mut xyz = [0.0f64; 3];
-        for (i, slot) in xyz.iter_mut().enumerate() {
-            let Some(token) = tokens.next() else {
-                return Err(lines.error(ParseError::MissingCoordinates { found: i }));
-            };
-            *slot = parse_coordinate(token).map_err(|kind| lines.error(kind))?;
-        }
+        let position = parse_position(&mut tokens, &lines)?;
         grow(&mut mesh.positions, 1, &lines)?;
-        mesh.positions.push(DVec3::from_array(xyz));
+        mesh.positions.push(position);
         budget.check(&mesh, 0, &lines)?;
     }
     let mut corners: Vec<u32> = Vec::new();

@@ -43,16 +43,11 @@ impl ObjWriteOptions {
         normals: false,
     };
 
-    /// These options with [`uvs`](Self::uvs) set to `uvs`.
-    pub fn with_uvs(mut self, uvs: bool) -> ObjWriteOptions {
-        self.uvs = uvs;
-        self
-    }
-
-    /// These options with [`normals`](Self::normals) set to `normals`.
-    pub fn with_normals(mut self, normals: bool) -> ObjWriteOptions {
-        self.normals = normals;
-        self
+    with_setters! {
+        /// These options with [`uvs`](Self::uvs) set to `uvs`.
+        with_uvs(uvs: bool);
+        /// These options with [`normals`](Self::normals) set to `normals`.
+        with_normals(normals: bool);
     }
 }
 

@@ -342,13 +342,8 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
             ]
         } else {
             let c = (q - first_spoke) >> 1;
-            let (f, k) = (c / 3, c % 3);
-            let h0 = t.face_halfedge(f);
-            let g = match k {
-                0 => h0,
-                1 => t.next(h0),
-                _ => t.prev(h0),
-            };
+            let f = c / 3;
+            let g = t.triangle_side(f, c % 3);
             if q & 1 == 0 {
                 // Corner -> centroid, in T(prev g).
                 let p = t.prev(g);
@@ -366,15 +361,7 @@ pub(crate) fn sqrt3_closed_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Resu
             spoke(t.face_halfedge(v - nv)) + 1
         }
     };
-    let face = |c| {
-        let (f, k) = (c / 3, c % 3);
-        let h0 = t.face_halfedge(f);
-        match k {
-            0 => h0,
-            1 => t.next(h0),
-            _ => t.prev(h0),
-        }
-    };
+    let face = |c| t.triangle_side(c / 3, c % 3);
     assemble(ctx, halfedge, vertex, face)
 }
 

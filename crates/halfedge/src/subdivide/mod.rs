@@ -227,46 +227,21 @@ impl Default for SubdivideOptions<'_> {
 }
 
 impl<'a> SubdivideOptions<'a> {
-    /// Sets [`SubdivideOptions::threads`].
-    pub fn with_threads(mut self, threads: usize) -> Self {
-        self.threads = threads;
-        self
-    }
-
-    /// Sets [`SubdivideOptions::preallocate`].
-    pub fn with_preallocate(mut self, preallocate: bool) -> Self {
-        self.preallocate = preallocate;
-        self
-    }
-
-    /// Sets [`SubdivideOptions::progress`].
-    pub fn with_progress(mut self, progress: &'a (dyn Fn(&LevelDone) + Sync)) -> Self {
-        self.progress = Some(progress);
-        self
-    }
-
-    /// Sets [`SubdivideOptions::sharpness`].
-    pub fn with_sharpness(mut self, sharpness: &'a Sharpness) -> Self {
-        self.sharpness = Some(sharpness);
-        self
-    }
-
-    /// Sets [`SubdivideOptions::subdivision`].
-    pub fn with_subdivision(mut self, subdivision: SubdivisionOptions) -> Self {
-        self.subdivision = subdivision;
-        self
-    }
-
-    /// Sets [`SubdivideOptions::uvs`].
-    pub fn with_uvs(mut self, uvs: &'a crate::uv::UvLayout) -> Self {
-        self.uvs = Some(uvs);
-        self
-    }
-
-    /// Sets [`SubdivideOptions::holes`].
-    pub fn with_holes(mut self, holes: &'a HoleSet) -> Self {
-        self.holes = Some(holes);
-        self
+    with_setters! {
+        /// Sets [`SubdivideOptions::threads`].
+        with_threads(threads: usize);
+        /// Sets [`SubdivideOptions::preallocate`].
+        with_preallocate(preallocate: bool);
+        /// Sets [`SubdivideOptions::progress`].
+        with_progress(progress: Some(&'a (dyn Fn(&LevelDone) + Sync)));
+        /// Sets [`SubdivideOptions::sharpness`].
+        with_sharpness(sharpness: Some(&'a Sharpness));
+        /// Sets [`SubdivideOptions::subdivision`].
+        with_subdivision(subdivision: SubdivisionOptions);
+        /// Sets [`SubdivideOptions::uvs`].
+        with_uvs(uvs: Some(&'a crate::uv::UvLayout));
+        /// Sets [`SubdivideOptions::holes`].
+        with_holes(holes: Some(&'a HoleSet));
     }
 }
 

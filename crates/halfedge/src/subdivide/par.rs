@@ -60,6 +60,26 @@ pub(crate) fn for_each_chunk<T: Send>(
     }
 }
 
+/// `part(range)` on the consecutive ranges of `len` elements of `0..n` (the last may be
+/// shorter), in order, in parallel when `parallel` and `n >= parallel_min`; otherwise the one
+/// result `part(0..n)`.
+pub(crate) fn map_ranges<R: Send>(
+    n: usize,
+    len: usize,
+    parallel: bool,
+    parallel_min: usize,
+    part: impl Fn(std::ops::Range<usize>) -> R + Sync + Send,
+) -> Vec<R> {
+    if parallel && n >= parallel_min {
+        (0..n.div_ceil(len))
+            .into_par_iter()
+            .map(|c| part(c * len..((c + 1) * len).min(n)))
+            .collect()
+    } else {
+        vec![part(0..n)]
+    }
+}
+
 /// One chunk of each of the four half-edge arrays, as zipped by rayon.
 type Chunks<'a> = (
     ((&'a mut [u32], &'a mut [u32]), &'a mut [u32]),

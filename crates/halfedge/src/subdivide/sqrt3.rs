@@ -74,26 +74,10 @@ pub(crate) fn sqrt3_step<const GROW: bool>(
     } else {
         StepB::default()
     };
-    let (boundary_of, number_of) = (&tables.boundary_of, &tables.number_of);
+    let number_of = &tables.number_of;
     let spoke = |k: u32| ne + corner[k as usize];
-    // The role of half-edge g in a step-B boundary face: 0 = the boundary half-edge,
-    // 1 = next of it (b -> c), 2 = prev of it (c -> a); None on an ordinary face.
-    let role = |g: u32| -> Option<(u32, u32)> {
-        if !step_b {
-            return None;
-        }
-        let f = t.face(g);
-        let gb = boundary_of[f as usize];
-        if gb == INVALID {
-            None
-        } else if g == gb {
-            Some((0, gb))
-        } else if g == t.next(gb) {
-            Some((1, gb))
-        } else {
-            Some((2, gb))
-        }
-    };
+    // Empty tables (not a step B): no face is a step-B boundary face.
+    let role = |g: u32| tables.role(&t, g);
     let p2_of = |gb: u32| nv + nf + number_of[t.face(gb) as usize];
     let c2_of = |gb: u32| ne + 3 * nf + number_of[t.face(gb) as usize];
     // The point the new edge through old edge g reaches on g's side.
@@ -203,6 +187,23 @@ impl StepB {
     /// Bytes held by the tables.
     pub(crate) fn bytes(&self) -> usize {
         4 * (self.boundary_of.len() + self.number_of.len() + self.boundary_faces.len())
+    }
+
+    /// The role of half-edge `g` in its face when that face is a step-B boundary face, with
+    /// the face's boundary half-edge `gb`: `(0, gb)` for the boundary half-edge, `(1, gb)` for
+    /// next of it (b -> c), `(2, gb)` for prev of it (c -> a); `None` on an ordinary face and
+    /// with empty tables (not a step B).
+    fn role(&self, t: &Topo<'_>, g: u32) -> Option<(u32, u32)> {
+        let gb = *self.boundary_of.get(t.face(g) as usize)?;
+        if gb == INVALID {
+            None
+        } else if g == gb {
+            Some((0, gb))
+        } else if g == t.next(gb) {
+            Some((1, gb))
+        } else {
+            Some((2, gb))
+        }
     }
 }
 
@@ -357,27 +358,9 @@ pub(crate) fn sqrt3_uv_step<'a>(
     }
     let first_mid = n + nf + nb as u32;
     let corner = move |face: u32, vertex: u32| -> u32 {
-        let (f, k) = (face / 3, face % 3);
-        let g0 = t.face_halfedge(f);
-        let g = match k {
-            0 => g0,
-            1 => t.next(g0),
-            _ => t.prev(g0),
-        };
-        // The trisected face of half-edge h and h's role in it (0: the boundary half-edge,
-        // 1: next of it, 2: prev of it).
-        let role = |h: u32| -> Option<(u32, u32)> {
-            let gb = *tables.boundary_of.get(t.face(h) as usize)?;
-            if gb == INVALID {
-                None
-            } else if h == gb {
-                Some((0, gb))
-            } else if h == t.next(gb) {
-                Some((1, gb))
-            } else {
-                Some((2, gb))
-            }
-        };
+        let f = face / 3;
+        let g = t.triangle_side(f, face % 3);
+        let role = |h: u32| tables.role(&t, h);
         let number = |gb: u32| tables.number_of[t.face(gb) as usize];
         // The vertex rep(h) and its value in the chart of h's face.
         let rep = |h: u32| match role(h) {

@@ -161,6 +161,16 @@ impl<'a> Topo<'a> {
     pub(crate) fn vertex_halfedge(&self, v: u32) -> u32 {
         self.vertex_halfedge[v as usize]
     }
+    /// Side `k` (0, 1 or 2) of triangle `f`: its half-edge, the next one, then the previous one.
+    #[inline]
+    pub(crate) fn triangle_side(&self, f: u32, k: u32) -> u32 {
+        let h0 = self.face_halfedge(f);
+        match k {
+            0 => h0,
+            1 => self.next(h0),
+            _ => self.prev(h0),
+        }
+    }
     /// Whether vertex `v` is on the boundary (its half-edge is the outgoing boundary one).
     #[inline]
     pub(crate) fn is_boundary_vertex(&self, v: u32) -> bool {

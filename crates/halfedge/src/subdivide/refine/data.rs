@@ -51,10 +51,26 @@ pub trait Scalar:
     const SQUARE_SAFE_MIN: Self;
 }
 
+/// The items of [`Scalar`] both float types write alike: zero, the square-safe bounds
+/// `max` and `min`, and their inherent `sqrt` and `abs`.
+macro_rules! float_scalar_items {
+    ($t:ident, max: $max:literal, min: $min:literal) => {
+        const ZERO: $t = 0.0;
+        const SQUARE_SAFE_MAX: $t = $max;
+        const SQUARE_SAFE_MIN: $t = $min;
+        #[inline(always)]
+        fn sqrt(self) -> $t {
+            $t::sqrt(self)
+        }
+        #[inline(always)]
+        fn abs(self) -> $t {
+            $t::abs(self)
+        }
+    };
+}
+
 impl Scalar for f64 {
-    const ZERO: f64 = 0.0;
-    const SQUARE_SAFE_MAX: f64 = 1e150;
-    const SQUARE_SAFE_MIN: f64 = 1e-150;
+    float_scalar_items!(f64, max: 1e150, min: 1e-150);
     #[inline(always)]
     fn from_f64(w: f64) -> f64 {
         w
@@ -63,20 +79,10 @@ impl Scalar for f64 {
     fn to_f64(self) -> f64 {
         self
     }
-    #[inline(always)]
-    fn sqrt(self) -> f64 {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> f64 {
-        f64::abs(self)
-    }
 }
 
 impl Scalar for f32 {
-    const ZERO: f32 = 0.0;
-    const SQUARE_SAFE_MAX: f32 = 1e18;
-    const SQUARE_SAFE_MIN: f32 = 1e-18;
+    float_scalar_items!(f32, max: 1e18, min: 1e-18);
     #[inline(always)]
     fn from_f64(w: f64) -> f32 {
         w as f32
@@ -84,14 +90,6 @@ impl Scalar for f32 {
     #[inline(always)]
     fn to_f64(self) -> f64 {
         f64::from(self)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> f32 {
-        f32::sqrt(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> f32 {
-        f32::abs(self)
     }
 }
 

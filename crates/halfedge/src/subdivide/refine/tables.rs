@@ -371,15 +371,7 @@ fn concat<T: Copy + Send>(
     part: impl Fn(std::ops::Range<usize>) -> (Vec<T>, Vec<u32>) + Sync + Send,
     what: &str,
 ) -> Result<(Vec<T>, Vec<u32>)> {
-    let chunks: Vec<(Vec<T>, Vec<u32>)> = if parallel && n >= RING_CHUNK {
-        use rayon::prelude::*;
-        (0..n.div_ceil(RING_CHUNK))
-            .into_par_iter()
-            .map(|c| part(c * RING_CHUNK..((c + 1) * RING_CHUNK).min(n)))
-            .collect()
-    } else {
-        vec![part(0..n)]
-    };
+    let chunks = par::map_ranges(n, RING_CHUNK, parallel, RING_CHUNK, part);
     let total: usize = chunks.iter().map(|(r, _)| r.len()).sum();
     let mut entries = crate::subdivide::alloc::with_capacity(total, what)?;
     let mut offsets = crate::subdivide::alloc::with_capacity(n + 1, what)?;

@@ -30,7 +30,7 @@ use super::crease::{
 };
 use super::{Linear, DENSE_MAX_DEGREE};
 use crate::mesh::INVALID;
-use crate::subdivide::par::Sink;
+use crate::subdivide::par::{self, Sink};
 use crate::subdivide::refine::Vector;
 use crate::subdivide::topo::Topo;
 use crate::tags::{CreaseMethod, SubdivisionOptions, TriangleRule};
@@ -41,6 +41,17 @@ use crate::{Error, Result};
 pub(crate) enum Scheme {
     Loop,
     CatmullClark,
+}
+
+impl Scheme {
+    /// The crease-aware scheme of `rule`: Loop and Catmull-Clark have one, other rules none.
+    pub(crate) fn of(rule: crate::Rule) -> Option<Scheme> {
+        match rule {
+            crate::Rule::Loop => Some(Scheme::Loop),
+            crate::Rule::CatmullClark => Some(Scheme::CatmullClark),
+            _ => None,
+        }
+    }
 }
 
 /// The sharpness of one level: per edge and per vertex, and the order in which OpenSubdiv
@@ -539,15 +550,7 @@ impl<'a> LevelBuilder<'a> {
             }
             (index, weight, ends)
         };
-        let chunks: Vec<(Vec<u32>, Vec<f64>, Vec<usize>)> = if parallel && n >= 2 * ROW_CHUNK {
-            use rayon::prelude::*;
-            (0..n.div_ceil(ROW_CHUNK))
-                .into_par_iter()
-                .map(|c| part(c * ROW_CHUNK..((c + 1) * ROW_CHUNK).min(n)))
-                .collect()
-        } else {
-            vec![part(0..n)]
-        };
+        let chunks = par::map_ranges(n, ROW_CHUNK, parallel, 2 * ROW_CHUNK, part);
         let total: usize = chunks.iter().map(|(i, _, _)| i.len()).sum();
         u32::try_from(total).map_err(|_| Error::IndexOverflow {
             what: "crease weight table entries",

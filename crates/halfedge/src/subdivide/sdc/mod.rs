@@ -123,6 +123,20 @@ pub struct Sharpness {
     vertices: Vec<f32>,
 }
 
+/// `v` when a mesh of `vertices` vertices has it, else [`Error::TagVertexOutOfRange`] for the
+/// tag kind `what`.
+fn tag_vertex(what: &'static str, v: u32, vertices: usize) -> Result<u32> {
+    if (v as usize) < vertices {
+        Ok(v)
+    } else {
+        Err(Error::TagVertexOutOfRange {
+            what,
+            vertex: v,
+            vertices,
+        })
+    }
+}
+
 impl Sharpness {
     /// No sharpness on `mesh`: every edge and vertex smooth.
     pub fn smooth(mesh: &HalfEdgeMesh) -> Sharpness {
@@ -180,17 +194,7 @@ impl Sharpness {
             });
         }
         let n = source.n_vertices();
-        let check = |what: &'static str, v: u32| {
-            if (v as usize) < n {
-                Ok(())
-            } else {
-                Err(Error::TagVertexOutOfRange {
-                    what,
-                    vertex: v,
-                    vertices: n,
-                })
-            }
-        };
+        let check = |what: &'static str, v: u32| tag_vertex(what, v, n);
         for c in tags.creases() {
             check("crease", c.a)?;
             check("crease", c.b)?;
@@ -212,17 +216,7 @@ impl Sharpness {
         let t = Topo::new(mesh);
         let nv = mesh.n_vertices();
         let mut sharpness = Sharpness::smooth(mesh);
-        let in_range = |what: &'static str, v: u32| {
-            if (v as usize) < nv {
-                Ok(v)
-            } else {
-                Err(Error::TagVertexOutOfRange {
-                    what,
-                    vertex: v,
-                    vertices: nv,
-                })
-            }
-        };
+        let in_range = |what: &'static str, v: u32| tag_vertex(what, v, nv);
         for c in tags.creases() {
             let not_an_edge = Error::CreaseNotAnEdge { a: c.a, b: c.b };
             let (Some(a), Some(b)) = (to_mesh(c.a), to_mesh(c.b)) else {
@@ -401,6 +395,14 @@ pub(crate) struct Creases {
     budgets: Vec<usize>,
 }
 
+/// Whether Catmull-Clark's smooth triangle rule changes anything on `t` under `rule`: the rule
+/// is Catmull-Clark, `options` ask for it and `t` has a triangle.
+fn smooth_triangles(t: &Topo<'_>, rule: Rule, options: &SubdivisionOptions) -> bool {
+    rule == Rule::CatmullClark
+        && options.triangle_rule == TriangleRule::Smooth
+        && (0..t.nf() as u32).any(|f| t.face_degree(f) == 3)
+}
+
 impl Creases {
     /// The crease rules of `rule` on `mesh`, or `None` when they give what the rule's own
     /// kernels give (no sharpness, no corner to sharpen, no triangle to smooth): the fast path.
@@ -429,27 +431,21 @@ impl Creases {
         let sharp = sharpness.is_some_and(|s| !s.is_smooth());
         let corners = options.boundary == BoundaryInterpolation::EdgeAndCorner
             && (0..t.nv() as u32).any(|v| t.is_boundary_vertex(v) && t.valence(v) == 2);
-        let triangles = rule == Rule::CatmullClark
-            && options.triangle_rule == TriangleRule::Smooth
-            && (0..t.nf() as u32).any(|f| t.face_degree(f) == 3);
+        let triangles = smooth_triangles(&t, rule, options);
         if !(sharp || corners || triangles) {
             return Ok(None);
         }
-        let scheme = match rule {
-            Rule::Loop => Scheme::Loop,
-            Rule::CatmullClark => Scheme::CatmullClark,
-            other => {
-                return Err(Error::CreasesNotSupported {
-                    rule: other.to_string(),
-                    what: if sharp {
-                        "creases and corners"
-                    } else if corners {
-                        "the edge-and-corner boundary"
-                    } else {
-                        "the smooth triangle rule"
-                    },
-                })
-            }
+        let Some(scheme) = Scheme::of(rule) else {
+            return Err(Error::CreasesNotSupported {
+                rule: rule.to_string(),
+                what: if sharp {
+                    "creases and corners"
+                } else if corners {
+                    "the edge-and-corner boundary"
+                } else {
+                    "the smooth triangle rule"
+                },
+            });
         };
         let smooth;
         let given = match sharpness {
@@ -460,13 +456,12 @@ impl Creases {
             }
         };
         let base = LevelSharpness::base(&t, &given.edges, &given.vertices, options);
-        Ok(Some(Creases {
+        Ok(Some(Creases::from_base(
             scheme,
-            options: *options,
-            linear: Linear::Nothing,
-            levels: vec![Some(base)],
-            budgets: Vec::new(),
-        }))
+            *options,
+            Linear::Nothing,
+            base,
+        )))
     }
 
     /// The crease rules of a face-varying channel ([`refine::face_varying`](crate::refine::face_varying)):
@@ -489,29 +484,33 @@ impl Creases {
             ..*options
         };
         let sharp = edges.iter().chain(vertices).any(|&s| s > 0.0);
-        let triangles = rule == Rule::CatmullClark
-            && options.triangle_rule == TriangleRule::Smooth
-            && (0..t.nf() as u32).any(|f| t.face_degree(f) == 3);
+        let triangles = smooth_triangles(&t, rule, &options);
         if !(sharp || triangles || linear != Linear::Nothing) {
             return Ok(None);
         }
-        let scheme = match rule {
-            Rule::Loop => Scheme::Loop,
-            Rule::CatmullClark => Scheme::CatmullClark,
-            other => {
-                return Err(Error::UvsNotSupported {
-                    rule: other.to_string(),
-                })
-            }
+        let Some(scheme) = Scheme::of(rule) else {
+            return Err(Error::UvsNotSupported {
+                rule: rule.to_string(),
+            });
         };
         let base = LevelSharpness::base(&t, edges, vertices, &options);
-        Ok(Some(Creases {
+        Ok(Some(Creases::from_base(scheme, options, linear, base)))
+    }
+
+    /// The crease rules from the sharpness `base` of the first level.
+    fn from_base(
+        scheme: Scheme,
+        options: SubdivisionOptions,
+        linear: Linear,
+        base: LevelSharpness,
+    ) -> Creases {
+        Creases {
             scheme,
             options,
             linear,
             levels: vec![Some(base)],
             budgets: Vec::new(),
-        }))
+        }
     }
 
     /// Records the sharpness of level `level + 1`, built as `child` from level `level`
