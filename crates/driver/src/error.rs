@@ -247,28 +247,20 @@ pub enum Error {
 }
 
 impl Error {
-    /// The kind of failure (a front end's exit code).
+    /// The kind of failure (a front end's exit code): the guards' refusals, the requests a
+    /// scheme cannot serve, and otherwise bad input (a file, a mesh a scheme does not apply to).
     pub fn kind(&self) -> Kind {
+        use Error as E;
         match self {
-            Error::Geometry(e) => Kind::of_geometry_error(e),
-            Error::Scheme(e) => Kind::of_scheme_error(e),
-            Error::AnalysisTooLarge { .. }
-            | Error::TooManyDigits { .. }
-            | Error::TableTooLarge { .. }
-            | Error::ClosedFormTooCostly { .. } => Kind::Guard,
-            Error::NotComposable { .. }
-            | Error::BoundaryNone { .. }
-            | Error::HolesNotNested { .. }
-            | Error::TriangleRule { .. }
-            | Error::SchemeNotInFile { .. }
-            | Error::RefineOnce { .. }
-            | Error::RefineOnceComposition { .. } => Kind::Usage,
-            Error::WriteProtected { .. }
-            | Error::InMesh { .. }
-            | Error::NotApplicable { .. }
-            | Error::RepeatedVertex { .. }
-            | Error::SchemeFileUnreadable { .. }
-            | Error::SchemeFile { .. } => Kind::Input,
+            E::Geometry(e) => Kind::of_geometry_error(e),
+            E::Scheme(e) => Kind::of_scheme_error(e),
+            E::AnalysisTooLarge { .. } | E::TooManyDigits { .. } => Kind::Guard,
+            E::TableTooLarge { .. } | E::ClosedFormTooCostly { .. } => Kind::Guard,
+            E::NotComposable { .. } | E::BoundaryNone { .. } => Kind::Usage,
+            E::HolesNotNested { .. } | E::TriangleRule { .. } => Kind::Usage,
+            E::SchemeNotInFile { .. } | E::RefineOnce { .. } => Kind::Usage,
+            E::RefineOnceComposition { .. } => Kind::Usage,
+            _ => Kind::Input,
         }
     }
 

@@ -34,9 +34,19 @@ impl Precision {
 }
 
 /// Writes a level to a path, with the writer's options.
-type Writer = dyn Fn(&Path, &ObjWriteOptions) -> crate::Result<()>;
+struct Writer(Box<WriteFn>);
+
+/// The writer's function.
+type WriteFn = dyn Fn(&Path, &ObjWriteOptions) -> crate::Result<()>;
+
+impl std::fmt::Debug for Writer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Writer")
+    }
+}
 
 /// What a refine-once run produced and measured.
+#[derive(Debug)]
 pub struct Refined {
     /// `[V, E, F]` of the last level.
     pub vef: [usize; 3],
@@ -51,7 +61,7 @@ pub struct Refined {
     /// their evaluation and index buffer.
     pub uvs: Option<(usize, Duration, Duration)>,
     /// Writes the last level as OBJ.
-    write: Box<Writer>,
+    write: Writer,
 }
 
 impl Refined {
@@ -62,39 +72,48 @@ impl Refined {
     ///
     /// As [`crate::output::write_buffers_obj_file`].
     pub fn write(&self, path: &Path, options: &ObjWriteOptions) -> crate::Result<()> {
-        (self.write)(path, options)
+        (self.write.0)(path, options)
     }
 }
 
-/// Refines `mesh` by `rule` to `levels` once, evaluates its positions in `precision`, then
-/// `frames` more times from moved base positions (timed; the output keeps the first,
-/// unmoved evaluation). `as_read`: at level 0, the UVs to write (the file's, as read) in
-/// place of the layout's values.
+/// A refine-once run: what to refine, and how.
+#[derive(Clone, Copy, Debug)]
+pub struct RefineOnce<'a> {
+    /// The mesh.
+    pub mesh: &'a HalfEdgeMesh,
+    /// Its rule.
+    pub rule: Rule,
+    /// The last level.
+    pub levels: u32,
+    /// Evaluations after the first, from moved base positions (timed).
+    pub frames: u32,
+    /// The refinement's options (threads, creases, holes, UVs).
+    pub opts: &'a SubdivideOptions<'a>,
+    /// Splits the surface's time from the UVs'.
+    pub clock: &'a SurfaceClock,
+    /// At level 0, the UVs to write (the file's, as read) in place of the layout's values.
+    pub as_read: Option<&'a halfedge::uv::Uvs>,
+}
+
+/// Refines `run.mesh` by its rule to its last level once, evaluates its positions in
+/// `precision`, then `run.frames` more times from moved base positions (timed; the output
+/// keeps the first, unmoved evaluation).
 ///
 /// # Errors
 ///
 /// The refinement's and the evaluation's errors; a position or UV beyond the range of the
 /// precision.
-#[allow(clippy::too_many_arguments)]
-pub fn run(
-    mesh: &HalfEdgeMesh,
-    rule: Rule,
-    levels: u32,
-    precision: Precision,
-    frames: u32,
-    opts: &SubdivideOptions<'_>,
-    clock: &SurfaceClock,
-    as_read: Option<&halfedge::uv::Uvs>,
-) -> halfedge::Result<Refined> {
+pub fn run(run: &RefineOnce<'_>, precision: Precision) -> halfedge::Result<Refined> {
     match precision {
-        Precision::F32 => run_in::<f32>(mesh, rule, levels, frames, opts, clock, as_read),
-        Precision::F64 => run_in::<f64>(mesh, rule, levels, frames, opts, clock, as_read),
+        Precision::F32 => run_in::<f32>(run),
+        Precision::F64 => run_in::<f64>(run),
     }
 }
 
 /// When the surface's last level was built: a refinement (and a one-shot subdivision) with
 /// UVs reports the surface's levels to the progress callback, then its face-varying channel's,
 /// so the first report of the last level splits the surface's work from the UVs'.
+#[derive(Debug)]
 pub struct SurfaceClock {
     levels: u32,
     done: Mutex<Option<Instant>>,
@@ -130,15 +149,16 @@ impl SurfaceClock {
     }
 }
 
-fn run_in<T: Scalar>(
-    mesh: &HalfEdgeMesh,
-    rule: Rule,
-    levels: u32,
-    frames: u32,
-    opts: &SubdivideOptions<'_>,
-    clock: &SurfaceClock,
-    as_read: Option<&halfedge::uv::Uvs>,
-) -> halfedge::Result<Refined> {
+fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
+    let RefineOnce {
+        mesh,
+        rule,
+        levels,
+        frames,
+        opts,
+        clock,
+        as_read,
+    } = *run;
     let t0 = Instant::now();
     let refinement = Refinement::new(mesh, rule, levels, opts)?;
     let built = Instant::now();
@@ -248,7 +268,7 @@ fn run_in<T: Scalar>(
     let uv_summary = uvs
         .as_ref()
         .map(|(values, _, time)| (values.len(), uv_topology, *time));
-    let write = Box::new(move |path: &Path, options: &ObjWriteOptions| {
+    let write = Writer(Box::new(move |path: &Path, options: &ObjWriteOptions| {
         let faces = match degree {
             Some(degree) => FaceBuffers::Uniform {
                 degree,
@@ -263,7 +283,7 @@ fn run_in<T: Scalar>(
             .as_ref()
             .map(|(values, corners, _)| UvBuffers { values, corners });
         crate::output::write_buffers_obj_file(&out, faces, uvs, path, options)
-    });
+    }));
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],
         refine_topology,

@@ -29,7 +29,7 @@ use schemes::{MeshCounts, Scheme};
 use crate::error::{Error, Result};
 use crate::guard::{guard_memory, uv_bytes};
 use crate::mesh::LoadedMesh;
-use crate::refined::{self, Precision, Refined, SurfaceClock};
+use crate::refined::{self, Precision, RefineOnce, Refined, SurfaceClock};
 use crate::scheme::{choose, on_face_list, Chosen, SchemeChoice};
 use crate::Notes;
 
@@ -323,17 +323,18 @@ impl Prepared<'_> {
         };
         let t1 = Instant::now();
         let run = |opts: &SubdivideOptions<'_>| match &self.mesh {
-            Some(mesh) if refine_once => refined::run(
-                mesh,
-                rule,
-                levels,
-                job.precision,
-                job.frames,
-                opts,
-                &clock,
-                as_read.as_ref(),
-            )
-            .map(Output::Refined),
+            Some(mesh) if refine_once => {
+                let run = RefineOnce {
+                    mesh,
+                    rule,
+                    levels,
+                    frames: job.frames,
+                    opts,
+                    clock: &clock,
+                    as_read: as_read.as_ref(),
+                };
+                refined::run(&run, job.precision).map(Output::Refined)
+            }
             // With UVs the last level is a face list carrying them.
             Some(mesh) if opts.uvs.is_some() || self.last_faces.is_some() || holes_as_faces => {
                 sub::subdivide_to_face_list(mesh, rule, levels, opts).map(Output::Faces)
@@ -453,6 +454,7 @@ pub fn uv_interpolation(
 }
 
 /// The last level, in the form its path built it.
+#[derive(Debug)]
 enum Output {
     /// The whole last level as a half-edge mesh.
     Mesh(HalfEdgeMesh),
@@ -465,21 +467,12 @@ enum Output {
 }
 
 /// What a run built: the last level, its counts, its UV values and the time spent.
+#[derive(Debug)]
 pub struct Subdivided {
     output: Output,
     vef: [usize; 3],
     uvs: Option<(usize, Duration)>,
     time: Duration,
-}
-
-impl std::fmt::Debug for Subdivided {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Subdivided")
-            .field("vef", &self.vef)
-            .field("uvs", &self.uvs)
-            .field("time", &self.time)
-            .finish_non_exhaustive()
-    }
 }
 
 impl Subdivided {

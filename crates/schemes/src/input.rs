@@ -81,15 +81,11 @@ impl CountsInput {
                     "item {n}: `{key}` is not a name (letters, digits and `_`, starting with a letter)"
                 )));
             }
-            let digits = value.strip_prefix('-').unwrap_or(value);
-            if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-                return Err(syntax(format!(
+            let v = decimal_integer(value).ok_or_else(|| {
+                syntax(format!(
                     "item {n}: value `{value}` of {key} is not an integer"
-                )));
-            }
-            let v: BigInt = value
-                .parse()
-                .map_err(|_| syntax(format!("item {n}: value `{value}` is not an integer")))?;
+                ))
+            })?;
             if v.is_negative() {
                 return Err(Error::NegativeCount {
                     key: key.to_string(),
@@ -499,6 +495,14 @@ fn describe_constraint(
     } else {
         format!("{l} = {lv} but {r} = {rv}")
     }
+}
+
+/// `text` as an integer when it is written in decimal digits, after an optional `-` (no `+`,
+/// no spaces, no `_`: what `BigInt`'s parser would accept beyond that is refused).
+fn decimal_integer(text: &str) -> Option<BigInt> {
+    let digits = text.strip_prefix('-').unwrap_or(text);
+    let decimal = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
+    decimal.then(|| text.parse().ok()).flatten()
 }
 
 #[cfg(test)]

@@ -49,10 +49,14 @@ fn table(args: TableArgs, out: &mut impl Write) -> Result<u8, Failure> {
     if let Some(uv) = &uv {
         uv.extend_rows(&mut columns, &mut rows)?;
     }
+    let table = output::Table {
+        columns: &columns,
+        rows: &rows,
+    };
     match args.format {
-        TableFormat::Text => output::write_table_text(out, &columns, &rows),
-        TableFormat::Json => output::write_table_json(out, &columns, &rows),
-        TableFormat::Csv => output::write_table_csv(out, &columns, &rows),
+        TableFormat::Text => table.write_text(out),
+        TableFormat::Json => table.write_json(out),
+        TableFormat::Csv => table.write_csv(out),
     }
     .map_err(write_failure)?;
     Ok(0)
@@ -227,13 +231,7 @@ fn uv_formula(
     Ok(match format {
         FormulaFormat::Text => {
             let x0 = single.initial_state(layout);
-            let given: Vec<String> = single
-                .recurrence()
-                .names()
-                .iter()
-                .zip(&x0)
-                .map(|(n, v)| format!("{n}0 = {v}"))
-                .collect();
+            let given = initial_values(single, &x0);
             let numbers =
                 schemes::specialized_line_from(&form, uv_index, &x0, "s", valid_from, &early)
                     .unwrap_or_else(|| "(not rational: see the symbolic form above)".into());
@@ -248,7 +246,7 @@ fn uv_formula(
             format!(
                 "{text}\n\n# {over}; UV(0) is the number of vt the faces use\n{}\n\n# with {}; the real count at level 0 is the {} vt the faces use\n{numbers}",
                 line(false)?,
-                given.join(", "),
+                given,
                 layout.used_vt,
             )
         }
@@ -290,6 +288,17 @@ fn uv_formula(
     })
 }
 
+/// `UV0 = 267, UE0 = 438, ...`: the UV recurrence's components named with the values `x`.
+fn initial_values(single: &schemes::uv::UvScheme, x: &[BigInt]) -> String {
+    let names = single.recurrence().names();
+    let given: Vec<String> = names
+        .iter()
+        .zip(x)
+        .map(|(n, v)| format!("{n}0 = {v}"))
+        .collect();
+    given.join(", ")
+}
+
 /// What √3's UV state counts (`formula --mesh`).
 const SQRT3_UV_STATE_TEXT: &str =
     "UV0 values (the (vertex, vt) pairs), UBE0 layout boundary edges, S0 seam edges, F0 faces";
@@ -328,14 +337,8 @@ fn uv_phase_formula(
                 let x = single
                     .state_at(layout, phase.first_level)
                     .map_err(crate::failure::scheme_failure)?;
-                let given: Vec<String> = single
-                    .recurrence()
-                    .names()
-                    .iter()
-                    .zip(&x)
-                    .map(|(n, v)| format!("{n}0 = {v}"))
-                    .collect();
-                starts.push(format!("# {}: {}", phase.description, given.join(", ")));
+                let given = initial_values(single, &x);
+                starts.push(format!("# {}: {given}", phase.description));
             }
             format!(
                 "{text}\n\n# UV values over the UV layout: {SQRT3_UV_STATE_TEXT}; the UV of each phase from level {} on; UV(0) is the {} vt the faces use\n{}\n\n# the state at each phase's first level\n{}",

@@ -228,21 +228,20 @@ impl TagSummary {
             "tags: {} crease edges, {} corners, {} holes",
             self.crease_edges, self.corners, self.holes
         );
-        if !self.options.is_empty() {
-            let options: Vec<String> = self
-                .options
-                .iter()
-                .map(|(k, v)| format!("{k} = {v}"))
-                .collect();
-            t.push_str(&format!("; options: {}", options.join(", ")));
-        }
-        if !self.ignored.is_empty() {
-            let ignored: Vec<String> = self
-                .ignored
-                .iter()
-                .map(|(k, n)| format!("{k} ({n})"))
-                .collect();
-            t.push_str(&format!("; ignored: {}", ignored.join(", ")));
+        let options: Vec<String> = self
+            .options
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect();
+        let ignored: Vec<String> = self
+            .ignored
+            .iter()
+            .map(|(k, n)| format!("{k} ({n})"))
+            .collect();
+        for (label, items) in [("options", options), ("ignored", ignored)] {
+            if !items.is_empty() {
+                t.push_str(&format!("; {label}: {}", items.join(", ")));
+            }
         }
         t
     }

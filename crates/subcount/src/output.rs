@@ -89,20 +89,6 @@ pub(crate) fn row_fields<'a>(columns: &'a [String], row: &'a Row) -> Vec<(&'a st
         .collect()
 }
 
-/// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
-pub(crate) fn write_table_json(
-    out: &mut impl Write,
-    columns: &[String],
-    rows: &[Row],
-) -> io::Result<()> {
-    writeln!(out, "[")?;
-    for (i, row) in rows.iter().enumerate() {
-        write_row_json(out, columns, row)?;
-        writeln!(out, "{}", if i + 1 < rows.len() { "," } else { "" })?;
-    }
-    writeln!(out, "]")
-}
-
 /// One bare object `{"level": s, "V": .., ...}` without a trailing newline.
 pub(crate) fn write_row_json(
     out: &mut impl Write,
@@ -112,75 +98,88 @@ pub(crate) fn write_row_json(
     write_object(out, &row_fields(columns, row))
 }
 
-/// `level,V,E,F` then one line per level.
-pub(crate) fn write_table_csv(
-    out: &mut impl Write,
-    columns: &[String],
-    rows: &[Row],
-) -> io::Result<()> {
-    write!(out, "level")?;
-    for c in columns {
-        write!(out, ",{c}")?;
-    }
-    writeln!(out)?;
-    for row in rows {
-        write!(out, "{}", row.level)?;
-        for v in &row.values {
-            match v {
-                Some(v) => write!(out, ",{}", Decimal::from(v))?,
-                None => write!(out, ",")?,
-            }
-        }
-        writeln!(out)?;
-    }
-    Ok(())
+/// Rows of counts under their column names (after `level`), written as JSON, CSV or text.
+pub(crate) struct Table<'a> {
+    pub(crate) columns: &'a [String],
+    pub(crate) rows: &'a [Row],
 }
 
-/// A right-aligned plain-text table with a header line.
-pub(crate) fn write_table_text(
-    out: &mut impl Write,
-    columns: &[String],
-    rows: &[Row],
-) -> io::Result<()> {
-    let cells: Vec<Vec<String>> = rows
-        .iter()
-        .map(|r| {
-            std::iter::once(r.level.to_string())
-                .chain(r.values.iter().map(|v| {
-                    v.as_ref()
-                        .map_or_else(|| "-".to_string(), decimal::to_decimal)
-                }))
-                .collect()
-        })
-        .collect();
-    let header: Vec<&str> = std::iter::once("level")
-        .chain(columns.iter().map(String::as_str))
-        .collect();
-    let widths: Vec<usize> = (0..header.len())
-        .map(|j| {
-            cells
-                .iter()
-                .map(|r| r[j].len())
-                .chain(std::iter::once(header[j].len()))
-                .max()
-                .unwrap_or(0)
-        })
-        .collect();
-    let line = |out: &mut dyn Write, items: &[&str]| -> io::Result<()> {
-        for (j, item) in items.iter().enumerate() {
-            if j > 0 {
-                write!(out, "  ")?;
-            }
-            write!(out, "{item:>w$}", w = widths[j])?;
+impl Table<'_> {
+    /// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
+    pub(crate) fn write_json(&self, out: &mut impl Write) -> io::Result<()> {
+        let (columns, rows) = (self.columns, self.rows);
+        writeln!(out, "[")?;
+        for (i, row) in rows.iter().enumerate() {
+            write_row_json(out, columns, row)?;
+            writeln!(out, "{}", if i + 1 < rows.len() { "," } else { "" })?;
         }
-        writeln!(out)
-    };
-    line(out, &header)?;
-    for r in &cells {
-        let items: Vec<&str> = r.iter().map(String::as_str).collect();
-        line(out, &items)?;
+        writeln!(out, "]")
     }
-    Ok(())
+
+    /// `level,V,E,F` then one line per level.
+    pub(crate) fn write_csv(&self, out: &mut impl Write) -> io::Result<()> {
+        let (columns, rows) = (self.columns, self.rows);
+        write!(out, "level")?;
+        for c in columns {
+            write!(out, ",{c}")?;
+        }
+        writeln!(out)?;
+        for row in rows {
+            write!(out, "{}", row.level)?;
+            for v in &row.values {
+                match v {
+                    Some(v) => write!(out, ",{}", Decimal::from(v))?,
+                    None => write!(out, ",")?,
+                }
+            }
+            writeln!(out)?;
+        }
+        Ok(())
+    }
+
+    /// A right-aligned plain-text table with a header line.
+    pub(crate) fn write_text(&self, out: &mut impl Write) -> io::Result<()> {
+        let (columns, rows) = (self.columns, self.rows);
+        let cells: Vec<Vec<String>> = rows
+            .iter()
+            .map(|r| {
+                std::iter::once(r.level.to_string())
+                    .chain(r.values.iter().map(|v| {
+                        v.as_ref()
+                            .map_or_else(|| "-".to_string(), decimal::to_decimal)
+                    }))
+                    .collect()
+            })
+            .collect();
+        let header: Vec<&str> = std::iter::once("level")
+            .chain(columns.iter().map(String::as_str))
+            .collect();
+        let widths: Vec<usize> = (0..header.len())
+            .map(|j| {
+                cells
+                    .iter()
+                    .map(|r| r[j].len())
+                    .chain(std::iter::once(header[j].len()))
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let line = |out: &mut dyn Write, items: &[&str]| -> io::Result<()> {
+            for (j, item) in items.iter().enumerate() {
+                if j > 0 {
+                    write!(out, "  ")?;
+                }
+                write!(out, "{item:>w$}", w = widths[j])?;
+            }
+            writeln!(out)
+        };
+        line(out, &header)?;
+        for r in &cells {
+            let items: Vec<&str> = r.iter().map(String::as_str).collect();
+            line(out, &items)?;
+        }
+        Ok(())
+    }
 }
 
 /// A summary of a big count: its number of decimal digits, first and last digits.
@@ -229,25 +228,28 @@ mod tests {
 
     #[test]
     fn json_csv_text() {
-        let cols = vec!["V".to_string(), "E".to_string()];
-        let mut out = Vec::new();
-        write_table_json(&mut out, &cols, &rows()).unwrap();
-        assert_eq!(
-            String::from_utf8(out).unwrap(),
-            "[\n{\"level\": 0, \"V\": 12, \"E\": 30},\n{\"level\": 1, \"V\": 42, \"E\": 120}\n]\n"
-        );
-        let mut out = Vec::new();
-        write_table_csv(&mut out, &cols, &rows()).unwrap();
-        assert_eq!(
-            String::from_utf8(out).unwrap(),
-            "level,V,E\n0,12,30\n1,42,120\n"
-        );
-        let mut out = Vec::new();
-        write_table_text(&mut out, &cols, &rows()).unwrap();
-        assert_eq!(
-            String::from_utf8(out).unwrap(),
-            "level   V    E\n    0  12   30\n    1  42  120\n"
-        );
+        let (cols, rows) = (vec!["V".to_string(), "E".to_string()], rows());
+        let table = Table {
+            columns: &cols,
+            rows: &rows,
+        };
+        type Writer = fn(&Table<'_>, &mut Vec<u8>) -> io::Result<()>;
+        let cases: [(Writer, &str); 3] = [
+            (
+                |t, out| t.write_json(out),
+                "[\n{\"level\": 0, \"V\": 12, \"E\": 30},\n{\"level\": 1, \"V\": 42, \"E\": 120}\n]\n",
+            ),
+            (|t, out| t.write_csv(out), "level,V,E\n0,12,30\n1,42,120\n"),
+            (
+                |t, out| t.write_text(out),
+                "level   V    E\n    0  12   30\n    1  42  120\n",
+            ),
+        ];
+        for (write, expected) in cases {
+            let mut out = Vec::new();
+            write(&table, &mut out).unwrap();
+            assert_eq!(String::from_utf8(out).unwrap(), expected);
+        }
     }
 
     #[test]

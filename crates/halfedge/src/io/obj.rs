@@ -509,11 +509,6 @@ impl TagReader {
                 })
             }
         };
-        let option_value = |what: Option<&str>, expected: &'static str| ParseError::TagOption {
-            name: shorten(name),
-            value: shorten(what.unwrap_or("")),
-            expected,
-        };
         match name {
             "crease" => {
                 let pairs = n_ints / 2;
@@ -563,40 +558,32 @@ impl TagReader {
             }
             "interpolateboundary" => {
                 form(counts == [1, 0, 0], ONE_INT_FORM)?;
-                let token = ints.next();
-                let b = token
-                    .and_then(option_int)
-                    .and_then(BoundaryInterpolation::from_tag_value);
-                self.tags.options.boundary = Some(b.ok_or_else(|| {
-                    option_value(token, "0 none, 1 edge-and-corner, 2 edge-only")
-                })?);
+                let parse = |t: &str| option_int(t).and_then(BoundaryInterpolation::from_tag_value);
+                let expected = "0 none, 1 edge-and-corner, 2 edge-only";
+                self.tags.options.boundary = Some(tag_option(name, ints.next(), parse, expected)?);
             }
             "facevaryinginterpolateboundary" => {
                 form(counts == [1, 0, 0], ONE_INT_FORM)?;
-                let token = ints.next();
-                let f = token
-                    .and_then(option_int)
-                    .and_then(FaceVaryingInterpolation::from_tag_value);
-                self.tags.options.face_varying = Some(f.ok_or_else(|| {
-                    option_value(
-                        token,
-                        "0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all",
-                    )
-                })?);
+                let parse =
+                    |t: &str| option_int(t).and_then(FaceVaryingInterpolation::from_tag_value);
+                let expected =
+                    "0 none, 1 corners-only, 2 corners-plus1, 3 corners-plus2, 4 boundaries, 5 all";
+                self.tags.options.face_varying =
+                    Some(tag_option(name, ints.next(), parse, expected)?);
             }
-            "creasemethod" => {
+            "creasemethod" | "smoothtriangles" => {
                 form(counts == [0, 0, 1], ONE_STRING_FORM)?;
                 let token = strings.next();
-                let m = token.and_then(CreaseMethod::from_tag_name);
-                self.tags.options.crease_method =
-                    Some(m.ok_or_else(|| option_value(token, "normal or chaikin"))?);
-            }
-            "smoothtriangles" => {
-                form(counts == [0, 0, 1], ONE_STRING_FORM)?;
-                let token = strings.next();
-                let r = token.and_then(TriangleRule::from_tag_name);
-                self.tags.options.triangle_rule =
-                    Some(r.ok_or_else(|| option_value(token, "catmark or smooth"))?);
+                let options = &mut self.tags.options;
+                if name == "creasemethod" {
+                    let parse = CreaseMethod::from_tag_name;
+                    options.crease_method =
+                        Some(tag_option(name, token, parse, "normal or chaikin")?);
+                } else {
+                    let parse = TriangleRule::from_tag_name;
+                    options.triangle_rule =
+                        Some(tag_option(name, token, parse, "catmark or smooth")?);
+                }
             }
             _ => {
                 let key = shorten(name);
@@ -674,6 +661,20 @@ fn parse_tag_index(
 }
 
 /// An option tag's integer (`None` when it is not one, reported as an invalid value).
+/// An option tag's one value (`token`), read by `parse`; otherwise the values it accepts.
+fn tag_option<T>(
+    name: &str,
+    token: Option<&str>,
+    parse: impl Fn(&str) -> Option<T>,
+    expected: &'static str,
+) -> std::result::Result<T, ParseError> {
+    token.and_then(parse).ok_or_else(|| ParseError::TagOption {
+        name: shorten(name),
+        value: shorten(token.unwrap_or("")),
+        expected,
+    })
+}
+
 fn option_int(token: &str) -> Option<i64> {
     token.parse().ok()
 }

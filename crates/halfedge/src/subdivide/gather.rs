@@ -370,20 +370,37 @@ fn zeros(ctx: &StepContext<'_>) -> Result<Vec<glam::DVec3>> {
     super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions")
 }
 
+/// A dual step's builder on a mesh with boundary (positions written later: zeros here).
+type BoundaryDual =
+    fn(&Topo<'_>, Vec<glam::DVec3>, &StepContext<'_>) -> Result<crate::HalfEdgeMesh>;
+
+/// The connectivity of a dual step on `t` with boundary, built face by face by `build`.
+fn with_boundary(t: &Topo<'_>, ctx: &StepContext<'_>, build: BoundaryDual) -> Result<Connectivity> {
+    build(t, zeros(ctx)?, ctx).map(Connectivity::from_mesh)
+}
+
+/// `[V, E, F]` of `t` as `u32`.
+fn counts_of(t: &Topo<'_>) -> [u32; 3] {
+    [t.nv() as u32, t.ne() as u32, t.nf() as u32]
+}
+
+/// The output sizes of index formulas' counts (`u32`, as the handles).
+fn sizes([vertices, halfedges, faces]: [u32; 3]) -> Sizes {
+    let [vertices, halfedges, faces] = [vertices, halfedges, faces].map(|n| n as usize);
+    Sizes {
+        vertices,
+        halfedges,
+        faces,
+    }
+}
+
 /// The connectivity of one Doo-Sabin step on `t` (with boundary: built face by face).
 pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     if !t.is_closed() {
-        return super::dual::doo_sabin_with_boundary::<false>(t, zeros(ctx)?, ctx)
-            .map(Connectivity::from_mesh);
+        return with_boundary(t, ctx, super::dual::doo_sabin_with_boundary::<false>);
     }
-    let t = *t;
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let built = Sizes {
-        vertices: 2 * ne as usize,
-        halfedges: 8 * ne as usize,
-        faces: (nf + ne + nv) as usize,
-    };
-    check(ctx, built)?;
+    let ([nv, ne, nf], t) = (counts_of(t), *t);
+    check(ctx, sizes([2 * ne, 8 * ne, nf + ne + nv]))?;
     let b0 = 4 * ne;
     let halfedge = |q| {
         if q < b0 {
@@ -427,17 +444,10 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
 /// The connectivity of one mid-edge step on `t` (with boundary: built face by face).
 pub(crate) fn mid_edge_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     if !t.is_closed() {
-        return super::dual::mid_edge_with_boundary::<false>(t, zeros(ctx)?, ctx)
-            .map(Connectivity::from_mesh);
+        return with_boundary(t, ctx, super::dual::mid_edge_with_boundary::<false>);
     }
-    let t = *t;
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let built = Sizes {
-        vertices: ne as usize,
-        halfedges: 4 * ne as usize,
-        faces: (nf + nv) as usize,
-    };
-    check(ctx, built)?;
+    let ([nv, ne, nf], t) = (counts_of(t), *t);
+    check(ctx, sizes([ne, 4 * ne, nf + nv]))?;
     let halfedge = |q: u32| {
         let h = q >> 1;
         if q & 1 == 0 {
