@@ -16,8 +16,8 @@
 //! midpoints); boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
 
 use super::build::{Builder, StepContext};
+use super::data::Vector;
 use super::par::{self, Sink, Slots};
-use super::refine::Vector;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 use crate::{HalfEdgeMesh, Result};

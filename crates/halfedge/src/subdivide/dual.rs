@@ -49,9 +49,9 @@ use std::f64::consts::PI;
 use glam::DVec3;
 
 use super::build::{Builder, StepContext};
+use super::corner_step::{seam_ranks, CornerStep};
+use super::data::Vector;
 use super::par::Sink;
-use super::refine::corners::{seam_ranks, CornerStep};
-use super::refine::Vector;
 use super::sdc::WeightTable;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;

@@ -127,6 +127,8 @@
 pub(crate) mod alloc;
 mod build;
 mod catmull_clark;
+mod corner_step;
+pub(crate) mod data;
 pub(crate) mod dual;
 mod faces;
 mod finite;

@@ -18,8 +18,8 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use super::build::{Builder, StepContext};
+use super::data::Vector;
 use super::par::Sink;
-use super::refine::Vector;
 use super::topo::Topo;
 use super::wide::{angle, Ring, Wide};
 use crate::{HalfEdgeMesh, Result};

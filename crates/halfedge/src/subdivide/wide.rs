@@ -16,7 +16,7 @@
 
 use std::f64::consts::PI;
 
-use super::refine::Vector;
+use super::data::Vector;
 use super::topo::Topo;
 
 /// The most corners an element may have and still be summed directly: 32 keeps every

@@ -109,7 +109,7 @@
 //!
 //! At each level `s` every face corner has a value index, and every value of level `s + 1`
 //! is an affine combination (a sparse row of weights summing to 1) of values of level `s`.
-//! A rule supplies one step (the private `corners::CornerStep`), from the parent level's
+//! A rule supplies one step (the private `corner_step::CornerStep`), from the parent level's
 //! topology and the value of each of its face corners (by half-edge: the corner at the
 //! half-edge's source in its face): the new values' weight rows (a `sdc::WeightTable`, as the
 //! crease rules use for positions) and the value of each child corner, asked as (child face,

@@ -86,7 +86,6 @@
 //! (`tests/refine.rs`); the flattened tables call the same kernel functions in the same order.
 
 pub(crate) mod corners;
-mod data;
 pub mod face_varying;
 mod oneshot;
 mod stencil;
@@ -96,10 +95,10 @@ use std::sync::Arc;
 
 use schemes::MeshCounts;
 
-pub use self::data::Scalar;
-pub(crate) use self::data::{Sparse, Support, Vector};
 pub(crate) use self::oneshot::{one_shot, OneShot};
 pub use self::stencil::{StencilSizes, StencilTable};
+pub use super::data::Scalar;
+pub(crate) use super::data::{Sparse, Support, Vector};
 
 use self::tables::{CcTables, LinearTables, LoopTables};
 use super::build::{Sizes, StepContext};

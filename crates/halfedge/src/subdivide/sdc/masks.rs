@@ -30,8 +30,8 @@ use super::crease::{
 };
 use super::{Linear, DENSE_MAX_DEGREE};
 use crate::mesh::INVALID;
+use crate::subdivide::data::Vector;
 use crate::subdivide::par::{self, Sink};
-use crate::subdivide::refine::Vector;
 use crate::subdivide::topo::Topo;
 use crate::tags::{CreaseMethod, SubdivisionOptions, TriangleRule};
 use crate::{Error, Result};
