@@ -262,7 +262,12 @@ pub(crate) fn build(
     Ok(mesh)
 }
 
-fn check_duplicate_faces<'a>(n_faces: usize, face: &impl Fn(usize) -> &'a [u32]) -> Result<()> {
+/// Refuses faces on one vertex set ([`Error::DuplicateFace`], naming the smallest such pair):
+/// the one duplicate-face check, of half-edge meshes and of the face-list subdividers alike.
+pub(crate) fn check_duplicate_faces<'a>(
+    n_faces: usize,
+    face: &impl Fn(usize) -> &'a [u32],
+) -> Result<()> {
     match crate::stats::duplicate_faces(n_faces, face).first_pair {
         Some((first, second)) => Err(Error::DuplicateFace {
             first,

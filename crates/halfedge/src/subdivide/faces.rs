@@ -227,29 +227,6 @@ fn catmull_clark(
     Ok(out)
 }
 
-/// Two triangles on the same three vertices would give the same interior edges under a
-/// triangle split, which the counts (new edges per face) do not allow for: refused.
-fn check_no_duplicate_triangles(mesh: &PolygonMesh) -> Result<()> {
-    let mut keys: Vec<([u32; 3], u32)> = mesh
-        .faces()
-        .enumerate()
-        .map(|(f, face)| {
-            let mut k = [face[0], face[1], face[2]];
-            k.sort_unstable();
-            (k, u32::try_from(f).unwrap_or(u32::MAX))
-        })
-        .collect();
-    keys.sort_unstable();
-    match keys.windows(2).find(|w| w[0].0 == w[1].0) {
-        Some(w) => Err(Error::DuplicateFace {
-            first: w[0].1,
-            second: w[1].1,
-            vertices: FaceVertices(mesh.face(w[0].1 as usize).to_vec()),
-        }),
-        None => Ok(()),
-    }
-}
-
 /// The level loop for face lists; `visit(level, mesh)` sees every level built.
 pub(super) fn run_levels(
     plan: &Plan,
@@ -286,7 +263,9 @@ pub(super) fn run_levels(
                 ),
             });
         }
-        check_no_duplicate_triangles(mesh)?;
+        // Two triangles on the same three vertices would give the same interior edges under
+        // a triangle split, which the counts (new edges per face) do not allow for: refused.
+        crate::build::check_duplicate_faces(mesh.n_faces(), &|f| mesh.face(f))?;
     }
     let mut expected = Vec::with_capacity(levels as usize);
     for s in 1..=levels {

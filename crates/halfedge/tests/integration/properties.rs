@@ -231,3 +231,25 @@ proptest! {
         let _ = halfedge::io::read_off_from(text.as_bytes(), "fuzz.off");
     }
 }
+
+/// One duplicate-face check: the face-list subdividers refuse triangles on one vertex set
+/// naming the same (smallest) pair the half-edge build names.
+#[test]
+fn duplicate_triangles_name_the_smallest_pair_on_every_path() {
+    use halfedge::subdivide::{subdivide_polygons, SubdivideOptions};
+    let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE];
+    // Faces 0 and 3 share a vertex set, faces 1 and 2 share a set that sorts first: the
+    // smallest pair is (0, 3) (the face-list path once named (1, 2), the first set's).
+    let faces = [[1, 3, 4], [0, 1, 2], [1, 2, 0], [3, 1, 4]];
+    let mesh = PolygonMesh::from_faces(p, faces);
+    let built = HalfEdgeMesh::try_from(&mesh).unwrap_err();
+    let opts = SubdivideOptions::default();
+    let split = subdivide_polygons(&mesh, halfedge::Rule::Loop, 1, &opts).unwrap_err();
+    for err in [&built, &split] {
+        match err {
+            Error::DuplicateFace { first, second, .. } => assert_eq!((*first, *second), (0, 3)),
+            other => panic!("{other}"),
+        }
+    }
+    assert_eq!(built.to_string(), split.to_string());
+}
