@@ -1,6 +1,6 @@
 //! Stencil tables: every vertex of the last level as a weighted sum of base vertices.
 
-use super::{check_len, Scalar, Sparse};
+use super::{check_len, Refinement, Scalar, Sparse, Support};
 use crate::{Error, Result};
 
 /// The sizes of a [`StencilTable`], known before it is allocated
@@ -201,5 +201,72 @@ impl StencilTable {
             out.iter_mut().enumerate().for_each(row);
         }
         Ok(())
+    }
+}
+
+impl Refinement {
+    /// The last level's vertices as weighted sums of the base vertices, for the linear rules (every
+    /// rule but [`Rule::Icosphere`](crate::Rule::Icosphere)): the form GPU evaluators consume
+    /// (OpenSubdiv's `Far::StencilTable`). Computed by running the rules' kernels level by level on
+    /// sparse sums, after the table's sizes are counted ([`Refinement::stencil_sizes`]); its arrays
+    /// are allocated once, exactly, and filled.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotLinear`] for [`Rule::Icosphere`](crate::Rule::Icosphere);
+    /// [`Error::IndexOverflow`] beyond `u32` entries; [`Error::AllocationFailed`].
+    pub fn stencils(&self) -> Result<StencilTable> {
+        let sizes = self.stencil_sizes()?;
+        let n0 = self.base_vertices() as u32;
+        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
+        for s in 1..=self.levels {
+            current = self.run(|| self.collect_level(s, &current))?;
+        }
+        if self.levels == 0 {
+            current = self.written_of(current);
+        }
+        StencilTable::from_sums(&current, n0 as usize, sizes, &self.name, self.levels)
+    }
+
+    /// The sizes of [`Refinement::stencils`]' table before anything of it is allocated: its
+    /// rows (the last level's vertices) and its entries, counted by running the rules' kernels
+    /// level by level on the supports of the sums (their base vertices, without weights).
+    ///
+    /// ```
+    /// use halfedge::refine::Refinement;
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Rule};
+    ///
+    /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+    /// let sizes = r.stencil_sizes()?;
+    /// assert_eq!(sizes.rows, r.n_vertices(2));
+    /// assert_eq!(sizes, r.stencils()?.sizes());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NotLinear`] for [`Rule::Icosphere`](crate::Rule::Icosphere);
+    /// [`Error::AllocationFailed`].
+    pub fn stencil_sizes(&self) -> Result<StencilSizes> {
+        if !self.rule.is_linear() {
+            return Err(Error::NotLinear {
+                rule: self.name.clone(),
+                reason: "the sphere projection",
+            });
+        }
+        let n0 = self.base_vertices() as u32;
+        let mut current: Vec<Support> = (0..n0).map(Support::unit).collect();
+        for s in 1..=self.levels {
+            current = self.run(|| self.collect_level(s, &current))?;
+        }
+        if self.levels == 0 {
+            current = self.written_of(current);
+        }
+        Ok(StencilSizes {
+            rows: current.len(),
+            entries: current.iter().map(|r| r.0.len()).sum(),
+        })
     }
 }

@@ -14,7 +14,7 @@ use crate::subdivide::topo::Topo;
 use crate::subdivide::trisplit::{boundary_rule, loop_interior, loop_interior_edge};
 use crate::Result;
 
-use super::Vector;
+use super::*;
 
 /// Vertices per task when the rings are built in parallel.
 const RING_CHUNK: usize = 1 << 14;
@@ -383,4 +383,138 @@ fn concat<T: Copy + Send>(
         offsets.extend(ends.iter().map(|&e| start + e));
     }
     Ok((entries, offsets))
+}
+
+/// A level flattened for its rule.
+#[derive(Debug)]
+pub(super) enum Fast {
+    Loop(LoopTables),
+    CatmullClark(CcTables),
+    /// A face-varying channel's level under linear interpolation (`all`).
+    Linear(LinearTables),
+    /// A Loop or Catmull-Clark level under crease rules: sparse weights per child vertex,
+    /// of every child vertex (a dense table, `base` unused) or of the child vertices where the
+    /// crease rules differ from `base` (the rule's tables, or its half-edge kernels on the
+    /// level's topology when `None`), written over its values.
+    Creased {
+        base: Option<Box<Fast>>,
+        weights: WeightTable,
+    },
+}
+
+impl Fast {
+    pub(super) fn bytes(&self) -> usize {
+        match self {
+            Fast::Loop(t) => t.bytes(),
+            Fast::CatmullClark(t) => t.bytes(),
+            Fast::Linear(t) => t.bytes(),
+            Fast::Creased { base, weights } => {
+                base.as_ref().map_or(0, |b| b.bytes()) + weights.bytes()
+            }
+        }
+    }
+
+    /// The flattened tables of `t` for `algorithm` (Loop or Catmull-Clark).
+    pub(super) fn tables(algorithm: Algorithm, t: &Topo<'_>, parallel: bool) -> Result<Fast> {
+        Ok(match algorithm {
+            Algorithm::CatmullClark => Fast::CatmullClark(CcTables::new(t, parallel)?),
+            _ => Fast::Loop(LoopTables::new(t, parallel)?),
+        })
+    }
+
+    /// The tables computing the child vertices of `t` outside a crease table's rows: the
+    /// rule's (`None` with `tables` false: the half-edge kernels), or the linear ones.
+    pub(super) fn base(
+        base: Base,
+        algorithm: Algorithm,
+        t: &Topo<'_>,
+        tables: bool,
+        parallel: bool,
+    ) -> Result<Option<Box<Fast>>> {
+        let cc = algorithm == Algorithm::CatmullClark;
+        Ok(match base {
+            Base::Linear => Some(Box::new(Fast::Linear(LinearTables::new(t, cc, parallel)?))),
+            Base::Rule if tables => Some(Box::new(Fast::tables(algorithm, t, parallel)?)),
+            Base::Rule => None,
+        })
+    }
+
+    /// The bytes of the tables a [`Refinement`] keeps under the rows of a sparse crease table
+    /// of `t` ([`Fast::base`] with tables).
+    pub(super) fn base_bytes(base: Base, algorithm: Algorithm, t: &Topo<'_>) -> usize {
+        let cc = algorithm == Algorithm::CatmullClark;
+        match base {
+            Base::Linear => LinearTables::bytes_of(t, cc),
+            Base::Rule if cc => CcTables::bytes_of(t),
+            Base::Rule => LoopTables::bytes_of(t),
+        }
+    }
+
+    /// What refines level `level` (`t`) under `creases`: the rows where the crease rules differ
+    /// from the level's base over its tables (`tables`, a refinement's) or its half-edge kernels
+    /// (the one-shot subdivision's), when they are at most half the child vertices and hold,
+    /// with the tables a refinement keeps, no more than the level's budget (the bound of the
+    /// dense table); else the dense table. The level's sharpness is kept.
+    pub(super) fn creased(
+        creases: &Creases,
+        level: usize,
+        t: &Topo<'_>,
+        algorithm: Algorithm,
+        tables: bool,
+        parallel: bool,
+    ) -> Result<Option<Fast>> {
+        // A dense table of a level with a wide face would be quadratic in its degree.
+        let wide = crate::subdivide::sdc::has_wide_face(t);
+        let sparse = |rows: usize, children: usize| wide || 2 * rows <= children;
+        let dense = |weights| Fast::Creased {
+            base: None,
+            weights,
+        };
+        Ok(match creases.level_table(level, t, parallel, sparse)? {
+            None => None,
+            Some(LevelTable::Dense(weights)) => Some(dense(weights)),
+            Some(LevelTable::Overrides(base, weights)) => {
+                // A refinement's tables are built and measured, the one-shot subdivision's
+                // (which keeps none) counted.
+                let tables = if tables {
+                    Some(Fast::base(base, algorithm, t, true, parallel)?)
+                } else {
+                    None
+                };
+                let base_bytes = match &tables {
+                    Some(b) => b.as_ref().map_or(0, |b| b.bytes()),
+                    None => Fast::base_bytes(base, algorithm, t),
+                };
+                debug_assert_eq!(base_bytes, Fast::base_bytes(base, algorithm, t));
+                if wide || base_bytes + weights.bytes() <= creases.budget(level) {
+                    let base = match tables {
+                        Some(b) => b,
+                        None => Fast::base(base, algorithm, t, false, parallel)?,
+                    };
+                    Some(Fast::Creased { base, weights })
+                } else {
+                    drop(tables);
+                    drop(weights);
+                    match creases.level_table(level, t, parallel, |_, _| false)? {
+                        Some(LevelTable::Dense(weights) | LevelTable::Overrides(_, weights)) => {
+                            Some(dense(weights))
+                        }
+                        None => None,
+                    }
+                }
+            }
+        })
+    }
+}
+
+/// The budget of each level's tables under crease rules (`levels` of `plan` on a mesh with
+/// `counts`): the bound of its dense weight table, what
+/// [`Refinement::predicted_bytes_with_creases`] counts for it.
+pub(super) fn crease_budgets(plan: &Plan, counts: &MeshCounts, levels: u32) -> Result<Vec<usize>> {
+    let mut budgets = Vec::with_capacity(levels.min(64) as usize);
+    for s in 0..levels {
+        let bound = crease_table_bytes(plan, counts, s)?.unwrap_or_default();
+        budgets.push(usize::try_from(bound).unwrap_or(usize::MAX));
+    }
+    Ok(budgets)
 }
