@@ -132,7 +132,7 @@
 //! fallible reservations (`Error::AllocationFailed`, never an abort).
 //!
 //! Owner of reading OpenSubdiv's OBJ tags (`t` lines: grammar, forms, range and edge checks,
-//! ignored tags): `halfedge::io`'s `obj.rs` (`TagReader`), checking through `Tags::check_against`.
+//! ignored tags): `halfedge::io`'s `obj_tags.rs` (`TagReader`), checking through `Tags::check_against`.
 //!
 //! Owner of reading OBJ texture coordinates (`vt`, the corner forms `v/vt`, `v/vt/vn`, `v//vn`,
 //! negative and forward `vt` indices, the errors naming file, line and corner): `halfedge::io`'s
@@ -147,6 +147,7 @@
 //! `driver::output::unwritten_mesh_format`.
 
 mod obj;
+mod obj_tags;
 mod off;
 mod write;
 
