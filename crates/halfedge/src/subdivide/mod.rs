@@ -133,6 +133,7 @@ pub(crate) mod dual;
 mod faces;
 mod finite;
 mod gather;
+mod options;
 mod par;
 pub mod refine;
 pub mod sdc;
@@ -141,14 +142,18 @@ mod stages;
 mod to_faces;
 mod topo;
 mod trisplit;
+mod verify;
 pub(crate) mod wide;
 
 use num_bigint::BigInt;
 pub use schemes::Rule;
 
 pub use self::finite::check_uvs;
+pub use self::options::{LevelDone, SubdivideOptions};
 pub use self::sdc::Sharpness;
 pub use self::stages::{subdivide_stages, StageStart, StagedRun};
+use self::verify::report_names;
+pub use self::verify::{verify, verify_polygons, LevelReport};
 use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
 use self::build::Sizes;
@@ -157,170 +162,6 @@ use self::trisplit::{Template, TriRule};
 use crate::holes::HoleSet;
 use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
-
-/// Options of [`subdivide`] and friends.
-///
-/// ```
-/// use halfedge::subdivide::SubdivideOptions;
-/// let opts = SubdivideOptions::default().with_threads(1).with_preallocate(false);
-/// assert_eq!((opts.threads, opts.preallocate), (1, false));
-/// ```
-#[derive(Clone, Copy)]
-#[non_exhaustive]
-pub struct SubdivideOptions<'a> {
-    /// Threads for the geometry passes: 1 runs everything on the calling thread, 0 uses
-    /// rayon's global pool, `n >= 2` a pool of `n` threads. Topology is built on one thread.
-    pub threads: usize,
-    /// Allocate every output array once from the predicted counts (the default); `false`
-    /// starts from empty arrays that grow on demand (the baseline for benchmarks). Both paths
-    /// check the final sizes against the prediction.
-    pub preallocate: bool,
-    /// Called after each level is built.
-    pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
-    /// Creases and corners (Loop and Catmull-Clark, OpenSubdiv's rules: [`sdc`]); honoured by
-    /// [`Refinement::new`](crate::Refinement::new) and by the one-shot [`subdivide`],
-    /// [`subdivide_to_face_list`] and [`verify`] alike (the same weight tables: in `f64` the
-    /// same positions to the bit). Other rules refuse a sharpness that is not smooth
-    /// ([`Error::CreasesNotSupported`]); the face-list subdividers ([`subdivide_polygons`],
-    /// [`verify_polygons`]) place points linearly and do not read it.
-    pub sharpness: Option<&'a Sharpness>,
-    /// Boundary interpolation, crease method and triangle rule of the crease rules
-    /// ([`sdc`]), read wherever [`SubdivideOptions::sharpness`] is; the default is
-    /// OpenSubdiv's `edge` / `uniform` / `catmark`, the rules' own kernels.
-    pub subdivision: SubdivisionOptions,
-    /// Faces that are holes ([`crate::holes`]), for the rules whose faces nest
-    /// ([`schemes::holes::nests_faces`]; the others are refused with
-    /// [`Error::HolesNeedNestedFaces`]): they are refined like any other face, so the surface
-    /// around them is unchanged, but their descendants are not written, nor the vertices
-    /// only they use (the others renumbered, in order). Honoured by
-    /// [`subdivide_to_face_list`], [`subdivide_polygons`], [`verify`] and
-    /// [`verify_polygons`] (which count what is written), [`subdivide`] (the written faces
-    /// as a half-edge mesh, when they are one) and [`Refinement::new`](crate::Refinement::new)
-    /// (index buffers and vertex data of the written part). `None` or an empty set changes
-    /// nothing.
-    pub holes: Option<&'a HoleSet>,
-    /// The UV layout of the mesh ([`crate::uv::UvLayout`], from
-    /// [`PolygonMesh::uv_layout`]) to refine as face-varying data
-    /// ([`refine::face_varying`]): [`Refinement::new`](crate::Refinement::new) then refines it
-    /// too ([`Refinement::evaluate_uvs`](crate::Refinement::evaluate_uvs)) and
-    /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
-    /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
-    /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; Doo-Sabin and
-    /// mid-edge, and √3, carry it corner by corner ([`refine::face_varying`]'s corner
-    /// channel). [`subdivide_polygons`] refines it
-    /// as a face list by the same linear per-face refinement as the positions and writes the
-    /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
-    /// and [`verify_polygons`] do not read it.
-    pub uvs: Option<&'a crate::uv::UvLayout>,
-}
-
-impl Default for SubdivideOptions<'_> {
-    fn default() -> Self {
-        SubdivideOptions {
-            threads: 1,
-            preallocate: true,
-            progress: None,
-            sharpness: None,
-            subdivision: SubdivisionOptions::default(),
-            holes: None,
-            uvs: None,
-        }
-    }
-}
-
-impl<'a> SubdivideOptions<'a> {
-    with_setters! {
-        /// Sets [`SubdivideOptions::threads`].
-        with_threads(threads: usize);
-        /// Sets [`SubdivideOptions::preallocate`].
-        with_preallocate(preallocate: bool);
-        /// Sets [`SubdivideOptions::progress`].
-        with_progress(progress: Some(&'a (dyn Fn(&LevelDone) + Sync)));
-        /// Sets [`SubdivideOptions::sharpness`].
-        with_sharpness(sharpness: Some(&'a Sharpness));
-        /// Sets [`SubdivideOptions::subdivision`].
-        with_subdivision(subdivision: SubdivisionOptions);
-        /// Sets [`SubdivideOptions::uvs`].
-        with_uvs(uvs: Some(&'a crate::uv::UvLayout));
-        /// Sets [`SubdivideOptions::holes`].
-        with_holes(holes: Some(&'a HoleSet));
-    }
-}
-
-impl std::fmt::Debug for SubdivideOptions<'_> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("SubdivideOptions")
-            .field("threads", &self.threads)
-            .field("preallocate", &self.preallocate)
-            .field("progress", &self.progress.map(|_| "callback"))
-            .field(
-                "sharpness",
-                &self
-                    .sharpness
-                    .map(|s| (s.n_sharp_edges(), s.n_sharp_vertices())),
-            )
-            .field("subdivision", &self.subdivision)
-            .field("holes", &self.holes.map(|h| h.faces().len()))
-            .field("uvs", &self.uvs.map(|u| u.n_values()))
-            .finish()
-    }
-}
-
-/// Passed to the progress callback after each level.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct LevelDone {
-    /// The level just built (1-based).
-    pub level: u32,
-    /// The final level.
-    pub levels: u32,
-    /// Vertices of the level.
-    pub vertices: usize,
-    /// Edges of the level.
-    pub edges: usize,
-    /// Faces of the level.
-    pub faces: usize,
-}
-
-/// Predicted and measured counts at one level (see [`verify`]).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct LevelReport {
-    /// The level (0 is the input).
-    pub level: u32,
-    /// The scheme's prediction: every state component, then `V`, `E`, `F` when they are not
-    /// state components.
-    pub predicted: Vec<(String, BigInt)>,
-    /// The same components counted on the real mesh of this level.
-    pub measured: Vec<(String, BigInt)>,
-}
-
-impl LevelReport {
-    /// Whether every measured component equals its prediction.
-    pub fn is_match(&self) -> bool {
-        self.predicted == self.measured
-    }
-
-    /// The components whose measured value differs from the prediction (or was not measured),
-    /// by name.
-    ///
-    /// ```
-    /// use halfedge::subdivide::LevelReport;
-    /// let r = LevelReport {
-    ///     level: 1,
-    ///     predicted: vec![("V".into(), 42.into()), ("F".into(), 80.into())],
-    ///     measured: vec![("V".into(), 42.into()), ("F".into(), 81.into())],
-    /// };
-    /// assert_eq!(r.mismatches(), ["F"]);
-    /// assert!(!r.is_match());
-    /// ```
-    pub fn mismatches(&self) -> Vec<&str> {
-        self.predicted
-            .iter()
-            .filter(|(name, value)| !self.measured.iter().any(|(n, v)| n == name && v == value))
-            .map(|(name, _)| name.as_str())
-            .collect()
-    }
-}
 
 /// The algorithm a [`Rule`] runs (with the step variant the mesh needs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -837,161 +678,6 @@ fn run_levels(
     }
 }
 
-/// The components a report lists: the state, then `V`, `E`, `F` when not in the state (and
-/// the scheme derives them).
-pub(super) fn report_names(scheme: &Scheme) -> Vec<String> {
-    let mut names: Vec<String> = scheme.state_names().to_vec();
-    if scheme.has_mesh_counts() {
-        for extra in ["V", "E", "F"] {
-            if !names.iter().any(|n| n == extra) {
-                names.push(extra.to_owned());
-            }
-        }
-    }
-    names
-}
-
-fn report(
-    scheme: &Scheme,
-    counts0: &MeshCounts,
-    level: u32,
-    measured: &MeshCounts,
-) -> Result<LevelReport> {
-    let names = report_names(scheme);
-    let (state, vef) = if scheme.has_mesh_counts() {
-        let c = scheme.counts_at(counts0, u64::from(level))?;
-        (c.state, Some([c.vertices, c.edges, c.faces]))
-    } else {
-        let x0 = scheme.initial_state(counts0)?;
-        (scheme.state_at(&x0, u64::from(level))?, None)
-    };
-    let predicted_value = |name: &str| -> Option<BigInt> {
-        match scheme.state_names().iter().position(|n| n == name) {
-            Some(i) => Some(state[i].clone()),
-            None => {
-                let [v, e, f] = vef.as_ref()?;
-                Some(match name {
-                    "V" => v.clone(),
-                    "E" => e.clone(),
-                    _ => f.clone(),
-                })
-            }
-        }
-    };
-    let predicted = names
-        .iter()
-        .filter_map(|n| predicted_value(n).map(|v| (n.clone(), v)))
-        .collect();
-    let measured = names
-        .iter()
-        .filter_map(|n| {
-            Stat::from_short_name(n).map(|s| (n.clone(), BigInt::from(measured.get(s))))
-        })
-        .collect();
-    Ok(LevelReport {
-        level,
-        predicted,
-        measured,
-    })
-}
-
-/// Really subdivides `mesh` level by level up to `levels` by the scheme's rule
-/// ([`Scheme::subdivision_rule`]) and reports, for level 0 (the input) to `levels`, every
-/// state component of the scheme (and `V`, `E`, `F`) as predicted by its matrix and as
-/// counted on the mesh. The output arrays are sized by the rule's own counting scheme, so a
-/// custom matrix that predicts wrongly shows up as a mismatch in the reports, not as an error.
-///
-/// # Errors
-///
-/// As [`subdivide`], and [`Error::NoSubdivision`] for a scheme without a rule (a scheme file
-/// without `topology`).
-///
-/// ```
-/// use halfedge::subdivide::{verify, SubdivideOptions};
-/// use halfedge::{shapes, HalfEdgeMesh};
-/// use schemes::{builtin, Scheme};
-///
-/// let grid = HalfEdgeMesh::try_from(&shapes::grid(3, 2)?)?;
-/// let reports = verify(&grid, &builtin("loop-boundary")?, 2, &SubdivideOptions::default())?;
-/// assert_eq!(reports.len(), 3);
-/// assert!(reports.iter().all(|r| r.is_match()));
-///
-/// // A wrong matrix for Loop's topology (F' = 3F): the real subdivision says otherwise.
-/// let wrong = "name = \"wrong\"\nstate = [\"F\"]\nmatrix = [[3]]\ntopology = \"loop\"\n";
-/// let reports = verify(&grid, &Scheme::from_toml(wrong)?, 1, &SubdivideOptions::default())?;
-/// assert_eq!(reports[1].mismatches(), ["F"]);
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn verify(
-    mesh: &HalfEdgeMesh,
-    scheme: &Scheme,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<Vec<LevelReport>> {
-    let counts = mesh.counts();
-    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
-        // What is written is predicted from the written faces and counted on them.
-        let written = holes.written_mesh_counts(mesh);
-        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
-        let degrees = crate::holes::degrees_of(mesh);
-        let mut reports = vec![report(&predictor, &written, 0, &written)?];
-        run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
-            let mask = holes.written_at(plan.rule, &degrees, s)?;
-            let faces =
-                (0..m.n_faces() as u32).map(|f| m.face_vertices(crate::FaceId(f)).map(|v| v.0));
-            let measured = written_face_counts(faces, &mask, m.n_vertices());
-            reports.push(report(&predictor, &written, s, &measured)?);
-            Ok(())
-        })?;
-        return Ok(reports);
-    }
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
-    run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
-        reports.push(report(&predictor, &counts, s, &m.counts())?);
-        Ok(())
-    })?;
-    Ok(reports)
-}
-
-/// The plan that really subdivides `scheme` (named as the scheme) and the scheme whose
-/// predictions are checked, for a mesh with `counts`.
-fn verify_plan(scheme: &Scheme, counts: &MeshCounts) -> Result<(Plan, Scheme)> {
-    let rule = checked_rule(scheme, counts)?;
-    let mut plan = plan(rule, counts)?;
-    plan.name = scheme.name().to_owned();
-    Ok((plan, scheme.for_mesh(counts)))
-}
-
-/// The holes of a [`verify`] run of `scheme` (see [`crate::holes::active`]).
-fn verify_holes<'a>(
-    scheme: &Scheme,
-    opts: &SubdivideOptions<'a>,
-    n_faces: usize,
-) -> Result<Option<&'a HoleSet>> {
-    if opts.holes.map_or(true, HoleSet::is_empty) {
-        return Ok(None);
-    }
-    match scheme.subdivision_rule() {
-        Some(rule) => crate::holes::active(opts.holes, rule, n_faces),
-        None => Err(no_rule(scheme)),
-    }
-}
-
-/// [`verify_plan`] with holes: the scheme must accept the written faces (`written`), whose
-/// counts it predicts; the subdivision of the whole mesh (`counts`) is sized by the rule's
-/// own scheme.
-fn verify_plan_with_holes(
-    scheme: &Scheme,
-    counts: &MeshCounts,
-    written: &MeshCounts,
-) -> Result<(Plan, Scheme)> {
-    let rule = checked_rule(scheme, written)?;
-    let mut plan = plan(rule, counts)?;
-    plan.name = scheme.name().to_owned();
-    Ok((plan, scheme.for_mesh(written)))
-}
-
 /// Subdivides a raw face list (non-manifold allowed) `levels` times by a rule whose topology
 /// is a per-face refinement ([`Rule::refines_faces`]): 4:1 (the Loop family, counted by
 /// `loop-general` on non-manifold edges), 1:N² ([`Rule::TriSplit`]) or Catmull-Clark.
@@ -1071,56 +757,6 @@ fn with_uvs(mut mesh: PolygonMesh, uvs: crate::uv::Uvs) -> Result<PolygonMesh> {
             reason: e.to_string(),
         })?;
     Ok(mesh)
-}
-
-/// [`verify`] for raw face lists: really subdivides with [`subdivide_polygons`] and compares
-/// every component the scheme predicts with the face-list statistics of each level.
-///
-/// # Errors
-///
-/// As [`subdivide_polygons`] and [`verify`].
-///
-/// ```
-/// use glam::DVec3;
-/// use halfedge::subdivide::{verify_polygons, SubdivideOptions};
-/// use halfedge::PolygonMesh;
-///
-/// let p = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::NEG_Y];
-/// let book = PolygonMesh::from_faces(p, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]);
-/// let ternary = schemes::builtin("tri-split-3")?;
-/// let reports = verify_polygons(&book, &ternary, 2, &SubdivideOptions::default())?;
-/// assert!(reports.iter().all(|r| r.is_match()));
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn verify_polygons(
-    mesh: &PolygonMesh,
-    scheme: &Scheme,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<Vec<LevelReport>> {
-    let counts = crate::stats::face_list_counts(mesh);
-    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
-        let written = holes.written_counts(mesh);
-        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
-        let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
-        let mut reports = vec![report(&predictor, &written, 0, &written)?];
-        faces::run_levels(&plan, mesh, levels, opts, |s, m| {
-            let mask = holes.written_at(plan.rule, &degrees, s)?;
-            let faces = m.faces().map(|f| f.iter().copied());
-            let measured = written_face_counts(faces, &mask, m.n_vertices());
-            reports.push(report(&predictor, &written, s, &measured)?);
-            Ok(())
-        })?;
-        return Ok(reports);
-    }
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
-    faces::run_levels(&plan, mesh, levels, opts, |s, m| {
-        let measured = crate::stats::face_list_counts(m);
-        reports.push(report(&predictor, &counts, s, &measured)?);
-        Ok(())
-    })?;
-    Ok(reports)
 }
 
 #[cfg(test)]

@@ -1,0 +1,128 @@
+//! The options of a subdivision ([`SubdivideOptions`]) and what its progress callback hears
+//! ([`LevelDone`]).
+
+use super::*;
+
+/// Options of [`subdivide`] and friends.
+///
+/// ```
+/// use halfedge::subdivide::SubdivideOptions;
+/// let opts = SubdivideOptions::default().with_threads(1).with_preallocate(false);
+/// assert_eq!((opts.threads, opts.preallocate), (1, false));
+/// ```
+#[derive(Clone, Copy)]
+#[non_exhaustive]
+pub struct SubdivideOptions<'a> {
+    /// Threads for the geometry passes: 1 runs everything on the calling thread, 0 uses
+    /// rayon's global pool, `n >= 2` a pool of `n` threads. Topology is built on one thread.
+    pub threads: usize,
+    /// Allocate every output array once from the predicted counts (the default); `false`
+    /// starts from empty arrays that grow on demand (the baseline for benchmarks). Both paths
+    /// check the final sizes against the prediction.
+    pub preallocate: bool,
+    /// Called after each level is built.
+    pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
+    /// Creases and corners (Loop and Catmull-Clark, OpenSubdiv's rules: [`sdc`]); honoured by
+    /// [`Refinement::new`](crate::Refinement::new) and by the one-shot [`subdivide`],
+    /// [`subdivide_to_face_list`] and [`verify`] alike (the same weight tables: in `f64` the
+    /// same positions to the bit). Other rules refuse a sharpness that is not smooth
+    /// ([`Error::CreasesNotSupported`]); the face-list subdividers ([`subdivide_polygons`],
+    /// [`verify_polygons`]) place points linearly and do not read it.
+    pub sharpness: Option<&'a Sharpness>,
+    /// Boundary interpolation, crease method and triangle rule of the crease rules
+    /// ([`sdc`]), read wherever [`SubdivideOptions::sharpness`] is; the default is
+    /// OpenSubdiv's `edge` / `uniform` / `catmark`, the rules' own kernels.
+    pub subdivision: SubdivisionOptions,
+    /// Faces that are holes ([`crate::holes`]), for the rules whose faces nest
+    /// ([`schemes::holes::nests_faces`]; the others are refused with
+    /// [`Error::HolesNeedNestedFaces`]): they are refined like any other face, so the surface
+    /// around them is unchanged, but their descendants are not written, nor the vertices
+    /// only they use (the others renumbered, in order). Honoured by
+    /// [`subdivide_to_face_list`], [`subdivide_polygons`], [`verify`] and
+    /// [`verify_polygons`] (which count what is written), [`subdivide`] (the written faces
+    /// as a half-edge mesh, when they are one) and [`Refinement::new`](crate::Refinement::new)
+    /// (index buffers and vertex data of the written part). `None` or an empty set changes
+    /// nothing.
+    pub holes: Option<&'a HoleSet>,
+    /// The UV layout of the mesh ([`crate::uv::UvLayout`], from
+    /// [`PolygonMesh::uv_layout`]) to refine as face-varying data
+    /// ([`refine::face_varying`]): [`Refinement::new`](crate::Refinement::new) then refines it
+    /// too ([`Refinement::evaluate_uvs`](crate::Refinement::evaluate_uvs)) and
+    /// [`subdivide_to_face_list`] writes the refined UVs into its mesh. Loop and
+    /// Catmull-Clark follow [`SubdivideOptions::subdivision`]'s
+    /// [`face_varying`](crate::tags::SubdivisionOptions::face_varying) mode; Doo-Sabin and
+    /// mid-edge, and √3, carry it corner by corner ([`refine::face_varying`]'s corner
+    /// channel). [`subdivide_polygons`] refines it
+    /// as a face list by the same linear per-face refinement as the positions and writes the
+    /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
+    /// and [`verify_polygons`] do not read it.
+    pub uvs: Option<&'a crate::uv::UvLayout>,
+}
+
+impl Default for SubdivideOptions<'_> {
+    fn default() -> Self {
+        SubdivideOptions {
+            threads: 1,
+            preallocate: true,
+            progress: None,
+            sharpness: None,
+            subdivision: SubdivisionOptions::default(),
+            holes: None,
+            uvs: None,
+        }
+    }
+}
+
+impl<'a> SubdivideOptions<'a> {
+    with_setters! {
+        /// Sets [`SubdivideOptions::threads`].
+        with_threads(threads: usize);
+        /// Sets [`SubdivideOptions::preallocate`].
+        with_preallocate(preallocate: bool);
+        /// Sets [`SubdivideOptions::progress`].
+        with_progress(progress: Some(&'a (dyn Fn(&LevelDone) + Sync)));
+        /// Sets [`SubdivideOptions::sharpness`].
+        with_sharpness(sharpness: Some(&'a Sharpness));
+        /// Sets [`SubdivideOptions::subdivision`].
+        with_subdivision(subdivision: SubdivisionOptions);
+        /// Sets [`SubdivideOptions::uvs`].
+        with_uvs(uvs: Some(&'a crate::uv::UvLayout));
+        /// Sets [`SubdivideOptions::holes`].
+        with_holes(holes: Some(&'a HoleSet));
+    }
+}
+
+impl std::fmt::Debug for SubdivideOptions<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SubdivideOptions")
+            .field("threads", &self.threads)
+            .field("preallocate", &self.preallocate)
+            .field("progress", &self.progress.map(|_| "callback"))
+            .field(
+                "sharpness",
+                &self
+                    .sharpness
+                    .map(|s| (s.n_sharp_edges(), s.n_sharp_vertices())),
+            )
+            .field("subdivision", &self.subdivision)
+            .field("holes", &self.holes.map(|h| h.faces().len()))
+            .field("uvs", &self.uvs.map(|u| u.n_values()))
+            .finish()
+    }
+}
+
+/// Passed to the progress callback after each level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct LevelDone {
+    /// The level just built (1-based).
+    pub level: u32,
+    /// The final level.
+    pub levels: u32,
+    /// Vertices of the level.
+    pub vertices: usize,
+    /// Edges of the level.
+    pub edges: usize,
+    /// Faces of the level.
+    pub faces: usize,
+}
