@@ -12,6 +12,8 @@
 //!   [`README_MAX_LINES`], ARCHITECTURE.md under [`ARCHITECTURE_MAX_LINES`]; in both, prose
 //!   lines at most [`PROSE_MAX_CHARS`] characters and table rows at most
 //!   [`TABLE_ROW_MAX_CHARS`] (fenced code is not prose).
+//! - **File size:** no file of `halfedge`, `driver` or `subcount`'s `src/` over
+//!   [`FILE_MAX_LINES`] lines unless ARCHITECTURE.md names it with the reason.
 //! - **No file under `src/` exists only for tests** (declared `#[cfg(test)] mod name;`).
 //! - **The geometry kernel touches no process state:** no file of `halfedge`'s `src/` names
 //!   one of [`PROCESS_MARKERS`] (system files, signals, renaming files, exiting): that is the
@@ -22,6 +24,11 @@ use std::path::{Path, PathBuf};
 
 /// The CLI's `src/` holds fewer lines than this.
 pub(crate) const CLI_MAX_LINES: usize = 3000;
+/// A file of these crates' `src/` holds at most this many lines, unless ARCHITECTURE.md names
+/// it (its path from the crate's `src/`, in backquotes) with the reason.
+pub(crate) const FILE_MAX_LINES: usize = 800;
+/// The crates whose files [`FILE_MAX_LINES`] bounds.
+pub(crate) const FILE_BUDGET_CRATES: &[&str] = &["halfedge", "driver", "subcount"];
 /// README.md holds fewer lines than this.
 pub(crate) const README_MAX_LINES: usize = 200;
 /// ARCHITECTURE.md holds fewer lines than this.
@@ -499,6 +506,23 @@ fn budgets(root: &Path) -> Vec<String> {
         out.push(format!(
             "crates/subcount/src is {cli} lines, the budget {CLI_MAX_LINES}: move logic into the libraries"
         ));
+    }
+    let architecture = std::fs::read_to_string(root.join("ARCHITECTURE.md")).unwrap_or_default();
+    for krate in FILE_BUDGET_CRATES {
+        let src = root.join("crates").join(krate).join("src");
+        for file in rust_files(&src) {
+            let n = std::fs::read_to_string(&file).map_or(0, |t| t.lines().count());
+            let inner = file
+                .strip_prefix(&src)
+                .unwrap_or(&file)
+                .display()
+                .to_string();
+            if n > FILE_MAX_LINES && !architecture.contains(&format!("`{inner}`")) {
+                out.push(format!(
+                    "crates/{krate}/src/{inner} is {n} lines, over {FILE_MAX_LINES}: split it, or name it in ARCHITECTURE.md with the reason"
+                ));
+            }
+        }
     }
     for (doc, max) in [
         ("README.md", README_MAX_LINES),
