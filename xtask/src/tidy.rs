@@ -7,7 +7,8 @@
 //!   comments and inline `#[cfg(test)]` modules are left out) form a graph; a strongly
 //!   connected set of two or more files is a cycle. A module file naming its own children
 //!   does not count. [`ALLOWED_CYCLES`] lists the cycles a later issue removes (none today).
-//! - **Layers:** a workspace crate depends only on the crates [`LAYERS`] allows it.
+//! - **Layers:** a workspace crate depends only on the crates [`LAYERS`] allows it, and inside
+//!   a crate a file names no higher layer of [`MODULE_LAYERS`].
 //! - **Budgets:** the CLI's `src/` under [`CLI_MAX_LINES`] lines, README.md under
 //!   [`README_MAX_LINES`], ARCHITECTURE.md under [`ARCHITECTURE_MAX_LINES`]; in both, prose
 //!   lines at most [`PROSE_MAX_CHARS`] characters and table rows at most
@@ -73,6 +74,19 @@ pub(crate) const PROCESS_MARKERS: &[&str] = &[
     "process::exit",
 ];
 
+/// Layers inside a crate: every file under the folder (first) but the exceptions (third)
+/// must not name a module path containing the second entry, a higher layer. Inside
+/// `halfedge`'s `subdivide/`, the rules (`sdc/`) and the topology steps (the kernels) sit
+/// below the refinement (`refine/`); `subdivide/mod.rs`, the one-shot API, is a loop over it.
+pub(crate) const MODULE_LAYERS: &[(&str, &str, &[&str])] = &[(
+    "crates/halfedge/src/subdivide/",
+    "refine::",
+    &[
+        "crates/halfedge/src/subdivide/mod.rs",
+        "crates/halfedge/src/subdivide/refine/",
+    ],
+)];
+
 /// Cycles allowed for now, by the folder (under the workspace root) holding all their files,
 /// each with the issue that removes it.
 pub(crate) const ALLOWED_CYCLES: &[(&str, &str)] = &[];
@@ -87,6 +101,31 @@ pub(crate) fn check(root: &Path) -> Vec<String> {
     problems.extend(layers(root));
     problems.extend(budgets(root));
     problems.extend(process_in_kernel(root));
+    problems.extend(module_layers(root));
+    problems
+}
+
+/// The files that name a higher layer of their crate ([`MODULE_LAYERS`]).
+fn module_layers(root: &Path) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (dir, higher, exceptions) in MODULE_LAYERS {
+        for file in rust_files(&root.join(dir)) {
+            let name = file.strip_prefix(root).unwrap_or(&file).display().to_string();
+            if exceptions.iter().any(|e| name.starts_with(e)) {
+                continue;
+            }
+            let text = std::fs::read_to_string(&file).unwrap_or_default();
+            let code = code_without_tests(&text);
+            let names_higher = code.match_indices(higher).any(|(i, _)| {
+                !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_')
+            });
+            if names_higher {
+                problems.push(format!(
+                    "{name} names `{higher}`, a higher layer (MODULE_LAYERS): move what it needs below"
+                ));
+            }
+        }
+    }
     problems
 }
 
