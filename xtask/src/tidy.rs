@@ -110,15 +110,19 @@ fn module_layers(root: &Path) -> Vec<String> {
     let mut problems = Vec::new();
     for (dir, higher, exceptions) in MODULE_LAYERS {
         for file in rust_files(&root.join(dir)) {
-            let name = file.strip_prefix(root).unwrap_or(&file).display().to_string();
+            let name = file
+                .strip_prefix(root)
+                .unwrap_or(&file)
+                .display()
+                .to_string();
             if exceptions.iter().any(|e| name.starts_with(e)) {
                 continue;
             }
             let text = std::fs::read_to_string(&file).unwrap_or_default();
             let code = code_without_tests(&text);
-            let names_higher = code.match_indices(higher).any(|(i, _)| {
-                !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_')
-            });
+            let names_higher = code
+                .match_indices(higher)
+                .any(|(i, _)| !code[..i].ends_with(|c: char| c.is_alphanumeric() || c == '_'));
             if names_higher {
                 problems.push(format!(
                     "{name} names `{higher}`, a higher layer (MODULE_LAYERS): move what it needs below"

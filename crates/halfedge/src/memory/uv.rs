@@ -96,7 +96,7 @@ pub fn predicted_uv_bytes(
         ChannelKind::Corners => return corner_uv_bytes(rule, layout, levels, scalar_bytes),
     };
     let scheme = channel.scheme_for(layout)?;
-    let heap = crate::Refinement::predicted_channel_bytes(channel, layout, levels)?;
+    let heap = crate::Refinement::tables_bound(channel, layout, levels, true)?;
     let level = |s: u32| scheme.counts_at(layout, u64::from(s));
     let last = level(levels)?;
     let corners = match crate::subdivide::direct_face_degree(channel) {

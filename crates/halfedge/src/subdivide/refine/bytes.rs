@@ -2,6 +2,8 @@
 //! the counts before it is built ([`Refinement::predicted_bytes`] and its crease and
 //! face-varying terms).
 
+use num_bigint::BigInt;
+
 use super::*;
 
 impl Refinement {
@@ -45,12 +47,7 @@ impl Refinement {
     /// # Errors
     ///
     /// As the scheme lookup of [`Refinement::new`] ([`Error::Scheme`]).
-    pub fn predicted_bytes(
-        rule: Rule,
-        counts: &MeshCounts,
-        levels: u32,
-    ) -> Result<num_bigint::BigInt> {
-        use num_bigint::BigInt;
+    pub fn predicted_bytes(rule: Rule, counts: &MeshCounts, levels: u32) -> Result<BigInt> {
         let plan = crate::subdivide::plan(rule, counts)?;
         let mut level = Vec::with_capacity(levels as usize + 1);
         for s in 0..=levels {
@@ -136,29 +133,21 @@ impl Refinement {
         rule: Rule,
         counts: &MeshCounts,
         levels: u32,
-    ) -> Result<num_bigint::BigInt> {
+    ) -> Result<BigInt> {
         Refinement::tables_bound(rule, counts, levels, false)
     }
 
-    /// [`Refinement::predicted_bytes_with_creases`] for a face-varying channel whose surface
-    /// has no crease rules (its sharpness is its corners, seams and boundary, infinitely
-    /// sharp: override rows of at most 3 entries): a level with a face of more than 32 sides
-    /// never gets a dense table, so each face counts at most 32 entries per side.
-    pub(crate) fn predicted_channel_bytes(
-        rule: Rule,
-        counts: &MeshCounts,
-        levels: u32,
-    ) -> Result<num_bigint::BigInt> {
-        Refinement::tables_bound(rule, counts, levels, true)
-    }
-
-    pub(super) fn tables_bound(
+    /// The bound of a refinement's crease tables under `rule` to `levels`; with
+    /// `dense_only_narrow`, for a face-varying channel whose surface has no crease rules (its
+    /// sharpness is its corners, seams and boundary, infinitely sharp: override rows of at
+    /// most 3 entries): a level with a face of more than 32 sides never gets a dense table, so
+    /// each face counts at most 32 entries per side.
+    pub(crate) fn tables_bound(
         rule: Rule,
         counts: &MeshCounts,
         levels: u32,
         dense_only_narrow: bool,
-    ) -> Result<num_bigint::BigInt> {
-        use num_bigint::BigInt;
+    ) -> Result<BigInt> {
         let plan = crate::subdivide::plan(rule, counts)?;
         if levels == 0 || crease_table_bytes(&plan, counts, 0)?.is_none() {
             return Refinement::predicted_bytes(rule, counts, levels);
@@ -187,11 +176,7 @@ impl Refinement {
     /// # Errors
     ///
     /// As [`Refinement::predicted_bytes`].
-    pub fn one_shot_crease_bytes(
-        rule: Rule,
-        counts: &MeshCounts,
-        levels: u32,
-    ) -> Result<num_bigint::BigInt> {
+    pub fn one_shot_crease_bytes(rule: Rule, counts: &MeshCounts, levels: u32) -> Result<BigInt> {
         let plan = crate::subdivide::plan(rule, counts)?;
         let Some(last) = levels.checked_sub(1) else {
             return Ok(0u32.into());

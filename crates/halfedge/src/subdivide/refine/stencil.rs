@@ -1,6 +1,6 @@
 //! Stencil tables: every vertex of the last level as a weighted sum of base vertices.
 
-use super::{check_len, Refinement, Scalar, Sparse, Support};
+use super::{check_len, Refinement, Scalar, Sparse, Support, Vector};
 use crate::{Error, Result};
 
 /// The sizes of a [`StencilTable`], known before it is allocated
@@ -217,15 +217,9 @@ impl Refinement {
     /// [`Error::IndexOverflow`] beyond `u32` entries; [`Error::AllocationFailed`].
     pub fn stencils(&self) -> Result<StencilTable> {
         let sizes = self.stencil_sizes()?;
-        let n0 = self.base_vertices() as u32;
-        let mut current: Vec<Sparse> = (0..n0).map(Sparse::unit).collect();
-        for s in 1..=self.levels {
-            current = self.run(|| self.collect_level(s, &current))?;
-        }
-        if self.levels == 0 {
-            current = self.written_of(current);
-        }
-        StencilTable::from_sums(&current, n0 as usize, sizes, &self.name, self.levels)
+        let current = self.last_level_sums(Sparse::unit)?;
+        let n0 = self.base_vertices();
+        StencilTable::from_sums(&current, n0, sizes, &self.name, self.levels)
     }
 
     /// The sizes of [`Refinement::stencils`]' table before anything of it is allocated: its
@@ -256,17 +250,24 @@ impl Refinement {
                 reason: "the sphere projection",
             });
         }
+        let current = self.last_level_sums(Support::unit)?;
+        Ok(StencilSizes {
+            rows: current.len(),
+            entries: current.iter().map(|r| r.0.len()).sum(),
+        })
+    }
+
+    /// The written vertices of the last level as sums `V` of the base vertices (`unit(i)` is
+    /// base vertex `i`), level by level through the rules' kernels.
+    fn last_level_sums<V: Vector>(&self, unit: impl Fn(u32) -> V) -> Result<Vec<V>> {
         let n0 = self.base_vertices() as u32;
-        let mut current: Vec<Support> = (0..n0).map(Support::unit).collect();
+        let mut current: Vec<V> = (0..n0).map(unit).collect();
         for s in 1..=self.levels {
             current = self.run(|| self.collect_level(s, &current))?;
         }
         if self.levels == 0 {
             current = self.written_of(current);
         }
-        Ok(StencilSizes {
-            rows: current.len(),
-            entries: current.iter().map(|r| r.0.len()).sum(),
-        })
+        Ok(current)
     }
 }
