@@ -25,6 +25,8 @@ const STAGE_ARENA_BYTES: u64 = 4 << 20;
 pub struct Composition<'m> {
     loaded: &'m LoadedMesh,
     plan: Plan,
+    /// The statistics of the mesh's faces.
+    counts: schemes::MeshCounts,
 }
 
 /// Checks `plan` on `loaded`: its first stage's boundary variant for the mesh, the plan
@@ -63,7 +65,11 @@ pub fn start<'m>(loaded: &'m LoadedMesh, plan: &Plan, notes: Notes<'_>) -> Resul
         return Err(refuse("the holes of boundary none"));
     }
     loaded.emit_notes(notes);
-    Ok(Composition { loaded, plan })
+    Ok(Composition {
+        loaded,
+        plan,
+        counts,
+    })
 }
 
 /// The last level of a composition, and what its run took.
@@ -89,8 +95,7 @@ impl Composition<'_> {
     ///
     /// The plan's refusal (checked by [`start`] already).
     pub fn initial_state(&self) -> Result<Vec<BigInt>> {
-        let counts = halfedge::stats::face_list_counts(&self.loaded.poly);
-        Ok(self.plan.initial_state(&counts)?)
+        Ok(self.plan.initial_state(&self.counts)?)
     }
 
     /// Every level to `levels`, really subdivided stage by stage, against the prediction.

@@ -135,29 +135,16 @@ pub fn verify(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = mesh.counts();
-    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
-        // What is written is predicted from the written faces and counted on them.
-        let written = holes.written_mesh_counts(mesh);
-        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
-        let degrees = crate::holes::degrees_of(mesh);
-        let mut reports = vec![report(&predictor, &written, 0, &written)?];
-        run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
-            let mask = holes.written_at(plan.rule, &degrees, s)?;
-            let faces =
-                (0..m.n_faces() as u32).map(|f| m.face_vertices(crate::FaceId(f)).map(|v| v.0));
-            let measured = written_face_counts(faces, &mask, m.n_vertices());
-            reports.push(report(&predictor, &written, s, &measured)?);
-            Ok(())
-        })?;
-        return Ok(reports);
-    }
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
-    run_levels(&plan, mesh, &counts, levels, opts, |s, m| {
-        reports.push(report(&predictor, &counts, s, &m.counts())?);
-        Ok(())
-    })?;
-    Ok(reports)
+    let holes = verify_holes(scheme, opts, mesh.n_faces())?.map(|h| {
+        (
+            h,
+            h.written_mesh_counts(mesh),
+            crate::holes::degrees_of(mesh),
+        )
+    });
+    level_reports(scheme, &counts, holes, |plan, visit| {
+        run_levels(plan, mesh, &counts, levels, opts, visit).map(drop)
+    })
 }
 
 /// The plan that really subdivides `scheme` (named as the scheme) and the scheme whose
@@ -224,25 +211,72 @@ pub fn verify_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
     let counts = crate::stats::face_list_counts(mesh);
-    if let Some(holes) = verify_holes(scheme, opts, mesh.n_faces())? {
-        let written = holes.written_counts(mesh);
-        let (plan, predictor) = verify_plan_with_holes(scheme, &counts, &written)?;
-        let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
-        let mut reports = vec![report(&predictor, &written, 0, &written)?];
-        faces::run_levels(&plan, mesh, levels, opts, |s, m| {
-            let mask = holes.written_at(plan.rule, &degrees, s)?;
-            let faces = m.faces().map(|f| f.iter().copied());
-            let measured = written_face_counts(faces, &mask, m.n_vertices());
-            reports.push(report(&predictor, &written, s, &measured)?);
-            Ok(())
-        })?;
-        return Ok(reports);
+    let holes = verify_holes(scheme, opts, mesh.n_faces())?.map(|h| {
+        let degrees = mesh.faces().map(<[u32]>::len).collect();
+        (h, h.written_counts(mesh), degrees)
+    });
+    level_reports(scheme, &counts, holes, |plan, visit| {
+        faces::run_levels(plan, mesh, levels, opts, visit).map(drop)
+    })
+}
+
+/// A level [`level_reports`] measures: a half-edge mesh ([`verify`]) or a face list
+/// ([`verify_polygons`]).
+trait Measured: Sync {
+    /// The statistics of all its faces.
+    fn all_counts(&self) -> MeshCounts;
+    /// The statistics of the faces `written` marks.
+    fn written_counts(&self, written: &[bool]) -> MeshCounts;
+}
+
+impl Measured for HalfEdgeMesh {
+    fn all_counts(&self) -> MeshCounts {
+        self.counts()
     }
-    let (plan, predictor) = verify_plan(scheme, &counts)?;
-    let mut reports = vec![report(&predictor, &counts, 0, &counts)?];
-    faces::run_levels(&plan, mesh, levels, opts, |s, m| {
-        let measured = crate::stats::face_list_counts(m);
-        reports.push(report(&predictor, &counts, s, &measured)?);
+
+    fn written_counts(&self, written: &[bool]) -> MeshCounts {
+        let faces =
+            (0..self.n_faces() as u32).map(|f| self.face_vertices(crate::FaceId(f)).map(|v| v.0));
+        written_face_counts(faces, written, self.n_vertices())
+    }
+}
+
+impl Measured for PolygonMesh {
+    fn all_counts(&self) -> MeshCounts {
+        crate::stats::face_list_counts(self)
+    }
+
+    fn written_counts(&self, written: &[bool]) -> MeshCounts {
+        let faces = self.faces().map(|f| f.iter().copied());
+        written_face_counts(faces, written, self.n_vertices())
+    }
+}
+
+/// The reports of every level `run` builds (it subdivides by the plan and hands each level to
+/// the visitor), predicted by `scheme` from `counts` (all faces) or, with `holes` (the holes,
+/// the written faces' statistics, the degree of every face), from what is written and
+/// measured on it: one report loop for both kinds of mesh.
+fn level_reports<M: Measured>(
+    scheme: &Scheme,
+    counts: &MeshCounts,
+    holes: Option<(&HoleSet, MeshCounts, Vec<usize>)>,
+    run: impl FnOnce(&Plan, &mut (dyn FnMut(u32, &M) -> Result<()> + Send)) -> Result<()>,
+) -> Result<Vec<LevelReport>> {
+    let (plan, predictor) = match &holes {
+        // What is written is predicted from the written faces and counted on them.
+        Some((_, written, _)) => verify_plan_with_holes(scheme, counts, written)?,
+        None => verify_plan(scheme, counts)?,
+    };
+    let base = holes.as_ref().map_or(counts, |(_, written, _)| written);
+    let mut reports = vec![report(&predictor, base, 0, base)?];
+    run(&plan, &mut |s, m: &M| {
+        let measured = match &holes {
+            Some((holes, _, degrees)) => {
+                m.written_counts(&holes.written_at(plan.rule, degrees, s)?)
+            }
+            None => m.all_counts(),
+        };
+        reports.push(report(&predictor, base, s, &measured)?);
         Ok(())
     })?;
     Ok(reports)
