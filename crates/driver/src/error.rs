@@ -200,12 +200,9 @@ pub enum Error {
         /// The file's scheme.
         scheme: String,
     },
-    /// Refining once (`f32`, frames) where only the one-shot path runs.
-    #[error("--precision f32 and --frames refine a manifold mesh once: {}", if *face_list { "this scheme runs on the raw face list (loop-general, catmull-clark-general, tri-split-N or a non-manifold mesh); use loop, catmull-clark or --precision f64" } else { "not with --no-preallocate" })]
-    RefineOnce {
-        /// The scheme runs on the raw face list (else: no preallocation was asked).
-        face_list: bool,
-    },
+    /// Refining once (`f32`, frames) a scheme that runs on the raw face list.
+    #[error("--precision f32 and --frames refine a manifold mesh once: this scheme runs on the raw face list (loop-general, catmull-clark-general, tri-split-N or a non-manifold mesh); use loop, catmull-clark or --precision f64")]
+    RefineOnce,
     /// Counts too long to materialize ([`crate::limits::digits`]).
     #[error("the counts at level {level} would have about {digits:.3e} decimal digits ({bytes} per count); the limit is 10^7 digits: {hint}")]
     TooManyDigits {
@@ -258,7 +255,7 @@ impl Error {
             E::TableTooLarge { .. } | E::ClosedFormTooCostly { .. } => Kind::Guard,
             E::NotComposable { .. } | E::BoundaryNone { .. } => Kind::Usage,
             E::HolesNotNested { .. } | E::TriangleRule { .. } => Kind::Usage,
-            E::SchemeNotInFile { .. } | E::RefineOnce { .. } => Kind::Usage,
+            E::SchemeNotInFile { .. } | E::RefineOnce => Kind::Usage,
             E::RefineOnceComposition { .. } => Kind::Usage,
             _ => Kind::Input,
         }

@@ -41,8 +41,6 @@ pub struct SubdivideJob {
     pub levels: u32,
     /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
     pub threads: usize,
-    /// Preallocate the output buffers from the predicted counts (the default).
-    pub preallocate: bool,
     /// Lift the memory guard.
     pub allow_large: bool,
     /// The floating-point type of a refine-once run (`F32` refines once).
@@ -61,7 +59,6 @@ impl SubdivideJob {
         SubdivideJob {
             levels,
             threads: 0,
-            preallocate: true,
             allow_large: false,
             precision: Precision::F64,
             frames: 0,
@@ -144,8 +141,8 @@ pub fn prepare<'m>(
         face_list = false;
     }
     let refine_once = job.refine_once();
-    if refine_once && (face_list || !job.preallocate) {
-        return Err(Error::RefineOnce { face_list });
+    if refine_once && face_list {
+        return Err(Error::RefineOnce);
     }
     // The rule's own scheme sizes the output (a custom matrix may be wrong); one that does
     // not apply (a scheme file's `topology = "loop"` on quads) names the mesh, as `verify`.
@@ -153,9 +150,9 @@ pub fn prepare<'m>(
     scheme
         .initial_state(&counts)
         .map_err(|e| loaded.not_applicable(e))?;
-    // Manifold input, preallocated: the 4:1 family and Catmull-Clark write the last level
+    // Manifold input: the 4:1 family and Catmull-Clark write the last level
     // straight into a face list (half the peak memory of a half-edge last level).
-    let last_faces = (!face_list && job.preallocate)
+    let last_faces = (!face_list)
         .then(|| sub::direct_face_degree(rule))
         .flatten();
     let need = predicted_peak(
@@ -301,7 +298,6 @@ impl Prepared<'_> {
         }
         let mut opts = SubdivideOptions::default()
             .with_threads(job.threads)
-            .with_preallocate(job.preallocate)
             .with_progress(&progress)
             .with_subdivision(options);
         if let Some(sharpness) = &sharpness {

@@ -82,16 +82,15 @@ fn main() {
         (Rule::Sqrt3, 2),
         (Rule::DooSabin, 2),
     ];
-    // (name, threads, preallocate, last level as a face list); with 2 threads the thread
+    // (name, threads, last level as a face list); with 2 threads the thread
     // CPU column is the calling thread only, the process user/sys columns count both workers.
     // The face-list variants run `subdivide_to_face_list` (what `subcount subdivide` runs)
     // for the schemes that write their last level straight into a face list.
     let variants = [
-        ("prealloc-1t", 1, true, false),
-        ("grow-1t", 1, false, false),
-        ("prealloc-2t", 2, true, false),
-        ("faces-1t", 1, true, true),
-        ("faces-2t", 2, true, true),
+        ("prealloc-1t", 1, false),
+        ("prealloc-2t", 2, false),
+        ("faces-1t", 1, true),
+        ("faces-2t", 2, true),
     ];
     let ticks_per_s = 100.0; // USER_HZ on Linux
     println!(
@@ -99,14 +98,12 @@ fn main() {
     );
     for (name, mesh) in &inputs {
         for (scheme, level) in jobs {
-            for (variant, threads, preallocate, face_list) in variants {
+            for (variant, threads, face_list) in variants {
                 let id = format!("{scheme}-L{level}/{name}/{variant}");
                 if !id.contains(&filter) || face_list && direct_face_degree(scheme).is_none() {
                     continue;
                 }
-                let opts = SubdivideOptions::default()
-                    .with_threads(threads)
-                    .with_preallocate(preallocate);
+                let opts = SubdivideOptions::default().with_threads(threads);
                 let (mut cpu, mut wall) = (Vec::new(), Vec::new());
                 let (u0, s0) = process_ticks().unwrap_or_default();
                 let mut faces = 0;

@@ -156,10 +156,9 @@ fn face_sets(mesh: &HalfEdgeMesh) -> Vec<Vec<u32>> {
     faces
 }
 
-/// The preallocated path (index formulas written front to back for the 4:1 family and
-/// Catmull-Clark) and the growing-buffer path (faces emitted one by one) build the same mesh.
+/// One thread and two build the same mesh, numbered alike, with the same positions.
 #[test]
-fn growing_buffers_and_threads_give_the_same_mesh() {
+fn threads_give_the_same_mesh() {
     for (b, scheme) in [
         ("icosahedron", "loop"),
         ("cube", "catmull-clark"),
@@ -178,18 +177,8 @@ fn growing_buffers_and_threads_give_the_same_mesh() {
         ("cube", "doo-sabin"),
     ] {
         let mesh = base(b);
-        // One level: both paths number the new vertices the same way (old vertices, then one
-        // per old edge by edge id, ...), so the faces and positions must agree exactly. From
-        // level 2 on, the paths number the new edges differently, hence the vertices too.
-        let reference = subdivide(&mesh, scheme, 1, &opts()).expect("preallocated");
-        let grown = subdivide(&mesh, scheme, 1, &opts().with_preallocate(false)).expect("growing");
-        grown.check_invariants().expect("valid");
-        assert_eq!(face_sets(&grown), face_sets(&reference), "{scheme} on {b}");
-        assert_eq!(grown.positions(), reference.positions(), "{scheme} on {b}");
-        assert_eq!(grown.n_edges(), reference.n_edges(), "{scheme} on {b}");
-        let three = subdivide(&mesh, scheme, 3, &opts()).expect("preallocated");
-        let grown = subdivide(&mesh, scheme, 3, &opts().with_preallocate(false)).expect("growing");
-        assert_eq!(grown.counts(), three.counts(), "{scheme} on {b}");
+        let three = subdivide(&mesh, scheme, 3, &opts()).expect("one thread");
+        three.check_invariants().expect("valid");
         let threaded = subdivide(&mesh, scheme, 3, &opts().with_threads(2)).expect("threads");
         assert_eq!(face_sets(&threaded), face_sets(&three), "{scheme} on {b}");
         assert_eq!(threaded.positions(), three.positions(), "{scheme} on {b}");
@@ -197,7 +186,7 @@ fn growing_buffers_and_threads_give_the_same_mesh() {
 }
 
 /// The face-list last level is the half-edge result converted, exactly, for every scheme on
-/// every base mesh it admits, at levels 0 to 3, with growing buffers too.
+/// every base mesh it admits, at levels 0 to 3.
 #[test]
 fn face_list_last_level_equals_the_converted_half_edge_mesh() {
     let mut direct = 0;
@@ -211,15 +200,13 @@ fn face_list_last_level_equals_the_converted_half_edge_mesh() {
             }
             let max = levels_for(mesh.n_faces(), scheme, 3);
             for levels in 0..=max {
-                for o in [opts(), opts().with_preallocate(false)] {
-                    let want = subdivide(&mesh, scheme, levels, &o)
-                        .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
-                    let got = subdivide_to_face_list(&mesh, scheme, levels, &o)
-                        .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
-                    let what = format!("{scheme} on {b}, level {levels}, {o:?}");
-                    assert_eq!(got.mesh, want.to_polygon_mesh(), "{what}");
-                    assert_eq!(got.edges, want.n_edges(), "{what}");
-                }
+                let want = subdivide(&mesh, scheme, levels, &opts())
+                    .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                let got = subdivide_to_face_list(&mesh, scheme, levels, &opts())
+                    .unwrap_or_else(|e| panic!("{scheme} on {b}: {e}"));
+                let what = format!("{scheme} on {b}, level {levels}");
+                assert_eq!(got.mesh, want.to_polygon_mesh(), "{what}");
+                assert_eq!(got.edges, want.n_edges(), "{what}");
             }
             direct += usize::from(direct_face_degree(scheme).is_some());
         }
@@ -836,8 +823,8 @@ fn dual_boundary_meshes() -> Vec<(&'static str, HalfEdgeMesh)> {
 }
 
 /// Issue 13, item 5: `doo-sabin` and `mid-edge` accept meshes with boundary, count by their
-/// boundary twins, and every level matches its prediction, on the preallocated, the growing
-/// and the face-list paths.
+/// boundary twins, and every level matches its prediction, as a half-edge mesh and as a face
+/// list.
 #[test]
 fn dual_schemes_with_boundary_match_their_predictions() {
     for (name, mesh) in dual_boundary_meshes() {
@@ -859,8 +846,6 @@ fn dual_schemes_with_boundary_match_their_predictions() {
             let out = subdivide(&mesh, scheme, 3, &opts()).expect(&what);
             out.check_invariants()
                 .unwrap_or_else(|e| panic!("{what}: {e}"));
-            let grown = subdivide(&mesh, scheme, 3, &opts().with_preallocate(false)).expect(&what);
-            assert_eq!(grown.to_polygon_mesh(), out.to_polygon_mesh(), "{what}");
             let faces = subdivide_to_face_list(&mesh, scheme, 3, &opts()).expect(&what);
             assert_eq!(faces.mesh, out.to_polygon_mesh(), "{what}");
             // One boundary loop per input loop, twice as many boundary edges per level.

@@ -148,8 +148,9 @@ pub(crate) struct SubdivideArgs {
     /// on them, after the surface's last level).
     #[arg(long)]
     pub(crate) timings: bool,
-    /// Grow the output buffers instead of preallocating them (for comparisons).
-    #[arg(long)]
+    /// Accepted and ignored (every run preallocates from the predicted counts; hidden since
+    /// the growing builder left the engine, issue 26).
+    #[arg(long, hide = true)]
     pub(crate) no_preallocate: bool,
     /// Lift the memory guard (default limit: half the available memory).
     #[arg(long)]

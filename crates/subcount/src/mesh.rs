@@ -487,7 +487,6 @@ pub(crate) fn timings_line(
 pub(crate) fn subdivide_job(args: &SubdivideArgs, levels: u32) -> driver::subdivide::SubdivideJob {
     let mut job = driver::subdivide::SubdivideJob::new(levels);
     job.threads = args.threads;
-    job.preallocate = !args.no_preallocate;
     job.allow_large = args.allow_large;
     job.precision = match args.precision {
         Precision::F32 => driver::refined::Precision::F32,

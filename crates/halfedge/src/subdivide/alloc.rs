@@ -34,15 +34,6 @@ pub(crate) fn with_capacity<T>(n: usize, what: &str) -> Result<Vec<T>> {
     Ok(v)
 }
 
-/// An empty vector with room for exactly `capacity` elements, or without room (growing on
-/// demand) when `capacity` is `None`.
-pub(crate) fn with_capacity_or_grow<T>(capacity: Option<usize>, what: &str) -> Result<Vec<T>> {
-    match capacity {
-        Some(n) => with_capacity(n, what),
-        None => Ok(Vec::new()),
-    }
-}
-
 /// A vector of `n` copies of `value`, allocated exactly.
 pub(crate) fn filled<T: Clone>(value: T, n: usize, what: &str) -> Result<Vec<T>> {
     let mut v = with_capacity(n, what)?;

@@ -6,10 +6,9 @@
 //! `face`, `next` and `prev` of each half-edge directly. Faces are numbered in emission order.
 //! Boundary half-edges (the twins nobody emitted) are linked into loops at the end.
 //!
-//! With `GROW == false` the arrays are allocated once with exactly the predicted lengths and a
-//! write past them is recorded (not performed) and reported as a
-//! [`Error::PredictionMismatch`](crate::Error::PredictionMismatch). With `GROW == true` the
-//! arrays start empty and grow on demand (the "growing buffers" baseline for benchmarks).
+//! The arrays are allocated once with exactly the predicted lengths and a write past them is
+//! recorded (not performed) and reported as a
+//! [`Error::PredictionMismatch`](crate::Error::PredictionMismatch).
 
 use glam::DVec3;
 
@@ -91,7 +90,7 @@ impl StepContext<'_> {
 }
 
 /// Half-edge arrays under construction.
-pub(crate) struct Builder<const GROW: bool> {
+pub(crate) struct Builder {
     expected: Sizes,
     vertex_halfedge: Vec<u32>,
     halfedge_vertex: Vec<u32>,
@@ -105,18 +104,14 @@ pub(crate) struct Builder<const GROW: bool> {
     max_halfedge: usize,
 }
 
-impl<const GROW: bool> Builder<GROW> {
-    /// Allocates the arrays: exactly `expected` when preallocating, empty when growing.
+impl Builder {
+    /// Allocates the arrays: exactly `expected`.
     ///
     /// # Errors
     ///
     /// [`Error::AllocationFailed`] when the system refuses the memory.
     pub(crate) fn new(expected: Sizes) -> Result<Self> {
-        let (nv, nh, nf) = if GROW {
-            (0, 0, 0)
-        } else {
-            (expected.vertices, expected.halfedges, expected.faces)
-        };
+        let (nv, nh, nf) = (expected.vertices, expected.halfedges, expected.faces);
         use super::alloc::{filled, with_capacity};
         Ok(Builder {
             expected,
@@ -129,17 +124,6 @@ impl<const GROW: bool> Builder<GROW> {
             max_vertex: 0,
             max_halfedge: 0,
         })
-    }
-
-    #[inline]
-    fn grow_halfedges(&mut self, h: usize) {
-        if h >= self.halfedge_vertex.len() {
-            let n = (h | 1) + 1;
-            self.halfedge_vertex.resize(n, INVALID);
-            self.halfedge_face.resize(n, INVALID);
-            self.halfedge_next.resize(n, INVALID);
-            self.halfedge_prev.resize(n, INVALID);
-        }
     }
 
     /// Emits the next face. `corners[i] = (v, h)`: half-edge `h` runs from vertex `v` to the
@@ -155,13 +139,6 @@ impl<const GROW: bool> Builder<GROW> {
             let (vi, hi, hni) = (v as usize, h as usize, hn as usize);
             self.max_vertex = self.max_vertex.max(vi + 1);
             self.max_halfedge = self.max_halfedge.max((hi | 1) + 1);
-            if GROW {
-                if vi >= self.vertex_halfedge.len() {
-                    self.vertex_halfedge.resize(vi + 1, INVALID);
-                }
-                self.grow_halfedges(hi | 1);
-                self.grow_halfedges(hni);
-            }
             // Out-of-range ids are a prediction mismatch, reported by `finish`.
             if let (Some(vh), true) = (
                 self.vertex_halfedge.get_mut(vi),
@@ -197,10 +174,8 @@ impl<const GROW: bool> Builder<GROW> {
             self.max_halfedge.max(self.halfedge_vertex.len()) / 2,
         )?;
         check("faces", e.faces, self.face_halfedge.len())?;
-        if !GROW {
-            check("face capacity", e.faces, self.face_halfedge.capacity())?;
-            check("position capacity", e.vertices, positions.capacity())?;
-        }
+        check("face capacity", e.faces, self.face_halfedge.capacity())?;
+        check("position capacity", e.vertices, positions.capacity())?;
         if let Some(v) = self.vertex_halfedge.iter().position(|&h| h == INVALID) {
             // Fewer vertices were used than predicted.
             let used = self

@@ -15,51 +15,13 @@
 //! vertices `(Q + 2R + (n - 3) S) / n` (Q the average of the adjacent face points, R of the edge
 //! midpoints); boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
 
-use super::build::{Builder, StepContext};
 use super::data::Vector;
 use super::par::{self, Sink, Slots};
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
-use crate::{HalfEdgeMesh, Result};
-
-/// One Catmull-Clark step on `t`, face by face, with the new level's `positions` computed by
-/// the caller (the refinement's evaluation, [`cc_positions`]).
-pub(crate) fn catmull_clark_step<const GROW: bool>(
-    t: &Topo<'_>,
-    positions: Vec<glam::DVec3>,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    let t = *t;
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let offsets = t.corner_offsets();
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
-    let mut quad = [(0u32, 0u32); 4];
-    for f in 0..nf {
-        let fp = nv + ne + f;
-        let first = t.face_halfedge(f);
-        let off = offsets[f as usize];
-        let mut prev = t.prev(first);
-        let mut h = first;
-        let deg = offsets[f as usize + 1] - off;
-        for k in 0..deg {
-            let kp = if k == 0 { deg - 1 } else { k - 1 };
-            let (s, sp) = (h & 1, prev & 1);
-            quad[0] = (t.source(h), 2 * h + s);
-            quad[1] = (nv + (h >> 1), 2 * (2 * ne + off + k));
-            quad[2] = (fp, 2 * (2 * ne + off + kp) + 1);
-            quad[3] = (nv + (prev >> 1), 2 * (prev ^ 1) + sp);
-            b.face(&quad);
-            prev = h;
-            h = t.next(h);
-        }
-    }
-
-    b.finish(positions, ctx)
-}
 
 /// The positions of a Catmull-Clark step from the values `src` of the level before: moved
-/// old vertices, edge points, face points. `capacity`: allocate exactly this many up front
-/// (else grow).
+/// old vertices, edge points, face points, in a vector of exactly `capacity` values.
 ///
 /// # Errors
 ///
@@ -67,14 +29,14 @@ pub(crate) fn catmull_clark_step<const GROW: bool>(
 pub(crate) fn cc_positions<V: Vector>(
     t: &Topo<'_>,
     src: &[V],
-    capacity: Option<usize>,
+    capacity: usize,
     parallel: bool,
 ) -> crate::Result<Vec<V>> {
     let t = *t;
     let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
-    let mut positions = super::alloc::with_capacity_or_grow(capacity, "positions")?;
+    let mut positions = super::alloc::with_capacity(capacity, "positions")?;
     // Face points first: the vertex and edge rules use them.
-    let face_points = par::collect(Some(nf), nf, parallel, "face points", |f| {
+    let face_points = par::collect(nf, parallel, "face points", |f| {
         cc_face_point(&t, src, f as u32)
     })?;
     par::extend(&mut positions, nv, parallel, |v| {

@@ -59,50 +59,6 @@ use super::wide::{angle, Ring, Wide};
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 
-/// One Doo-Sabin step on `t` (closed, every valence >= 3: checked by the caller), face by
-/// face, with the new level's `positions` computed by the caller ([`doo_sabin_points`]).
-pub(crate) fn doo_sabin_step<const GROW: bool>(
-    t: &Topo<'_>,
-    positions: Vec<glam::DVec3>,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    if !t.is_closed() {
-        return doo_sabin_with_boundary::<GROW>(t, positions, ctx);
-    }
-    let t = *t;
-    let ne = t.ne() as u32;
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
-    face_faces(&t, &mut b, |h| (h, 2 * h));
-    for e in 0..ne {
-        let (h, tw) = (2 * e, 2 * e + 1);
-        b.face(&[
-            (t.next(h), 2 * h + 1),
-            (h, 2 * (2 * ne + h)),
-            (t.next(tw), 2 * tw + 1),
-            (tw, 2 * (2 * ne + tw)),
-        ]);
-    }
-    vertex_faces(&t, &mut b, |h, next| (next, 2 * (2 * ne + h) + 1));
-    b.finish(positions, ctx)
-}
-
-/// One mid-edge step on `t` (closed, every valence >= 3: checked by the caller), face by
-/// face, with the new level's `positions` computed by the caller ([`mid_edge_points`]).
-pub(crate) fn mid_edge_step<const GROW: bool>(
-    t: &Topo<'_>,
-    positions: Vec<glam::DVec3>,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    if !t.is_closed() {
-        return mid_edge_with_boundary::<GROW>(t, positions, ctx);
-    }
-    let t = *t;
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
-    face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
-    vertex_faces(&t, &mut b, |h, next| (next >> 1, 2 * (h ^ 1) + 1));
-    b.finish(positions, ctx)
-}
-
 /// The rank of each boundary half-edge among the boundary half-edges in increasing order
 /// (`INVALID` on the others).
 fn boundary_ranks(t: &Topo<'_>) -> Result<Vec<u32>> {
@@ -119,7 +75,7 @@ fn boundary_ranks(t: &Topo<'_>) -> Result<Vec<u32>> {
 
 /// One Doo-Sabin step on the mesh `t` with boundary (the numbering of the module docs), with
 /// the new level's `positions` computed by the caller ([`doo_sabin_points`]).
-pub(crate) fn doo_sabin_with_boundary<const GROW: bool>(
+pub(crate) fn doo_sabin_with_boundary(
     t: &Topo<'_>,
     positions: Vec<DVec3>,
     ctx: &StepContext<'_>,
@@ -129,7 +85,7 @@ pub(crate) fn doo_sabin_with_boundary<const GROW: bool>(
     let rank = boundary_ranks(&t)?;
     // The Chaikin point near the target of boundary half-edge h.
     let near_target = |h: u32| 2 * ne + rank[h as usize];
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    let mut b = Builder::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h, 2 * h));
     for e in 0..ne {
         let (mut h, mut tw) = (2 * e, 2 * e + 1);
@@ -179,7 +135,7 @@ pub(crate) fn doo_sabin_with_boundary<const GROW: bool>(
 
 /// One mid-edge step on the mesh `t` with boundary (the numbering of the module docs), with
 /// the new level's `positions` computed by the caller ([`mid_edge_points`]).
-pub(crate) fn mid_edge_with_boundary<const GROW: bool>(
+pub(crate) fn mid_edge_with_boundary(
     t: &Topo<'_>,
     positions: Vec<DVec3>,
     ctx: &StepContext<'_>,
@@ -187,7 +143,7 @@ pub(crate) fn mid_edge_with_boundary<const GROW: bool>(
     let t = *t;
     let ne = t.ne() as u32;
     let rank = boundary_ranks(&t)?;
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    let mut b = Builder::new(ctx.expected)?;
     face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
     let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
     for v in 0..t.nv() as u32 {
@@ -220,35 +176,11 @@ pub(crate) fn mid_edge_with_boundary<const GROW: bool>(
 
 /// Emits the face of each old face, in order: its corner at old half-edge `h` is the
 /// `(vertex, half-edge)` pair `corner(h)`.
-fn face_faces<const GROW: bool>(
-    t: &Topo<'_>,
-    b: &mut Builder<GROW>,
-    corner: impl Fn(u32) -> (u32, u32),
-) {
+fn face_faces(t: &Topo<'_>, b: &mut Builder, corner: impl Fn(u32) -> (u32, u32)) {
     let mut corners: Vec<(u32, u32)> = Vec::new();
     for f in 0..t.nf() as u32 {
         corners.clear();
         t.for_face(f, |h| corners.push(corner(h)));
-        b.face(&corners);
-    }
-}
-
-/// Emits the face of each old vertex, in order, its corners running against the outgoing
-/// half-edges: `corner(h, next)` for each outgoing `h` and the outgoing `next` after it.
-fn vertex_faces<const GROW: bool>(
-    t: &Topo<'_>,
-    b: &mut Builder<GROW>,
-    corner: impl Fn(u32, u32) -> (u32, u32),
-) {
-    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
-    for v in 0..t.nv() as u32 {
-        ring.clear();
-        t.for_outgoing(v, |h| ring.push(h));
-        corners.clear();
-        let n = ring.len();
-        for k in (0..n).rev() {
-            corners.push(corner(ring[k], ring[(k + 1) % n]));
-        }
         b.face(&corners);
     }
 }

@@ -397,7 +397,7 @@ fn sizes([vertices, halfedges, faces]: [u32; 3]) -> Sizes {
 /// The connectivity of one Doo-Sabin step on `t` (with boundary: built face by face).
 pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     if !t.is_closed() {
-        return with_boundary(t, ctx, super::dual::doo_sabin_with_boundary::<false>);
+        return with_boundary(t, ctx, super::dual::doo_sabin_with_boundary);
     }
     let ([nv, ne, nf], t) = (counts_of(t), *t);
     check(ctx, sizes([2 * ne, 8 * ne, nf + ne + nv]))?;
@@ -444,7 +444,7 @@ pub(crate) fn doo_sabin_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<
 /// The connectivity of one mid-edge step on `t` (with boundary: built face by face).
 pub(crate) fn mid_edge_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
     if !t.is_closed() {
-        return with_boundary(t, ctx, super::dual::mid_edge_with_boundary::<false>);
+        return with_boundary(t, ctx, super::dual::mid_edge_with_boundary);
     }
     let ([nv, ne, nf], t) = (counts_of(t), *t);
     check(ctx, sizes([ne, 4 * ne, nf + nv]))?;
@@ -484,16 +484,10 @@ fn assemble(
 ) -> Result<Connectivity> {
     let (e, parallel) = (ctx.expected, ctx.parallel);
     let halfedges = par::halfedge_arrays(e.halfedges, parallel, halfedge)?;
-    let vertex_halfedge = par::collect(
-        Some(e.vertices),
-        e.vertices,
-        parallel,
-        "vertex halfedge",
-        |v| vertex(v as u32),
-    )?;
-    let face_halfedge = par::collect(Some(e.faces), e.faces, parallel, "face halfedge", |f| {
-        face(f as u32)
+    let vertex_halfedge = par::collect(e.vertices, parallel, "vertex halfedge", |v| {
+        vertex(v as u32)
     })?;
+    let face_halfedge = par::collect(e.faces, parallel, "face halfedge", |f| face(f as u32))?;
     for (what, predicted, len, capacity) in [
         (
             "vertices",

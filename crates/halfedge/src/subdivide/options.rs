@@ -7,8 +7,8 @@ use super::*;
 ///
 /// ```
 /// use halfedge::subdivide::SubdivideOptions;
-/// let opts = SubdivideOptions::default().with_threads(1).with_preallocate(false);
-/// assert_eq!((opts.threads, opts.preallocate), (1, false));
+/// let opts = SubdivideOptions::default().with_threads(2);
+/// assert_eq!(opts.threads, 2);
 /// ```
 #[derive(Clone, Copy)]
 #[non_exhaustive]
@@ -16,9 +16,11 @@ pub struct SubdivideOptions<'a> {
     /// Threads for the geometry passes: 1 runs everything on the calling thread, 0 uses
     /// rayon's global pool, `n >= 2` a pool of `n` threads. Topology is built on one thread.
     pub threads: usize,
-    /// Allocate every output array once from the predicted counts (the default); `false`
-    /// starts from empty arrays that grow on demand (the baseline for benchmarks). Both paths
-    /// check the final sizes against the prediction.
+    /// Ignored: every run allocates each output array once from the predicted counts and
+    /// checks its final size against the prediction. (Before issue 26, `false` built every level face
+    /// by face into arrays growing on demand, a benchmark baseline; the one refinement has one
+    /// way to build topology.)
+    #[deprecated(note = "ignored: every run preallocates from the predicted counts")]
     pub preallocate: bool,
     /// Called after each level is built.
     pub progress: Option<&'a (dyn Fn(&LevelDone) + Sync)>,
@@ -60,6 +62,7 @@ pub struct SubdivideOptions<'a> {
 }
 
 impl Default for SubdivideOptions<'_> {
+    #[allow(deprecated)]
     fn default() -> Self {
         SubdivideOptions {
             threads: 1,
@@ -77,8 +80,6 @@ impl<'a> SubdivideOptions<'a> {
     with_setters! {
         /// Sets [`SubdivideOptions::threads`].
         with_threads(threads: usize);
-        /// Sets [`SubdivideOptions::preallocate`].
-        with_preallocate(preallocate: bool);
         /// Sets [`SubdivideOptions::progress`].
         with_progress(progress: Some(&'a (dyn Fn(&LevelDone) + Sync)));
         /// Sets [`SubdivideOptions::sharpness`].
@@ -90,13 +91,21 @@ impl<'a> SubdivideOptions<'a> {
         /// Sets [`SubdivideOptions::holes`].
         with_holes(holes: Some(&'a HoleSet));
     }
+
+    /// Sets [`SubdivideOptions::preallocate`], which is ignored.
+    #[deprecated(note = "ignored: every run preallocates from the predicted counts")]
+    #[must_use]
+    #[allow(deprecated)]
+    pub fn with_preallocate(mut self, preallocate: bool) -> Self {
+        self.preallocate = preallocate;
+        self
+    }
 }
 
 impl std::fmt::Debug for SubdivideOptions<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("SubdivideOptions")
             .field("threads", &self.threads)
-            .field("preallocate", &self.preallocate)
             .field("progress", &self.progress.map(|_| "callback"))
             .field(
                 "sharpness",

@@ -25,20 +25,19 @@ pub(crate) fn extend<T: Send>(
     }
 }
 
-/// `f(0), ..., f(n - 1)` in a new vector with room for exactly `capacity` elements (growing
-/// on demand when `None`); `what` names it in an allocation error.
+/// `f(0), ..., f(n - 1)` in a new vector allocated exactly; `what` names it in an allocation
+/// error.
 ///
 /// # Errors
 ///
 /// [`crate::Error::AllocationFailed`] when the system refuses the memory.
 pub(crate) fn collect<T: Send>(
-    capacity: Option<usize>,
     n: usize,
     parallel: bool,
     what: &str,
     f: impl Fn(usize) -> T + Sync + Send,
 ) -> crate::Result<Vec<T>> {
-    let mut out = super::alloc::with_capacity_or_grow(capacity, what)?;
+    let mut out = super::alloc::with_capacity(n, what)?;
     extend(&mut out, n, parallel, f);
     Ok(out)
 }

@@ -52,7 +52,7 @@ use crate::{HalfEdgeMesh, Result};
 /// One √3 step on the triangle mesh `t`, face by face; `step_b` selects Kobbelt's boundary
 /// trisection. The new level's `positions` computed by the caller (the refinement's
 /// evaluation, [`sqrt3_points`]), zeros without (a refinement keeps only the topology).
-pub(crate) fn sqrt3_step<const GROW: bool>(
+pub(crate) fn sqrt3_step(
     t: &Topo<'_>,
     positions: Option<Vec<DVec3>>,
     step_b: bool,
@@ -98,7 +98,7 @@ pub(crate) fn sqrt3_step<const GROW: bool>(
         _ => 2 * spoke(k) + 1,
     };
 
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    let mut b = Builder::new(ctx.expected)?;
     for f in 0..nf {
         let g0 = t.face_halfedge(f);
         for g in [g0, t.next(g0), t.prev(g0)] {

@@ -160,12 +160,6 @@ fn finish(
     ctx.expect_exact("vertex positions", e.vertices, n, capacity)?;
     let (n, capacity) = (corners.len(), corners.capacity());
     ctx.expect_exact("face corners", degree * e.faces, n, capacity)?;
-    let offsets = par::collect(
-        Some(e.faces + 1),
-        e.faces + 1,
-        ctx.parallel,
-        "offsets",
-        |f| degree * f,
-    )?;
+    let offsets = par::collect(e.faces + 1, ctx.parallel, "offsets", |f| degree * f)?;
     Ok(PolygonMesh::from_raw_parts(positions, offsets, corners))
 }

@@ -231,16 +231,4 @@ impl<'a> Topo<'a> {
             .map(|f| (f, self.face_degree(f)))
             .find(|&(_, d)| d != 3)
     }
-    /// For each face, the index of its first corner in a face-by-face numbering of the corners
-    /// (`F + 1` entries, the last one is `H`, the number of face corners).
-    pub(crate) fn corner_offsets(&self) -> Vec<u32> {
-        let mut off = Vec::with_capacity(self.nf() + 1);
-        let mut acc = 0u32;
-        for f in 0..self.nf() as u32 {
-            off.push(acc);
-            acc += self.face_degree(f) as u32;
-        }
-        off.push(acc);
-        off
-    }
 }

@@ -164,7 +164,7 @@ impl Template {
 /// One 1:N² step on the triangle mesh `t` (checked by the caller), face by face; the new
 /// level's `positions` computed by the caller (the refinement's evaluation, [`tri_points`]),
 /// zeros without (a refinement keeps only the topology).
-pub(crate) fn tri_split_step<const GROW: bool>(
+pub(crate) fn tri_split_step(
     t: &Topo<'_>,
     positions: Option<Vec<glam::DVec3>>,
     template: &Template,
@@ -177,7 +177,7 @@ pub(crate) fn tri_split_step<const GROW: bool>(
     let interior_base = nv + (n - 1) * ne;
     let edge_base = n * ne;
 
-    let mut b = Builder::<GROW>::new(ctx.expected)?;
+    let mut b = Builder::new(ctx.expected)?;
     let mut corners = [(0u32, 0u32); 3];
     for f in 0..nf {
         let h0 = t.face_halfedge(f);

@@ -210,7 +210,7 @@ impl Refinement {
         match self.before(level) {
             Some(before) => {
                 let n = self.computed_vertices(level);
-                let full = self.values_after(&before, src, n, false, "stencils")?;
+                let full = self.values_after(&before, src, n, "stencils")?;
                 Ok(if level == self.levels {
                     self.written_of(full)
                 } else {
@@ -221,22 +221,19 @@ impl Refinement {
         }
     }
 
-    /// The `n` values of the level after `before` from its values `src`, in a new vector:
-    /// allocated exactly, or growing on demand with `grow` (the one-shot baseline). The
-    /// geometry of the stencils and of the one-shot subdivision; `what` names the vector in an
+    /// The `n` values of the level after `before` from its values `src`, in a new vector
+    /// allocated exactly. The geometry of the stencils and of the one-shot subdivision; `what` names the vector in an
     /// allocation failure.
     pub(super) fn values_after<V: Vector>(
         &self,
         before: &LevelRef<'_>,
         src: &[V],
         n: usize,
-        grow: bool,
         what: &str,
     ) -> Result<Vec<V>> {
         use crate::subdivide::{catmull_clark, dual, sqrt3, trisplit};
         let parallel = self.threads != 1;
-        let capacity = (!grow).then_some(n);
-        let out = || crate::subdivide::alloc::with_capacity_or_grow(capacity, what);
+        let out = || crate::subdivide::alloc::with_capacity(n, what);
         match before.fast {
             Some(Fast::Loop(fast)) => {
                 let mut out = out()?;
@@ -264,7 +261,7 @@ impl Refinement {
                     fast: base.as_deref(),
                     ..*before
                 };
-                let mut out = self.values_after(&base, src, n, grow, what)?;
+                let mut out = self.values_after(&base, src, n, what)?;
                 weights.apply(src, &mut out, parallel);
                 return Ok(out);
             }
@@ -274,7 +271,7 @@ impl Refinement {
             return out();
         };
         if let Algorithm::CatmullClark = self.algorithm {
-            return catmull_clark::cc_positions(&t, src, capacity, parallel);
+            return catmull_clark::cc_positions(&t, src, n, parallel);
         }
         let mut out = out()?;
         match (self.algorithm, &self.template) {

@@ -167,7 +167,7 @@ impl Refinement {
 
     /// The connectivity of the level after `t` (`ctx.level`).
     pub(super) fn step(&self, t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
-        Ok(match self.next_level(t, ctx, false, None)? {
+        Ok(match self.next_level(t, ctx, None)? {
             Next::Topology(c, _) => c,
             Next::Mesh(m) => Connectivity::from_mesh(m),
         })
@@ -176,50 +176,20 @@ impl Refinement {
     /// The level after `t` (`ctx.level`): the topology of every refinement and of the one-shot
     /// subdivision. By index formulas into arrays of the predicted lengths (the 4:1 family,
     /// Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge), else face by face into
-    /// index-addressed arrays; with `grow`, always face by face into arrays that grow on
-    /// demand. `positions`, the new level's (from [`Refinement::values_after`]), are handed back
-    /// with a connectivity or become the mesh's; the face-by-face steps fill zeros without
-    /// them.
+    /// index-addressed arrays (1:N² for N >= 3, √3 on a boundary). `positions`, the new
+    /// level's (from [`Refinement::values_after`]), are handed back with a connectivity or
+    /// become the mesh's; the face-by-face steps fill zeros without them.
     pub(super) fn next_level(
         &self,
         t: &Topo<'_>,
         ctx: &StepContext<'_>,
-        grow: bool,
         positions: Option<Vec<glam::DVec3>>,
     ) -> Result<Next> {
-        use crate::subdivide::{catmull_clark, dual, gather, sqrt3, trisplit};
-        let zeros = |p: Option<Vec<glam::DVec3>>| match p {
-            Some(p) => Ok(p),
-            None => crate::subdivide::alloc::filled(
-                glam::DVec3::ZERO,
-                ctx.expected.vertices,
-                "positions",
-            ),
-        };
-        if grow {
-            let mesh = match (self.algorithm, &self.template) {
-                (Algorithm::Tri(_, _), Some(template)) => {
-                    trisplit::tri_split_step::<true>(t, positions, template, ctx)?
-                }
-                (Algorithm::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
-                (Algorithm::CatmullClark, _) => {
-                    catmull_clark::catmull_clark_step::<true>(t, zeros(positions)?, ctx)?
-                }
-                (Algorithm::Sqrt3 { boundary }, _) => {
-                    let step_b = boundary && ctx.level % 2 == 0;
-                    sqrt3::sqrt3_step::<true>(t, positions, step_b, ctx)?
-                }
-                (Algorithm::DooSabin, _) => {
-                    dual::doo_sabin_step::<true>(t, zeros(positions)?, ctx)?
-                }
-                (Algorithm::MidEdge, _) => dual::mid_edge_step::<true>(t, zeros(positions)?, ctx)?,
-            };
-            return Ok(Next::Mesh(mesh));
-        }
+        use crate::subdivide::{gather, sqrt3, trisplit};
         let topology = match (self.algorithm, &self.template) {
             (Algorithm::Tri(_, 2), _) => gather::four_to_one_topology(t, ctx)?,
             (Algorithm::Tri(_, _), Some(template)) => {
-                let mesh = trisplit::tri_split_step::<false>(t, positions, template, ctx)?;
+                let mesh = trisplit::tri_split_step(t, positions, template, ctx)?;
                 return Ok(Next::Mesh(mesh));
             }
             (Algorithm::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
@@ -227,7 +197,7 @@ impl Refinement {
             (Algorithm::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx)?,
             (Algorithm::Sqrt3 { boundary }, _) => {
                 let step_b = boundary && ctx.level % 2 == 0;
-                let mesh = sqrt3::sqrt3_step::<false>(t, positions, step_b, ctx)?;
+                let mesh = sqrt3::sqrt3_step(t, positions, step_b, ctx)?;
                 return Ok(Next::Mesh(mesh));
             }
             (Algorithm::DooSabin, _) => gather::doo_sabin_topology(t, ctx)?,

@@ -46,9 +46,8 @@ pub(crate) enum OneShot {
 /// the scheme's counts before anything is built, then built from the one before as a half-edge
 /// mesh (only two alive at a time), `visit` seeing each one, the progress callback every level.
 /// With `faces`, the last level of the 4:1 family and Catmull-Clark is written straight into a
-/// face list (preallocated runs only; that level's edges and faces need not fit 32-bit
-/// handles, its vertex indices must). `opts.preallocate` false builds every level face by face
-/// into growing arrays (the benchmarks' baseline).
+/// face list (that level's edges and faces need not fit 32-bit handles, its vertex indices
+/// must).
 pub(crate) fn one_shot(
     plan: &Plan,
     mesh: &HalfEdgeMesh,
@@ -65,9 +64,8 @@ pub(crate) fn one_shot(
         // The choices of `Refinement::new`, whose tables are bounded per level.
         creases.set_budgets(crease_budgets(plan, counts, levels)?);
     }
-    let grow = !opts.preallocate;
     let as_faces = faces;
-    let faces = faces && !grow && direct(plan.algorithm);
+    let faces = faces && direct(plan.algorithm);
     let planned = plan_sizes(plan, counts, levels, !faces)?;
     if levels == 0 {
         // A face list asked for is the input's, without a copy of its half-edge mesh first.
@@ -78,9 +76,7 @@ pub(crate) fn one_shot(
         });
     }
     let mut r = Refinement::streaming(plan, levels, opts.threads, creases);
-    crate::subdivide::with_threads(opts.threads, || {
-        r.stream(mesh, &planned, grow, opts, &mut visit)
-    })
+    crate::subdivide::with_threads(opts.threads, || r.stream(mesh, &planned, opts, &mut visit))
 }
 
 impl Refinement {
@@ -114,7 +110,6 @@ impl Refinement {
         &mut self,
         mesh: &HalfEdgeMesh,
         planned: &[(Option<Sizes>, [usize; 3])],
-        grow: bool,
         opts: &SubdivideOptions<'_>,
         visit: &mut (impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send),
     ) -> Result<OneShot> {
@@ -153,7 +148,7 @@ impl Refinement {
             // Positions first: their temporaries (Catmull-Clark's face points, the crease
             // table) are freed before the topology's are allocated.
             let positions: Vec<DVec3> =
-                self.values_after(&before, &input.positions, nv, grow, "positions")?;
+                self.values_after(&before, &input.positions, nv, "positions")?;
             drop(creased);
             let origin = finite::Before::Mesh(input);
             finite::check_positions(&self.name, self.algorithm, s, &origin, &positions)?;
@@ -165,7 +160,7 @@ impl Refinement {
                 report(s, [polygons.n_vertices(), edges, polygons.n_faces()]);
                 return Ok(OneShot::Faces(polygons, edges));
             }
-            let next = match self.next_level(&t, &ctx, grow, Some(positions))? {
+            let next = match self.next_level(&t, &ctx, Some(positions))? {
                 Next::Topology(topology, Some(positions)) => {
                     let (n, capacity) = (positions.len(), positions.capacity());
                     ctx.expect_exact("vertex positions", nv, n, capacity)?;

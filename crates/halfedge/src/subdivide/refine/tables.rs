@@ -39,7 +39,7 @@ impl LoopTables {
     pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<LoopTables> {
         let t = *t;
         let (nv, ne) = (t.nv(), t.ne());
-        let edges = par::collect(Some(ne), ne, parallel, "Loop edge table", |e| {
+        let edges = par::collect(ne, parallel, "Loop edge table", |e| {
             let h = 2 * e as u32;
             let (a, b) = (t.source(h), t.target(h));
             if t.is_boundary_edge(e as u32) {
@@ -48,7 +48,7 @@ impl LoopTables {
                 [a, b, t.target(t.next(h)), t.target(t.next(h ^ 1))]
             }
         })?;
-        let boundary = par::collect(Some(nv), nv, parallel, "Loop boundary flags", |v| {
+        let boundary = par::collect(nv, parallel, "Loop boundary flags", |v| {
             t.is_boundary_vertex(v as u32)
         })?;
         // One walk per vertex, in chunks of vertices (in parallel when asked), concatenated.
@@ -146,7 +146,7 @@ impl CcTables {
     pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<CcTables> {
         let t = *t;
         let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
-        let edges = par::collect(Some(ne), ne, parallel, "Catmull-Clark edge table", |e| {
+        let edges = par::collect(ne, parallel, "Catmull-Clark edge table", |e| {
             let h = 2 * e as u32;
             let (a, b) = (t.source(h), t.target(h));
             if t.is_boundary(h) || t.is_boundary(h ^ 1) {
@@ -155,7 +155,7 @@ impl CcTables {
                 [a, b, t.face(h), t.face(h ^ 1)]
             }
         })?;
-        let boundary = par::collect(Some(nv), nv, parallel, "boundary flags", |v| {
+        let boundary = par::collect(nv, parallel, "boundary flags", |v| {
             t.is_boundary_vertex(v as u32)
         })?;
         let ring_of = |range: std::ops::Range<usize>| {
@@ -282,7 +282,7 @@ impl LinearTables {
     pub(super) fn new(t: &Topo<'_>, faces: bool, parallel: bool) -> Result<LinearTables> {
         let t = *t;
         let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
-        let edges = par::collect(Some(ne), ne, parallel, "linear edge table", |e| {
+        let edges = par::collect(ne, parallel, "linear edge table", |e| {
             let h = 2 * e as u32;
             [t.source(h), t.target(h)]
         })?;
