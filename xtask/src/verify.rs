@@ -230,7 +230,7 @@ fn verify_file(path: &Path, broken: bool, options: &Options) -> Vec<Row> {
     let counts = stats::face_list_counts(&polygons);
     let problems = stats::face_list_problems(&polygons);
     let degenerate = problems.faces_with_repeated_vertex > 0 || problems.duplicate_faces > 0;
-    let validated = HalfEdgeMesh::try_from(&polygons);
+    let validated = HalfEdgeMesh::try_from_polygon_mesh(&polygons);
     let mut rows = Vec::new();
     let mesh = match (validated, broken) {
         (Ok(mesh), false) => Some(mesh),

@@ -299,7 +299,7 @@ impl LoadedMesh {
     ///
     /// [`Error::InMesh`] naming the mesh and the line of the offending face.
     pub fn validate(&self) -> Result<HalfEdgeMesh> {
-        HalfEdgeMesh::try_from(&self.poly).map_err(|e| Error::InMesh {
+        HalfEdgeMesh::try_from_polygon_mesh(&self.poly).map_err(|e| Error::InMesh {
             mesh: self.label.clone(),
             place: e
                 .face()

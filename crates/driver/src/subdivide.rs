@@ -133,7 +133,7 @@ pub fn prepare<'m>(
     if layout.is_some()
         && face_list
         && matches!(rule, Rule::TriSplit(_))
-        && HalfEdgeMesh::try_from(poly).is_ok()
+        && HalfEdgeMesh::try_from_polygon_mesh(poly).is_ok()
     {
         // The 1:N² splits (placed on the flat triangles either way) run on the half-edge
         // mesh when the face list is one; the -general schemes and non-manifold input keep

@@ -10,6 +10,7 @@
 use glam::DVec3;
 use schemes::DisjointSets;
 
+use crate::descriptor::Descriptor;
 use crate::error::{Error, FaceVertices, Result};
 use crate::mesh::{HalfEdgeMesh, INVALID};
 use crate::polygon::PolygonMesh;
@@ -441,7 +442,10 @@ impl HalfEdgeMesh {
         build(&positions, &offsets, &indices)
     }
 
-    /// Builds a mesh from a [`PolygonMesh`]; same as `HalfEdgeMesh::try_from(mesh)`.
+    /// Builds a mesh from a [`PolygonMesh`]'s positions and faces alone: unlike
+    /// `HalfEdgeMesh::try_from(mesh)`, which also keeps the file's tags and UVs
+    /// ([`HalfEdgeMesh::descriptor`]), the mesh carries nothing else (a caller that passes
+    /// every option itself, as the `driver` crate does).
     ///
     /// # Errors
     ///
@@ -461,11 +465,61 @@ impl HalfEdgeMesh {
     }
 }
 
+impl Descriptor {
+    /// What `source`'s tags and UVs say about `mesh`, the half-edge mesh built from it;
+    /// `None` when they say nothing (no tag, no UVs).
+    ///
+    /// # Errors
+    ///
+    /// A crease [`crate::subdivide::Sharpness::from_tags_of`] cannot resolve on `mesh` (two vertices that share
+    /// no edge: [`Error::CreaseNotAnEdge`]); a hole out of range ([`Error::HoleOutOfRange`]).
+    pub fn of(source: &PolygonMesh, mesh: &HalfEdgeMesh) -> Result<Option<Descriptor>> {
+        let tags = source.tags();
+        let uvs = source.uv_layout();
+        if !source.has_tags() && uvs.is_none() {
+            return Ok(None);
+        }
+        let sharpness = if tags.creases().is_empty() && tags.corners().is_empty() {
+            None
+        } else {
+            Some(crate::subdivide::Sharpness::from_tags_of(
+                source, mesh, tags,
+            )?)
+            .filter(|s| !s.is_smooth())
+        };
+        let subdivision = tags
+            .options
+            .over(crate::tags::SubdivisionOptions::default());
+        let mut faces = tags.hole_faces();
+        if subdivision.boundary == crate::tags::BoundaryInterpolation::None && !mesh.is_closed() {
+            faces.extend(crate::holes::boundary_faces_with(source, tags));
+        }
+        let holes = match faces.is_empty() {
+            true => None,
+            false => Some(crate::holes::HoleSet::new(mesh.n_faces(), faces)?),
+        };
+        Ok(Some(Descriptor {
+            sharpness,
+            subdivision,
+            holes,
+            uvs,
+        }))
+    }
+}
+
 impl TryFrom<&PolygonMesh> for HalfEdgeMesh {
     type Error = Error;
 
+    /// The mesh of [`HalfEdgeMesh::try_from_polygon_mesh`] carrying what `mesh`'s tags and
+    /// UVs say ([`Descriptor::of`]), which its subdivisions honour by default.
+    ///
+    /// # Errors
+    ///
+    /// As [`HalfEdgeMesh::try_from_polygon_mesh`] and [`Descriptor::of`].
     fn try_from(mesh: &PolygonMesh) -> Result<HalfEdgeMesh> {
-        HalfEdgeMesh::try_from_polygon_mesh(mesh)
+        let mut built = HalfEdgeMesh::try_from_polygon_mesh(mesh)?;
+        built.set_descriptor(Descriptor::of(mesh, &built)?);
+        Ok(built)
     }
 }
 
@@ -473,7 +527,7 @@ impl TryFrom<PolygonMesh> for HalfEdgeMesh {
     type Error = Error;
 
     fn try_from(mesh: PolygonMesh) -> Result<HalfEdgeMesh> {
-        HalfEdgeMesh::try_from_polygon_mesh(&mesh)
+        HalfEdgeMesh::try_from(&mesh)
     }
 }
 

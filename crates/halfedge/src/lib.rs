@@ -91,6 +91,7 @@ macro_rules! with_setters {
 }
 
 mod build;
+pub mod descriptor;
 mod error;
 pub mod holes;
 pub mod io;
@@ -106,6 +107,7 @@ pub mod uv;
 
 pub use crate::memory::{BYTES_PER_EDGE, BYTES_PER_FACE, BYTES_PER_VERTEX};
 
+pub use crate::descriptor::Descriptor;
 pub use crate::error::{Error, FaceVertices, ParseError, Result};
 pub use crate::mesh::{
     EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,

@@ -16,6 +16,7 @@
 
 use glam::DVec3;
 
+use crate::descriptor::Descriptor;
 use crate::error::{Error, Result};
 
 /// Sentinel stored for "no element" (a boundary half-edge's face, an isolated vertex's half-edge).
@@ -123,9 +124,27 @@ pub struct HalfEdgeMesh {
     pub(crate) face_halfedge: Vec<u32>,
     /// Vertices of the source face list that no face referenced (dropped on construction).
     pub(crate) unreferenced_vertices: u64,
+    /// What the mesh's file says about its subdivision (`TryFrom<&PolygonMesh>`).
+    pub(crate) descriptor: Option<Box<Descriptor>>,
 }
 
 impl HalfEdgeMesh {
+    /// What the mesh's file says about its subdivision: creases, corners, holes, options and
+    /// UVs ([`crate::descriptor`]), which every subdivision of the mesh honours by default;
+    /// `None` for a mesh built without them (a subdivided level, a generated shape, a file
+    /// without tags or UVs, [`HalfEdgeMesh::try_from_polygon_mesh`]).
+    pub fn descriptor(&self) -> Option<&Descriptor> {
+        self.descriptor.as_deref()
+    }
+
+    /// Replaces what the mesh carries ([`HalfEdgeMesh::descriptor`]); a descriptor of another
+    /// mesh is refused when a subdivision reads it ([`Error::SharpnessMismatch`],
+    /// [`Error::HoleOutOfRange`], [`Error::UvLayoutMismatch`]).
+    ///
+    pub fn set_descriptor(&mut self, descriptor: Option<Descriptor>) {
+        self.descriptor = descriptor.map(Box::new);
+    }
+
     /// Assembles a mesh from its arrays without validating them (for subdivision output, which
     /// is correct by construction). Debug builds check [`HalfEdgeMesh::check_invariants`].
     ///
@@ -150,6 +169,7 @@ impl HalfEdgeMesh {
             halfedge_prev,
             face_halfedge,
             unreferenced_vertices: 0,
+            descriptor: None,
         };
         debug_assert!(
             mesh.check_invariants().is_ok(),

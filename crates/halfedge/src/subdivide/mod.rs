@@ -394,13 +394,14 @@ pub fn subdivide(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<HalfEdgeMesh> {
+    let opts = &opts.over_descriptor(mesh, Some(rule))?;
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
     if crate::holes::active(opts.holes, rule, mesh.n_faces())?.is_some() {
         // The written faces as a half-edge mesh: refused by its validation when they are not
         // one (two written fans meeting at a vertex between holes).
         let level = subdivide_to_face_list(mesh, rule, levels, opts)?;
-        return HalfEdgeMesh::try_from(&level.mesh);
+        return HalfEdgeMesh::try_from_polygon_mesh(&level.mesh);
     }
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
@@ -474,6 +475,7 @@ pub fn subdivide_to_face_list(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<FaceListLevel> {
+    let opts = &opts.over_descriptor(mesh, Some(rule))?;
     let counts = mesh.counts();
     let plan = plan(rule, &counts)?;
     if opts.uvs.is_some() {

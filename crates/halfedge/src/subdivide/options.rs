@@ -59,6 +59,12 @@ pub struct SubdivideOptions<'a> {
     /// UVs into its mesh. [`subdivide`] and [`verify`] (half-edge meshes, which carry no UVs)
     /// and [`verify_polygons`] do not read it.
     pub uvs: Option<&'a crate::uv::UvLayout>,
+    /// Read what the mesh carries ([`HalfEdgeMesh::descriptor`]: its file's creases, corners,
+    /// holes, options and UVs) where these options leave a value unset (`None`; for
+    /// [`SubdivideOptions::subdivision`], the default), as the command line puts a flag over a
+    /// tag (the rules: [`crate::descriptor`]). On by default; off, a subdivision reads these
+    /// options alone.
+    pub descriptor: bool,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -72,6 +78,7 @@ impl Default for SubdivideOptions<'_> {
             subdivision: SubdivisionOptions::default(),
             holes: None,
             uvs: None,
+            descriptor: true,
         }
     }
 }
@@ -90,6 +97,8 @@ impl<'a> SubdivideOptions<'a> {
         with_uvs(uvs: Some(&'a crate::uv::UvLayout));
         /// Sets [`SubdivideOptions::holes`].
         with_holes(holes: Some(&'a HoleSet));
+        /// Sets [`SubdivideOptions::descriptor`].
+        with_descriptor(descriptor: bool);
     }
 
     /// Sets [`SubdivideOptions::preallocate`], which is ignored.
@@ -116,6 +125,7 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
             .field("subdivision", &self.subdivision)
             .field("holes", &self.holes.map(|h| h.faces().len()))
             .field("uvs", &self.uvs.map(|u| u.n_values()))
+            .field("descriptor", &self.descriptor)
             .finish()
     }
 }
@@ -134,4 +144,46 @@ pub struct LevelDone {
     pub edges: usize,
     /// Faces of the level.
     pub faces: usize,
+}
+
+impl<'a> SubdivideOptions<'a> {
+    /// These options over what `mesh` carries for a subdivision by `rule` (the module docs
+    /// of [`crate::descriptor`]); the options themselves when
+    /// [`SubdivideOptions::descriptor`] is off or the mesh carries nothing.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::CreasesNotSupported`] for the descriptor's boundary `none` on a mesh with
+    /// boundary under a rule other than Loop and Catmull-Clark.
+    pub(crate) fn over_descriptor<'m>(
+        &self,
+        mesh: &'m HalfEdgeMesh,
+        rule: Option<Rule>,
+    ) -> Result<SubdivideOptions<'m>>
+    where
+        'a: 'm,
+    {
+        let mut opts: SubdivideOptions<'m> = *self;
+        let Some(d) = mesh.descriptor().filter(|_| self.descriptor) else {
+            return Ok(opts);
+        };
+        let creases = matches!(rule, Some(Rule::Loop | Rule::CatmullClark));
+        if creases {
+            opts.sharpness = opts.sharpness.or(d.sharpness.as_ref());
+            if opts.subdivision == SubdivisionOptions::default() {
+                opts.subdivision = d.subdivision;
+            }
+        } else if d.subdivision.boundary == crate::tags::BoundaryInterpolation::None
+            && !mesh.is_closed()
+            && opts.holes.is_none()
+        {
+            return Err(Error::CreasesNotSupported {
+                rule: rule.map_or_else(|| "this scheme".to_owned(), |r| r.to_string()),
+                what: "the boundary none",
+            });
+        }
+        opts.holes = opts.holes.or(d.holes.as_ref());
+        opts.uvs = opts.uvs.or(d.uvs.as_ref());
+        Ok(opts)
+    }
 }

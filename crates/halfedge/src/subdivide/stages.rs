@@ -148,7 +148,7 @@ pub fn subdivide_stages(
         let he = if face_list {
             None
         } else {
-            Some(HalfEdgeMesh::try_from(current)?)
+            Some(HalfEdgeMesh::try_from_polygon_mesh(current)?)
         };
         if check {
             let stage_reports = match &he {

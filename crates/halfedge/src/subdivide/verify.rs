@@ -134,6 +134,7 @@ pub fn verify(
     levels: u32,
     opts: &SubdivideOptions<'_>,
 ) -> Result<Vec<LevelReport>> {
+    let opts = &opts.over_descriptor(mesh, scheme.subdivision_rule())?;
     let counts = mesh.counts();
     let holes = verify_holes(scheme, opts, mesh.n_faces())?.map(|h| {
         (

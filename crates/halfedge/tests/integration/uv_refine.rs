@@ -113,8 +113,9 @@ fn layouts_of_other_meshes_and_missing_uvs_are_refused() {
             .starts_with("the UV layout does not match the mesh: value"),
         "{err}"
     );
-    // UVs of a refinement built without them.
-    let plain = Refinement::new(&mesh, Rule::Loop, 1, &SubdivideOptions::default()).expect("ok");
+    // UVs of a refinement built without them (the mesh's own layout left out).
+    let opts = SubdivideOptions::default().with_descriptor(false);
+    let plain = Refinement::new(&mesh, Rule::Loop, 1, &opts).expect("ok");
     assert!(!plain.has_uvs());
     assert_eq!(plain.n_uvs(1), 0);
     let err = plain
@@ -286,6 +287,7 @@ fn subdivide_to_face_list_writes_the_refined_uvs() {
             // Positions are those without UVs.
             let mut plain = opts;
             plain.uvs = None;
+            plain.descriptor = false;
             let without = subdivide_to_face_list(&mesh, rule, 2, &plain).expect("subdivided");
             assert!(without.mesh.uvs().is_none());
             assert_eq!(without.mesh.positions, level.mesh.positions);
@@ -349,8 +351,12 @@ fn positions_do_not_depend_on_the_uvs() {
         &SubdivideOptions::default().with_uvs(&layout),
     )
     .expect("ok");
-    let without =
+    let plain = SubdivideOptions::default().with_descriptor(false);
+    let without = Refinement::new(&mesh, Rule::CatmullClark, 2, &plain).expect("ok");
+    // The mesh carries its layout: the default options refine it.
+    let carried =
         Refinement::new(&mesh, Rule::CatmullClark, 2, &SubdivideOptions::default()).expect("ok");
+    assert!(carried.has_uvs() && !without.has_uvs());
     let mut a = vec![[0.0; 3]; with.n_vertices(2)];
     let mut b = vec![[0.0; 3]; without.n_vertices(2)];
     with.evaluate(&base, &mut a).expect("ok");

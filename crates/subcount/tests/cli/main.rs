@@ -3,6 +3,7 @@
 mod budget;
 mod compositions;
 mod creases;
+mod descriptor;
 mod hostile;
 mod hostile3;
 mod hostile_dual;

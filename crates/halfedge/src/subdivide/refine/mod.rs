@@ -384,6 +384,7 @@ impl Refinement {
         levels: u32,
         opts: &SubdivideOptions<'_>,
     ) -> Result<Refinement> {
+        let opts = &opts.over_descriptor(mesh, Some(rule))?;
         // Refused before any topology is built.
         if opts.uvs.is_some() {
             face_varying::channel_kind(rule)?;

@@ -100,6 +100,7 @@
 
 mod crease;
 mod masks;
+pub(crate) mod sharpness;
 
 use crate::mesh::{EdgeId, VertexId};
 use crate::subdivide::topo::Topo;
@@ -109,19 +110,10 @@ use crate::{Error, HalfEdgeMesh, PolygonMesh, Result, Rule};
 pub(crate) use self::crease::is_infinite;
 pub(crate) use self::masks::{boundary_first, ccw_ring, Base, WeightTable};
 use self::masks::{LevelBuilder, LevelSharpness, Scheme};
+pub use self::sharpness::Sharpness;
 
 #[cfg(doc)]
 use crate::tags::CreaseMethod;
-
-/// The sharpness of a mesh's edges and vertices (`f32`, as OpenSubdiv's: 0 smooth,
-/// [`INFINITELY_SHARP`](crate::tags::INFINITELY_SHARP) and above infinitely sharp), resolved
-/// from [`Tags`] on a [`HalfEdgeMesh`] ([module docs](self)). Holes and the tags' options are
-/// not part of it.
-#[derive(Clone, Debug, PartialEq, Default)]
-pub struct Sharpness {
-    edges: Vec<f32>,
-    vertices: Vec<f32>,
-}
 
 /// `v` when a mesh of `vertices` vertices has it, else [`Error::TagVertexOutOfRange`] for the
 /// tag kind `what`.
@@ -261,21 +253,6 @@ impl Sharpness {
     /// The sharpness of vertex `v` (0 beyond the mesh).
     pub fn vertex(&self, v: VertexId) -> f32 {
         self.vertices.get(v.idx()).copied().unwrap_or(0.0)
-    }
-
-    /// The number of edges with a sharpness above 0.
-    pub fn n_sharp_edges(&self) -> usize {
-        self.edges.iter().filter(|&&s| s > 0.0).count()
-    }
-
-    /// The number of vertices with a sharpness above 0.
-    pub fn n_sharp_vertices(&self) -> usize {
-        self.vertices.iter().filter(|&&s| s > 0.0).count()
-    }
-
-    /// `true` when no edge or vertex is sharp.
-    pub fn is_smooth(&self) -> bool {
-        self.n_sharp_edges() == 0 && self.n_sharp_vertices() == 0
     }
 }
 

@@ -383,7 +383,7 @@ impl LayoutChannel {
             t.for_face(f, |h| face.push(corner_vertex[h as usize]));
             polygon.push_face(&face);
         }
-        let layout_mesh = HalfEdgeMesh::try_from(&polygon)?;
+        let layout_mesh = HalfEdgeMesh::try_from_polygon_mesh(&polygon)?;
         // Its edges' sharpness: the surface's, through corresponding half-edges.
         let lt = Topo::new(&layout_mesh);
         let mut edge_sharpness = vec![0.0f32; lt.ne()];

@@ -48,9 +48,12 @@
 //! `compact_faces`); subdivisions take them through `SubdivideOptions::holes`; the recurrence of
 //! what holes remove (`HV, HE, HF, HH`) and `nests_faces`: `schemes::holes`.
 
+pub(crate) mod set;
+
 use schemes::holes::{nests_faces, HoleCounts};
 use schemes::{LevelCounts, MeshCounts, Rule};
 
+pub use self::set::HoleSet;
 use crate::mesh::FaceId;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
@@ -130,44 +133,7 @@ pub fn boundary_faces_with(mesh: &PolygonMesh, tags: &crate::tags::Tags) -> Vec<
         .collect()
 }
 
-/// A set of hole faces of a mesh with a known number of faces: sorted, without repeats.
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
-pub struct HoleSet {
-    faces: Vec<u32>,
-    n_faces: usize,
-}
-
 impl HoleSet {
-    /// The holes among `n_faces` faces (repeats allowed, any order).
-    ///
-    /// # Errors
-    ///
-    /// [`Error::HoleOutOfRange`] for a face index `>= n_faces`.
-    pub fn new(n_faces: usize, faces: impl IntoIterator<Item = u32>) -> Result<HoleSet> {
-        let mut faces: Vec<u32> = faces.into_iter().collect();
-        if let Some(&face) = faces.iter().find(|&&f| f as usize >= n_faces) {
-            return Err(Error::HoleOutOfRange { face, n_faces });
-        }
-        faces.sort_unstable();
-        faces.dedup();
-        Ok(HoleSet { faces, n_faces })
-    }
-
-    /// The hole faces, ascending.
-    pub fn faces(&self) -> &[u32] {
-        &self.faces
-    }
-
-    /// `true` when there is no hole.
-    pub fn is_empty(&self) -> bool {
-        self.faces.is_empty()
-    }
-
-    /// Whether face `f` is a hole.
-    pub fn contains(&self, f: u32) -> bool {
-        self.faces.binary_search(&f).is_ok()
-    }
-
     /// The statistics of the written faces of `mesh` (every face that is not a hole), counted
     /// as [`MeshCounts::from_face_list`] counts a file: vertices only holes use are
     /// unreferenced.
@@ -222,14 +188,6 @@ impl HoleSet {
         }
         let scheme = rule.scheme_for(written)?;
         Ok(scheme.counts_at(written, u64::from(level))?)
-    }
-
-    /// Checks that every hole is a face of a mesh with `n_faces` faces.
-    pub(crate) fn check(&self, n_faces: usize) -> Result<()> {
-        match self.faces.last() {
-            Some(&face) if face as usize >= n_faces => Err(Error::HoleOutOfRange { face, n_faces }),
-            _ => Ok(()),
-        }
     }
 
     /// What the holes remove from `mesh` ([`schemes::holes::HoleCounts`]).
