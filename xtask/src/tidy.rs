@@ -75,17 +75,26 @@ pub(crate) const PROCESS_MARKERS: &[&str] = &[
 ];
 
 /// Layers inside a crate: every file under the folder (first) but the exceptions (third)
-/// must not name a module path containing the second entry, a higher layer. Inside
-/// `halfedge`'s `subdivide/`, the rules (`sdc/`) and the topology steps (the kernels) sit
-/// below the refinement (`refine/`); `subdivide/mod.rs`, the one-shot API, is a loop over it.
-pub(crate) const MODULE_LAYERS: &[(&str, &str, &[&str])] = &[(
-    "crates/halfedge/src/subdivide/",
-    "refine::",
-    &[
-        "crates/halfedge/src/subdivide/mod.rs",
-        "crates/halfedge/src/subdivide/refine/",
-    ],
-)];
+/// must not name a module path containing the second entry, a higher layer. `halfedge`'s
+/// subdivision engine is OpenSubdiv's three layers (ARCHITECTURE.md): the rules (`sdc/`:
+/// masks, vertex rules, sharpness decay, no mesh and no level), the topology steps and the
+/// rules' kernels (`subdivide/` but `refine/`), the refinement and evaluation (`refine/`);
+/// `subdivide/mod.rs`, the one-shot API, is a loop over the refinement.
+pub(crate) const MODULE_LAYERS: &[(&str, &str, &[&str])] = &[
+    (
+        "crates/halfedge/src/subdivide/",
+        "refine::",
+        &[
+            "crates/halfedge/src/subdivide/mod.rs",
+            "crates/halfedge/src/subdivide/refine/",
+        ],
+    ),
+    ("crates/halfedge/src/subdivide/sdc/", "topo::", &[]),
+    ("crates/halfedge/src/subdivide/sdc/", "mesh::", &[]),
+    ("crates/halfedge/src/subdivide/sdc/", "HalfEdgeMesh", &[]),
+    ("crates/halfedge/src/subdivide/sdc/", "weights::", &[]),
+    ("crates/halfedge/src/subdivide/sdc/", "gather::", &[]),
+];
 
 /// Cycles allowed for now, by the folder (under the workspace root) holding all their files,
 /// each with the issue that removes it.

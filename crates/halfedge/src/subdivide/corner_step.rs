@@ -3,8 +3,8 @@
 //! values: the types the rules' UV steps return, below the refinement that runs them.
 
 use crate::mesh::INVALID;
-use crate::subdivide::sdc::WeightTable;
 use crate::subdivide::topo::Topo;
+use crate::subdivide::weights::WeightTable;
 use crate::Result;
 
 /// One step of a corner rule, from level `s` (the parent) to level `s + 1` (the child).

@@ -137,12 +137,14 @@ mod options;
 mod par;
 pub mod refine;
 pub mod sdc;
+mod sharpness;
 mod sqrt3;
 mod stages;
 mod to_faces;
 mod topo;
 mod trisplit;
 mod verify;
+pub(crate) mod weights;
 pub(crate) mod wide;
 
 use num_bigint::BigInt;

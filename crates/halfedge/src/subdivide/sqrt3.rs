@@ -44,8 +44,8 @@ use super::build::{Builder, StepContext};
 use super::corner_step::{seam_ranks, CornerStep};
 use super::data::Vector;
 use super::par::Sink;
-use super::sdc::WeightTable;
 use super::topo::Topo;
+use super::weights::WeightTable;
 use crate::mesh::INVALID;
 use crate::{HalfEdgeMesh, Result};
 

@@ -14,8 +14,8 @@
 use super::{check_len, Refinement, Scalar};
 use crate::mesh::INVALID;
 use crate::subdivide::corner_step::CornerStep;
-use crate::subdivide::sdc::WeightTable;
 use crate::subdivide::topo::Topo;
+use crate::subdivide::weights::WeightTable;
 use crate::{Error, Result, Rule};
 
 /// The corner step of `rule` from level `s` (`t`, its corner values `values` by half-edge:

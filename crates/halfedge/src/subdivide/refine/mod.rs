@@ -88,6 +88,7 @@
 mod buffers;
 mod bytes;
 pub(crate) mod corners;
+pub(crate) mod creases;
 mod evaluate;
 pub mod face_varying;
 mod levels;
@@ -105,13 +106,14 @@ pub use self::stencil::{StencilSizes, StencilTable};
 pub use super::data::Scalar;
 pub(crate) use super::data::{Sparse, Support, Vector};
 
+use self::creases::{Creases, LevelTable};
 use self::tables::{crease_budgets, Fast};
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
-use super::sdc::{Base, Creases, LevelTable, WeightTable};
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
 use super::trisplit::{Template, TriRule};
+use super::weights::{Base, WeightTable};
 use super::{Algorithm, LevelDone, Plan, Rule, SubdivideOptions};
 use crate::{Error, HalfEdgeMesh, Result};
 
@@ -300,12 +302,12 @@ fn table_bytes(
     dense_only_narrow: bool,
 ) -> Result<Option<num_bigint::BigInt>> {
     let scheme = match plan.algorithm {
-        Algorithm::Tri(TriRule::Loop, 2) => super::sdc::TableScheme::Loop,
-        Algorithm::CatmullClark => super::sdc::TableScheme::CatmullClark,
+        Algorithm::Tri(TriRule::Loop, 2) => super::sdc::masks::Scheme::Loop,
+        Algorithm::CatmullClark => super::sdc::masks::Scheme::CatmullClark,
         _ => return Ok(None),
     };
     let c = plan.scheme.counts_at(counts, u64::from(level))?;
-    Ok(Some(super::sdc::table_bytes_bound(
+    Ok(Some(self::creases::table_bytes_bound(
         scheme,
         counts,
         level,

@@ -27,9 +27,9 @@
 use glam::DVec3;
 use schemes::MeshCounts;
 
+use super::creases::Creases;
 use super::{crease_budgets, direct, plan_sizes, Fast, LevelRef, Next, Refinement};
 use crate::subdivide::build::Sizes;
-use crate::subdivide::sdc::Creases;
 use crate::subdivide::topo::Topo;
 use crate::subdivide::{finite, to_faces, Algorithm, LevelDone, Plan, SubdivideOptions};
 use crate::{HalfEdgeMesh, PolygonMesh, Result};

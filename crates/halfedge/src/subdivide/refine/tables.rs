@@ -464,7 +464,7 @@ impl Fast {
         parallel: bool,
     ) -> Result<Option<Fast>> {
         // A dense table of a level with a wide face would be quadratic in its degree.
-        let wide = crate::subdivide::sdc::has_wide_face(t);
+        let wide = crate::subdivide::refine::creases::has_wide_face(t);
         let sparse = |rows: usize, children: usize| wide || 2 * rows <= children;
         let dense = |weights| Fast::Creased {
             base: None,

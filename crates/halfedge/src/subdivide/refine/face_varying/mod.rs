@@ -286,7 +286,7 @@
 //! mesh's `uvs`.
 
 use crate::mesh::INVALID;
-use crate::subdivide::sdc::{boundary_first, ccw_ring, Creases, Linear};
+use crate::subdivide::refine::creases::{boundary_first, ccw_ring, Creases, Linear};
 use crate::subdivide::topo::Topo;
 use crate::subdivide::SubdivideOptions;
 use crate::tags::{BoundaryInterpolation, FaceVaryingInterpolation, INFINITELY_SHARP};
