@@ -16,41 +16,13 @@
 //! midpoints); boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
 
 use super::data::Vector;
-use super::par::{self, Sink, Slots};
+use super::par::{Sink, Slots};
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 
-/// The positions of a Catmull-Clark step from the values `src` of the level before: moved
-/// old vertices, edge points, face points, in a vector of exactly `capacity` values.
-///
-/// # Errors
-///
-/// [`crate::Error::AllocationFailed`] when the system refuses the memory.
-pub(crate) fn cc_positions<V: Vector>(
-    t: &Topo<'_>,
-    src: &[V],
-    capacity: usize,
-    parallel: bool,
-) -> crate::Result<Vec<V>> {
-    let t = *t;
-    let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
-    let mut positions = super::alloc::with_capacity(capacity, "positions")?;
-    // Face points first: the vertex and edge rules use them.
-    let face_points = par::collect(nf, parallel, "face points", |f| {
-        cc_face_point(&t, src, f as u32)
-    })?;
-    par::extend(&mut positions, nv, parallel, |v| {
-        cc_vertex(&t, src, &face_points, v as u32)
-    });
-    par::extend(&mut positions, ne, parallel, |e| {
-        cc_edge(&t, src, &face_points, e as u32)
-    });
-    positions.extend_from_slice(&face_points);
-    Ok(positions)
-}
-
-/// [`cc_positions`] into `dst` (exactly `V + E + F` values): the face points are written
-/// first, at the end of `dst`, and read from there.
+/// The values of a Catmull-Clark step from the values `src` of the level before, into `dst`
+/// (exactly `V + E + F` values: moved old vertices, edge points, face points): the face points
+/// are written first, at the end of `dst`, and read from there.
 pub(crate) fn cc_fill<V: Vector>(t: &Topo<'_>, src: &[V], dst: &mut [V], parallel: bool) {
     let t = *t;
     let (nv, ne) = (t.nv(), t.ne());

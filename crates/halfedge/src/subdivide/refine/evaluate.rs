@@ -222,8 +222,9 @@ impl Refinement {
     }
 
     /// The `n` values of the level after `before` from its values `src`, in a new vector
-    /// allocated exactly. The geometry of the stencils and of the one-shot subdivision; `what` names the vector in an
-    /// allocation failure.
+    /// allocated exactly and filled by [`Refinement::fill_from`] (the one dispatch of the
+    /// rules' evaluation): the geometry of the stencils and of the one-shot subdivision;
+    /// `what` names the vector in an allocation failure.
     pub(super) fn values_after<V: Vector>(
         &self,
         before: &LevelRef<'_>,
@@ -231,60 +232,8 @@ impl Refinement {
         n: usize,
         what: &str,
     ) -> Result<Vec<V>> {
-        use crate::subdivide::{catmull_clark, dual, sqrt3, trisplit};
-        let parallel = self.threads != 1;
-        let out = || crate::subdivide::alloc::with_capacity(n, what);
-        match before.fast {
-            Some(Fast::Loop(fast)) => {
-                let mut out = out()?;
-                fast.points(src, &mut out, parallel);
-                return Ok(out);
-            }
-            Some(Fast::CatmullClark(fast)) => {
-                let mut out = out()?;
-                out.resize(n, V::zero());
-                fast.fill(src, &mut out, parallel);
-                return Ok(out);
-            }
-            Some(Fast::Linear(fast)) => {
-                let mut out = out()?;
-                fast.points(src, &mut out, parallel);
-                return Ok(out);
-            }
-            Some(Fast::Creased { weights, .. }) if weights.is_dense() => {
-                let mut out = out()?;
-                weights.points(src, &mut out, parallel);
-                return Ok(out);
-            }
-            Some(Fast::Creased { base, weights }) => {
-                let base = LevelRef {
-                    fast: base.as_deref(),
-                    ..*before
-                };
-                let mut out = self.values_after(&base, src, n, what)?;
-                weights.apply(src, &mut out, parallel);
-                return Ok(out);
-            }
-            None => {}
-        }
-        let Some(t) = before.topology else {
-            return out();
-        };
-        if let Algorithm::CatmullClark = self.algorithm {
-            return catmull_clark::cc_positions(&t, src, n, parallel);
-        }
-        let mut out = out()?;
-        match (self.algorithm, &self.template) {
-            (Algorithm::Tri(rule, _), Some(template)) => {
-                trisplit::tri_points(&t, src, template, rule, &mut out, parallel);
-            }
-            (Algorithm::Tri(..), None) | (Algorithm::CatmullClark, _) => {}
-            (Algorithm::Sqrt3 { .. }, _) => {
-                sqrt3::sqrt3_points(&t, src, before.step_b, &mut out, parallel);
-            }
-            (Algorithm::DooSabin, _) => dual::doo_sabin_points(&t, src, &mut out, parallel),
-            (Algorithm::MidEdge, _) => dual::mid_edge_points(&t, src, &mut out, parallel),
-        }
+        let mut out = crate::subdivide::alloc::filled(V::zero(), n, what)?;
+        self.fill_from(before, src, &mut out);
         Ok(out)
     }
 }
