@@ -58,7 +58,7 @@ fn compare(
 ) -> Compared {
     let flags: &[&str] = if sharpness { &["--tags"] } else { &[] };
     let running = opensubdiv_fvar(flags, scheme, level, path, None, mode.into());
-    let he = HalfEdgeMesh::try_from(mesh).expect("a manifold mesh");
+    let he = HalfEdgeMesh::try_from_polygon_mesh(mesh).expect("a manifold mesh");
     let layout = mesh.uv_layout().expect("a layout");
     let resolved = Sharpness::from_tags_of(mesh, &he, mesh.tags()).expect("tags");
     let holes = HoleSet::new(he.n_faces(), mesh.tags().holes().iter().copied());
