@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3};
 
 use super::build::StepContext;
 use super::trisplit::PointRef;
-use super::{sizes, Algorithm, LevelDone, Plan, Rule, SubdivideOptions, Template};
+use super::{sizes, LevelDone, Plan, Rule, Split, SubdivideOptions, Template};
 use crate::error::FaceVertices;
 use crate::mesh::INVALID;
 use crate::{Error, PolygonMesh, Result};
@@ -236,9 +236,9 @@ pub(super) fn run_levels(
     mut visit: impl FnMut(u32, &PolygonMesh) -> Result<()>,
 ) -> Result<PolygonMesh> {
     let name = plan.name.as_str();
-    let template = match plan.algorithm {
-        Algorithm::Tri(_, n) => Some(n),
-        Algorithm::CatmullClark => None,
+    let template = match plan.split {
+        Split::Tri(n) => Some(n),
+        Split::Quad => None,
         _ => {
             return Err(Error::NoSubdivision {
                 scheme: name.to_owned(),
@@ -300,7 +300,7 @@ pub(super) fn run_levels(
             vertices: ix.positions.len(),
             edges: ix.edge_low.len(),
         };
-        super::finite::check_positions(name, plan.algorithm, s, &before, &next.positions)?;
+        super::finite::check_positions(name, plan.split, s, &before, &next.positions)?;
         drop(ix);
         visit(s, &next)?;
         if let Some(progress) = opts.progress {
@@ -371,7 +371,7 @@ pub(super) fn refined_uvs(
         rule: plan.rule,
         name: format!("{} (UV layout)", plan.name),
         scheme,
-        algorithm: plan.algorithm,
+        split: plan.split,
     };
     let layout_opts = SubdivideOptions {
         progress: None,

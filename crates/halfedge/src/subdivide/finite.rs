@@ -8,7 +8,7 @@
 use glam::DVec3;
 
 use super::topo::Topo;
-use super::Algorithm;
+use super::Split;
 use crate::error::{Error, Result};
 use crate::mesh::HalfEdgeMesh;
 
@@ -23,7 +23,7 @@ pub(super) enum Before<'a> {
 /// Refuses the first non-finite position of level `level`.
 pub(super) fn check_positions(
     scheme: &str,
-    rule: Algorithm,
+    split: Split,
     level: u32,
     before: &Before<'_>,
     positions: &[DVec3],
@@ -36,7 +36,7 @@ pub(super) fn check_positions(
         scheme: scheme.to_string(),
         level,
         vertex: v as u32,
-        origin: origin(rule, level, before, v),
+        origin: origin(split, level, before, v),
         x: p.x,
         y: p.y,
         z: p.z,
@@ -46,7 +46,7 @@ pub(super) fn check_positions(
 /// What vertex `v` of level `level` is computed from, in the numbering each module documents
 /// (old vertices first, then edge points, then face points; one point per half-edge for
 /// Doo-Sabin, per edge for mid-edge).
-fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String {
+fn origin(split: Split, level: u32, before: &Before<'_>, v: usize) -> String {
     let of = if level == 1 {
         "of the input".to_string()
     } else {
@@ -64,17 +64,17 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
         }
         Before::Counts { .. } => format!("edge {e} {of}"),
     };
-    match rule {
-        Algorithm::Tri(..) | Algorithm::CatmullClark if v < nv => format!("from vertex {v} {of}"),
-        Algorithm::Tri(_, n) if v < nv + (n as usize - 1) * ne => {
+    match split {
+        Split::Tri(..) | Split::Quad if v < nv => format!("from vertex {v} {of}"),
+        Split::Tri(n) if v < nv + (n as usize - 1) * ne => {
             format!("on {}", edge((v - nv) / (n as usize - 1)))
         }
-        Algorithm::CatmullClark if v < nv + ne => format!("on {}", edge(v - nv)),
-        Algorithm::CatmullClark => format!("the point of face {} {of}", v - nv - ne),
-        Algorithm::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
-        Algorithm::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
-        Algorithm::MidEdge if v < ne => format!("the midpoint of {}", edge(v)),
-        Algorithm::DooSabin if v < 2 * ne => match before {
+        Split::Quad if v < nv + ne => format!("on {}", edge(v - nv)),
+        Split::Quad => format!("the point of face {} {of}", v - nv - ne),
+        Split::Sqrt3 { boundary: false } if v < nv => format!("from vertex {v} {of}"),
+        Split::Sqrt3 { boundary: false } => format!("the centre of face {} {of}", v - nv),
+        Split::DualEdges if v < ne => format!("the midpoint of {}", edge(v)),
+        Split::DualCorners if v < 2 * ne => match before {
             Before::Mesh(m) => {
                 let t = Topo::new(m);
                 let h = v as u32;
@@ -92,10 +92,10 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
         },
         // The kept boundary vertices (mid-edge) and the second Chaikin point of each boundary
         // edge (Doo-Sabin), numbered by the rank of their boundary half-edge.
-        Algorithm::MidEdge | Algorithm::DooSabin => match before {
+        Split::DualEdges | Split::DualCorners => match before {
             Before::Mesh(m) => {
                 let t = Topo::new(m);
-                let first = if rule == Algorithm::MidEdge {
+                let first = if split == Split::DualEdges {
                     ne
                 } else {
                     2 * ne
@@ -104,7 +104,7 @@ fn origin(rule: Algorithm, level: u32, before: &Before<'_>, v: usize) -> String 
                     .filter(|&h| t.is_boundary(h))
                     .nth(v - first);
                 match h {
-                    Some(h) if rule == Algorithm::MidEdge => {
+                    Some(h) if split == Split::DualEdges => {
                         format!("from boundary vertex {} {of}", t.source(h))
                     }
                     Some(h) => format!("on {}", edge(h as usize / 2)),

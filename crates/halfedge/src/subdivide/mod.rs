@@ -160,23 +160,27 @@ use schemes::{LevelCounts, MeshCounts, Scheme, Stat};
 
 use self::build::Sizes;
 use self::topo::Topo;
-use self::trisplit::{Template, TriRule};
+use self::trisplit::Template;
 use crate::holes::HoleSet;
 use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
-/// The algorithm a [`Rule`] runs (with the step variant the mesh needs).
+/// How a level is split, as OpenSubdiv's split type (the scheme decides it): the topology
+/// step of a [`Rule`] on a mesh. Rules are named once, by [`Rule`]; the split names the
+/// topology family and the plan's rule the geometry (the 4:1 family shares one split).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Algorithm {
-    /// 1:N² triangle split (N = 2 for the 4:1 family).
-    Tri(TriRule, u32),
-    CatmullClark,
-    /// `boundary`: alternate steps A and B (`sqrt3-boundary`).
-    Sqrt3 {
-        boundary: bool,
-    },
-    DooSabin,
-    MidEdge,
+pub(crate) enum Split {
+    /// 1:N² triangle split (N = 2: the 4:1 split of Loop, midpoint, icosphere, butterfly).
+    Tri(u32),
+    /// A quad per face corner (Catmull-Clark).
+    Quad,
+    /// √3: a point per face, the old edges flipped; `boundary`: steps A and B alternate
+    /// (`sqrt3-boundary`).
+    Sqrt3 { boundary: bool },
+    /// The dual split with a point per face corner (Doo-Sabin).
+    DualCorners,
+    /// The dual split with a point per edge (mid-edge).
+    DualEdges,
 }
 
 pub(crate) struct Plan {
@@ -187,37 +191,34 @@ pub(crate) struct Plan {
     /// The scheme whose counts size the output arrays: the rule's own built-in scheme for the
     /// mesh ([`Rule::scheme_for`]).
     pub(crate) scheme: Scheme,
-    pub(crate) algorithm: Algorithm,
+    pub(crate) split: Split,
 }
 
-/// The plan of `rule` on a mesh with `counts`: its counting scheme and its algorithm.
+/// The plan of `rule` on a mesh with `counts`: its counting scheme and its split.
 pub(crate) fn plan(rule: Rule, counts: &MeshCounts) -> Result<Plan> {
     let scheme = rule.scheme_for(counts)?;
-    let algorithm = match rule {
-        Rule::Loop => Algorithm::Tri(TriRule::Loop, 2),
-        Rule::Midpoint => Algorithm::Tri(TriRule::Midpoint, 2),
-        Rule::Butterfly => Algorithm::Tri(TriRule::Butterfly, 2),
-        Rule::Icosphere => Algorithm::Tri(TriRule::Icosphere, 2),
-        Rule::TriSplit(n) => Algorithm::Tri(TriRule::Linear, n),
-        Rule::CatmullClark => Algorithm::CatmullClark,
-        Rule::Sqrt3 => Algorithm::Sqrt3 {
+    let split = match rule {
+        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere => Split::Tri(2),
+        Rule::TriSplit(n) => Split::Tri(n),
+        Rule::CatmullClark => Split::Quad,
+        Rule::Sqrt3 => Split::Sqrt3 {
             boundary: scheme.canonical_name() == "sqrt3-boundary",
         },
-        Rule::DooSabin => Algorithm::DooSabin,
-        Rule::MidEdge => Algorithm::MidEdge,
+        Rule::DooSabin => Split::DualCorners,
+        Rule::MidEdge => Split::DualEdges,
     };
     Ok(Plan {
         rule,
         name: rule.to_string(),
         scheme,
-        algorithm,
+        split,
     })
 }
 
 /// The rule that really subdivides `scheme` on a mesh with `counts`, once the scheme itself
 /// accepts the mesh: what `subcount subdivide --scheme NAME` runs. The scheme decides the
 /// class of meshes (`catmull-clark-quad` refuses a triangle, `loop` on a mesh with boundary
-/// counts as `loop-boundary`), its [`Scheme::subdivision_rule`] the algorithm.
+/// counts as `loop-boundary`), its [`Scheme::subdivision_rule`] the rule to run.
 ///
 /// # Errors
 ///
@@ -278,7 +279,7 @@ fn no_rule(scheme: &Scheme) -> Error {
     }
 }
 
-/// Checks what the scheme's class cannot see: structural needs of the algorithm.
+/// Checks what the scheme's class cannot see: structural needs of the split.
 fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
     let t = Topo::new(mesh);
     let name = &plan.name;
@@ -288,18 +289,18 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
             reason,
         })
     };
-    match plan.algorithm {
-        Algorithm::Tri(..) | Algorithm::Sqrt3 { .. } => {
+    match plan.split {
+        Split::Tri(..) | Split::Sqrt3 { .. } => {
             if let Some((f, d)) = t.first_non_triangle() {
                 return refuse(format!(
                     "face {f} has {d} vertices, the scheme needs triangles"
                 ));
             }
-            if plan.algorithm == (Algorithm::Sqrt3 { boundary: false }) && t.boundary_edges() > 0 {
+            if plan.split == (Split::Sqrt3 { boundary: false }) && t.boundary_edges() > 0 {
                 return refuse("the mesh has a boundary; use sqrt3-boundary".into());
             }
         }
-        Algorithm::DooSabin | Algorithm::MidEdge => {
+        Split::DualCorners | Split::DualEdges => {
             // A boundary vertex of valence 2 (a corner with one face) gets a triangle.
             if let Some(v) =
                 (0..t.nv() as u32).find(|&v| t.valence(v) < 3 && !t.is_boundary_vertex(v))
@@ -310,7 +311,7 @@ fn check_mesh(plan: &Plan, mesh: &HalfEdgeMesh) -> Result<()> {
                 ));
             }
         }
-        Algorithm::CatmullClark => {}
+        Split::Quad => {}
     }
     Ok(())
 }
@@ -368,7 +369,7 @@ fn with_threads<T: Send>(threads: usize, f: impl FnOnce() -> Result<T> + Send) -
 ///
 /// - [`Error::Scheme`] for a mesh outside the rule's class (e.g. a quad under Loop), with the
 ///   scheme crate's suggestion;
-/// - [`Error::SchemeNotApplicable`] when the algorithm cannot run (an interior vertex of
+/// - [`Error::SchemeNotApplicable`] when the split cannot run (an interior vertex of
 ///   valence 2 under a dual scheme);
 /// - [`Error::TooLarge`] when a level would not fit 32-bit handles;
 /// - [`Error::ThreadPool`] when the requested threads cannot be started;

@@ -22,22 +22,7 @@ use super::data::Vector;
 use super::par::Sink;
 use super::topo::Topo;
 use super::wide::{angle, Ring, Wide};
-use crate::{HalfEdgeMesh, Result};
-
-/// Where a new edge point goes (the 4:1 schemes differ only in geometry).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum TriRule {
-    /// Loop's weights; boundary curves are cubic B-splines.
-    Loop,
-    /// Plain midpoints, old vertices kept.
-    Midpoint,
-    /// Midpoints projected onto the unit sphere.
-    Icosphere,
-    /// Zorin, Schröder and Sweldens' modified butterfly (interpolating).
-    Butterfly,
-    /// Linear 1:N² split (points on the flat triangles).
-    Linear,
-}
+use crate::{HalfEdgeMesh, Result, Rule};
 
 /// A point of the split template of one triangle.
 #[derive(Clone, Copy, Debug)]
@@ -230,7 +215,7 @@ pub(crate) fn tri_points<V: Vector>(
     t: &Topo<'_>,
     src: &[V],
     template: &Template,
-    rule: TriRule,
+    rule: Rule,
     out: &mut impl Sink<V>,
     parallel: bool,
 ) {
@@ -240,24 +225,25 @@ pub(crate) fn tri_points<V: Vector>(
     let t = *t;
     let pos = |v: u32| src[v as usize].clone();
     // Old vertices.
-    if rule == TriRule::Loop {
+    if rule == Rule::Loop {
         out.append(nv as usize, parallel, |v| loop_vertex(&t, src, v as u32));
     } else {
         out.append(nv as usize, parallel, |v| pos(v as u32));
     }
     // Edge points (the butterfly's wide vertex rings summed once, not once per edge).
-    let rings = (rule == TriRule::Butterfly)
+    let rings = (rule == Rule::Butterfly)
         .then(|| WideRings::of(&t, src))
         .flatten();
     let per_edge = (n - 1) as usize;
     out.append(ne as usize * per_edge, parallel, |i| {
         let e = (i / per_edge) as u32;
         match rule {
-            TriRule::Loop => loop_edge(&t, src, e),
-            TriRule::Midpoint => midpoint(&t, src, e),
-            TriRule::Icosphere => midpoint(&t, src, e).project_to_sphere(),
-            TriRule::Butterfly => butterfly_edge(&t, src, rings.as_ref(), e),
-            TriRule::Linear => {
+            Rule::Loop => loop_edge(&t, src, e),
+            Rule::Midpoint => midpoint(&t, src, e),
+            Rule::Icosphere => midpoint(&t, src, e).project_to_sphere(),
+            Rule::Butterfly => butterfly_edge(&t, src, rings.as_ref(), e),
+            // The linear 1:N² split (`tri-split-N`; no other rule runs a triangle split).
+            _ => {
                 let k = (i % per_edge) as f64 + 1.0;
                 let a = pos(t.source(2 * e));
                 let z = pos(t.target(2 * e));

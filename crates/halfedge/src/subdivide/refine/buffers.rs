@@ -83,10 +83,8 @@ impl Refinement {
             return Ok(());
         };
         let expected = self.n_faces(self.levels);
-        let written = self.run(|| match self.algorithm {
-            Algorithm::CatmullClark => {
-                crate::subdivide::to_faces::catmull_clark_corners(&t, out, parallel)
-            }
+        let written = self.run(|| match self.split {
+            Split::Quad => crate::subdivide::to_faces::catmull_clark_corners(&t, out, parallel),
             _ => {
                 crate::subdivide::to_faces::four_to_one_corners(&t, out, parallel);
                 4 * t.nf()

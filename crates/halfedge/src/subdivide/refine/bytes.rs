@@ -52,10 +52,10 @@ impl Refinement {
         let mut level = Vec::with_capacity(levels as usize + 1);
         for s in 0..=levels {
             let c = plan.scheme.counts_at(counts, u64::from(s))?;
-            let corners = match plan.algorithm {
+            let corners = match plan.split {
                 _ if s == 0 => BigInt::from(counts.corners),
-                Algorithm::Tri(..) | Algorithm::Sqrt3 { .. } => &c.faces * 3u32,
-                Algorithm::CatmullClark => &c.faces * 4u32,
+                Split::Tri(..) | Split::Sqrt3 { .. } => &c.faces * 3u32,
+                Split::Quad => &c.faces * 4u32,
                 _ => &c.edges * 2u32,
             };
             level.push((c.vertices, c.edges, c.faces, corners));
@@ -64,28 +64,28 @@ impl Refinement {
             |(v, e, f, _): &(BigInt, BigInt, BigInt, BigInt)| v * 4u32 + e * 32u32 + f * 4u32;
         let kept = &level[..levels.max(1) as usize];
         let mut bytes = BigInt::from(0u32);
-        match plan.algorithm {
-            Algorithm::Tri(TriRule::Loop, 2) if levels > 0 => {
+        match plan.split {
+            Split::Tri(2) if plan.rule == Rule::Loop && levels > 0 => {
                 for (v, e, _, _) in kept {
                     bytes += e * 24u32 + v * 5u32 + 4u32;
                 }
                 bytes += connectivity(&level[levels as usize - 1]);
             }
-            Algorithm::CatmullClark if levels > 0 => {
+            Split::Quad if levels > 0 => {
                 for (v, e, f, h) in kept {
                     bytes += e * 32u32 + v * 5u32 + f * 4u32 + h * 4u32 + 8u32;
                 }
                 bytes += connectivity(&level[levels as usize - 1]);
             }
-            algorithm => {
+            split => {
                 for l in kept {
                     bytes += connectivity(l);
                 }
-                if levels == 0 || !direct(algorithm) {
+                if levels == 0 || !direct(split) {
                     let (_, _, f, h) = &level[levels as usize];
                     bytes += f * 4u32 + h * 4u32 + 4u32;
                 }
-                if algorithm == (Algorithm::Sqrt3 { boundary: true }) {
+                if split == (Split::Sqrt3 { boundary: true }) {
                     for (s, (_, _, f, _)) in kept.iter().enumerate() {
                         // Level s is refined by step B when s + 1 is even.
                         if (s + 1) % 2 == 0 {

@@ -186,22 +186,22 @@ impl Refinement {
         let Some(t) = before.topology else {
             return;
         };
-        if self.algorithm == Algorithm::CatmullClark {
+        if self.split == Split::Quad {
             catmull_clark::cc_fill(&t, src, dst, parallel);
             return;
         }
         let mut out = Slots::new(dst);
-        match (self.algorithm, &self.template) {
-            (Algorithm::Tri(rule, _), Some(template)) => {
-                trisplit::tri_points(&t, src, template, rule, &mut out, parallel);
+        match (self.split, &self.template) {
+            (Split::Tri(_), Some(template)) => {
+                trisplit::tri_points(&t, src, template, self.rule, &mut out, parallel);
             }
-            (Algorithm::Tri(..), None) => {}
-            (Algorithm::CatmullClark, _) => {}
-            (Algorithm::Sqrt3 { .. }, _) => {
+            (Split::Tri(..), None) => {}
+            (Split::Quad, _) => {}
+            (Split::Sqrt3 { .. }, _) => {
                 sqrt3::sqrt3_points(&t, src, before.step_b, &mut out, parallel);
             }
-            (Algorithm::DooSabin, _) => dual::doo_sabin_points(&t, src, &mut out, parallel),
-            (Algorithm::MidEdge, _) => dual::mid_edge_points(&t, src, &mut out, parallel),
+            (Split::DualCorners, _) => dual::doo_sabin_points(&t, src, &mut out, parallel),
+            (Split::DualEdges, _) => dual::mid_edge_points(&t, src, &mut out, parallel),
         }
     }
 

@@ -36,8 +36,8 @@ impl Refinement {
             let step_b = self.step_b(&t, s, sizes, parallel)?;
             let Some(expected) = sizes else {
                 // The last level of a direct rule: its faces are written from level s - 1.
-                let corners = match self.algorithm {
-                    Algorithm::CatmullClark => 4 * faces,
+                let corners = match self.split {
+                    Split::Quad => 4 * faces,
                     _ => 3 * faces,
                 };
                 let size = LevelSize {
@@ -103,13 +103,12 @@ impl Refinement {
     /// Flattens level `i` for the Loop and Catmull-Clark rules (a no-op for the others and
     /// for a level already flattened), dropping its connectivity unless `keep`.
     pub(super) fn flatten(&mut self, i: usize, keep: bool, parallel: bool) -> Result<()> {
-        let algorithm = self.algorithm;
-        if self.levels == 0
-            || !matches!(
-                algorithm,
-                Algorithm::Tri(TriRule::Loop, 2) | Algorithm::CatmullClark
-            )
-        {
+        let split = self.split;
+        let flattened = matches!(
+            (split, self.rule),
+            (Split::Tri(2), Rule::Loop) | (Split::Quad, _)
+        );
+        if self.levels == 0 || !flattened {
             return Ok(());
         }
         let Some(level) = self.topology.get_mut(i) else {
@@ -117,7 +116,7 @@ impl Refinement {
         };
         if level.fast.is_none() {
             if let (Some(c), Some(creases)) = (&level.topology, self.creases.as_mut()) {
-                let fast = Fast::creased(creases, i, &c.topo(), algorithm, true, parallel)?;
+                let fast = Fast::creased(creases, i, &c.topo(), split, true, parallel)?;
                 let fast = fast.ok_or_else(|| Error::InvalidOutput {
                     scheme: self.name.clone(),
                     level: i as u32 + 1,
@@ -129,7 +128,7 @@ impl Refinement {
         }
         if level.fast.is_none() {
             if let Some(c) = &level.topology {
-                level.fast = Some(Fast::tables(algorithm, &c.topo(), parallel)?);
+                level.fast = Some(Fast::tables(split, &c.topo(), parallel)?);
             }
         }
         if !keep {
@@ -147,8 +146,8 @@ impl Refinement {
         sizes: Option<Sizes>,
         parallel: bool,
     ) -> Result<Option<StepB>> {
-        match (self.algorithm, sizes) {
-            (Algorithm::Sqrt3 { boundary: true }, Some(expected)) if level % 2 == 0 => {
+        match (self.split, sizes) {
+            (Split::Sqrt3 { boundary: true }, Some(expected)) if level % 2 == 0 => {
                 let ctx = self.context(level, expected, parallel);
                 Ok(Some(StepB::new(t, &ctx)?))
             }
@@ -186,22 +185,22 @@ impl Refinement {
         positions: Option<Vec<glam::DVec3>>,
     ) -> Result<Next> {
         use crate::subdivide::{gather, sqrt3, trisplit};
-        let topology = match (self.algorithm, &self.template) {
-            (Algorithm::Tri(_, 2), _) => gather::four_to_one_topology(t, ctx)?,
-            (Algorithm::Tri(_, _), Some(template)) => {
+        let topology = match (self.split, &self.template) {
+            (Split::Tri(2), _) => gather::four_to_one_topology(t, ctx)?,
+            (Split::Tri(_), Some(template)) => {
                 let mesh = trisplit::tri_split_step(t, positions, template, ctx)?;
                 return Ok(Next::Mesh(mesh));
             }
-            (Algorithm::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
-            (Algorithm::CatmullClark, _) => gather::catmull_clark_topology(t, ctx)?,
-            (Algorithm::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx)?,
-            (Algorithm::Sqrt3 { boundary }, _) => {
+            (Split::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
+            (Split::Quad, _) => gather::catmull_clark_topology(t, ctx)?,
+            (Split::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx)?,
+            (Split::Sqrt3 { boundary }, _) => {
                 let step_b = boundary && ctx.level % 2 == 0;
                 let mesh = sqrt3::sqrt3_step(t, positions, step_b, ctx)?;
                 return Ok(Next::Mesh(mesh));
             }
-            (Algorithm::DooSabin, _) => gather::doo_sabin_topology(t, ctx)?,
-            (Algorithm::MidEdge, _) => gather::mid_edge_topology(t, ctx)?,
+            (Split::DualCorners, _) => gather::doo_sabin_topology(t, ctx)?,
+            (Split::DualEdges, _) => gather::mid_edge_topology(t, ctx)?,
         };
         Ok(Next::Topology(topology, positions))
     }

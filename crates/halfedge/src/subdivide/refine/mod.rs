@@ -112,9 +112,9 @@ use super::build::{Sizes, StepContext};
 use super::par::Slots;
 use super::sqrt3::StepB;
 use super::topo::{Connectivity, Topo};
-use super::trisplit::{Template, TriRule};
+use super::trisplit::Template;
 use super::weights::{Base, WeightTable};
-use super::{Algorithm, LevelDone, Plan, Rule, SubdivideOptions};
+use super::{LevelDone, Plan, Rule, Split, SubdivideOptions};
 use crate::{Error, HalfEdgeMesh, Result};
 
 /// The sizes of one level.
@@ -211,7 +211,7 @@ struct Polygons {
 pub struct Refinement {
     rule: Rule,
     name: String,
-    algorithm: Algorithm,
+    split: Split,
     levels: u32,
     threads: usize,
     pool: Option<Arc<rayon::ThreadPool>>,
@@ -254,9 +254,9 @@ impl std::fmt::Debug for Refinement {
     }
 }
 
-/// Whether the last level of `algorithm` is written from the level before (no half-edge mesh).
-fn direct(algorithm: Algorithm) -> bool {
-    matches!(algorithm, Algorithm::Tri(_, 2) | Algorithm::CatmullClark)
+/// Whether the last level of `split` is written from the level before (no half-edge mesh).
+fn direct(split: Split) -> bool {
+    matches!(split, Split::Tri(2) | Split::Quad)
 }
 
 /// The half-edge sizes of levels `1..levels` (and of the last level when it is built as a
@@ -301,10 +301,8 @@ fn table_bytes(
     level: u32,
     dense_only_narrow: bool,
 ) -> Result<Option<num_bigint::BigInt>> {
-    let scheme = match plan.algorithm {
-        Algorithm::Tri(TriRule::Loop, 2) => super::sdc::masks::Scheme::Loop,
-        Algorithm::CatmullClark => super::sdc::masks::Scheme::CatmullClark,
-        _ => return Ok(None),
+    let Some(scheme) = super::sdc::masks::Scheme::of(plan.rule) else {
+        return Ok(None);
     };
     let c = plan.scheme.counts_at(counts, u64::from(level))?;
     Ok(Some(self::creases::table_bytes_bound(
@@ -423,7 +421,7 @@ impl Refinement {
         if let Some(creases) = creases.as_mut() {
             creases.set_budgets(crease_budgets(&plan, &counts, levels)?);
         }
-        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.algorithm))?;
+        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.split))?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
         let written = match holes {
@@ -446,14 +444,14 @@ impl Refinement {
                     })?,
             )),
         };
-        let template = match plan.algorithm {
-            Algorithm::Tri(_, n) => Some(Template::new(n)),
+        let template = match plan.split {
+            Split::Tri(n) => Some(Template::new(n)),
             _ => None,
         };
         let mut refinement = Refinement {
             rule,
             name: plan.name.clone(),
-            algorithm: plan.algorithm,
+            split: plan.split,
             levels,
             threads: opts.threads,
             pool,

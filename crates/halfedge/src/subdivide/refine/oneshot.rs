@@ -31,7 +31,7 @@ use super::creases::Creases;
 use super::{crease_budgets, direct, plan_sizes, Fast, LevelRef, Next, Refinement};
 use crate::subdivide::build::Sizes;
 use crate::subdivide::topo::Topo;
-use crate::subdivide::{finite, to_faces, Algorithm, LevelDone, Plan, SubdivideOptions};
+use crate::subdivide::{finite, to_faces, LevelDone, Plan, Split, SubdivideOptions};
 use crate::{HalfEdgeMesh, PolygonMesh, Result};
 
 /// What the one-shot subdivision built.
@@ -65,7 +65,7 @@ pub(crate) fn one_shot(
         creases.set_budgets(crease_budgets(plan, counts, levels)?);
     }
     let as_faces = faces;
-    let faces = faces && direct(plan.algorithm);
+    let faces = faces && direct(plan.split);
     let planned = plan_sizes(plan, counts, levels, !faces)?;
     if levels == 0 {
         // A face list asked for is the input's, without a copy of its half-edge mesh first.
@@ -83,14 +83,14 @@ impl Refinement {
     /// A refinement of `plan` to `levels` that keeps no level, with the crease rules of
     /// [`Creases::new`]: the one-shot mode.
     fn streaming(plan: &Plan, levels: u32, threads: usize, creases: Option<Creases>) -> Refinement {
-        let template = match plan.algorithm {
-            Algorithm::Tri(_, n) => Some(crate::subdivide::trisplit::Template::new(n)),
+        let template = match plan.split {
+            Split::Tri(n) => Some(crate::subdivide::trisplit::Template::new(n)),
             _ => None,
         };
         Refinement {
             rule: plan.rule,
             name: plan.name.clone(),
-            algorithm: plan.algorithm,
+            split: plan.split,
             levels,
             threads,
             pool: None,
@@ -151,10 +151,10 @@ impl Refinement {
                 self.values_after(&before, &input.positions, nv, "positions")?;
             drop(creased);
             let origin = finite::Before::Mesh(input);
-            finite::check_positions(&self.name, self.algorithm, s, &origin, &positions)?;
+            finite::check_positions(&self.name, self.split, s, &origin, &positions)?;
             if sizes.is_none() {
                 // The last level, written from this one.
-                let quads = self.algorithm == Algorithm::CatmullClark;
+                let quads = self.split == Split::Quad;
                 let (polygons, edges) = to_faces::faces_after(&t, positions, quads, &ctx)?;
                 drop(current);
                 report(s, [polygons.n_vertices(), edges, polygons.n_faces()]);
@@ -199,7 +199,7 @@ impl Refinement {
         let Some(creases) = &self.creases else {
             return Ok(None);
         };
-        match Fast::creased(creases, s as usize - 1, t, self.algorithm, false, parallel)? {
+        match Fast::creased(creases, s as usize - 1, t, self.split, false, parallel)? {
             Some(fast) => Ok(Some(fast)),
             None => Err(crate::Error::InvalidOutput {
                 scheme: self.name.clone(),

@@ -414,10 +414,10 @@ impl Fast {
         }
     }
 
-    /// The flattened tables of `t` for `algorithm` (Loop or Catmull-Clark).
-    pub(super) fn tables(algorithm: Algorithm, t: &Topo<'_>, parallel: bool) -> Result<Fast> {
-        Ok(match algorithm {
-            Algorithm::CatmullClark => Fast::CatmullClark(CcTables::new(t, parallel)?),
+    /// The flattened tables of `t` for `split` (Loop or Catmull-Clark).
+    pub(super) fn tables(split: Split, t: &Topo<'_>, parallel: bool) -> Result<Fast> {
+        Ok(match split {
+            Split::Quad => Fast::CatmullClark(CcTables::new(t, parallel)?),
             _ => Fast::Loop(LoopTables::new(t, parallel)?),
         })
     }
@@ -426,23 +426,23 @@ impl Fast {
     /// rule's (`None` with `tables` false: the half-edge kernels), or the linear ones.
     pub(super) fn base(
         base: Base,
-        algorithm: Algorithm,
+        split: Split,
         t: &Topo<'_>,
         tables: bool,
         parallel: bool,
     ) -> Result<Option<Box<Fast>>> {
-        let cc = algorithm == Algorithm::CatmullClark;
+        let cc = split == Split::Quad;
         Ok(match base {
             Base::Linear => Some(Box::new(Fast::Linear(LinearTables::new(t, cc, parallel)?))),
-            Base::Rule if tables => Some(Box::new(Fast::tables(algorithm, t, parallel)?)),
+            Base::Rule if tables => Some(Box::new(Fast::tables(split, t, parallel)?)),
             Base::Rule => None,
         })
     }
 
     /// The bytes of the tables a [`Refinement`] keeps under the rows of a sparse crease table
     /// of `t` ([`Fast::base`] with tables).
-    pub(super) fn base_bytes(base: Base, algorithm: Algorithm, t: &Topo<'_>) -> usize {
-        let cc = algorithm == Algorithm::CatmullClark;
+    pub(super) fn base_bytes(base: Base, split: Split, t: &Topo<'_>) -> usize {
+        let cc = split == Split::Quad;
         match base {
             Base::Linear => LinearTables::bytes_of(t, cc),
             Base::Rule if cc => CcTables::bytes_of(t),
@@ -459,7 +459,7 @@ impl Fast {
         creases: &Creases,
         level: usize,
         t: &Topo<'_>,
-        algorithm: Algorithm,
+        split: Split,
         tables: bool,
         parallel: bool,
     ) -> Result<Option<Fast>> {
@@ -477,19 +477,19 @@ impl Fast {
                 // A refinement's tables are built and measured, the one-shot subdivision's
                 // (which keeps none) counted.
                 let tables = if tables {
-                    Some(Fast::base(base, algorithm, t, true, parallel)?)
+                    Some(Fast::base(base, split, t, true, parallel)?)
                 } else {
                     None
                 };
                 let base_bytes = match &tables {
                     Some(b) => b.as_ref().map_or(0, |b| b.bytes()),
-                    None => Fast::base_bytes(base, algorithm, t),
+                    None => Fast::base_bytes(base, split, t),
                 };
-                debug_assert_eq!(base_bytes, Fast::base_bytes(base, algorithm, t));
+                debug_assert_eq!(base_bytes, Fast::base_bytes(base, split, t));
                 if wide || base_bytes + weights.bytes() <= creases.budget(level) {
                     let base = match tables {
                         Some(b) => b,
-                        None => Fast::base(base, algorithm, t, false, parallel)?,
+                        None => Fast::base(base, split, t, false, parallel)?,
                     };
                     Some(Fast::Creased { base, weights })
                 } else {
