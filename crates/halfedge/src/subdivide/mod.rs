@@ -59,8 +59,8 @@
 //!
 //! The 4:1 family, Catmull-Clark, √3 on closed meshes, Doo-Sabin and mid-edge write every
 //! output array front to back from index formulas (in parallel chunks when `threads != 1`);
-//! the other steps (1:N² for N >= 3, √3 on a boundary) and every scheme with
-//! [`SubdivideOptions::preallocate`] off emit faces one by one into index-addressed arrays. Both paths check every length against the prediction.
+//! the other steps (1:N² for N >= 3, √3 on a boundary) emit faces one by one into
+//! index-addressed arrays of the predicted sizes; both check every length.
 //!
 //! # Example
 //!
@@ -450,7 +450,7 @@ pub fn direct_face_degree(rule: Rule) -> Option<usize> {
 /// Subdivides like [`subdivide`], with the last level written as a face list
 /// ([`PolygonMesh`]) instead of a half-edge mesh.
 ///
-/// For the schemes of [`direct_face_degree`] (with [`SubdivideOptions::preallocate`] on) the
+/// For the schemes of [`direct_face_degree`] the
 /// last step writes only positions and face corners: 12 bytes per output triangle (16 per
 /// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
 /// is about half and the last level, the largest, is faster to build. The result is identical

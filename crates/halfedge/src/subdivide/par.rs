@@ -126,8 +126,8 @@ pub(crate) fn halfedge_arrays(
     Ok([vertex, face, next, prev])
 }
 
-/// Where a geometry pass writes its values, in output order: a growing `Vec` (the one-shot
-/// subdivision) or a caller's slice ([`Slots`], a refinement's evaluation).
+/// Where a geometry pass writes its values, in output order: a `Vec` it extends or a slice
+/// of the right length ([`Slots`]: every evaluation, the one-shot subdivision's included).
 pub(crate) trait Sink<T: Send> {
     /// Appends `f(0), ..., f(n - 1)`, in parallel when `parallel` and `n` is large.
     fn append(&mut self, n: usize, parallel: bool, f: impl Fn(usize) -> T + Sync + Send);
