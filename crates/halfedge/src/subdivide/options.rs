@@ -17,9 +17,9 @@ pub struct SubdivideOptions<'a> {
     /// rayon's global pool, `n >= 2` a pool of `n` threads. Topology is built on one thread.
     pub threads: usize,
     /// Ignored: every run allocates each output array once from the predicted counts and
-    /// checks its final size against the prediction. (Before issue 26, `false` built every level face
-    /// by face into arrays growing on demand, a benchmark baseline; the one refinement has one
-    /// way to build topology.)
+    /// checks its final size against the prediction. (Before issue 26, `false` built every
+    /// level face by face into arrays growing on demand, a benchmark baseline; the one
+    /// refinement has one way to build topology.)
     #[deprecated(note = "ignored: every run preallocates from the predicted counts")]
     pub preallocate: bool,
     /// Called after each level is built.

@@ -1,6 +1,7 @@
 //! Integration tests of the `halfedge` crate (one test binary; see STYLE.md section 7).
 
 mod creases;
+mod descriptor;
 mod holes;
 mod invalid_obj;
 mod oneshot_hashes;
