@@ -39,7 +39,10 @@ fn a_crease_that_is_not_an_edge_never_reaches_the_descriptor() {
     let text = format!("{SQUARES}t crease 2/1/0 0 5 2\n");
     let err = io::read_obj_from(text.as_bytes(), "bad.obj").unwrap_err();
     assert!(err.to_string().contains("line 9"), "{err}");
-    assert!(err.to_string().contains("vertices 0 and 5 are not an edge"), "{err}");
+    assert!(
+        err.to_string().contains("vertices 0 and 5 are not an edge"),
+        "{err}"
+    );
 }
 
 #[test]
