@@ -469,8 +469,7 @@ impl LoadedMesh {
                 format!("{scheme} (its stage {name})")
             }
         };
-        let mut faces = self.tags().hole_faces();
-        let tagged = faces.len();
+        let tagged = self.tags().hole_faces().len();
         if self.options.boundary == BoundaryInterpolation::None && counts.boundary_edges > 0 {
             let (option, fix) = if self.flags.boundary.is_some() {
                 (
@@ -495,11 +494,8 @@ impl LoadedMesh {
                     fix,
                 });
             }
-            faces.extend(halfedge::holes::boundary_faces_with(
-                &self.poly,
-                self.tags(),
-            ));
         }
+        let faces = halfedge::holes::holes_of(&self.poly, self.tags(), self.options.boundary);
         if faces.is_empty() {
             return Ok(None);
         }

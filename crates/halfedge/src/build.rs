@@ -490,10 +490,7 @@ impl Descriptor {
         let subdivision = tags
             .options
             .over(crate::tags::SubdivisionOptions::default());
-        let mut faces = tags.hole_faces();
-        if subdivision.boundary == crate::tags::BoundaryInterpolation::None && !mesh.is_closed() {
-            faces.extend(crate::holes::boundary_faces_with(source, tags));
-        }
+        let faces = crate::holes::holes_of(source, tags, subdivision.boundary);
         let holes = match faces.is_empty() {
             true => None,
             false => Some(crate::holes::HoleSet::new(mesh.n_faces(), faces)?),

@@ -12,7 +12,7 @@
 //! - the options (`interpolateboundary`, `facevaryinginterpolateboundary`, `creasemethod`,
 //!   `smoothtriangles`) over OpenSubdiv's defaults ([`SubdivisionOptions`]);
 //! - the holes: the faces tagged `hole`, and under `interpolateboundary 0` (none) on a mesh
-//!   with boundary the faces at the boundary as well ([`holes::boundary_faces_with`]),
+//!   with boundary the faces at the boundary as well ([`holes::holes_of`]),
 //!   as `subcount subdivide` resolves them;
 //! - the UV layout ([`PolygonMesh::uv_layout`]).
 //!
@@ -94,7 +94,7 @@
 //! [`SubdivideOptions::subdivision`]: crate::subdivide::SubdivideOptions::subdivision
 //! [`Error::CreasesNotSupported`]: crate::Error::CreasesNotSupported
 //! [`Error::HolesNeedNestedFaces`]: crate::Error::HolesNeedNestedFaces
-//! [`holes::boundary_faces_with`]: crate::holes::boundary_faces_with
+//! [`holes::holes_of`]: crate::holes::holes_of
 use crate::holes::set::HoleSet;
 use crate::subdivide::sdc::sharpness::Sharpness;
 use crate::tags::SubdivisionOptions;

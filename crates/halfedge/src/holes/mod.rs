@@ -55,6 +55,7 @@ use schemes::{LevelCounts, MeshCounts, Rule};
 
 pub use self::set::HoleSet;
 use crate::mesh::FaceId;
+use crate::tags::BoundaryInterpolation;
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// The faces of `mesh` that have a vertex on a boundary edge (an edge of exactly one face), in
@@ -131,6 +132,36 @@ pub fn boundary_faces_with(mesh: &PolygonMesh, tags: &crate::tags::Tags) -> Vec<
         .filter(|&f| mesh.face(f).iter().any(|&v| on_boundary[v as usize]))
         .map(|f| f as u32)
         .collect()
+}
+
+/// The faces of `mesh` that are holes under its `tags` with the boundary mode `boundary`: the
+/// faces tagged `hole` and, under [`BoundaryInterpolation::None`], the faces at the boundary
+/// ([`boundary_faces_with`]; none on a closed mesh), in that order, repeats allowed (what
+/// [`HoleSet::new`] takes). The one definition `HalfEdgeMesh::try_from`'s
+/// [`Descriptor`](crate::Descriptor) and the `driver` crate share.
+///
+/// ```
+/// use halfedge::holes::holes_of;
+/// use halfedge::shapes;
+/// use halfedge::tags::{BoundaryInterpolation, Tags};
+///
+/// let grid = shapes::quad_grid(3, 3)?;
+/// let mut tags = Tags::default();
+/// tags.add_hole(4);
+/// assert_eq!(holes_of(&grid, &tags, BoundaryInterpolation::Edge), [4]);
+/// assert_eq!(holes_of(&grid, &tags, BoundaryInterpolation::None), [4, 0, 1, 2, 3, 5, 6, 7, 8]);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn holes_of(
+    mesh: &PolygonMesh,
+    tags: &crate::tags::Tags,
+    boundary: BoundaryInterpolation,
+) -> Vec<u32> {
+    let mut faces = tags.hole_faces();
+    if boundary == BoundaryInterpolation::None {
+        faces.extend(boundary_faces_with(mesh, tags));
+    }
+    faces
 }
 
 impl HoleSet {

@@ -104,10 +104,8 @@ impl Refinement {
     /// for a level already flattened), dropping its connectivity unless `keep`.
     pub(super) fn flatten(&mut self, i: usize, keep: bool, parallel: bool) -> Result<()> {
         let split = self.split;
-        let flattened = matches!(
-            (split, self.rule),
-            (Split::Tri(2), Rule::Loop) | (Split::Quad, _)
-        );
+        // The rules with flattened tables are the rules with crease rules.
+        let flattened = crate::subdivide::sdc::masks::Scheme::of(self.rule).is_some();
         if self.levels == 0 || !flattened {
             return Ok(());
         }
