@@ -2,88 +2,198 @@
 //! flattened tables of Loop and Catmull-Clark, the kept written part under holes.
 
 use super::*;
+use crate::subdivide::{finite, to_faces};
+
+/// A level [`Refinement::refine_levels`] built, as the retention keeps it.
+enum Built {
+    Topology(Connectivity),
+    Mesh(HalfEdgeMesh),
+}
+
+impl Built {
+    fn topo(&self) -> Topo<'_> {
+        match self {
+            Built::Topology(c) => c.topo(),
+            Built::Mesh(m) => Topo::new(m),
+        }
+    }
+}
+
+/// The refinement's own inconsistency at `level` (a bug): [`Error::InvalidOutput`].
+pub(super) fn invalid(scheme: &str, level: u32, what: &str) -> Error {
+    Error::InvalidOutput {
+        scheme: scheme.to_owned(),
+        level,
+        what: what.into(),
+    }
+}
+
+/// What a refinement keeps of the levels it builds: the one difference between
+/// [`Refinement::new`] and the one-shot subdivision ([`one_shot`](super::one_shot)), which run
+/// the same level loop ([`Refinement::refine_levels`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Retain {
+    /// Every level's topology, flattened into its rule's fast tables once the next level is
+    /// built, and no positions: a refinement evaluated many times.
+    All,
+    /// Only the level refined and the one built, each a half-edge mesh whose positions are
+    /// evaluated on the way (the peak of levels `s - 1` and `s`); the last level of the 4:1
+    /// family and Catmull-Clark is written straight into a face list when it is planned so.
+    LastTwo,
+}
 
 impl Refinement {
-    /// Builds levels `1..=levels` (the topology `new` keeps).
-    pub(super) fn build(
+    /// Builds levels `1..=levels` from `mesh` (level 0), keeping what `retain` says:
+    /// [`Retain::All`] fills the refinement's levels and returns `None`; [`Retain::LastTwo`]
+    /// returns the last level built, `visit` seeing every level. The same size checks, the
+    /// same topology steps ([`Refinement::next_level`]), the same crease sharpness and, for
+    /// the one-shot subdivision, the same evaluation ([`Refinement::values_after`]) as every
+    /// later [`Refinement::evaluate`].
+    pub(super) fn refine_levels(
         &mut self,
+        mesh: &HalfEdgeMesh,
         planned: &[(Option<Sizes>, [usize; 3])],
         opts: &SubdivideOptions<'_>,
-    ) -> Result<()> {
+        retain: Retain,
+        visit: &mut (impl FnMut(u32, &HalfEdgeMesh) -> Result<()> + Send),
+    ) -> Result<Option<OneShot>> {
         let levels = self.levels;
         let parallel = self.threads != 1;
-        let report = |level: u32, size: &LevelSize| {
+        let report = |level: u32, [vertices, edges, faces]: [usize; 3]| {
             if let Some(progress) = opts.progress {
                 progress(&LevelDone {
                     level,
                     levels,
-                    vertices: size.vertices,
-                    edges: size.edges,
-                    faces: size.faces,
-                });
-            }
-        };
-        for (s, &(sizes, [vertices, edges, faces])) in (1..=levels).zip(planned) {
-            let before = self.topology.last().and_then(|l| l.topology.as_ref());
-            let Some(before) = before else {
-                return Err(Error::InvalidOutput {
-                    scheme: self.name.clone(),
-                    level: s,
-                    what: "no level to refine".into(),
-                });
-            };
-            let t = before.topo();
-            let step_b = self.step_b(&t, s, sizes, parallel)?;
-            let Some(expected) = sizes else {
-                // The last level of a direct rule: its faces are written from level s - 1.
-                let corners = match self.split {
-                    Split::Quad => 4 * faces,
-                    _ => 3 * faces,
-                };
-                let size = LevelSize {
                     vertices,
                     edges,
                     faces,
-                    corners,
-                };
-                self.face_degree = Some(corners / faces.max(1));
-                if let Some(last) = self.topology.last_mut() {
-                    last.step_b = step_b;
-                }
-                report(s, &size);
-                self.sizes.push(size);
-                break;
-            };
-            let ctx = self.context(s, expected, parallel);
-            let next = self.step(&t, &ctx)?;
-            let nt = next.topo();
-            if let (Some(creases), true) = (self.creases.as_mut(), s < levels) {
-                creases.push_child(s as usize - 1, &t, &nt);
-            }
-            let size = LevelSize {
-                vertices: nt.nv(),
-                edges: nt.ne(),
-                faces: nt.nf(),
-                corners: corners_of(&nt),
-            };
-            if let Some(last) = self.topology.last_mut() {
-                last.step_b = step_b;
-            }
-            report(s, &size);
-            self.sizes.push(size);
-            if s == levels {
-                let polygons = polygons_of(&nt)?;
-                self.face_degree = common_degree(&polygons);
-                self.polygons = Some(polygons);
-            } else {
-                self.topology.push(Level {
-                    topology: Some(next),
-                    step_b: None,
-                    fast: None,
                 });
-                // Level s - 1 is not needed as connectivity any more (a lower peak).
-                self.flatten(s as usize - 1, false, parallel)?;
             }
+        };
+        // The level the one-shot subdivision holds (Retain::LastTwo).
+        let mut current: Option<HalfEdgeMesh> = None;
+        for (s, &(sizes, [vertices, edges, faces])) in (1..=levels).zip(planned) {
+            let held = current.as_ref().unwrap_or(mesh);
+            let t = match retain {
+                Retain::LastTwo => Topo::new(held),
+                Retain::All => match self.topology.last().and_then(|l| l.topology.as_ref()) {
+                    Some(before) => before.topo(),
+                    None => return Err(invalid(&self.name, s, "no level to refine")),
+                },
+            };
+            let expected = sizes.unwrap_or(Sizes {
+                vertices,
+                halfedges: 2 * edges,
+                faces,
+            });
+            let ctx = self.context(s, expected, parallel);
+            let step_b = self.step_b(&t, s, sizes, parallel)?;
+            // The one-shot subdivision evaluates this level from the one before as it is (no
+            // fast tables: one evaluation; the crease table of the level under crease rules),
+            // positions first: their temporaries are freed before the topology's exist.
+            let positions = match retain {
+                Retain::All => None,
+                Retain::LastTwo => {
+                    let creased = self.crease_table(s, &t, parallel)?;
+                    let before = LevelRef {
+                        topology: Some(t),
+                        step_b: step_b.as_ref(),
+                        fast: creased.as_ref(),
+                    };
+                    let positions =
+                        self.values_after(&before, &held.positions, vertices, "positions")?;
+                    drop(creased);
+                    let origin = finite::Before::Mesh(held);
+                    finite::check_positions(&self.name, self.split, s, &origin, &positions)?;
+                    Some(positions)
+                }
+            };
+            if sizes.is_none() {
+                // The last level of a direct rule: its faces are written from level s - 1.
+                let degree = if self.split == Split::Quad { 4 } else { 3 };
+                report(s, [vertices, edges, faces]);
+                let Some(positions) = positions else {
+                    self.face_degree = Some(degree);
+                    if let Some(last) = self.topology.last_mut() {
+                        last.step_b = step_b;
+                    }
+                    self.sizes.push(LevelSize {
+                        vertices,
+                        edges,
+                        faces,
+                        corners: degree * faces,
+                    });
+                    break;
+                };
+                let quads = self.split == Split::Quad;
+                let (polygons, edges) = to_faces::faces_after(&t, positions, quads, &ctx)?;
+                return Ok(Some(OneShot::Faces(polygons, edges)));
+            }
+            let next = self.next_level(&t, &ctx, positions)?;
+            let next = match (retain, next) {
+                (Retain::All, Next::Topology(c, _)) => Built::Topology(c),
+                (Retain::All, Next::Mesh(m)) => Built::Topology(Connectivity::from_mesh(m)),
+                (_, Next::Topology(c, Some(positions))) => {
+                    let (n, capacity) = (positions.len(), positions.capacity());
+                    ctx.expect_exact("vertex positions", vertices, n, capacity)?;
+                    Built::Mesh(c.with_positions(positions))
+                }
+                (_, Next::Topology(..)) => return Err(ctx.invalid("no positions".into())),
+                (_, Next::Mesh(m)) => Built::Mesh(m),
+            };
+            let nt = next.topo();
+            if let Some(creases) = self.creases.as_mut() {
+                // The child's sharpness, when a level follows.
+                if s < levels {
+                    creases.push_child(s as usize - 1, &t, &nt);
+                }
+            }
+            let size = [nt.nv(), nt.ne(), nt.nf()];
+            let corners = corners_of(&nt);
+            match next {
+                Built::Topology(next) => {
+                    if let Some(last) = self.topology.last_mut() {
+                        last.step_b = step_b;
+                    }
+                    report(s, size);
+                    let [vertices, edges, faces] = size;
+                    self.sizes.push(LevelSize {
+                        vertices,
+                        edges,
+                        faces,
+                        corners,
+                    });
+                    if s == levels {
+                        let polygons = polygons_of(&next.topo())?;
+                        self.face_degree = common_degree(&polygons);
+                        self.polygons = Some(polygons);
+                    } else {
+                        self.topology.push(Level {
+                            topology: Some(next),
+                            step_b: None,
+                            fast: None,
+                        });
+                        // Level s - 1 is not needed as connectivity any more (a lower peak).
+                        self.flatten(s as usize - 1, false, parallel)?;
+                    }
+                }
+                Built::Mesh(next) => {
+                    // The parent's sharpness is dropped, and level s - 1 before the last
+                    // level is visited.
+                    if let Some(creases) = self.creases.as_mut() {
+                        creases.release(s as usize - 1);
+                    }
+                    if s == levels {
+                        drop(current.take());
+                    }
+                    visit(s, &next)?;
+                    report(s, size);
+                    current = Some(next);
+                }
+            }
+        }
+        if let Retain::LastTwo = retain {
+            return Ok(Some(OneShot::Mesh(current.unwrap_or_else(|| mesh.clone()))));
         }
         if levels == 0 {
             if let Some(base) = &self.topology[0].topology {
@@ -97,7 +207,20 @@ impl Refinement {
         for i in 0..self.topology.len() {
             self.flatten(i, true, parallel)?;
         }
-        Ok(())
+        Ok(None)
+    }
+
+    /// What refines level `s - 1` (`t`) under crease rules, as [`Refinement::new`] builds it
+    /// for that level but with the half-edge kernels of the rule in place of its flattened
+    /// tables; `None` without crease rules.
+    fn crease_table(&self, s: u32, t: &Topo<'_>, parallel: bool) -> Result<Option<Fast>> {
+        let Some(creases) = &self.creases else {
+            return Ok(None);
+        };
+        match Fast::creased(creases, s as usize - 1, t, self.split, false, parallel)? {
+            Some(fast) => Ok(Some(fast)),
+            None => Err(invalid(&self.name, s, "no sharpness for the level refined")),
+        }
     }
 
     /// Flattens level `i` for the Loop and Catmull-Clark rules (a no-op for the others and
@@ -160,14 +283,6 @@ impl Refinement {
             expected,
             parallel,
         }
-    }
-
-    /// The connectivity of the level after `t` (`ctx.level`).
-    pub(super) fn step(&self, t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
-        Ok(match self.next_level(t, ctx, None)? {
-            Next::Topology(c, _) => c,
-            Next::Mesh(m) => Connectivity::from_mesh(m),
-        })
     }
 
     /// The level after `t` (`ctx.level`): the topology of every refinement and of the one-shot

@@ -107,6 +107,7 @@ pub use super::data::Scalar;
 pub(crate) use super::data::{Sparse, Support, Vector};
 
 use self::creases::{Creases, LevelTable};
+use self::levels::Retain;
 use self::tables::{crease_budgets, Fast};
 use super::build::{Sizes, StepContext};
 use super::par::Slots;
@@ -417,10 +418,7 @@ impl Refinement {
         let plan = super::plan(rule, &counts)?;
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
-        let mut creases = creases()?;
-        if let Some(creases) = creases.as_mut() {
-            creases.set_budgets(crease_budgets(&plan, &counts, levels)?);
-        }
+        let creases = creases()?;
         let planned = plan_sizes(&plan, &counts, levels, !direct(plan.split))?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
@@ -444,26 +442,8 @@ impl Refinement {
                     })?,
             )),
         };
-        let template = match plan.split {
-            Split::Tri(n) => Some(Template::new(n)),
-            _ => None,
-        };
-        let mut refinement = Refinement {
-            rule,
-            name: plan.name.clone(),
-            split: plan.split,
-            levels,
-            threads: opts.threads,
-            pool,
-            template,
-            topology: Vec::with_capacity(levels.clamp(1, 64) as usize),
-            sizes: Vec::with_capacity(levels as usize + 1),
-            polygons: None,
-            face_degree: None,
-            creases,
-            written: None,
-            uvs: None,
-        };
+        let mut refinement =
+            Refinement::empty(&plan, &counts, levels, opts.threads, pool, creases)?;
         let base = Topo::new(mesh);
         refinement.sizes.push(LevelSize {
             vertices: base.nv(),
@@ -476,11 +456,51 @@ impl Refinement {
             step_b: None,
             fast: None,
         });
-        refinement.install(|r| r.build(&planned, opts))?;
+        let run = |r: &mut Refinement| {
+            r.refine_levels(mesh, &planned, opts, Retain::All, &mut |_, _| Ok(()))
+        };
+        refinement.install(run)?;
         if let (Some(holes), Some(predicted)) = (holes, written) {
             refinement.keep_written(mesh, holes, &predicted)?;
         }
         Ok(refinement)
+    }
+
+    /// A refinement of `plan` to `levels` on a mesh with `counts` that holds no level yet,
+    /// under `creases` (their per-level table budgets set): what [`Refinement::refine_levels`]
+    /// fills.
+    fn empty(
+        plan: &Plan,
+        counts: &MeshCounts,
+        levels: u32,
+        threads: usize,
+        pool: Option<Arc<rayon::ThreadPool>>,
+        mut creases: Option<Creases>,
+    ) -> Result<Refinement> {
+        if let Some(creases) = creases.as_mut() {
+            // Each level's tables are bounded (the same choices for every retention).
+            creases.set_budgets(crease_budgets(plan, counts, levels)?);
+        }
+        let template = match plan.split {
+            Split::Tri(n) => Some(Template::new(n)),
+            _ => None,
+        };
+        Ok(Refinement {
+            rule: plan.rule,
+            name: plan.name.clone(),
+            split: plan.split,
+            levels,
+            threads,
+            pool,
+            template,
+            topology: Vec::with_capacity(levels.clamp(1, 64) as usize),
+            sizes: Vec::with_capacity(levels.min(64) as usize + 1),
+            polygons: None,
+            face_degree: None,
+            creases,
+            written: None,
+            uvs: None,
+        })
     }
 
     /// Replaces the last level's face list and sizes by its written part (holes and their
