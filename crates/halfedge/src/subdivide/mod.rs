@@ -92,7 +92,7 @@
 //! mismatch is `Error::PredictionMismatch`, a bug. Topology is built by index arithmetic (each
 //! module documents its numbering); only levels `s - 1` and `s` are alive. `subdivide`,
 //! `subdivide_to_face_list` and `verify` are a thin wrapper over the refinement (below): its
-//! private streaming mode (`refine/oneshot.rs`) runs the refinement's own size checks, topology
+//! one level loop with the retention `LastTwo` (`refine/oneshot.rs`) runs the refinement's own size checks, topology
 //! steps (`Refinement::next_level`), geometry (`Refinement::values_after`, the dispatch the
 //! stencils use) and index buffers (`to_faces::faces_after`), keeping only the level it refines
 //! (as a half-edge mesh with its positions) and the one it builds and flattening nothing into fast

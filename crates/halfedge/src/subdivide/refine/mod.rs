@@ -41,8 +41,8 @@
 //!
 //! The one-shot subdivision is a refinement: [`subdivide`](super::subdivide),
 //! [`subdivide_to_face_list`](super::subdivide_to_face_list) and
-//! [`verify`](super::verify) run a private streaming mode of [`Refinement`] that checks the
-//! same sizes, builds each level by the same topology step, computes its positions by the
+//! [`verify`](super::verify) run the refinement's one level loop with the retention
+//! `Retain::LastTwo` (`levels.rs`, `oneshot.rs`): it checks the same sizes, builds each level by the same topology step, computes its positions by the
 //! same evaluation dispatch as [`Refinement::stencils`] and writes the last level's faces
 //! with the same index buffers as [`Refinement::write_triangles`], keeping only two levels
 //! alive and no flattened tables (it evaluates once), except, under crease rules, the weight
