@@ -486,10 +486,33 @@ fn face_lists_agree_with_half_edge_subdivision_on_manifold_meshes() {
             he.counts(),
             "{scheme} on {b}"
         );
+        // The same split: the same faces in the same order from the same corner, up to the
+        // numbering of the vertices.
+        same_faces_up_to_numbering(&fl, &he.to_polygon_mesh(), &format!("{scheme} on {b}"));
         assert_reports(
             scheme,
             &verify_polygons(&polygons, scheme, 2, &opts()).expect(scheme),
         );
+    }
+}
+
+/// Panics unless `a` and `b` have the same faces, corner by corner, under one bijection of
+/// their vertices.
+fn same_faces_up_to_numbering(a: &PolygonMesh, b: &PolygonMesh, what: &str) {
+    assert_eq!(a.n_faces(), b.n_faces(), "{what}: faces");
+    assert_eq!(a.n_vertices(), b.n_vertices(), "{what}: vertices");
+    let (mut to_b, mut to_a) = (
+        vec![u32::MAX; a.n_vertices()],
+        vec![u32::MAX; b.n_vertices()],
+    );
+    for (f, (fa, fb)) in a.faces().zip(b.faces()).enumerate() {
+        assert_eq!(fa.len(), fb.len(), "{what}: face {f}");
+        for (&va, &vb) in fa.iter().zip(fb) {
+            let (x, y) = (&mut to_b[va as usize], &mut to_a[vb as usize]);
+            assert!(*x == u32::MAX || *x == vb, "{what}: face {f}, vertex {va}");
+            assert!(*y == u32::MAX || *y == va, "{what}: face {f}, vertex {vb}");
+            (*x, *y) = (vb, va);
+        }
     }
 }
 

@@ -92,3 +92,19 @@ pub(crate) fn cc_edge<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], e: 
             .scale(0.25)
     }
 }
+
+/// The child quad at a corner of face `face` on a level of `nv` vertices and `ne` edges:
+/// `[corner, point of edge side, face point, point of edge before]`, the corner's vertex, the
+/// edge of the side leaving it and the edge of the side arriving at it (the numbering of the
+/// module docs, shared by the last level as a face list and raw face lists).
+#[inline(always)]
+pub(crate) fn quad_corners(
+    nv: u32,
+    ne: u32,
+    face: u32,
+    corner: u32,
+    side: u32,
+    before: u32,
+) -> [u32; 4] {
+    [corner, nv + side, nv + ne + face, nv + before]
+}

@@ -8,14 +8,21 @@
 //! the order of their sorted vertex pairs; `F` faces)
 //!
 //! - 1:N²: old vertices, then `N - 1` points per edge (from its smaller vertex id), then the
-//!   interior points of each face; faces `N² f + t`.
+//!   interior points of each face; faces `N² f + t`, each triangle's corners written by the
+//!   split's one template (`trisplit::Template::write_corners`, on a `Frame` of the face).
 //! - Catmull-Clark: old vertices, then one point per edge, then one per face; the corner `k` of
-//!   face `f` becomes the quad (corner, point of side `k`, face point, point of side `k - 1`).
+//!   face `f` becomes the quad (corner, point of side `k`, face point, point of side `k - 1`):
+//!   `catmull_clark::quad_corners`.
+//!
+//! The splits are the half-edge levels' own, so on a manifold mesh the faces are those of the
+//! half-edge subdivision, face by face from the same corner, up to the numbering of the
+//! vertices (`tests/subdivide.rs`).
 
 use glam::{DVec2, DVec3};
 
 use super::build::StepContext;
-use super::trisplit::PointRef;
+use super::catmull_clark::quad_corners;
+use super::trisplit::Frame;
 use super::{sizes, LevelDone, Plan, Rule, Split, SubdivideOptions, Template};
 use crate::error::FaceVertices;
 use crate::mesh::INVALID;
@@ -116,12 +123,10 @@ fn tri_split(
     let n = template.n;
     let nv = ix.positions.len() as u32;
     let ne = ix.edge_low.len() as u32;
-    let per_face = template.interior_points.len() as u32;
-    let interior_base = nv + (n - 1) * ne;
+    let mut corners = vec![0u32; 3 * template.n_triangles()];
 
     let mut positions = super::alloc::with_capacity(expected_vertices, "positions")?;
     positions.extend_from_slice(&ix.positions);
-    let nf = n as f64;
     // Endpoints of each edge (the first side found).
     let mut edge_high = super::alloc::filled(INVALID, ne as usize, "edge high")?;
     let offsets = ix.mesh.face_offsets();
@@ -137,7 +142,7 @@ fn tri_split(
         let a = ix.positions[low as usize];
         let b = ix.positions[high as usize];
         for k in 1..n {
-            positions.push(a + (b - a) * (f64::from(k) / nf));
+            positions.push(template.edge_point(a, b, k));
         }
     }
     let mut out = PolygonMesh::with_positions(Vec::new());
@@ -153,30 +158,19 @@ fn tri_split(
             ix.corner_edge[start + 1],
             ix.corner_edge[start + 2],
         ];
-        let p = [0, 1, 2].map(|i| ix.positions[vs[i] as usize]);
-        for &(a, b) in &template.interior_points {
-            positions.push(
-                p[0] + (p[1] - p[0]) * (f64::from(a) / nf) + (p[2] - p[0]) * (f64::from(b) / nf),
-            );
+        let p = vs.map(|v| ix.positions[v as usize]);
+        for i in 0..template.interior_points.len() {
+            positions.push(template.interior_point(p, i));
         }
-        let point = |r: PointRef| -> u32 {
-            match r {
-                PointRef::Corner(k) => vs[k as usize],
-                PointRef::Side(s, j) => {
-                    let s = s as usize;
-                    let e = es[s];
-                    let k = if vs[s] == ix.edge_low[e as usize] {
-                        j - 1
-                    } else {
-                        n - 1 - j
-                    };
-                    nv + e * (n - 1) + k
-                }
-                PointRef::Interior(i) => interior_base + f as u32 * per_face + i,
-            }
+        let sides = [0, 1, 2].map(|s| (es[s], vs[s] == ix.edge_low[es[s] as usize]));
+        let frame = Frame {
+            corners: vs,
+            sides,
+            face: f as u32,
         };
-        for tri in template.triangle_points() {
-            out.push_face(&tri.map(point));
+        template.write_corners(&frame, nv, ne, &mut corners);
+        for tri in corners.chunks_exact(3) {
+            out.push_face(tri);
         }
     }
     out.positions = positions;
@@ -209,17 +203,12 @@ fn catmull_clark(
     super::alloc::reserve_faces(&mut out, expected_faces, 4 * expected_faces)?;
     for f in 0..ix.mesh.n_faces() {
         let (start, end) = (offsets[f], offsets[f + 1]);
-        let fp = nv + ne + f as u32;
         let mut centroid = DVec3::ZERO;
         for c in start..end {
             centroid += ix.positions[ix.corner_vertex[c] as usize];
             let prev = if c == start { end - 1 } else { c - 1 };
-            out.push_face(&[
-                ix.corner_vertex[c],
-                nv + ix.corner_edge[c],
-                fp,
-                nv + ix.corner_edge[prev],
-            ]);
+            let (v, side, before) = (ix.corner_vertex[c], ix.corner_edge[c], ix.corner_edge[prev]);
+            out.push_face(&quad_corners(nv, ne, f as u32, v, side, before));
         }
         positions.push(centroid / (end - start) as f64);
     }

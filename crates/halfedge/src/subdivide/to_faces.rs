@@ -9,7 +9,9 @@
 //!
 //! The numbering is exactly the one of the half-edge step followed by
 //! [`HalfEdgeMesh::to_polygon_mesh`]: the same vertices, faces in the same order, each face
-//! starting at the same corner. With the numbering of `gather`:
+//! starting at the same corner. The corners are written by the split's own functions
+//! (`trisplit::Template::write_corners`, `catmull_clark::quad_corners`), with the numbering of
+//! `gather`:
 //!
 //! - 4:1, old face `f` with half-edges `h_0` (its first), `h_1`, `h_2` and edge midpoints
 //!   `m_c = V + (h_c >> 1)`: face `4f` is `[m_0, m_1, m_2]` and face `4f + 1 + c` is
@@ -19,9 +21,11 @@
 //!   `[source(h), V + (h >> 1), V + E + f, V + (p >> 1)]`.
 
 use super::build::StepContext;
+use super::catmull_clark::quad_corners;
 use super::gather::{catmull_clark_sizes, check, four_to_one_sizes};
 use super::par;
 use super::topo::Topo;
+use super::trisplit::{Frame, Template};
 use crate::{PolygonMesh, Result};
 
 /// Old faces per parallel task.
@@ -30,86 +34,70 @@ const FACES_PER_TASK: usize = 1 << 12;
 /// Below this many old faces the corners are written on the calling thread.
 const PARALLEL_MIN_FACES: usize = 1 << 12;
 
-/// The last level of a 4:1 step (`quads` false) or a Catmull-Clark step (`quads`) on `t` as a
+/// The last level of a 1:N² step (`template`) or a Catmull-Clark step (`None`) on `t` as a
 /// face list, with its `positions` computed by the caller (the refinement's evaluation); also
 /// returns the number of output edges.
 pub(crate) fn faces_after(
     t: &Topo<'_>,
     positions: Vec<glam::DVec3>,
-    quads: bool,
+    template: Option<&Template>,
     ctx: &StepContext<'_>,
 ) -> Result<(PolygonMesh, usize)> {
-    let built = if quads {
-        catmull_clark_sizes(t)
-    } else {
-        four_to_one_sizes(t)
+    let built = match template {
+        Some(_) => four_to_one_sizes(t),
+        None => catmull_clark_sizes(t),
     };
     check(ctx, built)?;
-    let degree = if quads { 4 } else { 3 };
+    let degree = if template.is_some() { 3 } else { 4 };
     let mut corners = super::alloc::filled(0u32, degree * built.faces, "corners")?;
-    if quads {
-        let written = catmull_clark_corners(t, &mut corners, ctx.parallel);
-        if written != built.faces {
-            return Err(ctx.mismatch("faces", built.faces, written));
-        }
-    } else {
-        four_to_one_corners(t, &mut corners, ctx.parallel);
+    let written = corners_after(t, template, &mut corners, ctx.parallel);
+    if written != built.faces {
+        return Err(ctx.mismatch("faces", built.faces, written));
     }
     let faces = finish(ctx, positions, corners, degree)?;
     Ok((faces, built.halfedges / 2))
 }
 
-/// The corners of the faces of a 4:1 step on `t`, three per face, into `corners` (exactly
-/// `12 F` entries).
-pub(crate) fn four_to_one_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) {
+/// The corners of the faces of a 1:N² step (`template`, three per triangle, `3 N² F`
+/// entries) or of a Catmull-Clark step (`None`, four per quad, `4 H` entries, `H` the face
+/// corners) on `t` into `corners`; returns the number of faces written.
+pub(crate) fn corners_after(
+    t: &Topo<'_>,
+    template: Option<&Template>,
+    corners: &mut [u32],
+    parallel: bool,
+) -> usize {
     let t = *t;
-    let nv = t.nv() as u32;
-    for_each_face::<12>(corners, parallel, |f, tris| {
-        let h0 = t.face_halfedge(f);
-        let h1 = t.next(h0);
-        let h2 = t.next(h1);
-        let [m0, m1, m2] = [nv + (h0 >> 1), nv + (h1 >> 1), nv + (h2 >> 1)];
-        tris.copy_from_slice(&[
-            m0,
-            m1,
-            m2,
-            m1,
-            m0,
-            t.target(h0),
-            m2,
-            m1,
-            t.target(h1),
-            m0,
-            m2,
-            t.target(h2),
-        ]);
+    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf());
+    let Some(template) = template else {
+        return catmull_clark_corners(&t, corners, parallel);
+    };
+    let per_face = 3 * template.n_triangles();
+    for_each_face(corners, per_face, parallel, |f, out| {
+        template.write_corners(&Frame::of(&t, f), nv, ne, out);
     });
+    corners.len().min(per_face * nf) / 3
 }
 
 /// The corners of the quads of a Catmull-Clark step on `t`, four per quad, into `corners`
 /// (`4 H` entries, `H` the face corners of `t`); returns the number of quads written.
-pub(crate) fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) -> usize {
+fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) -> usize {
     let t = *t;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf());
-    let quad = |f: u32, h: u32| -> [u32; 4] {
-        let p = t.prev(h);
-        [t.target(p), nv + (h >> 1), nv + ne + f, nv + (p >> 1)]
-    };
     if t.is_quad_mesh() && corners.len() == 16 * nf {
         // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
-        // and their targets are loaded once (prev(h_k) = h_(k-1), so `quad` is inlined here
-        // without its prev lookup).
-        for_each_face::<16>(corners, parallel, |f, quads| {
+        // and their targets are loaded once (prev(h_k) = h_(k-1)).
+        for_each_face(corners, 16, parallel, |f, quads| {
             let h0 = t.face_halfedge(f);
             let h1 = t.next(h0);
             let h2 = t.next(h1);
             let h3 = t.next(h2);
             let hs = [h0, h1, h2, h3];
             let targets = hs.map(|h| t.target(h));
-            let center = nv + ne + f;
             for (k, q) in quads.chunks_exact_mut(4).enumerate() {
                 let p = (k + 3) % 4;
-                q.copy_from_slice(&[targets[p], nv + (hs[k] >> 1), center, nv + (hs[p] >> 1)]);
+                let quad = quad_corners(nv, ne, f, targets[p], hs[k] >> 1, hs[p] >> 1);
+                q.copy_from_slice(&quad);
             }
         });
         return 4 * nf;
@@ -120,7 +108,8 @@ pub(crate) fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel:
     for f in 0..nf as u32 {
         t.for_face(f, |h| {
             if let Some(slot) = slots.next() {
-                slot.copy_from_slice(&quad(f, h));
+                let p = t.prev(h);
+                slot.copy_from_slice(&quad_corners(nv, ne, f, t.target(p), h >> 1, p >> 1));
                 written += 1;
             }
         });
@@ -128,22 +117,23 @@ pub(crate) fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel:
     written
 }
 
-/// Calls `write(f, out)` for every old face `f` in order, `out` the `K` corners it owns at
-/// `f * K` in `corners`; in parallel tasks of [`FACES_PER_TASK`] old faces when `parallel`
-/// and there are at least [`PARALLEL_MIN_FACES`].
+/// Calls `write(f, out)` for every old face `f` in order, `out` the `per_face` corners it
+/// owns at `f * per_face` in `corners`; in parallel tasks of [`FACES_PER_TASK`] old faces
+/// when `parallel` and there are at least [`PARALLEL_MIN_FACES`].
 #[inline]
-fn for_each_face<const K: usize>(
+fn for_each_face(
     corners: &mut [u32],
+    per_face: usize,
     parallel: bool,
     write: impl Fn(u32, &mut [u32]) + Sync + Send,
 ) {
     let fill = |(chunk, out): (usize, &mut [u32])| {
         let first = chunk * FACES_PER_TASK;
-        for (f, out) in (first as u32..).zip(out.chunks_exact_mut(K)) {
+        for (f, out) in (first as u32..).zip(out.chunks_exact_mut(per_face)) {
             write(f, out);
         }
     };
-    let (per_task, min) = (K * FACES_PER_TASK, K * PARALLEL_MIN_FACES);
+    let (per_task, min) = (per_face * FACES_PER_TASK, per_face * PARALLEL_MIN_FACES);
     par::for_each_chunk(corners, per_task, parallel, min, fill);
 }
 

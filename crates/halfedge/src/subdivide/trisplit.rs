@@ -9,7 +9,11 @@
 //! - Edges: edge `e` is cut into the `N` pieces `N e + k` (ordered the same way; half-edge
 //!   `2 (N e + k)` runs in the direction of `2e`); face `f` gets its `3 N (N - 1) / 2` interior
 //!   edges after all pieces.
-//! - Faces: face `f` becomes the faces `N² f + t`, `t` in the order of the split template.
+//! - Faces: face `f` becomes the faces `N² f + t`, `t` in the order of the split template
+//!   ([`Template`]: for `N = 2` the 4:1 order of `gather`, the middle triangle first; for
+//!   `N >= 3` row by row from corner 0). The template writes the corners of every level the
+//!   split builds: the half-edge step, the last level as a face list (`to_faces`) and raw
+//!   face lists (`faces`).
 //!
 //! So `V' = V + (N-1) E + F (N-1)(N-2)/2`, `E' = N E + 3 N (N-1)/2 F`, `F' = N² F`: for
 //! `N = 2`, `V + E`, `2E + 3F`, `4F`.
@@ -56,10 +60,82 @@ pub(crate) struct Template {
     triangles: Vec<[(PointRef, SideRef); 3]>,
 }
 
+/// A triangle of the level refined as the split numbers its points: its corners (the
+/// sources of its sides `0, 1, 2`), each side's edge and whether the side runs along that edge
+/// (from the end the edge's points are counted from), and the triangle's face.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Frame {
+    pub(crate) corners: [u32; 3],
+    pub(crate) sides: [(u32, bool); 3],
+    pub(crate) face: u32,
+}
+
+impl Frame {
+    /// The frame of triangle `f` of the half-edge level `t` (an edge's points counted from the
+    /// source of its even half-edge).
+    #[inline]
+    pub(crate) fn of(t: &Topo<'_>, f: u32) -> Frame {
+        let h0 = t.face_halfedge(f);
+        let h1 = t.next(h0);
+        let h2 = t.next(h1);
+        let side = |h: u32| (h >> 1, h & 1 == 0);
+        Frame {
+            corners: [t.target(h2), t.target(h0), t.target(h1)],
+            sides: [side(h0), side(h1), side(h2)],
+            face: f,
+        }
+    }
+}
+
 impl Template {
-    /// The corner points of each small triangle, in order.
-    pub(crate) fn triangle_points(&self) -> impl Iterator<Item = [PointRef; 3]> + '_ {
-        self.triangles.iter().map(|t| [t[0].0, t[1].0, t[2].0])
+    /// The vertex of point `p` of the triangle `frame` on a level of `nv` vertices and `ne`
+    /// edges: the numbering of the module docs, shared by every level the split builds (the
+    /// half-edge step, the last level as a face list, raw face lists).
+    #[inline]
+    pub(crate) fn vertex(&self, p: PointRef, frame: &Frame, nv: u32, ne: u32) -> u32 {
+        let n = self.n;
+        match p {
+            PointRef::Corner(k) => frame.corners[k as usize],
+            PointRef::Side(s, j) => {
+                let (e, along) = frame.sides[s as usize];
+                nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
+            }
+            PointRef::Interior(i) => {
+                let per_face = self.interior_points.len() as u32;
+                nv + (n - 1) * ne + frame.face * per_face + i
+            }
+        }
+    }
+
+    /// The corners of the `N²` triangles of `frame`, in order, into `out` (`3 N²` entries).
+    #[inline]
+    pub(crate) fn write_corners(&self, frame: &Frame, nv: u32, ne: u32, out: &mut [u32]) {
+        let points = self.triangles.iter().flat_map(|t| t.iter().map(|c| c.0));
+        for (o, p) in out.iter_mut().zip(points) {
+            *o = self.vertex(p, frame, nv, ne);
+        }
+    }
+
+    /// Point `k` (`1..N`) of the edge from `a` to `b` under the linear rule.
+    #[inline]
+    pub(crate) fn edge_point<V: Vector>(&self, a: V, b: V, k: u32) -> V {
+        a.clone()
+            .add(b.sub(a).scale(f64::from(k) / f64::from(self.n)))
+    }
+
+    /// Interior point `i` of the triangle on the corners `p` under the linear rule.
+    #[inline]
+    pub(crate) fn interior_point<V: Vector>(&self, [p0, p1, p2]: [V; 3], i: usize) -> V {
+        let (a, b) = self.interior_points[i];
+        let n = f64::from(self.n);
+        p0.clone()
+            .add(p1.sub(p0.clone()).scale(f64::from(a) / n))
+            .add(p2.sub(p0).scale(f64::from(b) / n))
+    }
+
+    /// The number of triangles, `N²`.
+    pub(crate) fn n_triangles(&self) -> usize {
+        self.triangles.len()
     }
 
     /// Builds the template of the 1:N² split.
@@ -126,11 +202,23 @@ impl Template {
             }
             triangles.push(tri);
         };
-        for b in 0..n {
-            for a in 0..n - b {
-                push([(a, b), (a + 1, b), (a, b + 1)]);
-                if a + b + 2 <= n {
-                    push([(a + 1, b), (a + 1, b + 1), (a, b + 1)]);
+        if n == 2 {
+            // The 4:1 order (`gather`'s half-edge numbering): the middle triangle on the
+            // midpoints `m_c` of sides 0, 1, 2, then at each corner `c + 1` (the target of side
+            // `c`) the triangle `[m_(c+1), m_c, corner]`.
+            let m = [(1, 0), (1, 1), (0, 1)];
+            let corner = [(0, 0), (2, 0), (0, 2)];
+            push(m);
+            for c in 0..3 {
+                push([m[(c + 1) % 3], m[c], corner[(c + 1) % 3]]);
+            }
+        } else {
+            for b in 0..n {
+                for a in 0..n - b {
+                    push([(a, b), (a + 1, b), (a, b + 1)]);
+                    if a + b + 2 <= n {
+                        push([(a + 1, b), (a + 1, b + 1), (a, b + 1)]);
+                    }
                 }
             }
         }
@@ -158,8 +246,6 @@ pub(crate) fn tri_split_step(
     let t = *t;
     let n = template.n;
     let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let points_per_face = template.interior_points.len() as u32;
-    let interior_base = nv + (n - 1) * ne;
     let edge_base = n * ne;
 
     let mut b = Builder::new(ctx.expected)?;
@@ -169,18 +255,8 @@ pub(crate) fn tri_split_step(
         let h1 = t.next(h0);
         let h2 = t.next(h1);
         let hs = [h0, h1, h2];
-        let vs = [t.source(h0), t.source(h1), t.source(h2)];
-        let point = |p: PointRef| -> u32 {
-            match p {
-                PointRef::Corner(k) => vs[k as usize],
-                PointRef::Side(s, j) => {
-                    let h = hs[s as usize];
-                    let k = if h & 1 == 0 { j - 1 } else { n - 1 - j };
-                    nv + (h >> 1) * (n - 1) + k
-                }
-                PointRef::Interior(i) => interior_base + f * points_per_face + i,
-            }
-        };
+        let frame = Frame::of(&t, f);
+        let point = |p: PointRef| template.vertex(p, &frame, nv, ne);
         let side = |s: SideRef| -> u32 {
             match s {
                 SideRef::Piece { side, j, forward } => {
@@ -244,10 +320,8 @@ pub(crate) fn tri_points<V: Vector>(
             Rule::Butterfly => butterfly_edge(&t, src, rings.as_ref(), e),
             // The linear 1:N² split (`tri-split-N`; no other rule runs a triangle split).
             _ => {
-                let k = (i % per_edge) as f64 + 1.0;
-                let a = pos(t.source(2 * e));
-                let z = pos(t.target(2 * e));
-                a.clone().add(z.sub(a).scale(k / n as f64))
+                let k = (i % per_edge) as u32 + 1;
+                template.edge_point(pos(t.source(2 * e)), pos(t.target(2 * e)), k)
             }
         }
     });
@@ -256,16 +330,10 @@ pub(crate) fn tri_points<V: Vector>(
     if ppf > 0 {
         out.append(nf as usize * ppf, parallel, |i| {
             let f = (i / ppf) as u32;
-            let (a, bb) = template.interior_points[i % ppf];
             let h0 = t.face_halfedge(f);
             let h1 = t.next(h0);
-            let p0 = pos(t.source(h0));
-            let p1 = pos(t.target(h0));
-            let p2 = pos(t.target(h1));
-            let nn = n as f64;
-            p0.clone()
-                .add(p1.sub(p0.clone()).scale(a as f64 / nn))
-                .add(p2.sub(p0).scale(bb as f64 / nn))
+            let p = [t.source(h0), t.target(h0), t.target(h1)].map(pos);
+            template.interior_point(p, i % ppf)
         });
     }
 }

@@ -83,13 +83,9 @@ impl Refinement {
             return Ok(());
         };
         let expected = self.n_faces(self.levels);
-        let written = self.run(|| match self.split {
-            Split::Quad => crate::subdivide::to_faces::catmull_clark_corners(&t, out, parallel),
-            _ => {
-                crate::subdivide::to_faces::four_to_one_corners(&t, out, parallel);
-                4 * t.nf()
-            }
-        });
+        let template = self.template.as_ref();
+        let written =
+            self.run(|| crate::subdivide::to_faces::corners_after(&t, template, out, parallel));
         if written != expected {
             return Err(Error::PredictionMismatch {
                 scheme: self.name.clone(),

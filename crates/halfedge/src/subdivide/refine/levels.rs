@@ -125,8 +125,8 @@ impl Refinement {
                     });
                     break;
                 };
-                let quads = self.split == Split::Quad;
-                let (polygons, edges) = to_faces::faces_after(&t, positions, quads, &ctx)?;
+                let template = self.template.as_ref();
+                let (polygons, edges) = to_faces::faces_after(&t, positions, template, &ctx)?;
                 return Ok(Some(OneShot::Faces(polygons, edges)));
             }
             let next = self.next_level(&t, &ctx, positions)?;
