@@ -17,6 +17,7 @@
 
 use super::data::Vector;
 use super::par::{Sink, Slots};
+use super::sdc::masks::CATMULL_CLARK_EDGE;
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 
@@ -87,10 +88,16 @@ pub(crate) fn cc_edge<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], e: 
     if t.is_boundary(h) || t.is_boundary(h ^ 1) {
         mid.scale(0.5)
     } else {
-        mid.add(face_points[t.face(h) as usize].clone())
-            .add(face_points[t.face(h ^ 1) as usize].clone())
-            .scale(0.25)
+        let (f1, f2) = (t.face(h) as usize, t.face(h ^ 1) as usize);
+        cc_interior_edge(mid, face_points[f1].clone(), face_points[f2].clone())
     }
+}
+
+/// Catmull-Clark's smooth edge rule on the sum `ends` of the edge's ends and its two face
+/// points: `(a + b + f1 + f2) / 4`.
+#[inline(always)]
+pub(crate) fn cc_interior_edge<V: Vector>(ends: V, f1: V, f2: V) -> V {
+    ends.add(f1).add(f2).scale(CATMULL_CLARK_EDGE)
 }
 
 /// The child quad at a corner of face `face` on a level of `nv` vertices and `ne` edges:

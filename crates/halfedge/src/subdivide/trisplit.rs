@@ -24,6 +24,7 @@ use std::f64::consts::PI;
 use super::build::{Builder, StepContext};
 use super::data::Vector;
 use super::par::Sink;
+use super::sdc::masks::{loop_smooth, CREASE_VERTEX, LOOP_EDGE};
 use super::topo::Topo;
 use super::wide::{angle, Ring, Wide};
 use crate::{HalfEdgeMesh, Result, Rule};
@@ -365,14 +366,8 @@ pub(crate) fn loop_vertex<V: Vector>(t: &Topo<'_>, src: &[V], v: u32) -> V {
 /// Loop's interior vertex rule on the vertex `p` and the sum of its `n` neighbours.
 #[inline(always)]
 pub(crate) fn loop_interior<V: Vector>(p: V, sum: V, n: usize) -> V {
-    // Valence 6 (almost every vertex after a few levels): β = 1/16 exactly, no cosine.
-    if n == 6 {
-        return p.scale(0.625).add(sum.scale(0.0625));
-    }
-    let nf = n as f64;
-    let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / nf).cos();
-    let beta = (5.0 / 8.0 - c * c) / nf;
-    p.scale(1.0 - nf * beta).add(sum.scale(beta))
+    let (vertex, neighbour) = loop_smooth(n);
+    p.scale(vertex).add(sum.scale(neighbour))
 }
 
 /// The cubic B-spline rule of a boundary vertex `v` (Loop and Catmull-Clark):
@@ -388,7 +383,8 @@ pub(crate) fn boundary_vertex<V: Vector>(t: &Topo<'_>, src: &[V], v: u32) -> V {
 /// `3/4 v + 1/8 (left + right)`.
 #[inline(always)]
 pub(crate) fn boundary_rule<V: Vector>(v: V, left: V, right: V) -> V {
-    v.scale(0.75).add(left.add(right).scale(0.125))
+    let [vertex, neighbour] = CREASE_VERTEX;
+    v.scale(vertex).add(left.add(right).scale(neighbour))
 }
 
 /// Loop's edge rule: `3/8 (a + b) + 1/8 (c + d)`; boundary edges: midpoints.
@@ -410,7 +406,8 @@ pub(crate) fn loop_edge<V: Vector>(t: &Topo<'_>, src: &[V], e: u32) -> V {
 /// `3/8 (a + b) + 1/8 (c + d)`.
 #[inline(always)]
 pub(crate) fn loop_interior_edge<V: Vector>(a: V, b: V, c: V, d: V) -> V {
-    a.add(b).scale(0.375).add(c.add(d).scale(0.125))
+    let [end, opposite] = LOOP_EDGE;
+    a.add(b).scale(end).add(c.add(d).scale(opposite))
 }
 
 /// The modified butterfly edge rule (Zorin, Schröder, Sweldens 1996).

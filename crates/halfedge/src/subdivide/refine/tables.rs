@@ -8,7 +8,7 @@
 //! both give the same bits.
 
 use crate::mesh::INVALID;
-use crate::subdivide::catmull_clark::cc_interior;
+use crate::subdivide::catmull_clark::{cc_interior, cc_interior_edge};
 use crate::subdivide::par::{self, Sink, Slots};
 use crate::subdivide::topo::Topo;
 use crate::subdivide::trisplit::{boundary_rule, loop_interior, loop_interior_edge};
@@ -255,9 +255,7 @@ impl CcTables {
             if f1 == INVALID {
                 mid.scale(0.5)
             } else {
-                mid.add(fp[f1 as usize].clone())
-                    .add(fp[f2 as usize].clone())
-                    .scale(0.25)
+                cc_interior_edge(mid, fp[f1 as usize].clone(), fp[f2 as usize].clone())
             }
         });
     }

@@ -8,6 +8,32 @@ use std::f64::consts::PI;
 
 use super::crease::{is_sharp, VertexRule};
 
+/// The crease vertex mask (a boundary or crease vertex, the cubic B-spline): 3/4 of the vertex
+/// and 1/8 of each of its two neighbours along the crease.
+pub(crate) const CREASE_VERTEX: [f64; 2] = [0.75, 0.125];
+
+/// Loop's smooth edge mask: 3/8 of each end and 1/8 of each vertex opposite the edge.
+pub(crate) const LOOP_EDGE: [f64; 2] = [0.375, 0.125];
+
+/// Catmull-Clark's smooth edge mask: 1/4 of each end and of each side's face point.
+pub(crate) const CATMULL_CLARK_EDGE: f64 = 0.25;
+
+/// Loop's smooth vertex mask at `valence`: the vertex's weight `1 - n β` and each
+/// neighbour's `β`, with Loop's original `β = (5/8 - (3/8 + 1/4 cos(2π/n))²) / n` (`1/16` at
+/// valence 6, no cosine). OpenSubdiv computes `cos(2π · (1/n))` and scales by `1/n`: the two
+/// differ in the last bit at some valences (5, 10, 12, ...), within the 1e-15 of the
+/// differential tests.
+#[inline(always)]
+pub(crate) fn loop_smooth(valence: usize) -> (f64, f64) {
+    if valence == 6 {
+        return (0.625, 0.0625);
+    }
+    let n = valence as f64;
+    let c = 3.0 / 8.0 + 0.25 * (2.0 * PI / n).cos();
+    let beta = (5.0 / 8.0 - c * c) / n;
+    (1.0 - n * beta, beta)
+}
+
 /// The scheme of a crease-aware level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Scheme {
@@ -59,14 +85,15 @@ impl Mask {
             VertexRule::Crease => {
                 // 3/4 of the vertex and 1/8 of each of the two sharp edges (the first and last
                 // sharp ones in the ring: `GetSharpEdgePairOfCrease`).
-                self.vertex = 0.75;
+                let [vertex, edge] = CREASE_VERTEX;
+                self.vertex = vertex;
                 self.edges.resize(n, 0.0);
                 self.faces.resize(faces, 0.0);
                 let first = sharpness.iter().position(|&s| is_sharp(s));
                 let last = sharpness.iter().rposition(|&s| is_sharp(s));
                 if let (Some(a), Some(b)) = (first, last) {
-                    self.edges[a] = 0.125;
-                    self.edges[b] = 0.125;
+                    self.edges[a] = edge;
+                    self.edges[b] = edge;
                 }
             }
             VertexRule::Smooth | VertexRule::Dart => match scheme {
@@ -79,16 +106,7 @@ impl Mask {
                     self.faces.resize(faces, f);
                 }
                 Scheme::Loop => {
-                    let (e, v) = if faces == 6 {
-                        (0.0625, 0.625)
-                    } else {
-                        let valence = faces as f64;
-                        let inv = 1.0 / valence;
-                        let cos = (PI * 2.0 * inv).cos();
-                        let beta = 0.25 * cos + 0.375;
-                        let e = (0.625 - beta * beta) * inv;
-                        (e, 1.0 - e * valence)
-                    };
+                    let (v, e) = loop_smooth(faces);
                     self.vertex = v;
                     self.edges.resize(n, e);
                     self.faces.resize(faces, 0.0);
@@ -118,13 +136,13 @@ impl Mask {
 /// `sharpness` when it is sharp (a crease that becomes smooth).
 pub(crate) fn edge_mask(scheme: Scheme, sharpness: f32, triangles: [bool; 2]) -> (f64, [f64; 2]) {
     let (mut vw, fw) = match scheme {
-        Scheme::Loop => (0.375, 0.125),
+        Scheme::Loop => (LOOP_EDGE[0], LOOP_EDGE[1]),
         Scheme::CatmullClark if triangles[0] || triangles[1] => {
-            let weight = |tri: bool| if tri { 0.470 } else { 0.25 };
+            let weight = |tri: bool| if tri { 0.470 } else { CATMULL_CLARK_EDGE };
             let fw = 0.5 * (weight(triangles[0]) + weight(triangles[1]));
             (0.5 * (1.0 - 2.0 * fw), fw)
         }
-        Scheme::CatmullClark => (0.25, 0.25),
+        Scheme::CatmullClark => (CATMULL_CLARK_EDGE, CATMULL_CLARK_EDGE),
     };
     let mut fw = [fw, fw];
     if is_sharp(sharpness) {
