@@ -38,7 +38,7 @@ impl LoopTables {
     /// The tables of the level `t`.
     pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<LoopTables> {
         let t = *t;
-        let (nv, ne) = (t.nv(), t.ne());
+        let ne = t.ne();
         let edges = par::collect(ne, parallel, "Loop edge table", |e| {
             let h = 2 * e as u32;
             let (a, b) = (t.source(h), t.target(h));
@@ -48,27 +48,9 @@ impl LoopTables {
                 [a, b, t.target(t.next(h)), t.target(t.next(h ^ 1))]
             }
         })?;
-        let boundary = par::collect(nv, parallel, "Loop boundary flags", |v| {
-            t.is_boundary_vertex(v as u32)
-        })?;
-        // One walk per vertex, in chunks of vertices (in parallel when asked), concatenated.
-        let ring_of = |range: std::ops::Range<usize>| {
-            let mut ring = Vec::with_capacity(6 * range.len());
-            let mut ends = Vec::with_capacity(range.len());
-            for v in range {
-                let v = v as u32;
-                if boundary[v as usize] {
-                    let h = t.vertex_halfedge(v);
-                    ring.push(t.target(h));
-                    ring.push(t.source(t.prev(h)));
-                } else {
-                    t.for_outgoing(v, |h| ring.push(t.target(h)));
-                }
-                ends.push(ring.len() as u32);
-            }
-            (ring, ends)
-        };
-        let (ring, ring_offsets) = concat(nv, parallel, ring_of, "Loop rings")?;
+        let boundary = boundary_flags(&t, parallel)?;
+        let (ring, ring_offsets) =
+            rings(&t, &boundary, 6, parallel, "Loop rings", |h| t.target(h))?;
         Ok(LoopTables {
             edges,
             ring_offsets,
@@ -95,11 +77,7 @@ impl LoopTables {
         let nv = self.boundary.len();
         let pos = |v: u32| src[v as usize].clone();
         out.append(nv, parallel, |v| {
-            let (a, b) = (
-                self.ring_offsets[v] as usize,
-                self.ring_offsets[v + 1] as usize,
-            );
-            let ring = &self.ring[a..b];
+            let ring = entries_of(&self.ring_offsets, &self.ring, v);
             let p = src[v].clone();
             if self.boundary[v] {
                 return boundary_rule(p, pos(ring[1]), pos(ring[0]));
@@ -145,7 +123,7 @@ impl CcTables {
     /// The tables of the level `t`.
     pub(super) fn new(t: &Topo<'_>, parallel: bool) -> Result<CcTables> {
         let t = *t;
-        let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+        let (ne, nf) = (t.ne(), t.nf());
         let edges = par::collect(ne, parallel, "Catmull-Clark edge table", |e| {
             let h = 2 * e as u32;
             let (a, b) = (t.source(h), t.target(h));
@@ -155,26 +133,11 @@ impl CcTables {
                 [a, b, t.face(h), t.face(h ^ 1)]
             }
         })?;
-        let boundary = par::collect(nv, parallel, "boundary flags", |v| {
-            t.is_boundary_vertex(v as u32)
+        let boundary = boundary_flags(&t, parallel)?;
+        let what = "Catmull-Clark rings";
+        let (ring, ring_offsets) = rings(&t, &boundary, 4, parallel, what, |h| {
+            [t.target(h), t.face(h)]
         })?;
-        let ring_of = |range: std::ops::Range<usize>| {
-            let mut ring = Vec::with_capacity(4 * range.len());
-            let mut ends = Vec::with_capacity(range.len());
-            for v in range {
-                let v = v as u32;
-                if boundary[v as usize] {
-                    let h = t.vertex_halfedge(v);
-                    ring.push([t.target(h), INVALID]);
-                    ring.push([t.source(t.prev(h)), INVALID]);
-                } else {
-                    t.for_outgoing(v, |h| ring.push([t.target(h), t.face(h)]));
-                }
-                ends.push(ring.len() as u32);
-            }
-            (ring, ends)
-        };
-        let (ring, ring_offsets) = concat(nv, parallel, ring_of, "Catmull-Clark rings")?;
         let face_of = |range: std::ops::Range<usize>| {
             let mut corners = Vec::with_capacity(4 * range.len());
             let mut ends = Vec::with_capacity(range.len());
@@ -233,11 +196,7 @@ impl CcTables {
         let fp: &[V] = face_points;
         let mut out = Slots::new(head);
         out.append(nv, parallel, |v| {
-            let (a, b) = (
-                self.ring_offsets[v] as usize,
-                self.ring_offsets[v + 1] as usize,
-            );
-            let ring = &self.ring[a..b];
+            let ring = entries_of(&self.ring_offsets, &self.ring, v);
             let p = src[v].clone();
             if self.boundary[v] {
                 return boundary_rule(p, pos(ring[1][0]), pos(ring[0][0]));
@@ -358,6 +317,69 @@ fn ring_entries(t: &Topo<'_>) -> usize {
         }
     }
     entries
+}
+
+/// The entries of element `i` in `entries` with `offsets`.
+#[inline(always)]
+fn entries_of<'a, T>(offsets: &[u32], entries: &'a [T], i: usize) -> &'a [T] {
+    &entries[offsets[i] as usize..offsets[i + 1] as usize]
+}
+
+/// Whether each vertex of `t` is on the boundary.
+fn boundary_flags(t: &Topo<'_>, parallel: bool) -> Result<Vec<bool>> {
+    par::collect(t.nv(), parallel, "boundary flags", |v| {
+        t.is_boundary_vertex(v as u32)
+    })
+}
+
+/// Every vertex's ring as the vertex rules read it, concatenated with offsets: `entry(h)` of
+/// every outgoing half-edge `h` of an interior vertex, in order; for a boundary vertex
+/// (`boundary`) its two neighbours along the boundary, `entry` of its boundary half-edge and
+/// of the one arriving (`INVALID` in their other fields). One walk per vertex, in chunks of
+/// about `valence` entries per vertex (in parallel when asked).
+fn rings<T: Ring>(
+    t: &Topo<'_>,
+    boundary: &[bool],
+    valence: usize,
+    parallel: bool,
+    what: &str,
+    entry: impl Fn(u32) -> T + Sync + Send,
+) -> Result<(Vec<T>, Vec<u32>)> {
+    let ring_of = |range: std::ops::Range<usize>| {
+        let mut ring = Vec::with_capacity(valence * range.len());
+        let mut ends = Vec::with_capacity(range.len());
+        for v in range {
+            let v = v as u32;
+            if boundary[v as usize] {
+                let h = t.vertex_halfedge(v);
+                ring.push(T::along_boundary(t.target(h)));
+                ring.push(T::along_boundary(t.source(t.prev(h))));
+            } else {
+                t.for_outgoing(v, |h| ring.push(entry(h)));
+            }
+            ends.push(ring.len() as u32);
+        }
+        (ring, ends)
+    };
+    concat(t.nv(), parallel, ring_of, what)
+}
+
+/// An entry of a vertex ring: a neighbour, or a neighbour with the face between.
+trait Ring: Copy + Send {
+    /// The entry of a neighbour along the boundary.
+    fn along_boundary(v: u32) -> Self;
+}
+
+impl Ring for u32 {
+    fn along_boundary(v: u32) -> u32 {
+        v
+    }
+}
+
+impl Ring for [u32; 2] {
+    fn along_boundary(v: u32) -> [u32; 2] {
+        [v, INVALID]
+    }
 }
 
 /// The lists `part(range)` of `n` elements (each with the running end of every element's
