@@ -663,8 +663,8 @@ pub fn tri_split_subdivide(
     subdivide(mesh, Rule::TriSplit(n), levels, opts)
 }
 
-/// The level loop shared by [`subdivide`] and [`verify`] (the refinement's one-shot mode,
-/// [`refine::one_shot`]); `visit(level, mesh)` sees every level built.
+/// The level loop shared by [`subdivide`] and [`verify`] (the refinement's, keeping two
+/// levels: [`refine::one_shot`]); `visit(level, mesh)` sees every level built.
 fn run_levels(
     plan: &Plan,
     mesh: &HalfEdgeMesh,
