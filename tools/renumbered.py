@@ -85,8 +85,8 @@ def same_up_to_numbering(text_a, text_b):
         # Each corner as its values (not its indices: a file may repeat a value).
         corners = [tuple(None if p is None else va[k][to_a[k][p] if to_a else p]
                          for k, p in zip(("v", "vt", "vn"), c)) for c in face]
-        i = min(range(len(corners)), key=lambda k: corners[k])
-        return tuple(corners[i:] + corners[:i])
+        # The least rotation (a face may repeat a value: a degenerate triangle).
+        return min(tuple(corners[i:] + corners[:i]) for i in range(len(corners)))
 
     mine = collections.Counter(cycle(f, None) for f in fa)
     theirs = collections.Counter(cycle(f, maps) for f in fb)
