@@ -25,7 +25,7 @@ use super::catmull_clark::quad_corners;
 use super::gather::{catmull_clark_sizes, check, four_to_one_sizes};
 use super::par;
 use super::topo::Topo;
-use super::trisplit::{Frame, Template};
+use super::trisplit::{Frame, Template, FOUR_TO_ONE_SLOTS};
 use crate::{PolygonMesh, Result};
 
 /// Old faces per parallel task.
@@ -73,9 +73,22 @@ pub(crate) fn corners_after(
         return catmull_clark_corners(&t, corners, parallel);
     };
     let per_face = 3 * template.n_triangles();
-    for_each_face(corners, per_face, parallel, |f, out| {
-        template.write_corners(&Frame::of(&t, f), nv, ne, out);
-    });
+    if template.n == 2 {
+        // The last level of every 4:1 subdivision (millions of faces): the template's six
+        // points (the corners, the midpoints of sides 0, 1, 2, as `Template::vertex` numbers
+        // them for N = 2) copied by its constant slots.
+        for_each_face::<12>(corners, per_face, parallel, |f, out| {
+            let frame = Frame::of(&t, f);
+            let [a, b, c] = frame.corners;
+            let [s0, s1, s2] = frame.sides.map(|(e, _)| nv + e);
+            let ids = [a, b, c, s0, s1, s2];
+            out.copy_from_slice(&FOUR_TO_ONE_SLOTS.map(|k| ids[k]));
+        });
+    } else {
+        for_each_face::<0>(corners, per_face, parallel, |f, out| {
+            template.write_corners(&Frame::of(&t, f), nv, ne, out);
+        });
+    }
     corners.len().min(per_face * nf) / 3
 }
 
@@ -87,7 +100,7 @@ fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) -> u
     if t.is_quad_mesh() && corners.len() == 16 * nf {
         // Old face f owns output faces 4f..4f + 4: fill in chunks. The face's four half-edges
         // and their targets are loaded once (prev(h_k) = h_(k-1)).
-        for_each_face(corners, 16, parallel, |f, quads| {
+        for_each_face::<16>(corners, 16, parallel, |f, quads| {
             let h0 = t.face_halfedge(f);
             let h1 = t.next(h0);
             let h2 = t.next(h1);
@@ -119,14 +132,20 @@ fn catmull_clark_corners(t: &Topo<'_>, corners: &mut [u32], parallel: bool) -> u
 
 /// Calls `write(f, out)` for every old face `f` in order, `out` the `per_face` corners it
 /// owns at `f * per_face` in `corners`; in parallel tasks of [`FACES_PER_TASK`] old faces
-/// when `parallel` and there are at least [`PARALLEL_MIN_FACES`].
+/// when `parallel` and there are at least [`PARALLEL_MIN_FACES`]. `K`, when not 0, is
+/// `per_face` known to the compiler (the common degrees: a fixed-size copy per face).
 #[inline]
-fn for_each_face(
+fn for_each_face<const K: usize>(
     corners: &mut [u32],
     per_face: usize,
     parallel: bool,
     write: impl Fn(u32, &mut [u32]) + Sync + Send,
 ) {
+    debug_assert!(
+        K == 0 || K == per_face,
+        "{K} corners per face, not {per_face}"
+    );
+    let per_face = if K > 0 { K } else { per_face };
     let fill = |(chunk, out): (usize, &mut [u32])| {
         let first = chunk * FACES_PER_TASK;
         for (f, out) in (first as u32..).zip(out.chunks_exact_mut(per_face)) {

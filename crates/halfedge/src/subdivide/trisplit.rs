@@ -59,7 +59,18 @@ pub(crate) struct Template {
     pub(crate) interior_points: Vec<(u32, u32)>,
     interior_edges: u32,
     triangles: Vec<[(PointRef, SideRef); 3]>,
+    /// The template's points, each once: the corners, the points of sides 0, 1, 2, the
+    /// interior points.
+    points: Vec<PointRef>,
+    /// Per corner of every triangle, in order, its point's index in `points`.
+    slots: Vec<u32>,
 }
+
+/// The corners of [`Template::new(2)`](Template::new)'s four triangles as indices into its
+/// six points `[corner 0, corner 1, corner 2, midpoint of side 0, of side 1, of side 2]`: the
+/// template written out for the last level of every 4:1 subdivision (millions of faces,
+/// `to_faces`), checked equal to the template by a test.
+pub(crate) const FOUR_TO_ONE_SLOTS: [usize; 12] = [3, 4, 5, 4, 3, 1, 5, 4, 2, 3, 5, 0];
 
 /// A triangle of the level refined as the split numbers its points: its corners (the
 /// sources of its sides `0, 1, 2`), each side's edge and whether the side runs along that edge
@@ -74,7 +85,7 @@ pub(crate) struct Frame {
 impl Frame {
     /// The frame of triangle `f` of the half-edge level `t` (an edge's points counted from the
     /// source of its even half-edge).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn of(t: &Topo<'_>, f: u32) -> Frame {
         let h0 = t.face_halfedge(f);
         let h1 = t.next(h0);
@@ -108,12 +119,31 @@ impl Template {
         }
     }
 
-    /// The corners of the `N²` triangles of `frame`, in order, into `out` (`3 N²` entries).
+    /// The corners of the `N²` triangles of `frame`, in order, into `out` (`3 N²` entries):
+    /// each point's vertex computed once, then copied to its corners.
     #[inline]
     pub(crate) fn write_corners(&self, frame: &Frame, nv: u32, ne: u32, out: &mut [u32]) {
-        let points = self.triangles.iter().flat_map(|t| t.iter().map(|c| c.0));
-        for (o, p) in out.iter_mut().zip(points) {
-            *o = self.vertex(p, frame, nv, ne);
+        match self.points.len() {
+            // N = 2 and N = 3: the points on the stack, their number known to the compiler.
+            6 => self.write_through::<6>(frame, nv, ne, out),
+            10 => self.write_through::<10>(frame, nv, ne, out),
+            _ => {
+                for (o, &s) in out.iter_mut().zip(&self.slots) {
+                    *o = self.vertex(self.points[s as usize], frame, nv, ne);
+                }
+            }
+        }
+    }
+
+    /// [`Template::write_corners`] for a template of `P` points.
+    #[inline(always)]
+    fn write_through<const P: usize>(&self, frame: &Frame, nv: u32, ne: u32, out: &mut [u32]) {
+        let mut ids = [0u32; P];
+        for (id, &p) in ids.iter_mut().zip(&self.points) {
+            *id = self.vertex(p, frame, nv, ne);
+        }
+        for (o, &s) in out.iter_mut().zip(&self.slots) {
+            *o = ids[s as usize];
         }
     }
 
@@ -226,11 +256,25 @@ impl Template {
         let interior_edges = interior_edges.len() as u32;
         debug_assert_eq!(interior_edges, 3 * n * (n - 1) / 2);
         debug_assert_eq!(triangles.len() as u32, n * n);
+        let sides = (0..3u8).flat_map(|s| (1..n).map(move |j| PointRef::Side(s, j)));
+        let points: Vec<PointRef> = (0..3u8)
+            .map(PointRef::Corner)
+            .chain(sides)
+            .chain((0..interior_points.len() as u32).map(PointRef::Interior))
+            .collect();
+        let slot = |p: PointRef| match p {
+            PointRef::Corner(k) => u32::from(k),
+            PointRef::Side(s, j) => 3 + u32::from(s) * (n - 1) + j - 1,
+            PointRef::Interior(i) => 3 + 3 * (n - 1) + i,
+        };
+        let slots = triangles.iter().flatten().map(|c| slot(c.0)).collect();
         Template {
             n,
             interior_points,
             interior_edges,
             triangles,
+            points,
+            slots,
         }
     }
 }
@@ -576,6 +620,14 @@ mod tests {
 
     /// Around a wide vertex the one-ring stencil from the ring-wide sums equals the direct
     /// sum over the ring to 1e-12, from every half-edge; at the threshold no ring is wide.
+    #[test]
+    fn the_four_to_one_slots_are_the_templates() {
+        let t = Template::new(2);
+        let slots: Vec<usize> = t.slots.iter().map(|&s| s as usize).collect();
+        assert_eq!(slots, FOUR_TO_ONE_SLOTS);
+        assert_eq!(t.points.len(), 6);
+    }
+
     #[test]
     fn the_ring_wide_stencil_agrees_with_the_direct_sum() {
         for k in [DIRECT_MAX + 1, 40, 257] {

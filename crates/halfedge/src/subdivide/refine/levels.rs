@@ -149,7 +149,11 @@ impl Refinement {
                 }
             }
             let size = [nt.nv(), nt.ne(), nt.nf()];
-            let corners = corners_of(&nt);
+            // A walk of the half-edges, for the levels a refinement keeps only.
+            let corners = match next {
+                Built::Topology(_) => corners_of(&nt),
+                Built::Mesh(_) => 0,
+            };
             match next {
                 Built::Topology(next) => {
                     if let Some(last) = self.topology.last_mut() {
