@@ -1,18 +1,21 @@
-//! The fast path (the 4:1 family, Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge): every entry of
-//! every output array is a pure function of its index, so the arrays are allocated once at
-//! their predicted lengths and written front to back (in parallel chunks with rayon).
+//! The topology of every split (1:N² and 4:1, Catmull-Clark's quads, √3, Doo-Sabin,
+//! mid-edge; √3, Doo-Sabin and mid-edge on a boundary apart): every entry of every output
+//! array is a pure function of its index, so the arrays are allocated once at their predicted
+//! lengths and written front to back (in parallel chunks with rayon).
 //!
-//! The numbering is the one documented in `trisplit` (for `N = 2`) and `catmull_clark`, with
-//! these details:
+//! The numbering is the one documented in `trisplit` and `catmull_clark`, with these details:
 //!
-//! - Output edge `j < 2E` is the piece of old edge `j >> 1` at the source of old half-edge `j`;
-//!   its half-edge `2j + (j & 1)` runs from that source to the midpoint (the "source piece" of
-//!   old half-edge `j`), the other half is the "target piece" of old half-edge `j ^ 1`.
-//! - 4:1: inner edge `2E + 3f + c` joins the midpoints of the face's half-edges `c` and
-//!   `c + 1`; face `4f` is the inner triangle and face `4f + 1 + c` the corner triangle at the
-//!   target of half-edge `c`.
-//! - Catmull-Clark: edge `2E + k` joins the midpoint of the half-edge of corner `k` to the face
-//!   point; face `k` is the quad at the source of the half-edge of corner `k`.
+//! - 1:N²: the half-edges are placed by the split's template (`trisplit::Template`), the one
+//!   description of the split's points and triangles that also writes the face lists. For
+//!   `N = 2`: output edge `j < 2E` is the piece of old edge `j >> 1` at the source of old
+//!   half-edge `j`; its half-edge `2j + (j & 1)` runs from that source to the midpoint;
+//!   inner edge `2E + 3f + c` joins the midpoints of the face's half-edges `c` and `c + 1`;
+//!   face `4f` is the inner triangle and face `4f + 1 + c` the corner triangle at the target
+//!   of half-edge `c`.
+//! - Catmull-Clark: output edge `j < 2E` as for 4:1 (the "source piece" of old half-edge `j`
+//!   and the "target piece" of `j ^ 1`); edge `2E + k` joins the midpoint of the half-edge of
+//!   corner `k` to the face point; face `k` is the quad at the source of the half-edge of
+//!   corner `k`.
 //! - √3 on closed meshes, Doo-Sabin and mid-edge: the numbering documented in `sqrt3` and
 //!   `dual`.
 //!
@@ -23,6 +26,7 @@
 use super::build::{Sizes, StepContext};
 use super::par;
 use super::topo::{Connectivity, Topo};
+use super::trisplit::{Around, Template};
 use crate::mesh::INVALID;
 use crate::Result;
 
@@ -34,13 +38,15 @@ pub(super) fn check(ctx: &StepContext<'_>, built: Sizes) -> Result<()> {
     ctx.expect("faces", expected.faces, built.faces)
 }
 
-/// The sizes of a 4:1 step on `t`: `V + E` vertices, `2E + 3F` edges, `4F` faces.
-pub(super) fn four_to_one_sizes(t: &Topo<'_>) -> Sizes {
+/// The sizes of a 1:N² step on `t`: `V + (N - 1) E + (N - 1)(N - 2)/2 F` vertices,
+/// `N E + 3 N (N - 1)/2 F` edges, `N² F` faces (for `N = 2`: `V + E`, `2E + 3F`, `4F`).
+pub(super) fn tri_split_sizes(t: &Topo<'_>, n: u32) -> Sizes {
     let (nv, ne, nf) = (t.nv(), t.ne(), t.nf());
+    let n = n as usize;
     Sizes {
-        vertices: nv + ne,
-        halfedges: 2 * (2 * ne + 3 * nf),
-        faces: 4 * nf,
+        vertices: nv + (n - 1) * ne + (n - 1) * (n - 2) / 2 * nf,
+        halfedges: 2 * (n * ne + 3 * n * (n - 1) / 2 * nf),
+        faces: n * n * nf,
     }
 }
 
@@ -113,96 +119,124 @@ fn midpoint_halfedge(t: &Topo<'_>, e: u32) -> u32 {
     }
 }
 
-/// The connectivity of one 4:1 step on the triangle mesh `t`.
-pub(crate) fn four_to_one_topology(t: &Topo<'_>, ctx: &StepContext<'_>) -> Result<Connectivity> {
+/// The connectivity of one 1:N² step (4:1 for `N = 2`) on the triangle mesh `t`, every
+/// output half-edge placed by the split's template (`trisplit::Template`: the numbering of
+/// the `trisplit` module docs): edge pieces first, each in the triangle of the face it runs
+/// along (or on the boundary loop), then each face's interior edges.
+pub(crate) fn tri_split_topology(
+    t: &Topo<'_>,
+    template: &Template,
+    ctx: &StepContext<'_>,
+) -> Result<Connectivity> {
+    // The 4:1 split (Loop, every level of millions of faces) with `N` known to the compiler.
+    if template.n == 2 {
+        tri_split_with::<2>(t, template, ctx)
+    } else {
+        tri_split_with::<0>(t, template, ctx)
+    }
+}
+
+/// [`tri_split_topology`] with the split factor `K` (`0`: the template's).
+fn tri_split_with<const K: u32>(
+    t: &Topo<'_>,
+    template: &Template,
+    ctx: &StepContext<'_>,
+) -> Result<Connectivity> {
     let t = *t;
-    check(ctx, four_to_one_sizes(&t))?;
+    let n = if K == 0 { template.n } else { K };
+    check(ctx, tri_split_sizes(&t, n))?;
     let (nv, ne) = (t.nv() as u32, t.ne() as u32);
-    let inner = 4 * ne; // first inner half-edge
-    let halfedge = |q| {
-        if q < inner {
-            let (h, source) = piece(q);
+    let pieces = 2 * n * ne;
+    let per_face = template.interior_edges();
+    // Piece `j` (from the source) of old half-edge `h`, as an output half-edge.
+    let piece_of = |h: u32, j: u32| {
+        let (e, along) = (h >> 1, h & 1 == 0);
+        2 * (n * e + if along { j } else { n - 1 - j }) + (h & 1)
+    };
+    // The point at `j` (`1..N`) along old half-edge `h`.
+    let point_of = |h: u32, j: u32| {
+        let (e, along) = (h >> 1, h & 1 == 0);
+        nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
+    };
+    let around = |f: u32| {
+        let h0 = t.face_halfedge(f);
+        Around {
+            t,
+            sides: [h0, t.next(h0), t.prev(h0)],
+            face: f,
+        }
+    };
+    let halfedge = |q: u32| {
+        if q < pieces {
+            let (p, d) = (q >> 1, q & 1);
+            let (e, k) = (p / n, p % n);
+            let h = 2 * e + d;
+            let j = if d == 0 { k } else { n - 1 - k };
             let f = t.face(h);
             if f == INVALID {
-                return boundary_piece(&t, nv, h, source);
+                // On the boundary loop, which follows the old one.
+                let target = if j + 1 == n {
+                    t.target(h)
+                } else {
+                    point_of(h, j + 1)
+                };
+                let next = if j + 1 == n {
+                    piece_of(t.next(h), 0)
+                } else {
+                    piece_of(h, j + 1)
+                };
+                let prev = if j == 0 {
+                    piece_of(t.prev(h), n - 1)
+                } else {
+                    piece_of(h, j - 1)
+                };
+                return [target, INVALID, next, prev];
             }
-            // The position `i` of h in its face comes from the neighbour the piece needs
-            // anyway (prev for a source piece, next for a target piece), which sits next to
-            // h in memory: no second random load through the face's first half-edge.
+            // The side of h in its face from its neighbours, next to h in memory (no second
+            // random load through the face's first half-edge).
             let h0 = t.face_halfedge(f);
-            if source {
-                let p = t.prev(h);
-                let i = if h == h0 {
-                    0
-                } else if p == h0 {
-                    1
-                } else {
-                    2
-                };
-                // Corner triangle c = i - 1 (at the source of h).
-                let c = (i + 2) % 3;
-                [
-                    nv + (h >> 1),
-                    4 * f + 1 + c,
-                    inner + 2 * (3 * f + c) + 1,
-                    target_piece(p),
-                ]
+            let (next, prev) = (t.next(h), t.prev(h));
+            let (s, sides) = if h == h0 {
+                (0, [h, next, prev])
+            } else if prev == h0 {
+                (1, [prev, h, next])
             } else {
-                let n = t.next(h);
-                let i = if h == h0 {
-                    0
-                } else if n == h0 {
-                    2
-                } else {
-                    1
-                };
-                [
-                    t.target(h),
-                    4 * f + 1 + i,
-                    source_piece(n),
-                    inner + 2 * (3 * f + i) + 1,
-                ]
-            }
+                (2, [next, prev, h])
+            };
+            let (tri, c) = template.piece_corner(s, j);
+            template.halfedge(tri, c, &Around { t, sides, face: f }, nv, ne)
         } else {
-            let r = q - inner;
-            let k = r >> 1;
-            let (f, c) = (k / 3, k % 3);
-            let h0 = t.face_halfedge(f);
-            let hs = [h0, t.next(h0), t.prev(h0)];
-            let (hc, hc1) = (hs[c as usize], hs[((c + 1) % 3) as usize]);
-            if r & 1 == 0 {
-                // Inner triangle: m_c -> m_{c+1}.
-                [
-                    nv + (hc1 >> 1),
-                    4 * f,
-                    inner + 2 * (3 * f + (c + 1) % 3),
-                    inner + 2 * (3 * f + (c + 2) % 3),
-                ]
-            } else {
-                // Corner triangle c: m_{c+1} -> m_c.
-                [
-                    nv + (hc >> 1),
-                    4 * f + 1 + c,
-                    target_piece(hc),
-                    source_piece(hc1),
-                ]
-            }
+            let r = q - pieces;
+            let (p, half) = (r >> 1, r & 1);
+            let (f, edge) = (p / per_face, p % per_face);
+            let (tri, c) = template.interior_corner(edge, half);
+            template.halfedge(tri, c, &around(f), nv, ne)
         }
     };
-    let vertex = |v| {
+    let n_points = template.interior_points.len() as u32;
+    let vertex = |v: u32| {
         if v < nv {
-            source_piece(t.vertex_halfedge(v))
+            // The first piece of the vertex's half-edge (the boundary one on the boundary).
+            piece_of(t.vertex_halfedge(v), 0)
+        } else if v < nv + (n - 1) * ne {
+            // Point `k + 1` of edge `e`: along half-edge 2e, or along 2e + 1 when that one
+            // is on the boundary.
+            let (e, k) = ((v - nv) / (n - 1), (v - nv) % (n - 1));
+            if t.is_boundary(2 * e + 1) && !t.is_boundary(2 * e) {
+                piece_of(2 * e + 1, n - 1 - k)
+            } else {
+                piece_of(2 * e, k + 1)
+            }
         } else {
-            midpoint_halfedge(&t, v - nv)
+            let i = v - nv - (n - 1) * ne;
+            let (f, point) = (i / n_points, i % n_points);
+            let (tri, c) = template.interior_point_corner(point);
+            template.side(tri, c, &around(f), ne)
         }
     };
-    let face = |g| {
-        let (f, k) = (g / 4, g % 4);
-        if k == 0 {
-            inner + 2 * (3 * f)
-        } else {
-            inner + 2 * (3 * f + k - 1) + 1
-        }
+    let face = |g: u32| {
+        let (f, tri) = (g / (n * n), g % (n * n));
+        template.side(tri as usize, 0, &around(f), ne)
     };
     assemble(ctx, halfedge, vertex, face)
 }

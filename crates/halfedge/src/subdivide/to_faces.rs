@@ -22,7 +22,7 @@
 
 use super::build::StepContext;
 use super::catmull_clark::quad_corners;
-use super::gather::{catmull_clark_sizes, check, four_to_one_sizes};
+use super::gather::{catmull_clark_sizes, check, tri_split_sizes};
 use super::par;
 use super::topo::Topo;
 use super::trisplit::{Frame, Template, FOUR_TO_ONE_SLOTS};
@@ -44,7 +44,7 @@ pub(crate) fn faces_after(
     ctx: &StepContext<'_>,
 ) -> Result<(PolygonMesh, usize)> {
     let built = match template {
-        Some(_) => four_to_one_sizes(t),
+        Some(template) => tri_split_sizes(t, template.n),
         None => catmull_clark_sizes(t),
     };
     check(ctx, built)?;

@@ -21,13 +21,12 @@
 use std::collections::HashMap;
 use std::f64::consts::PI;
 
-use super::build::{Builder, StepContext};
 use super::data::Vector;
 use super::par::Sink;
 use super::sdc::masks::{loop_smooth, CREASE_VERTEX, LOOP_EDGE};
 use super::topo::Topo;
 use super::wide::{angle, Ring, Wide};
-use crate::{HalfEdgeMesh, Result, Rule};
+use crate::Rule;
 
 /// A point of the split template of one triangle.
 #[derive(Clone, Copy, Debug)]
@@ -43,8 +42,9 @@ pub(crate) enum PointRef {
 /// A directed side of a template triangle.
 #[derive(Clone, Copy, Debug)]
 enum SideRef {
-    /// Piece `j` of side `s` (from point `j` to `j + 1`), forward or backward.
-    Piece { side: u8, j: u32, forward: bool },
+    /// Piece `j` of side `s`, from point `j` to `j + 1` (the triangles of a face run
+    /// along its sides).
+    Piece { side: u8, j: u32 },
     /// Interior edge `edge` of the face, half `half`.
     Interior { edge: u32, half: u32 },
 }
@@ -64,6 +64,12 @@ pub(crate) struct Template {
     points: Vec<PointRef>,
     /// Per corner of every triangle, in order, its point's index in `points`.
     slots: Vec<u32>,
+    /// `(triangle, corner)` whose side is piece `j` of side `s`, at `s N + j`.
+    piece_at: Vec<(u32, u8)>,
+    /// `(triangle, corner)` whose side is half `h` of interior edge `e`, at `2 e + h`.
+    interior_at: Vec<(u32, u8)>,
+    /// The first `(triangle, corner)` at each interior point.
+    interior_from: Vec<(u32, u8)>,
 }
 
 /// The corners of [`Template::new(2)`](Template::new)'s four triangles as indices into its
@@ -90,12 +96,70 @@ impl Frame {
         let h0 = t.face_halfedge(f);
         let h1 = t.next(h0);
         let h2 = t.next(h1);
-        let side = |h: u32| (h >> 1, h & 1 == 0);
         Frame {
             corners: [t.target(h2), t.target(h0), t.target(h1)],
-            sides: [side(h0), side(h1), side(h2)],
+            sides: [side_of(h0), side_of(h1), side_of(h2)],
             face: f,
         }
+    }
+}
+
+/// A side's edge and whether the side runs along it: half-edge `h` runs along edge `h >> 1`
+/// when it is the even one (an edge's points are counted from the source of its even
+/// half-edge).
+#[inline(always)]
+fn side_of(h: u32) -> (u32, bool) {
+    (h >> 1, h & 1 == 0)
+}
+
+/// What the split's numbering reads of a triangle of the level refined: its corners, its
+/// sides' edges and directions, its face. A [`Frame`] holds them; the half-edge step reads
+/// them from the level on demand ([`Around`]), loading only what an index needs.
+pub(crate) trait Triangle {
+    /// Corner `k`: the source of side `k`.
+    fn corner(&self, k: usize) -> u32;
+    /// Side `s`'s edge and whether the side runs along it.
+    fn side(&self, s: usize) -> (u32, bool);
+    /// The triangle's face.
+    fn face(&self) -> u32;
+}
+
+impl Triangle for Frame {
+    #[inline(always)]
+    fn corner(&self, k: usize) -> u32 {
+        self.corners[k]
+    }
+    #[inline(always)]
+    fn side(&self, s: usize) -> (u32, bool) {
+        self.sides[s]
+    }
+    #[inline(always)]
+    fn face(&self) -> u32 {
+        self.face
+    }
+}
+
+/// Triangle `face` of a half-edge level by its sides' half-edges `sides` (side `s` runs from
+/// corner `s` to corner `s + 1`); a corner is loaded only when asked for.
+#[derive(Clone, Copy)]
+pub(crate) struct Around<'t> {
+    pub(crate) t: Topo<'t>,
+    pub(crate) sides: [u32; 3],
+    pub(crate) face: u32,
+}
+
+impl Triangle for Around<'_> {
+    #[inline(always)]
+    fn corner(&self, k: usize) -> u32 {
+        self.t.source(self.sides[k])
+    }
+    #[inline(always)]
+    fn side(&self, s: usize) -> (u32, bool) {
+        side_of(self.sides[s])
+    }
+    #[inline(always)]
+    fn face(&self) -> u32 {
+        self.face
     }
 }
 
@@ -103,26 +167,102 @@ impl Template {
     /// The vertex of point `p` of the triangle `frame` on a level of `nv` vertices and `ne`
     /// edges: the numbering of the module docs, shared by every level the split builds (the
     /// half-edge step, the last level as a face list, raw face lists).
-    #[inline]
-    pub(crate) fn vertex(&self, p: PointRef, frame: &Frame, nv: u32, ne: u32) -> u32 {
+    #[inline(always)]
+    pub(crate) fn vertex(&self, p: PointRef, frame: &impl Triangle, nv: u32, ne: u32) -> u32 {
         let n = self.n;
         match p {
-            PointRef::Corner(k) => frame.corners[k as usize],
+            PointRef::Corner(k) => frame.corner(k as usize),
             PointRef::Side(s, j) => {
-                let (e, along) = frame.sides[s as usize];
+                let (e, along) = frame.side(s as usize);
                 nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
             }
             PointRef::Interior(i) => {
                 let per_face = self.interior_points.len() as u32;
-                nv + (n - 1) * ne + frame.face * per_face + i
+                nv + (n - 1) * ne + frame.face() * per_face + i
             }
         }
+    }
+
+    /// The half-edge of side `s` of a template triangle in the triangle `frame` of a level of
+    /// `ne` edges: edge `e`'s piece `k` (counted from the source of `2e`) is the edge
+    /// `N e + k`, its half-edge `2 (N e + k)` running along `2e`; the face's interior edges
+    /// follow every piece (the module docs).
+    #[inline(always)]
+    fn side_halfedge(&self, s: SideRef, frame: &impl Triangle, ne: u32) -> u32 {
+        let n = self.n;
+        match s {
+            SideRef::Piece { side, j } => {
+                let (e, along) = frame.side(side as usize);
+                let k = if along { j } else { n - 1 - j };
+                2 * (n * e + k) + u32::from(!along)
+            }
+            SideRef::Interior { edge, half } => {
+                2 * (n * ne + frame.face() * self.interior_edges + edge) + half
+            }
+        }
+    }
+
+    /// `[target, face, next, prev]` of the half-edge of corner `c` of template triangle
+    /// `tri` (its side from corner `c` to corner `c + 1`) in the triangle `frame` of a level
+    /// of `nv` vertices and `ne` edges.
+    #[inline(always)]
+    pub(crate) fn halfedge(
+        &self,
+        tri: usize,
+        c: usize,
+        frame: &impl Triangle,
+        nv: u32,
+        ne: u32,
+    ) -> [u32; 4] {
+        let triangle = &self.triangles[tri];
+        let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
+        [
+            self.vertex(triangle[c1].0, frame, nv, ne),
+            self.n * self.n * frame.face() + tri as u32,
+            self.side_halfedge(triangle[c1].1, frame, ne),
+            self.side_halfedge(triangle[c2].1, frame, ne),
+        ]
+    }
+
+    /// The half-edge leaving a template point of a triangle: `(triangle, corner)` of the
+    /// template piece `j` of side `s` (running along the side), of half `half` of interior
+    /// edge `edge`, of the first corner at interior point `i`.
+    #[inline(always)]
+    pub(crate) fn piece_corner(&self, s: u32, j: u32) -> (usize, usize) {
+        let (tri, c) = self.piece_at[(s * self.n + j) as usize];
+        (tri as usize, c as usize)
+    }
+
+    /// See [`Template::piece_corner`].
+    #[inline(always)]
+    pub(crate) fn interior_corner(&self, edge: u32, half: u32) -> (usize, usize) {
+        let (tri, c) = self.interior_at[(2 * edge + half) as usize];
+        (tri as usize, c as usize)
+    }
+
+    /// See [`Template::piece_corner`].
+    #[inline(always)]
+    pub(crate) fn interior_point_corner(&self, i: u32) -> (usize, usize) {
+        let (tri, c) = self.interior_from[i as usize];
+        (tri as usize, c as usize)
+    }
+
+    /// The number of interior edges of a face, `3 N (N - 1) / 2`.
+    pub(crate) fn interior_edges(&self) -> u32 {
+        self.interior_edges
+    }
+
+    /// The half-edge of the side of corner `c` of template triangle `tri` (leaving the
+    /// corner's point) in the triangle `frame` of a level of `ne` edges.
+    #[inline(always)]
+    pub(crate) fn side(&self, tri: usize, c: usize, frame: &impl Triangle, ne: u32) -> u32 {
+        self.side_halfedge(self.triangles[tri][c].1, frame, ne)
     }
 
     /// The corners of the `N²` triangles of `frame`, in order, into `out` (`3 N²` entries):
     /// each point's vertex computed once, then copied to its corners.
     #[inline]
-    pub(crate) fn write_corners(&self, frame: &Frame, nv: u32, ne: u32, out: &mut [u32]) {
+    pub(crate) fn write_corners(&self, frame: &impl Triangle, nv: u32, ne: u32, out: &mut [u32]) {
         match self.points.len() {
             // N = 2 and N = 3: the points on the stack, their number known to the compiler.
             6 => self.write_through::<6>(frame, nv, ne, out),
@@ -137,7 +277,13 @@ impl Template {
 
     /// [`Template::write_corners`] for a template of `P` points.
     #[inline(always)]
-    fn write_through<const P: usize>(&self, frame: &Frame, nv: u32, ne: u32, out: &mut [u32]) {
+    fn write_through<const P: usize>(
+        &self,
+        frame: &impl Triangle,
+        nv: u32,
+        ne: u32,
+        out: &mut [u32],
+    ) {
         let mut ids = [0u32; P];
         for (id, &p) in ids.iter_mut().zip(&self.points) {
             *id = self.vertex(p, frame, nv, ne);
@@ -209,11 +355,8 @@ impl Template {
             for s in 0..3u8 {
                 if let (Some(jp), Some(jq)) = (on_side(s, p.0, p.1), on_side(s, q.0, q.1)) {
                     if jp.abs_diff(jq) == 1 {
-                        return SideRef::Piece {
-                            side: s,
-                            j: jp.min(jq),
-                            forward: jq > jp,
-                        };
+                        debug_assert!(jq > jp, "a template triangle runs along its sides");
+                        return SideRef::Piece { side: s, j: jp };
                     }
                 }
             }
@@ -268,6 +411,27 @@ impl Template {
             PointRef::Interior(i) => 3 + 3 * (n - 1) + i,
         };
         let slots = triangles.iter().flatten().map(|c| slot(c.0)).collect();
+        let unset = (u32::MAX, 0);
+        let mut piece_at = vec![unset; 3 * n as usize];
+        let mut interior_at = vec![unset; 2 * interior_edges as usize];
+        let mut interior_from = vec![unset; interior_points.len()];
+        for (tri, corners) in triangles.iter().enumerate() {
+            for (c, &(p, side)) in corners.iter().enumerate() {
+                let at = (tri as u32, c as u8);
+                match side {
+                    SideRef::Piece { side, j } => piece_at[(u32::from(side) * n + j) as usize] = at,
+                    SideRef::Interior { edge, half } => {
+                        interior_at[(2 * edge + half) as usize] = at;
+                    }
+                }
+                if let PointRef::Interior(i) = p {
+                    if interior_from[i as usize] == unset {
+                        interior_from[i as usize] = at;
+                    }
+                }
+            }
+        }
+        debug_assert!(piece_at.iter().chain(&interior_at).all(|&a| a != unset));
         Template {
             n,
             interior_points,
@@ -275,59 +439,11 @@ impl Template {
             triangles,
             points,
             slots,
+            piece_at,
+            interior_at,
+            interior_from,
         }
     }
-}
-
-/// One 1:N² step on the triangle mesh `t` (checked by the caller), face by face; the new
-/// level's `positions` computed by the caller (the refinement's evaluation, [`tri_points`]),
-/// zeros without (a refinement keeps only the topology).
-pub(crate) fn tri_split_step(
-    t: &Topo<'_>,
-    positions: Option<Vec<glam::DVec3>>,
-    template: &Template,
-    ctx: &StepContext<'_>,
-) -> Result<HalfEdgeMesh> {
-    let t = *t;
-    let n = template.n;
-    let (nv, ne, nf) = (t.nv() as u32, t.ne() as u32, t.nf() as u32);
-    let edge_base = n * ne;
-
-    let mut b = Builder::new(ctx.expected)?;
-    let mut corners = [(0u32, 0u32); 3];
-    for f in 0..nf {
-        let h0 = t.face_halfedge(f);
-        let h1 = t.next(h0);
-        let h2 = t.next(h1);
-        let hs = [h0, h1, h2];
-        let frame = Frame::of(&t, f);
-        let point = |p: PointRef| template.vertex(p, &frame, nv, ne);
-        let side = |s: SideRef| -> u32 {
-            match s {
-                SideRef::Piece { side, j, forward } => {
-                    let h = hs[side as usize];
-                    let parity = h & 1;
-                    let k = if parity == 0 { j } else { n - 1 - j };
-                    2 * (n * (h >> 1) + k) + if forward { parity } else { parity ^ 1 }
-                }
-                SideRef::Interior { edge, half } => {
-                    2 * (edge_base + f * template.interior_edges + edge) + half
-                }
-            }
-        };
-        for tri in &template.triangles {
-            for (c, &(p, s)) in corners.iter_mut().zip(tri) {
-                *c = (point(p), side(s));
-            }
-            b.face(&corners);
-        }
-    }
-
-    let positions = match positions {
-        Some(positions) => positions,
-        None => super::alloc::filled(glam::DVec3::ZERO, ctx.expected.vertices, "positions")?,
-    };
-    b.finish(positions, ctx)
 }
 
 /// The points of a 1:N² step from the values `src` of the level before, appended to `out`:
@@ -594,6 +710,7 @@ fn one_ring_stencil<V: Vector>(t: &Topo<'_>, src: &[V], rings: Option<&WideRings
 mod tests {
     use super::*;
     use crate::subdivide::wide::DIRECT_MAX;
+    use crate::HalfEdgeMesh;
     use glam::DVec3;
 
     /// A wavy bipyramid: apexes 0 (top) and `k + 1` (bottom) of valence `k`, ring `1..=k`.
@@ -618,8 +735,6 @@ mod tests {
         HalfEdgeMesh::try_from_polygons(positions, &faces).expect("a closed bipyramid")
     }
 
-    /// Around a wide vertex the one-ring stencil from the ring-wide sums equals the direct
-    /// sum over the ring to 1e-12, from every half-edge; at the threshold no ring is wide.
     #[test]
     fn the_four_to_one_slots_are_the_templates() {
         let t = Template::new(2);
@@ -628,6 +743,8 @@ mod tests {
         assert_eq!(t.points.len(), 6);
     }
 
+    /// Around a wide vertex the one-ring stencil from the ring-wide sums equals the direct
+    /// sum over the ring to 1e-12, from every half-edge; at the threshold no ring is wide.
     #[test]
     fn the_ring_wide_stencil_agrees_with_the_direct_sum() {
         for k in [DIRECT_MAX + 1, 40, 257] {

@@ -290,9 +290,9 @@ impl Refinement {
     }
 
     /// The level after `t` (`ctx.level`): the topology of every refinement and of the one-shot
-    /// subdivision. By index formulas into arrays of the predicted lengths (the 4:1 family,
+    /// subdivision. By index formulas into arrays of the predicted lengths (1:N² and 4:1,
     /// Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge), else face by face into
-    /// index-addressed arrays (1:N² for N >= 3, √3 on a boundary). `positions`, the new
+    /// index-addressed arrays (√3 on a boundary). `positions`, the new
     /// level's (from [`Refinement::values_after`]), are handed back with a connectivity or
     /// become the mesh's; the face-by-face steps fill zeros without them.
     pub(super) fn next_level(
@@ -301,13 +301,9 @@ impl Refinement {
         ctx: &StepContext<'_>,
         positions: Option<Vec<glam::DVec3>>,
     ) -> Result<Next> {
-        use crate::subdivide::{gather, sqrt3, trisplit};
+        use crate::subdivide::{gather, sqrt3};
         let topology = match (self.split, &self.template) {
-            (Split::Tri(2), _) => gather::four_to_one_topology(t, ctx)?,
-            (Split::Tri(_), Some(template)) => {
-                let mesh = trisplit::tri_split_step(t, positions, template, ctx)?;
-                return Ok(Next::Mesh(mesh));
-            }
+            (Split::Tri(_), Some(template)) => gather::tri_split_topology(t, template, ctx)?,
             (Split::Tri(..), None) => return Err(ctx.invalid("no split template".into())),
             (Split::Quad, _) => gather::catmull_clark_topology(t, ctx)?,
             (Split::Sqrt3 { .. }, _) if t.is_closed() => gather::sqrt3_closed_topology(t, ctx)?,

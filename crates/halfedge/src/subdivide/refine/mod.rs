@@ -68,9 +68,10 @@
 //! split). `Refinement::new` checks every level's size from the counts, then builds the
 //! connectivity of levels `0..L` only (`topo.rs`'s positionless `Connectivity`, from the
 //! index-arithmetic builders of `gather.rs` or, face by face, `build.rs`'s `Builder`, which take
-//! the positions the refinement computed); the last level's index buffers are written from level
-//! `L - 1` for the 4:1 family and Catmull-Clark (bounded by `u32` vertex indices, not half-edge
-//! handles), from a kept face list for the other rules. Loop and Catmull-Clark levels are
+//! the positions the refinement computed: √3, Doo-Sabin and mid-edge on a boundary); the last
+//! level's index buffers are written from level `L - 1` for the 1:N² splits and Catmull-Clark
+//! (bounded by `u32` vertex indices, not half-edge handles), from a kept face list for the
+//! other rules. Loop and Catmull-Clark levels are
 //! flattened instead (`tables.rs`: edge stencils, vertex rings, face corners), so an evaluation is
 //! streaming gathers with no half-edge walk; `Refinement::predicted_bytes` gives what a refinement
 //! keeps before it is built. `evaluate` / `evaluate_level` / `evaluate_strided` / `Evaluator`
