@@ -12,12 +12,13 @@
 //!   becomes the quad `c`: `F' = H`.
 //!
 //! Geometry: face points are centroids; interior edge points `(a + b + f1 + f2) / 4`; interior
-//! vertices `(Q + 2R + (n - 3) S) / n` (Q the average of the adjacent face points, R of the edge
-//! midpoints); boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
+//! vertices `(n - 2) / n S + 1 / n² (Σ face points + Σ neighbours)` (the smooth mask of
+//! `sdc::masks::catmull_clark_smooth`, the classic `(Q + 2R + (n - 3) S) / n` rewritten);
+//! boundary edges take the midpoint and boundary vertices `3/4 v + 1/8 (l + r)`.
 
 use super::data::Vector;
 use super::par::{Sink, Slots};
-use super::sdc::masks::CATMULL_CLARK_EDGE;
+use super::sdc::masks::{catmull_clark_smooth, CATMULL_CLARK_EDGE};
 use super::topo::Topo;
 use super::trisplit::boundary_vertex;
 
@@ -48,34 +49,28 @@ pub(crate) fn cc_face_point<V: Vector>(t: &Topo<'_>, src: &[V], f: u32) -> V {
     sum.div(f64::from(n))
 }
 
-/// The moved old vertex `v`: `(Q + 2R + (n - 3) S) / n` inside, the boundary rule on the
-/// boundary.
+/// The moved old vertex `v`: the smooth mask inside, the boundary rule on the boundary.
 #[inline]
 pub(crate) fn cc_vertex<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], v: u32) -> V {
     if t.is_boundary_vertex(v) {
         return boundary_vertex(t, src, v);
     }
-    let p = src[v as usize].clone();
-    let (mut q, mut r, mut n) = (V::zero(), V::zero(), 0u32);
+    let (mut faces, mut ends, mut n) = (V::zero(), V::zero(), 0usize);
     t.for_outgoing(v, |h| {
-        q = q.clone().add(face_points[t.face(h) as usize].clone());
-        r = r
-            .clone()
-            .add(p.clone().add(src[t.target(h) as usize].clone()).scale(0.5));
+        faces = faces.clone().add(face_points[t.face(h) as usize].clone());
+        ends = ends.clone().add(src[t.target(h) as usize].clone());
         n += 1;
     });
-    cc_interior(p, q, r, n)
+    cc_interior(src[v as usize].clone(), faces, ends, n)
 }
 
-/// `(q / n + r (2 / n) + p (n - 3)) / n`: `q` the sum of the `n` face points, `r` of the edge
-/// midpoints around `p`.
+/// Catmull-Clark's smooth vertex mask ([`catmull_clark_smooth`]) on the vertex `p`, the sum
+/// `faces` of its `n` face points and the sum `ends` of its `n` neighbours: the smaller
+/// weights first, as OpenSubdiv applies a mask.
 #[inline(always)]
-pub(crate) fn cc_interior<V: Vector>(p: V, q: V, r: V, n: u32) -> V {
-    let nf = f64::from(n);
-    q.div(nf)
-        .add(r.scale(2.0 / nf))
-        .add(p.scale(nf - 3.0))
-        .div(nf)
+pub(crate) fn cc_interior<V: Vector>(p: V, faces: V, ends: V, n: usize) -> V {
+    let (vertex, each) = catmull_clark_smooth(n);
+    faces.add(ends).scale(each).add(p.scale(vertex))
 }
 
 /// The point of edge `e`: `(a + b + f1 + f2) / 4` inside, the midpoint on the boundary.

@@ -201,12 +201,12 @@ impl CcTables {
             if self.boundary[v] {
                 return boundary_rule(p, pos(ring[1][0]), pos(ring[0][0]));
             }
-            let (mut q, mut r) = (V::zero(), V::zero());
+            let (mut faces, mut ends) = (V::zero(), V::zero());
             for &[w, f] in ring {
-                q = q.add(fp[f as usize].clone());
-                r = r.add(p.clone().add(pos(w)).scale(0.5));
+                faces = faces.add(fp[f as usize].clone());
+                ends = ends.add(pos(w));
             }
-            cc_interior(p, q, r, ring.len() as u32)
+            cc_interior(p, faces, ends, ring.len())
         });
         out.append(ne, parallel, |e| {
             let [a, b, f1, f2] = self.edges[e];

@@ -34,6 +34,15 @@ pub(crate) fn loop_smooth(valence: usize) -> (f64, f64) {
     (1.0 - n * beta, beta)
 }
 
+/// Catmull-Clark's smooth vertex mask at `valence`: the vertex's weight `(n - 2) / n`, and
+/// `1 / n²` for each ring edge's other end and each ring face's centre (OpenSubdiv's
+/// `assignSmoothMaskForVertex`).
+#[inline(always)]
+pub(crate) fn catmull_clark_smooth(valence: usize) -> (f64, f64) {
+    let n = valence as f64;
+    ((n - 2.0) / n, 1.0 / (n * n))
+}
+
 /// The scheme of a crease-aware level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Scheme {
@@ -99,9 +108,8 @@ impl Mask {
             VertexRule::Smooth | VertexRule::Dart => match scheme {
                 Scheme::CatmullClark => {
                     // Valence from the faces (a smooth vertex is interior: as many as edges).
-                    let valence = faces as f64;
-                    let f = 1.0 / (faces * faces) as f64;
-                    self.vertex = (valence - 2.0) / valence;
+                    let (v, f) = catmull_clark_smooth(faces);
+                    self.vertex = v;
                     self.edges.resize(n, f);
                     self.faces.resize(faces, f);
                 }
