@@ -57,11 +57,10 @@
 //!   vertices need valence >= 3 (a vertex face has at least 3 sides). On a boundary both are
 //!   built face by face into the predicted arrays.
 //!
-//! The 1:N² splits (4:1 included), Catmull-Clark, √3 on closed meshes, Doo-Sabin and mid-edge
-//! write every output array front to back from index formulas (in parallel chunks when
-//! `threads != 1`); the steps with a boundary rule of their own (√3, Doo-Sabin, mid-edge on a
-//! boundary) emit faces one by one into index-addressed arrays of the predicted sizes; both
-//! check every length.
+//! The 1:N² splits, Catmull-Clark, √3, Doo-Sabin and mid-edge write every output array front
+//! to back from index formulas (in parallel chunks when `threads != 1`); on a boundary √3,
+//! Doo-Sabin and mid-edge (rules of their own there) emit faces one by one into
+//! index-addressed arrays of the predicted sizes; both check every length.
 //!
 //! # Example
 //!
