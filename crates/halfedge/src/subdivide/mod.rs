@@ -105,10 +105,9 @@
 //! child's sharpness is pushed (`Creases::push_child`) and the parent's released, so only the last
 //! two levels' sharpness is alive; in `f64` it equals `Refinement::evaluate` to the bit
 //! (`tests/integration/creases.rs`). `verify` still visits every level as a half-edge mesh (it
-//! counts the real mesh). Doo-Sabin and mid-edge on a mesh with boundary (`dual.rs`, counted by
-//! `doo-sabin-boundary` and `mid-edge-boundary`) number their boundary points by the rank of each
-//! boundary half-edge, so they are built face by face into the predicted arrays rather than
-//! gathered; closed meshes keep the gathered path and its numbering. `subdivide_to_face_list`
+//! counts the real mesh). Doo-Sabin and mid-edge on a boundary (`dual.rs`) number their boundary
+//! points by the rank of each boundary half-edge, so they are built face by face into the
+//! predicted arrays. `subdivide_to_face_list`
 //! (what `subcount subdivide` runs) writes the last level of the 4:1 family and Catmull-Clark
 //! straight into a `PolygonMesh` (`to_faces.rs`: positions and corners only, identical to
 //! converting the half-edge result, half the peak memory); that last level needs only its vertex
@@ -143,6 +142,7 @@ mod stages;
 mod to_faces;
 mod topo;
 mod trisplit;
+pub(crate) mod uniform;
 mod verify;
 pub(crate) mod weights;
 pub(crate) mod wide;

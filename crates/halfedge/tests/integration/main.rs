@@ -1,5 +1,6 @@
 //! Integration tests of the `halfedge` crate (one test binary; see STYLE.md section 7).
 
+mod base_faces;
 mod creases;
 mod descriptor;
 mod holes;

@@ -1,5 +1,6 @@
 //! The last level's index buffers, written into the caller's slices: triangles, quads,
-//! polygons with offsets (numbered as `subdivide_to_face_list` numbers them).
+//! polygons with offsets (numbered as `subdivide_to_face_list` numbers them); the base face of
+//! every face of a level (per-face data).
 
 use super::*;
 
@@ -14,6 +15,76 @@ impl Refinement {
     /// [`Error::BufferSize`].
     pub fn write_triangles(&self, out: &mut [u32]) -> Result<()> {
         self.write_uniform(out, 3, "triangles")
+    }
+
+    /// The base face each face of level `level` comes from (`n_faces(level)` entries; with
+    /// holes, the last level's written faces): OpenSubdiv's `GetFaceParentFace` chained to
+    /// level 0, for per-face data such as materials and groups (`InterpolateFaceUniform`:
+    /// face `g` takes `data[base_faces[g]]`). Under √3, Doo-Sabin and mid-edge, a face that
+    /// comes from several faces (√3's flipped triangles, the dual rules' edge and vertex
+    /// faces) takes the lowest-numbered base face it descends from. Computed on each call
+    /// (4 bytes per face of the level).
+    ///
+    /// ```
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Refinement, Rule};
+    ///
+    /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+    /// let base = r.base_faces(2)?;
+    /// assert_eq!(base.len(), r.n_faces(2));
+    /// assert!(base.iter().take(16).all(|&f| f == 0)); // face 0's 4 x 4 quads come first
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// [`Error::LevelOutOfRange`] unless `level <= levels`; [`Error::AllocationFailed`].
+    pub fn base_faces(&self, level: u32) -> Result<Vec<u32>> {
+        if level > self.levels {
+            return Err(Error::LevelOutOfRange {
+                level,
+                first: 0,
+                levels: self.levels,
+            });
+        }
+        // The whole base level (with holes at `levels = 0`, `n_faces(0)` counts the written).
+        let nf = match (&self.written, self.levels) {
+            (Some(w), 0) => w.full.faces,
+            _ => self.n_faces(0),
+        };
+        let faces = if self.split == Split::Quad && level > 0 {
+            let degrees = self.base_degrees.iter().map(|&d| d as usize);
+            crate::subdivide::uniform::nested_base_faces(self.split, degrees, level)?
+        } else {
+            let degrees = std::iter::repeat(3).take(nf);
+            crate::subdivide::uniform::nested_base_faces(self.split, degrees, level)?
+        };
+        let mut faces = match faces {
+            Some(faces) => faces,
+            None => {
+                // √3 and the dual rules keep every level's connectivity before the last.
+                let mut values = crate::subdivide::alloc::with_capacity(nf, "base faces")?;
+                values.extend(0..nf as u32);
+                for s in 0..level as usize {
+                    let t = self.topology.get(s).and_then(|l| l.topology.as_ref());
+                    let Some(t) = t else {
+                        return Err(Error::InvalidOutput {
+                            scheme: self.name.clone(),
+                            level: s as u32,
+                            what: "no connectivity kept for the base faces".into(),
+                        });
+                    };
+                    values =
+                        crate::subdivide::uniform::child_faces(self.split, &t.topo(), &values)?;
+                }
+                values
+            }
+        };
+        if let (Some(w), true) = (&self.written, level == self.levels) {
+            faces.retain(|&f| !w.holes[f as usize]);
+        }
+        Ok(faces)
     }
 
     /// Writes the last level's quads, 4 vertex indices per face (`4 * n_faces(levels)`

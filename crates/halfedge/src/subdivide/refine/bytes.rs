@@ -22,9 +22,12 @@ impl Refinement {
             .polygons
             .as_ref()
             .map_or(0, |p| 4 * (p.offsets.len() + p.indices.len()));
-        let written = self.written.as_ref().map_or(0, |w| 4 * w.kept.len());
+        let written = self
+            .written
+            .as_ref()
+            .map_or(0, |w| 4 * w.kept.len() + w.holes.len());
         let uvs = self.uvs.as_ref().map_or(0, |u| u.heap_bytes());
-        levels + polygons + written + uvs
+        levels + polygons + written + uvs + 4 * self.base_degrees.len()
     }
 
     /// The bytes [`Refinement::new`] would keep for `rule` at `levels` on a mesh with
@@ -76,6 +79,8 @@ impl Refinement {
                     bytes += e * 32u32 + v * 5u32 + f * 4u32 + h * 4u32 + 8u32;
                 }
                 bytes += connectivity(&level[levels as usize - 1]);
+                // The base faces' degrees (`Refinement::base_faces`).
+                bytes += &level[0].2 * 4u32;
             }
             split => {
                 for l in kept {

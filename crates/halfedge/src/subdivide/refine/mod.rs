@@ -69,7 +69,7 @@
 //! connectivity of levels `0..L` only (`topo.rs`'s positionless `Connectivity`, from the
 //! index-arithmetic builders of `gather.rs` or, face by face, `build.rs`'s `Builder`, which take
 //! the positions the refinement computed: √3, Doo-Sabin and mid-edge on a boundary); the last
-//! level's index buffers are written from level `L - 1` for the 1:N² splits and Catmull-Clark
+//! level's index buffers are written from level `L - 1` for the 4:1 family and Catmull-Clark
 //! (bounded by `u32` vertex indices, not half-edge handles), from a kept face list for the
 //! other rules. Loop and Catmull-Clark levels are
 //! flattened instead (`tables.rs`: edge stencils, vertex rings, face corners), so an evaluation is
@@ -176,7 +176,8 @@ struct Polygons {
 /// target, face, next and prev, and 4 per face) or, for Loop and Catmull-Clark, its flattened
 /// tables: Loop 24 bytes per edge (an edge stencil of 16 and the vertex rings, 8 per edge)
 /// and 5 per vertex; Catmull-Clark 32 per edge (edge stencils and rings of (neighbour, face)
-/// pairs), 4 per face corner and per face, 5 per vertex. Level `levels - 1` keeps its
+/// pairs), 4 per face corner and per face, 5 per vertex, and 4 per base face (its degree, for
+/// [`Refinement::base_faces`]). Level `levels - 1` keeps its
 /// connectivity too: the last level, the largest, is not built as a half-edge mesh for the
 /// 4:1 rules and Catmull-Clark, its index buffers are written from level `levels - 1`. For
 /// the other rules (1:N² with `N >= 3`, √3, Doo-Sabin, mid-edge) the last level is built
@@ -231,6 +232,9 @@ pub struct Refinement {
     written: Option<Written>,
     /// With a UV layout ([`SubdivideOptions::uvs`]): its face-varying channel.
     uvs: Option<Box<face_varying::UvChannel>>,
+    /// The base faces' degrees under Catmull-Clark (the children of the first level), for
+    /// [`Refinement::base_faces`]; empty under the other rules.
+    base_degrees: Vec<u32>,
 }
 
 /// The written part of the last level of a refinement with holes: its face list is
@@ -242,6 +246,8 @@ struct Written {
     kept: Vec<u32>,
     /// The sizes of the whole last level.
     full: LevelSize,
+    /// Whether each base face is a hole.
+    holes: Vec<bool>,
 }
 
 impl std::fmt::Debug for Refinement {
@@ -446,6 +452,12 @@ impl Refinement {
         let mut refinement =
             Refinement::empty(&plan, &counts, levels, opts.threads, pool, creases)?;
         let base = Topo::new(mesh);
+        if plan.split == Split::Quad && levels > 0 {
+            // At most the mesh's face corners, which fit u32.
+            refinement.base_degrees = (0..base.nf() as u32)
+                .map(|f| base.face_degree(f) as u32)
+                .collect();
+        }
         refinement.sizes.push(LevelSize {
             vertices: base.nv(),
             edges: base.ne(),
@@ -501,6 +513,7 @@ impl Refinement {
             creases,
             written: None,
             uvs: None,
+            base_degrees: Vec::new(),
         })
     }
 
@@ -574,7 +587,10 @@ impl Refinement {
         }
         self.face_degree = common_degree(&polygons).or(self.face_degree.filter(|_| faces == 0));
         self.polygons = Some(polygons);
-        self.written = Some(Written { kept, full });
+        let holes = (0..mesh.n_faces() as u32)
+            .map(|f| holes.contains(f))
+            .collect();
+        self.written = Some(Written { kept, full, holes });
         Ok(())
     }
 
