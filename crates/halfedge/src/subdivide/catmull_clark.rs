@@ -66,7 +66,7 @@ pub(crate) fn cc_vertex<V: Vector>(t: &Topo<'_>, src: &[V], face_points: &[V], v
 
 /// Catmull-Clark's smooth vertex mask ([`catmull_clark_smooth`]) on the vertex `p`, the sum
 /// `faces` of its `n` face points and the sum `ends` of its `n` neighbours: the smaller
-/// weights first, as OpenSubdiv applies a mask.
+/// weights first (OpenSubdiv weighs each term; the sums here are scaled once).
 #[inline(always)]
 pub(crate) fn cc_interior<V: Vector>(p: V, faces: V, ends: V, n: usize) -> V {
     let (vertex, each) = catmull_clark_smooth(n);

@@ -355,7 +355,9 @@ impl Template {
             for s in 0..3u8 {
                 if let (Some(jp), Some(jq)) = (on_side(s, p.0, p.1), on_side(s, q.0, q.1)) {
                     if jp.abs_diff(jq) == 1 {
-                        debug_assert!(jq > jp, "a template triangle runs along its sides");
+                        // The triangles run along the face's sides (ccw): the numbering of
+                        // the pieces relies on it.
+                        assert!(jq > jp, "a template triangle runs along its sides");
                         return SideRef::Piece { side: s, j: jp };
                     }
                 }

@@ -126,3 +126,53 @@ pub(crate) fn nested_base_faces(
     }
     Ok(Some(out))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::subdivide::{subdivide, SubdivideOptions};
+    use crate::{shapes, HalfEdgeMesh, Rule};
+
+    /// The nesting splits' closed forms are the children of each face in the topology the
+    /// steps build: `child_faces` chained level by level on the half-edge meshes of
+    /// `subdivide` (1:N², 4:1 with boundary, Catmull-Clark on a mixed mesh).
+    #[test]
+    fn the_nested_closed_forms_are_the_chained_children() {
+        let pyramid = crate::PolygonMesh::from_faces(
+            [
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.5, 0.5, 1.0],
+            ]
+            .map(glam::DVec3::from_array)
+            .to_vec(),
+            [
+                vec![0, 3, 2, 1],
+                vec![0, 1, 4],
+                vec![1, 2, 4],
+                vec![2, 3, 4],
+                vec![3, 0, 4],
+            ],
+        );
+        let cases = [
+            (shapes::icosahedron(), Rule::Loop, Split::Tri(2)),
+            (shapes::grid(2, 2).expect("grid"), Rule::Loop, Split::Tri(2)),
+            (shapes::icosahedron(), Rule::TriSplit(3), Split::Tri(3)),
+            (pyramid, Rule::CatmullClark, Split::Quad),
+        ];
+        for (base, rule, split) in cases {
+            let mesh = HalfEdgeMesh::try_from_polygon_mesh(&base).expect("a manifold");
+            let mut chained: Vec<u32> = (0..mesh.n_faces() as u32).collect();
+            for level in 1..=3 {
+                let before = subdivide(&mesh, rule, level - 1, &SubdivideOptions::default())
+                    .expect("subdivided");
+                chained = child_faces(split, &Topo::new(&before), &chained).expect("children");
+                let degrees = (0..base.n_faces()).map(|f| base.face(f).len());
+                let closed = nested_base_faces(split, degrees, level).expect("fits");
+                assert_eq!(Some(&chained), closed.as_ref(), "{rule} level {level}");
+            }
+        }
+    }
+}

@@ -186,12 +186,8 @@ fn non_nesting_rules_take_the_least_base_face_they_come_from() {
         assert_eq!(r.base_faces(1).expect("level 1"), one, "{rule} level 1");
         // Level 2: the least over the level-1 faces each comes from.
         let level1 = subdivide(&m, rule, 1, &SubdivideOptions::default()).expect("level 1");
-        let parents = expected_level_one(&level1, rule);
-        let chained: Vec<u32> = parents.iter().map(|&p| one[p as usize]).collect();
         let least = least_over_parents(&level1, rule, &one);
         assert_eq!(r.base_faces(2).expect("level 2"), least, "{rule} level 2");
-        // The least over all parents is at most the chained least parent's.
-        assert!(least.iter().zip(&chained).all(|(a, b)| a <= b));
     }
 }
 

@@ -164,6 +164,10 @@ impl Refinement {
         // The last parent level keeps its connectivity for the index buffers.
         let c = plan.scheme.counts_at(counts, u64::from(levels - 1))?;
         bytes += &c.vertices * 4u32 + &c.edges * 32u32 + &c.faces * 4u32;
+        if plan.split == Split::Quad {
+            // The base faces' degrees (`Refinement::base_faces`).
+            bytes += BigInt::from(counts.faces) * 4u32;
+        }
         Ok(bytes)
     }
 

@@ -291,8 +291,8 @@ impl Refinement {
 
     /// The level after `t` (`ctx.level`): the topology of every refinement and of the one-shot
     /// subdivision. By index formulas into arrays of the predicted lengths (1:N² and 4:1,
-    /// Catmull-Clark, √3 on closed meshes, Doo-Sabin, mid-edge), else face by face into
-    /// index-addressed arrays (√3 on a boundary). `positions`, the new
+    /// Catmull-Clark, √3, Doo-Sabin and mid-edge on closed meshes), else face by face into
+    /// index-addressed arrays (√3, Doo-Sabin and mid-edge on a boundary). `positions`, the new
     /// level's (from [`Refinement::values_after`]), are handed back with a connectivity or
     /// become the mesh's; the face-by-face steps fill zeros without them.
     pub(super) fn next_level(

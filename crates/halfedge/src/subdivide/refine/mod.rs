@@ -384,8 +384,8 @@ impl Refinement {
     /// buffers hold only what is written: its faces not descending from holes and the
     /// vertices they use, in order; their sizes are predicted (and checked to fit) before
     /// anything is built, the written vertices and faces checked afterwards. The refinement
-    /// also keeps 4 bytes per written vertex; [`Refinement::predicted_bytes`] does not count
-    /// them.
+    /// also keeps 4 bytes per written vertex and 1 per base face; [`Refinement::predicted_bytes`]
+    /// does not count them.
     pub fn new(
         mesh: &HalfEdgeMesh,
         rule: Rule,
