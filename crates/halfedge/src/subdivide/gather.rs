@@ -26,7 +26,7 @@
 use super::build::{Sizes, StepContext};
 use super::par;
 use super::topo::{Connectivity, Topo};
-use super::trisplit::{Around, Template};
+use super::trisplit::{side_of, Around, Template};
 use crate::mesh::INVALID;
 use crate::Result;
 
@@ -144,15 +144,9 @@ fn by_template(t: &Topo<'_>, template: &Template, ctx: &StepContext<'_>) -> Resu
     let pieces = 2 * n * ne;
     let per_face = template.interior_edges();
     // Piece `j` (from the source) of old half-edge `h`, as an output half-edge.
-    let piece_of = |h: u32, j: u32| {
-        let (e, along) = (h >> 1, h & 1 == 0);
-        2 * (n * e + if along { j } else { n - 1 - j }) + (h & 1)
-    };
+    let piece_of = |h: u32, j: u32| template.piece_along(side_of(h), j);
     // The point at `j` (`1..N`) along old half-edge `h`.
-    let point_of = |h: u32, j: u32| {
-        let (e, along) = (h >> 1, h & 1 == 0);
-        nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
-    };
+    let point_of = |h: u32, j: u32| template.point_along(side_of(h), j, nv);
     let around = |f: u32| {
         let h0 = t.face_halfedge(f);
         Around {

@@ -108,7 +108,7 @@ impl Frame {
 /// when it is the even one (an edge's points are counted from the source of its even
 /// half-edge).
 #[inline(always)]
-fn side_of(h: u32) -> (u32, bool) {
+pub(crate) fn side_of(h: u32) -> (u32, bool) {
     (h >> 1, h & 1 == 0)
 }
 
@@ -172,15 +172,29 @@ impl Template {
         let n = self.n;
         match p {
             PointRef::Corner(k) => frame.corner(k as usize),
-            PointRef::Side(s, j) => {
-                let (e, along) = frame.side(s as usize);
-                nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
-            }
+            PointRef::Side(s, j) => self.point_along(frame.side(s as usize), j, nv),
             PointRef::Interior(i) => {
                 let per_face = self.interior_points.len() as u32;
                 nv + (n - 1) * ne + frame.face() * per_face + i
             }
         }
+    }
+
+    /// The vertex of the point `j` (`1..N`) along a side that is `(edge, along)`
+    /// ([`Triangle::side`]), counted from the side's source, on a level of `nv` vertices.
+    #[inline(always)]
+    pub(crate) fn point_along(&self, (e, along): (u32, bool), j: u32, nv: u32) -> u32 {
+        let n = self.n;
+        nv + e * (n - 1) + if along { j - 1 } else { n - 1 - j }
+    }
+
+    /// The half-edge of piece `j` (`0..N`, from point `j` to `j + 1`) along a side that is
+    /// `(edge, along)`, running along the side.
+    #[inline(always)]
+    pub(crate) fn piece_along(&self, (e, along): (u32, bool), j: u32) -> u32 {
+        let n = self.n;
+        let k = if along { j } else { n - 1 - j };
+        2 * (n * e + k) + u32::from(!along)
     }
 
     /// The half-edge of side `s` of a template triangle in the triangle `frame` of a level of
@@ -191,11 +205,7 @@ impl Template {
     fn side_halfedge(&self, s: SideRef, frame: &impl Triangle, ne: u32) -> u32 {
         let n = self.n;
         match s {
-            SideRef::Piece { side, j } => {
-                let (e, along) = frame.side(side as usize);
-                let k = if along { j } else { n - 1 - j };
-                2 * (n * e + k) + u32::from(!along)
-            }
+            SideRef::Piece { side, j } => self.piece_along(frame.side(side as usize), j),
             SideRef::Interior { edge, half } => {
                 2 * (n * ne + frame.face() * self.interior_edges + edge) + half
             }

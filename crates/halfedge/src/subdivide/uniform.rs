@@ -138,29 +138,11 @@ mod tests {
     /// `subdivide` (1:N², 4:1 with boundary, Catmull-Clark on a mixed mesh).
     #[test]
     fn the_nested_closed_forms_are_the_chained_children() {
-        let pyramid = crate::PolygonMesh::from_faces(
-            [
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-                [0.5, 0.5, 1.0],
-            ]
-            .map(glam::DVec3::from_array)
-            .to_vec(),
-            [
-                vec![0, 3, 2, 1],
-                vec![0, 1, 4],
-                vec![1, 2, 4],
-                vec![2, 3, 4],
-                vec![3, 0, 4],
-            ],
-        );
         let cases = [
             (shapes::icosahedron(), Rule::Loop, Split::Tri(2)),
             (shapes::grid(2, 2).expect("grid"), Rule::Loop, Split::Tri(2)),
             (shapes::icosahedron(), Rule::TriSplit(3), Split::Tri(3)),
-            (pyramid, Rule::CatmullClark, Split::Quad),
+            (shapes::mixed(), Rule::CatmullClark, Split::Quad),
         ];
         for (base, rule, split) in cases {
             let mesh = HalfEdgeMesh::try_from_polygon_mesh(&base).expect("a manifold");

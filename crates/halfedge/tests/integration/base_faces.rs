@@ -86,7 +86,7 @@ fn barycentric(p: glam::DVec3, t: &[glam::DVec3]) -> (f64, f64, f64) {
 
 #[test]
 fn catmull_clark_faces_come_in_blocks_per_base_face() {
-    for base in [shapes::cube(), shapes::icosahedron(), mixed()] {
+    for base in [shapes::cube(), shapes::icosahedron(), shapes::mixed()] {
         let m = mesh(&base);
         for levels in 0..=3u32 {
             let r = refine(&m, Rule::CatmullClark, levels);
@@ -104,64 +104,11 @@ fn catmull_clark_faces_come_in_blocks_per_base_face() {
     }
 }
 
-/// A closed mesh of triangles and quads (a square pyramid).
-fn mixed() -> PolygonMesh {
-    let positions = [
-        [0.0, 0.0, 0.0],
-        [1.0, 0.0, 0.0],
-        [1.0, 1.0, 0.0],
-        [0.0, 1.0, 0.0],
-        [0.5, 0.5, 1.0],
-    ]
-    .map(glam::DVec3::from_array)
-    .to_vec();
-    let faces: Vec<Vec<u32>> = vec![
-        vec![0, 3, 2, 1],
-        vec![0, 1, 4],
-        vec![1, 2, 4],
-        vec![2, 3, 4],
-        vec![3, 0, 4],
-    ];
-    PolygonMesh::from_faces(positions, &faces)
-}
-
 /// The faces of level 1 of a non-nesting `rule` on `m` and where each comes from, in the
 /// numbering of the rule's docs: the least of the base faces at its origin.
 fn expected_level_one(m: &HalfEdgeMesh, rule: Rule) -> Vec<u32> {
-    let faces_of_edge = |e: usize| {
-        let h = 2 * e as u32;
-        [h, h ^ 1]
-            .iter()
-            .filter_map(|&h| m.face(halfedge::HalfedgeId(h)).map(|f| f.0))
-            .min()
-            .expect("an edge has a face")
-    };
-    let faces_around = |v: u32| {
-        m.halfedges()
-            .filter(|&h| m.to_vertex(h).0 == v)
-            .filter_map(|h| m.face(h).map(|f| f.0))
-            .min()
-            .expect("a vertex has a face")
-    };
-    let (nv, ne, nf) = (m.n_vertices(), m.n_edges(), m.n_faces() as u32);
-    match rule {
-        Rule::DooSabin => (0..nf)
-            .chain((0..ne).map(faces_of_edge))
-            .chain((0..nv as u32).map(faces_around))
-            .collect(),
-        Rule::MidEdge => (0..nf).chain((0..nv as u32).map(faces_around)).collect(),
-        Rule::Sqrt3 => (0..nf)
-            .flat_map(|f| {
-                let h0 = m.face_halfedge(halfedge::FaceId(f));
-                let hs = [h0, m.next(h0), m.prev(h0)];
-                hs.map(|h| {
-                    let twin = halfedge::HalfedgeId(h.0 ^ 1);
-                    m.face(twin).map_or(f, |g| g.0.min(f))
-                })
-            })
-            .collect(),
-        _ => unreachable!("a non-nesting rule"),
-    }
+    let own: Vec<u32> = (0..m.n_faces() as u32).collect();
+    least_over_parents(m, rule, &own)
 }
 
 #[test]
@@ -173,7 +120,8 @@ fn non_nesting_rules_take_the_least_base_face_they_come_from() {
         (shapes::grid(3, 2).expect("grid"), Rule::DooSabin),
         (shapes::grid(3, 2).expect("grid"), Rule::MidEdge),
         (shapes::grid(3, 2).expect("grid"), Rule::Sqrt3),
-        (mixed(), Rule::DooSabin),
+        (shapes::mixed(), Rule::DooSabin),
+        (shapes::mixed(), Rule::MidEdge),
     ];
     for (base, rule) in cases {
         let m = mesh(&base);
@@ -191,8 +139,9 @@ fn non_nesting_rules_take_the_least_base_face_they_come_from() {
     }
 }
 
-/// The least of `values` (per face of `m`) over the faces each level-1 face of `rule` on `m`
-/// comes from.
+/// The least of `values` (per face of `m`) over the faces each face of the level after `m`
+/// under `rule` comes from: its own face, an edge's faces, the faces around a vertex (the
+/// dual rules), the two faces of a flipped edge (√3).
 fn least_over_parents(m: &HalfEdgeMesh, rule: Rule, values: &[u32]) -> Vec<u32> {
     let value = |f: halfedge::FaceId| values[f.0 as usize];
     let of_edge = |e: usize| {
