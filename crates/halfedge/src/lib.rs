@@ -93,6 +93,7 @@ macro_rules! with_setters {
 mod build;
 pub mod descriptor;
 mod error;
+pub mod groups;
 pub mod holes;
 pub mod io;
 pub mod memory;
@@ -112,7 +113,7 @@ pub use crate::error::{Error, FaceVertices, ParseError, Result};
 pub use crate::mesh::{
     EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,
 };
-pub use crate::polygon::{PolygonFaces, PolygonMesh};
+pub use crate::polygon::{ColorError, PartialColors, PolygonFaces, PolygonMesh, Uncarried};
 pub use crate::subdivide::refine::{self, Evaluator, Refinement, Scalar, StencilTable};
 pub use crate::subdivide::Rule;
 

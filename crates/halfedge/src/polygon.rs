@@ -4,6 +4,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
+use crate::groups::FaceGroups;
 use crate::tags::{IgnoredTag, TagError, Tags};
 use crate::uv::{PartialUvs, UvError, UvLayout, Uvs};
 
@@ -49,6 +50,67 @@ pub struct PolygonMesh {
     uvs: Option<Uvs>,
     /// For a file where only some corners name a `vt`: how many.
     partial_uvs: Option<PartialUvs>,
+    /// The file's materials, objects, groups and smoothing groups, per face.
+    groups: Option<FaceGroups>,
+    /// Vertex colors (`r g b`), one per vertex.
+    colors: Option<Vec<[f64; 3]>>,
+    /// For a file where only some vertices have a color: how many.
+    partial_colors: Option<PartialColors>,
+    /// The kinds of lines of the file no output carries, with their counts.
+    uncarried: Vec<Uncarried>,
+}
+
+/// What a reader found about vertex colors: one per vertex, or how many vertices had one.
+pub(crate) type ReadColors = (Option<Vec<[f64; 3]>>, Option<PartialColors>);
+
+/// Lines of a file that no output carries (OBJ's `vn`, `l`, `p`, other statements), by kind.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Uncarried {
+    /// The statement's keyword (`l`, `vn`, ...; control characters escaped).
+    pub keyword: String,
+    /// The number of such lines.
+    pub lines: u64,
+}
+
+/// Why a mesh read from a file has no vertex colors although some of its vertices have one:
+/// how many do (a `v` line with 6 values, the others with 3 or 4; or other counts).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PartialColors {
+    /// The vertices with a color.
+    pub with_colors: usize,
+    /// All vertices.
+    pub vertices: usize,
+}
+
+impl std::fmt::Display for PartialColors {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} of {} vertices have colors: no color channel",
+            self.with_colors, self.vertices
+        )
+    }
+}
+
+/// Vertex colors that do not fit their mesh.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum ColorError {
+    /// Not one color per vertex.
+    #[error("{given} vertex colors for a mesh with {expected} vertices")]
+    Count {
+        /// Colors given.
+        given: usize,
+        /// Vertices of the mesh.
+        expected: usize,
+    },
+    /// Groups for another number of faces.
+    #[error("groups of {given} faces for a mesh with {expected} faces")]
+    GroupFaces {
+        /// Faces of the groups.
+        given: usize,
+        /// Faces of the mesh.
+        expected: usize,
+    },
 }
 
 impl Default for PolygonMesh {
@@ -62,12 +124,17 @@ impl Default for PolygonMesh {
             ignored_tags: Vec::new(),
             uvs: None,
             partial_uvs: None,
+            groups: None,
+            colors: None,
+            partial_colors: None,
+            uncarried: Vec::new(),
         }
     }
 }
 
 /// Equal positions, faces, [`tags`](PolygonMesh::tags) (creases, corners, holes and
-/// options change the surface) and [`uvs`](PolygonMesh::uvs). Where the faces were read
+/// options change the surface), [`uvs`](PolygonMesh::uvs), [`groups`](PolygonMesh::groups)
+/// and [`colors`](PolygonMesh::colors). Where the faces were read
 /// from, which tags the reader ignored ([`PolygonMesh::ignored_tags`]) and why a file gave no
 /// UVs ([`PolygonMesh::partial_uvs`]) do not matter.
 impl PartialEq for PolygonMesh {
@@ -77,6 +144,8 @@ impl PartialEq for PolygonMesh {
             && self.face_indices == other.face_indices
             && self.tags == other.tags
             && self.uvs == other.uvs
+            && self.groups == other.groups
+            && self.colors == other.colors
     }
 }
 
@@ -116,11 +185,7 @@ impl PolygonMesh {
             positions,
             face_offsets,
             face_indices,
-            face_lines: Vec::new(),
-            tags: Tags::default(),
-            ignored_tags: Vec::new(),
-            uvs: None,
-            partial_uvs: None,
+            ..PolygonMesh::default()
         }
     }
 
@@ -150,7 +215,8 @@ impl PolygonMesh {
     ///
     /// The new face's corners have no texture coordinates, so a mesh with
     /// [`uvs`](Self::uvs) loses them (they become `None`): set them again for every corner
-    /// with [`set_uvs`](Self::set_uvs) after the last face.
+    /// with [`set_uvs`](Self::set_uvs) after the last face. The same holds for
+    /// [`groups`](Self::groups) ([`set_groups`](Self::set_groups)).
     ///
     /// ```
     /// use halfedge::glam::{DVec2, DVec3};
@@ -165,6 +231,7 @@ impl PolygonMesh {
     /// ```
     pub fn push_face(&mut self, vertices: &[u32]) {
         self.uvs = None;
+        self.groups = None;
         self.face_indices.extend_from_slice(vertices);
         self.face_offsets.push(self.face_indices.len());
     }
@@ -173,6 +240,7 @@ impl PolygonMesh {
     /// [`push_face`](Self::push_face), a mesh with [`uvs`](Self::uvs) loses them.
     pub fn push_face_from_iter(&mut self, vertices: impl IntoIterator<Item = u32>) {
         self.uvs = None;
+        self.groups = None;
         self.face_indices.extend(vertices);
         self.face_offsets.push(self.face_indices.len());
     }
@@ -326,6 +394,96 @@ impl PolygonMesh {
         self.uvs = uvs;
         self.partial_uvs = None;
         Ok(())
+    }
+
+    /// The file's materials, objects, groups and smoothing groups per face
+    /// ([`crate::groups`]), `None` when it has none (or for a mesh not read from OBJ).
+    pub fn groups(&self) -> Option<&FaceGroups> {
+        self.groups.as_ref()
+    }
+
+    /// Sets (or, with `None`, removes) the per-face groups.
+    ///
+    /// # Errors
+    ///
+    /// [`ColorError::GroupFaces`] when the groups have another number of faces.
+    pub fn set_groups(&mut self, groups: Option<FaceGroups>) -> Result<(), ColorError> {
+        if let Some(g) = &groups {
+            if g.n_faces() != self.n_faces() {
+                return Err(ColorError::GroupFaces {
+                    given: g.n_faces(),
+                    expected: self.n_faces(),
+                });
+            }
+        }
+        self.groups = groups;
+        Ok(())
+    }
+
+    /// The vertex colors (`r g b` per vertex, as the file writes them: no scaling, never
+    /// clamped), when every vertex has one; `None` otherwise (see
+    /// [`partial_colors`](Self::partial_colors)).
+    ///
+    /// ```
+    /// let text = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+    /// let mesh = halfedge::io::read_obj_from(text.as_bytes(), "rgb.obj")?;
+    /// assert_eq!(mesh.colors().expect("every v has r g b")[1], [0.0, 1.0, 0.0]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn colors(&self) -> Option<&[[f64; 3]]> {
+        self.colors.as_deref()
+    }
+
+    /// Why the mesh has no [`colors`](Self::colors) although some vertices of its file have
+    /// one: how many do ([`PartialColors`]).
+    pub fn partial_colors(&self) -> Option<PartialColors> {
+        self.partial_colors
+    }
+
+    /// Sets (or, with `None`, removes) the vertex colors, one per vertex; clears the
+    /// reader's [`partial_colors`](Self::partial_colors).
+    ///
+    /// # Errors
+    ///
+    /// [`ColorError::Count`] when the colors are not one per vertex.
+    pub fn set_colors(&mut self, colors: Option<Vec<[f64; 3]>>) -> Result<(), ColorError> {
+        if let Some(c) = &colors {
+            if c.len() != self.n_vertices() {
+                return Err(ColorError::Count {
+                    given: c.len(),
+                    expected: self.n_vertices(),
+                });
+            }
+        }
+        self.colors = colors;
+        self.partial_colors = None;
+        Ok(())
+    }
+
+    /// Sets what a reader found: colors (one per vertex) or the record of partial ones,
+    /// groups (one class per face) and the lines it did not carry.
+    pub(crate) fn set_read_extras(
+        &mut self,
+        colors: ReadColors,
+        groups: Option<FaceGroups>,
+        uncarried: Vec<Uncarried>,
+    ) {
+        debug_assert!(colors
+            .0
+            .as_ref()
+            .map_or(true, |c| c.len() == self.n_vertices()));
+        debug_assert!(groups
+            .as_ref()
+            .map_or(true, |g| g.n_faces() == self.n_faces()));
+        (self.colors, self.partial_colors) = colors;
+        self.groups = groups;
+        self.uncarried = uncarried;
+    }
+
+    /// The kinds of lines of the file that no output carries (OBJ's `vn`, `l`, `p` and
+    /// statements it does not read), each with its count, sorted by keyword.
+    pub fn uncarried(&self) -> &[Uncarried] {
+        &self.uncarried
     }
 
     /// The UV layout of the mesh ([`UvLayout`]), when it has texture coordinates.

@@ -154,8 +154,9 @@ mod write;
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::write::{
-    write_buffers_obj, write_buffers_obj_with, write_obj, write_obj_with, write_polygon_obj,
-    write_polygon_obj_with, FaceBuffers, ObjWriteOptions, UvBuffers,
+    write_buffers_obj, write_buffers_obj_with, write_mesh_buffers_obj, write_obj, write_obj_with,
+    write_polygon_obj, write_polygon_obj_with, FaceBuffers, MeshBuffers, ObjWriteOptions,
+    UvBuffers,
 };
 
 pub use crate::error::escape_controls;

@@ -9,7 +9,8 @@ use super::{
     grow, open, parse_coordinate, parse_position, parse_values, shorten, Budget, Lines, ReadOptions,
 };
 use crate::error::{Error, ParseError, Result};
-use crate::polygon::PolygonMesh;
+use crate::groups::{GroupsReader, Statement};
+use crate::polygon::{PartialColors, PolygonMesh, ReadColors, Uncarried};
 use crate::uv::{PartialUvs, Uvs};
 
 use super::obj_tags::{TagFailure, TagReader};
@@ -146,9 +147,13 @@ pub(crate) fn read_obj_within(
     // reference (an earlier, smaller one is within it). A file of faces before their vertices
     // keeps a few entries, not one per corner.
     let mut forward: Vec<(u64, i64)> = Vec::new();
+    let mut extras = Extras::default();
     // Every list the reader grows besides the mesh counts against the budget.
     let extra = |tags: &TagReader, uv: &UvReader, forward: &[(u64, i64)], scratch: usize| {
         tags.heap_bytes() + uv.heap_bytes() + std::mem::size_of_val(forward) + scratch
+    };
+    let extra = |tags: &TagReader, uv: &UvReader, e: &Extras, f: &[(u64, i64)], s: usize| {
+        extra(tags, uv, f, s) + e.heap_bytes()
     };
     loop {
         if !lines.next_line()? {
@@ -165,7 +170,8 @@ pub(crate) fn read_obj_within(
             "v" => {
                 let position = parse_position(&mut tokens, &lines)?;
                 push_element(&mut mesh.positions, position, "vertices", &lines)?;
-                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
+                extras.vertex(tokens, &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
             }
             "vt" => {
                 let missing = |found| ParseError::MissingTexCoords { found };
@@ -176,7 +182,7 @@ pub(crate) fn read_obj_within(
                     "texture coordinates",
                     &lines,
                 )?;
-                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
             }
             "f" => {
                 corners.clear();
@@ -225,16 +231,22 @@ pub(crate) fn read_obj_within(
                 // The face's corners, offset and line, and its corners' vt.
                 let adding =
                     (corners.len() + face_vts.len()) * 4 + std::mem::size_of::<usize>() + 8;
-                if budget.room(&mesh, extra(&tags, &uv, &forward, scratch)) < adding as u128 {
+                if budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch))
+                    < adding as u128
+                {
                     return Err(budget.refused(&lines));
                 }
                 mesh.try_push_face_from_line(&corners, lines.line)
                     .map_err(|e| lines.allocation_failed(adding as u128, e))?;
+                extras
+                    .groups
+                    .face()
+                    .map_err(|e| lines.allocation_failed(4, e))?;
                 uv.push_face(&face_vts, corners.len(), &lines)?;
-                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
             }
             "t" if options.tags => {
-                let room = budget.room(&mesh, extra(&tags, &uv, &forward, scratch));
+                let room = budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch));
                 tags.read(tokens, lines.line, room)
                     .map_err(|failure| match failure {
                         TagFailure::Parse(kind) => lines.error(kind),
@@ -243,9 +255,17 @@ pub(crate) fn read_obj_within(
                             lines.allocation_failed(bytes, error)
                         }
                     })?;
-                budget.check(&mesh, extra(&tags, &uv, &forward, scratch), &lines)?;
+                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
             }
-            _ => {}
+            "t" => {}
+            "mtllib" => extras.groups.mtllib(line.trim()),
+            other => {
+                match Statement::of_keyword(other) {
+                    Some(statement) => extras.groups.statement(statement, tokens),
+                    None => extras.uncarried(other),
+                }
+                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
+            }
         }
     }
     let count = mesh.positions.len() as u64;
@@ -284,7 +304,103 @@ pub(crate) fn read_obj_within(
         })?;
     let (uvs, partial) = uv.finish();
     mesh.set_read_uvs(uvs, partial);
+    let vertices = mesh.n_vertices();
+    let (colors, groups, uncarried) = extras.finish(vertices);
+    mesh.set_read_extras(colors, groups, uncarried);
     Ok(mesh)
+}
+
+/// What the OBJ reader keeps besides positions, faces, texture coordinates and tags: vertex
+/// colors, the grouping statements, and the kinds of lines no output carries.
+#[derive(Default)]
+struct Extras {
+    /// The colors of the `v` lines so far, while every one has `r g b` (else empty).
+    colors: Vec<[f64; 3]>,
+    /// The `v` lines with a color, and whether one had a count of values other than 3, 4 or 6.
+    with_colors: usize,
+    vertices: usize,
+    odd: bool,
+    groups: GroupsReader,
+    uncarried: std::collections::HashMap<String, u64>,
+}
+
+impl Extras {
+    fn heap_bytes(&self) -> usize {
+        let uncarried: usize = self.uncarried.keys().map(|k| k.capacity() + 48).sum();
+        24 * self.colors.capacity() + self.groups.heap_bytes() + uncarried
+    }
+
+    /// Reads the values of a `v` line after its position: none, `w`, or `r g b`.
+    fn vertex<'a, R>(
+        &mut self,
+        rest: impl Iterator<Item = &'a str>,
+        lines: &Lines<R>,
+    ) -> Result<()> {
+        let rest: Vec<&str> = rest.take(4).collect();
+        let all_so_far = self.with_colors == self.vertices;
+        self.vertices += 1;
+        match rest.len() {
+            3 => {
+                let missing = |found| ParseError::MissingCoordinates { found };
+                let rgb = parse_values::<3, R>(&mut rest.into_iter(), lines, parse_color, missing)?;
+                self.with_colors += 1;
+                if all_so_far {
+                    grow(&mut self.colors, 1, lines)?;
+                    self.colors.push(rgb);
+                }
+            }
+            n => {
+                self.odd |= n > 1;
+                self.colors = Vec::new();
+            }
+        }
+        Ok(())
+    }
+
+    /// Counts a line no output carries.
+    fn uncarried(&mut self, keyword: &str) {
+        let keyword = shorten(keyword);
+        *self.uncarried.entry(keyword).or_insert(0) += 1;
+    }
+
+    fn finish(
+        self,
+        vertices: usize,
+    ) -> (
+        ReadColors,
+        Option<crate::groups::FaceGroups>,
+        Vec<Uncarried>,
+    ) {
+        let colors = if self.with_colors == vertices && vertices > 0 {
+            (Some(self.colors), None)
+        } else if self.with_colors > 0 || self.odd {
+            let partial = PartialColors {
+                with_colors: self.with_colors,
+                vertices,
+            };
+            (None, Some(partial))
+        } else {
+            (None, None)
+        };
+        let mut uncarried: Vec<Uncarried> = self
+            .uncarried
+            .into_iter()
+            .map(|(keyword, lines)| Uncarried { keyword, lines })
+            .collect();
+        uncarried.sort_by(|a, b| a.keyword.cmp(&b.keyword));
+        (colors, self.groups.finish(), uncarried)
+    }
+}
+
+/// Parses a finite color value.
+pub(super) fn parse_color(token: &str) -> std::result::Result<f64, ParseError> {
+    parse_coordinate(token).map_err(|kind| match kind {
+        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
+            token,
+            expected: "vertex color",
+        },
+        kind => kind,
+    })
 }
 
 /// The texture coordinates read so far and the `vt` of the face corners.

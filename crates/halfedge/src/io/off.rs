@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::{grow, open, parse_position, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
-use crate::polygon::PolygonMesh;
+use crate::polygon::{PartialColors, PolygonMesh};
 
 /// Reads an OFF file as a face list (polygons kept, 0-based indices).
 ///
@@ -41,7 +41,8 @@ pub(crate) fn read_off_with(path: &Path, options: &ReadOptions) -> Result<Polygo
 ///
 /// The header keyword (`OFF`, `COFF`, `NOFF`, `CNOFF`) may be followed by the counts on the
 /// same line; then come `V F E`, `V` vertex lines (the first three numbers are the position,
-/// colours or normals after them are ignored) and `F` face lines `k i1 .. ik` (anything after
+/// then a normal under `N`, ignored; under `C` a color `r g b`, its alpha ignored, kept as read:
+/// [`PolygonMesh::colors`] when every vertex line has one) and `F` face lines `k i1 .. ik` (anything after
 /// the `k` indices, such as a colour, is ignored).
 ///
 /// # Errors
@@ -71,6 +72,7 @@ pub(crate) fn read_off_within(
 
     // Header keyword, possibly followed by the counts.
     let mut counts: Vec<String> = Vec::new();
+    let (colored, normals);
     loop {
         if !lines.next_line()? {
             return Err(Error::NoFaces {
@@ -91,6 +93,7 @@ pub(crate) fn read_off_within(
             return Err(lines.error(malformed(what)));
         }
         counts.extend(tokens.map(str::to_string));
+        (colored, normals) = (keyword.contains('C'), keyword.contains('N'));
         break;
     }
     while counts.is_empty() {
@@ -121,6 +124,7 @@ pub(crate) fn read_off_within(
     let cap = |n: u32, bytes: u64| (n.min(1 << 20) as u64).min(budget.bytes / 4 / bytes) as usize;
     let _ = mesh.positions.try_reserve_exact(cap(n_vertices, 24));
     let _ = mesh.try_reserve_faces(cap(n_faces, 8), 0);
+    let (mut colors, mut with_colors): (Vec<[f64; 3]>, usize) = (Vec::new(), 0);
     while mesh.positions.len() < n_vertices as usize {
         if !lines.next_line()? {
             let what = format!("{} of {n_vertices} vertices read", mesh.positions.len());
@@ -134,7 +138,28 @@ pub(crate) fn read_off_within(
         let position = parse_position(&mut tokens, &lines)?;
         grow(&mut mesh.positions, 1, &lines)?;
         mesh.positions.push(position);
-        budget.check(&mesh, 0, &lines)?;
+        if colored {
+            // `x y z [nx ny nz] r g b [a]`: the color after the normal, alpha not kept.
+            let rgb: Vec<&str> = tokens.skip(if normals { 3 } else { 0 }).take(3).collect();
+            let all_so_far = with_colors + 1 == mesh.positions.len();
+            if rgb.len() == 3 {
+                with_colors += 1;
+                let missing = |found| ParseError::MissingCoordinates { found };
+                let rgb = super::parse_values::<3, _>(
+                    &mut rgb.into_iter(),
+                    &lines,
+                    super::obj::parse_color,
+                    missing,
+                )?;
+                if all_so_far {
+                    grow(&mut colors, 1, &lines)?;
+                    colors.push(rgb);
+                }
+            } else {
+                colors = Vec::new();
+            }
+        }
+        budget.check(&mesh, 24 * colors.capacity(), &lines)?;
     }
     let mut corners: Vec<u32> = Vec::new();
     while mesh.n_faces() < n_faces as usize {
@@ -187,18 +212,32 @@ pub(crate) fn read_off_within(
             corners.push(index as u32);
         }
         let adding = corners.len() * 4 + std::mem::size_of::<usize>() + 8;
-        if budget.room(&mesh, 4 * corners.capacity()) < adding as u128 {
+        let extra = 4 * corners.capacity() + 24 * colors.capacity();
+        if budget.room(&mesh, extra) < adding as u128 {
             return Err(budget.refused(&lines));
         }
         mesh.try_push_face_from_line(&corners, lines.line)
             .map_err(|e| lines.allocation_failed(adding as u128, e))?;
-        budget.check(&mesh, 4 * corners.capacity(), &lines)?;
+        budget.check(&mesh, extra, &lines)?;
     }
     if mesh.n_faces() == 0 {
         return Err(Error::NoFaces {
             file: lines.name.clone(),
         });
     }
+    let vertices = mesh.n_vertices();
+    let colors = match (colored, with_colors) {
+        (false, _) | (true, 0) => (None, None),
+        (true, n) if n == vertices => (Some(colors), None),
+        (true, with_colors) => (
+            None,
+            Some(PartialColors {
+                with_colors,
+                vertices,
+            }),
+        ),
+    };
+    mesh.set_read_extras(colors, None, Vec::new());
     Ok(mesh)
 }
 

@@ -5,6 +5,7 @@ use std::io::{BufWriter, Write};
 
 use glam::DVec3;
 
+use crate::groups::{FaceGroups, Statement};
 use crate::mesh::HalfEdgeMesh;
 use crate::normals;
 use crate::polygon::PolygonMesh;
@@ -112,7 +113,7 @@ pub fn write_obj_with(
         mesh.positions().iter().map(|p| [&p.x, &p.y, &p.z]),
         None::<TexCoords<'_, f64, std::iter::Empty<[&f64; 2]>>>,
         normals.as_deref(),
-        faces(),
+        (faces(), Carried::default()),
         writer,
     )
 }
@@ -176,11 +177,15 @@ pub fn write_polygon_obj_with(
     let normals = options
         .normals
         .then(|| normals::vertex_normals(&mesh.positions, mesh.faces()));
+    let carried = Carried {
+        colors: mesh.colors(),
+        groups: mesh.groups().filter(|g| g.n_faces() == mesh.n_faces()),
+    };
     write_coordinates(
         mesh.positions.iter().map(|p| [&p.x, &p.y, &p.z]),
         texcoords,
         normals.as_deref(),
-        mesh.faces().map(|f| f.iter().copied()),
+        (mesh.faces().map(|f| f.iter().copied()), carried),
         writer,
     )
 }
@@ -206,17 +211,17 @@ pub enum FaceBuffers<'a> {
     },
 }
 
-impl FaceBuffers<'_> {
+impl<'a> FaceBuffers<'a> {
     /// The faces as slices; `None` when the buffers do not describe faces (a degree of 0 or
     /// not dividing the length, offsets that decrease or leave the indices).
-    fn faces(&self) -> Option<Vec<&[u32]>> {
+    pub(crate) fn faces(&self) -> Option<Vec<&'a [u32]>> {
         match *self {
             FaceBuffers::Uniform { degree, indices } => (degree > 0 && indices.len() % degree == 0)
                 .then(|| indices.chunks_exact(degree).collect()),
             FaceBuffers::Polygons { offsets, indices } => {
                 let whole = offsets.first() == Some(&0)
                     && offsets.last().map(|&l| l as usize) == Some(indices.len());
-                let faces: Option<Vec<&[u32]>> = offsets
+                let faces: Option<Vec<&'a [u32]>> = offsets
                     .windows(2)
                     .map(|w| indices.get(w[0] as usize..w[1] as usize))
                     .collect();
@@ -295,41 +300,142 @@ pub fn write_buffers_obj_with<T: Scalar>(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
-    let list = faces
-        .faces()
-        .ok_or_else(|| invalid(format!("inconsistent face buffers: {faces:?}")))?;
-    if let Some(&v) = list
-        .iter()
-        .flat_map(|f| f.iter())
-        .find(|&&v| v as usize >= positions.len())
-    {
-        return Err(invalid(format!(
-            "a face uses vertex {v}, but there are {} positions",
-            positions.len()
-        )));
-    }
-    let uvs = uvs.filter(|_| options.uvs);
-    if let Some(uv) = &uvs {
-        let corners: usize = list.iter().map(|f| f.len()).sum();
-        if uv.corners.len() != corners {
-            return Err(invalid(format!(
-                "{} texture-coordinate corners for {corners} face corners",
-                uv.corners.len()
-            )));
+    let mut mesh = MeshBuffers::new(positions, faces);
+    mesh.uvs = uvs;
+    write_mesh_buffers_obj(&mesh, writer, options)
+}
+
+/// A mesh in caller-owned buffers, as the writers take it: positions and faces, and
+/// optionally texture coordinates, vertex colors and per-face groups.
+///
+/// ```
+/// use halfedge::io::{write_mesh_buffers_obj, FaceBuffers, MeshBuffers, ObjWriteOptions};
+/// let positions = [[0.0f64, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+/// let colors = [[1.0f64, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let faces = FaceBuffers::Uniform { degree: 3, indices: &[0, 1, 2] };
+/// let mesh = MeshBuffers::new(&positions, faces).with_colors(&colors);
+/// let mut out = Vec::new();
+/// write_mesh_buffers_obj(&mesh, &mut out, &ObjWriteOptions::default())?;
+/// assert!(String::from_utf8(out)?.starts_with("v 0.0 0.0 0.0 1.0 0.0 0.0\n"));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub struct MeshBuffers<'a, T> {
+    /// The positions.
+    pub positions: &'a [[T; 3]],
+    /// The faces.
+    pub faces: FaceBuffers<'a>,
+    /// Texture coordinates: values and a value per face corner.
+    pub uvs: Option<UvBuffers<'a, T>>,
+    /// A color (`r g b`) per position.
+    pub colors: Option<&'a [[T; 3]]>,
+    /// The faces' materials, objects, groups and smoothing groups, one face per face.
+    pub groups: Option<&'a FaceGroups>,
+}
+
+impl<'a, T> MeshBuffers<'a, T> {
+    /// Positions and faces, nothing else.
+    pub fn new(positions: &'a [[T; 3]], faces: FaceBuffers<'a>) -> MeshBuffers<'a, T> {
+        MeshBuffers {
+            positions,
+            faces,
+            uvs: None,
+            colors: None,
+            groups: None,
         }
-        if let Some((corner, &t)) = uv
-            .corners
+    }
+
+    /// With texture coordinates.
+    pub fn with_uvs(mut self, uvs: UvBuffers<'a, T>) -> Self {
+        self.uvs = Some(uvs);
+        self
+    }
+
+    /// With a color per position.
+    pub fn with_colors(mut self, colors: &'a [[T; 3]]) -> Self {
+        self.colors = Some(colors);
+        self
+    }
+
+    /// With groups, one per face.
+    pub fn with_groups(mut self, groups: &'a FaceGroups) -> Self {
+        self.groups = Some(groups);
+        self
+    }
+
+    /// The faces as slices, checked against the positions, the UVs, the colors and the
+    /// groups ([`std::io::ErrorKind::InvalidInput`] naming the mismatch).
+    pub(crate) fn checked_faces(&self) -> std::io::Result<Vec<&'a [u32]>> {
+        let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+        let faces = self.faces;
+        let list = faces
+            .faces()
+            .ok_or_else(|| invalid(format!("inconsistent face buffers: {faces:?}")))?;
+        let positions = self.positions;
+        if let Some(&v) = list
             .iter()
-            .enumerate()
-            .find(|(_, &t)| t as usize >= uv.values.len())
+            .flat_map(|f| f.iter())
+            .find(|&&v| v as usize >= positions.len())
         {
             return Err(invalid(format!(
-                "face corner {corner} uses UV value {t}, but there are {}",
-                uv.values.len()
+                "a face uses vertex {v}, but there are {} positions",
+                positions.len()
             )));
         }
+        if let Some(colors) = self.colors.filter(|c| c.len() != positions.len()) {
+            return Err(invalid(format!(
+                "{} colors for {} positions",
+                colors.len(),
+                positions.len()
+            )));
+        }
+        if let Some(groups) = self.groups.filter(|g| g.n_faces() != list.len()) {
+            return Err(invalid(format!(
+                "groups of {} faces for {} faces",
+                groups.n_faces(),
+                list.len()
+            )));
+        }
+        if let Some(uv) = &self.uvs {
+            let corners: usize = list.iter().map(|f| f.len()).sum();
+            if uv.corners.len() != corners {
+                return Err(invalid(format!(
+                    "{} texture-coordinate corners for {corners} face corners",
+                    uv.corners.len()
+                )));
+            }
+            if let Some((corner, &t)) = uv
+                .corners
+                .iter()
+                .enumerate()
+                .find(|(_, &t)| t as usize >= uv.values.len())
+            {
+                return Err(invalid(format!(
+                    "face corner {corner} uses UV value {t}, but there are {}",
+                    uv.values.len()
+                )));
+            }
+        }
+        Ok(list)
     }
+}
+
+/// Writes a mesh from caller-owned buffers as OBJ text ([`write_buffers_obj_with`], with
+/// its colors on the `v` lines and its groups before the faces they change at).
+///
+/// # Errors
+///
+/// As [`write_buffers_obj_with`], and [`std::io::ErrorKind::InvalidInput`] when the colors
+/// are not one per position or the groups not one per face; nothing is written then.
+pub fn write_mesh_buffers_obj<T: Scalar>(
+    mesh: &MeshBuffers<'_, T>,
+    writer: impl Write,
+    options: &ObjWriteOptions,
+) -> std::io::Result<()> {
+    let uvs = mesh.uvs.filter(|_| options.uvs);
+    let list = MeshBuffers { uvs, ..*mesh }.checked_faces()?;
+    let positions = mesh.positions;
     let normals = options.normals.then(|| {
         let position = |v: u32| {
             let [x, y, z] = positions[v as usize];
@@ -341,13 +447,34 @@ pub fn write_buffers_obj_with<T: Scalar>(
         values: u.values.iter().map(|[s, t]| [s, t]),
         corners: u.corners,
     });
+    let carried = Carried {
+        colors: mesh.colors,
+        groups: mesh.groups,
+    };
     write_coordinates(
         positions.iter().map(|[x, y, z]| [x, y, z]),
         texcoords,
         normals.as_deref(),
-        list.iter().map(|f| f.iter().copied()),
+        (list.iter().map(|f| f.iter().copied()), carried),
         writer,
     )
+}
+
+/// What a mesh carries into the text besides its geometry: a color per vertex (written on
+/// its `v` line), the groups of its faces (a statement line before each face whose value
+/// differs from the face written before, the `mtllib` lines before the first `v`).
+struct Carried<'a, T> {
+    colors: Option<&'a [[T; 3]]>,
+    groups: Option<&'a FaceGroups>,
+}
+
+impl<T> Default for Carried<'_, T> {
+    fn default() -> Self {
+        Carried {
+            colors: None,
+            groups: None,
+        }
+    }
 }
 
 /// The texture coordinates [`write_coordinates`] writes: the values, and the value of each
@@ -364,7 +491,7 @@ fn write_coordinates<'p, T, P, U, F, I>(
     positions: P,
     texcoords: Option<TexCoords<'p, T, U>>,
     normals: Option<&[DVec3]>,
-    faces: F,
+    (faces, carried): (F, Carried<'_, T>),
     writer: impl Write,
 ) -> std::io::Result<()>
 where
@@ -375,8 +502,22 @@ where
     I: Iterator<Item = u32>,
 {
     let mut w = BufWriter::with_capacity(1 << 16, writer);
-    for [x, y, z] in positions {
-        writeln!(w, "v {x:?} {y:?} {z:?}")?;
+    if let Some(groups) = carried.groups {
+        for line in groups.mtllib() {
+            writeln!(w, "{line}")?;
+        }
+    }
+    match carried.colors {
+        None => {
+            for [x, y, z] in positions {
+                writeln!(w, "v {x:?} {y:?} {z:?}")?;
+            }
+        }
+        Some(colors) => {
+            for ([x, y, z], [r, g, b]) in positions.zip(colors) {
+                writeln!(w, "v {x:?} {y:?} {z:?} {r:?} {g:?} {b:?}")?;
+            }
+        }
     }
     let mut vts: &[u32] = &[];
     if let Some(TexCoords { values, corners }) = texcoords {
@@ -393,7 +534,11 @@ where
     }
     let with_normals = normals.is_some();
     let mut vts = vts.iter();
-    for face in faces {
+    let mut class = None;
+    for (f, face) in faces.enumerate() {
+        if let Some(groups) = carried.groups {
+            write_statements(&mut w, groups, &mut class, f)?;
+        }
         w.write_all(b"f")?;
         for v in face {
             let v = u64::from(v) + 1;
@@ -407,6 +552,36 @@ where
         w.write_all(b"\n")?;
     }
     w.flush()
+}
+
+/// The statement lines before face `f`: those whose value differs from the face written
+/// before (`class`, updated).
+fn write_statements(
+    w: &mut impl Write,
+    groups: &FaceGroups,
+    class: &mut Option<u32>,
+    f: usize,
+) -> std::io::Result<()> {
+    let Some(now) = groups.class(f) else {
+        return Ok(());
+    };
+    if *class == Some(now) {
+        return Ok(());
+    }
+    for statement in Statement::ALL {
+        match groups.change(*class, now, statement) {
+            None => {}
+            Some(value) => {
+                let value = value.unwrap_or(statement.unset());
+                match value.is_empty() {
+                    true => writeln!(w, "{}", statement.keyword())?,
+                    false => writeln!(w, "{} {value}", statement.keyword())?,
+                }
+            }
+        }
+    }
+    *class = Some(now);
+    Ok(())
 }
 
 #[cfg(test)]

@@ -97,6 +97,10 @@ impl PolygonMesh {
             + std::mem::size_of_val(self.face_offsets())
             + std::mem::size_of_val(self.face_indices())
             + self.face_lines_len() * std::mem::size_of::<u64>()
+            + self.colors().map_or(0, std::mem::size_of_val)
+            + self
+                .groups()
+                .map_or(0, crate::groups::FaceGroups::heap_bytes)
     }
 }
 
@@ -194,8 +198,9 @@ pub fn halfedge_build_bytes(counts: &MeshCounts) -> BigInt {
 /// What the face list `poly` holds as it was read beyond the arrays
 /// [`PolygonMesh::bytes_for`] counts from its statistics (what [`predicted_peak_bytes`]
 /// counts for the input): the file line of each face (8 bytes), positions no face uses (24
-/// each) and its UVs, `vt` and the `vt` of each corner (16 and 4 bytes). The caller adds it
-/// to a prediction made from the counts alone.
+/// each), its UVs, `vt` and the `vt` of each corner (16 and 4 bytes), its vertex colors (24
+/// bytes a vertex) and its groups ([`crate::groups::FaceGroups::heap_bytes`], 4 bytes a face
+/// and the names). The caller adds it to a prediction made from the counts alone.
 ///
 /// ```
 /// use halfedge::memory::read_extra_bytes;
@@ -208,7 +213,9 @@ pub fn read_extra_bytes(poly: &PolygonMesh) -> u128 {
     let uvs = poly.uvs().map_or(0, |u| {
         16 * u.coords().len() as u128 + 4 * u.corners().len() as u128
     });
-    8 * poly.face_lines_len() as u128 + 24 * u128::from(unreferenced) + uvs
+    let colors = poly.colors().map_or(0, |c| 24 * c.len() as u128);
+    let groups = poly.groups().map_or(0, |g| g.heap_bytes() as u128);
+    8 * poly.face_lines_len() as u128 + 24 * u128::from(unreferenced) + uvs + colors + groups
 }
 
 /// [`predicted_peak_bytes`] of `rule`'s counting scheme ([`Rule::scheme_for`](crate::Rule::scheme_for))

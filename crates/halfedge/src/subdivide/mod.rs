@@ -499,7 +499,7 @@ pub fn subdivide_to_face_list(
             mesh: m.to_polygon_mesh(),
             edges: m.n_edges(),
         },
-        refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh, edges },
+        refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh: *mesh, edges },
     };
     let mut level = match (holes, written) {
         (Some(holes), Some(predicted)) => {

@@ -127,7 +127,7 @@ impl Refinement {
                 };
                 let template = self.template.as_ref();
                 let (polygons, edges) = to_faces::faces_after(&t, positions, template, &ctx)?;
-                return Ok(Some(OneShot::Faces(polygons, edges)));
+                return Ok(Some(OneShot::Faces(Box::new(polygons), edges)));
             }
             let next = self.next_level(&t, &ctx, positions)?;
             let next = match (retain, next) {

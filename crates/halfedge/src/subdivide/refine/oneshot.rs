@@ -36,7 +36,7 @@ pub(crate) enum OneShot {
     /// The last level as a half-edge mesh (a copy of the input at level 0).
     Mesh(HalfEdgeMesh),
     /// The last level written straight into a face list, with its number of edges.
-    Faces(PolygonMesh, usize),
+    Faces(Box<PolygonMesh>, usize),
 }
 
 /// Subdivides `mesh` (with `counts`) `levels` times by `plan`: every level is checked against
@@ -63,7 +63,7 @@ pub(crate) fn one_shot(
     if levels == 0 {
         // A face list asked for is the input's, without a copy of its half-edge mesh first.
         return Ok(if as_faces {
-            OneShot::Faces(mesh.to_polygon_mesh(), mesh.n_edges())
+            OneShot::Faces(Box::new(mesh.to_polygon_mesh()), mesh.n_edges())
         } else {
             OneShot::Mesh(mesh.clone())
         });
