@@ -63,13 +63,20 @@ pub struct PolygonMesh {
 /// What a reader found about vertex colors: one per vertex, or how many vertices had one.
 pub(crate) type ReadColors = (Option<Vec<[f64; 3]>>, Option<PartialColors>);
 
-/// Lines of a file that no output carries (OBJ's `vn`, `l`, `p`, other statements), by kind.
+/// What of a file no output carries, by kind: OBJ's `vn`, `l`, `p` and other statements
+/// (`what` is `l lines`), PLY's other elements and properties. Displayed as `12 l lines`.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Uncarried {
-    /// The statement's keyword (`l`, `vn`, ...; control characters escaped).
-    pub keyword: String,
-    /// The number of such lines.
-    pub lines: u64,
+    /// The kind, plural (`l lines`, `` `edge` elements ``; control characters escaped).
+    pub what: String,
+    /// How many.
+    pub count: u64,
+}
+
+impl std::fmt::Display for Uncarried {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {}", self.count, self.what)
+    }
 }
 
 /// Why a mesh read from a file has no vertex colors although some of its vertices have one:
@@ -480,8 +487,8 @@ impl PolygonMesh {
         self.uncarried = uncarried;
     }
 
-    /// The kinds of lines of the file that no output carries (OBJ's `vn`, `l`, `p` and
-    /// statements it does not read), each with its count, sorted by keyword.
+    /// What of the file no output carries (OBJ's `vn`, `l`, `p` and statements it does not
+    /// read; PLY's other elements and properties), each kind with its count, sorted.
     pub fn uncarried(&self) -> &[Uncarried] {
         &self.uncarried
     }

@@ -385,9 +385,12 @@ impl Extras {
         let mut uncarried: Vec<Uncarried> = self
             .uncarried
             .into_iter()
-            .map(|(keyword, lines)| Uncarried { keyword, lines })
+            .map(|(keyword, count)| Uncarried {
+                what: format!("{keyword} lines"),
+                count,
+            })
             .collect();
-        uncarried.sort_by(|a, b| a.keyword.cmp(&b.keyword));
+        uncarried.sort_by(|a, b| a.what.cmp(&b.what));
         (colors, self.groups.finish(), uncarried)
     }
 }
