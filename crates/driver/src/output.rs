@@ -72,6 +72,23 @@ pub fn write_buffers_obj_file<T: Scalar>(
     })
 }
 
+/// Writes a mesh in caller-owned buffers ([`halfedge::io::MeshBuffers`]: positions, faces,
+/// UVs, colors, groups) as OBJ ([`halfedge::io::write_mesh_buffers_obj`]), atomically, like
+/// [`write_obj_file`].
+///
+/// # Errors
+///
+/// As [`write_buffers_obj_file`].
+pub fn write_mesh_buffers_file<T: Scalar>(
+    mesh: &halfedge::io::MeshBuffers<'_, T>,
+    path: &Path,
+    options: &ObjWriteOptions,
+) -> Result<()> {
+    write_atomically(path, |file| {
+        halfedge::io::write_mesh_buffers_obj(mesh, file, options)
+    })
+}
+
 /// Writes an output file so that what it replaces is never damaged: `body` writes the
 /// contents into a [`File`], and where that file goes depends on `path`:
 ///

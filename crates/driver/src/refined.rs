@@ -9,7 +9,7 @@ use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use halfedge::glam::DVec3;
-use halfedge::io::{FaceBuffers, ObjWriteOptions, UvBuffers};
+use halfedge::io::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
 use halfedge::subdivide::{LevelDone, SubdivideOptions};
 use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
 
@@ -93,6 +93,11 @@ pub struct RefineOnce<'a> {
     pub clock: &'a SurfaceClock,
     /// At level 0, the UVs to write (the file's, as read) in place of the layout's values.
     pub as_read: Option<&'a halfedge::uv::Uvs>,
+    /// A color per vertex of the mesh, refined with the positions' weights (under the
+    /// icosphere rule the midpoint rule's: the weights before the projection).
+    pub colors: Option<&'a [[f64; 3]]>,
+    /// The groups of the mesh's faces, given to each output face from its base face.
+    pub groups: Option<&'a halfedge::groups::FaceGroups>,
 }
 
 /// Refines `run.mesh` by its rule to its last level once, evaluates its positions in
@@ -158,6 +163,8 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
         opts,
         clock,
         as_read,
+        colors,
+        groups,
     } = *run;
     let t0 = Instant::now();
     let refinement = Refinement::new(mesh, rule, levels, opts)?;
@@ -250,6 +257,25 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
         }
         None => None,
     };
+    let colors = match colors {
+        Some(base) => Some(refined_colors::<T>(&refinement, run, base)?),
+        None => None,
+    };
+    let groups = match groups {
+        Some(groups) => {
+            let base = refinement.base_faces(levels)?;
+            let groups =
+                groups
+                    .of_base_faces(base)
+                    .map_err(|e| halfedge::Error::InvalidOutput {
+                        scheme: rule.to_string(),
+                        level: levels,
+                        what: e.to_string(),
+                    })?;
+            Some(groups)
+        }
+        None => None,
+    };
     let evaluate_median = (frames > 0).then(|| -> halfedge::Result<Duration> {
         let (mut moved, mut scratch) = (base.clone(), vec![[T::ZERO; 3]; n]);
         let step = perturbation_step(mesh);
@@ -279,10 +305,17 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
                 indices: &indices,
             },
         };
-        let uvs = uvs
-            .as_ref()
-            .map(|(values, corners, _)| UvBuffers { values, corners });
-        crate::output::write_buffers_obj_file(&out, faces, uvs, path, options)
+        let mut mesh = MeshBuffers::new(&out, faces);
+        if let Some((values, corners, _)) = &uvs {
+            mesh = mesh.with_uvs(UvBuffers { values, corners });
+        }
+        if let Some(colors) = &colors {
+            mesh = mesh.with_colors(colors);
+        }
+        if let Some(groups) = &groups {
+            mesh = mesh.with_groups(groups);
+        }
+        crate::output::write_mesh_buffers_file(&mesh, path, options)
     }));
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],
@@ -292,6 +325,41 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
         uvs: uv_summary,
         write,
     })
+}
+
+/// The colors of the last level: `base` (one per vertex of the mesh) evaluated by the
+/// refinement, or under the icosphere rule by the midpoint rule's (the same topology, the
+/// weights before the projection onto the sphere); refused as positions are when not finite.
+fn refined_colors<T: Scalar>(
+    refinement: &Refinement,
+    run: &RefineOnce<'_>,
+    base: &[[f64; 3]],
+) -> halfedge::Result<Vec<[T; 3]>> {
+    let levels = run.levels;
+    let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
+    let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
+    if run.rule == Rule::Icosphere {
+        let linear = Refinement::new(run.mesh, Rule::Midpoint, levels, run.opts)?;
+        linear.evaluate(&base, &mut out)?;
+    } else {
+        refinement.evaluate(&base, &mut out)?;
+    }
+    if let Some(v) = out
+        .iter()
+        .position(|c| c.iter().any(|x| !x.to_f64().is_finite()))
+    {
+        let [x, y, z] = out[v].map(T::to_f64);
+        return Err(halfedge::Error::NonFinitePosition {
+            scheme: run.rule.to_string(),
+            level: levels,
+            vertex: v as u32,
+            origin: format!("a vertex color computed in {}", type_name::<T>()),
+            x,
+            y,
+            z,
+        });
+    }
+    Ok(out)
 }
 
 /// The refinement does not check finiteness (the one-shot path does): an `f32` evaluation

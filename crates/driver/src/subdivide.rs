@@ -88,6 +88,9 @@ pub struct Prepared<'m> {
     mesh: Option<HalfEdgeMesh>,
     predicted: BigInt,
     final_faces: u64,
+    /// Refine once and evaluate into buffers: `--precision f32`, `--frames`, or vertex colors
+    /// on a half-edge mesh (refined by the positions' refinement).
+    refine_once: bool,
 }
 
 /// Chooses how `loaded` is subdivided by `choice` under `job` and guards its memory: the
@@ -140,10 +143,23 @@ pub fn prepare<'m>(
         // the raw face list, whose subdividers refine the UV layout linearly with it.
         face_list = false;
     }
-    let refine_once = job.refine_once();
-    if refine_once && face_list {
+    if let Some(partial) = poly.partial_colors() {
+        notes(format!("note: {}: {partial}", loaded.label()));
+    }
+    if output.is_some() && !poly.uncarried().is_empty() {
+        let kinds: Vec<String> = poly.uncarried().iter().map(ToString::to_string).collect();
+        notes(format!(
+            "note: {}: not carried into the output: {}",
+            loaded.label(),
+            kinds.join(", ")
+        ));
+    }
+    if job.refine_once() && face_list {
         return Err(Error::RefineOnce);
     }
+    // Colors are refined with the positions' weights: by the refinement that computes the
+    // positions (the raw face list places both linearly, in `subdivide_polygons`).
+    let refine_once = job.refine_once() || (poly.colors().is_some() && !face_list);
     // The rule's own scheme sizes the output (a custom matrix may be wrong); one that does
     // not apply (a scheme file's `topology = "loop"` on quads) names the mesh, as `verify`.
     let scheme = rule.scheme_for(&counts)?;
@@ -158,7 +174,7 @@ pub fn prepare<'m>(
     let need = predicted_peak(
         loaded,
         (&scheme, rule, &counts),
-        job,
+        (job, refine_once),
         (face_list, last_faces, holes.is_some()),
         layout.is_some(),
     );
@@ -188,6 +204,7 @@ pub fn prepare<'m>(
         mesh,
         predicted,
         final_faces,
+        refine_once,
     })
 }
 
@@ -199,13 +216,13 @@ pub fn prepare<'m>(
 fn predicted_peak(
     loaded: &LoadedMesh,
     (scheme, rule, counts): (&Scheme, Rule, &MeshCounts),
-    job: &SubdivideJob,
+    (job, refine_once): (&SubdivideJob, bool),
     (face_list, last_faces, holes): (bool, Option<usize>, bool),
     uvs: bool,
 ) -> halfedge::Result<BigInt> {
     use halfedge::memory as m;
     let (poly, levels) = (&loaded.poly, job.levels);
-    let need = if job.refine_once() {
+    let need = if refine_once {
         let bytes = job.precision.bytes();
         let creases = loaded.has_crease_rules(rule);
         m::predicted_refinement_peak_bytes(rule, counts, levels, bytes, job.frames > 0, creases)
@@ -239,15 +256,61 @@ fn predicted_peak(
     let need = match uvs {
         true => need.and_then(|need| {
             let scalar = match job.precision {
-                Precision::F32 if job.refine_once() => 4,
+                Precision::F32 if refine_once => 4,
                 _ => 8,
             };
             Ok(need + uv_bytes(poly, rule, levels, scalar, holes)?)
         }),
         false => need,
     };
+    let need = need.and_then(|need| {
+        Ok(need
+            + carried_bytes(
+                loaded,
+                (scheme, rule, counts),
+                (job, refine_once),
+                face_list,
+            )?)
+    });
     // The face list as read holds its file lines and UVs beyond what its counts predict.
     need.map(|need| need + m::read_extra_bytes(poly))
+}
+
+/// What carrying the mesh's groups and colors adds to the peak: the base face of every output
+/// face (4 bytes, becoming its class); refining once, the colors of the base and of the last
+/// level (3 scalars a vertex; under the icosphere rule a second refinement, the midpoint
+/// rule's, gives the unprojected weights); on the raw face list a second run of the levels.
+fn carried_bytes(
+    loaded: &LoadedMesh,
+    (scheme, rule, counts): (&Scheme, Rule, &MeshCounts),
+    (job, refine_once): (&SubdivideJob, bool),
+    face_list: bool,
+) -> halfedge::Result<BigInt> {
+    use halfedge::memory as m;
+    let (poly, levels) = (&loaded.poly, job.levels);
+    let last = scheme.counts_at(counts, u64::from(levels))?;
+    let mut bytes = BigInt::from(0);
+    if poly.groups().is_some() {
+        bytes += &last.faces * 4u32;
+    }
+    if poly.colors().is_some() {
+        if face_list {
+            bytes += m::predicted_peak_bytes(scheme, counts, levels, None)?;
+        } else if refine_once {
+            let scalar = if job.precision == Precision::F32 {
+                4u32
+            } else {
+                8
+            };
+            bytes += &last.vertices * (3 * scalar) + BigInt::from(poly.n_vertices()) * 24u32;
+            if rule == Rule::Icosphere {
+                let linear = Rule::Midpoint;
+                bytes +=
+                    m::predicted_refinement_peak_bytes(linear, counts, levels, 8, false, false)?;
+            }
+        }
+    }
+    Ok(bytes)
 }
 
 impl Prepared<'_> {
@@ -278,7 +341,8 @@ impl Prepared<'_> {
     pub fn run(self, progress: &(dyn Fn(u32) + Sync), notes: Notes<'_>) -> Result<Subdivided> {
         let (loaded, job, rule) = (self.loaded, &self.job, self.rule);
         let (poly, levels) = (&loaded.poly, job.levels);
-        let refine_once = job.refine_once();
+        let refine_once = self.refine_once;
+        let groups = poly.groups();
         let holes_as_faces = self.holes.is_some() && !self.face_list && !refine_once;
         let clock = SurfaceClock::new(levels);
         let progress = |done: &LevelDone| {
@@ -299,7 +363,8 @@ impl Prepared<'_> {
         let mut opts = SubdivideOptions::default()
             .with_threads(job.threads)
             .with_progress(&progress)
-            .with_subdivision(options);
+            .with_subdivision(options)
+            .with_base_faces(groups.is_some());
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }
@@ -317,6 +382,10 @@ impl Prepared<'_> {
             }
             _ => None,
         };
+        // The colors of the half-edge mesh's vertices (those some face uses).
+        let colors = poly
+            .colors()
+            .map(|_| poly.colors_of_referenced().unwrap_or_default());
         let t1 = Instant::now();
         let run = |opts: &SubdivideOptions<'_>| match &self.mesh {
             Some(mesh) if refine_once => {
@@ -328,11 +397,18 @@ impl Prepared<'_> {
                     opts,
                     clock: &clock,
                     as_read: as_read.as_ref(),
+                    colors: colors.as_deref(),
+                    groups,
                 };
                 refined::run(&run, job.precision).map(Output::Refined)
             }
-            // With UVs the last level is a face list carrying them.
-            Some(mesh) if opts.uvs.is_some() || self.last_faces.is_some() || holes_as_faces => {
+            // With UVs or groups the last level is a face list carrying them.
+            Some(mesh)
+                if opts.uvs.is_some()
+                    || self.last_faces.is_some()
+                    || holes_as_faces
+                    || groups.is_some() =>
+            {
                 sub::subdivide_to_face_list(mesh, rule, levels, opts).map(Output::Faces)
             }
             Some(mesh) => sub::subdivide(mesh, rule, levels, opts).map(Output::Mesh),
@@ -355,6 +431,9 @@ impl Prepared<'_> {
         .map_err(|e| Error::located(e, loaded))?;
         if let Some(as_read) = &as_read {
             set_uvs_as_read(&mut result, as_read)?;
+        }
+        if let (Output::Faces(level), Some(groups)) = (&mut result, groups) {
+            set_groups(level, groups)?;
         }
         let end = Instant::now();
         let time = match &result {
@@ -396,6 +475,27 @@ impl Prepared<'_> {
             time,
         })
     }
+}
+
+/// The groups of the face list's faces, from their base faces.
+fn set_groups(level: &mut sub::FaceListLevel, groups: &halfedge::groups::FaceGroups) -> Result<()> {
+    let invalid = |what: String| halfedge::Error::InvalidOutput {
+        scheme: "groups".into(),
+        level: 0,
+        what,
+    };
+    let base = level
+        .base_faces
+        .take()
+        .ok_or_else(|| invalid("no base faces".into()))?;
+    let groups = groups
+        .of_base_faces(base)
+        .map_err(|e| invalid(e.to_string()))?;
+    level
+        .mesh
+        .set_groups(Some(groups))
+        .map_err(|e| invalid(e.to_string()))?;
+    Ok(())
 }
 
 /// At level 0, the file's UVs as read replace the layout's values in a face list written.

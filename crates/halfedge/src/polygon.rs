@@ -441,6 +441,20 @@ impl PolygonMesh {
         self.colors.as_deref()
     }
 
+    /// The colors of the vertices some face uses, in order: one per vertex of the half-edge
+    /// mesh built from this one (which drops the others); `None` without colors.
+    pub fn colors_of_referenced(&self) -> Option<Vec<[f64; 3]>> {
+        let colors = self.colors()?;
+        let mut used = vec![false; colors.len()];
+        for &v in &self.face_indices {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+        let kept = colors.iter().zip(&used).filter(|(_, &u)| u);
+        Some(kept.map(|(c, _)| *c).collect())
+    }
+
     /// Why the mesh has no [`colors`](Self::colors) although some vertices of its file have
     /// one: how many do ([`PartialColors`]).
     pub fn partial_colors(&self) -> Option<PartialColors> {

@@ -99,6 +99,9 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                 }
             }
             if let Value::Object(map) = &mut object {
+                if poly.colors().is_some() {
+                    map.insert("colors".to_owned(), json!(3));
+                }
                 map.insert("applicable_schemes".to_owned(), json!(applicable));
             }
             json_text(&object)
@@ -138,6 +141,9 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                 (Some(uv), _) => t.push_str(&format!("{}\n", uv_layout_text(uv))),
                 (None, Some(partial)) => t.push_str(&format!("{partial}\n")),
                 (None, None) => {}
+            }
+            if poly.colors().is_some() {
+                t.push_str("vertex colors: 3 channels\n");
             }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t

@@ -152,6 +152,8 @@ pub use schemes::Rule;
 
 pub use self::finite::check_uvs;
 pub use self::options::{LevelDone, SubdivideOptions};
+pub use self::refine::oneshot::{direct_face_degree, subdivide_to_face_list, FaceListLevel};
+use self::refine::oneshot::{keep_written, written_prediction};
 pub use self::sdc::Sharpness;
 pub use self::stages::{subdivide_stages, StageStart, StagedRun};
 use self::verify::report_names;
@@ -409,165 +411,6 @@ pub fn subdivide(
     run_levels(&plan, mesh, &counts, levels, opts, |_, _| Ok(()))
 }
 
-/// The last level of [`subdivide_to_face_list`]: the subdivided mesh as a face list.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct FaceListLevel {
-    /// Positions and faces, numbered exactly as [`HalfEdgeMesh::to_polygon_mesh`] numbers the
-    /// mesh [`subdivide`] returns (same vertices, faces in the same order, each face from the
-    /// same corner).
-    pub mesh: PolygonMesh,
-    /// The number of edges of the level: counted by the construction from the half-edge mesh
-    /// of the level before (4:1: `2E + 3F`; Catmull-Clark: `2E` plus one per face corner), or
-    /// read off the half-edge mesh for the schemes built that way. With holes
-    /// ([`SubdivideOptions::holes`]) the written edges as predicted (the written vertices and
-    /// faces are checked against the prediction).
-    pub edges: usize,
-}
-
-/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `rule` straight into a
-/// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
-/// the rules whose last level is built as a half-edge mesh and converted.
-///
-/// ```
-/// use halfedge::subdivide::{direct_face_degree, Rule};
-/// assert_eq!(direct_face_degree(Rule::Loop), Some(3));
-/// assert_eq!(direct_face_degree(Rule::Butterfly), Some(3));
-/// assert_eq!(direct_face_degree(Rule::CatmullClark), Some(4));
-/// assert_eq!(direct_face_degree(Rule::Sqrt3), None);
-/// assert_eq!(direct_face_degree(Rule::TriSplit(3)), None);
-/// ```
-pub fn direct_face_degree(rule: Rule) -> Option<usize> {
-    match rule {
-        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere | Rule::TriSplit(2) => {
-            Some(3)
-        }
-        Rule::CatmullClark => Some(4),
-        _ => None,
-    }
-}
-
-/// Subdivides like [`subdivide`], with the last level written as a face list
-/// ([`PolygonMesh`]) instead of a half-edge mesh.
-///
-/// For the schemes of [`direct_face_degree`] the
-/// last step writes only positions and face corners: 12 bytes per output triangle (16 per
-/// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
-/// is about half and the last level, the largest, is faster to build. The result is identical
-/// to `subdivide(..)?.to_polygon_mesh()` (tested for every scheme); other schemes are built
-/// that way.
-///
-/// # Errors
-///
-/// As [`subdivide`].
-///
-/// ```
-/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, Rule, SubdivideOptions};
-/// use halfedge::{shapes, HalfEdgeMesh};
-///
-/// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
-/// let opts = SubdivideOptions::default();
-/// let level = subdivide_to_face_list(&ico, Rule::Loop, 2, &opts)?;
-/// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
-/// assert_eq!(level.mesh, subdivide(&ico, Rule::Loop, 2, &opts)?.to_polygon_mesh());
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn subdivide_to_face_list(
-    mesh: &HalfEdgeMesh,
-    rule: Rule,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<FaceListLevel> {
-    let opts = &opts.over_descriptor(mesh, Some(rule))?;
-    let counts = mesh.counts();
-    let plan = plan(rule, &counts)?;
-    if opts.uvs.is_some() {
-        refine::face_varying::channel_kind(rule)?;
-    }
-    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
-    let written = match holes {
-        Some(holes) => Some(written_prediction(
-            &plan,
-            &holes.written_mesh_counts(mesh),
-            levels,
-        )?),
-        None => None,
-    };
-    let noop = |_: u32, _: &HalfEdgeMesh| Ok(());
-    let level = match refine::one_shot(&plan, mesh, &counts, levels, true, opts, noop)? {
-        refine::OneShot::Mesh(m) => FaceListLevel {
-            mesh: m.to_polygon_mesh(),
-            edges: m.n_edges(),
-        },
-        refine::OneShot::Faces(mesh, edges) => FaceListLevel { mesh: *mesh, edges },
-    };
-    let mut level = match (holes, written) {
-        (Some(holes), Some(predicted)) => {
-            let degrees = crate::holes::degrees_of(mesh);
-            keep_written(level.mesh, holes, &degrees, &plan, levels, &predicted)?
-        }
-        _ => level,
-    };
-    if let Some(layout) = opts.uvs {
-        let uvs = refine::face_varying::refined_uvs(mesh, layout, rule, levels, opts)?;
-        level
-            .mesh
-            .set_uvs(Some(uvs))
-            .map_err(|e| Error::UvLayoutMismatch {
-                reason: e.to_string(),
-            })?;
-    }
-    Ok(level)
-}
-
-/// What `plan` writes at `levels` of a mesh whose written faces have the counts `written`,
-/// checked to fit before anything is built (the last level's vertex indices fit `u32`).
-fn written_prediction(plan: &Plan, written: &MeshCounts, levels: u32) -> Result<LevelCounts> {
-    let c = HoleSet::written_level(plan.rule, written, levels)?;
-    sizes(&c, &plan.name, levels, false)?;
-    Ok(c)
-}
-
-/// The written part of the last level `mesh` (numbered as [`subdivide`] numbers it: the
-/// children of a face contiguous, in the order of their parents), checked against the
-/// prediction; its `edges` are the predicted ones.
-fn keep_written(
-    mesh: PolygonMesh,
-    holes: &HoleSet,
-    degrees: &[usize],
-    plan: &Plan,
-    levels: u32,
-    predicted: &LevelCounts,
-) -> Result<FaceListLevel> {
-    let mask = holes.written_at(plan.rule, degrees, levels)?;
-    if mask.len() != mesh.n_faces() {
-        return Err(Error::InvalidOutput {
-            scheme: plan.name.clone(),
-            level: levels,
-            what: format!(
-                "{} faces where the holes' descendants were counted on {}",
-                mesh.n_faces(),
-                mask.len()
-            ),
-        });
-    }
-    let mesh = crate::holes::written_part(mesh, &mask)?;
-    crate::holes::check_written(
-        &plan.name,
-        levels,
-        predicted,
-        mesh.n_vertices(),
-        mesh.n_faces(),
-    )?;
-    let edges = usize::try_from(&predicted.edges).map_err(|_| Error::TooLarge {
-        scheme: plan.name.clone(),
-        level: levels,
-        what: "edges",
-        count: predicted.edges.clone(),
-    })?;
-    Ok(FaceListLevel { mesh, edges })
-}
-
 /// The statistics of the faces of `faces` (an iterator of vertex lists) whose `written`
 /// entry is `true`.
 fn written_face_counts<F, I>(faces: F, written: &[bool], positions: usize) -> MeshCounts
@@ -727,28 +570,95 @@ pub fn subdivide_polygons(
     opts: &SubdivideOptions<'_>,
 ) -> Result<PolygonMesh> {
     let plan = plan(rule, &crate::stats::face_list_counts(mesh))?;
-    let Some(holes) = crate::holes::active(opts.holes, rule, mesh.n_faces())? else {
-        let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
-        return match opts.uvs {
-            Some(layout) => {
-                let uvs = faces::refined_uvs(&plan, mesh, layout, levels, opts, &last, None)?;
-                with_uvs(last, uvs)
-            }
-            None => Ok(last),
-        };
-    };
-    let predicted = written_prediction(&plan, &holes.written_counts(mesh), levels)?;
-    let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
     let degrees: Vec<usize> = mesh.faces().map(<[u32]>::len).collect();
+    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
+    let predicted = match holes {
+        Some(holes) => Some(written_prediction(
+            &plan,
+            &holes.written_counts(mesh),
+            levels,
+        )?),
+        None => None,
+    };
+    let last = faces::run_levels(&plan, mesh, levels, opts, |_, _| Ok(()))?;
+    let mask = match holes {
+        Some(holes) => Some(holes.written_at(plan.rule, &degrees, levels)?),
+        None => None,
+    };
     let uvs = match opts.uvs {
-        Some(layout) => {
-            let mask = holes.written_at(plan.rule, &degrees, levels)?;
-            let uvs = faces::refined_uvs(&plan, mesh, layout, levels, opts, &last, Some(&mask))?;
-            Some(uvs)
+        Some(layout) => Some(faces::refined_uvs(
+            &plan,
+            mesh,
+            layout,
+            levels,
+            opts,
+            &last,
+            mask.as_deref(),
+        )?),
+        None => None,
+    };
+    // The colors: placed as the positions are (the face-list subdividers are linear).
+    let colors = match mesh.colors() {
+        Some(colors) => {
+            let mut as_points = mesh.clone();
+            as_points.positions = colors.iter().map(|&c| glam::DVec3::from_array(c)).collect();
+            let points = faces::run_levels(&plan, &as_points, levels, opts, |_, _| Ok(()))?;
+            Some(points.positions)
         }
         None => None,
     };
-    let written = keep_written(last, holes, &degrees, &plan, levels, &predicted)?.mesh;
+    // The groups: each face's base face's (the per-face refinements nest).
+    let base_faces = match mesh.groups() {
+        Some(_) => uniform::nested_base_faces(plan.split, degrees.iter().copied(), levels)?,
+        None => None,
+    };
+    let (mut written, base_faces, colors) = match (holes, predicted) {
+        (Some(holes), Some(predicted)) => {
+            let colors = colors.map(|c| {
+                let mut p = last.clone();
+                p.positions = c;
+                p
+            });
+            let level = keep_written(
+                (last, base_faces),
+                holes,
+                &degrees,
+                &plan,
+                levels,
+                &predicted,
+            )?;
+            let colors = match colors {
+                Some(c) => Some(
+                    keep_written((c, None), holes, &degrees, &plan, levels, &predicted)?
+                        .mesh
+                        .positions,
+                ),
+                None => None,
+            };
+            (level.mesh, level.base_faces, colors)
+        }
+        _ => (last, base_faces, colors),
+    };
+    let mismatch = |e: crate::polygon::ColorError| Error::InvalidOutput {
+        scheme: plan.name.clone(),
+        level: levels,
+        what: e.to_string(),
+    };
+    if let Some(colors) = colors {
+        written
+            .set_colors(Some(colors.iter().map(|p| p.to_array()).collect()))
+            .map_err(mismatch)?;
+    }
+    if let (Some(groups), Some(base)) = (mesh.groups(), base_faces) {
+        let groups = groups
+            .of_base_faces(base)
+            .map_err(|e| Error::InvalidOutput {
+                scheme: plan.name.clone(),
+                level: levels,
+                what: e.to_string(),
+            })?;
+        written.set_groups(Some(groups)).map_err(mismatch)?;
+    }
     match uvs {
         Some(uvs) => with_uvs(written, uvs),
         None => Ok(written),

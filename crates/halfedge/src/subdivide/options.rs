@@ -65,6 +65,10 @@ pub struct SubdivideOptions<'a> {
     /// tag (the rules: [`crate::descriptor`]). On by default; off, a subdivision reads these
     /// options alone.
     pub descriptor: bool,
+    /// Give [`subdivide_to_face_list`]'s level the base face of each of its faces
+    /// ([`FaceListLevel::base_faces`], 4 bytes a face; OpenSubdiv's
+    /// `InterpolateFaceUniform`). Off by default.
+    pub base_faces: bool,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -79,6 +83,7 @@ impl Default for SubdivideOptions<'_> {
             holes: None,
             uvs: None,
             descriptor: true,
+            base_faces: false,
         }
     }
 }
@@ -99,6 +104,8 @@ impl<'a> SubdivideOptions<'a> {
         with_holes(holes: Some(&'a HoleSet));
         /// Sets [`SubdivideOptions::descriptor`].
         with_descriptor(descriptor: bool);
+        /// Sets [`SubdivideOptions::base_faces`].
+        with_base_faces(base_faces: bool);
     }
 
     /// Sets [`SubdivideOptions::preallocate`], which is ignored.
@@ -126,6 +133,7 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
             .field("holes", &self.holes.map(|h| h.faces().len()))
             .field("uvs", &self.uvs.map(|u| u.n_values()))
             .field("descriptor", &self.descriptor)
+            .field("base_faces", &self.base_faces)
             .finish()
     }
 }

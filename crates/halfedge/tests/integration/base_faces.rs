@@ -204,3 +204,47 @@ fn holes_leave_their_faces_out() {
     let r = refine(&m, Rule::Loop, 1);
     assert!(r.base_faces(2).is_err());
 }
+
+/// The one-shot face list's base faces ([`SubdivideOptions::base_faces`]) are the
+/// refinement's, for every rule, with and without holes, at levels 0 to 2; without the option
+/// the level has none.
+#[test]
+fn the_one_shot_face_list_gives_the_refinements_base_faces() {
+    use halfedge::subdivide::subdivide_to_face_list;
+    let tri = shapes::icosahedron();
+    let quad = shapes::mixed();
+    let cases: Vec<(&PolygonMesh, Rule)> = vec![
+        (&tri, Rule::Loop),
+        (&tri, Rule::Butterfly),
+        (&tri, Rule::TriSplit(3)),
+        (&tri, Rule::Sqrt3),
+        (&quad, Rule::CatmullClark),
+        (&quad, Rule::DooSabin),
+        (&quad, Rule::MidEdge),
+    ];
+    for (base, rule) in cases {
+        let m = mesh(base);
+        let holes = HoleSet::new(m.n_faces(), [1, 3]).expect("faces of the mesh");
+        let nests = !matches!(rule, Rule::Sqrt3 | Rule::DooSabin | Rule::MidEdge);
+        for with_holes in [false, true].into_iter().filter(|&h| nests || !h) {
+            for levels in 0..=2 {
+                let mut opts = SubdivideOptions::default();
+                if with_holes {
+                    opts = opts.with_holes(&holes);
+                }
+                let level = subdivide_to_face_list(&m, rule, levels, &opts).expect("one-shot");
+                assert_eq!(level.base_faces, None);
+                let with = opts.with_base_faces(true);
+                let level = subdivide_to_face_list(&m, rule, levels, &with).expect("one-shot");
+                let r = Refinement::new(&m, rule, levels, &opts).expect("refined");
+                let expected = r.base_faces(levels).expect("base faces");
+                let what = format!("{rule} level {levels} holes {with_holes}");
+                assert_eq!(level.base_faces.as_ref(), Some(&expected), "{what}");
+                assert_eq!(expected.len(), level.mesh.n_faces(), "{what}");
+                if with_holes {
+                    assert!(expected.iter().all(|f| !holes.contains(*f)), "{what}");
+                }
+            }
+        }
+    }
+}

@@ -93,7 +93,7 @@ pub(crate) mod creases;
 mod evaluate;
 pub mod face_varying;
 mod levels;
-mod oneshot;
+pub(crate) mod oneshot;
 mod stencil;
 mod tables;
 

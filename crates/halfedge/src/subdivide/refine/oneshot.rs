@@ -23,13 +23,15 @@
 //! the last two levels is alive. In `f64` the positions are those of
 //! [`Refinement::evaluate`] to the bit.
 
-use schemes::MeshCounts;
+use schemes::{LevelCounts, MeshCounts};
 
 use super::creases::Creases;
 use super::levels::{invalid, Retain};
 use super::{direct, plan_sizes, Refinement};
-use crate::subdivide::{Plan, SubdivideOptions};
-use crate::{HalfEdgeMesh, PolygonMesh, Result};
+use crate::holes::HoleSet;
+use crate::subdivide::topo::Topo;
+use crate::subdivide::{plan, sizes, uniform, Plan, Rule, SubdivideOptions};
+use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// What the one-shot subdivision built.
 pub(crate) enum OneShot {
@@ -74,4 +76,213 @@ pub(crate) fn one_shot(
         Some(built) => Ok(built),
         None => Err(invalid(&plan.name, levels, "no level kept")),
     }
+}
+
+/// The last level of [`subdivide_to_face_list`]: the subdivided mesh as a face list.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct FaceListLevel {
+    /// Positions and faces, numbered exactly as [`HalfEdgeMesh::to_polygon_mesh`] numbers the
+    /// mesh [`subdivide`](crate::subdivide::subdivide) returns (same vertices, faces in the same order, each face from the
+    /// same corner).
+    pub mesh: PolygonMesh,
+    /// The number of edges of the level: counted by the construction from the half-edge mesh
+    /// of the level before (4:1: `2E + 3F`; Catmull-Clark: `2E` plus one per face corner), or
+    /// read off the half-edge mesh for the schemes built that way. With holes
+    /// ([`SubdivideOptions::holes`]) the written edges as predicted (the written vertices and
+    /// faces are checked against the prediction).
+    pub edges: usize,
+    /// With [`SubdivideOptions::base_faces`], the base face each face comes from (OpenSubdiv's
+    /// `GetFaceParentFace` chained to level 0): nesting splits give their children their
+    /// parent's, and a face that comes from several faces (√3's flipped triangles, Doo-Sabin's
+    /// and mid-edge's edge and vertex faces) takes the lowest-numbered base face
+    /// ([`Refinement::base_faces`](crate::Refinement::base_faces) gives the same); holes left
+    /// out as the faces are.
+    pub base_faces: Option<Vec<u32>>,
+}
+
+/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `rule` straight into a
+/// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
+/// the rules whose last level is built as a half-edge mesh and converted.
+///
+/// ```
+/// use halfedge::subdivide::{direct_face_degree, Rule};
+/// assert_eq!(direct_face_degree(Rule::Loop), Some(3));
+/// assert_eq!(direct_face_degree(Rule::Butterfly), Some(3));
+/// assert_eq!(direct_face_degree(Rule::CatmullClark), Some(4));
+/// assert_eq!(direct_face_degree(Rule::Sqrt3), None);
+/// assert_eq!(direct_face_degree(Rule::TriSplit(3)), None);
+/// ```
+pub fn direct_face_degree(rule: Rule) -> Option<usize> {
+    match rule {
+        Rule::Loop | Rule::Midpoint | Rule::Butterfly | Rule::Icosphere | Rule::TriSplit(2) => {
+            Some(3)
+        }
+        Rule::CatmullClark => Some(4),
+        _ => None,
+    }
+}
+
+/// Subdivides like [`subdivide`](crate::subdivide::subdivide), with the last level written as a face list
+/// ([`PolygonMesh`]) instead of a half-edge mesh.
+///
+/// For the schemes of [`direct_face_degree`] the
+/// last step writes only positions and face corners: 12 bytes per output triangle (16 per
+/// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
+/// is about half and the last level, the largest, is faster to build. The result is identical
+/// to `subdivide(..)?.to_polygon_mesh()` (tested for every scheme); other schemes are built
+/// that way.
+///
+/// # Errors
+///
+/// As [`subdivide`](crate::subdivide::subdivide).
+///
+/// ```
+/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, Rule, SubdivideOptions};
+/// use halfedge::{shapes, HalfEdgeMesh};
+///
+/// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
+/// let opts = SubdivideOptions::default();
+/// let level = subdivide_to_face_list(&ico, Rule::Loop, 2, &opts)?;
+/// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
+/// assert_eq!(level.mesh, subdivide(&ico, Rule::Loop, 2, &opts)?.to_polygon_mesh());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn subdivide_to_face_list(
+    mesh: &HalfEdgeMesh,
+    rule: Rule,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<FaceListLevel> {
+    let opts = &opts.over_descriptor(mesh, Some(rule))?;
+    let counts = mesh.counts();
+    let plan = plan(rule, &counts)?;
+    if opts.uvs.is_some() {
+        super::face_varying::channel_kind(rule)?;
+    }
+    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
+    let written = match holes {
+        Some(holes) => Some(written_prediction(
+            &plan,
+            &holes.written_mesh_counts(mesh),
+            levels,
+        )?),
+        None => None,
+    };
+    // The base faces: a closed form for the nesting splits, else chained level by level.
+    let degrees = mesh.faces().map(|f| mesh.face_degree(f));
+    let nested = match opts.base_faces {
+        true => uniform::nested_base_faces(plan.split, degrees, levels)?,
+        false => None,
+    };
+    let mut chained = match (opts.base_faces, &nested) {
+        (true, None) if levels > 0 => {
+            let identity: Vec<u32> = (0..mesh.n_faces() as u32).collect();
+            Some(uniform::child_faces(
+                plan.split,
+                &Topo::new(mesh),
+                &identity,
+            )?)
+        }
+        _ => None,
+    };
+    let visit = |s: u32, m: &HalfEdgeMesh| {
+        if let Some(values) = chained.as_mut().filter(|_| s < levels) {
+            *values = uniform::child_faces(plan.split, &Topo::new(m), values)?;
+        }
+        Ok(())
+    };
+    let level = match one_shot(&plan, mesh, &counts, levels, true, opts, visit)? {
+        OneShot::Mesh(m) => (m.to_polygon_mesh(), m.n_edges()),
+        OneShot::Faces(mesh, edges) => (*mesh, edges),
+    };
+    let base_faces = match (opts.base_faces, nested, chained) {
+        (false, ..) => None,
+        (true, Some(faces), _) | (true, None, Some(faces)) => Some(faces),
+        (true, None, None) => Some((0..mesh.n_faces() as u32).collect()),
+    };
+    let mut level = match (holes, written) {
+        (Some(holes), Some(predicted)) => {
+            let degrees = crate::holes::degrees_of(mesh);
+            let last = (level.0, base_faces);
+            keep_written(last, holes, &degrees, &plan, levels, &predicted)?
+        }
+        _ => FaceListLevel {
+            mesh: level.0,
+            edges: level.1,
+            base_faces,
+        },
+    };
+    if let Some(layout) = opts.uvs {
+        let uvs = super::face_varying::refined_uvs(mesh, layout, rule, levels, opts)?;
+        level
+            .mesh
+            .set_uvs(Some(uvs))
+            .map_err(|e| Error::UvLayoutMismatch {
+                reason: e.to_string(),
+            })?;
+    }
+    Ok(level)
+}
+
+/// What `plan` writes at `levels` of a mesh whose written faces have the counts `written`,
+/// checked to fit before anything is built (the last level's vertex indices fit `u32`).
+pub(crate) fn written_prediction(
+    plan: &Plan,
+    written: &MeshCounts,
+    levels: u32,
+) -> Result<LevelCounts> {
+    let c = HoleSet::written_level(plan.rule, written, levels)?;
+    sizes(&c, &plan.name, levels, false)?;
+    Ok(c)
+}
+
+/// The written part of the last level `mesh` and of its base faces (numbered as
+/// [`subdivide`](crate::subdivide::subdivide) numbers it: the children of a face contiguous, in the order of their
+/// parents), checked against the prediction; its `edges` are the predicted ones.
+pub(crate) fn keep_written(
+    (mesh, base_faces): (PolygonMesh, Option<Vec<u32>>),
+    holes: &HoleSet,
+    degrees: &[usize],
+    plan: &Plan,
+    levels: u32,
+    predicted: &LevelCounts,
+) -> Result<FaceListLevel> {
+    let mask = holes.written_at(plan.rule, degrees, levels)?;
+    if mask.len() != mesh.n_faces() {
+        return Err(Error::InvalidOutput {
+            scheme: plan.name.clone(),
+            level: levels,
+            what: format!(
+                "{} faces where the holes' descendants were counted on {}",
+                mesh.n_faces(),
+                mask.len()
+            ),
+        });
+    }
+    let base_faces = base_faces.map(|faces| {
+        let mut keep = mask.iter();
+        let mut faces = faces;
+        faces.retain(|_| keep.next().copied().unwrap_or(false));
+        faces
+    });
+    let mesh = crate::holes::written_part(mesh, &mask)?;
+    crate::holes::check_written(
+        &plan.name,
+        levels,
+        predicted,
+        mesh.n_vertices(),
+        mesh.n_faces(),
+    )?;
+    let edges = usize::try_from(&predicted.edges).map_err(|_| Error::TooLarge {
+        scheme: plan.name.clone(),
+        level: levels,
+        what: "edges",
+        count: predicted.edges.clone(),
+    })?;
+    Ok(FaceListLevel {
+        mesh,
+        edges,
+        base_faces,
+    })
 }
