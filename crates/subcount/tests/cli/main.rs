@@ -4,6 +4,7 @@ mod budget;
 mod compositions;
 mod creases;
 mod descriptor;
+mod files;
 mod hostile;
 mod hostile3;
 mod hostile_dual;

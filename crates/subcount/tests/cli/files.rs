@@ -1,0 +1,415 @@
+//! Issue 27: what a production mesh carries survives `subdivide -o`: materials, objects,
+//! groups and smoothing groups (each output face takes its base face's), vertex colors
+//! (refined with the positions' weights), and a note on what is not carried.
+
+use halfedge::groups::Statement;
+use halfedge::{io, HalfEdgeMesh, Refinement};
+
+use crate::util::{ok, subcount};
+
+/// A cube whose face `f` has the material `m{f}`, the group `g{f % 2}` and the smoothing
+/// group `s {f / 3}`, in one object; `extra` lines are added at the end.
+fn grouped_cube(extra: &str) -> String {
+    let mut text = String::from("mtllib a.mtl b.mtl\nmtllib c.mtl\no box\n");
+    for v in 0..8 {
+        let (x, y, z) = (v & 1, (v >> 1) & 1, (v >> 2) & 1);
+        text.push_str(&format!("v {x} {y} {z}\n"));
+    }
+    let faces = [
+        [1, 3, 4, 2],
+        [5, 6, 8, 7],
+        [1, 2, 6, 5],
+        [2, 4, 8, 6],
+        [4, 3, 7, 8],
+        [3, 1, 5, 7],
+    ];
+    for (f, face) in faces.iter().enumerate() {
+        text.push_str(&format!("usemtl m{f}\ng g{}\ns {}\n", f % 2, f / 3));
+        text.push_str(&format!(
+            "f {} {} {} {}\n",
+            face[0], face[1], face[2], face[3]
+        ));
+    }
+    text + extra
+}
+
+/// An octahedron, each face its own material and group.
+fn grouped_octahedron() -> String {
+    let mut text = String::from("mtllib o.mtl\n");
+    for p in ["1 0 0", "-1 0 0", "0 1 0", "0 -1 0", "0 0 1", "0 0 -1"] {
+        text.push_str(&format!("v {p}\n"));
+    }
+    let faces = [
+        [1, 3, 5],
+        [3, 2, 5],
+        [2, 4, 5],
+        [4, 1, 5],
+        [3, 1, 6],
+        [2, 3, 6],
+        [4, 2, 6],
+        [1, 4, 6],
+    ];
+    for (f, face) in faces.iter().enumerate() {
+        text.push_str(&format!("usemtl m{f}\ng g{f}\n"));
+        text.push_str(&format!("f {} {} {}\n", face[0], face[1], face[2]));
+    }
+    text
+}
+
+/// Writes `text` to `dir/name` and returns the path.
+fn write(dir: &tempfile::TempDir, name: &str, text: &str) -> String {
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).expect("written");
+    path.to_string_lossy().into_owned()
+}
+
+/// The base face of every written face, from the library: the refinement's (the raw face
+/// list's nesting splits number faces alike).
+fn library_base_faces(input: &str, rule: halfedge::Rule, levels: u32) -> Vec<u32> {
+    let poly = io::read_obj(input).expect("read");
+    let mesh = HalfEdgeMesh::try_from(&poly).expect("a manifold");
+    let opts = halfedge::subdivide::SubdivideOptions::default();
+    let r = Refinement::new(&mesh, rule, levels, &opts).expect("refined");
+    r.base_faces(levels).expect("base faces")
+}
+
+/// Checks that every face of `output` has the material and group of its base face
+/// (`m{b}`, `g{…}` as the input names them) and that a statement line is written only where
+/// the value changes.
+fn check_groups(input: &str, output: &str, base: &[u32], what: &str) {
+    let read_in = io::read_obj(input).expect("input");
+    let read_out = io::read_obj(output).expect("output");
+    let (gin, gout) = (
+        read_in.groups().expect("input groups"),
+        read_out
+            .groups()
+            .unwrap_or_else(|| panic!("{what}: no groups written")),
+    );
+    assert_eq!(gout.mtllib(), gin.mtllib(), "{what}");
+    assert_eq!(gout.n_faces(), base.len(), "{what}");
+    for (f, &b) in base.iter().enumerate() {
+        for s in Statement::ALL {
+            assert_eq!(
+                gout.value(f, s),
+                gin.value(b as usize, s),
+                "{what}: face {f} (base {b}), {s:?}"
+            );
+        }
+    }
+    let text = std::fs::read_to_string(output).expect("output text");
+    let mut last: Option<&str> = None;
+    let mut changes = 0;
+    for f in 0..base.len() {
+        let m = gout.value(f, Statement::Material);
+        if m != last {
+            changes += 1;
+        }
+        last = m;
+    }
+    let usemtl = text.lines().filter(|l| l.starts_with("usemtl ")).count();
+    assert_eq!(
+        usemtl, changes,
+        "{what}: a usemtl line per change, never one per face"
+    );
+    let first_v = text.lines().position(|l| l.starts_with("v ")).expect("v");
+    let mtllib: Vec<&str> = text.lines().filter(|l| l.starts_with("mtllib")).collect();
+    assert_eq!(mtllib, gin.mtllib(), "{what}");
+    assert!(
+        text.lines().take(first_v).all(|l| l.starts_with("mtllib")),
+        "{what}: mtllib lines first"
+    );
+}
+
+#[test]
+fn every_output_face_has_its_base_faces_material_and_group_under_every_scheme() {
+    use halfedge::Rule;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let cube = write(&dir, "cube.obj", &grouped_cube(""));
+    let holed = write(&dir, "holed.obj", &grouped_cube("t hole 1/0/0 2\n"));
+    let octa = write(&dir, "octa.obj", &grouped_octahedron());
+    let out = dir.path().join("out.obj").to_string_lossy().into_owned();
+    let cases: &[(&str, &str, Rule, &[&str])] = &[
+        (&cube, "catmull-clark", Rule::CatmullClark, &[]),
+        (
+            &cube,
+            "catmull-clark",
+            Rule::CatmullClark,
+            &["--precision", "f32"],
+        ),
+        (&cube, "catmull-clark-general", Rule::CatmullClark, &[]),
+        (&cube, "doo-sabin", Rule::DooSabin, &[]),
+        (&cube, "mid-edge", Rule::MidEdge, &["--frames", "1"]),
+        (&holed, "catmull-clark", Rule::CatmullClark, &[]),
+        (
+            &holed,
+            "catmull-clark",
+            Rule::CatmullClark,
+            &["--precision", "f32"],
+        ),
+        (&octa, "loop", Rule::Loop, &[]),
+        (&octa, "loop-general", Rule::Loop, &[]),
+        (&octa, "midpoint", Rule::Midpoint, &[]),
+        (&octa, "butterfly", Rule::Butterfly, &[]),
+        (&octa, "icosphere", Rule::Icosphere, &[]),
+        (&octa, "tri-split-3", Rule::TriSplit(3), &[]),
+        (&octa, "sqrt3", Rule::Sqrt3, &[]),
+        (&octa, "sqrt3", Rule::Sqrt3, &["--precision", "f32"]),
+    ];
+    for &(input, scheme, rule, flags) in cases {
+        for levels in 0..=2u32 {
+            let l = levels.to_string();
+            let mut args = vec![
+                "subdivide",
+                "--mesh",
+                input,
+                "--scheme",
+                scheme,
+                "--levels",
+                &l,
+                "-o",
+                &out,
+            ];
+            args.extend_from_slice(flags);
+            ok(&args);
+            let base = library_base_faces(input, rule, levels);
+            let what = format!("{scheme} {flags:?} level {levels} on {input}");
+            check_groups(input, &out, &base, &what);
+        }
+    }
+}
+
+#[test]
+fn a_file_without_statements_or_colors_is_written_without_them() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let plain: String = grouped_cube("")
+        .lines()
+        .filter(|l| l.starts_with("v ") || l.starts_with("f "))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let input = write(&dir, "plain.obj", &plain);
+    let out = dir.path().join("out.obj").to_string_lossy().into_owned();
+    ok(&[
+        "subdivide",
+        "--mesh",
+        &input,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+        "-o",
+        &out,
+    ]);
+    let text = std::fs::read_to_string(&out).expect("output");
+    assert!(text
+        .lines()
+        .all(|l| (l.starts_with("v ") && l.split(' ').count() == 4) || l.starts_with("f ")));
+}
+
+/// The colors `r g b` of a point: an affine function of its position.
+fn affine(p: [f64; 3]) -> [f64; 3] {
+    [
+        0.25 + 0.5 * p[0] - 0.125 * p[1],
+        -0.5 + 2.0 * p[2],
+        3.0 * p[0] + p[1] - p[2] + 1.0,
+    ]
+}
+
+/// `mesh` (OBJ text with `v x y z` lines) with each vertex given its affine color.
+fn colored(mesh: &str) -> String {
+    mesh.lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(rest) => {
+                let p: Vec<f64> = rest.split(' ').map(|t| t.parse().expect("f64")).collect();
+                let [r, g, b] = affine([p[0], p[1], p[2]]);
+                format!("v {} {} {} {r} {g} {b}\n", p[0], p[1], p[2])
+            }
+            None => format!("{l}\n"),
+        })
+        .collect()
+}
+
+/// A color field that is an affine function of position stays that function of the refined
+/// positions under every rule but the icosphere's projection (up to rounding), in `f64`, in
+/// `f32` and with frames; under the icosphere the colors are the midpoint rule's.
+#[test]
+fn affine_colors_stay_affine_functions_of_the_refined_positions() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let cube = write(&dir, "cube.obj", &colored(&grouped_cube("")));
+    let octa = write(&dir, "octa.obj", &colored(&grouped_octahedron()));
+    let out = dir.path().join("out.obj").to_string_lossy().into_owned();
+    let cases: &[(&str, &str, &[&str], f64)] = &[
+        (&cube, "catmull-clark", &[], 1e-12),
+        (&cube, "catmull-clark", &["--precision", "f32"], 1e-5),
+        (&cube, "catmull-clark-general", &[], 1e-12),
+        (&cube, "doo-sabin", &["--frames", "2"], 1e-12),
+        (&cube, "mid-edge", &[], 1e-12),
+        (&octa, "loop", &[], 1e-12),
+        (&octa, "loop-general", &[], 1e-12),
+        (&octa, "midpoint", &[], 1e-12),
+        (&octa, "butterfly", &[], 1e-12),
+        (&octa, "tri-split-3", &[], 1e-12),
+        (&octa, "loop", &["--precision", "f32"], 1e-5),
+        (&octa, "sqrt3", &[], 1e-12),
+    ];
+    for &(input, scheme, flags, tolerance) in cases {
+        for levels in 0..=2u32 {
+            let l = levels.to_string();
+            let mut args = vec![
+                "subdivide",
+                "--mesh",
+                input,
+                "--scheme",
+                scheme,
+                "--levels",
+                &l,
+                "-o",
+                &out,
+            ];
+            args.extend_from_slice(flags);
+            ok(&args);
+            let mesh = io::read_obj(&out).expect("output");
+            let colors = mesh.colors().expect("colors written");
+            for (p, c) in mesh.positions.iter().zip(colors) {
+                let want = affine(p.to_array());
+                for k in 0..3 {
+                    assert!(
+                        (c[k] - want[k]).abs() <= tolerance * (1.0 + want[k].abs()),
+                        "{scheme} {flags:?} level {levels}: {c:?} at {p:?}, expected {want:?}"
+                    );
+                }
+            }
+        }
+    }
+    // The icosphere: positions projected, colors those of the midpoint rule.
+    for levels in 1..=2u32 {
+        let l = levels.to_string();
+        let mid = dir.path().join("mid.obj").to_string_lossy().into_owned();
+        let args = |scheme: &'static str, to: &str| {
+            let a: Vec<String> = [
+                "subdivide",
+                "--mesh",
+                &octa,
+                "--scheme",
+                scheme,
+                "--levels",
+                &l,
+                "-o",
+                to,
+            ]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+            a
+        };
+        let run = |a: Vec<String>| ok(&a.iter().map(String::as_str).collect::<Vec<_>>());
+        run(args("icosphere", &out));
+        run(args("midpoint", &mid));
+        let sphere = io::read_obj(&out).expect("icosphere");
+        let midpoint = io::read_obj(&mid).expect("midpoint");
+        assert_eq!(sphere.colors(), midpoint.colors(), "level {levels}");
+        assert_ne!(sphere.positions, midpoint.positions);
+    }
+}
+
+#[test]
+fn colors_and_groups_change_no_count() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let plain_of = |text: String| -> String {
+        text.lines()
+            .filter(|l| !l.starts_with("usemtl") && !l.starts_with("g ") && !l.starts_with("s "))
+            .filter(|l| !l.starts_with("o ") && !l.starts_with("mtllib"))
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    for (scheme, hole) in [("catmull-clark", "t hole 1/0/0 2\n"), ("doo-sabin", "")] {
+        let rich = write(&dir, "rich.obj", &colored(&grouped_cube(hole)));
+        let plain = write(&dir, "plain.obj", &plain_of(grouped_cube(hole)));
+        let table = |m: &str| ok(&["table", "--mesh", m, "--scheme", scheme, "--levels", "3"]);
+        assert_eq!(table(&rich), table(&plain), "{scheme}");
+        let verify = |m: &str| ok(&["verify", "--mesh", m, "--scheme", scheme, "--levels", "2"]);
+        assert_eq!(
+            verify(&rich).replace(&rich, "M"),
+            verify(&plain).replace(&plain, "M")
+        );
+        let summary = |m: &str| {
+            let out = ok(&[
+                "subdivide",
+                "--mesh",
+                m,
+                "--scheme",
+                scheme,
+                "--levels",
+                "2",
+            ]);
+            out.replace(m, "M")
+        };
+        assert_eq!(summary(&rich), summary(&plain));
+    }
+}
+
+#[test]
+fn partial_colors_uncarried_lines_and_stats() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let text = "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0 1\nv 1 1 0 0.5 0.5 0.5\nvn 0 0 1\nvn 0 0 1\n\
+                f 1 2 4 3\nl 1 2\np 3\ncstype bezier\n";
+    let input = write(&dir, "partial.obj", text);
+    let out = dir.path().join("out.obj").to_string_lossy().into_owned();
+    let run = subcount(&[
+        "subdivide",
+        "--mesh",
+        &input,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+        "-o",
+        &out,
+    ]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stderr,
+        format!(
+            "note: {input}: 3 of 4 vertices have colors: no color channel\n\
+             note: {input}: not carried into the output: 1 cstype lines, 1 l lines, 1 p lines, 2 vn lines\n"
+        )
+    );
+    assert!(io::read_obj(&out).expect("output").colors().is_none());
+    // Without -o nothing is written, so nothing is said about carrying.
+    let run = subcount(&[
+        "subdivide",
+        "--mesh",
+        &input,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "1",
+    ]);
+    assert!(!run.stderr.contains("not carried"), "{}", run.stderr);
+    let rich = write(&dir, "rich.obj", &colored(&grouped_cube("")));
+    let text = ok(&["stats", "--mesh", &rich]);
+    assert!(text.contains("\nvertex colors: 3 channels\n"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &rich, "--format", "json"])).expect("json");
+    assert_eq!(json["colors"], 3);
+    let json: serde_json::Value =
+        serde_json::from_str(&ok(&["stats", "--mesh", &input, "--format", "json"])).expect("json");
+    assert!(json.get("colors").is_none());
+    // COFF colors are the channel too, alpha left out.
+    let off = "COFF\n4 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n1 1 0 0 0 255 255\n0 1 0 9 9 9 255\n4 0 1 2 3\n";
+    let input = write(&dir, "c.off", off);
+    let text = ok(&["stats", "--mesh", &input]);
+    assert!(text.contains("vertex colors: 3 channels"), "{text}");
+    ok(&[
+        "subdivide",
+        "--mesh",
+        &input,
+        "--scheme",
+        "catmull-clark",
+        "--levels",
+        "0",
+        "-o",
+        &out,
+    ]);
+    let mesh = io::read_obj(&out).expect("output");
+    assert_eq!(mesh.colors().expect("colors")[3], [9.0, 9.0, 9.0]);
+}
