@@ -328,8 +328,8 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
 }
 
 /// The colors of the last level: `base` (one per vertex of the mesh) evaluated by the
-/// refinement, or under the icosphere rule by the midpoint rule's (the same topology, the
-/// weights before the projection onto the sphere); refused as positions are when not finite.
+/// refinement, or under the icosphere rule by its varying refinement (the midpoint rule's
+/// weights, before the projection onto the sphere); refused as positions are when not finite.
 fn refined_colors<T: Scalar>(
     refinement: &Refinement,
     run: &RefineOnce<'_>,
@@ -339,7 +339,7 @@ fn refined_colors<T: Scalar>(
     let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
     let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
     if run.rule == Rule::Icosphere {
-        let linear = Refinement::new(run.mesh, Rule::Midpoint, levels, run.opts)?;
+        let linear = Refinement::new_varying(run.mesh, run.rule, levels, run.opts)?;
         linear.evaluate(&base, &mut out)?;
     } else {
         refinement.evaluate(&base, &mut out)?;

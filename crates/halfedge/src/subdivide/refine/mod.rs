@@ -96,6 +96,7 @@ mod levels;
 pub(crate) mod oneshot;
 mod stencil;
 mod tables;
+mod varying;
 
 use std::sync::Arc;
 
