@@ -413,3 +413,96 @@ fn partial_colors_uncarried_lines_and_stats() {
     let mesh = io::read_obj(&out).expect("output");
     assert_eq!(mesh.colors().expect("colors")[3], [9.0, 9.0, 9.0]);
 }
+
+/// A shared mesh's text with a material per face (`usemtl m{f}`) and a group every third face,
+/// its own statements removed, and `extra` lines added.
+fn per_face_materials(text: &str, extra: &str) -> String {
+    let mut out = String::new();
+    let mut f = 0usize;
+    for line in text.lines() {
+        let keyword = line.split_whitespace().next().unwrap_or("");
+        if matches!(keyword, "usemtl" | "g" | "o" | "s") {
+            continue;
+        }
+        if keyword == "f" {
+            out.push_str(&format!("usemtl m{f}\n"));
+            if f % 3 == 0 {
+                out.push_str(&format!("g g{}\n", f / 3));
+            }
+            f += 1;
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out + extra
+}
+
+/// Shared meshes (triangles, quads, n-gons, boundaries, creases) with a material per face:
+/// under every scheme that applies, at level 1, every output face has its base face's
+/// material and group, with a hole under the schemes whose faces nest.
+#[test]
+#[ignore = "needs SUBCOUNT_MESHES"]
+fn shared_meshes_keep_every_faces_material_under_every_scheme() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let out = dir.path().join("out.obj").to_string_lossy().into_owned();
+    for name in [
+        "bob_tri.obj",
+        "spot_control_mesh.obj",
+        "cylinder_ngon.obj",
+        "planexy.obj",
+        "osd_catmark_pyramid.obj",
+        "osd_catmark_pawn.obj",
+    ] {
+        let text = std::fs::read_to_string(testdata::mesh(name)).expect("a shared mesh");
+        let json: serde_json::Value = serde_json::from_str(&ok(&[
+            "stats",
+            "--mesh",
+            &testdata::mesh(name).to_string_lossy(),
+            "--format",
+            "json",
+        ]))
+        .expect("json");
+        let schemes: Vec<String> = json["applicable_schemes"]
+            .as_array()
+            .expect("schemes")
+            .iter()
+            .map(|s| s.as_str().expect("a name").to_owned())
+            .collect();
+        for scheme in &schemes {
+            let nests = !["sqrt3", "doo-sabin", "mid-edge"]
+                .iter()
+                .any(|p| scheme.starts_with(p));
+            let variants: &[&str] = if nests {
+                &["", "t hole 1/0/0 1\n"]
+            } else {
+                &[""]
+            };
+            for extra in variants {
+                let input = write(&dir, name, &per_face_materials(&text, extra));
+                let run = subcount(&[
+                    "subdivide",
+                    "--mesh",
+                    &input,
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    "1",
+                    "-o",
+                    &out,
+                ]);
+                assert_eq!(run.code, 0, "{scheme} on {name}: {}", run.stderr);
+                let poly = io::read_obj(&input).expect("input");
+                let counts = halfedge::stats::face_list_counts(&poly);
+                let builtin = halfedge::schemes::builtin(scheme).expect("a scheme");
+                let rule = halfedge::subdivide::checked_rule(&builtin, &counts).expect("rule");
+                let base = library_base_faces(&input, rule, 1);
+                check_groups(
+                    &input,
+                    &out,
+                    &base,
+                    &format!("{scheme} on {name} {extra:?}"),
+                );
+            }
+        }
+    }
+}
