@@ -72,9 +72,59 @@ pub fn write_buffers_obj_file<T: Scalar>(
     })
 }
 
+/// The format an output file is written in, by its name: binary PLY for a name ending in
+/// `.ply` (any case), OBJ for every other name and for `-` (standard output).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// OBJ text ([`halfedge::io::write_polygon_obj_with`] and the other OBJ writers).
+    Obj,
+    /// Binary little-endian PLY ([`halfedge::io::write_polygon_ply`],
+    /// [`halfedge::io::write_mesh_buffers_ply`]).
+    Ply,
+}
+
+impl MeshFormat {
+    /// The format of an output named `path`.
+    ///
+    /// ```
+    /// use driver::output::MeshFormat;
+    /// use std::path::Path;
+    /// assert_eq!(MeshFormat::of(Path::new("out.PLY")), MeshFormat::Ply);
+    /// assert_eq!(MeshFormat::of(Path::new("out.obj")), MeshFormat::Obj);
+    /// assert_eq!(MeshFormat::of(Path::new("-")), MeshFormat::Obj);
+    /// ```
+    pub fn of(path: &Path) -> MeshFormat {
+        let extension = path.extension().and_then(|e| e.to_str());
+        match extension.map(str::to_ascii_lowercase).as_deref() {
+            Some("ply") => MeshFormat::Ply,
+            _ => MeshFormat::Obj,
+        }
+    }
+}
+
+/// Writes a face list (positions, faces, UVs, colors, groups) to `path` in the format its name
+/// says ([`MeshFormat::of`]), atomically, like [`write_obj_file`].
+///
+/// # Errors
+///
+/// As [`write_obj_file`].
+pub fn write_polygon_mesh_file(
+    mesh: &PolygonMesh,
+    path: &Path,
+    options: &ObjWriteOptions,
+) -> Result<()> {
+    match MeshFormat::of(path) {
+        MeshFormat::Obj => write_polygon_obj_file(mesh, path, options),
+        MeshFormat::Ply => write_atomically(path, |file| {
+            halfedge::io::write_polygon_ply(mesh, file, options)
+        }),
+    }
+}
+
 /// Writes a mesh in caller-owned buffers ([`halfedge::io::MeshBuffers`]: positions, faces,
-/// UVs, colors, groups) as OBJ ([`halfedge::io::write_mesh_buffers_obj`]), atomically, like
-/// [`write_obj_file`].
+/// UVs, colors, groups) in the format its name says ([`MeshFormat::of`]:
+/// [`halfedge::io::write_mesh_buffers_obj`] or [`halfedge::io::write_mesh_buffers_ply`]),
+/// atomically, like [`write_obj_file`].
 ///
 /// # Errors
 ///
@@ -84,8 +134,9 @@ pub fn write_mesh_buffers_file<T: Scalar>(
     path: &Path,
     options: &ObjWriteOptions,
 ) -> Result<()> {
-    write_atomically(path, |file| {
-        halfedge::io::write_mesh_buffers_obj(mesh, file, options)
+    write_atomically(path, |file| match MeshFormat::of(path) {
+        MeshFormat::Obj => halfedge::io::write_mesh_buffers_obj(mesh, file, options),
+        MeshFormat::Ply => halfedge::io::write_mesh_buffers_ply(mesh, file, options),
     })
 }
 
@@ -167,19 +218,21 @@ pub fn write_atomically(
 }
 
 /// The mesh formats an output name's extension may name that the writers do not write
-/// (they write OBJ): a file named `out.ply` holding OBJ text would mislead every program that
-/// opens it.
+/// (they write OBJ, and PLY for `.ply`): a file named `out.stl` holding OBJ text would mislead
+/// every program that opens it.
 pub const UNWRITTEN_MESH_FORMATS: &[&str] = &[
-    "ply", "stl", "off", "glb", "gltf", "fbx", "usd", "usda", "usdc", "3ds", "dae",
+    "stl", "off", "glb", "gltf", "fbx", "usd", "usda", "usdc", "3ds", "dae",
 ];
 
 /// The extension of `path` (lowercase) when it names a mesh format the writers do not write
-/// ([`UNWRITTEN_MESH_FORMATS`]); `None` for `.obj` and every other name, written as OBJ.
+/// ([`UNWRITTEN_MESH_FORMATS`]); `None` for `.obj`, `.ply` and every other name, written as
+/// OBJ ([`MeshFormat`]: `.ply` as PLY).
 ///
 /// ```
 /// use driver::output::unwritten_mesh_format;
 /// use std::path::Path;
-/// assert_eq!(unwritten_mesh_format(Path::new("out.PLY")).as_deref(), Some("ply"));
+/// assert_eq!(unwritten_mesh_format(Path::new("out.STL")).as_deref(), Some("stl"));
+/// assert_eq!(unwritten_mesh_format(Path::new("out.ply")), None);
 /// assert_eq!(unwritten_mesh_format(Path::new("out.obj")), None);
 /// assert_eq!(unwritten_mesh_format(Path::new("out.txt")), None);
 /// ```

@@ -597,19 +597,23 @@ impl Subdivided {
         }
     }
 
-    /// Writes the last level as OBJ to `path` ([`crate::output::write_atomically`]: `-` is
-    /// standard output), with UVs when `options` asks and they were refined, normals when it
-    /// asks.
+    /// Writes the last level to `path` ([`crate::output::write_atomically`]: `-` is standard
+    /// output) as OBJ, or binary PLY for a `.ply` name ([`crate::output::MeshFormat`]), with
+    /// UVs when `options` asks and they were refined, normals when it asks, and the colors and
+    /// groups the mesh carries.
     ///
     /// # Errors
     ///
     /// The output's errors ([`halfedge::Error::Io`], [`Error::WriteProtected`]).
     pub fn write(&self, path: &Path, options: &ObjWriteOptions) -> Result<()> {
-        use crate::output::{write_obj_file, write_polygon_obj_file};
+        use crate::output::{write_obj_file, write_polygon_mesh_file, MeshFormat};
         match &self.output {
-            Output::Mesh(m) => write_obj_file(m, path, options),
-            Output::Polygons(p) => write_polygon_obj_file(p, path, options),
-            Output::Faces(level) => write_polygon_obj_file(&level.mesh, path, options),
+            Output::Mesh(m) if MeshFormat::of(path) == MeshFormat::Obj => {
+                write_obj_file(m, path, options)
+            }
+            Output::Mesh(m) => write_polygon_mesh_file(&m.to_polygon_mesh(), path, options),
+            Output::Polygons(p) => write_polygon_mesh_file(p, path, options),
+            Output::Faces(level) => write_polygon_mesh_file(&level.mesh, path, options),
             Output::Refined(r) => r.write(path, options),
         }
     }

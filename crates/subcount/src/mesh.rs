@@ -385,11 +385,12 @@ pub(crate) fn write_reports(
 
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
-    // OBJ text in a file named for another mesh format would mislead whatever opens it.
+    // OBJ text in a file named for another mesh format would mislead whatever opens it
+    // (`.ply` is written as PLY).
     if let Some(path) = &args.output {
         if let Some(format) = driver::output::unwritten_mesh_format(path) {
             return Err(usage!(
-                "-o {}: subdivide does not write {} files; it writes OBJ (name the output .obj, or anything that is not another mesh format's extension)",
+                "-o {}: subdivide does not write {} files; it writes OBJ and PLY (name the output .obj or .ply, or anything that is not another mesh format's extension)",
                 path.display(),
                 format.to_ascii_uppercase()
             ));

@@ -506,3 +506,103 @@ fn shared_meshes_keep_every_faces_material_under_every_scheme() {
         }
     }
 }
+
+/// `-o NAME.ply` writes binary PLY: the same mesh as the OBJ output (positions to the bit,
+/// faces, colors as `uchar` when in [0, 1] else as floats, UVs per corner), in `f64` and
+/// `f32`, through every path; `--mesh x.ply` reads it back.
+#[test]
+fn ply_output_is_the_obj_output_in_binary() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    // Colors outside [0, 1] (the affine field): written as floats, read back exactly.
+    let wide = write(&dir, "wide.obj", &colored(&grouped_cube("")));
+    // Colors in [0, 1] at multiples of 1/255: written as uchar, read back exactly.
+    let narrow_text: String = grouped_cube("")
+        .lines()
+        .enumerate()
+        .map(|(i, l)| match l.strip_prefix("v ") {
+            Some(p) => format!("v {p} {} 0 1\n", (i % 7) as f64 * 17.0 / 255.0),
+            None => format!("{l}\n"),
+        })
+        .collect();
+    let narrow = write(&dir, "narrow.obj", &narrow_text);
+    let uv = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+              vt 0 1\nvt 0.5 0\nvt 0.5 1\nf 1/1 2/2 3/3 4/4\nf 2/5 5/2 6/3 3/6\n";
+    let seams = write(&dir, "seams.obj", uv);
+    let obj = dir.path().join("out.obj").to_string_lossy().into_owned();
+    let ply = dir.path().join("out.ply").to_string_lossy().into_owned();
+    let cases: &[(&str, &str, &[&str])] = &[
+        (&wide, "catmull-clark", &[]),
+        (&wide, "catmull-clark", &["--precision", "f32"]),
+        (&narrow, "catmull-clark", &["--normals"]),
+        (&narrow, "doo-sabin", &[]),
+        (&narrow, "catmull-clark-general", &[]),
+        (&seams, "catmull-clark", &[]),
+        (
+            &seams,
+            "catmull-clark",
+            &["--precision", "f32", "--normals"],
+        ),
+    ];
+    for &(input, scheme, flags) in cases {
+        for levels in ["0", "1", "2"] {
+            let what = format!("{scheme} {flags:?} level {levels} on {input}");
+            for out in [&obj, &ply] {
+                let mut args = vec![
+                    "subdivide",
+                    "--mesh",
+                    input,
+                    "--scheme",
+                    scheme,
+                    "--levels",
+                    levels,
+                    "-o",
+                    out,
+                ];
+                args.extend_from_slice(flags);
+                ok(&args);
+            }
+            let a = io::read_obj(&obj).expect("obj");
+            let b = io::read_ply(&ply).unwrap_or_else(|e| panic!("{what}: {e}"));
+            // In f32 the OBJ text is the shortest f32 text: equal once read as f32.
+            let f32 = flags.contains(&"f32");
+            let round = |x: f64| if f32 { f64::from(x as f32) } else { x };
+            let points = |m: &halfedge::PolygonMesh| -> Vec<[f64; 3]> {
+                m.positions
+                    .iter()
+                    .map(|p| p.to_array().map(round))
+                    .collect()
+            };
+            assert_eq!(points(&a), points(&b), "{what}");
+            assert_eq!(a.face_indices(), b.face_indices(), "{what}");
+            // Colors in [0, 1] are written as uchar: round(c · 255) / 255 read back.
+            let unit = a
+                .colors()
+                .is_some_and(|c| c.iter().flatten().all(|x| (0.0..=1.0).contains(x)));
+            let quantize = |x: f64| match unit {
+                true => (x * 255.0).round() / 255.0,
+                false => round(x),
+            };
+            let colors = |m: &halfedge::PolygonMesh| -> Option<Vec<[f64; 3]>> {
+                m.colors()
+                    .map(|c| c.iter().map(|c| c.map(quantize)).collect())
+            };
+            assert_eq!(colors(&a), colors(&b), "{what}");
+            let corner_uvs = |m: &halfedge::PolygonMesh| {
+                m.uvs().map(|u| {
+                    u.corners()
+                        .iter()
+                        .map(|&c| u.coords()[c as usize].to_array().map(round))
+                        .collect::<Vec<_>>()
+                })
+            };
+            assert_eq!(corner_uvs(&a), corner_uvs(&b), "{what}");
+            // The PLY reads back as a mesh subcount takes.
+            let stats = ok(&["stats", "--mesh", &ply]);
+            assert!(stats.contains("manifold"), "{what}: {stats}");
+        }
+    }
+    let header = std::fs::read(&ply).expect("ply");
+    let text = String::from_utf8_lossy(&header[..200]);
+    assert!(text.contains("property float x\n"), "f32 positions: {text}");
+    assert!(text.contains("property float nx\n"), "normals: {text}");
+}

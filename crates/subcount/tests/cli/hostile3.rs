@@ -313,14 +313,15 @@ fn a_scheme_file_that_does_not_apply_names_the_mesh_in_subdivide() {
     }
 }
 
-/// Item 11: `-o out.ply` wrote OBJ text with exit 0. A mesh format other than OBJ is a usage
-/// error naming what is written; `.obj` and other names keep writing OBJ.
+/// Item 11: `-o out.ply` wrote OBJ text with exit 0. A mesh format other than OBJ and PLY is
+/// a usage error naming what is written; `.obj` and other names keep writing OBJ, `.ply` (any
+/// case) writes binary PLY (issue 27).
 #[test]
 fn outputs_named_for_other_mesh_formats_are_refused() {
     let files = Files::new();
     let quad = files.write("quad.obj", format!("{QUAD}f 1 2 3 4\n").as_bytes());
     for ext in [
-        "ply", "stl", "off", "glb", "gltf", "fbx", "usd", "usda", "usdc", "3ds", "dae", "PLY",
+        "stl", "off", "glb", "gltf", "fbx", "usd", "usda", "usdc", "3ds", "dae", "STL",
     ] {
         let out = files.path(&format!("out.{ext}")).display().to_string();
         fails(
@@ -337,7 +338,7 @@ fn outputs_named_for_other_mesh_formats_are_refused() {
             ],
             2,
             &format!(
-                "subdivide does not write {} files; it writes OBJ",
+                "subdivide does not write {} files; it writes OBJ and PLY",
                 ext.to_ascii_uppercase()
             ),
         );
@@ -358,6 +359,25 @@ fn outputs_named_for_other_mesh_formats_are_refused() {
         ]);
         let text = std::fs::read_to_string(&out).expect("written");
         assert!(text.starts_with("v "), "{name}: {text}");
+    }
+    for name in ["out.ply", "out.PLY"] {
+        let out = files.path(name).display().to_string();
+        ok(&[
+            "subdivide",
+            "--mesh",
+            &quad,
+            "--scheme",
+            "catmull-clark",
+            "--levels",
+            "1",
+            "-o",
+            &out,
+        ]);
+        let bytes = std::fs::read(&out).expect("written");
+        assert!(
+            bytes.starts_with(b"ply\nformat binary_little_endian 1.0\n"),
+            "{name}"
+        );
     }
 }
 
