@@ -196,6 +196,22 @@ pub enum ParseError {
     /// A tag that names a vertex, face or edge the file's mesh does not have.
     #[error(transparent)]
     Tag(#[from] crate::tags::TagError),
+    /// A PLY face's vertex index that is negative or not below the file's vertex count.
+    #[error("vertex index {index} is out of range (the file has {vertices} vertices)")]
+    VertexIndexOutOfRange {
+        /// The index as stored in the file.
+        index: i64,
+        /// The vertices the header declares.
+        vertices: u64,
+    },
+    /// A PLY list whose count is negative or larger than the reader accepts.
+    #[error("list count {count} is not valid (expected 0 to {limit})")]
+    ListCount {
+        /// The count as stored in the file.
+        count: i64,
+        /// The largest count accepted.
+        limit: u64,
+    },
 }
 
 /// Everything that can go wrong loading, validating or subdividing a mesh.
@@ -666,6 +682,28 @@ pub enum Error {
         /// The reason given by rayon.
         reason: String,
     },
+    /// A value in the data of a PLY file (after its header) that could not be read, named by
+    /// its element, the element's 0-based index and, when the problem is one value's, its
+    /// property: `bunny.ply: vertex 7, property `y`: coordinate `inf` is not finite`. (A
+    /// problem in the header is [`Error::Parse`], naming the header line.)
+    #[error("{file}: {element} {index}{}: {kind}", ply_property(property.as_deref()))]
+    PlyData {
+        /// The file name (as given for error messages).
+        file: String,
+        /// The element's name (`vertex`, `face`, ...; control characters escaped).
+        element: String,
+        /// The element's 0-based index among the elements of its kind.
+        index: u64,
+        /// The property, when the problem is one of its values.
+        property: Option<String>,
+        /// What is wrong (boxed: the variant stays as small as [`Error::Parse`]).
+        kind: Box<ParseError>,
+    },
+}
+
+/// `, property `NAME`` for [`Error::PlyData`] (nothing without a property).
+fn ply_property(property: Option<&str>) -> String {
+    property.map_or(String::new(), |p| format!(", property `{p}`"))
 }
 
 impl Error {

@@ -70,6 +70,31 @@
 //! crate did before it read tags. Text from the file echoed in a message (a token, a tag's
 //! name, an ignored tag's name) has its control characters escaped ([`escape_controls`]).
 //!
+//! # PLY
+//!
+//! [`read_ply`] (and [`read_mesh`] for `.ply`, any case) reads `ascii 1.0`,
+//! `binary_little_endian 1.0` and `binary_big_endian 1.0` in one streaming pass (types `char`
+//! to `double` and `int8` to `float64`). Of the `vertex` element, `x y z` (any numeric type,
+//! in `f64`) are the positions, in file order, used or not; `red green blue`, when all three
+//! are there, the [`PolygonMesh::colors`] (`uchar` scaled to 0-1 as `c / 255`, other types
+//! kept as read); `s t`, `u v` or `texture_u texture_v` a UV value per vertex
+//! ([`PolygonMesh::uvs`]). Of the `face` element, the list `vertex_indices` (or
+//! `vertex_index`) gives the corners in file order, and a list `texcoord` (`u v` per corner,
+//! as MeshLab writes it) a UV value per corner, bit-for-bit equal pairs shared; these win over
+//! per-vertex ones. Every other element and property (normals among them) is skipped and
+//! listed in [`PolygonMesh::uncarried`] (`` 12 `edge` elements ``, `` 500 values of `vertex`
+//! property `nx` ``). A problem in the header is [`Error::Parse`] naming its line; one in the
+//! data is [`Error::PlyData`] naming the element, its 0-based index and, for a value, the
+//! property (`bunny.ply: face 12: vertex index 900 is out of range (the file has 500
+//! vertices)`). The memory guards are OBJ's (below): a header's counts preallocate at most
+//! 65,536 elements, a list holds at most 16 Mi items, and everything kept counts against the
+//! budget ([`Error::MeshTooLarge`] names the data's line in ASCII, in binary data the line
+//! after `end_header`, where the data starts). [`write_polygon_ply`] and
+//! [`write_mesh_buffers_ply`] write binary little-endian PLY: positions, colors (`uchar` when
+//! every component is in 0-1), normals and texture coordinates on request
+//! ([`ObjWriteOptions`]: `s t` per vertex without seams, else a `texcoord` list per face),
+//! faces as `vertex_indices`; groups are not written.
+//!
 //! # Memory
 //!
 //! Everything a reader keeps grows inside its budget (half of
@@ -149,10 +174,14 @@
 mod obj;
 mod obj_tags;
 mod off;
+mod ply;
 mod write;
 
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
+pub use self::ply::{
+    read_ply, read_ply_from, read_ply_with, write_mesh_buffers_ply, write_polygon_ply,
+};
 pub use self::write::{
     write_buffers_obj, write_buffers_obj_with, write_mesh_buffers_obj, write_obj, write_obj_with,
     write_polygon_obj, write_polygon_obj_with, FaceBuffers, MeshBuffers, ObjWriteOptions,
@@ -209,6 +238,7 @@ pub fn read_mesh_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<P
     match extension.as_deref() {
         Some("obj") => read_obj_with(path, options),
         Some("off") => off::read_off_with(path, options),
+        Some("ply") => read_ply_with(path, options),
         _ => Err(Error::UnknownFormat {
             path: path.to_path_buf(),
         }),

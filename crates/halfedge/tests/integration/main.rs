@@ -6,6 +6,7 @@ mod descriptor;
 mod holes;
 mod invalid_obj;
 mod oneshot_hashes;
+mod ply;
 mod properties;
 mod roundtrip;
 mod shared_meshes;
