@@ -1,4 +1,6 @@
-//! OBJ reading: `v`, `vt`, `f` and OpenSubdiv's `t` statements, everything else ignored.
+//! OBJ reading: `v` (with colors), `vt`, `f`, OpenSubdiv's `t` statements and the grouping
+//! statements (`mtllib`, `usemtl`, `o`, `g`, `s`); every other kind of line counted as not
+//! carried.
 
 use std::io::BufRead;
 use std::path::Path;
@@ -54,17 +56,20 @@ pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 
 /// Reads OBJ text from any buffered reader; `name` is the file name used in error messages.
 ///
-/// Reads `v x y z` (further values such as `w` or colours are ignored), `vt u v` (a `w` is
-/// ignored) and `f` with corners `v`, `v/vt`, `v/vt/vn` or `v//vn`, where `v` and `vt` are
+/// Reads `v x y z` (a fourth value `w` is ignored; six values are a position and a color
+/// `r g b`: [`PolygonMesh::colors`] when every `v` line has one, else
+/// [`PolygonMesh::partial_colors`] says how many do), `vt u v` (a `w` is ignored) and `f` with corners `v`, `v/vt`, `v/vt/vn` or `v//vn`, where `v` and `vt` are
 /// 1-based or negative (relative to the vertices, or texture coordinates, read so far).
 /// Positive indices may refer to vertices or texture coordinates defined later in the file.
 /// The `vn` field is not read (normals are not carried). When every face corner names a `vt`,
 /// the mesh has [`uvs`](PolygonMesh::uvs); when only some do, it has none and
 /// [`partial_uvs`](PolygonMesh::partial_uvs) says how many do; `vt` lines no corner uses are
-/// kept (counted by [`Uvs::unreferenced`]). Comments (`#`), blank lines, backslash line
-/// continuations and all other statements are skipped, except OpenSubdiv's tags
-/// (`t NAME nInts/nFloats/nStrings ints floats strings`), which become the mesh's
-/// [`tags`](PolygonMesh::tags) as the [`crate::io`] docs describe.
+/// kept (counted by [`Uvs::unreferenced`]). `mtllib`, `usemtl`, `o`, `g` and `s` become the
+/// mesh's [`groups`](PolygonMesh::groups) ([`crate::groups`]). Comments (`#`), blank lines
+/// and backslash line continuations are skipped; OpenSubdiv's tags
+/// (`t NAME nInts/nFloats/nStrings ints floats strings`) become the mesh's
+/// [`tags`](PolygonMesh::tags) as the [`crate::io`] docs describe; every other statement
+/// (`vn`, `l`, `p`, ...) is skipped and counted by kind ([`PolygonMesh::uncarried`]).
 ///
 /// # Errors
 ///
