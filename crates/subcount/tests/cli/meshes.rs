@@ -132,11 +132,16 @@ fn obj_face_forms_groups_and_unreferenced_vertices() {
         out,
     ]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    // Only some corners have a vt: written without UVs, saying why.
+    // Only some corners have a vt: written without UVs, saying why; the `l` line and the
+    // `vn` lines are not carried, said once (issue 27); the groups and materials are.
     assert_eq!(
         run.stderr,
-        format!("note: {path}: 8 of 24 face corners have texture coordinates: no UV layout: writing without UVs\n")
+        format!("note: {path}: 8 of 24 face corners have texture coordinates: no UV layout: writing without UVs\n\
+                 note: {path}: not carried into the output: 1 l lines, 2 vn lines\n")
     );
+    let written = std::fs::read_to_string(out).unwrap();
+    assert!(written.starts_with("mtllib cube.mtl\nv "), "{written}");
+    assert_eq!(written.matches("usemtl ").count(), 2, "{written}");
     let v: serde_json::Value =
         serde_json::from_str(&ok(&["stats", "--mesh", out, "--format", "json"])).unwrap();
     assert_eq!(
