@@ -78,6 +78,48 @@ pub fn off(data: &[u8]) -> u64 {
     mesh_work(io::read_off_from(data, "fuzz.off"))
 }
 
+/// Loads PLY bytes, then as [`off`]; and a mesh read is written back as binary PLY and read
+/// again: the same positions and faces, the same texture coordinate at every corner, and the
+/// same colors (within the rounding of `uchar` colors).
+pub fn ply(data: &[u8]) -> u64 {
+    let loaded = io::read_ply_from(data, "fuzz.ply");
+    let mut work = 0;
+    if let Ok(mesh) = &loaded {
+        let corner_uvs = |m: &PolygonMesh| -> Option<Vec<[u64; 2]>> {
+            let uvs = m.uvs()?;
+            assert_eq!(uvs.corners().len(), m.n_corners(), "a UV value per corner");
+            let value = |t: u32| uvs.coords()[t as usize].to_array().map(f64::to_bits);
+            Some(uvs.corners().iter().map(|&t| value(t)).collect())
+        };
+        if let Some(colors) = mesh.colors() {
+            assert_eq!(colors.len(), mesh.n_vertices(), "a color per vertex");
+        }
+        let mut out = Vec::new();
+        io::write_polygon_ply(mesh, &mut out, &io::ObjWriteOptions::default())
+            .expect("a mesh read is written");
+        let back = io::read_ply_from(out.as_slice(), "back.ply").expect("what we write reads");
+        assert_eq!(back.positions, mesh.positions);
+        assert_eq!(back.face_offsets(), mesh.face_offsets());
+        assert_eq!(back.face_indices(), mesh.face_indices());
+        assert_eq!(corner_uvs(&back), corner_uvs(mesh));
+        match (mesh.colors(), back.colors()) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                let bytes = a.iter().flatten().all(|c| (0.0..=1.0).contains(c));
+                for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
+                    match bytes {
+                        true => assert!((x - y).abs() <= 0.5 / 255.0 + 1e-12, "{x} {y}"),
+                        false => assert_eq!(x.to_bits(), y.to_bits()),
+                    }
+                }
+            }
+            (a, b) => panic!("colors {} written, {} read", a.is_some(), b.is_some()),
+        }
+        work += mesh.n_corners() as u64;
+    }
+    work + mesh_work(loaded)
+}
+
 fn mesh_work(loaded: halfedge::Result<PolygonMesh>) -> u64 {
     let Ok(mesh) = loaded else { return 1 };
     let counts = stats::face_list_counts(&mesh);

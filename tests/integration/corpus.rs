@@ -96,6 +96,21 @@ fn off_corpus() {
 }
 
 #[test]
+fn ply_corpus() {
+    replay("ply", exercise::ply);
+    for (path, bytes) in corpus("ply") {
+        if let Err(e) = halfedge::io::read_ply_from(bytes.as_slice(), "corpus.ply") {
+            let message = e.to_string();
+            assert_one_line(&message, &path.display().to_string());
+            assert!(
+                message.starts_with("corpus.ply"),
+                "{message:?} does not name the file"
+            );
+        }
+    }
+}
+
+#[test]
 fn scheme_toml_corpus() {
     replay("scheme_toml", exercise::scheme_toml);
     for (path, bytes) in corpus("scheme_toml") {

@@ -684,7 +684,7 @@ pub enum Error {
     },
     /// A value in the data of a PLY file (after its header) that could not be read, named by
     /// its element, the element's 0-based index and, when the problem is one value's, its
-    /// property: `bunny.ply: vertex 7, property `y`: coordinate `inf` is not finite`. (A
+    /// property: ``bunny.ply: vertex 7, property `y`: coordinate `inf` is not finite``. (A
     /// problem in the header is [`Error::Parse`], naming the header line.)
     #[error("{file}: {element} {index}{}: {kind}", ply_property(property.as_deref()))]
     PlyData {
