@@ -69,8 +69,53 @@ pub fn obj(data: &[u8]) -> u64 {
             assert!(0 < partial.with_vt && partial.with_vt < partial.corners);
             assert_eq!(partial.corners, mesh.n_corners());
         }
+        work += obj_round_trip(mesh);
     }
     work + mesh_work(loaded)
+}
+
+/// Issue 27: colors one per vertex (or a partial record), groups one class per face, and the
+/// mesh written back as OBJ reads as the same positions, faces, colors, groups and `mtllib`
+/// lines.
+fn obj_round_trip(mesh: &PolygonMesh) -> u64 {
+    use halfedge::groups::Statement;
+    if let Some(colors) = mesh.colors() {
+        assert_eq!(colors.len(), mesh.n_vertices(), "a color per vertex");
+        assert!(mesh.partial_colors().is_none());
+    }
+    if let Some(partial) = mesh.partial_colors() {
+        assert!(mesh.colors().is_none());
+        assert!(partial.with_colors <= partial.vertices);
+        assert_eq!(partial.vertices, mesh.n_vertices());
+    }
+    if let Some(groups) = mesh.groups() {
+        assert_eq!(groups.n_faces(), mesh.n_faces(), "a class per face");
+    }
+    let mut out = Vec::new();
+    io::write_polygon_obj(mesh, &mut out).expect("a mesh read is written");
+    let back = io::read_obj_from(out.as_slice(), "back.obj").expect("what we write reads");
+    assert_eq!(back.positions, mesh.positions);
+    assert_eq!(back.face_offsets(), mesh.face_offsets());
+    assert_eq!(back.face_indices(), mesh.face_indices());
+    assert_eq!(back.colors(), mesh.colors());
+    match (mesh.groups(), back.groups()) {
+        (Some(a), Some(b)) => {
+            assert_eq!(a.mtllib(), b.mtllib());
+            for f in 0..mesh.n_faces() {
+                for s in Statement::ALL {
+                    // A value that was never set before a face is written as the default.
+                    if let Some(value) = a.value(f, s) {
+                        assert_eq!(b.value(f, s), Some(value), "face {f} {s:?}");
+                    }
+                }
+            }
+        }
+        (None, None) => {}
+        // Statements after the last face only (no face has them) write nothing back.
+        (Some(a), None) => assert!(a.mtllib().is_empty()),
+        (None, Some(_)) => panic!("groups appeared"),
+    }
+    mesh.n_faces() as u64
 }
 
 /// Loads OFF bytes, then as [`obj`].

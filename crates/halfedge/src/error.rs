@@ -270,7 +270,7 @@ pub enum Error {
         file: String,
     },
     /// A mesh file whose format cannot be told from its extension.
-    #[error("{}: unknown mesh format (expected .obj or .off)", escape_controls(&path.display().to_string()))]
+    #[error("{}: unknown mesh format (expected .obj, .off or .ply)", escape_controls(&path.display().to_string()))]
     UnknownFormat {
         /// The file.
         path: PathBuf,

@@ -1,4 +1,4 @@
-//! Reading and writing meshes (OBJ, OFF), keeping polygons as they are.
+//! Reading and writing meshes (OBJ, OFF, PLY), keeping polygons as they are.
 //!
 //! # Why OBJ is parsed here and not with tobj
 //!
@@ -11,9 +11,10 @@
 //! matters for topology and texturing itself — `v` and `vt` lines and the first two fields
 //! of each `f` corner (`v`, `v/vt`, `v/vt/vn`, `v//vn`, negative indices) — in one streaming
 //! pass over a `BufRead` (no whole-file string), with an error naming the file and line (and,
-//! for a texture-coordinate index, the corner) for every bad token, and ignores every other
-//! statement (`vn`, `vp`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`, ...) except
-//! OpenSubdiv's tags (below). tobj is kept as an independent cross-check: the test suite
+//! for a texture-coordinate index, the corner) for every bad token; it keeps vertex colors
+//! (`v x y z r g b`), OpenSubdiv's tags (below) and the grouping statements (`mtllib`,
+//! `usemtl`, `o`, `g`, `s`: [`crate::groups`]), and counts every other kind of line (`vn`,
+//! `vp`, `l`, `p`, ...) in [`PolygonMesh::uncarried`]. tobj is kept as an independent cross-check: the test suite
 //! loads every mesh of the shared folder with both and compares positions, faces and each
 //! corner's texture coordinate.
 //!
@@ -110,7 +111,11 @@
 //! opens textured, and [`ObjWriteOptions`] leaves them out or adds area-weighted vertex
 //! normals ([`crate::normals`]) as `vn` lines with `f v/vt/vn` or `f v//vn` corners (the
 //! `vn` index is the vertex's); a mesh without texture coordinates and without normals is
-//! written exactly as before they existed. [`write_buffers_obj_with`] writes caller-owned
+//! written exactly as before they existed. A mesh with vertex colors gets `v x y z r g b`
+//! lines, and one with groups its `mtllib` lines before the first `v` and a `usemtl` / `o` /
+//! `g` / `s` line before each face whose value changes ([`crate::groups`]).
+//! [`write_mesh_buffers_obj`] writes all of it from caller buffers ([`MeshBuffers`]);
+//! [`write_buffers_obj_with`] writes caller-owned
 //! buffers, UV values and a value per corner ([`UvBuffers`]) included. The writers take any
 //! [`std::io::Write`]; putting the text in a file (atomically, `-` for standard output, signals)
 //! is the front ends' (`driver::output`).
@@ -167,9 +172,9 @@
 //! buffers; `vt` and `f v/vt` for texture coordinates, `vn` on request: `ObjWriteOptions`,
 //! `UvBuffers`): `halfedge::io`'s `write.rs` (`write_coordinates`).
 //!
-//! Owner of writing an output file (`-o`): `driver::output::write_atomically` (OBJ and plot
-//! output alike); mesh formats not written (`-o out.ply` is a usage error):
-//! `driver::output::unwritten_mesh_format`.
+//! Owner of writing an output file (`-o`): `driver::output::write_atomically` (OBJ, PLY and
+//! plot output alike; `driver::output::MeshFormat` by the name); mesh formats not written
+//! (`-o out.stl` is a usage error): `driver::output::unwritten_mesh_format`.
 
 mod obj;
 mod obj_tags;
@@ -195,7 +200,7 @@ use std::path::Path;
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
 
-/// Reads a mesh file, choosing the format by its extension (`.obj` or `.off`, any case).
+/// Reads a mesh file, choosing the format by its extension (`.obj`, `.off` or `.ply`, any case).
 ///
 /// # Errors
 ///

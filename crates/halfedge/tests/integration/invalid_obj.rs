@@ -156,7 +156,7 @@ fn unknown_extension_and_missing_file() {
     let err = io::read_mesh("mesh.stl").unwrap_err();
     assert_eq!(
         err.to_string(),
-        "mesh.stl: unknown mesh format (expected .obj or .off)"
+        "mesh.stl: unknown mesh format (expected .obj, .off or .ply)"
     );
     let err = io::read_mesh("/nonexistent/dir/mesh.obj").unwrap_err();
     assert!(matches!(err, Error::Io { .. }));
