@@ -327,9 +327,9 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
     })
 }
 
-/// The colors of the last level: `base` (one per vertex of the mesh) evaluated by the
-/// refinement, or under the icosphere rule by its varying refinement (the midpoint rule's
-/// weights, before the projection onto the sphere); refused as positions are when not finite.
+/// The colors of the last level: `base` (one per vertex of the mesh) refined with the
+/// positions' weights ([`Refinement::evaluate_attributes`]: under the icosphere rule those
+/// before the projection onto the sphere); refused as positions are when not finite.
 fn refined_colors<T: Scalar>(
     refinement: &Refinement,
     run: &RefineOnce<'_>,
@@ -338,12 +338,7 @@ fn refined_colors<T: Scalar>(
     let levels = run.levels;
     let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
     let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
-    if run.rule == Rule::Icosphere {
-        let linear = Refinement::new_varying(run.mesh, run.rule, levels, run.opts)?;
-        linear.evaluate(&base, &mut out)?;
-    } else {
-        refinement.evaluate(&base, &mut out)?;
-    }
+    refinement.evaluate_attributes(run.mesh, run.opts, &base, &mut out)?;
     if let Some(v) = out
         .iter()
         .position(|c| c.iter().any(|x| !x.to_f64().is_finite()))

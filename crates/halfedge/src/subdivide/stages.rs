@@ -5,7 +5,9 @@
 //! A stage runs on the half-edge path when its scheme needs a manifold mesh, on the raw face
 //! list otherwise (as [`subdivide_polygons`] and [`verify_polygons`] do); UVs
 //! ([`SubdivideOptions::uvs`]) are carried from stage to stage (each stage refines the layout
-//! of what the stage before wrote). Creases, corners and holes are not: a stage's sharpness
+//! of what the stage before wrote), and so are groups and vertex colors
+//! ([`PolygonMesh::groups`], [`PolygonMesh::colors`]: each face takes its base face's, colors
+//! the positions' weights). Creases, corners and holes are not: a stage's sharpness
 //! and a hole's descendants are defined within one rule, so a composition with them is
 //! refused ([`Error::NotComposable`]).
 //!
@@ -163,7 +165,7 @@ pub fn subdivide_stages(
         }
         if n > 0 && (!check || !last_stage) {
             let next = match &he {
-                Some(he) => subdivide_to_face_list(he, rule, n, &stage_opts)?.mesh,
+                Some(he) => stage_face_list(current, he, rule, n, &stage_opts)?,
                 None => subdivide_polygons(current, rule, n, &stage_opts)?,
             };
             drop(he);
@@ -207,6 +209,46 @@ pub fn subdivide_stages(
 
 /// The report of `level`: the plan's prediction from `x0` in the names of `scheme` (the
 /// stage's) against `measured`.
+/// One stage on the half-edge path: its last level as a face list, carrying what `current`
+/// (the stage's input, `he` its half-edge mesh) carries besides UVs: each face's groups from
+/// its base face, the vertex colors refined with the positions' weights
+/// ([`Refinement::evaluate_attributes`](crate::Refinement::evaluate_attributes)).
+fn stage_face_list(
+    current: &PolygonMesh,
+    he: &HalfEdgeMesh,
+    rule: Rule,
+    n: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<PolygonMesh> {
+    let groups = current.groups();
+    let mut level = subdivide_to_face_list(he, rule, n, &opts.with_base_faces(groups.is_some()))?;
+    let invalid = |what: String| Error::InvalidOutput {
+        scheme: rule.to_string(),
+        level: n,
+        what,
+    };
+    if let (Some(groups), Some(base)) = (groups, level.base_faces.take()) {
+        let groups = groups
+            .of_base_faces(base)
+            .map_err(|e| invalid(e.to_string()))?;
+        level
+            .mesh
+            .set_groups(Some(groups))
+            .map_err(|e| invalid(e.to_string()))?;
+    }
+    if let Some(base) = current.colors_of_referenced() {
+        let plain = SubdivideOptions { uvs: None, ..*opts };
+        let refinement = crate::Refinement::new(he, rule, n, &plain)?;
+        let mut colors = vec![[0.0f64; 3]; refinement.n_vertices(n)];
+        refinement.evaluate_attributes(he, &plain, &base, &mut colors)?;
+        level
+            .mesh
+            .set_colors(Some(colors))
+            .map_err(|e| invalid(e.to_string()))?;
+    }
+    Ok(level.mesh)
+}
+
 fn plan_report(
     plan: &Plan,
     x0: &[BigInt],

@@ -606,3 +606,44 @@ fn ply_output_is_the_obj_output_in_binary() {
     assert!(text.contains("property float x\n"), "f32 positions: {text}");
     assert!(text.contains("property float nx\n"), "normals: {text}");
 }
+
+/// Compositions carry groups and colors stage by stage: after `loop:1,sqrt3` each face has
+/// the material of the base face it comes from through both stages, and affine colors stay
+/// affine.
+#[test]
+fn compositions_carry_groups_and_colors() {
+    use halfedge::Rule;
+    let dir = tempfile::tempdir().expect("temp dir");
+    let input = write(&dir, "octa.obj", &colored(&grouped_octahedron()));
+    let one = dir.path().join("one.obj").to_string_lossy().into_owned();
+    let two = dir.path().join("two.obj").to_string_lossy().into_owned();
+    let run = |levels: &str, out: &str| {
+        ok(&[
+            "subdivide",
+            "--mesh",
+            &input,
+            "--scheme",
+            "loop:1,sqrt3",
+            "--levels",
+            levels,
+            "-o",
+            out,
+        ])
+    };
+    run("1", &one);
+    run("2", &two);
+    let first = library_base_faces(&input, Rule::Loop, 1);
+    let second = library_base_faces(&one, Rule::Sqrt3, 1);
+    let base: Vec<u32> = second.iter().map(|&f| first[f as usize]).collect();
+    check_groups(&input, &two, &base, "loop:1,sqrt3 level 2");
+    let mesh = io::read_obj(&two).expect("output");
+    for (p, c) in mesh.positions.iter().zip(mesh.colors().expect("colors")) {
+        let want = affine(p.to_array());
+        for k in 0..3 {
+            assert!(
+                (c[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
+                "{c:?} {want:?}"
+            );
+        }
+    }
+}

@@ -13,7 +13,7 @@
 //! (OpenSubdiv has none for them either).
 
 use super::creases::{Creases, Linear};
-use super::{Refinement, Result, Rule, Split, SubdivideOptions};
+use super::{Refinement, Result, Rule, Scalar, Split, SubdivideOptions};
 use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh};
 
@@ -79,6 +79,32 @@ impl Refinement {
                         .into(),
                 })
             }
+        }
+    }
+}
+
+impl Refinement {
+    /// Refines per-vertex attributes (vertex colors, weights) with the positions' weights:
+    /// [`Refinement::evaluate`], except under the icosphere rule, whose projection onto the
+    /// sphere is for positions only: there the weights before it, the varying refinement's
+    /// ([`Refinement::new_varying`] of `mesh`, the refinement's level 0, with `opts`).
+    ///
+    /// # Errors
+    ///
+    /// As [`Refinement::evaluate`] and, for the icosphere, [`Refinement::new_varying`].
+    pub fn evaluate_attributes<T: Scalar, const N: usize>(
+        &self,
+        mesh: &HalfEdgeMesh,
+        opts: &SubdivideOptions<'_>,
+        base: &[[T; N]],
+        out: &mut [[T; N]],
+    ) -> Result<()> {
+        match self.rule() {
+            Rule::Icosphere => {
+                let linear = Refinement::new_varying(mesh, Rule::Icosphere, self.levels(), opts)?;
+                linear.evaluate(base, out)
+            }
+            _ => self.evaluate(base, out),
         }
     }
 }
