@@ -204,9 +204,14 @@ pub(crate) struct GroupsReader {
 
 impl GroupsReader {
     /// Records an `mtllib` line (its text after comments, trimmed).
-    pub(crate) fn mtllib(&mut self, line: &str) {
+    pub(crate) fn mtllib(&mut self, line: &str) -> Result<(), std::collections::TryReserveError> {
         self.start();
-        self.groups.mtllib.push(line.to_string());
+        self.groups.mtllib.try_reserve(1)?;
+        let mut text = String::new();
+        text.try_reserve_exact(line.len())?;
+        text.push_str(line);
+        self.groups.mtllib.push(text);
+        Ok(())
     }
 
     /// The first statement: the faces before it get the class of no value.
@@ -256,7 +261,13 @@ impl GroupsReader {
 
     /// The bytes held so far.
     pub(crate) fn heap_bytes(&self) -> usize {
-        self.groups.heap_bytes() + 24 * self.class_ids.capacity()
+        let keys: usize = self
+            .value_ids
+            .iter()
+            .flatten()
+            .map(|(k, _)| k.capacity() + 48)
+            .sum();
+        self.groups.heap_bytes() + 24 * self.class_ids.capacity() + keys
     }
 
     /// The groups, `None` when the file had no statement of the five kinds.

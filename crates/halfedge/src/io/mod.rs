@@ -81,7 +81,8 @@
 //! kept as read); `s t`, `u v` or `texture_u texture_v` a UV value per vertex
 //! ([`PolygonMesh::uvs`]). Of the `face` element, the list `vertex_indices` (or
 //! `vertex_index`) gives the corners in file order, and a list `texcoord` (`u v` per corner,
-//! as MeshLab writes it) a UV value per corner, bit-for-bit equal pairs shared; these win over
+//! as MeshLab writes it) a UV value per corner, equal `(u, v)` at one vertex shared (the UV
+//! layout's values); these win over
 //! per-vertex ones. Every other element and property (normals among them) is skipped and
 //! listed in [`PolygonMesh::uncarried`] (`` 12 `edge` elements ``, `` 500 values of `vertex`
 //! property `nx` ``). A problem in the header is [`Error::Parse`] naming its line; one in the

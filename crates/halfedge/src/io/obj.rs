@@ -263,7 +263,16 @@ pub(crate) fn read_obj_within(
                 budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
             }
             "t" => {}
-            "mtllib" => extras.groups.mtllib(line.trim()),
+            "mtllib" => {
+                let room = budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch));
+                if room < (line.len() + 64) as u128 {
+                    return Err(budget.refused(&lines));
+                }
+                extras
+                    .groups
+                    .mtllib(line.trim())
+                    .map_err(|e| lines.allocation_failed(line.len() as u128, e))?;
+            }
             other => {
                 match Statement::of_keyword(other) {
                     Some(statement) => extras.groups.statement(statement, tokens),
@@ -582,6 +591,53 @@ mod tests {
         assert_eq!(mesh.positions[3], DVec3::new(0.0, 1.0, 0.0));
         let faces: Vec<&[u32]> = mesh.faces().collect();
         assert_eq!(faces, [&[0, 1, 2][..], &[0, 2, 3], &[0, 2, 3]]);
+    }
+
+    /// Issue 27 review: `mtllib` lines grew outside the budget (an endless stream aborted the
+    /// process); now they count and are refused where they outgrow it.
+    #[test]
+    fn mtllib_lines_count_against_the_budget() {
+        use std::io::Read;
+        let endless = std::io::repeat(b'x').take(1 << 30);
+        let lines = b"mtllib a.mtl\n".repeat(100_000);
+        let data = std::io::Cursor::new(lines).chain(endless);
+        let budget = Budget { bytes: 100_000 };
+        let options = ReadOptions::default();
+        let reader = std::io::BufReader::new(data);
+        let err = read_obj_within(reader, "m.obj", budget, &options).unwrap_err();
+        assert!(matches!(err, Error::MeshTooLarge { .. }), "{err}");
+    }
+
+    #[test]
+    fn colors_groups_and_uncarried_lines() {
+        let text = "mtllib a.mtl\nv 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n\
+                    o x\ng a b\nusemtl m\ns 1\nf 1 3 2\nl 1 2\nvn 0 0 1\nvn 0 0 1\n";
+        let mesh = read_obj_from(text.as_bytes(), "x.obj").expect("valid");
+        assert_eq!(mesh.colors().expect("colors")[2], [0.0, 0.0, 1.0]);
+        let groups = mesh.groups().expect("groups");
+        assert_eq!(groups.mtllib(), ["mtllib a.mtl"]);
+        assert_eq!(groups.value(0, Statement::Group), None);
+        assert_eq!(groups.value(1, Statement::Group), Some("a b"));
+        assert_eq!(groups.value(1, Statement::Smoothing), Some("1"));
+        let kinds: Vec<String> = mesh.uncarried().iter().map(ToString::to_string).collect();
+        assert_eq!(kinds, ["1 l lines", "2 vn lines"]);
+        // Mixed counts: no channel, the record says how many.
+        let mixed = "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 1 1 1 1\nf 1 2 3\n";
+        let mesh = read_obj_from(mixed.as_bytes(), "m.obj").expect("valid");
+        assert_eq!(mesh.colors(), None);
+        let partial = mesh.partial_colors().expect("partial");
+        assert_eq!(
+            partial.to_string(),
+            "1 of 3 vertices have colors: no color channel"
+        );
+        let err = read_obj_from(
+            "v 0 0 0 r 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".as_bytes(),
+            "c.obj",
+        );
+        assert_eq!(
+            err.unwrap_err().to_string(),
+            "c.obj: line 1: `r` is not a valid vertex color"
+        );
     }
 
     #[test]

@@ -147,7 +147,9 @@ pub fn write_polygon_obj(mesh: &PolygonMesh, writer: impl Write) -> std::io::Res
 ///
 /// # Errors
 ///
-/// Any error of the writer.
+/// Any error of the writer; [`std::io::ErrorKind::InvalidInput`] when the mesh's colors are
+/// not one per position or its groups not one per face (its public `positions` changed
+/// after they were set); nothing is written then.
 ///
 /// ```
 /// use halfedge::io::{read_obj_from, write_polygon_obj_with, ObjWriteOptions};
@@ -177,9 +179,26 @@ pub fn write_polygon_obj_with(
     let normals = options
         .normals
         .then(|| normals::vertex_normals(&mesh.positions, mesh.faces()));
+    // `positions` is a public field: colors or groups that no longer fit are refused, not
+    // written short.
+    let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    if let Some(colors) = mesh.colors().filter(|c| c.len() != mesh.n_vertices()) {
+        let n = mesh.n_vertices();
+        return Err(invalid(format!(
+            "{} colors for {n} positions",
+            colors.len()
+        )));
+    }
+    if let Some(groups) = mesh.groups().filter(|g| g.n_faces() != mesh.n_faces()) {
+        let n = mesh.n_faces();
+        return Err(invalid(format!(
+            "groups of {} faces for {n} faces",
+            groups.n_faces()
+        )));
+    }
     let carried = Carried {
         colors: mesh.colors(),
-        groups: mesh.groups().filter(|g| g.n_faces() == mesh.n_faces()),
+        groups: mesh.groups(),
     };
     write_coordinates(
         mesh.positions.iter().map(|p| [&p.x, &p.y, &p.z]),

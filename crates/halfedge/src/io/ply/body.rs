@@ -79,20 +79,21 @@ impl Faces {
     }
 }
 
-/// Per-face texture coordinates: the distinct (bit-for-bit) `(u, v)` pairs in order of first
-/// appearance, and the value of every corner.
+/// Per-face texture coordinates: the distinct (bit-for-bit) `(vertex, u, v)` triples in order
+/// of first appearance (a `vt` shared only where the same vertex has the same value, as the
+/// UV layout counts values), and the value of every corner.
 #[derive(Default)]
 pub(super) struct FaceUvs {
     pub(super) coords: Vec<DVec2>,
     pub(super) corners: Vec<u32>,
-    pub(super) ids: HashMap<[u64; 2], u32>,
+    pub(super) ids: HashMap<[u64; 3], u32>,
 }
 
 impl FaceUvs {
     pub(super) fn bytes(&self) -> usize {
         std::mem::size_of_val(self.coords.as_slice())
             + std::mem::size_of_val(self.corners.as_slice())
-            + 32 * self.ids.capacity()
+            + 40 * self.ids.capacity()
     }
 }
 
@@ -526,7 +527,7 @@ impl<R: BufRead> Body<R> {
             }
             // The face's corners, offset and line; its corners' texture coordinates (at most
             // a new value, 16 bytes and a map entry, each).
-            let uv_bytes = if texcoord.is_some() { 4 + 16 + 32 } else { 0 };
+            let uv_bytes = if texcoord.is_some() { 4 + 16 + 40 } else { 0 };
             let adding = (k * (4 + uv_bytes) + 16) as u128;
             self.check(adding)?;
             let corners = std::mem::take(&mut self.corners);
@@ -540,7 +541,8 @@ impl<R: BufRead> Body<R> {
         Ok(())
     }
 
-    /// Records the texture coordinates of the face just read, a value per distinct pair.
+    /// Records the texture coordinates of the face just read (its corners in `corners`), a
+    /// value per distinct (vertex, u, v).
     pub(super) fn push_face_uvs(&mut self, at: At<'_>) -> Result<()> {
         let uvs = &mut self.face_uvs;
         let failed = uvs
@@ -551,7 +553,7 @@ impl<R: BufRead> Body<R> {
         if let Err(e) = failed {
             return Err(self.allocation_failed(at, 52 * self.texcoord.len() as u128 / 2, e));
         }
-        for uv in self.texcoord.chunks_exact(2) {
+        for (uv, &v) in self.texcoord.chunks_exact(2).zip(&self.corners) {
             let next = uvs.coords.len();
             if next >= u32::MAX as usize {
                 let kind = malformed("more than 4294967294 distinct texture coordinates");
@@ -559,7 +561,7 @@ impl<R: BufRead> Body<R> {
             }
             let id = *uvs
                 .ids
-                .entry([uv[0].to_bits(), uv[1].to_bits()])
+                .entry([u64::from(v), uv[0].to_bits(), uv[1].to_bits()])
                 .or_insert(next as u32);
             if id as usize == next {
                 uvs.coords.push(DVec2::new(uv[0], uv[1]));
