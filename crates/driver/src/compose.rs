@@ -134,6 +134,7 @@ impl Composition<'_> {
         if let Some(path) = output {
             crate::output::check_output(path)?;
         }
+        loaded.carry_notes(output, notes);
         let layout = if job.uvs {
             if let Some(partial) = loaded.poly.partial_uvs() {
                 notes(format!(
@@ -196,21 +197,18 @@ fn guard_stage(
         need += uv_bytes(stage.mesh, stage.rule, stage.levels, 8, false)?;
     }
     need += halfedge::memory::read_extra_bytes(base);
-    // Groups: the base face of each output face; colors: a refinement evaluating them (on
-    // the half-edge path) or a second run of the levels (on the raw face list).
-    let last = sizing.counts_at(stage.counts, u64::from(stage.levels))?;
-    if stage.mesh.groups().is_some() {
-        need += &last.faces * 4u32;
-    }
-    if stage.mesh.colors().is_some() {
-        let (rule, c, levels) = (stage.rule, stage.counts, stage.levels);
-        need += match stage.face_list {
-            true => halfedge::memory::predicted_peak_bytes(&sizing, c, levels, last_faces)?,
-            false => {
-                halfedge::memory::predicted_refinement_peak_bytes(rule, c, levels, 8, false, false)?
-            }
-        };
-    }
+    // Groups and colors carried (a refinement of the stage's own evaluates colors).
+    let how = halfedge::memory::Carrying {
+        face_list: stage.face_list,
+        ..Default::default()
+    };
+    need += halfedge::memory::carried_bytes(
+        stage.mesh,
+        (&sizing, stage.rule),
+        stage.counts,
+        stage.levels,
+        how,
+    )?;
     // The stage's input as a half-edge mesh, alive beside its levels.
     if !stage.face_list {
         let c = stage.counts;

@@ -285,6 +285,32 @@ impl LoadedMesh {
         }
     }
 
+    /// The notes on what an output leaves out: vertex colors on only some vertices (no color
+    /// channel), and with an output (`output`) the lines of the file no output carries and,
+    /// for a PLY output, the materials and groups (PLY has no place for them).
+    pub fn carry_notes(&self, output: Option<&std::path::Path>, notes: Notes<'_>) {
+        let (poly, label) = (&self.poly, self.label());
+        if let Some(partial) = poly.partial_colors() {
+            notes(format!("note: {label}: {partial}"));
+        }
+        let Some(path) = output else {
+            return;
+        };
+        if !poly.uncarried().is_empty() {
+            let kinds: Vec<String> = poly.uncarried().iter().map(ToString::to_string).collect();
+            notes(format!(
+                "note: {label}: not carried into the output: {}",
+                kinds.join(", ")
+            ));
+        }
+        let ply = crate::output::MeshFormat::of(path) == crate::output::MeshFormat::Ply;
+        if ply && poly.groups().is_some() {
+            notes(format!(
+                "note: {label}: materials and groups are not written to PLY: name the output .obj to keep them"
+            ));
+        }
+    }
+
     /// The place of face `f` in a message: `line 12: `, or nothing when the mesh has no lines.
     pub fn face_place(&self, f: usize) -> String {
         self.poly

@@ -339,21 +339,8 @@ fn refined_colors<T: Scalar>(
     let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
     let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
     refinement.evaluate_attributes(run.mesh, run.opts, &base, &mut out)?;
-    if let Some(v) = out
-        .iter()
-        .position(|c| c.iter().any(|x| !x.to_f64().is_finite()))
-    {
-        let [x, y, z] = out[v].map(T::to_f64);
-        return Err(halfedge::Error::NonFinitePosition {
-            scheme: run.rule.to_string(),
-            level: levels,
-            vertex: v as u32,
-            origin: format!("a vertex color computed in {}", type_name::<T>()),
-            x,
-            y,
-            z,
-        });
-    }
+    let origin = format!("computed in {}", type_name::<T>());
+    halfedge::subdivide::check_colors(&run.rule.to_string(), levels, &out, &origin)?;
     Ok(out)
 }
 

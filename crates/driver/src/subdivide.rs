@@ -29,6 +29,7 @@ use schemes::{MeshCounts, Scheme};
 use crate::error::{Error, Result};
 use crate::guard::{guard_memory, uv_bytes};
 use crate::mesh::LoadedMesh;
+use crate::output::MeshFormat;
 use crate::refined::{self, Precision, RefineOnce, Refined, SurfaceClock};
 use crate::scheme::{choose, on_face_list, Chosen, SchemeChoice};
 use crate::Notes;
@@ -143,17 +144,7 @@ pub fn prepare<'m>(
         // the raw face list, whose subdividers refine the UV layout linearly with it.
         face_list = false;
     }
-    if let Some(partial) = poly.partial_colors() {
-        notes(format!("note: {}: {partial}", loaded.label()));
-    }
-    if output.is_some() && !poly.uncarried().is_empty() {
-        let kinds: Vec<String> = poly.uncarried().iter().map(ToString::to_string).collect();
-        notes(format!(
-            "note: {}: not carried into the output: {}",
-            loaded.label(),
-            kinds.join(", ")
-        ));
-    }
+    loaded.carry_notes(output, notes);
     if job.refine_once() && face_list {
         return Err(Error::RefineOnce);
     }
@@ -171,10 +162,11 @@ pub fn prepare<'m>(
     let last_faces = (!face_list)
         .then(|| sub::direct_face_degree(rule))
         .flatten();
+    let ply = output.is_some_and(|p| crate::output::MeshFormat::of(p) == MeshFormat::Ply);
     let need = predicted_peak(
         loaded,
         (&scheme, rule, &counts),
-        (job, refine_once),
+        (job, refine_once, ply),
         (face_list, last_faces, holes.is_some()),
         layout.is_some(),
     );
@@ -216,7 +208,7 @@ pub fn prepare<'m>(
 fn predicted_peak(
     loaded: &LoadedMesh,
     (scheme, rule, counts): (&Scheme, Rule, &MeshCounts),
-    (job, refine_once): (&SubdivideJob, bool),
+    (job, refine_once, ply): (&SubdivideJob, bool, bool),
     (face_list, last_faces, holes): (bool, Option<usize>, bool),
     uvs: bool,
 ) -> halfedge::Result<BigInt> {
@@ -263,54 +255,16 @@ fn predicted_peak(
         }),
         false => need,
     };
-    let need = need.and_then(|need| {
-        Ok(need
-            + carried_bytes(
-                loaded,
-                (scheme, rule, counts),
-                (job, refine_once),
-                face_list,
-            )?)
-    });
+    // Groups and colors carried, and a PLY writer's copies.
+    let how = m::Carrying {
+        face_list,
+        refinement_scalar: refine_once.then_some(job.precision.bytes()),
+        ply,
+    };
+    let need = need
+        .and_then(|need| Ok(need + m::carried_bytes(poly, (scheme, rule), counts, levels, how)?));
     // The face list as read holds its file lines and UVs beyond what its counts predict.
     need.map(|need| need + m::read_extra_bytes(poly))
-}
-
-/// What carrying the mesh's groups and colors adds to the peak: the base face of every output
-/// face (4 bytes, becoming its class); refining once, the colors of the base and of the last
-/// level (3 scalars a vertex; under the icosphere rule a second refinement, the midpoint
-/// rule's, gives the unprojected weights); on the raw face list a second run of the levels.
-fn carried_bytes(
-    loaded: &LoadedMesh,
-    (scheme, rule, counts): (&Scheme, Rule, &MeshCounts),
-    (job, refine_once): (&SubdivideJob, bool),
-    face_list: bool,
-) -> halfedge::Result<BigInt> {
-    use halfedge::memory as m;
-    let (poly, levels) = (&loaded.poly, job.levels);
-    let last = scheme.counts_at(counts, u64::from(levels))?;
-    let mut bytes = BigInt::from(0);
-    if poly.groups().is_some() {
-        bytes += &last.faces * 4u32;
-    }
-    if poly.colors().is_some() {
-        if face_list {
-            bytes += m::predicted_peak_bytes(scheme, counts, levels, None)?;
-        } else if refine_once {
-            let scalar = if job.precision == Precision::F32 {
-                4u32
-            } else {
-                8
-            };
-            bytes += &last.vertices * (3 * scalar) + BigInt::from(poly.n_vertices()) * 24u32;
-            if rule == Rule::Icosphere {
-                let linear = Rule::Midpoint;
-                bytes +=
-                    m::predicted_refinement_peak_bytes(linear, counts, levels, 8, false, false)?;
-            }
-        }
-    }
-    Ok(bytes)
 }
 
 impl Prepared<'_> {
@@ -433,7 +387,7 @@ impl Prepared<'_> {
             set_uvs_as_read(&mut result, as_read)?;
         }
         if let (Output::Faces(level), Some(groups)) = (&mut result, groups) {
-            set_groups(level, groups)?;
+            level.carry_groups(groups)?;
         }
         let end = Instant::now();
         let time = match &result {
@@ -475,27 +429,6 @@ impl Prepared<'_> {
             time,
         })
     }
-}
-
-/// The groups of the face list's faces, from their base faces.
-fn set_groups(level: &mut sub::FaceListLevel, groups: &halfedge::groups::FaceGroups) -> Result<()> {
-    let invalid = |what: String| halfedge::Error::InvalidOutput {
-        scheme: "groups".into(),
-        level: 0,
-        what,
-    };
-    let base = level
-        .base_faces
-        .take()
-        .ok_or_else(|| invalid("no base faces".into()))?;
-    let groups = groups
-        .of_base_faces(base)
-        .map_err(|e| invalid(e.to_string()))?;
-    level
-        .mesh
-        .set_groups(Some(groups))
-        .map_err(|e| invalid(e.to_string()))?;
-    Ok(())
 }
 
 /// At level 0, the file's UVs as read replace the layout's values in a face list written.

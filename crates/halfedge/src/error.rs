@@ -536,6 +536,25 @@ pub enum Error {
         /// Its z coordinate.
         z: f64,
     },
+    /// A subdivision computed a vertex color that is not finite (an overflow of huge color
+    /// values, or a value beyond the range of `f32`): refused, nothing is written.
+    #[error("{scheme} level {level}: the color of vertex {vertex} ({origin}) would be ({r}, {g}, {b}), not finite")]
+    NonFiniteColor {
+        /// The scheme.
+        scheme: String,
+        /// The level.
+        level: u32,
+        /// The vertex of that level.
+        vertex: u32,
+        /// What it is computed from.
+        origin: String,
+        /// Its red value.
+        r: f64,
+        /// Its green value.
+        g: f64,
+        /// Its blue value.
+        b: f64,
+    },
     /// A subdivision step computed a texture coordinate that is not finite (an overflow of
     /// huge `vt` values, or a value beyond the range of `f32`): refused, nothing is written.
     #[error("{scheme} level {level}: UV value {value} ({origin}) would be at ({u}, {v}), not a finite point")]

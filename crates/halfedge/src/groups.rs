@@ -98,17 +98,88 @@ pub struct FaceGroups {
     faces: Vec<u32>,
 }
 
-/// A [`FaceGroups`] asked for a face it does not have.
+/// Groups that do not fit their faces.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("face {face} has no groups: there are {count} faces")]
-pub struct GroupsError {
-    /// The face asked for.
-    pub face: u64,
-    /// The faces the groups have.
-    pub count: usize,
+#[non_exhaustive]
+pub enum GroupsError {
+    /// A face index beyond the groups' faces.
+    #[error("face {face} has no groups: there are {count} faces")]
+    FaceOutOfRange {
+        /// The face asked for.
+        face: u64,
+        /// The faces the groups have.
+        count: usize,
+    },
+    /// Groups of another number of faces than the mesh's.
+    #[error("groups of {given} faces for a mesh with {expected} faces")]
+    FaceCount {
+        /// Faces of the groups.
+        given: usize,
+        /// Faces of the mesh.
+        expected: usize,
+    },
 }
 
 impl FaceGroups {
+    /// Groups of no face yet, with these `mtllib` lines (written verbatim before the first
+    /// `v`); faces are added with [`push_face`](Self::push_face).
+    ///
+    /// ```
+    /// use halfedge::groups::{FaceGroups, Statement};
+    /// let mut groups = FaceGroups::new(vec!["mtllib scene.mtl".into()]);
+    /// groups.push_face([None, Some("body"), Some("red"), None]);
+    /// groups.push_face([None, Some("body"), Some("blue"), None]);
+    /// assert_eq!(groups.values(Statement::Material), ["red", "blue"]);
+    /// assert_eq!(groups.value_index(1, Statement::Material), Some(1));
+    /// ```
+    pub fn new(mtllib: Vec<String>) -> FaceGroups {
+        FaceGroups {
+            mtllib,
+            classes: vec![[NONE; 4]],
+            ..FaceGroups::default()
+        }
+    }
+
+    /// Appends a face with its values, one per statement in the order of [`Statement::ALL`]
+    /// (object, group, material, smoothing), `None` for none. Linear in the distinct values
+    /// and classes so far (a builder for a handful of materials; the reader hashes).
+    pub fn push_face(&mut self, values: [Option<&str>; 4]) {
+        let mut class = [NONE; 4];
+        for (i, value) in values.iter().enumerate() {
+            if let Some(value) = value {
+                let list = &mut self.values[i];
+                class[i] = match list.iter().position(|v| v == value) {
+                    Some(k) => k as u32,
+                    None => {
+                        list.push((*value).to_string());
+                        list.len() as u32 - 1
+                    }
+                };
+            }
+        }
+        let id = match self.classes.iter().position(|c| *c == class) {
+            Some(k) => k as u32,
+            None => {
+                self.classes.push(class);
+                self.classes.len() as u32 - 1
+            }
+        };
+        self.faces.push(id);
+    }
+
+    /// The distinct values of `statement`, in order of first appearance (the materials of a
+    /// mesh, say: one draw call each).
+    pub fn values(&self, statement: Statement) -> &[String] {
+        &self.values[statement.index()]
+    }
+
+    /// The index of face `face`'s value of `statement` in [`values`](Self::values), `None`
+    /// when it has none or is not a face of these groups.
+    pub fn value_index(&self, face: usize, statement: Statement) -> Option<u32> {
+        let class = self.classes[*self.faces.get(face)? as usize];
+        Some(class[statement.index()]).filter(|&v| v != NONE)
+    }
+
     /// The `mtllib` lines of the file, verbatim, in file order.
     pub fn mtllib(&self) -> &[String] {
         &self.mtllib
@@ -159,10 +230,13 @@ impl FaceGroups {
     /// [`GroupsError`] for an index that is not a face of these groups.
     pub fn of_base_faces(&self, mut base: Vec<u32>) -> Result<FaceGroups, GroupsError> {
         for f in base.iter_mut() {
-            *f = *self.faces.get(*f as usize).ok_or(GroupsError {
-                face: u64::from(*f),
-                count: self.faces.len(),
-            })?;
+            *f = *self
+                .faces
+                .get(*f as usize)
+                .ok_or(GroupsError::FaceOutOfRange {
+                    face: u64::from(*f),
+                    count: self.faces.len(),
+                })?;
         }
         Ok(FaceGroups {
             mtllib: self.mtllib.clone(),

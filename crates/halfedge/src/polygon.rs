@@ -4,7 +4,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::groups::FaceGroups;
+use crate::groups::{FaceGroups, GroupsError};
 use crate::tags::{IgnoredTag, TagError, Tags};
 use crate::uv::{PartialUvs, UvError, UvLayout, Uvs};
 
@@ -108,14 +108,6 @@ pub enum ColorError {
         /// Colors given.
         given: usize,
         /// Vertices of the mesh.
-        expected: usize,
-    },
-    /// Groups for another number of faces.
-    #[error("groups of {given} faces for a mesh with {expected} faces")]
-    GroupFaces {
-        /// Faces of the groups.
-        given: usize,
-        /// Faces of the mesh.
         expected: usize,
     },
 }
@@ -413,11 +405,11 @@ impl PolygonMesh {
     ///
     /// # Errors
     ///
-    /// [`ColorError::GroupFaces`] when the groups have another number of faces.
-    pub fn set_groups(&mut self, groups: Option<FaceGroups>) -> Result<(), ColorError> {
+    /// [`GroupsError::FaceCount`] when the groups have another number of faces.
+    pub fn set_groups(&mut self, groups: Option<FaceGroups>) -> Result<(), GroupsError> {
         if let Some(g) = &groups {
             if g.n_faces() != self.n_faces() {
-                return Err(ColorError::GroupFaces {
+                return Err(GroupsError::FaceCount {
                     given: g.n_faces(),
                     expected: self.n_faces(),
                 });

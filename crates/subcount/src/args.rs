@@ -62,7 +62,7 @@ pub(crate) enum Command {
     /// Really subdivide a mesh and compare every count with the prediction (exit 1 on a
     /// mismatch).
     Verify(VerifyArgs),
-    /// Subdivide a mesh and write it as OBJ, with its UVs (vt) when every face corner has one.
+    /// Subdivide a mesh and write it as OBJ or PLY, with its UVs, colors and groups.
     Subdivide(SubdivideArgs),
     /// Draw V, E, F and the state components versus level on a log scale (SVG or PNG).
     Plot(PlotArgs),
@@ -138,7 +138,7 @@ pub(crate) struct SubdivideArgs {
     /// The final level N.
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub(crate) levels: String,
-    /// Write the result to this OBJ file (atomically); without it nothing is written.
+    /// Write the result to this file (atomically): binary PLY for a .ply name, else OBJ.
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     pub(crate) output: Option<PathBuf>,
     /// Threads for the geometry passes (0: all cores, 1: the single-thread path).
@@ -326,7 +326,7 @@ pub(crate) struct Source {
 /// options that override its OpenSubdiv tags.
 #[derive(Args, Debug, Clone, Default)]
 pub(crate) struct MeshSource {
-    /// A mesh file (OBJ or OFF).
+    /// A mesh file (OBJ, OFF or PLY).
     #[arg(long, value_name = "FILE")]
     pub(crate) mesh: Option<PathBuf>,
     /// A generated base mesh: tetrahedron, octahedron, icosahedron, cube, torus:G,

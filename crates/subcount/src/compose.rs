@@ -50,6 +50,7 @@ pub(crate) fn subdivide(
     out: &mut impl Write,
 ) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
+    crate::mesh::refuse_unwritten_format(args.output.as_deref())?;
     let first = &plan.stages()[0];
     if first.levels().is_some_and(|k| u64::from(levels) <= k) {
         args.scheme.scheme = Some(first.scheme().name().to_owned());
@@ -71,7 +72,7 @@ pub(crate) fn subdivide(
         let options = ObjWriteOptions::default()
             .with_uvs(last.uvs().is_some())
             .with_normals(args.normals);
-        driver::output::write_polygon_obj_file(last, path, &options)?;
+        driver::output::write_polygon_mesh_file(last, path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let c = halfedge::stats::face_list_counts(last);

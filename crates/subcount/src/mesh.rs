@@ -142,8 +142,10 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
                 (None, Some(partial)) => t.push_str(&format!("{partial}\n")),
                 (None, None) => {}
             }
-            if poly.colors().is_some() {
-                t.push_str("vertex colors: 3 channels\n");
+            match (poly.colors(), poly.partial_colors()) {
+                (Some(_), _) => t.push_str("vertex colors: 3 channels\n"),
+                (None, Some(partial)) => t.push_str(&format!("{partial}\n")),
+                (None, None) => {}
             }
             t.push_str(&format!("applicable schemes: {}", applicable.join(", ")));
             t
@@ -383,11 +385,10 @@ pub(crate) fn write_reports(
     }
 }
 
-pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
-    let levels = real_levels(&args.levels)?;
-    // OBJ text in a file named for another mesh format would mislead whatever opens it
-    // (`.ply` is written as PLY).
-    if let Some(path) = &args.output {
+/// OBJ text in a file named for another mesh format would mislead whatever opens it (`.ply`
+/// is written as PLY): refused before any work, for one scheme and compositions alike.
+pub(crate) fn refuse_unwritten_format(output: Option<&std::path::Path>) -> Result<(), Failure> {
+    if let Some(path) = output {
         if let Some(format) = driver::output::unwritten_mesh_format(path) {
             return Err(usage!(
                 "-o {}: subdivide does not write {} files; it writes OBJ and PLY (name the output .obj or .ply, or anything that is not another mesh format's extension)",
@@ -396,6 +397,12 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
             ));
         }
     }
+    Ok(())
+}
+
+pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
+    let levels = real_levels(&args.levels)?;
+    refuse_unwritten_format(args.output.as_deref())?;
     let start = Instant::now();
     let loaded = required_mesh(&args.mesh)?;
     let choice = scheme_choice(&args.scheme)?;

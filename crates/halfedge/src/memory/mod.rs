@@ -31,9 +31,11 @@ use schemes::{MeshCounts, Scheme};
 
 use crate::{HalfEdgeMesh, PolygonMesh};
 
+mod carried;
 mod refinement;
 mod uv;
 
+pub use self::carried::{carried_bytes, Carrying};
 pub use self::refinement::predicted_refinement_peak_bytes;
 pub use self::uv::predicted_uv_bytes;
 

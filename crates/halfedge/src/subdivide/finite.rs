@@ -146,3 +146,33 @@ pub fn check_uvs<T: crate::Scalar>(
         v,
     })
 }
+
+/// Refuses the first non-finite vertex color among `colors`, those of level `level` (computed
+/// in `f32` or `f64`): `origin` says from what.
+///
+/// # Errors
+///
+/// [`Error::NonFiniteColor`] naming the scheme, level and vertex.
+pub fn check_colors<T: crate::Scalar>(
+    scheme: &str,
+    level: u32,
+    colors: &[[T; 3]],
+    origin: &str,
+) -> Result<()> {
+    let Some(v) = colors
+        .iter()
+        .position(|c| c.iter().any(|x| !x.to_f64().is_finite()))
+    else {
+        return Ok(());
+    };
+    let [r, g, b] = colors[v].map(T::to_f64);
+    Err(Error::NonFiniteColor {
+        scheme: scheme.to_string(),
+        level,
+        vertex: v as u32,
+        origin: origin.to_string(),
+        r,
+        g,
+        b,
+    })
+}

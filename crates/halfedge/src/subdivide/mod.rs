@@ -150,7 +150,7 @@ pub(crate) mod wide;
 use num_bigint::BigInt;
 pub use schemes::Rule;
 
-pub use self::finite::check_uvs;
+pub use self::finite::{check_colors, check_uvs};
 pub use self::options::{LevelDone, SubdivideOptions};
 pub use self::refine::oneshot::{direct_face_degree, subdivide_to_face_list, FaceListLevel};
 use self::refine::oneshot::{keep_written, written_prediction};
@@ -602,7 +602,28 @@ pub fn subdivide_polygons(
         Some(colors) => {
             let mut as_points = mesh.clone();
             as_points.positions = colors.iter().map(|&c| glam::DVec3::from_array(c)).collect();
-            let points = faces::run_levels(&plan, &as_points, levels, opts, |_, _| Ok(()))?;
+            let points = faces::run_levels(&plan, &as_points, levels, opts, |_, _| Ok(()))
+                .map_err(|e| match e {
+                    // The colors ran as positions: an overflow is a color's.
+                    Error::NonFinitePosition {
+                        scheme,
+                        level,
+                        vertex,
+                        origin,
+                        x,
+                        y,
+                        z,
+                    } => Error::NonFiniteColor {
+                        scheme,
+                        level,
+                        vertex,
+                        origin,
+                        r: x,
+                        g: y,
+                        b: z,
+                    },
+                    e => e,
+                })?;
             Some(points.positions)
         }
         None => None,
@@ -639,25 +660,23 @@ pub fn subdivide_polygons(
         }
         _ => (last, base_faces, colors),
     };
-    let mismatch = |e: crate::polygon::ColorError| Error::InvalidOutput {
+    let mismatch = |what: String| Error::InvalidOutput {
         scheme: plan.name.clone(),
         level: levels,
-        what: e.to_string(),
+        what,
     };
     if let Some(colors) = colors {
-        written
-            .set_colors(Some(colors.iter().map(|p| p.to_array()).collect()))
-            .map_err(mismatch)?;
+        let colors: Vec<[f64; 3]> = colors.iter().map(|p| p.to_array()).collect();
+        check_colors(&plan.name, levels, &colors, "placed as its position")?;
+        let set = written.set_colors(Some(colors));
+        set.map_err(|e| mismatch(e.to_string()))?;
     }
     if let (Some(groups), Some(base)) = (mesh.groups(), base_faces) {
         let groups = groups
             .of_base_faces(base)
-            .map_err(|e| Error::InvalidOutput {
-                scheme: plan.name.clone(),
-                level: levels,
-                what: e.to_string(),
-            })?;
-        written.set_groups(Some(groups)).map_err(mismatch)?;
+            .map_err(|e| mismatch(e.to_string()))?;
+        let set = written.set_groups(Some(groups));
+        set.map_err(|e| mismatch(e.to_string()))?;
     }
     match uvs {
         Some(uvs) => with_uvs(written, uvs),

@@ -227,20 +227,16 @@ fn stage_face_list(
         level: n,
         what,
     };
-    if let (Some(groups), Some(base)) = (groups, level.base_faces.take()) {
-        let groups = groups
-            .of_base_faces(base)
-            .map_err(|e| invalid(e.to_string()))?;
-        level
-            .mesh
-            .set_groups(Some(groups))
-            .map_err(|e| invalid(e.to_string()))?;
+    if let Some(groups) = groups {
+        level.carry_groups(groups)?;
     }
     if let Some(base) = current.colors_of_referenced() {
         let plain = SubdivideOptions { uvs: None, ..*opts };
         let refinement = crate::Refinement::new(he, rule, n, &plain)?;
         let mut colors = vec![[0.0f64; 3]; refinement.n_vertices(n)];
         refinement.evaluate_attributes(he, &plain, &base, &mut colors)?;
+        let scheme = rule.to_string();
+        super::check_colors(&scheme, n, &colors, "refined with the positions' weights")?;
         level
             .mesh
             .set_colors(Some(colors))

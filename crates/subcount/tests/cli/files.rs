@@ -547,19 +547,21 @@ fn ply_output_is_the_obj_output_in_binary() {
         for levels in ["0", "1", "2"] {
             let what = format!("{scheme} {flags:?} level {levels} on {input}");
             for out in [&obj, &ply] {
-                let mut args = vec![
-                    "subdivide",
-                    "--mesh",
-                    input,
-                    "--scheme",
-                    scheme,
-                    "--levels",
-                    levels,
-                    "-o",
-                    out,
-                ];
+                let mut args = vec!["subdivide", "--mesh", input, "--scheme", scheme];
+                args.extend_from_slice(&["--levels", levels, "-o", out]);
                 args.extend_from_slice(flags);
-                ok(&args);
+                let run = subcount(&args);
+                assert_eq!(run.code, 0, "{what}: {}", run.stderr);
+                // PLY has no place for materials: said once, never silently.
+                let grouped = out == &ply && input != seams;
+                let note = format!(
+                    "note: {input}: materials and groups are not written to PLY: name the output .obj to keep them\n"
+                );
+                assert_eq!(
+                    run.stderr,
+                    if grouped { note } else { String::new() },
+                    "{what}"
+                );
             }
             let a = io::read_obj(&obj).expect("obj");
             let b = io::read_ply(&ply).unwrap_or_else(|e| panic!("{what}: {e}"));
@@ -636,6 +638,28 @@ fn compositions_carry_groups_and_colors() {
     let second = library_base_faces(&one, Rule::Sqrt3, 1);
     let base: Vec<u32> = second.iter().map(|&f| first[f as usize]).collect();
     check_groups(&input, &two, &base, "loop:1,sqrt3 level 2");
+    // PLY and the refusal of other formats as for one scheme; the notes too.
+    let ply = dir.path().join("two.ply").to_string_lossy().into_owned();
+    let args = [
+        "subdivide",
+        "--mesh",
+        &input,
+        "--scheme",
+        "loop:1,sqrt3",
+        "--levels",
+        "2",
+    ];
+    let run = subcount(&[&args[..], &["-o", &ply]].concat());
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stderr.contains("not written to PLY"), "{}", run.stderr);
+    let back = io::read_ply(&ply).expect("PLY");
+    assert_eq!(back.positions, io::read_obj(&two).expect("obj").positions);
+    let stl = dir.path().join("two.stl").to_string_lossy().into_owned();
+    crate::util::fails(
+        &[&args[..], &["-o", &stl]].concat(),
+        2,
+        "does not write STL files",
+    );
     let mesh = io::read_obj(&two).expect("output");
     for (p, c) in mesh.positions.iter().zip(mesh.colors().expect("colors")) {
         let want = affine(p.to_array());

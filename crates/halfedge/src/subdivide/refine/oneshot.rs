@@ -101,6 +101,36 @@ pub struct FaceListLevel {
     pub base_faces: Option<Vec<u32>>,
 }
 
+impl FaceListLevel {
+    /// Gives the level's faces the groups of their base faces ([`FaceGroups::of_base_faces`]
+    /// of `groups`, those of the subdivided mesh's faces), taking
+    /// [`base_faces`](Self::base_faces) (the level must have them:
+    /// [`SubdivideOptions::base_faces`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::InvalidOutput`] without base faces, or with groups of another mesh.
+    ///
+    /// [`FaceGroups::of_base_faces`]: crate::groups::FaceGroups::of_base_faces
+    pub fn carry_groups(&mut self, groups: &crate::groups::FaceGroups) -> Result<()> {
+        let invalid = |what: String| Error::InvalidOutput {
+            scheme: "groups".into(),
+            level: 0,
+            what,
+        };
+        let base = self
+            .base_faces
+            .take()
+            .ok_or_else(|| invalid("no base faces".into()))?;
+        let groups = groups
+            .of_base_faces(base)
+            .map_err(|e| invalid(e.to_string()))?;
+        self.mesh
+            .set_groups(Some(groups))
+            .map_err(|e| invalid(e.to_string()))
+    }
+}
+
 /// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `rule` straight into a
 /// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
 /// the rules whose last level is built as a half-edge mesh and converted.
