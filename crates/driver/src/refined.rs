@@ -338,9 +338,9 @@ fn refined_colors<T: Scalar>(
     let levels = run.levels;
     let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
     let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
-    refinement.evaluate_attributes(run.mesh, run.opts, &base, &mut out)?;
+    refinement.evaluate_attributes(run.mesh, &base, &mut out)?;
     let origin = format!("computed in {}", type_name::<T>());
-    halfedge::subdivide::check_colors(&run.rule.to_string(), levels, &out, &origin)?;
+    halfedge::subdivide::check_colors((&run.rule.to_string(), levels), &out, &origin)?;
     Ok(out)
 }
 

@@ -407,16 +407,14 @@ impl PolygonMesh {
     ///
     /// [`GroupsError::FaceCount`] when the groups have another number of faces.
     pub fn set_groups(&mut self, groups: Option<FaceGroups>) -> Result<(), GroupsError> {
-        if let Some(g) = &groups {
-            if g.n_faces() != self.n_faces() {
-                return Err(GroupsError::FaceCount {
-                    given: g.n_faces(),
-                    expected: self.n_faces(),
-                });
+        let expected = self.n_faces();
+        match groups.as_ref().map(FaceGroups::n_faces) {
+            Some(given) if given != expected => Err(GroupsError::FaceCount { given, expected }),
+            _ => {
+                self.groups = groups;
+                Ok(())
             }
         }
-        self.groups = groups;
-        Ok(())
     }
 
     /// The vertex colors (`r g b` per vertex, as the file writes them: no scaling, never

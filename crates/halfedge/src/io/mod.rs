@@ -310,6 +310,17 @@ impl Default for ReadOptions {
 /// corners written as `v/vt/vn`.
 pub const MAX_LINE_BYTES: usize = 16 << 20;
 
+/// Reads the file at `path` with a reader's body `within` (given the buffered file, its name
+/// for messages and the budget of `options`), after [`open`]'s size check.
+fn read_file(
+    path: &Path,
+    options: &ReadOptions,
+    within: impl FnOnce(std::io::BufReader<std::fs::File>, &str, Budget) -> Result<PolygonMesh>,
+) -> Result<PolygonMesh> {
+    let file = open(path, options.available_bytes)?;
+    within(file, &path.display().to_string(), Budget::of(options))
+}
+
 /// Opens a mesh file for buffered reading, with the path in the error; a regular file larger
 /// than `available` bytes ([`ReadOptions::available_bytes`]) is refused before it is read
 /// ([`Error::FileTooLarge`]).

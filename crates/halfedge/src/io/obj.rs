@@ -8,7 +8,7 @@ use std::path::Path;
 use glam::DVec2;
 
 use super::{
-    grow, open, parse_coordinate, parse_position, parse_values, shorten, Budget, Lines, ReadOptions,
+    grow, parse_coordinate, parse_position, parse_values, shorten, Budget, Lines, ReadOptions,
 };
 use crate::error::{Error, ParseError, Result};
 use crate::groups::{GroupsReader, Statement};
@@ -45,13 +45,8 @@ pub fn read_obj(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 ///
 /// As [`read_obj`].
 pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<PolygonMesh> {
-    let path = path.as_ref();
-    read_obj_within(
-        open(path, options.available_bytes)?,
-        &path.display().to_string(),
-        Budget::of(options),
-        options,
-    )
+    let within = |file, name: &str, budget| read_obj_within(file, name, budget, options);
+    super::read_file(path.as_ref(), options, within)
 }
 
 /// Reads OBJ text from any buffered reader; `name` is the file name used in error messages.

@@ -3,7 +3,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use super::{grow, open, parse_position, shorten, Budget, Lines, ReadOptions};
+use super::{grow, parse_position, shorten, Budget, Lines, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::{PartialColors, PolygonMesh};
 
@@ -30,11 +30,7 @@ pub fn read_off(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 /// [`read_off`] within the memory limit of `options` ([`ReadOptions::available_bytes`]; OFF
 /// has no tags).
 pub(crate) fn read_off_with(path: &Path, options: &ReadOptions) -> Result<PolygonMesh> {
-    read_off_within(
-        open(path, options.available_bytes)?,
-        &path.display().to_string(),
-        Budget::of(options),
-    )
+    super::read_file(path, options, read_off_within)
 }
 
 /// Reads OFF text from any buffered reader; `name` is the file name used in error messages.

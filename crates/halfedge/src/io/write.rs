@@ -383,6 +383,22 @@ impl<'a, T> MeshBuffers<'a, T> {
         self
     }
 
+    /// What a writer writes under `options`: the faces as slices (checked), the UVs when
+    /// asked, the area-weighted vertex normals when asked.
+    pub(crate) fn to_write(&self, options: &ObjWriteOptions) -> std::io::Result<Written<'a, T>>
+    where
+        T: Scalar,
+    {
+        let uvs = self.uvs.filter(|_| options.uvs);
+        let list = MeshBuffers { uvs, ..*self }.checked_faces()?;
+        let positions = self.positions;
+        let normals = options.normals.then(|| {
+            let position = |v: u32| DVec3::from_array(positions[v as usize].map(T::to_f64));
+            normals::vertex_normals_by(positions.len(), position, &list)
+        });
+        Ok(Written { list, uvs, normals })
+    }
+
     /// The faces as slices, checked against the positions, the UVs, the colors and the
     /// groups ([`std::io::ErrorKind::InvalidInput`] naming the mismatch).
     pub(crate) fn checked_faces(&self) -> std::io::Result<Vec<&'a [u32]>> {
@@ -440,6 +456,16 @@ impl<'a, T> MeshBuffers<'a, T> {
     }
 }
 
+/// What the writers write of a [`MeshBuffers`] under their options.
+pub(crate) struct Written<'a, T> {
+    /// The faces, checked.
+    pub(crate) list: Vec<&'a [u32]>,
+    /// The UVs, when asked for.
+    pub(crate) uvs: Option<UvBuffers<'a, T>>,
+    /// Area-weighted vertex normals, when asked for.
+    pub(crate) normals: Option<Vec<DVec3>>,
+}
+
 /// Writes a mesh from caller-owned buffers as OBJ text ([`write_buffers_obj_with`], with
 /// its colors on the `v` lines and its groups before the faces they change at).
 ///
@@ -452,16 +478,8 @@ pub fn write_mesh_buffers_obj<T: Scalar>(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let uvs = mesh.uvs.filter(|_| options.uvs);
-    let list = MeshBuffers { uvs, ..*mesh }.checked_faces()?;
+    let Written { list, uvs, normals } = mesh.to_write(options)?;
     let positions = mesh.positions;
-    let normals = options.normals.then(|| {
-        let position = |v: u32| {
-            let [x, y, z] = positions[v as usize];
-            DVec3::new(x.to_f64(), y.to_f64(), z.to_f64())
-        };
-        normals::vertex_normals_by(positions.len(), position, &list)
-    });
     let texcoords = uvs.map(|u| TexCoords {
         values: u.values.iter().map(|[s, t]| [s, t]),
         corners: u.corners,

@@ -130,42 +130,43 @@ pub fn check_uvs<T: crate::Scalar>(
     values: &[[T; 2]],
     origin: &str,
 ) -> Result<()> {
-    let Some(k) = values
-        .iter()
-        .position(|uv| uv.iter().any(|x| !x.to_f64().is_finite()))
-    else {
-        return Ok(());
-    };
-    let [u, v] = values[k].map(T::to_f64);
-    Err(Error::NonFiniteUv {
-        scheme: scheme.to_string(),
-        level,
-        value: k as u32,
-        origin: origin.to_string(),
-        u,
-        v,
-    })
+    match first_non_finite(values) {
+        None => Ok(()),
+        Some((k, [u, v])) => Err(Error::NonFiniteUv {
+            scheme: scheme.to_string(),
+            level,
+            value: k as u32,
+            origin: origin.to_string(),
+            u,
+            v,
+        }),
+    }
 }
 
-/// Refuses the first non-finite vertex color among `colors`, those of level `level` (computed
-/// in `f32` or `f64`): `origin` says from what.
+/// The first value with a component that is not finite, with its index, in `f64`.
+fn first_non_finite<T: crate::Scalar, const N: usize>(
+    values: &[[T; N]],
+) -> Option<(usize, [f64; N])> {
+    let k = values
+        .iter()
+        .position(|x| x.iter().any(|c| !c.to_f64().is_finite()))?;
+    Some((k, values[k].map(T::to_f64)))
+}
+
+/// Refuses the first non-finite vertex color among `colors`, those of level `level` of
+/// `scheme` (computed in `f32` or `f64`): `origin` says from what.
 ///
 /// # Errors
 ///
 /// [`Error::NonFiniteColor`] naming the scheme, level and vertex.
 pub fn check_colors<T: crate::Scalar>(
-    scheme: &str,
-    level: u32,
+    (scheme, level): (&str, u32),
     colors: &[[T; 3]],
     origin: &str,
 ) -> Result<()> {
-    let Some(v) = colors
-        .iter()
-        .position(|c| c.iter().any(|x| !x.to_f64().is_finite()))
-    else {
+    let Some((v, [r, g, b])) = first_non_finite(colors) else {
         return Ok(());
     };
-    let [r, g, b] = colors[v].map(T::to_f64);
     Err(Error::NonFiniteColor {
         scheme: scheme.to_string(),
         level,

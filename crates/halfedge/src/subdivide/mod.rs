@@ -137,6 +137,7 @@ mod par;
 pub mod refine;
 pub mod sdc;
 mod sharpness;
+mod shorthands;
 mod sqrt3;
 mod stages;
 mod to_faces;
@@ -152,9 +153,10 @@ pub use schemes::Rule;
 
 pub use self::finite::{check_colors, check_uvs};
 pub use self::options::{LevelDone, SubdivideOptions};
-pub use self::refine::oneshot::{direct_face_degree, subdivide_to_face_list, FaceListLevel};
+pub use self::refine::oneshot::{direct_face_degree, FaceListLevel};
 use self::refine::oneshot::{keep_written, written_prediction};
 pub use self::sdc::Sharpness;
+pub use self::shorthands::*;
 pub use self::stages::{subdivide_stages, StageStart, StagedRun};
 use self::verify::report_names;
 pub use self::verify::{verify, verify_polygons, LevelReport};
@@ -425,71 +427,106 @@ where
     MeshCounts::from_face_list(faces, positions)
 }
 
-/// Defines the public shorthands for [`subdivide`] with one rule; the string before the name
-/// completes the "As [`subdivide`]" of the errors. (A macro: functions cannot define
-/// functions.)
-macro_rules! shorthands {
-    ($($(#[doc = $doc:literal])* $errors:literal $fn:ident => $rule:expr;)*) => {$(
-        $(#[doc = $doc])*
-        ///
-        /// # Errors
-        ///
-        #[doc = concat!("As [`subdivide`]", $errors, ".")]
-        pub fn $fn(
-            mesh: &HalfEdgeMesh,
-            levels: u32,
-            opts: &SubdivideOptions<'_>,
-        ) -> Result<HalfEdgeMesh> {
-            subdivide(mesh, $rule, levels, opts)
+/// Subdivides like [`subdivide`], with the last level written as a face list
+/// ([`PolygonMesh`]) instead of a half-edge mesh.
+///
+/// For the schemes of [`direct_face_degree`] the
+/// last step writes only positions and face corners: 12 bytes per output triangle (16 per
+/// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
+/// is about half and the last level, the largest, is faster to build. The result is identical
+/// to `subdivide(..)?.to_polygon_mesh()` (tested for every scheme); other schemes are built
+/// that way.
+///
+/// # Errors
+///
+/// As [`subdivide`].
+///
+/// ```
+/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, Rule, SubdivideOptions};
+/// use halfedge::{shapes, HalfEdgeMesh};
+///
+/// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
+/// let opts = SubdivideOptions::default();
+/// let level = subdivide_to_face_list(&ico, Rule::Loop, 2, &opts)?;
+/// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
+/// assert_eq!(level.mesh, subdivide(&ico, Rule::Loop, 2, &opts)?.to_polygon_mesh());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn subdivide_to_face_list(
+    mesh: &HalfEdgeMesh,
+    rule: Rule,
+    levels: u32,
+    opts: &SubdivideOptions<'_>,
+) -> Result<FaceListLevel> {
+    let opts = &opts.over_descriptor(mesh, Some(rule))?;
+    let counts = mesh.counts();
+    let plan = plan(rule, &counts)?;
+    if opts.uvs.is_some() {
+        refine::face_varying::channel_kind(rule)?;
+    }
+    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
+    let written = match holes {
+        Some(holes) => Some(written_prediction(
+            &plan,
+            &holes.written_mesh_counts(mesh),
+            levels,
+        )?),
+        None => None,
+    };
+    // The base faces: a closed form for the nesting splits, else chained level by level.
+    let degrees = mesh.faces().map(|f| mesh.face_degree(f));
+    let nested = match opts.base_faces {
+        true => uniform::nested_base_faces(plan.split, degrees, levels)?,
+        false => None,
+    };
+    let mut chained = match (opts.base_faces, &nested) {
+        (true, None) if levels > 0 => {
+            let identity: Vec<u32> = (0..mesh.n_faces() as u32).collect();
+            Some(uniform::child_faces(
+                plan.split,
+                &Topo::new(mesh),
+                &identity,
+            )?)
         }
-    )*};
-}
-
-shorthands! {
-    /// Loop subdivision ([`Rule::Loop`]): Loop's weights, boundary curves as cubic B-splines.
-    ///
-    /// ```
-    /// use halfedge::subdivide::{loop_subdivide, SubdivideOptions};
-    /// let grid = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::grid(2, 2)?)?;
-    /// let out = loop_subdivide(&grid, 2, &SubdivideOptions::default())?;
-    /// assert_eq!(out.n_faces(), 8 * 16);
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    " (e.g. a face that is not a triangle)" loop_subdivide => Rule::Loop;
-
-    /// Plain 4:1 split with edge midpoints ([`Rule::Midpoint`]), old vertices kept.
-    "" midpoint_subdivide => Rule::Midpoint;
-
-    /// 4:1 split with the edge midpoints projected onto the unit sphere ([`Rule::Icosphere`]).
-    "" icosphere_subdivide => Rule::Icosphere;
-
-    /// The modified butterfly scheme ([`Rule::Butterfly`], interpolating; boundary rules in
-    /// the module docs).
-    "" butterfly_subdivide => Rule::Butterfly;
-
-    /// Catmull-Clark subdivision on any polygon mesh, with boundary rules
-    /// ([`Rule::CatmullClark`]).
-    ///
-    /// ```
-    /// use halfedge::subdivide::{catmull_clark_subdivide, SubdivideOptions};
-    /// let mixed = halfedge::HalfEdgeMesh::try_from(&halfedge::shapes::mixed())?;
-    /// let out = catmull_clark_subdivide(&mixed, 1, &SubdivideOptions::default())?;
-    /// assert!(out.is_quad_mesh());
-    /// # Ok::<(), Box<dyn std::error::Error>>(())
-    /// ```
-    "" catmull_clark_subdivide => Rule::CatmullClark;
-
-    /// Kobbelt's √3 subdivision ([`Rule::Sqrt3`]), with Kobbelt's boundary rule when the mesh
-    /// has a boundary.
-    "" sqrt3_subdivide => Rule::Sqrt3;
-
-    /// Doo-Sabin subdivision on polygon meshes ([`Rule::DooSabin`]), with Chaikin's boundary
-    /// rule when the mesh has a boundary.
-    " (an interior vertex of valence below 3)" doo_sabin_subdivide => Rule::DooSabin;
-
-    /// Peters-Reif mid-edge subdivision on polygon meshes ([`Rule::MidEdge`]), with the cubic
-    /// B-spline boundary rule when the mesh has a boundary.
-    " (an interior vertex of valence below 3)" mid_edge_subdivide => Rule::MidEdge;
+        _ => None,
+    };
+    let visit = |s: u32, m: &HalfEdgeMesh| {
+        if let Some(values) = chained.as_mut().filter(|_| s < levels) {
+            *values = uniform::child_faces(plan.split, &Topo::new(m), values)?;
+        }
+        Ok(())
+    };
+    let level = match refine::one_shot(&plan, mesh, &counts, levels, true, opts, visit)? {
+        refine::OneShot::Mesh(m) => (m.to_polygon_mesh(), m.n_edges()),
+        refine::OneShot::Faces(mesh, edges) => (*mesh, edges),
+    };
+    let base_faces = match (opts.base_faces, nested, chained) {
+        (false, ..) => None,
+        (true, Some(faces), _) | (true, None, Some(faces)) => Some(faces),
+        (true, None, None) => Some((0..mesh.n_faces() as u32).collect()),
+    };
+    let mut level = match (holes, written) {
+        (Some(holes), Some(predicted)) => {
+            let degrees = crate::holes::degrees_of(mesh);
+            let last = (level.0, base_faces);
+            keep_written(last, holes, &degrees, &plan, levels, &predicted)?
+        }
+        _ => FaceListLevel {
+            mesh: level.0,
+            edges: level.1,
+            base_faces,
+        },
+    };
+    if let Some(layout) = opts.uvs {
+        let uvs = refine::face_varying::refined_uvs(mesh, layout, rule, levels, opts)?;
+        level
+            .mesh
+            .set_uvs(Some(uvs))
+            .map_err(|e| Error::UvLayoutMismatch {
+                reason: e.to_string(),
+            })?;
+    }
+    Ok(level)
 }
 
 /// The 1:N² triangle split ([`Rule::TriSplit`]) with points on the flat triangles.
@@ -667,7 +704,7 @@ pub fn subdivide_polygons(
     };
     if let Some(colors) = colors {
         let colors: Vec<[f64; 3]> = colors.iter().map(|p| p.to_array()).collect();
-        check_colors(&plan.name, levels, &colors, "placed as its position")?;
+        check_colors((&plan.name, levels), &colors, "placed as its position")?;
         let set = written.set_colors(Some(colors));
         set.map_err(|e| mismatch(e.to_string()))?;
     }

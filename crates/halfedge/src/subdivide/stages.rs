@@ -165,7 +165,7 @@ pub fn subdivide_stages(
         }
         if n > 0 && (!check || !last_stage) {
             let next = match &he {
-                Some(he) => stage_face_list(current, he, rule, n, &stage_opts)?,
+                Some(he) => stage_face_list((current, he), (rule, n), &stage_opts)?,
                 None => subdivide_polygons(current, rule, n, &stage_opts)?,
             };
             drop(he);
@@ -214,10 +214,8 @@ pub fn subdivide_stages(
 /// its base face, the vertex colors refined with the positions' weights
 /// ([`Refinement::evaluate_attributes`](crate::Refinement::evaluate_attributes)).
 fn stage_face_list(
-    current: &PolygonMesh,
-    he: &HalfEdgeMesh,
-    rule: Rule,
-    n: u32,
+    (current, he): (&PolygonMesh, &HalfEdgeMesh),
+    (rule, n): (Rule, u32),
     opts: &SubdivideOptions<'_>,
 ) -> Result<PolygonMesh> {
     let groups = current.groups();
@@ -234,9 +232,9 @@ fn stage_face_list(
         let plain = SubdivideOptions { uvs: None, ..*opts };
         let refinement = crate::Refinement::new(he, rule, n, &plain)?;
         let mut colors = vec![[0.0f64; 3]; refinement.n_vertices(n)];
-        refinement.evaluate_attributes(he, &plain, &base, &mut colors)?;
+        refinement.evaluate_attributes(he, &base, &mut colors)?;
         let scheme = rule.to_string();
-        super::check_colors(&scheme, n, &colors, "refined with the positions' weights")?;
+        super::check_colors((&scheme, n), &colors, "refined with the positions' weights")?;
         level
             .mesh
             .set_colors(Some(colors))

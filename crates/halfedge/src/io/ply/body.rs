@@ -105,7 +105,7 @@ pub(super) struct Body<R> {
     /// ASCII: the current line and the position of its next token.
     pub(super) text: String,
     pub(super) pos: usize,
-    /// The line where binary data starts (for [`Error::MeshTooLarge`]).
+    /// The line where binary data starts (for [`Error::MeshTooLarge`](crate::Error::MeshTooLarge)).
     pub(super) data_line: u64,
     pub(super) budget: Budget,
     pub(super) header_bytes: usize,

@@ -132,31 +132,40 @@ pub(super) enum Role {
     TexCoord,
 }
 
-#[derive(Debug)]
+/// A property of an element, as the header declares it: its name as written and for
+/// messages (shortened, control characters escaped), a scalar or a list and their types, the
+/// header line declaring it, and what the reader makes of its values.
+#[derive(Clone, Debug)]
 pub(super) struct Property {
     pub(super) name: String,
-    /// The name for messages (shortened, control characters escaped).
     pub(super) label: String,
     pub(super) shape: Shape,
     pub(super) line: u64,
     pub(super) role: Role,
 }
 
+/// An element of the header (`element NAME COUNT`) and its properties, in file order.
+#[derive(Debug)]
+pub(super) struct Element {
+    /// The name for messages (shortened, control characters escaped); what it is.
+    pub(super) label: String,
+    pub(super) kind: Kind,
+    /// How many the data holds: not trusted for allocations (a few bytes may claim
+    /// 2^64 - 1 elements).
+    pub(super) count: u64,
+    /// The header line declaring it.
+    pub(super) line: u64,
+    /// Its properties, in the order of the data (each element's values come in this
+    /// order).
+    pub(super) properties: Vec<Property>,
+}
+
+/// What an element is to the reader.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
     Vertex,
     Face,
     Other,
-}
-
-#[derive(Debug)]
-pub(super) struct Element {
-    /// The name for messages (shortened, control characters escaped).
-    pub(super) label: String,
-    pub(super) count: u64,
-    pub(super) line: u64,
-    pub(super) kind: Kind,
-    pub(super) properties: Vec<Property>,
 }
 
 /// Where the texture coordinates come from.

@@ -12,7 +12,7 @@ pub use self::write::{write_mesh_buffers_ply, write_polygon_ply};
 use std::io::BufRead;
 use std::path::Path;
 
-use super::{escape_controls, open, Budget, ReadOptions};
+use super::{escape_controls, Budget, ReadOptions};
 use crate::error::Result;
 use crate::polygon::PolygonMesh;
 
@@ -28,12 +28,12 @@ const MAX_PREALLOCATED: u64 = 1 << 16;
 ///
 /// # Errors
 ///
-/// [`Error::Io`] when the file cannot be read; [`Error::Parse`] naming the file and the
-/// header line for a malformed header; [`Error::PlyData`] naming the file, the element, its
+/// [`Error::Io`](crate::Error::Io) when the file cannot be read; [`Error::Parse`](crate::Error::Parse) naming the file and the
+/// header line for a malformed header; [`Error::PlyData`](crate::Error::PlyData) naming the file, the element, its
 /// index and the property for bad data (a vertex index out of range, a face of fewer than 3
 /// corners, a list count that is negative or above 16 Mi, a non-finite coordinate, color or
 /// texture coordinate, text that is not a number in ASCII data, data that ends early);
-/// [`Error::NoFaces`] for a file without faces.
+/// [`Error::NoFaces`](crate::Error::NoFaces) for a file without faces.
 ///
 /// # Example
 ///
@@ -47,19 +47,14 @@ pub fn read_ply(path: impl AsRef<Path>) -> Result<PolygonMesh> {
 }
 
 /// [`read_ply`] within the memory limit of `options` ([`ReadOptions::available_bytes`]: a
-/// larger file is [`Error::FileTooLarge`] before it is read, a mesh outgrowing half of it
-/// [`Error::MeshTooLarge`]); PLY has no tags.
+/// larger file is [`Error::FileTooLarge`](crate::Error::FileTooLarge) before it is read, a mesh outgrowing half of it
+/// [`Error::MeshTooLarge`](crate::Error::MeshTooLarge)); PLY has no tags.
 ///
 /// # Errors
 ///
 /// As [`read_ply`], and the memory refusals.
 pub fn read_ply_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<PolygonMesh> {
-    let path = path.as_ref();
-    read_ply_within(
-        open(path, options.available_bytes)?,
-        &path.display().to_string(),
-        Budget::of(options),
-    )
+    super::read_file(path.as_ref(), options, read_ply_within)
 }
 
 /// Reads PLY data from any buffered reader; `name` is the file name used in error messages.
@@ -83,7 +78,8 @@ pub fn read_ply_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn read_ply_from(reader: impl BufRead, name: &str) -> Result<PolygonMesh> {
-    read_ply_within(reader, name, Budget::of(&ReadOptions::DEFAULT))
+    let unlimited = Budget::of(&ReadOptions::DEFAULT);
+    read_ply_within(reader, name, unlimited)
 }
 
 /// [`read_ply_from`] with the mesh's memory limited to `budget`.
@@ -281,19 +277,24 @@ mod tests {
             "m.ply: vertex 4, property `x`: the file ends early: the header declares 1000000000 `vertex` elements"
         );
         // A skipped element of 2^64 - 1 fixed-size elements, and one without properties.
-        let skipped = header.replace(
-            "end_header",
-            "element edge 18446744073709551615\nproperty int a\nproperty int b\nelement nothing 18446744073709551615\nend_header",
-        );
-        assert_eq!(
-            message(&binary(&skipped, &body)),
-            "m.ply: edge 0: the file ends early: the header declares 18446744073709551615 `edge` elements"
-        );
-        let nothing = header.replace(
-            "end_header",
-            "element nothing 18446744073709551615\nend_header",
-        );
-        assert_eq!(message(&binary(&nothing, &body)), "accepted with 1 faces");
+        let max = "18446744073709551615";
+        for (extra, expected) in [
+            (
+                format!(
+                    "element edge {max}\nproperty int a\nproperty int b\nelement nothing {max}\n"
+                ),
+                format!(
+                    "m.ply: edge 0: the file ends early: the header declares {max} `edge` elements"
+                ),
+            ),
+            (
+                format!("element nothing {max}\n"),
+                "accepted with 1 faces".to_string(),
+            ),
+        ] {
+            let skipped = header.replace("end_header", &format!("{extra}end_header"));
+            assert_eq!(message(&binary(&skipped, &body)), expected);
+        }
         // A list count of 2^32 - 1 in a skipped list property: refused before reading.
         let listed = header.replace(
             "end_header",

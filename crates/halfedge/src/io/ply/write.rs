@@ -2,11 +2,9 @@
 
 use std::io::{BufWriter, Write};
 
-use glam::DVec3;
-
 use super::super::write::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
 use crate::polygon::PolygonMesh;
-use crate::{normals, Scalar};
+use crate::Scalar;
 
 /// Writes a mesh from caller-owned buffers as binary little-endian PLY: the vertex element
 /// (`x y z` as `double`, or `float` when `T` is `f32`; the colors as `uchar` when every
@@ -20,7 +18,7 @@ use crate::{normals, Scalar};
 ///
 /// # Errors
 ///
-/// [`std::io::ErrorKind::InvalidInput`] as [`write_mesh_buffers_obj`](super::write_mesh_buffers_obj)
+/// [`std::io::ErrorKind::InvalidInput`] as [`write_mesh_buffers_obj`](crate::io::write_mesh_buffers_obj)
 /// (nothing is written then); any error of the writer.
 ///
 /// # Example
@@ -41,16 +39,8 @@ pub fn write_mesh_buffers_ply<T: Scalar>(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let uvs = mesh.uvs.filter(|_| options.uvs);
-    let list = MeshBuffers { uvs, ..*mesh }.checked_faces()?;
+    let super::super::write::Written { list, uvs, normals } = mesh.to_write(options)?;
     let positions = mesh.positions;
-    let normals = options.normals.then(|| {
-        let position = |v: u32| {
-            let [x, y, z] = positions[v as usize];
-            DVec3::new(x.to_f64(), y.to_f64(), z.to_f64())
-        };
-        normals::vertex_normals_by(positions.len(), position, &list)
-    });
     let vertex_uvs = uvs.and_then(|u| per_vertex_uvs(&u, &list, positions.len()));
     let face_uvs = uvs.filter(|_| vertex_uvs.is_none());
     let byte_colors = mesh.colors.map(|colors| {

@@ -29,8 +29,7 @@ use super::creases::Creases;
 use super::levels::{invalid, Retain};
 use super::{direct, plan_sizes, Refinement};
 use crate::holes::HoleSet;
-use crate::subdivide::topo::Topo;
-use crate::subdivide::{plan, sizes, uniform, Plan, Rule, SubdivideOptions};
+use crate::subdivide::{sizes, Plan, Rule, SubdivideOptions};
 use crate::{Error, HalfEdgeMesh, PolygonMesh, Result};
 
 /// What the one-shot subdivision built.
@@ -78,7 +77,7 @@ pub(crate) fn one_shot(
     }
 }
 
-/// The last level of [`subdivide_to_face_list`]: the subdivided mesh as a face list.
+/// The last level of [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list): the subdivided mesh as a face list.
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct FaceListLevel {
@@ -131,7 +130,7 @@ impl FaceListLevel {
     }
 }
 
-/// `Some(d)` when [`subdivide_to_face_list`] writes the last level of `rule` straight into a
+/// `Some(d)` when [`subdivide_to_face_list`](crate::subdivide::subdivide_to_face_list) writes the last level of `rule` straight into a
 /// face list, every face with `d` corners (the 4:1 family: 3; Catmull-Clark: 4); `None` for
 /// the rules whose last level is built as a half-edge mesh and converted.
 ///
@@ -151,108 +150,6 @@ pub fn direct_face_degree(rule: Rule) -> Option<usize> {
         Rule::CatmullClark => Some(4),
         _ => None,
     }
-}
-
-/// Subdivides like [`subdivide`](crate::subdivide::subdivide), with the last level written as a face list
-/// ([`PolygonMesh`]) instead of a half-edge mesh.
-///
-/// For the schemes of [`direct_face_degree`] the
-/// last step writes only positions and face corners: 12 bytes per output triangle (16 per
-/// quad) plus 8 per face offset, against 52 (68) for the half-edge arrays, so the peak memory
-/// is about half and the last level, the largest, is faster to build. The result is identical
-/// to `subdivide(..)?.to_polygon_mesh()` (tested for every scheme); other schemes are built
-/// that way.
-///
-/// # Errors
-///
-/// As [`subdivide`](crate::subdivide::subdivide).
-///
-/// ```
-/// use halfedge::subdivide::{subdivide, subdivide_to_face_list, Rule, SubdivideOptions};
-/// use halfedge::{shapes, HalfEdgeMesh};
-///
-/// let ico = HalfEdgeMesh::try_from(&shapes::icosahedron())?;
-/// let opts = SubdivideOptions::default();
-/// let level = subdivide_to_face_list(&ico, Rule::Loop, 2, &opts)?;
-/// assert_eq!((level.mesh.n_vertices(), level.edges, level.mesh.n_faces()), (162, 480, 320));
-/// assert_eq!(level.mesh, subdivide(&ico, Rule::Loop, 2, &opts)?.to_polygon_mesh());
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub fn subdivide_to_face_list(
-    mesh: &HalfEdgeMesh,
-    rule: Rule,
-    levels: u32,
-    opts: &SubdivideOptions<'_>,
-) -> Result<FaceListLevel> {
-    let opts = &opts.over_descriptor(mesh, Some(rule))?;
-    let counts = mesh.counts();
-    let plan = plan(rule, &counts)?;
-    if opts.uvs.is_some() {
-        super::face_varying::channel_kind(rule)?;
-    }
-    let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
-    let written = match holes {
-        Some(holes) => Some(written_prediction(
-            &plan,
-            &holes.written_mesh_counts(mesh),
-            levels,
-        )?),
-        None => None,
-    };
-    // The base faces: a closed form for the nesting splits, else chained level by level.
-    let degrees = mesh.faces().map(|f| mesh.face_degree(f));
-    let nested = match opts.base_faces {
-        true => uniform::nested_base_faces(plan.split, degrees, levels)?,
-        false => None,
-    };
-    let mut chained = match (opts.base_faces, &nested) {
-        (true, None) if levels > 0 => {
-            let identity: Vec<u32> = (0..mesh.n_faces() as u32).collect();
-            Some(uniform::child_faces(
-                plan.split,
-                &Topo::new(mesh),
-                &identity,
-            )?)
-        }
-        _ => None,
-    };
-    let visit = |s: u32, m: &HalfEdgeMesh| {
-        if let Some(values) = chained.as_mut().filter(|_| s < levels) {
-            *values = uniform::child_faces(plan.split, &Topo::new(m), values)?;
-        }
-        Ok(())
-    };
-    let level = match one_shot(&plan, mesh, &counts, levels, true, opts, visit)? {
-        OneShot::Mesh(m) => (m.to_polygon_mesh(), m.n_edges()),
-        OneShot::Faces(mesh, edges) => (*mesh, edges),
-    };
-    let base_faces = match (opts.base_faces, nested, chained) {
-        (false, ..) => None,
-        (true, Some(faces), _) | (true, None, Some(faces)) => Some(faces),
-        (true, None, None) => Some((0..mesh.n_faces() as u32).collect()),
-    };
-    let mut level = match (holes, written) {
-        (Some(holes), Some(predicted)) => {
-            let degrees = crate::holes::degrees_of(mesh);
-            let last = (level.0, base_faces);
-            keep_written(last, holes, &degrees, &plan, levels, &predicted)?
-        }
-        _ => FaceListLevel {
-            mesh: level.0,
-            edges: level.1,
-            base_faces,
-        },
-    };
-    if let Some(layout) = opts.uvs {
-        let uvs = super::face_varying::refined_uvs(mesh, layout, rule, levels, opts)?;
-        level
-            .mesh
-            .set_uvs(Some(uvs))
-            .map_err(|e| Error::UvLayoutMismatch {
-                reason: e.to_string(),
-            })?;
-    }
-    Ok(level)
 }
 
 /// What `plan` writes at `levels` of a mesh whose written faces have the counts `written`,

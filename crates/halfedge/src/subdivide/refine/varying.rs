@@ -8,33 +8,35 @@
 //! | 1:N² | `tri-split-N`: points on the flat triangles |
 //! | Catmull-Clark | bilinear: face points at the centroids, edge points at the midpoints, old vertices kept |
 //!
-//! It numbers vertices and faces as [`Refinement::new`] does for the rule (holes included),
-//! so its evaluation fills the same buffers. √3, Doo-Sabin and mid-edge have no varying rule
+//! It numbers vertices and faces as the refinement it comes from ([`Refinement::varying`],
+//! holes included), so its evaluation fills the same buffers. √3, Doo-Sabin and mid-edge have no varying rule
 //! (OpenSubdiv has none for them either).
 
 use super::creases::{Creases, Linear};
 use super::{Refinement, Result, Rule, Scalar, Split, SubdivideOptions};
+use crate::holes::HoleSet;
 use crate::tags::SubdivisionOptions;
 use crate::{Error, HalfEdgeMesh};
 
 impl Refinement {
-    /// The varying refinement of `mesh` by `rule` to `levels` (module docs): evaluate it
+    /// The varying refinement of this one (module docs): evaluate it
     /// ([`Refinement::evaluate`], [`Refinement::evaluator`]) to refine any per-vertex data
-    /// linearly, into buffers numbered as `Refinement::new(mesh, rule, levels, opts)`'s.
-    /// Creases and the boundary options do not apply (varying data ignores them, as in
-    /// OpenSubdiv); threads and holes do.
+    /// linearly, into buffers numbered as this refinement's. `mesh` is this refinement's level
+    /// 0 (the mesh it was built from). Creases and the boundary options do not apply (varying
+    /// data ignores them, as in OpenSubdiv); its threads and holes do.
     ///
     /// # Errors
     ///
-    /// As [`Refinement::new`]; [`Error::NoSubdivision`] for √3, Doo-Sabin and mid-edge.
+    /// [`Error::BufferSize`] for a mesh of another size than level 0;
+    /// [`Error::NoSubdivision`] for √3, Doo-Sabin and mid-edge; as [`Refinement::new`].
     ///
     /// ```
     /// use halfedge::subdivide::SubdivideOptions;
     /// use halfedge::{shapes, HalfEdgeMesh, Refinement, Rule};
     ///
     /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
-    /// let opts = SubdivideOptions::default();
-    /// let varying = Refinement::new_varying(&cube, Rule::CatmullClark, 1, &opts)?;
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 1, &SubdivideOptions::default())?;
+    /// let varying = r.varying(&cube)?;
     /// let base: Vec<[f64; 3]> = cube.positions().iter().map(|p| p.to_array()).collect();
     /// let mut out = vec![[0.0; 3]; varying.n_vertices(1)];
     /// varying.evaluate(&base, &mut out)?;
@@ -42,20 +44,42 @@ impl Refinement {
     /// assert!(base.iter().all(|p| out.contains(p)));
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
-    pub fn new_varying(
-        mesh: &HalfEdgeMesh,
-        rule: Rule,
-        levels: u32,
-        opts: &SubdivideOptions<'_>,
-    ) -> Result<Refinement> {
-        let opts = opts.over_descriptor(mesh, Some(rule))?;
-        let split = super::super::plan(rule, &mesh.counts())?.split;
+    pub fn varying(&self, mesh: &HalfEdgeMesh) -> Result<Refinement> {
+        let (levels, rule) = (self.levels(), self.rule());
+        let base_faces = self
+            .written
+            .as_ref()
+            .map_or(self.n_faces(0), |w| w.holes.len());
+        for (what, given, expected) in [
+            (
+                "the mesh's vertices",
+                mesh.n_vertices(),
+                self.base_vertices(),
+            ),
+            ("the mesh's faces", mesh.n_faces(), base_faces),
+        ] {
+            if given != expected {
+                return Err(Error::BufferSize {
+                    what,
+                    given,
+                    expected,
+                });
+            }
+        }
+        let holes = match &self.written {
+            Some(w) => {
+                let faces = (0..w.holes.len() as u32).filter(|&f| w.holes[f as usize]);
+                Some(HoleSet::new(mesh.n_faces(), faces)?)
+            }
+            None => None,
+        };
         let plain = SubdivideOptions {
-            threads: opts.threads,
-            holes: opts.holes,
+            threads: self.threads,
+            holes: holes.as_ref(),
             descriptor: false,
             ..SubdivideOptions::default()
         };
+        let split = super::super::plan(rule, &mesh.counts())?.split;
         let none = || Ok(None);
         match split {
             Split::Tri(2) => Refinement::with_creases(mesh, Rule::Midpoint, levels, &plain, none),
@@ -81,29 +105,23 @@ impl Refinement {
             }
         }
     }
-}
 
-impl Refinement {
     /// Refines per-vertex attributes (vertex colors, weights) with the positions' weights:
     /// [`Refinement::evaluate`], except under the icosphere rule, whose projection onto the
     /// sphere is for positions only: there the weights before it, the varying refinement's
-    /// ([`Refinement::new_varying`] of `mesh`, the refinement's level 0, with `opts`).
+    /// ([`Refinement::varying`] of `mesh`, this refinement's level 0).
     ///
     /// # Errors
     ///
-    /// As [`Refinement::evaluate`] and, for the icosphere, [`Refinement::new_varying`].
+    /// As [`Refinement::evaluate`] and, for the icosphere, [`Refinement::varying`].
     pub fn evaluate_attributes<T: Scalar, const N: usize>(
         &self,
         mesh: &HalfEdgeMesh,
-        opts: &SubdivideOptions<'_>,
         base: &[[T; N]],
         out: &mut [[T; N]],
     ) -> Result<()> {
         match self.rule() {
-            Rule::Icosphere => {
-                let linear = Refinement::new_varying(mesh, Rule::Icosphere, self.levels(), opts)?;
-                linear.evaluate(base, out)
-            }
+            Rule::Icosphere => self.varying(mesh)?.evaluate(base, out),
             _ => self.evaluate(base, out),
         }
     }
@@ -148,8 +166,8 @@ mod tests {
             (&ico, Rule::TriSplit(3)),
         ] {
             let base: Vec<[f64; 3]> = mesh.positions().iter().map(|p| p.to_array()).collect();
-            let varying = Refinement::new_varying(mesh, rule, 1, &opts).expect("varying");
             let smooth = Refinement::new(mesh, rule, 1, &opts).expect("refinement");
+            let varying = smooth.varying(mesh).expect("varying");
             assert_eq!(
                 faces(&varying),
                 faces(&smooth),
@@ -189,13 +207,17 @@ mod tests {
                 }
             }
         }
-        let err = Refinement::new_varying(&ico, Rule::Sqrt3, 1, &opts).unwrap_err();
+        let sqrt3 = Refinement::new(&ico, Rule::Sqrt3, 1, &opts).expect("refinement");
+        let err = sqrt3.varying(&ico).unwrap_err();
         assert!(err.to_string().contains("varying data"), "{err}");
         // Holes: the written part, as the rule's refinement writes it.
         let holes = HoleSet::new(mixed.n_faces(), [0]).expect("a face");
         let opts = opts.with_holes(&holes);
-        let varying = Refinement::new_varying(&mixed, Rule::CatmullClark, 2, &opts).expect("v");
         let smooth = Refinement::new(&mixed, Rule::CatmullClark, 2, &opts).expect("r");
+        let varying = smooth.varying(&mixed).expect("v");
         assert_eq!(faces(&varying), faces(&smooth));
+        // Another mesh than level 0 is refused.
+        let err = smooth.varying(&ico).unwrap_err();
+        assert!(matches!(err, Error::BufferSize { .. }), "{err}");
     }
 }
