@@ -177,12 +177,14 @@
 //! plot output alike; `driver::output::MeshFormat` by the name); mesh formats not written
 //! (`-o out.stl` is a usage error): `driver::output::unwritten_mesh_format`.
 
+mod buffers;
 mod obj;
 mod obj_tags;
 mod off;
 mod ply;
 mod write;
 
+pub use self::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::ply::{
@@ -190,8 +192,7 @@ pub use self::ply::{
 };
 pub use self::write::{
     write_buffers_obj, write_buffers_obj_with, write_mesh_buffers_obj, write_obj, write_obj_with,
-    write_polygon_obj, write_polygon_obj_with, FaceBuffers, MeshBuffers, ObjWriteOptions,
-    UvBuffers,
+    write_polygon_obj, write_polygon_obj_with,
 };
 
 pub use crate::error::escape_controls;

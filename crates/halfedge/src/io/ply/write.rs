@@ -2,7 +2,7 @@
 
 use std::io::{BufWriter, Write};
 
-use super::super::write::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
+use super::super::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
 use crate::polygon::PolygonMesh;
 use crate::Scalar;
 
@@ -39,7 +39,7 @@ pub fn write_mesh_buffers_ply<T: Scalar>(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let super::super::write::Written { list, uvs, normals } = mesh.to_write(options)?;
+    let super::super::buffers::Written { list, uvs, normals } = mesh.prepare_write(options)?;
     let positions = mesh.positions;
     let vertex_uvs = uvs.and_then(|u| per_vertex_uvs(&u, &list, positions.len()));
     let face_uvs = uvs.filter(|_| vertex_uvs.is_none());
