@@ -154,7 +154,7 @@ pub fn ply(data: &[u8]) -> u64 {
                 for (x, y) in a.iter().flatten().zip(b.iter().flatten()) {
                     match bytes {
                         true => assert!((x - y).abs() <= 0.5 / 255.0 + 1e-12, "{x} {y}"),
-                        false => assert_eq!(x.to_bits(), y.to_bits()),
+                        false => assert_eq!((*x as f32).to_bits(), (*y as f32).to_bits()),
                     }
                 }
             }

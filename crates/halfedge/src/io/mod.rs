@@ -93,7 +93,7 @@
 //! budget ([`Error::MeshTooLarge`] names the data's line in ASCII, in binary data the line
 //! after `end_header`, where the data starts). [`write_polygon_ply`] and
 //! [`write_mesh_buffers_ply`] write binary little-endian PLY: positions, colors (`uchar` when
-//! every component is in 0-1), normals and texture coordinates on request
+//! every component is in 0-1, else `float`), normals and texture coordinates on request
 //! ([`ObjWriteOptions`]: `s t` per vertex without seams, else a `texcoord` list per face),
 //! faces as `vertex_indices`; groups are not written.
 //!

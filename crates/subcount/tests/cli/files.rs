@@ -576,13 +576,14 @@ fn ply_output_is_the_obj_output_in_binary() {
             };
             assert_eq!(points(&a), points(&b), "{what}");
             assert_eq!(a.face_indices(), b.face_indices(), "{what}");
-            // Colors in [0, 1] are written as uchar: round(c · 255) / 255 read back.
+            // Colors in [0, 1] are written as uchar: round(c · 255) / 255 read back; others
+            // as float.
             let unit = a
                 .colors()
                 .is_some_and(|c| c.iter().flatten().all(|x| (0.0..=1.0).contains(x)));
             let quantize = |x: f64| match unit {
                 true => (x * 255.0).round() / 255.0,
-                false => round(x),
+                false => f64::from(x as f32),
             };
             let colors = |m: &halfedge::PolygonMesh| -> Option<Vec<[f64; 3]>> {
                 m.colors()

@@ -8,7 +8,7 @@ use crate::Scalar;
 
 /// Writes a mesh from caller-owned buffers as binary little-endian PLY: the vertex element
 /// (`x y z` as `double`, or `float` when `T` is `f32`; the colors as `uchar` when every
-/// component is in `[0, 1]` (rounded `c * 255`), else in `T`; with
+/// component is in `[0, 1]` (rounded `c * 255`), else as `float`, as MeshLab writes them; with
 /// [`ObjWriteOptions::normals`], `nx ny nz`, the area-weighted vertex normals of the faces;
 /// with [`ObjWriteOptions::uvs`] and texture coordinates without seams (one UV value per
 /// vertex across its corners), `s t`, 0 at vertices no face uses) and the face element
@@ -71,7 +71,7 @@ pub fn write_mesh_buffers_ply<T: Scalar>(
         writeln!(w, "property {float} {name}")?;
     }
     if let Some(bytes) = byte_colors {
-        let ty = if bytes { "uchar" } else { float };
+        let ty = if bytes { "uchar" } else { "float" };
         for name in ["red", "green", "blue"] {
             writeln!(w, "property {ty} {name}")?;
         }
@@ -107,7 +107,7 @@ pub fn write_mesh_buffers_ply<T: Scalar>(
             }
             (Some(colors), _) => {
                 for &c in &colors[v] {
-                    put(&mut w, c)?;
+                    w.write_all(&(c.to_f64() as f32).to_le_bytes())?;
                 }
             }
             (None, _) => {}
