@@ -1,8 +1,10 @@
 //! Output files: every file a front end writes (a subdivided mesh, a plot) replaces its
 //! target atomically ([`write_atomically`]), `-` being standard output; a signal removes the
-//! temporary file being written. The OBJ text itself is the kernel's (`halfedge::io`'s
-//! writers take any [`Write`]); [`write_obj_file`], [`write_polygon_obj_file`] and
-//! [`write_buffers_obj_file`] put it in a file.
+//! temporary file being written. The OBJ and PLY bytes themselves are the kernel's
+//! (`halfedge::io`'s writers take any [`Write`]); [`write_polygon_mesh_file`] and
+//! [`write_mesh_buffers_file`] put them in a file in the format the name says
+//! ([`MeshFormat`]), [`write_obj_file`], [`write_polygon_obj_file`] and
+//! [`write_buffers_obj_file`] as OBJ.
 //!
 //! # Design notes
 //!
