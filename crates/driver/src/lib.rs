@@ -49,7 +49,10 @@ pub mod system;
 pub mod verify;
 
 pub use error::{Error, Kind, Result};
-pub use mesh::{load, refuse_triangle_rule, resolve_options, LoadedMesh, MeshSource, OptionFlags};
+pub use mesh::{
+    load, load_polygon_mesh, refuse_triangle_rule, resolve_options, LoadedMesh, MeshSource,
+    OptionFlags,
+};
 pub use scheme::{
     choose, load_scheme_file, on_face_list, Chosen, SchemeChoice, SCHEME_FILE_MAX_BYTES,
 };

@@ -123,7 +123,40 @@ pub fn load(source: &MeshSource, flags: &OptionFlags) -> Result<LoadedMesh> {
         }
         MeshSource::Base(name) => halfedge::shapes::from_name_within(name, available)?,
     };
-    let label = source.label();
+    loaded(poly, source.label(), flags)
+}
+
+/// A mesh already in memory (a front end's arrays, a mesh read earlier) as [`load`] gives a
+/// file's: `label` names it in messages, the file's tags it carries are dropped when `flags`
+/// ignores them, and the same refusal and resolution of options follow.
+///
+/// ```
+/// use driver::{load_polygon_mesh, OptionFlags};
+/// let cube = halfedge::shapes::cube();
+/// let loaded = load_polygon_mesh(cube, "<mesh>", &OptionFlags::default())?;
+/// assert_eq!((loaded.label(), loaded.poly.n_faces()), ("<mesh>", 6));
+/// assert!(loaded.notes().is_empty());
+/// # Ok::<(), driver::Error>(())
+/// ```
+///
+/// # Errors
+///
+/// [`Error::AnalysisTooLarge`].
+pub fn load_polygon_mesh(
+    mut poly: PolygonMesh,
+    label: &str,
+    flags: &OptionFlags,
+) -> Result<LoadedMesh> {
+    if flags.ignore_tags && !poly.tags().is_empty() {
+        // Empty tags name no vertex, face or edge: they always fit.
+        let cleared = poly.set_tags(Tags::default());
+        debug_assert!(cleared.is_ok());
+    }
+    loaded(poly, label.to_owned(), flags)
+}
+
+/// The part of [`load`] after the read: the memory refusal, the notes, the options.
+fn loaded(poly: PolygonMesh, label: String, flags: &OptionFlags) -> Result<LoadedMesh> {
     // Every command analyses the face list it read (counts, problems, a half-edge mesh):
     // refused here, before that analysis allocates, when it would not fit.
     let need = poly.heap_bytes() as u128 + halfedge::memory::face_list_analysis_bytes(&poly);
@@ -138,7 +171,8 @@ pub fn load(source: &MeshSource, flags: &OptionFlags) -> Result<LoadedMesh> {
         });
     }
     let mut notes = Vec::new();
-    if !poly.ignored_tags().is_empty() {
+    // Tags not read at all (`--ignore-tags`) are not reported as ignored either.
+    if !flags.ignore_tags && !poly.ignored_tags().is_empty() {
         let total: u64 = poly.ignored_tags().iter().map(|t| t.count).sum();
         let names: Vec<String> = poly
             .ignored_tags()

@@ -8,10 +8,11 @@ use std::path::Path;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
-use halfedge::glam::DVec3;
+use halfedge::glam::{DVec2, DVec3};
 use halfedge::io::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
 use halfedge::subdivide::{LevelDone, SubdivideOptions};
-use halfedge::{HalfEdgeMesh, Refinement, Rule, Scalar};
+use halfedge::uv::Uvs;
+use halfedge::{HalfEdgeMesh, PolygonMesh, Refinement, Rule, Scalar};
 
 /// The floating-point type a refine-once run computes and writes positions and UVs in.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -33,15 +34,99 @@ impl Precision {
     }
 }
 
-/// Writes a level to a path, with the writer's options.
-struct Writer(Box<WriteFn>);
+/// The last level's buffers, in `f32` or `f64`.
+#[derive(Debug)]
+enum LevelBuffers {
+    F32(Buffers<f32>),
+    F64(Buffers<f64>),
+}
 
-/// The writer's function.
-type WriteFn = dyn Fn(&Path, &ObjWriteOptions) -> crate::Result<()>;
+/// The buffers a refine-once run evaluated into: positions, faces (of one degree, or with
+/// offsets), UVs, colors and groups.
+#[derive(Debug)]
+struct Buffers<T> {
+    positions: Vec<[T; 3]>,
+    /// The faces' degree (3 or 4), `None` for polygons with `offsets`.
+    degree: Option<usize>,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    /// UV values and one per corner.
+    uvs: Option<(Vec<[T; 2]>, Vec<u32>)>,
+    colors: Option<Vec<[T; 3]>>,
+    groups: Option<halfedge::groups::FaceGroups>,
+    /// The rule and level, for messages.
+    scheme: String,
+    level: u32,
+}
 
-impl std::fmt::Debug for Writer {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Writer")
+impl<T: Scalar> Buffers<T> {
+    fn faces(&self) -> FaceBuffers<'_> {
+        match self.degree {
+            Some(degree) => FaceBuffers::Uniform {
+                degree,
+                indices: &self.indices,
+            },
+            None => FaceBuffers::Polygons {
+                offsets: &self.offsets,
+                indices: &self.indices,
+            },
+        }
+    }
+
+    fn write(&self, path: &Path, options: &ObjWriteOptions) -> crate::Result<()> {
+        let mut mesh = MeshBuffers::new(&self.positions, self.faces());
+        if let Some((values, corners)) = &self.uvs {
+            mesh = mesh.with_uvs(UvBuffers { values, corners });
+        }
+        if let Some(colors) = &self.colors {
+            mesh = mesh.with_colors(colors);
+        }
+        if let Some(groups) = &self.groups {
+            mesh = mesh.with_groups(groups);
+        }
+        crate::output::write_mesh_buffers_file(&mesh, path, options)
+    }
+
+    /// The buffers as a face list, values widened to `f64` (exactly).
+    fn into_polygon_mesh(self) -> halfedge::Result<PolygonMesh> {
+        let invalid = |what: String| halfedge::Error::InvalidOutput {
+            scheme: self.scheme.clone(),
+            level: self.level,
+            what,
+        };
+        let widen3 = |v: &[T; 3]| DVec3::from_array(v.map(T::to_f64));
+        let mut mesh = PolygonMesh::with_positions(self.positions.iter().map(widen3).collect());
+        match self.degree {
+            Some(degree) => {
+                mesh.reserve_faces(self.indices.len() / degree.max(1), self.indices.len());
+                for face in self.indices.chunks(degree.max(1)) {
+                    mesh.push_face(face);
+                }
+            }
+            None => {
+                mesh.reserve_faces(self.offsets.len().saturating_sub(1), self.indices.len());
+                for w in self.offsets.windows(2) {
+                    mesh.push_face(&self.indices[w[0] as usize..w[1] as usize]);
+                }
+            }
+        }
+        if let Some((values, corners)) = self.uvs {
+            let values = values
+                .iter()
+                .map(|v| DVec2::new(v[0].to_f64(), v[1].to_f64()))
+                .collect();
+            let uvs = Uvs::new(values, corners).map_err(|e| invalid(e.to_string()))?;
+            mesh.set_uvs(Some(uvs))
+                .map_err(|e| invalid(e.to_string()))?;
+        }
+        if let Some(colors) = self.colors {
+            let colors = colors.iter().map(|c| c.map(T::to_f64)).collect();
+            mesh.set_colors(Some(colors))
+                .map_err(|e| invalid(e.to_string()))?;
+        }
+        mesh.set_groups(self.groups)
+            .map_err(|e| invalid(e.to_string()))?;
+        Ok(mesh)
     }
 }
 
@@ -60,8 +145,8 @@ pub struct Refined {
     /// (part of `refine_topology`, after the surface's: [`SurfaceClock`]) and the time of
     /// their evaluation and index buffer.
     pub uvs: Option<(usize, Duration, Duration)>,
-    /// Writes the last level as OBJ.
-    write: Writer,
+    /// The last level.
+    level: LevelBuffers,
 }
 
 impl Refined {
@@ -72,7 +157,23 @@ impl Refined {
     ///
     /// As [`crate::output::write_buffers_obj_file`].
     pub fn write(&self, path: &Path, options: &ObjWriteOptions) -> crate::Result<()> {
-        (self.write.0)(path, options)
+        match &self.level {
+            LevelBuffers::F32(b) => b.write(path, options),
+            LevelBuffers::F64(b) => b.write(path, options),
+        }
+    }
+
+    /// The last level as a face list (positions, faces, UVs, colors, groups), `f32` values
+    /// widened to `f64` exactly: what [`Refined::write`] writes.
+    ///
+    /// # Errors
+    ///
+    /// [`halfedge::Error::InvalidOutput`] for buffers that do not fit together (a bug).
+    pub fn into_polygon_mesh(self) -> halfedge::Result<PolygonMesh> {
+        match self.level {
+            LevelBuffers::F32(b) => b.into_polygon_mesh(),
+            LevelBuffers::F64(b) => b.into_polygon_mesh(),
+        }
     }
 }
 
@@ -110,8 +211,8 @@ pub struct RefineOnce<'a> {
 /// precision.
 pub fn run(run: &RefineOnce<'_>, precision: Precision) -> halfedge::Result<Refined> {
     match precision {
-        Precision::F32 => run_in::<f32>(run),
-        Precision::F64 => run_in::<f64>(run),
+        Precision::F32 => run_in::<f32>(run, LevelBuffers::F32),
+        Precision::F64 => run_in::<f64>(run, LevelBuffers::F64),
     }
 }
 
@@ -154,7 +255,11 @@ impl SurfaceClock {
     }
 }
 
-fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
+/// `keep` stores the last level's buffers in `T`.
+fn run_in<T: Scalar>(
+    run: &RefineOnce<'_>,
+    keep: fn(Buffers<T>) -> LevelBuffers,
+) -> halfedge::Result<Refined> {
     let RefineOnce {
         mesh,
         rule,
@@ -294,36 +399,24 @@ fn run_in<T: Scalar>(run: &RefineOnce<'_>) -> halfedge::Result<Refined> {
     let uv_summary = uvs
         .as_ref()
         .map(|(values, _, time)| (values.len(), uv_topology, *time));
-    let write = Writer(Box::new(move |path: &Path, options: &ObjWriteOptions| {
-        let faces = match degree {
-            Some(degree) => FaceBuffers::Uniform {
-                degree,
-                indices: &indices,
-            },
-            None => FaceBuffers::Polygons {
-                offsets: &offsets,
-                indices: &indices,
-            },
-        };
-        let mut mesh = MeshBuffers::new(&out, faces);
-        if let Some((values, corners, _)) = &uvs {
-            mesh = mesh.with_uvs(UvBuffers { values, corners });
-        }
-        if let Some(colors) = &colors {
-            mesh = mesh.with_colors(colors);
-        }
-        if let Some(groups) = &groups {
-            mesh = mesh.with_groups(groups);
-        }
-        crate::output::write_mesh_buffers_file(&mesh, path, options)
-    }));
+    let buffers = Buffers {
+        positions: out,
+        degree,
+        offsets,
+        indices,
+        uvs: uvs.map(|(values, corners, _)| (values, corners)),
+        colors,
+        groups,
+        scheme: rule.to_string(),
+        level: levels,
+    };
     Ok(Refined {
         vef: [n, refinement.n_edges(levels), faces],
         refine_topology,
         first_evaluation,
         evaluate_median,
         uvs: uv_summary,
-        write,
+        level: keep(buffers),
     })
 }
 

@@ -530,6 +530,35 @@ impl Subdivided {
         }
     }
 
+    /// The last level as a face list, as [`Subdivided::write`] writes it (positions, faces,
+    /// the UVs refined, colors and groups; a refine-once run's `f32` values widened to `f64`
+    /// exactly), for a front end that hands it on in memory.
+    ///
+    /// ```
+    /// use driver::{load, MeshSource, OptionFlags, SchemeChoice};
+    /// use driver::subdivide::{prepare, SubdivideJob};
+    ///
+    /// let mesh = load(&MeshSource::Base("cube".into()), &OptionFlags::default())?;
+    /// let scheme = SchemeChoice::Builtin("catmull-clark".into());
+    /// let prepared = prepare(&mesh, &scheme, &SubdivideJob::new(1), None, &mut |_| {})?;
+    /// let level = prepared.run(&|_| {}, &mut |_| {})?.into_polygon_mesh()?;
+    /// assert_eq!((level.n_vertices(), level.n_faces()), (26, 24));
+    /// # Ok::<(), driver::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    ///
+    /// A refine-once run's buffers that do not fit together ([`halfedge::Error::InvalidOutput`],
+    /// a bug).
+    pub fn into_polygon_mesh(self) -> Result<PolygonMesh> {
+        Ok(match self.output {
+            Output::Mesh(m) => m.to_polygon_mesh(),
+            Output::Polygons(p) => p,
+            Output::Faces(level) => level.mesh,
+            Output::Refined(r) => r.into_polygon_mesh()?,
+        })
+    }
+
     /// Writes the last level to `path` ([`crate::output::write_atomically`]: `-` is standard
     /// output) as OBJ, or binary PLY for a `.ply` name ([`crate::output::MeshFormat`]), with
     /// UVs when `options` asks and they were refined, normals when it asks, and the colors and
@@ -549,5 +578,99 @@ impl Subdivided {
             Output::Faces(level) => write_polygon_mesh_file(&level.mesh, path, options),
             Output::Refined(r) => r.write(path, options),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{load, load_polygon_mesh, MeshSource, OptionFlags};
+
+    /// Subdivides `loaded` by `scheme` under `job`, and checks that the face list handed out
+    /// is what `-o` writes (OBJ read back; `f32` runs compared in `f32`).
+    fn in_memory_equals_written(loaded: &LoadedMesh, scheme: &str, job: &SubdivideJob, tag: &str) {
+        let choice = SchemeChoice::Builtin(scheme.into());
+        let prepared = prepare(loaded, &choice, job, None, &mut |_| {}).unwrap();
+        let result = prepared.run(&|_| {}, &mut |_| {}).unwrap();
+        let refined = matches!(result.output, Output::Refined(_));
+        assert_eq!(refined, tag.starts_with("refined"), "{tag}");
+        if tag == "mesh" {
+            assert!(matches!(result.output, Output::Mesh(_)));
+        }
+        let dir = std::env::temp_dir().join(format!("driver-in-memory-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{tag}.obj"));
+        let options = ObjWriteOptions::default().with_uvs(result.uvs().is_some());
+        result.write(&path, &options).unwrap();
+        let written = halfedge::io::read_mesh(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let counts = result.counts();
+        let level = result.into_polygon_mesh().unwrap();
+        assert_eq!(level.n_vertices(), counts[0], "{tag}");
+        assert_eq!(level.n_faces(), counts[2], "{tag}");
+        assert_eq!(level.face_offsets(), written.face_offsets(), "{tag}");
+        assert_eq!(level.face_indices(), written.face_indices(), "{tag}");
+        let f32_run = job.precision == Precision::F32;
+        let same = |a: f64, b: f64| match f32_run {
+            true => a as f32 == b as f32,
+            false => a.to_bits() == b.to_bits(),
+        };
+        let pairs = level.positions.iter().zip(&written.positions);
+        assert!(
+            pairs.clone().all(|(a, b)| (0..3).all(|k| same(a[k], b[k]))),
+            "{tag}"
+        );
+        assert_eq!(
+            level.colors().is_some(),
+            written.colors().is_some(),
+            "{tag}"
+        );
+        if let (Some(a), Some(b)) = (level.colors(), written.colors()) {
+            assert!(
+                a.iter()
+                    .zip(b)
+                    .all(|(a, b)| (0..3).all(|k| same(a[k], b[k]))),
+                "{tag}"
+            );
+        }
+        assert_eq!(level.groups(), written.groups(), "{tag}");
+    }
+
+    #[test]
+    fn the_level_in_memory_is_the_level_written_on_every_path() {
+        let flags = OptionFlags::default();
+        let ico = load(&MeshSource::Base("icosahedron".into()), &flags).unwrap();
+        // A half-edge last level (sqrt3), a face list (loop), the raw face list (-general).
+        in_memory_equals_written(&ico, "sqrt3", &SubdivideJob::new(2), "mesh");
+        in_memory_equals_written(&ico, "loop", &SubdivideJob::new(2), "faces");
+        in_memory_equals_written(&ico, "loop-general", &SubdivideJob::new(2), "polygons");
+        // Refined once: in f32, and in f64 for colors.
+        let mut f32_job = SubdivideJob::new(2);
+        f32_job.precision = Precision::F32;
+        in_memory_equals_written(&ico, "loop", &f32_job, "refined-f32");
+        let mut cube = halfedge::shapes::cube();
+        let colors = (0..8).map(|i| [f64::from(i) / 7.0, 0.5, 1.0]).collect();
+        cube.set_colors(Some(colors)).unwrap();
+        let mut groups = halfedge::groups::FaceGroups::new(vec!["mtllib a.mtl".into()]);
+        for f in 0..6 {
+            groups.push_face([None, Some("box"), Some(["red", "blue"][f % 2]), None]);
+        }
+        cube.set_groups(Some(groups)).unwrap();
+        let cube = load_polygon_mesh(cube, "<cube>", &flags).unwrap();
+        in_memory_equals_written(&cube, "catmull-clark", &SubdivideJob::new(2), "refined-f64");
+    }
+
+    #[test]
+    fn an_in_memory_mesh_drops_its_tags_when_they_are_ignored() {
+        let mut cube = halfedge::shapes::cube();
+        let mut tags = halfedge::tags::Tags::default();
+        tags.add_hole(5);
+        cube.set_tags(tags).unwrap();
+        let kept = load_polygon_mesh(cube.clone(), "<cube>", &OptionFlags::default()).unwrap();
+        assert_eq!(kept.tags().hole_faces(), [5]);
+        let flags = OptionFlags::new(None, None, None, true);
+        let ignored = load_polygon_mesh(cube, "<cube>", &flags).unwrap();
+        assert!(ignored.tags().is_empty());
+        assert_eq!(ignored.label(), "<cube>");
     }
 }
