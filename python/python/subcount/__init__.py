@@ -1,0 +1,38 @@
+"""subcount: exact subdivision counts and OpenSubdiv-grade subdivision, numpy in and out.
+
+>>> import subcount
+>>> m = subcount.read_mesh("pawn.obj")                          # doctest: +SKIP
+>>> out = subcount.subdivide(m, scheme="catmull-clark", levels=2)  # doctest: +SKIP
+>>> out.positions.shape, out.face_vertex_counts.dtype            # doctest: +SKIP
+((..., 3), dtype('int32'))
+>>> subcount.write_mesh(out, "pawn-2.ply")                       # doctest: +SKIP
+
+A mesh is a path, a ``subcount.Mesh`` or ``(positions, faces)`` (faces an ``(F, k)``
+integer array or a tuple ``(face_vertex_counts, face_vertex_indices)``). Errors are
+``subcount.Error`` subclasses named after the command line's exit codes; notes are
+``subcount.Warning``.
+"""
+
+from ._errors import (
+    Error,
+    InputError,
+    MismatchError,
+    ResourceError,
+    UsageError,
+    Warning,
+)
+from ._subcount import Mesh, __version__, read_mesh, subdivide, write_mesh
+
+__all__ = [
+    "Error",
+    "InputError",
+    "Mesh",
+    "MismatchError",
+    "ResourceError",
+    "UsageError",
+    "Warning",
+    "__version__",
+    "read_mesh",
+    "subdivide",
+    "write_mesh",
+]

@@ -1,0 +1,244 @@
+//! `subcount._subcount`: the Python bindings of subcount's library crates (the `subcount`
+//! package re-exports them). Every mesh and run goes through `driver`, as the command line's
+//! do: `read_mesh` is `driver::load`, `subdivide` is `driver::subdivide::prepare` and `run`
+//! (so positions equal `subcount subdivide -o` to the bit), `write_mesh` writes through
+//! `driver::output`. Nothing here re-implements a rule, a guard or a refusal; this crate turns
+//! arrays and keywords into the driver's types and its errors into exceptions
+//! ([`errors`]).
+
+mod errors;
+mod mesh;
+
+use std::path::PathBuf;
+
+use driver::refined::Precision;
+use driver::subdivide::SubdivideJob;
+use driver::{MeshSource, OptionFlags, SchemeChoice};
+use halfedge::io::ObjWriteOptions;
+use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
+use pyo3::prelude::*;
+use pyo3::types::PyInt;
+
+use crate::errors::{guarded, warn_notes, Failure, Result};
+use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
+
+/// The most threads `threads=` may ask for (the command line's `--threads` limit).
+const MAX_THREADS: i64 = 256;
+
+/// The last level real subdivision reaches (the command line's `--levels` limit: every rule
+/// at least doubles the faces per level, so no later level fits 32-bit indices).
+const MAX_LEVELS: i64 = 64;
+
+/// Reads a mesh file (OBJ, OFF or PLY) with its texture coordinates, vertex colors,
+/// materials, groups and OpenSubdiv tags, within the memory this process may use.
+///
+/// Raises subcount.InputError for a file that cannot be read or is not a valid mesh file,
+/// subcount.ResourceError for one too large for the memory available.
+///
+/// >>> m = subcount.read_mesh("pawn.obj")  # doctest: +SKIP
+#[pyfunction]
+fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
+    let read = py.detach(|| {
+        guarded(|| {
+            let source = MeshSource::File(path);
+            let loaded = driver::load(&source, &OptionFlags::default())?;
+            Ok(Mesh {
+                poly: loaded.poly,
+                label: source.label(),
+                f32: false,
+            })
+        })
+    });
+    read.map_err(|f| f.into_pyerr(py))
+}
+
+/// Writes a mesh as OBJ, or as binary PLY for a name ending in .ply, replacing the file
+/// atomically (a temporary file renamed over it once complete). `mesh` is a path, a
+/// subcount.Mesh or (positions, faces).
+///
+/// OBJ keeps texture coordinates, vertex colors, materials and groups; PLY keeps texture
+/// coordinates and colors (as bytes), and a subcount.Warning says what it leaves out. Other mesh formats' names (.stl, .off, .usd, ...) raise
+/// subcount.UsageError.
+#[pyfunction]
+fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<()> {
+    let mut notes = Vec::new();
+    let written = guarded(|| {
+        if let Some(ext) = driver::output::unwritten_mesh_format(&path) {
+            return Err(Failure::Usage(format!(
+                "{}: write_mesh does not write {ext} files; it writes OBJ and PLY (name the file .obj or .ply)",
+                halfedge::io::escape_controls(&path.display().to_string())
+            )));
+        }
+        let source = MeshArg::extract(py, mesh)?;
+        py.detach(|| {
+            guarded(|| {
+                let flags = OptionFlags::default();
+                let loaded = match source {
+                    MeshArg::Path(file) => driver::load(&MeshSource::File(file), &flags)?,
+                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, &flags)?,
+                };
+                // What the output leaves out (PLY: materials and groups), as `-o` says it.
+                loaded.carry_notes(Some(&path), &mut |n| notes.push(n));
+                let poly = &loaded.poly;
+                let options = ObjWriteOptions::default().with_uvs(poly.uvs().is_some());
+                driver::output::write_polygon_mesh_file(poly, &path, &options)?;
+                Ok(())
+            })
+        })
+    });
+    warn_notes(py, &notes)?;
+    written.map_err(|f| f.into_pyerr(py))
+}
+
+/// Subdivides a mesh as `subcount subdivide` does and returns the last level (positions
+/// equal to `subcount subdivide -o` to the bit).
+///
+/// mesh: a path, a subcount.Mesh, or (positions, faces) with faces an (F, k) integer array
+/// or a tuple (face_vertex_counts, face_vertex_indices). The options are the command line's
+/// flags: scheme (a built-in name: loop, catmull-clark, sqrt3, ...), levels (0 to 64),
+/// boundary ("edge", "edge-and-corner", "none"), crease_method ("uniform", "chaikin"),
+/// triangle_rule ("catmark", "smooth"), uv_interpolation ("none", "corners-only",
+/// "corners-plus1", "corners-plus2", "boundaries", "all"), ignore_tags, precision ("f64" or
+/// "f32": float32 arrays), threads (0: every core), no_uv, allow_large (lift the memory
+/// guard). The GIL is released while it works.
+///
+/// Notes (tags not read, options a rule does not apply) are warned as subcount.Warning.
+/// Raises subcount.UsageError for a request that is wrong, subcount.InputError for a mesh
+/// the scheme does not apply to or bad arrays, subcount.ResourceError when the result would
+/// not fit the memory available (unless allow_large), TypeError for arguments of the wrong
+/// type.
+///
+/// >>> out = subcount.subdivide(m, scheme="catmull-clark", levels=2)  # doctest: +SKIP
+#[pyfunction]
+#[pyo3(signature = (
+    mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
+    uv_interpolation=None, ignore_tags=false, precision="f64", threads=0, no_uv=false,
+    allow_large=false
+))]
+#[allow(clippy::too_many_arguments)]
+fn subdivide(
+    py: Python<'_>,
+    mesh: &Bound<'_, PyAny>,
+    scheme: String,
+    levels: &Bound<'_, PyAny>,
+    boundary: Option<&str>,
+    crease_method: Option<&str>,
+    triangle_rule: Option<&str>,
+    uv_interpolation: Option<&str>,
+    ignore_tags: bool,
+    precision: &str,
+    threads: i64,
+    no_uv: bool,
+    allow_large: bool,
+) -> PyResult<Mesh> {
+    let mut notes = Vec::new();
+    let result = guarded(|| {
+        let levels = whole_number(levels, "levels")?;
+        if levels < 0 {
+            return Err(Failure::Usage(format!(
+                "invalid levels: `{levels}` is negative"
+            )));
+        }
+        if levels > MAX_LEVELS {
+            return Err(Failure::Resource(format!(
+                "levels={levels}: real subdivision stops at level {MAX_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
+            )));
+        }
+        if !(0..=MAX_THREADS).contains(&threads) {
+            return Err(Failure::Usage(format!(
+                "invalid threads: `{threads}`: at most {MAX_THREADS} threads (0 uses every core)"
+            )));
+        }
+        let flags = OptionFlags::new(
+            named::<BoundaryInterpolation>(boundary, "boundary")?,
+            named::<CreaseMethod>(crease_method, "crease_method")?,
+            named::<TriangleRule>(triangle_rule, "triangle_rule")?,
+            ignore_tags,
+        );
+        let uv_interpolation =
+            named::<FaceVaryingInterpolation>(uv_interpolation, "uv_interpolation")?;
+        if no_uv && uv_interpolation.is_some() {
+            return Err(Failure::Usage(
+                "uv_interpolation and no_uv do not go together: no_uv refines no UVs".into(),
+            ));
+        }
+        let mut job = SubdivideJob::new(levels as u32);
+        job.threads = threads as usize;
+        job.allow_large = allow_large;
+        job.precision = match precision {
+            "f64" => Precision::F64,
+            "f32" => Precision::F32,
+            other => {
+                return Err(Failure::Usage(format!(
+                    "invalid precision `{other}`: expected \"f64\" or \"f32\""
+                )))
+            }
+        };
+        job.uvs = !no_uv;
+        job.uv_interpolation = uv_interpolation;
+        let source = MeshArg::extract(py, mesh)?;
+        let choice = SchemeChoice::Builtin(scheme);
+        let f32 = job.precision == Precision::F32;
+        py.detach(|| {
+            guarded(|| {
+                let loaded = match source {
+                    MeshArg::Path(path) => driver::load(&MeshSource::File(path), &flags)?,
+                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, &flags)?,
+                };
+                let mut note = |n: String| notes.push(n);
+                let prepared = driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
+                let level = prepared.run(&|_| {}, &mut note)?;
+                Ok(Mesh {
+                    poly: level.into_polygon_mesh()?,
+                    label: ARRAYS_LABEL.to_owned(),
+                    f32,
+                })
+            })
+        })
+    });
+    // Notes come first, as the command line prints them before an error.
+    warn_notes(py, &notes)?;
+    result.map_err(|f| f.into_pyerr(py))
+}
+
+/// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64
+/// bits saturates (and is refused as out of range).
+fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
+    let is_bool = obj.is_instance_of::<pyo3::types::PyBool>();
+    if is_bool || !obj.is_instance_of::<PyInt>() {
+        let type_name = obj.get_type().name()?.to_string();
+        return Err(Failure::Type(format!(
+            "{name} must be an int, not {type_name}"
+        )));
+    }
+    match obj.extract::<i64>() {
+        Ok(n) => Ok(n),
+        Err(_) => Ok(if obj.lt(0)? { i64::MIN } else { i64::MAX }),
+    }
+}
+
+/// An option by its command-line name (`FromStr` of `halfedge::tags`' enums): the names it
+/// accepts in the message otherwise.
+fn named<T>(value: Option<&str>, name: &str) -> Result<Option<T>>
+where
+    T: std::str::FromStr,
+    T::Err: std::fmt::Display,
+{
+    value
+        .map(|v| {
+            v.parse::<T>()
+                .map_err(|e| Failure::Usage(format!("invalid {name}: {e}")))
+        })
+        .transpose()
+}
+
+/// Exact subdivision counts and OpenSubdiv-grade subdivision (the Rust core of `subcount`).
+#[pymodule]
+fn _subcount(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<Mesh>()?;
+    m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(write_mesh, m)?)?;
+    m.add_function(wrap_pyfunction!(subdivide, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,601 @@
+//! `subcount.Mesh`: a face list ([`PolygonMesh`]) with numpy arrays in and out, and the
+//! checks of arrays a user hands over (dtype, shape, finite values, indices in range).
+
+use halfedge::glam::{DVec2, DVec3};
+use halfedge::groups::Statement;
+use halfedge::uv::Uvs;
+use halfedge::PolygonMesh;
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyString, PyTuple};
+
+use crate::errors::{guarded, Failure, Result};
+
+/// How messages name a mesh built from arrays (a file's mesh is named by its path).
+pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
+
+/// A polygon mesh: vertex positions and faces (a face list, 0-based), with the texture
+/// coordinates, vertex colors, materials and groups of its file.
+///
+/// Mesh(positions, face_vertex_counts, face_vertex_indices, *, uvs=None, uv_indices=None,
+/// colors=None)
+///
+/// positions: (N, 3) numbers; face_vertex_counts: (F,) integers, each at least 3;
+/// face_vertex_indices: one vertex index per corner, face after face; uvs: (K, 2) numbers and
+/// uv_indices one index into uvs per corner (both or neither); colors: (N, 3) numbers.
+/// A non-numeric dtype (or floats where indices go) raises TypeError; a wrong shape, a
+/// non-finite value, a negative or out-of-range index, a face of fewer than 3 corners or an
+/// empty mesh raises subcount.InputError naming the array and the index.
+///
+/// The array properties are read-only copies: positions (N, 3) float64 (float32 for a result
+/// of subdivide(..., precision="f32"), as uvs and colors then), face_vertex_counts and
+/// face_vertex_indices int32, uvs (K, 2) and uv_indices int32 or None, colors (N, 3) or None;
+/// materials and groups: a str or None per face, or None when the mesh has none; mtllib: the
+/// material files the OBJ file names.
+#[pyclass(module = "subcount", frozen)]
+#[derive(Debug)]
+pub(crate) struct Mesh {
+    /// The face list and what it carries.
+    pub(crate) poly: PolygonMesh,
+    /// How messages name it: its file's path, or [`ARRAYS_LABEL`].
+    pub(crate) label: String,
+    /// The values were computed in `f32` (widened exactly): the arrays are float32.
+    pub(crate) f32: bool,
+}
+
+#[pymethods]
+impl Mesh {
+    #[new]
+    #[pyo3(signature = (positions, face_vertex_counts, face_vertex_indices, *, uvs=None, uv_indices=None, colors=None))]
+    fn new(
+        py: Python<'_>,
+        positions: &Bound<'_, PyAny>,
+        face_vertex_counts: &Bound<'_, PyAny>,
+        face_vertex_indices: &Bound<'_, PyAny>,
+        uvs: Option<&Bound<'_, PyAny>>,
+        uv_indices: Option<&Bound<'_, PyAny>>,
+        colors: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Mesh> {
+        let built = guarded(|| {
+            let arrays = Arrays {
+                positions,
+                faces: Faces::Pair(face_vertex_counts, face_vertex_indices),
+                uvs: match (uvs, uv_indices) {
+                    (Some(u), Some(i)) => Some((u, i)),
+                    (None, None) => None,
+                    _ => {
+                        return Err(Failure::Usage(
+                            "uvs and uv_indices go together: give both or neither".into(),
+                        ))
+                    }
+                },
+                colors,
+            };
+            arrays.polygon_mesh(py)
+        });
+        let poly = built.map_err(|f| f.into_pyerr(py))?;
+        Ok(Mesh::from_arrays(poly))
+    }
+
+    /// Vertex positions, (N, 3) float64 (float32 for an f32 result).
+    #[getter]
+    fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let flat = self.poly.positions.iter().flat_map(|p| p.to_array());
+        self.floats(py, flat, 3)
+    }
+
+    /// The number of corners of each face, (F,) int32.
+    #[getter]
+    fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let counts = self.poly.face_offsets().windows(2).map(|w| w[1] - w[0]);
+        int32s(py, counts.map(|c| c as u64), "a face's corners")
+    }
+
+    /// The vertex of each corner, face after face, int32.
+    #[getter]
+    fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let indices = self.poly.face_indices().iter().map(|&v| u64::from(v));
+        int32s(py, indices, "a vertex index")
+    }
+
+    /// Texture coordinates, (K, 2), or None.
+    #[getter]
+    fn uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(uvs) = self.poly.uvs() else {
+            return Ok(None);
+        };
+        let flat = uvs.coords().iter().flat_map(|v| v.to_array());
+        self.floats(py, flat, 2).map(Some)
+    }
+
+    /// The texture coordinate of each corner (an index into uvs), int32, or None.
+    #[getter]
+    fn uv_indices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(uvs) = self.poly.uvs() else {
+            return Ok(None);
+        };
+        let corners = uvs.corners().iter().map(|&i| u64::from(i));
+        int32s(py, corners, "a texture-coordinate index").map(Some)
+    }
+
+    /// Vertex colors, (N, 3), or None.
+    #[getter]
+    fn colors<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(colors) = self.poly.colors() else {
+            return Ok(None);
+        };
+        self.floats(py, colors.iter().flatten().copied(), 3)
+            .map(Some)
+    }
+
+    /// Each face's material (`usemtl`), a str or None, or None when the mesh has none.
+    #[getter]
+    fn materials(&self) -> Option<Vec<Option<String>>> {
+        self.per_face(Statement::Material)
+    }
+
+    /// Each face's groups (`g`, the names as written), a str or None, or None when the mesh
+    /// has none.
+    #[getter]
+    fn groups(&self) -> Option<Vec<Option<String>>> {
+        self.per_face(Statement::Group)
+    }
+
+    /// The material files the OBJ file names (`mtllib`), in file order.
+    #[getter]
+    fn mtllib(&self) -> Vec<String> {
+        let lines = self.poly.groups().map_or(&[][..], |g| g.mtllib());
+        let names = lines.iter().flat_map(|line| {
+            let rest = line.trim_start().strip_prefix("mtllib").unwrap_or(line);
+            rest.split_whitespace().map(str::to_owned)
+        });
+        names.collect()
+    }
+
+    /// The number of vertices.
+    #[getter]
+    fn n_vertices(&self) -> usize {
+        self.poly.n_vertices()
+    }
+
+    /// The number of faces.
+    #[getter]
+    fn n_faces(&self) -> usize {
+        self.poly.n_faces()
+    }
+
+    fn __repr__(&self) -> String {
+        let mut extras = Vec::new();
+        if let Some(uvs) = self.poly.uvs() {
+            extras.push(format!(", {} uvs", uvs.coords().len()));
+        }
+        if self.poly.colors().is_some() {
+            extras.push(", colors".to_owned());
+        }
+        if self.poly.groups().is_some() {
+            extras.push(", groups".to_owned());
+        }
+        format!(
+            "subcount.Mesh({} vertices, {} faces{})",
+            self.poly.n_vertices(),
+            self.poly.n_faces(),
+            extras.concat()
+        )
+    }
+}
+
+impl Mesh {
+    /// A mesh built from arrays.
+    pub(crate) fn from_arrays(poly: PolygonMesh) -> Mesh {
+        Mesh {
+            poly,
+            label: ARRAYS_LABEL.to_owned(),
+            f32: false,
+        }
+    }
+
+    /// `(rows, width)` values as a read-only float64 (float32 for an f32 result) array.
+    fn floats<'py>(
+        &self,
+        py: Python<'py>,
+        values: impl Iterator<Item = f64>,
+        width: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let array = if self.f32 {
+            // Widened from f32: narrowing back is exact.
+            let v: Vec<f32> = values.map(|x| x as f32).collect();
+            let rows = v.len() / width;
+            PyArray1::from_vec(py, v).reshape([rows, width])?.into_any()
+        } else {
+            let v: Vec<f64> = values.collect();
+            let rows = v.len() / width;
+            PyArray1::from_vec(py, v).reshape([rows, width])?.into_any()
+        };
+        read_only(array)
+    }
+
+    /// The value of `statement` per face, or `None` without groups.
+    fn per_face(&self, statement: Statement) -> Option<Vec<Option<String>>> {
+        let groups = self.poly.groups()?;
+        let values =
+            (0..self.poly.n_faces()).map(|f| groups.value(f, statement).map(str::to_owned));
+        Some(values.collect())
+    }
+}
+
+/// Values as a read-only int32 array; `what` names them when one does not fit.
+fn int32s<'py>(
+    py: Python<'py>,
+    values: impl Iterator<Item = u64>,
+    what: &str,
+) -> PyResult<Bound<'py, PyAny>> {
+    let v: std::result::Result<Vec<i32>, u64> =
+        values.map(|x| i32::try_from(x).map_err(|_| x)).collect();
+    let v = v.map_err(|x| {
+        Failure::Resource(format!(
+            "{what} {x} does not fit the int32 arrays of subcount.Mesh"
+        ))
+        .into_pyerr(py)
+    })?;
+    read_only(PyArray1::from_vec(py, v).into_any())
+}
+
+/// Marks an array read-only (`setflags(write=False)`): the mesh's arrays are copies, and
+/// writing into one would change nothing.
+fn read_only(array: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
+    let kwargs = PyDict::new(array.py());
+    kwargs.set_item("write", false)?;
+    array.call_method("setflags", (), Some(&kwargs))?;
+    Ok(array)
+}
+
+/// The faces a user gives: counts and corners, or an `(F, k)` array.
+pub(crate) enum Faces<'a, 'py> {
+    /// `face_vertex_counts`, `face_vertex_indices`.
+    Pair(&'a Bound<'py, PyAny>, &'a Bound<'py, PyAny>),
+    /// `faces`, `(F, k)`.
+    Rectangular(&'a Bound<'py, PyAny>),
+}
+
+/// The arrays of a mesh a user gives.
+pub(crate) struct Arrays<'a, 'py> {
+    pub(crate) positions: &'a Bound<'py, PyAny>,
+    pub(crate) faces: Faces<'a, 'py>,
+    pub(crate) uvs: Option<(&'a Bound<'py, PyAny>, &'a Bound<'py, PyAny>)>,
+    pub(crate) colors: Option<&'a Bound<'py, PyAny>>,
+}
+
+impl Arrays<'_, '_> {
+    /// The checked face list.
+    pub(crate) fn polygon_mesh(&self, py: Python<'_>) -> Result<PolygonMesh> {
+        let positions = float_rows::<3>(py, self.positions, "positions")?;
+        let n = positions.len();
+        if n == 0 {
+            return Err(Failure::Input(
+                "positions is empty: a mesh needs vertices".into(),
+            ));
+        }
+        let (counts, corners, faces_name): (Vec<usize>, Vec<u32>, &str) = match &self.faces {
+            Faces::Pair(counts, indices) => {
+                let counts = face_counts(py, counts)?;
+                let indices = integers(py, indices, "face_vertex_indices", 1)?;
+                let total: usize = counts.iter().sum();
+                if total != indices.values.len() {
+                    return Err(Failure::Input(format!(
+                        "face_vertex_counts add up to {total} corners, but face_vertex_indices has {}",
+                        indices.values.len()
+                    )));
+                }
+                let corners =
+                    vertex_indices(&indices.values, n, &|i| format!("face_vertex_indices[{i}]"))?;
+                (counts, corners, "face_vertex_counts")
+            }
+            Faces::Rectangular(faces) => {
+                let faces = integers(py, faces, "faces", 2)?;
+                let k = faces.shape[1];
+                if k < 3 {
+                    return Err(Failure::Input(format!(
+                        "faces has shape ({}, {k}): a face has at least 3 corners",
+                        faces.shape[0]
+                    )));
+                }
+                let corners = vertex_indices(&faces.values, n, &|i| {
+                    format!("faces[{}, {}]", i / k, i % k)
+                })?;
+                (vec![k; faces.shape[0]], corners, "faces")
+            }
+        };
+        if counts.is_empty() {
+            return Err(Failure::Input(format!(
+                "{faces_name} is empty: a mesh needs faces"
+            )));
+        }
+        let mut mesh =
+            PolygonMesh::with_positions(positions.into_iter().map(DVec3::from_array).collect());
+        mesh.reserve_faces(counts.len(), corners.len());
+        let mut start = 0;
+        for c in counts {
+            mesh.push_face(&corners[start..start + c]);
+            start += c;
+        }
+        if let Some((uvs, uv_indices)) = self.uvs {
+            let values = float_rows::<2>(py, uvs, "uvs")?;
+            let k = values.len();
+            let indices = integers(py, uv_indices, "uv_indices", 1)?;
+            if indices.values.len() != mesh.n_corners() {
+                return Err(Failure::Input(format!(
+                    "uv_indices has {} entries for {} corners: one per corner",
+                    indices.values.len(),
+                    mesh.n_corners()
+                )));
+            }
+            let corners = indices_below(&indices.values, k, "uvs", "texture coordinates", &|i| {
+                format!("uv_indices[{i}]")
+            })?;
+            let coords = values.into_iter().map(DVec2::from_array).collect();
+            let uvs = Uvs::new(coords, corners).map_err(|e| Failure::Input(e.to_string()))?;
+            mesh.set_uvs(Some(uvs))
+                .map_err(|e| Failure::Input(e.to_string()))?;
+        }
+        if let Some(colors) = self.colors {
+            let colors = float_rows::<3>(py, colors, "colors")?;
+            if colors.len() != n {
+                return Err(Failure::Input(format!(
+                    "colors has {} rows for {n} vertices: one per vertex",
+                    colors.len()
+                )));
+            }
+            mesh.set_colors(Some(colors))
+                .map_err(|e| Failure::Input(e.to_string()))?;
+        }
+        Ok(mesh)
+    }
+}
+
+/// `numpy.asarray(obj)`, refusing a dtype whose kind is not in `kinds` (TypeError) and a
+/// ragged sequence (InputError).
+fn as_array<'py>(
+    py: Python<'py>,
+    obj: &Bound<'py, PyAny>,
+    name: &str,
+    kinds: &str,
+    expected: &str,
+) -> Result<Bound<'py, PyAny>> {
+    let numpy = PyModule::import(py, "numpy")?;
+    let array = numpy.call_method1("asarray", (obj,)).map_err(|e| {
+        if e.is_instance_of::<pyo3::exceptions::PyValueError>(py) {
+            Failure::Input(format!(
+                "{name} is not a rectangular array: {}",
+                e.value(py)
+            ))
+        } else {
+            Failure::Python(e)
+        }
+    })?;
+    let dtype = array.getattr("dtype")?;
+    let kind: String = dtype.getattr("kind")?.extract()?;
+    if kind.len() != 1 || !kinds.contains(kind.as_str()) {
+        let dtype_name = dtype.str()?.to_string();
+        return Err(Failure::Type(format!(
+            "{name} must hold {expected}, not {dtype_name}"
+        )));
+    }
+    Ok(array)
+}
+
+/// An `(N, W)` array of finite numbers.
+fn float_rows<const W: usize>(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+) -> Result<Vec<[f64; W]>> {
+    let array = as_array(py, obj, name, "fiu", "numbers")?;
+    let numpy = PyModule::import(py, "numpy")?;
+    let array = numpy.call_method1("ascontiguousarray", (array, "float64"))?;
+    let array: PyReadonlyArrayDyn<'_, f64> = array.extract()?;
+    let shape = array.shape();
+    if shape.len() != 2 || shape[1] != W {
+        return Err(Failure::Input(format!(
+            "{name} has shape {}: expected (N, {W})",
+            shape_text(shape)
+        )));
+    }
+    let values = array
+        .as_slice()
+        .map_err(|e| Failure::Bug(format!("{name}: {e}")))?;
+    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+        return Err(Failure::Input(format!(
+            "{name}[{}, {}] is {}: values must be finite",
+            i / W,
+            i % W,
+            python_float(values[i])
+        )));
+    }
+    let rows = values.chunks_exact(W).map(|r| {
+        let mut row = [0.0; W];
+        row.copy_from_slice(r);
+        row
+    });
+    Ok(rows.collect())
+}
+
+/// A float as Python writes a non-finite one: `nan`, `inf`, `-inf`.
+fn python_float(x: f64) -> String {
+    if x.is_nan() {
+        "nan".to_owned()
+    } else {
+        x.to_string()
+    }
+}
+
+/// An integer array, flattened, with its shape.
+struct Integers {
+    values: Vec<i128>,
+    shape: Vec<usize>,
+}
+
+/// An integer array of `ndim` dimensions (signed or unsigned, any width).
+fn integers(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str, ndim: usize) -> Result<Integers> {
+    let array = as_array(py, obj, name, "iu", "integers")?;
+    let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+    let numpy = PyModule::import(py, "numpy")?;
+    let shape: Vec<usize> = array.getattr("shape")?.extract()?;
+    if shape.len() != ndim {
+        let expected = if ndim == 1 { "(n,)" } else { "(F, k)" };
+        return Err(Failure::Input(format!(
+            "{name} has shape {}: expected {expected}",
+            shape_text(&shape)
+        )));
+    }
+    let values = if kind == "u" {
+        widened::<u64>(&numpy, &array, "uint64", name)?
+    } else {
+        widened::<i64>(&numpy, &array, "int64", name)?
+    };
+    Ok(Integers { values, shape })
+}
+
+/// The integers of `array` as `dtype` (`T`), contiguous, widened to `i128` (so that unsigned
+/// and signed values compare with the bounds alike).
+fn widened<T: numpy::Element + Copy + Into<i128>>(
+    numpy: &Bound<'_, PyModule>,
+    array: &Bound<'_, PyAny>,
+    dtype: &str,
+    name: &str,
+) -> Result<Vec<i128>> {
+    let array = numpy.call_method1("ascontiguousarray", (array, dtype))?;
+    let array: PyReadonlyArrayDyn<'_, T> = array.extract()?;
+    let slice = array
+        .as_slice()
+        .map_err(|e| Failure::Bug(format!("{name}: {e}")))?;
+    Ok(slice.iter().map(|&x| x.into()).collect())
+}
+
+/// The face sizes: each at least 3.
+fn face_counts(py: Python<'_>, obj: &Bound<'_, PyAny>) -> Result<Vec<usize>> {
+    let counts = integers(py, obj, "face_vertex_counts", 1)?;
+    let mut out = Vec::with_capacity(counts.values.len());
+    for (i, &c) in counts.values.iter().enumerate() {
+        if c < 0 {
+            return Err(Failure::Input(format!(
+                "face_vertex_counts[{i}] = {c} is negative"
+            )));
+        }
+        if c < 3 {
+            return Err(Failure::Input(format!(
+                "face_vertex_counts[{i}] = {c}: a face has at least 3 corners"
+            )));
+        }
+        let c = usize::try_from(c)
+            .map_err(|_| Failure::Input(format!("face_vertex_counts[{i}] = {c} is too large")))?;
+        out.push(c);
+    }
+    Ok(out)
+}
+
+/// Vertex indices, each below the `n` vertices.
+fn vertex_indices(values: &[i128], n: usize, place: &dyn Fn(usize) -> String) -> Result<Vec<u32>> {
+    indices_below(values, n, "positions", "vertices", place)
+}
+
+/// Indices each from 0 to below `n` (the rows of `array`, `what`); `place` names entry `i`.
+fn indices_below(
+    values: &[i128],
+    n: usize,
+    array: &str,
+    what: &str,
+    place: &dyn Fn(usize) -> String,
+) -> Result<Vec<u32>> {
+    let mut out = Vec::with_capacity(values.len());
+    for (i, &v) in values.iter().enumerate() {
+        if v < 0 {
+            return Err(Failure::Input(format!("{} = {v} is negative", place(i))));
+        }
+        match u32::try_from(v) {
+            Ok(x) if (x as usize) < n => out.push(x),
+            _ => {
+                return Err(Failure::Input(format!(
+                    "{} = {v} is out of range: {array} has {n} {what}",
+                    place(i)
+                )))
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// A shape as Python writes it: `(3,)`, `(4, 2)`.
+fn shape_text(shape: &[usize]) -> String {
+    match shape {
+        [one] => format!("({one},)"),
+        _ => {
+            let parts: Vec<String> = shape.iter().map(ToString::to_string).collect();
+            format!("({})", parts.join(", "))
+        }
+    }
+}
+
+/// The mesh argument of `subdivide` and `write_mesh`: a path, a `subcount.Mesh`, or
+/// `(positions, faces)`.
+pub(crate) enum MeshArg {
+    /// A file, read by the driver (`driver::load`).
+    Path(std::path::PathBuf),
+    /// A face list in memory, and how messages name it.
+    Poly(Box<PolygonMesh>, String),
+}
+
+impl MeshArg {
+    /// Reads the argument (a mesh's face list is copied: the `Mesh` stays as it is).
+    pub(crate) fn extract(py: Python<'_>, obj: &Bound<'_, PyAny>) -> Result<MeshArg> {
+        if let Ok(mesh) = obj.cast::<Mesh>() {
+            let mesh = mesh.get();
+            return Ok(MeshArg::Poly(
+                Box::new(mesh.poly.clone()),
+                mesh.label.clone(),
+            ));
+        }
+        if obj.is_instance_of::<PyString>() || is_path_like(py, obj)? {
+            let path: std::path::PathBuf = obj.extract()?;
+            return Ok(MeshArg::Path(path));
+        }
+        if let Ok(tuple) = obj.cast::<PyTuple>() {
+            if tuple.len() == 2 {
+                let positions = tuple.get_item(0)?;
+                let faces = tuple.get_item(1)?;
+                let pair = faces.cast::<PyTuple>().ok().filter(|t| t.len() == 2);
+                let poly = match pair {
+                    Some(pair) => {
+                        let (counts, indices) = (pair.get_item(0)?, pair.get_item(1)?);
+                        let arrays = Arrays {
+                            positions: &positions,
+                            faces: Faces::Pair(&counts, &indices),
+                            uvs: None,
+                            colors: None,
+                        };
+                        arrays.polygon_mesh(py)?
+                    }
+                    None => {
+                        let arrays = Arrays {
+                            positions: &positions,
+                            faces: Faces::Rectangular(&faces),
+                            uvs: None,
+                            colors: None,
+                        };
+                        arrays.polygon_mesh(py)?
+                    }
+                };
+                return Ok(MeshArg::Poly(Box::new(poly), ARRAYS_LABEL.to_owned()));
+            }
+        }
+        let type_name = obj.get_type().name()?.to_string();
+        Err(Failure::Type(format!(
+            "mesh must be a path, a subcount.Mesh or (positions, faces), not {type_name}"
+        )))
+    }
+}
+
+/// Whether `obj` is an `os.PathLike`.
+fn is_path_like(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<bool> {
+    let path_like = PyModule::import(py, "os")?.getattr("PathLike")?;
+    obj.is_instance(&path_like)
+}

@@ -1,0 +1,367 @@
+"""The mesh side of the Python package: read/write, subdivide against the CLI, errors, notes.
+
+The CLI binary is $SUBCOUNT_BIN (default: /work/main/target/debug/subcount, built by
+`cargo build -p subcount`); every input is generated here, in tmp_path.
+"""
+
+import os
+import subprocess
+import threading
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import subcount
+
+SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN", "/work/main/target/debug/subcount")
+
+# An octahedron (closed triangles), a cube (closed quads), an open 3x2 triangle grid with a
+# crease-free boundary, and a mixed triangle/quad mesh (a house: a cube with a roof).
+OCTAHEDRON = (
+    [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]],
+    [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]],
+)
+CUBE = (
+    [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]],
+    [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]],
+)
+
+
+def grid(w=3, h=2):
+    """An open triangle grid of w x h squares, slightly bent so no coordinate is trivial."""
+    positions = [[x * 0.7, y * 1.3, 0.1 * x * y + 0.05 * x * x] for y in range(h + 1) for x in range(w + 1)]
+    faces = []
+    for y in range(h):
+        for x in range(w):
+            a = y * (w + 1) + x
+            b, c, d = a + 1, a + w + 2, a + w + 1
+            faces += [[a, b, c], [a, c, d]]
+    return positions, faces
+
+
+def obj_text(positions, faces, extra_faces_text=None):
+    lines = ["v " + " ".join(repr(float(c)) for c in p) for p in positions]
+    lines += ["f " + " ".join(str(i + 1) for i in f) for f in faces]
+    return "\n".join(lines) + "\n"
+
+
+def write_obj(path, positions, faces):
+    Path(path).write_text(obj_text(positions, faces))
+    return path
+
+
+def cli(*args):
+    if not Path(SUBCOUNT_BIN).exists():
+        pytest.skip(f"no CLI binary at {SUBCOUNT_BIN}: run `cargo build -p subcount` (or set SUBCOUNT_BIN)")
+    return subprocess.run([SUBCOUNT_BIN, *map(str, args)], capture_output=True, text=True)
+
+
+def cli_subdivide(mesh_path, out_path, *flags):
+    run = cli("subdivide", "--mesh", mesh_path, *flags, "-o", out_path)
+    assert run.returncode == 0, run.stderr
+    return subcount.read_mesh(out_path)
+
+
+def same_bits(a, b):
+    a, b = np.asarray(a), np.asarray(b)
+    assert a.shape == b.shape and a.dtype == b.dtype, (a.shape, b.shape, a.dtype, b.dtype)
+    return np.array_equal(a.view(np.uint8), b.view(np.uint8))
+
+
+def assert_same_mesh(ours, theirs):
+    assert same_bits(ours.positions, theirs.positions)
+    assert np.array_equal(ours.face_vertex_counts, theirs.face_vertex_counts)
+    assert np.array_equal(ours.face_vertex_indices, theirs.face_vertex_indices)
+
+
+# --- read and write --------------------------------------------------------------------
+
+
+GROUPED_OBJ = """\
+mtllib house.mtl
+v 0 0 0 1 0 0
+v 1 0 0 0 1 0
+v 1 1 0 0 0 1
+v 0 1 0 0.25 0.5 0.75
+v 0.5 0.5 1 1 1 1
+o house
+g walls
+usemtl red
+f 1 2 5
+f 2 3 5
+usemtl blue
+f 3 4 5
+g roof
+f 4 1 5
+f 1 4 3 2
+"""
+
+
+def test_read_mesh_arrays_groups_and_colors(tmp_path):
+    path = tmp_path / "house.obj"
+    path.write_text(GROUPED_OBJ)
+    m = subcount.read_mesh(path)
+    assert m.positions.shape == (5, 3) and m.positions.dtype == np.float64
+    assert m.face_vertex_counts.dtype == np.int32 and m.face_vertex_indices.dtype == np.int32
+    assert m.face_vertex_counts.tolist() == [3, 3, 3, 3, 4]
+    assert m.face_vertex_indices.tolist() == [0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4, 0, 3, 2, 1]
+    assert m.colors.tolist()[3] == [0.25, 0.5, 0.75]
+    assert m.materials == ["red", "red", "blue", "blue", "blue"]
+    assert m.groups == ["walls", "walls", "walls", "roof", "roof"]
+    assert m.mtllib == ["house.mtl"]
+    assert m.uvs is None and m.uv_indices is None
+    assert (m.n_vertices, m.n_faces) == (5, 5)
+    # The arrays are read-only copies.
+    with pytest.raises(ValueError):
+        m.positions[0, 0] = 7.0
+
+
+@pytest.mark.parametrize("name", ["copy.obj", "copy.ply"])
+def test_write_mesh_round_trip(tmp_path, name):
+    path = tmp_path / "house.obj"
+    path.write_text(GROUPED_OBJ)
+    m = subcount.read_mesh(str(path))
+    out = tmp_path / name
+    if name.endswith(".ply"):
+        with pytest.warns(subcount.Warning, match="materials and groups are not written to PLY"):
+            subcount.write_mesh(m, out)
+    else:
+        subcount.write_mesh(m, str(out))
+    back = subcount.read_mesh(out)
+    assert_same_mesh(back, m)
+    if name.endswith(".ply"):  # colors as uchar, materials and groups not written
+        assert np.allclose(back.colors, np.round(m.colors * 255) / 255, rtol=0, atol=1e-15)
+        assert back.materials is None
+    else:
+        assert same_bits(back.colors, m.colors)
+        assert back.materials == m.materials and back.groups == m.groups
+        assert back.mtllib == m.mtllib
+
+
+def test_mesh_from_arrays_with_uvs_round_trips(tmp_path):
+    positions, faces = CUBE
+    counts = np.full(6, 4, dtype=np.int64)
+    indices = np.asarray(faces, dtype=np.uint32).ravel()
+    uvs = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=np.float32)
+    uv_indices = np.tile(np.arange(4), 6)
+    colors = np.linspace(0, 1, 24).reshape(8, 3)
+    m = subcount.Mesh(positions, counts, indices, uvs=uvs, uv_indices=uv_indices, colors=colors)
+    assert m.positions.dtype == np.float64 and m.face_vertex_counts.tolist() == [4] * 6
+    subcount.write_mesh(m, tmp_path / "cube.obj")
+    back = subcount.read_mesh(tmp_path / "cube.obj")
+    assert_same_mesh(back, m)
+    assert same_bits(back.uvs, m.uvs) and np.array_equal(back.uv_indices, m.uv_indices)
+    assert same_bits(back.colors, m.colors)
+    assert "8 vertices, 6 faces" in repr(m)
+
+
+# --- subdivide: the CLI's output to the bit --------------------------------------------
+
+
+CASES = [
+    ("loop", OCTAHEDRON),
+    ("loop", grid()),
+    ("catmull-clark", CUBE),
+    ("catmull-clark", grid()),
+    ("sqrt3", OCTAHEDRON),
+]
+
+
+@pytest.mark.parametrize("levels", [0, 1, 2])
+@pytest.mark.parametrize("scheme,shape", CASES, ids=[f"{s}-{i}" for i, (s, _) in enumerate(CASES)])
+def test_subdivide_equals_cli_to_the_bit(tmp_path, scheme, shape, levels):
+    positions, faces = shape
+    src = write_obj(tmp_path / "in.obj", positions, faces)
+    expected = cli_subdivide(src, tmp_path / "cli.obj", "--scheme", scheme, "--levels", levels)
+    # The three forms of the mesh argument: a path, a Mesh, arrays ((F, k) and the pair).
+    by_path = subcount.subdivide(src, scheme=scheme, levels=levels)
+    by_mesh = subcount.subdivide(subcount.read_mesh(src), scheme=scheme, levels=levels)
+    by_array = subcount.subdivide((np.asarray(positions, float), np.asarray(faces)), scheme=scheme, levels=levels)
+    counts = np.full(len(faces), len(faces[0]))
+    by_pair = subcount.subdivide(
+        (positions, (counts, np.ravel(faces))), scheme=scheme, levels=levels, threads=1
+    )
+    for ours in (by_path, by_mesh, by_array, by_pair):
+        assert_same_mesh(ours, expected)
+
+
+def test_subdivide_options_and_f32_equal_cli(tmp_path):
+    positions, faces = grid(4, 3)
+    src = write_obj(tmp_path / "in.obj", positions, faces)
+    flags = ["--scheme", "loop", "--levels", "2", "--boundary", "edge-and-corner", "--precision", "f32"]
+    # PLY holds f32 as written: comparable to the bit.
+    expected = cli_subdivide(src, tmp_path / "cli.ply", *flags)
+    ours = subcount.subdivide(src, scheme="loop", levels=2, boundary="edge-and-corner", precision="f32")
+    assert ours.positions.dtype == np.float32
+    assert same_bits(ours.positions, expected.positions.astype(np.float32))
+    assert np.array_equal(ours.face_vertex_indices, expected.face_vertex_indices)
+    # Results do not depend on threads.
+    one = subcount.subdivide(src, scheme="loop", levels=2, boundary="edge-and-corner", threads=1)
+    two = subcount.subdivide(src, scheme="loop", levels=2, boundary="edge-and-corner", threads=2)
+    assert_same_mesh(one, two)
+
+
+def test_subdivide_carries_groups_colors_and_uvs_as_the_cli(tmp_path):
+    src = tmp_path / "house.obj"
+    src.write_text(GROUPED_OBJ)
+    expected = cli_subdivide(src, tmp_path / "cli.obj", "--scheme", "catmull-clark", "--levels", "2")
+    ours = subcount.subdivide(src, scheme="catmull-clark", levels=2)
+    assert_same_mesh(ours, expected)
+    assert same_bits(ours.colors, expected.colors)
+    assert ours.materials == expected.materials and ours.groups == expected.groups
+    # UVs refined (a cube with a vt per corner).
+    positions, faces = CUBE
+    uvs = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], float)
+    m = subcount.Mesh(positions, [4] * 6, np.ravel(faces), uvs=uvs, uv_indices=np.tile(np.arange(4), 6))
+    subcount.write_mesh(m, tmp_path / "uv.obj")
+    expected = cli_subdivide(tmp_path / "uv.obj", tmp_path / "uv-cli.obj", "--scheme", "catmull-clark", "--levels", "2")
+    ours = subcount.subdivide(m, scheme="catmull-clark", levels=2)
+    assert_same_mesh(ours, expected)
+    assert same_bits(ours.uvs, expected.uvs) and np.array_equal(ours.uv_indices, expected.uv_indices)
+    assert subcount.subdivide(m, scheme="catmull-clark", levels=1, no_uv=True).uvs is None
+
+
+def test_the_gil_is_released_during_subdivide():
+    positions, faces = OCTAHEDRON
+    ticks = []
+    done = threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    try:
+        before = len(ticks)
+        # 8 M faces, a few tenths of a second: without the GIL released, the other thread
+        # could not run at all during the call.
+        out = subcount.subdivide((positions, faces), scheme="loop", levels=10, threads=1)
+        during = len(ticks) - before
+    finally:
+        done.set()
+        t.join()
+    assert out.n_faces == 8 * 4**10
+    assert during > 20, during
+
+
+# --- errors and notes -------------------------------------------------------------------
+
+
+def test_exception_hierarchy():
+    assert issubclass(subcount.UsageError, subcount.Error) and issubclass(subcount.UsageError, ValueError)
+    assert issubclass(subcount.InputError, subcount.Error) and issubclass(subcount.InputError, ValueError)
+    assert issubclass(subcount.ResourceError, subcount.Error)
+    assert issubclass(subcount.ResourceError, MemoryError)
+    assert issubclass(subcount.MismatchError, subcount.Error)
+    assert issubclass(subcount.Warning, UserWarning)
+    assert isinstance(subcount.__version__, str)
+
+
+def test_usage_errors(tmp_path):
+    src = write_obj(tmp_path / "in.obj", *OCTAHEDRON)
+    with pytest.raises(subcount.UsageError) as e:
+        subcount.subdivide(src, scheme="no-such-scheme", levels=1)
+    # The CLI's message, exit code 2.
+    run = cli("subdivide", "--mesh", src, "--scheme", "no-such-scheme", "--levels", "1")
+    assert run.returncode == 2 and run.stderr.strip() == f"error: {e.value}"
+    with pytest.raises(subcount.UsageError, match="negative"):
+        subcount.subdivide(src, scheme="loop", levels=-1)
+    with pytest.raises(subcount.UsageError, match="boundary"):
+        subcount.subdivide(src, scheme="loop", levels=1, boundary="sideways")
+    with pytest.raises(subcount.UsageError, match="precision"):
+        subcount.subdivide(src, scheme="loop", levels=1, precision="f16")
+    with pytest.raises(subcount.UsageError, match="threads"):
+        subcount.subdivide(src, scheme="loop", levels=1, threads=100000)
+    with pytest.raises(subcount.UsageError, match="triangle"):
+        subcount.subdivide(src, scheme="loop", levels=1, triangle_rule="smooth")
+    with pytest.raises(subcount.UsageError, match="stl"):
+        subcount.write_mesh(src, tmp_path / "out.stl")
+    with pytest.raises(TypeError):
+        subcount.subdivide(src, scheme="loop", levels=1.5)
+    with pytest.raises(TypeError):
+        subcount.subdivide(src, "loop", 1)  # options are keyword-only
+
+
+def test_input_errors(tmp_path):
+    positions, faces = OCTAHEDRON
+    bad = np.array(positions, float)
+    bad[4, 2] = np.nan
+    with pytest.raises(subcount.InputError, match=r"positions\[4, 2\] is nan"):
+        subcount.subdivide((bad, faces), scheme="loop", levels=1)
+    bad[4, 2] = np.inf
+    with pytest.raises(subcount.InputError, match=r"positions\[4, 2\] is inf"):
+        subcount.Mesh(bad, [3] * 8, np.ravel(faces))
+    out_of_range = np.array(faces)
+    out_of_range[3, 1] = 6
+    with pytest.raises(subcount.InputError, match=r"faces\[3, 1\] = 6 is out of range"):
+        subcount.subdivide((positions, out_of_range), scheme="loop", levels=1)
+    with pytest.raises(subcount.InputError, match=r"face_vertex_indices\[5\] = -2 is negative"):
+        subcount.Mesh(positions, [3] * 8, [0, 2, 4, 2, 1, -2] + list(np.ravel(faces)[6:]))
+    with pytest.raises(subcount.InputError, match=r"shape \(6, 2\)"):
+        subcount.Mesh(np.zeros((6, 2)), [3], [0, 1, 2])
+    with pytest.raises(subcount.InputError, match="empty"):
+        subcount.Mesh(np.zeros((0, 3)), [3], [0, 1, 2])
+    with pytest.raises(subcount.InputError, match="empty"):
+        subcount.subdivide((positions, np.zeros((0, 3), int)), scheme="loop", levels=1)
+    with pytest.raises(subcount.InputError, match=r"face_vertex_counts\[0\] = 2"):
+        subcount.Mesh(positions, [2], [0, 1])
+    with pytest.raises(subcount.InputError, match="add up to"):
+        subcount.Mesh(positions, [3, 3], [0, 1, 2])
+    with pytest.raises(TypeError, match="positions"):
+        subcount.Mesh([["a", "b", "c"]], [3], [0, 0, 0])
+    with pytest.raises(TypeError, match="face_vertex_indices"):
+        subcount.Mesh(positions, [3], [0.0, 1.0, 2.0])
+    # The driver's input errors: a scheme that does not apply, a file that is not a mesh.
+    src = write_obj(tmp_path / "quads.obj", *CUBE)
+    with pytest.raises(subcount.InputError) as e:
+        subcount.subdivide(src, scheme="loop", levels=1)
+    run = cli("subdivide", "--mesh", src, "--scheme", "loop", "--levels", "1")
+    assert run.returncode == 3 and run.stderr.strip() == f"error: {e.value}"
+    (tmp_path / "broken.obj").write_text("v 0 0 0\nf 1 2 3\n")
+    with pytest.raises(subcount.InputError):
+        subcount.read_mesh(tmp_path / "broken.obj")
+    with pytest.raises(subcount.InputError):
+        subcount.read_mesh(tmp_path / "missing.obj")
+
+
+def test_resource_errors(tmp_path):
+    src = write_obj(tmp_path / "in.obj", *OCTAHEDRON)
+    with pytest.raises(subcount.ResourceError) as e:
+        subcount.subdivide(src, scheme="loop", levels=30)
+    run = cli("subdivide", "--mesh", src, "--scheme", "loop", "--levels", "30")
+    assert run.returncode == 4 and run.stderr.strip() == f"error: {e.value}"
+    with pytest.raises(MemoryError):
+        subcount.subdivide(src, scheme="loop", levels=10**30)
+
+
+def test_notes_become_warnings(tmp_path):
+    src = tmp_path / "tagged.obj"
+    src.write_text(obj_text(*CUBE) + "t interpolateboundary 1/0/0 1\nt vertexedit 0/0/1 x\n")
+    with pytest.warns(subcount.Warning) as record:
+        subcount.subdivide(src, scheme="catmull-clark", levels=1, boundary="edge")
+    messages = [str(w.message) for w in record]
+    run = cli("subdivide", "--mesh", src, "--scheme", "catmull-clark", "--levels", "1", "--boundary", "edge")
+    assert run.returncode == 0
+    assert messages == run.stderr.strip().splitlines()
+    assert any("vertexedit" in m for m in messages) and any("overrides" in m for m in messages)
+    # A rule without crease rules says so; with ignore_tags, nothing is said.
+    with pytest.warns(subcount.Warning) as record:
+        subcount.subdivide(src, scheme="doo-sabin", levels=1, boundary="edge-and-corner")
+    assert any("not applied by doo-sabin" in str(w.message) for w in record)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        subcount.subdivide(src, scheme="catmull-clark", levels=1, ignore_tags=True)
+
+
+def test_a_warnings_filter_set_to_error_raises_the_note(tmp_path):
+    src = tmp_path / "tagged.obj"
+    src.write_text(obj_text(*CUBE) + "t vertexedit 0/0/1 x\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", subcount.Warning)
+        with pytest.raises(subcount.Warning, match="vertexedit"):
+            subcount.subdivide(src, scheme="catmull-clark", levels=1)
