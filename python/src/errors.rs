@@ -52,7 +52,7 @@ impl Failure {
     /// The Python exception: the class of `subcount._errors` for the failure's kind.
     pub(crate) fn into_pyerr(self, py: Python<'_>) -> PyErr {
         let (class, message) = match self {
-            Failure::Driver(e) => (class_of(e.kind()), one_line(&e) + advice(&e)),
+            Failure::Driver(e) => (class_of(e.kind()), one_line(&e) + e.advice()),
             Failure::Usage(m) => ("UsageError", m),
             Failure::Input(m) => ("InputError", m),
             Failure::Resource(m) => ("ResourceError", m),
@@ -64,22 +64,6 @@ impl Failure {
             Ok(class) => PyErr::from_type(class, message),
             Err(e) => e,
         }
-    }
-}
-
-/// The command line's advice after a driver error where an option helps (`subcount`'s
-/// `failure.rs`, in the command-line spelling the driver's messages use): how to lift the
-/// memory guard, how to drop crease input under a rule without creases.
-fn advice(e: &driver::Error) -> &'static str {
-    use halfedge::Error as E;
-    match e {
-        driver::Error::Geometry(E::OverMemoryLimit { .. }) => {
-            "; use fewer levels, or --allow-large to try anyway"
-        }
-        driver::Error::Geometry(E::CreasesNotSupported { .. }) => {
-            ": use a Loop or Catmull-Clark scheme, --ignore-tags (for the file's tags), or drop the option flags"
-        }
-        _ => "",
     }
 }
 

@@ -23,11 +23,11 @@ use crate::errors::{guarded, warn_notes, Failure, Result};
 use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
 
 /// The most threads `threads=` may ask for (the command line's `--threads` limit).
-const MAX_THREADS: i64 = 256;
+const MAX_THREADS: i64 = driver::limits::MAX_THREADS as i64;
 
 /// The last level real subdivision reaches (the command line's `--levels` limit: every rule
 /// at least doubles the faces per level, so no later level fits 32-bit indices).
-const MAX_LEVELS: i64 = 64;
+const MAX_LEVELS: i64 = driver::limits::MAX_REAL_LEVELS as i64;
 
 /// Reads a mesh file (OBJ, OFF or PLY) with its texture coordinates, vertex colors,
 /// materials, groups and OpenSubdiv tags, within the memory this process may use.

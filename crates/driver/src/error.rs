@@ -261,6 +261,30 @@ impl Error {
         }
     }
 
+    /// What a front end adds after the message where an option helps, in the command line's
+    /// spelling (every front end names its options as the flags): how to lift the memory
+    /// guard, how to drop crease input under a rule without creases; empty otherwise.
+    ///
+    /// ```
+    /// let e = driver::Error::from(halfedge::Error::CreasesNotSupported {
+    ///     rule: "sqrt3".into(),
+    ///     what: "creases and corners",
+    /// });
+    /// assert!(e.advice().contains("--ignore-tags"));
+    /// ```
+    pub fn advice(&self) -> &'static str {
+        use halfedge::Error as E;
+        match self {
+            Error::Geometry(E::OverMemoryLimit { .. }) => {
+                "; use fewer levels, or --allow-large to try anyway"
+            }
+            Error::Geometry(E::CreasesNotSupported { .. }) => {
+                ": use a Loop or Catmull-Clark scheme, --ignore-tags (for the file's tags), or drop the option flags"
+            }
+            _ => "",
+        }
+    }
+
     /// The geometry's error about a face of the input (a face-list subdivider's refusal)
     /// names the mesh and the face's line ([`Error::InMesh`]); any other stays as it is.
     pub(crate) fn located(e: halfedge::Error, mesh: &crate::LoadedMesh) -> Error {

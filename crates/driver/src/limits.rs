@@ -9,6 +9,12 @@ use schemes::{Counter, CLOSED_FORM_LIMIT};
 
 use crate::error::{Error, Result};
 
+/// The last level real subdivision builds: every rule at least doubles the faces per level,
+/// so no later level fits 32-bit indices.
+pub const MAX_REAL_LEVELS: u32 = 64;
+/// Most threads a front end may ask for (`--threads`, `threads=`; 0 uses every core).
+pub const MAX_THREADS: usize = 256;
+
 /// Most decimal digits a count may have without `--allow-large`.
 pub const MAX_DIGITS: f64 = 1e7;
 /// Most decimal digits a table (all rows and columns together) may hold.

@@ -23,7 +23,7 @@ macro_rules! named_parser {
 /// The most threads `--threads` may ask for. Each thread costs a stack and a start-up, and
 /// the geometry passes gain nothing past the number of cores: without a cap, `--threads
 /// 100000` spent minutes starting threads (or failed after 20 s).
-pub(crate) const MAX_THREADS: usize = 256;
+pub(crate) const MAX_THREADS: usize = driver::limits::MAX_THREADS;
 
 /// Parses `--threads`: a whole number from 0 (all cores) to [`MAX_THREADS`].
 fn parse_threads(text: &str) -> Result<usize, String> {

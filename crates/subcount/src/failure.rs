@@ -102,18 +102,11 @@ impl From<driver::Kind> for Kind {
 /// says how to lift it, crease input under a rule without creases how to drop it.
 impl From<driver::Error> for Failure {
     fn from(e: driver::Error) -> Failure {
-        use halfedge::Error as E;
         let kind = e.kind().into();
-        let advice = match &e {
-            driver::Error::Geometry(E::OverMemoryLimit { .. }) => {
-                "; use fewer levels, or --allow-large to try anyway"
-            }
-            driver::Error::Geometry(E::CreasesNotSupported { .. }) => {
-                ": use a Loop or Catmull-Clark scheme, --ignore-tags (for the file's tags), or drop the option flags"
-            }
-            _ => return Failure::new(kind, e),
-        };
-        Failure::new(kind, anyhow::anyhow!("{e}{advice}"))
+        match e.advice() {
+            "" => Failure::new(kind, e),
+            advice => Failure::new(kind, anyhow::anyhow!("{e}{advice}")),
+        }
     }
 }
 

@@ -260,11 +260,12 @@ impl TagSummary {
 /// indexed by 32-bit integers (and its exact counts would take long to compute).
 pub(crate) fn real_levels(text: &str) -> Result<u32, Failure> {
     let levels = parse_levels_count(text)?;
-    if levels > 64 {
+    let max = driver::limits::MAX_REAL_LEVELS;
+    if levels > max {
         return Err(Failure::new(
             Kind::Guard,
             anyhow::anyhow!(
-                "--levels {levels}: real subdivision stops at level 64 (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
+                "--levels {levels}: real subdivision stops at level {max} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
             ),
         ));
     }
