@@ -342,16 +342,17 @@ impl Extras {
     /// Reads the values of a `v` line after its position: none, `w`, or `r g b`.
     fn vertex<'a, R>(
         &mut self,
-        rest: impl Iterator<Item = &'a str>,
+        mut rest: impl Iterator<Item = &'a str> + Clone,
         lines: &Lines<R>,
     ) -> Result<()> {
-        let rest: Vec<&str> = rest.take(4).collect();
+        // Counted without collecting: this runs once per `v` line.
+        let count = rest.clone().take(4).count();
         let all_so_far = self.with_colors == self.vertices;
         self.vertices += 1;
-        match rest.len() {
+        match count {
             3 => {
                 let missing = |found| ParseError::MissingCoordinates { found };
-                let rgb = parse_values::<3, R>(&mut rest.into_iter(), lines, parse_color, missing)?;
+                let rgb = parse_values::<3, R>(&mut rest, lines, parse_color, missing)?;
                 self.with_colors += 1;
                 if all_so_far {
                     grow(&mut self.colors, 1, lines)?;

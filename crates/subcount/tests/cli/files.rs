@@ -56,6 +56,27 @@ fn grouped_octahedron() -> String {
     text
 }
 
+/// The arguments of `subcount subdivide --mesh input --scheme scheme --levels levels`, then
+/// `rest` (`-o FILE`, flags).
+fn subdivide_args<'a>(
+    input: &'a str,
+    scheme: &'a str,
+    levels: &'a str,
+    rest: &[&'a str],
+) -> Vec<&'a str> {
+    let mut args = vec![
+        "subdivide",
+        "--mesh",
+        input,
+        "--scheme",
+        scheme,
+        "--levels",
+        levels,
+    ];
+    args.extend_from_slice(rest);
+    args
+}
+
 /// Writes `text` to `dir/name` and returns the path.
 fn write(dir: &tempfile::TempDir, name: &str, text: &str) -> String {
     let path = dir.path().join(name);
@@ -158,17 +179,7 @@ fn every_output_face_has_its_base_faces_material_and_group_under_every_scheme() 
     for &(input, scheme, rule, flags) in cases {
         for levels in 0..=2u32 {
             let l = levels.to_string();
-            let mut args = vec![
-                "subdivide",
-                "--mesh",
-                input,
-                "--scheme",
-                scheme,
-                "--levels",
-                &l,
-                "-o",
-                &out,
-            ];
+            let mut args = subdivide_args(input, scheme, &l, &["-o", &out]);
             args.extend_from_slice(flags);
             ok(&args);
             let base = library_base_faces(input, rule, levels);
@@ -188,17 +199,7 @@ fn a_file_without_statements_or_colors_is_written_without_them() {
         .collect();
     let input = write(&dir, "plain.obj", &plain);
     let out = dir.path().join("out.obj").to_string_lossy().into_owned();
-    ok(&[
-        "subdivide",
-        "--mesh",
-        &input,
-        "--scheme",
-        "catmull-clark",
-        "--levels",
-        "1",
-        "-o",
-        &out,
-    ]);
+    ok(&subdivide_args(&input, "catmull-clark", "1", &["-o", &out]));
     let text = std::fs::read_to_string(&out).expect("output");
     assert!(text
         .lines()
@@ -254,17 +255,7 @@ fn affine_colors_stay_affine_functions_of_the_refined_positions() {
     for &(input, scheme, flags, tolerance) in cases {
         for levels in 0..=2u32 {
             let l = levels.to_string();
-            let mut args = vec![
-                "subdivide",
-                "--mesh",
-                input,
-                "--scheme",
-                scheme,
-                "--levels",
-                &l,
-                "-o",
-                &out,
-            ];
+            let mut args = subdivide_args(input, scheme, &l, &["-o", &out]);
             args.extend_from_slice(flags);
             ok(&args);
             let mesh = io::read_obj(&out).expect("output");
@@ -284,26 +275,8 @@ fn affine_colors_stay_affine_functions_of_the_refined_positions() {
     for levels in 1..=2u32 {
         let l = levels.to_string();
         let mid = dir.path().join("mid.obj").to_string_lossy().into_owned();
-        let args = |scheme: &'static str, to: &str| {
-            let a: Vec<String> = [
-                "subdivide",
-                "--mesh",
-                &octa,
-                "--scheme",
-                scheme,
-                "--levels",
-                &l,
-                "-o",
-                to,
-            ]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-            a
-        };
-        let run = |a: Vec<String>| ok(&a.iter().map(String::as_str).collect::<Vec<_>>());
-        run(args("icosphere", &out));
-        run(args("midpoint", &mid));
+        ok(&subdivide_args(&octa, "icosphere", &l, &["-o", &out]));
+        ok(&subdivide_args(&octa, "midpoint", &l, &["-o", &mid]));
         let sphere = io::read_obj(&out).expect("icosphere");
         let midpoint = io::read_obj(&mid).expect("midpoint");
         assert_eq!(sphere.colors(), midpoint.colors(), "level {levels}");
@@ -332,15 +305,7 @@ fn colors_and_groups_change_no_count() {
             verify(&plain).replace(&plain, "M")
         );
         let summary = |m: &str| {
-            let out = ok(&[
-                "subdivide",
-                "--mesh",
-                m,
-                "--scheme",
-                scheme,
-                "--levels",
-                "2",
-            ]);
+            let out = ok(&subdivide_args(m, scheme, "2", &[]));
             out.replace(m, "M")
         };
         assert_eq!(summary(&rich), summary(&plain));
@@ -354,17 +319,7 @@ fn partial_colors_uncarried_lines_and_stats() {
                 f 1 2 4 3\nl 1 2\np 3\ncstype bezier\n";
     let input = write(&dir, "partial.obj", text);
     let out = dir.path().join("out.obj").to_string_lossy().into_owned();
-    let run = subcount(&[
-        "subdivide",
-        "--mesh",
-        &input,
-        "--scheme",
-        "catmull-clark",
-        "--levels",
-        "1",
-        "-o",
-        &out,
-    ]);
+    let run = subcount(&subdivide_args(&input, "catmull-clark", "1", &["-o", &out]));
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert_eq!(
         run.stderr,
@@ -375,15 +330,7 @@ fn partial_colors_uncarried_lines_and_stats() {
     );
     assert!(io::read_obj(&out).expect("output").colors().is_none());
     // Without -o nothing is written, so nothing is said about carrying.
-    let run = subcount(&[
-        "subdivide",
-        "--mesh",
-        &input,
-        "--scheme",
-        "catmull-clark",
-        "--levels",
-        "1",
-    ]);
+    let run = subcount(&subdivide_args(&input, "catmull-clark", "1", &[]));
     assert!(!run.stderr.contains("not carried"), "{}", run.stderr);
     let rich = write(&dir, "rich.obj", &colored(&grouped_cube("")));
     let text = ok(&["stats", "--mesh", &rich]);
@@ -399,17 +346,7 @@ fn partial_colors_uncarried_lines_and_stats() {
     let input = write(&dir, "c.off", off);
     let text = ok(&["stats", "--mesh", &input]);
     assert!(text.contains("vertex colors: 3 channels"), "{text}");
-    ok(&[
-        "subdivide",
-        "--mesh",
-        &input,
-        "--scheme",
-        "catmull-clark",
-        "--levels",
-        "0",
-        "-o",
-        &out,
-    ]);
+    ok(&subdivide_args(&input, "catmull-clark", "0", &["-o", &out]));
     let mesh = io::read_obj(&out).expect("output");
     assert_eq!(mesh.colors().expect("colors")[3], [9.0, 9.0, 9.0]);
 }
@@ -479,17 +416,7 @@ fn shared_meshes_keep_every_faces_material_under_every_scheme() {
             };
             for extra in variants {
                 let input = write(&dir, name, &per_face_materials(&text, extra));
-                let run = subcount(&[
-                    "subdivide",
-                    "--mesh",
-                    &input,
-                    "--scheme",
-                    scheme,
-                    "--levels",
-                    "1",
-                    "-o",
-                    &out,
-                ]);
+                let run = subcount(&subdivide_args(&input, scheme, "1", &["-o", &out]));
                 assert_eq!(run.code, 0, "{scheme} on {name}: {}", run.stderr);
                 let poly = io::read_obj(&input).expect("input");
                 let counts = halfedge::stats::face_list_counts(&poly);
@@ -547,8 +474,7 @@ fn ply_output_is_the_obj_output_in_binary() {
         for levels in ["0", "1", "2"] {
             let what = format!("{scheme} {flags:?} level {levels} on {input}");
             for out in [&obj, &ply] {
-                let mut args = vec!["subdivide", "--mesh", input, "--scheme", scheme];
-                args.extend_from_slice(&["--levels", levels, "-o", out]);
+                let mut args = subdivide_args(input, scheme, levels, &["-o", out]);
                 args.extend_from_slice(flags);
                 let run = subcount(&args);
                 assert_eq!(run.code, 0, "{what}: {}", run.stderr);
@@ -621,17 +547,12 @@ fn compositions_carry_groups_and_colors() {
     let one = dir.path().join("one.obj").to_string_lossy().into_owned();
     let two = dir.path().join("two.obj").to_string_lossy().into_owned();
     let run = |levels: &str, out: &str| {
-        ok(&[
-            "subdivide",
-            "--mesh",
+        ok(&subdivide_args(
             &input,
-            "--scheme",
             "loop:1,sqrt3",
-            "--levels",
             levels,
-            "-o",
-            out,
-        ])
+            &["-o", out],
+        ))
     };
     run("1", &one);
     run("2", &two);
@@ -641,15 +562,7 @@ fn compositions_carry_groups_and_colors() {
     check_groups(&input, &two, &base, "loop:1,sqrt3 level 2");
     // PLY and the refusal of other formats as for one scheme; the notes too.
     let ply = dir.path().join("two.ply").to_string_lossy().into_owned();
-    let args = [
-        "subdivide",
-        "--mesh",
-        &input,
-        "--scheme",
-        "loop:1,sqrt3",
-        "--levels",
-        "2",
-    ];
+    let args = subdivide_args(&input, "loop:1,sqrt3", "2", &[]);
     let run = subcount(&[&args[..], &["-o", &ply]].concat());
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(run.stderr.contains("not written to PLY"), "{}", run.stderr);
