@@ -8,6 +8,7 @@
 
 mod errors;
 mod mesh;
+mod tags;
 
 use std::path::PathBuf;
 
@@ -21,6 +22,7 @@ use pyo3::types::PyInt;
 
 use crate::errors::{guarded, warn_notes, Failure, Result};
 use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
+use crate::tags::named;
 
 /// The most threads `threads=` may ask for (the command line's `--threads` limit).
 const MAX_THREADS: i64 = driver::limits::MAX_THREADS as i64;
@@ -215,21 +217,6 @@ fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
         Ok(n) => Ok(n),
         Err(_) => Ok(if obj.lt(0)? { i64::MIN } else { i64::MAX }),
     }
-}
-
-/// An option by its command-line name (`FromStr` of `halfedge::tags`' enums): the names it
-/// accepts in the message otherwise.
-fn named<T>(value: Option<&str>, name: &str) -> Result<Option<T>>
-where
-    T: std::str::FromStr,
-    T::Err: std::fmt::Display,
-{
-    value
-        .map(|v| {
-            v.parse::<T>()
-                .map_err(|e| Failure::Usage(format!("invalid {name}: {e}")))
-        })
-        .transpose()
 }
 
 /// Exact subdivision counts and OpenSubdiv-grade subdivision (the Rust core of `subcount`).

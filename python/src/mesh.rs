@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 
 use crate::errors::{guarded, Failure, Result};
+use crate::tags::{options_dict, TagArrays};
 
 /// How messages name a mesh built from arrays (a file's mesh is named by its path).
 pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
@@ -18,7 +19,8 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 /// coordinates, vertex colors, materials and groups of its file.
 ///
 /// Mesh(positions, face_vertex_counts, face_vertex_indices, *, uvs=None, uv_indices=None,
-/// colors=None)
+/// colors=None, crease_indices=None, crease_lengths=None, crease_sharpnesses=None,
+/// corner_indices=None, corner_sharpnesses=None, hole_indices=None, options=None)
 ///
 /// positions: (N, 3) numbers; face_vertex_counts: (F,) integers, each at least 3;
 /// face_vertex_indices: one vertex index per corner, face after face; uvs: (K, 2) numbers and
@@ -27,11 +29,27 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 /// non-finite value, a negative or out-of-range index, a face of fewer than 3 corners or an
 /// empty mesh raises subcount.InputError naming the array and the index.
 ///
+/// Creases, corners and holes go under USD's names (UsdGeom.Mesh): crease_indices holds
+/// chains of vertices, crease_lengths the vertices of each chain (at least 2),
+/// crease_sharpnesses one value per chain or one per edge; corner_indices and
+/// corner_sharpnesses one per corner; hole_indices the faces that are holes. Sharpness 10 or
+/// more is infinitely sharp, as in OpenSubdiv. options is the mesh's own subdivision options
+/// (an OBJ file's tags): a dict with the keys "boundary", "crease_method", "triangle_rule",
+/// "uv_interpolation" and the command line's names as values ("edge-and-corner", ...);
+/// subdivide()'s keywords override them.
+///
 /// The array properties are read-only copies: positions (N, 3) float64 (float32 for a result
 /// of subdivide(..., precision="f32"), as uvs and colors then), face_vertex_counts and
 /// face_vertex_indices int32, uvs (K, 2) and uv_indices int32 or None, colors (N, 3) or None;
 /// materials and groups: a str or None per face, or None when the mesh has none; mtllib: the
-/// material files the OBJ file names.
+/// material files the OBJ file names; the tags read back under the same names (one 2-vertex
+/// chain per crease edge, with its sharpness), and options as a dict of those set.
+///
+/// >>> m = subcount.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [4], [0, 1, 2, 3],
+/// ...                   crease_indices=[0, 1, 2], crease_lengths=[3], crease_sharpnesses=[2.0],
+/// ...                   options={"boundary": "edge-and-corner"})
+/// >>> m.crease_indices.tolist(), m.crease_sharpnesses.tolist(), m.options
+/// ([0, 1, 1, 2], [2.0, 2.0], {'boundary': 'edge-and-corner'})
 #[pyclass(module = "subcount", frozen)]
 #[derive(Debug)]
 pub(crate) struct Mesh {
@@ -46,7 +64,12 @@ pub(crate) struct Mesh {
 #[pymethods]
 impl Mesh {
     #[new]
-    #[pyo3(signature = (positions, face_vertex_counts, face_vertex_indices, *, uvs=None, uv_indices=None, colors=None))]
+    #[pyo3(signature = (
+        positions, face_vertex_counts, face_vertex_indices, *, uvs=None, uv_indices=None,
+        colors=None, crease_indices=None, crease_lengths=None, crease_sharpnesses=None,
+        corner_indices=None, corner_sharpnesses=None, hole_indices=None, options=None
+    ))]
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         positions: &Bound<'_, PyAny>,
@@ -55,6 +78,13 @@ impl Mesh {
         uvs: Option<&Bound<'_, PyAny>>,
         uv_indices: Option<&Bound<'_, PyAny>>,
         colors: Option<&Bound<'_, PyAny>>,
+        crease_indices: Option<&Bound<'_, PyAny>>,
+        crease_lengths: Option<&Bound<'_, PyAny>>,
+        crease_sharpnesses: Option<&Bound<'_, PyAny>>,
+        corner_indices: Option<&Bound<'_, PyAny>>,
+        corner_sharpnesses: Option<&Bound<'_, PyAny>>,
+        hole_indices: Option<&Bound<'_, PyAny>>,
+        options: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Mesh> {
         let built = guarded(|| {
             let arrays = Arrays {
@@ -71,7 +101,18 @@ impl Mesh {
                 },
                 colors,
             };
-            arrays.polygon_mesh(py)
+            let mut poly = arrays.polygon_mesh(py)?;
+            let tags = TagArrays {
+                crease_indices,
+                crease_lengths,
+                crease_sharpnesses,
+                corner_indices,
+                corner_sharpnesses,
+                hole_indices,
+                options,
+            };
+            tags.apply(py, &mut poly)?;
+            Ok(poly)
         });
         let poly = built.map_err(|f| f.into_pyerr(py))?;
         Ok(Mesh::from_arrays(poly))
@@ -152,6 +193,57 @@ impl Mesh {
         names.collect()
     }
 
+    /// The crease edges' vertices, one 2-vertex chain per edge (USD's creaseIndices), int32.
+    #[getter]
+    fn crease_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let creases = self.poly.tags().creases();
+        let ends = creases
+            .iter()
+            .flat_map(|c| [u64::from(c.a), u64::from(c.b)]);
+        int32s(py, ends, "a vertex index")
+    }
+
+    /// The vertices of each crease chain: 2 per crease edge (USD's creaseLengths), int32.
+    #[getter]
+    fn crease_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let n = self.poly.tags().creases().len();
+        int32s(py, std::iter::repeat_n(2, n), "a crease length")
+    }
+
+    /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
+    #[getter]
+    fn crease_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let values = self.poly.tags().creases().iter().map(|c| c.sharpness);
+        read_only(PyArray1::from_iter(py, values).into_any())
+    }
+
+    /// The corner vertices (USD's cornerIndices), int32.
+    #[getter]
+    fn corner_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let corners = self.poly.tags().corners().iter();
+        int32s(py, corners.map(|c| u64::from(c.vertex)), "a vertex index")
+    }
+
+    /// The sharpness of each corner (USD's cornerSharpnesses), float32.
+    #[getter]
+    fn corner_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let values = self.poly.tags().corners().iter().map(|c| c.sharpness);
+        read_only(PyArray1::from_iter(py, values).into_any())
+    }
+
+    /// The faces that are holes (USD's holeIndices), int32.
+    #[getter]
+    fn hole_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let holes = self.poly.tags().holes().iter().map(|&f| u64::from(f));
+        int32s(py, holes, "a face index")
+    }
+
+    /// The mesh's own subdivision options (a file's tags), a dict of those it sets.
+    #[getter]
+    fn options<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        options_dict(py, self.poly.tags())
+    }
+
     /// The number of vertices.
     #[getter]
     fn n_vertices(&self) -> usize {
@@ -174,6 +266,9 @@ impl Mesh {
         }
         if self.poly.groups().is_some() {
             extras.push(", groups".to_owned());
+        }
+        if !self.poly.tags().is_empty() {
+            extras.push(", tags".to_owned());
         }
         format!(
             "subcount.Mesh({} vertices, {} faces{})",
@@ -491,6 +586,36 @@ fn face_counts(py: Python<'_>, obj: &Bound<'_, PyAny>) -> Result<Vec<usize>> {
         out.push(c);
     }
     Ok(out)
+}
+
+/// A 1-D integer array (`name`) of indices each below `bound.0`, the rows of `bound.1`
+/// (`bound.2`, as messages name them).
+pub(crate) fn index_array(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    (n, array, what): (usize, &str, &str),
+) -> Result<Vec<u32>> {
+    let values = integers(py, obj, name, 1)?.values;
+    indices_below(&values, n, array, what, &|i| format!("{name}[{i}]"))
+}
+
+/// A 1-D array of numbers (`name`), as float64.
+pub(crate) fn float_values(py: Python<'_>, obj: &Bound<'_, PyAny>, name: &str) -> Result<Vec<f64>> {
+    let array = as_array(py, obj, name, "fiu", "numbers")?;
+    let numpy = PyModule::import(py, "numpy")?;
+    let array = numpy.call_method1("ascontiguousarray", (array, "float64"))?;
+    let array: PyReadonlyArrayDyn<'_, f64> = array.extract()?;
+    if array.shape().len() != 1 {
+        return Err(Failure::Input(format!(
+            "{name} has shape {}: expected (n,)",
+            shape_text(array.shape())
+        )));
+    }
+    let values = array
+        .as_slice()
+        .map_err(|e| Failure::Bug(format!("{name}: {e}")))?;
+    Ok(values.to_vec())
 }
 
 /// Vertex indices, each below the `n` vertices.
