@@ -219,6 +219,35 @@ fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
     }
 }
 
+/// Runs the command line `subcount ARGS` (the program name excluded) in this process, the
+/// mesh of `--mesh` replaced by `mesh` (a subcount.Mesh or (positions, faces)) when given; the
+/// GIL is released while it works. Returns (exit_code, stdout, notes, error): the command's
+/// exit code, what it printed, the notes it would have printed on stderr, and its error
+/// line's message. The package's `at`, `table`, ... build ARGS and read the JSON.
+#[pyfunction]
+#[pyo3(signature = (args, mesh=None))]
+fn run_command(
+    py: Python<'_>,
+    args: Vec<std::ffi::OsString>,
+    mesh: Option<&Bound<'_, PyAny>>,
+) -> PyResult<(u8, String, Vec<String>, Option<String>)> {
+    let result = guarded(|| {
+        let mut args = args;
+        let memory = match mesh.map(|m| MeshArg::extract(py, m)).transpose()? {
+            Some(MeshArg::Path(path)) => {
+                args.extend(["--mesh".into(), path.into_os_string()]);
+                None
+            }
+            Some(MeshArg::Poly(poly, label)) => Some((*poly, label)),
+            None => None,
+        };
+        py.detach(|| guarded(|| Ok(subcount_cli::run_captured(args, memory))))
+    });
+    let captured = result.map_err(|f| f.into_pyerr(py))?;
+    let stdout = String::from_utf8_lossy(&captured.stdout).into_owned();
+    Ok((captured.exit_code, stdout, captured.notes, captured.error))
+}
+
 /// Exact subdivision counts and OpenSubdiv-grade subdivision (the Rust core of `subcount`).
 #[pymodule]
 fn _subcount(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -227,5 +256,6 @@ fn _subcount(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(write_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(subdivide, m)?)?;
+    m.add_function(wrap_pyfunction!(run_command, m)?)?;
     Ok(())
 }

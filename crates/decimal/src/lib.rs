@@ -72,6 +72,19 @@ use num_bigint::Sign;
 pub use num_bigint::{BigInt, BigUint};
 use num_traits::{ToPrimitive, Zero};
 
+/// log10 of a positive integer, from its bit length and leading 64 bits (no overflow at any
+/// size); `None` for zero and negative values, which a log scale cannot show.
+pub fn log10(v: &BigInt) -> Option<f64> {
+    if v.sign() != Sign::Plus {
+        return None;
+    }
+    let bits = v.bits();
+    let shift = bits.saturating_sub(64);
+    let top = (v.magnitude() >> shift).to_u64()?;
+    // `top` has at most 64 bits; f64 keeps its leading 53.
+    Some((top as f64).log10() + shift as f64 * std::f64::consts::LOG10_2)
+}
+
 /// The decimal digits of `n`, exactly as `n.to_string()` gives them, in subquadratic time.
 ///
 /// ```
@@ -557,6 +570,31 @@ fn div_newton(
 mod tests {
     use super::*;
     use num_traits::One;
+
+    /// `log10(v)` is `want` within `tolerance`.
+    fn log10_is(v: BigInt, want: f64, tolerance: f64) {
+        let l = log10(&v).unwrap();
+        assert!((l - want).abs() < tolerance, "{l}, not {want}");
+    }
+
+    #[test]
+    fn log10_of_small_and_huge_counts() {
+        assert_eq!(log10(&BigInt::from(1)), Some(0.0));
+        assert_eq!(log10(&BigInt::from(0)), None);
+        assert_eq!(log10(&BigInt::from(-5)), None);
+        log10_is(BigInt::from(1000), 3.0, 1e-12);
+        log10_is(BigInt::from(u64::MAX), 19.265_919_722_494_8, 1e-9);
+        // 10^5000, 3 * 10^5000 and 2^100000: far beyond f64, exact to the plot's resolution.
+        let big = BigInt::from(10).pow(5000u32);
+        log10_is(big.clone(), 5000.0, 1e-9);
+        log10_is(big * 3, 5000.0 + 3f64.log10(), 1e-9);
+        let log = 100_000.0 * std::f64::consts::LOG10_2;
+        log10_is(BigInt::from(2).pow(100_000u32), log, 1e-6);
+        // Digit count agrees: floor(log10 n) + 1.
+        let n: BigInt = BigInt::from(20) * BigInt::from(4).pow(1000u32);
+        let digits = n.to_string().len() as f64;
+        assert_eq!(log10(&n).unwrap().floor() + 1.0, digits);
+    }
 
     /// Small thresholds, so numbers of a few hundred digits already take every path: the
     /// tree, Newton levels built from scratch (`SMALL`) or from the level below, transforms

@@ -146,6 +146,19 @@ impl Stat {
         }
     }
 
+    /// What the statistic counts, in two words (a chart's legend).
+    pub fn brief(self) -> &'static str {
+        match self {
+            Stat::V => "vertices",
+            Stat::E => "edges",
+            Stat::IE => "interior edges",
+            Stat::BE => "boundary edges",
+            Stat::NME => "non-manifold edges",
+            Stat::F => "faces",
+            Stat::H => "face corners",
+        }
+    }
+
     /// The statistic with this short name (exact, case-sensitive).
     pub fn from_short_name(name: &str) -> Option<Stat> {
         Stat::ALL.into_iter().find(|s| s.short_name() == name)

@@ -80,6 +80,7 @@ mod error;
 mod fit;
 pub mod holes;
 pub mod input;
+pub mod output;
 mod plan;
 mod rule;
 mod scheme;

@@ -346,9 +346,21 @@ pub(crate) struct MeshSource {
     /// Do not read the file's OpenSubdiv tags (t lines): creases, corners, holes, options.
     #[arg(long)]
     pub(crate) ignore_tags: bool,
+    /// A face list in memory in place of a file, and how messages name it (the Python
+    /// bindings' meshes: [`crate::run_captured`]).
+    #[arg(skip)]
+    pub(crate) memory: Option<MemoryMesh>,
 }
 
+/// A mesh handed over in memory, and its label.
+pub(crate) type MemoryMesh = std::sync::Arc<(halfedge::PolygonMesh, String)>;
+
 impl MeshSource {
+    /// Whether a mesh is given (`--mesh`, `--base`, or one in memory).
+    pub(crate) fn is_given(&self) -> bool {
+        self.mesh.is_some() || self.base.is_some() || self.memory.is_some()
+    }
+
     /// Whether a subdivision option flag (--boundary, --crease-method, --triangle-rule,
     /// --ignore-tags) is given, and the first one's name.
     pub(crate) fn option_flag(&self) -> Option<&'static str> {
@@ -360,6 +372,25 @@ impl MeshSource {
         ]
         .into_iter()
         .find_map(|(given, name)| given.then_some(name))
+    }
+}
+
+impl Command {
+    /// Gives the command's mesh source a mesh in memory ([`MeshSource::memory`]).
+    pub(crate) fn set_memory_mesh(&mut self, mesh: MemoryMesh) {
+        let source = match self {
+            Command::Table(a) => &mut a.source.mesh,
+            Command::At(a) => &mut a.source.mesh,
+            Command::Formula(a) => &mut a.source.mesh,
+            Command::Fit(a) => &mut a.source.mesh,
+            Command::Density(a) => &mut a.source.mesh,
+            Command::Plot(a) => &mut a.source.mesh,
+            Command::Stats(a) => &mut a.mesh,
+            Command::Verify(a) => &mut a.mesh,
+            Command::Subdivide(a) => &mut a.mesh,
+            Command::Schemes(_) => return,
+        };
+        source.memory = Some(mesh);
     }
 }
 

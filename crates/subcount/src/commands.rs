@@ -9,11 +9,11 @@ use schemes::{Counter, Phase};
 use serde_json::{json, Value};
 
 use crate::args::{AtArgs, AtFormat, Command, FormulaArgs, FormulaFormat, TableArgs, TableFormat};
-use crate::failure::{usage, write_failure, Failure, Kind};
+use crate::failure::{print_note, usage, write_failure, Failure, Kind};
 use crate::levels::{parse_level, parse_levels};
 use crate::model::Input;
-use crate::output::{self, Field};
 use driver::limits::{self as guard, Hint};
+use schemes::output::{self, Field};
 
 /// Runs one subcommand, writing its result to `out`; returns the exit code.
 pub(crate) fn run(command: Command, out: &mut impl Write) -> Result<u8, Failure> {
@@ -203,8 +203,8 @@ fn uv_formula(
     fn_base: &str,
 ) -> Result<String, Failure> {
     let Some(single) = uv.single() else {
-        eprintln!(
-            "note: the UV values of a composition have no single closed form: `subcount table` counts them (its UV column)"
+        print_note(
+            "note: the UV values of a composition have no single closed form: `subcount table` counts them (its UV column)".into(),
         );
         return Ok(text);
     };

@@ -66,6 +66,33 @@ macro_rules! input {
 
 pub(crate) use {input, usage};
 
+thread_local! {
+    /// The notes of a captured run ([`capturing_notes`]) on this thread.
+    static CAPTURED: std::cell::RefCell<Option<Vec<String>>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Prints a note (of the driver, of a command) on stderr, or keeps it for a captured run.
+pub(crate) fn print_note(note: String) {
+    let printed = CAPTURED.with(|c| match c.borrow_mut().as_mut() {
+        Some(notes) => {
+            notes.push(note);
+            None
+        }
+        None => Some(note),
+    });
+    if let Some(note) = printed {
+        eprintln!("{note}");
+    }
+}
+
+/// Runs `work`, keeping the notes it prints on this thread ([`print_note`]).
+pub(crate) fn capturing_notes<T>(work: impl FnOnce() -> T) -> (T, Vec<String>) {
+    let outer = CAPTURED.with(|c| c.replace(Some(Vec::new())));
+    let result = work();
+    let notes = CAPTURED.with(|c| c.replace(outer)).unwrap_or_default();
+    (result, notes)
+}
+
 /// A failure to write the output (exit 3).
 pub(crate) fn write_failure(e: std::io::Error) -> Failure {
     Failure::new(

@@ -20,7 +20,7 @@ use crate::args::{
 use crate::failure::{usage, write_failure, Failure, Kind};
 use crate::levels::parse_levels_count;
 use crate::model::{load_mesh, print_notes, LoadedMesh};
-use crate::output::json_text;
+use schemes::output::json_text;
 
 pub(crate) fn required_mesh(mesh: &MeshSource) -> Result<LoadedMesh, Failure> {
     load_mesh(mesh)?.ok_or_else(|| usage!("give a mesh: --mesh FILE or --base NAME"))
@@ -297,10 +297,7 @@ pub(crate) fn scheme_choice(choice: &SchemeChoice) -> Result<driver::SchemeChoic
     }
 }
 
-/// Prints a note of the driver on stderr.
-pub(crate) fn print_note(note: String) {
-    eprintln!("{note}");
-}
+pub(crate) use crate::failure::print_note;
 
 pub(crate) fn verify(args: VerifyArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let loaded = required_mesh(&args.mesh)?;
@@ -352,10 +349,11 @@ pub(crate) fn write_reports(
             let mut t = format!(
                 "{} on {} levels 0..={levels}\n",
                 name,
-                mesh.mesh.as_ref().map_or_else(
-                    || mesh.base.clone().unwrap_or_default(),
-                    |p| p.display().to_string()
-                )
+                match (&mesh.memory, &mesh.mesh) {
+                    (Some(memory), _) => memory.1.clone(),
+                    (None, Some(path)) => path.display().to_string(),
+                    (None, None) => mesh.base.clone().unwrap_or_default(),
+                }
             );
             t.push_str("level  component  predicted  measured\n");
             for r in reports {

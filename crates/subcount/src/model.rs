@@ -24,7 +24,7 @@ use schemes::uv::{UvCounter, UvCounts};
 use schemes::{Counter, CountsInput, MeshCounts, Plan};
 
 use crate::args::{MeshSource, Source};
-use crate::failure::{input, scheme_failure, usage, Failure, Kind};
+use crate::failure::{input, print_note, scheme_failure, usage, Failure, Kind};
 
 /// The default scheme and counts: the icosahedron under 4:1 (Loop) subdivision.
 pub(crate) const DEFAULT_SCHEME: &str = "loop";
@@ -129,7 +129,7 @@ impl<'a> Input<'a> {
             if let Some((loaded, _)) = self.loaded()? {
                 if let Some(partial) = loaded.poly.partial_uvs() {
                     let label = mesh_label(&self.source.mesh);
-                    eprintln!("note: {label}: {partial}: no UV column");
+                    print_note(format!("note: {label}: {partial}: no UV column"));
                 }
             }
             return Ok(None);
@@ -137,7 +137,7 @@ impl<'a> Input<'a> {
         match counter.uv_counter(&uv) {
             Ok(uv) => Ok(Some(uv)),
             Err(not) => {
-                eprintln!("note: {not}: no UV column");
+                print_note(format!("note: {not}: no UV column"));
                 Ok(None)
             }
         }
@@ -145,13 +145,13 @@ impl<'a> Input<'a> {
 
     /// Whether a mesh is given (`--mesh`, `--base`).
     pub(crate) fn has_mesh(&self) -> bool {
-        self.source.mesh.mesh.is_some() || self.source.mesh.base.is_some()
+        self.source.mesh.is_given()
     }
 
     /// Whether an initial state is given (`--init`, `--counts`, `--mesh`, `--base`).
     pub(crate) fn has_state(&self) -> bool {
         let s = self.source;
-        s.init.is_some() || s.counts.is_some() || s.mesh.mesh.is_some() || s.mesh.base.is_some()
+        s.init.is_some() || s.counts.is_some() || s.mesh.is_given()
     }
 
     /// Builds the counter named by the flags, or the default (`loop`), counted for the
@@ -212,7 +212,7 @@ impl<'a> Input<'a> {
             return Ok(plan);
         }
         let source = self.source;
-        let mesh_given = source.mesh.mesh.is_some() || source.mesh.base.is_some();
+        let mesh_given = source.mesh.is_given();
         match (&source.init, &source.counts, mesh_given) {
             (None, Some(text), false) => Ok(match CountsInput::parse(text) {
                 Ok(input) => plan.for_counts(&input),
@@ -238,7 +238,7 @@ impl<'a> Input<'a> {
         let given = [
             source.init.is_some(),
             source.counts.is_some(),
-            source.mesh.mesh.is_some() || source.mesh.base.is_some(),
+            source.mesh.is_given(),
         ]
         .iter()
         .filter(|&&b| b)
@@ -294,21 +294,29 @@ impl<'a> Input<'a> {
 /// `--ignore-tags`, the subdivision options resolved). The two flags together are a usage
 /// error, and so are the option flags without either.
 pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure> {
-    let source = match (&mesh.mesh, &mesh.base) {
-        (Some(_), Some(_)) => return Err(usage!("--mesh and --base cannot be used together")),
-        (Some(path), None) => driver::MeshSource::File(path.clone()),
-        (None, Some(name)) => driver::MeshSource::Base(name.clone()),
-        (None, None) => {
-            refuse_options_without_mesh(mesh)?;
-            return Ok(None);
-        }
-    };
     let flags = driver::OptionFlags::new(
         mesh.boundary,
         mesh.crease_method,
         mesh.triangle_rule,
         mesh.ignore_tags,
     );
+    let source = match (&mesh.mesh, &mesh.base, &mesh.memory) {
+        (Some(_), Some(_), _) => return Err(usage!("--mesh and --base cannot be used together")),
+        (_, _, Some(memory)) => {
+            let (poly, label) = memory.as_ref();
+            return Ok(Some(driver::load_polygon_mesh(
+                poly.clone(),
+                label,
+                &flags,
+            )?));
+        }
+        (Some(path), None, None) => driver::MeshSource::File(path.clone()),
+        (None, Some(name), None) => driver::MeshSource::Base(name.clone()),
+        (None, None, None) => {
+            refuse_options_without_mesh(mesh)?;
+            return Ok(None);
+        }
+    };
     match driver::load(&source, &flags) {
         Ok(loaded) => Ok(Some(loaded)),
         // An unknown or malformed base mesh name is the command line's fault.
@@ -322,7 +330,7 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
 /// Prints the mesh's notes on stderr ([`LoadedMesh::notes`]).
 pub(crate) fn print_notes(loaded: &LoadedMesh) {
     for note in loaded.notes() {
-        eprintln!("{note}");
+        print_note(note.to_string());
     }
 }
 
@@ -330,7 +338,7 @@ pub(crate) fn print_notes(loaded: &LoadedMesh) {
 /// `--base` they are a usage error (exit 2), not silently ignored.
 pub(crate) fn refuse_options_without_mesh(mesh: &MeshSource) -> Result<(), Failure> {
     match mesh.option_flag() {
-        Some(flag) if mesh.mesh.is_none() && mesh.base.is_none() => Err(usage!(
+        Some(flag) if !mesh.is_given() => Err(usage!(
             "{flag} describes how a mesh is subdivided: give --mesh FILE or --base NAME"
         )),
         _ => Ok(()),
@@ -339,6 +347,9 @@ pub(crate) fn refuse_options_without_mesh(mesh: &MeshSource) -> Result<(), Failu
 
 /// How errors name the mesh: its path, or `base mesh NAME`.
 pub(crate) fn mesh_label(mesh: &MeshSource) -> String {
+    if let Some(memory) = &mesh.memory {
+        return memory.1.clone();
+    }
     match (&mesh.mesh, &mesh.base) {
         (Some(path), _) => halfedge::io::escape_controls(&path.display().to_string()).into_owned(),
         (None, Some(name)) => format!("base mesh {name}"),

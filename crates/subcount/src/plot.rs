@@ -11,14 +11,12 @@ use std::io::Write;
 use std::path::Path;
 
 use chart::{Chart, Series};
-use num_bigint::{BigInt, Sign};
-use num_traits::ToPrimitive;
 
 use crate::args::{PlotArgs, Source};
 use crate::failure::{input, usage, write_failure, Failure};
 use crate::levels::parse_levels;
 use crate::model::{Input, DEFAULT_COUNTS};
-use crate::output::Row;
+use schemes::output::Row;
 use schemes::Counter;
 
 /// The most levels one plot draws (each is a point on every line).
@@ -102,19 +100,6 @@ fn is_svg(path: &Path) -> Result<bool, Failure> {
     }
 }
 
-/// log10 of a positive count, from its bit length and leading 64 bits (no overflow at any
-/// size); `None` for zero and negative values, which a log scale cannot show.
-pub(crate) fn log10_count(v: &BigInt) -> Option<f64> {
-    if v.sign() != Sign::Plus {
-        return None;
-    }
-    let bits = v.bits();
-    let shift = bits.saturating_sub(64);
-    let top = (v.magnitude() >> shift).to_u64()?;
-    // `top` has at most 64 bits; f64 keeps its leading 53, far below the plot's resolution.
-    Some((top as f64).log10() + shift as f64 * std::f64::consts::LOG10_2)
-}
-
 /// One line per column with a positive count: its name, its legend label and its positive
 /// counts as (level, log10 count).
 fn series_of(columns: &[String], rows: &[Row]) -> Vec<Series> {
@@ -128,7 +113,7 @@ fn series_of(columns: &[String], rows: &[Row]) -> Vec<Series> {
                 .iter()
                 .filter_map(|r| {
                     let v = r.values.get(j)?.as_ref()?;
-                    Some((r.level, log10_count(v)?))
+                    Some((r.level, decimal::log10(v)?))
                 })
                 .collect(),
         })
@@ -138,17 +123,8 @@ fn series_of(columns: &[String], rows: &[Row]) -> Vec<Series> {
 
 /// The legend text of a column: the name, and what it counts for the mesh statistics.
 fn legend_label(name: &str) -> String {
-    let meaning = match name {
-        "V" => "vertices",
-        "E" => "edges",
-        "F" => "faces",
-        "IE" => "interior edges",
-        "BE" => "boundary edges",
-        "NME" => "non-manifold edges",
-        "H" => "face corners",
-        _ => return name.to_string(),
-    };
-    format!("{name} ({meaning})")
+    schemes::Stat::from_short_name(name)
+        .map_or_else(|| name.to_string(), |s| format!("{name} ({})", s.brief()))
 }
 
 /// "loop on icosahedron"-style title naming the rule and the initial mesh or state.
@@ -177,32 +153,7 @@ fn title(counter: &Counter, source: &Source) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use num_traits::Pow;
-
-    /// `log10_count(v)` is `want` within `tolerance`.
-    fn log10_is(v: BigInt, want: f64, tolerance: f64) {
-        let l = log10_count(&v).unwrap();
-        assert!((l - want).abs() < tolerance, "{l}, not {want}");
-    }
-
-    #[test]
-    fn log10_of_small_and_huge_counts() {
-        assert_eq!(log10_count(&BigInt::from(1)), Some(0.0));
-        assert_eq!(log10_count(&BigInt::from(0)), None);
-        assert_eq!(log10_count(&BigInt::from(-5)), None);
-        log10_is(BigInt::from(1000), 3.0, 1e-12);
-        log10_is(BigInt::from(u64::MAX), 19.265_919_722_494_8, 1e-9);
-        // 10^5000, 3 * 10^5000 and 2^100000: far beyond f64, exact to the plot's resolution.
-        let big = BigInt::from(10).pow(5000u32);
-        log10_is(big.clone(), 5000.0, 1e-9);
-        log10_is(big * 3, 5000.0 + 3f64.log10(), 1e-9);
-        let log = 100_000.0 * std::f64::consts::LOG10_2;
-        log10_is(BigInt::from(2).pow(100_000u32), log, 1e-6);
-        // Digit count agrees: floor(log10 n) + 1.
-        let n: BigInt = BigInt::from(20) * BigInt::from(4).pow(1000u32);
-        let digits = n.to_string().len() as f64;
-        assert_eq!(log10_count(&n).unwrap().floor() + 1.0, digits);
-    }
+    use num_bigint::BigInt;
 
     #[test]
     fn series_skip_missing_and_nonpositive_values() {

@@ -10,8 +10,8 @@ use crate::args::{DensityArgs, FitArgs, ReportFormat, SchemesArgs, SchemesFormat
 use crate::failure::{input, scheme_failure, usage, write_failure, Failure, Kind};
 use crate::levels::parse_level;
 use crate::model::Input;
-use crate::output::{self, Field, Row};
 use driver::limits::{self as guard, Hint};
+use schemes::output::{self, Field, Row};
 
 fn plan_of(counter: Counter, command: &str) -> Result<Plan, Failure> {
     match counter {

@@ -21,6 +21,7 @@ from ._errors import (
     UsageError,
     Warning,
 )
+from ._commands import at, density, fit, formula, schemes, stats, table, verify
 from ._subcount import Mesh, __version__, read_mesh, subdivide, write_mesh
 
 __all__ = [
@@ -32,7 +33,15 @@ __all__ = [
     "UsageError",
     "Warning",
     "__version__",
+    "at",
+    "density",
+    "fit",
+    "formula",
     "read_mesh",
+    "schemes",
+    "stats",
     "subdivide",
+    "table",
+    "verify",
     "write_mesh",
 ]

@@ -1,4 +1,5 @@
-//! Rendering of count tables and single-level results as text, JSON and CSV.
+//! Rendering of count tables and single-level results as text, JSON and CSV (the layout of
+//! the command line's output).
 //!
 //! JSON is one line per object, `{"level": 0, "V": 12}` (a space after `:` and `,`): serde
 //! values through [`Spaced`], and counts as decimal JSON integers of any size ([`Field::Count`]:
@@ -14,10 +15,10 @@ use serde::Serialize;
 use serde_json::Value;
 
 /// One row of a table: a level and one value per column.
-pub(crate) use schemes::Row;
+pub use crate::Row;
 
 /// The JSON layout of every command: compact, with a space after `:` and after `,`.
-pub(crate) struct Spaced;
+pub struct Spaced;
 
 impl serde_json::ser::Formatter for Spaced {
     fn begin_array_value<W: ?Sized + Write>(&mut self, w: &mut W, first: bool) -> io::Result<()> {
@@ -38,13 +39,13 @@ impl serde_json::ser::Formatter for Spaced {
 }
 
 /// Writes `value` in the [`Spaced`] layout.
-pub(crate) fn write_json(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
+pub fn write_json(out: &mut impl Write, value: &impl Serialize) -> io::Result<()> {
     let mut ser = serde_json::Serializer::with_formatter(out, Spaced);
     value.serialize(&mut ser).map_err(io::Error::other)
 }
 
 /// `value` in the [`Spaced`] layout, as a string.
-pub(crate) fn json_text(value: &impl Serialize) -> String {
+pub fn json_text(value: &impl Serialize) -> String {
     let mut buf = Vec::new();
     // Writing to a `Vec` fails only for values serde_json cannot represent (none here).
     let _ = write_json(&mut buf, value);
@@ -52,7 +53,7 @@ pub(crate) fn json_text(value: &impl Serialize) -> String {
 }
 
 /// One member of a JSON object written by [`write_object`].
-pub(crate) enum Field<'a> {
+pub enum Field<'a> {
     /// Any serde value.
     Json(Value),
     /// A count of any size, or `null`.
@@ -60,7 +61,7 @@ pub(crate) enum Field<'a> {
 }
 
 /// Writes the object `{"key": value, ...}` (no trailing newline) in the [`Spaced`] layout.
-pub(crate) fn write_object(out: &mut impl Write, fields: &[(&str, Field<'_>)]) -> io::Result<()> {
+pub fn write_object(out: &mut impl Write, fields: &[(&str, Field<'_>)]) -> io::Result<()> {
     write!(out, "{{")?;
     for (i, (key, field)) in fields.iter().enumerate() {
         if i > 0 {
@@ -78,7 +79,7 @@ pub(crate) fn write_object(out: &mut impl Write, fields: &[(&str, Field<'_>)]) -
 }
 
 /// The members `"level": s, "V": ..., ...` of a row, to extend and pass to [`write_object`].
-pub(crate) fn row_fields<'a>(columns: &'a [String], row: &'a Row) -> Vec<(&'a str, Field<'a>)> {
+pub fn row_fields<'a>(columns: &'a [String], row: &'a Row) -> Vec<(&'a str, Field<'a>)> {
     std::iter::once(("level", Field::Json(row.level.into())))
         .chain(
             columns
@@ -90,23 +91,21 @@ pub(crate) fn row_fields<'a>(columns: &'a [String], row: &'a Row) -> Vec<(&'a st
 }
 
 /// One bare object `{"level": s, "V": .., ...}` without a trailing newline.
-pub(crate) fn write_row_json(
-    out: &mut impl Write,
-    columns: &[String],
-    row: &Row,
-) -> io::Result<()> {
+pub fn write_row_json(out: &mut impl Write, columns: &[String], row: &Row) -> io::Result<()> {
     write_object(out, &row_fields(columns, row))
 }
 
 /// Rows of counts under their column names (after `level`), written as JSON, CSV or text.
-pub(crate) struct Table<'a> {
-    pub(crate) columns: &'a [String],
-    pub(crate) rows: &'a [Row],
+pub struct Table<'a> {
+    /// The column names, after `level`.
+    pub columns: &'a [String],
+    /// One row per level.
+    pub rows: &'a [Row],
 }
 
 impl Table<'_> {
     /// `[{"level": 0, "V": 12, ...}, ...]`, one object per line.
-    pub(crate) fn write_json(&self, out: &mut impl Write) -> io::Result<()> {
+    pub fn write_json(&self, out: &mut impl Write) -> io::Result<()> {
         let (columns, rows) = (self.columns, self.rows);
         writeln!(out, "[")?;
         for (i, row) in rows.iter().enumerate() {
@@ -117,7 +116,7 @@ impl Table<'_> {
     }
 
     /// `level,V,E,F` then one line per level.
-    pub(crate) fn write_csv(&self, out: &mut impl Write) -> io::Result<()> {
+    pub fn write_csv(&self, out: &mut impl Write) -> io::Result<()> {
         let (columns, rows) = (self.columns, self.rows);
         write!(out, "level")?;
         for c in columns {
@@ -138,7 +137,7 @@ impl Table<'_> {
     }
 
     /// A right-aligned plain-text table with a header line.
-    pub(crate) fn write_text(&self, out: &mut impl Write) -> io::Result<()> {
+    pub fn write_text(&self, out: &mut impl Write) -> io::Result<()> {
         let (columns, rows) = (self.columns, self.rows);
         let cells: Vec<Vec<String>> = rows
             .iter()
@@ -183,10 +182,10 @@ impl Table<'_> {
 }
 
 /// A summary of a big count: its number of decimal digits, first and last digits.
-pub(crate) use recurrence::DigitSummary;
+pub use recurrence::DigitSummary;
 
 /// `{"digits": n, "leading": "...", "trailing": "..."}` (plus `"negative": true` if so).
-pub(crate) fn summary_json(d: &DigitSummary) -> Value {
+pub fn summary_json(d: &DigitSummary) -> Value {
     let mut v = serde_json::json!({
         "digits": d.digits,
         "leading": d.leading,
@@ -200,7 +199,7 @@ pub(crate) fn summary_json(d: &DigitSummary) -> Value {
 
 /// `602062 digits: 19604598754139134831...31093324874142187520`, or the whole number when
 /// it is short.
-pub(crate) fn summary_text(d: &DigitSummary) -> String {
+pub fn summary_text(d: &DigitSummary) -> String {
     let sign = if d.negative { "-" } else { "" };
     if (d.leading.len() as u64) >= d.digits {
         format!("{} digits: {sign}{}", d.digits, d.leading)
