@@ -8,6 +8,7 @@
 
 mod errors;
 mod mesh;
+mod refinement;
 mod tags;
 
 use std::path::PathBuf;
@@ -134,59 +135,26 @@ fn subdivide(
     allow_large: bool,
 ) -> PyResult<Mesh> {
     let mut notes = Vec::new();
+    let options = RunOptions {
+        levels,
+        boundary,
+        crease_method,
+        triangle_rule,
+        uv_interpolation,
+        ignore_tags,
+        precision,
+        threads,
+        no_uv,
+        allow_large,
+    };
     let result = guarded(|| {
-        let levels = whole_number(levels, "levels")?;
-        if levels < 0 {
-            return Err(Failure::Usage(format!(
-                "invalid levels: `{levels}` is negative"
-            )));
-        }
-        if levels > MAX_LEVELS {
-            return Err(Failure::Resource(format!(
-                "levels={levels}: real subdivision stops at level {MAX_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
-            )));
-        }
-        if !(0..=MAX_THREADS).contains(&threads) {
-            return Err(Failure::Usage(format!(
-                "invalid threads: `{threads}`: at most {MAX_THREADS} threads (0 uses every core)"
-            )));
-        }
-        let flags = OptionFlags::new(
-            named::<BoundaryInterpolation>(boundary, "boundary")?,
-            named::<CreaseMethod>(crease_method, "crease_method")?,
-            named::<TriangleRule>(triangle_rule, "triangle_rule")?,
-            ignore_tags,
-        );
-        let uv_interpolation =
-            named::<FaceVaryingInterpolation>(uv_interpolation, "uv_interpolation")?;
-        if no_uv && uv_interpolation.is_some() {
-            return Err(Failure::Usage(
-                "uv_interpolation and no_uv do not go together: no_uv refines no UVs".into(),
-            ));
-        }
-        let mut job = SubdivideJob::new(levels as u32);
-        job.threads = threads as usize;
-        job.allow_large = allow_large;
-        job.precision = match precision {
-            "f64" => Precision::F64,
-            "f32" => Precision::F32,
-            other => {
-                return Err(Failure::Usage(format!(
-                    "invalid precision `{other}`: expected \"f64\" or \"f32\""
-                )))
-            }
-        };
-        job.uvs = !no_uv;
-        job.uv_interpolation = uv_interpolation;
+        let (job, flags) = options.job()?;
         let source = MeshArg::extract(py, mesh)?;
         let choice = SchemeChoice::Builtin(scheme);
         let f32 = job.precision == Precision::F32;
         py.detach(|| {
             guarded(|| {
-                let loaded = match source {
-                    MeshArg::Path(path) => driver::load(&MeshSource::File(path), &flags)?,
-                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, &flags)?,
-                };
+                let loaded = source.load(&flags)?;
                 let mut note = |n: String| notes.push(n);
                 let prepared = driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
                 let level = prepared.run(&|_| {}, &mut note)?;
@@ -201,6 +169,72 @@ fn subdivide(
     // Notes come first, as the command line prints them before an error.
     warn_notes(py, &notes)?;
     result.map_err(|f| f.into_pyerr(py))
+}
+
+/// The keywords of `subdivide` and `Refinement`, as given.
+pub(crate) struct RunOptions<'a, 'py> {
+    pub(crate) levels: &'a Bound<'py, PyAny>,
+    pub(crate) boundary: Option<&'a str>,
+    pub(crate) crease_method: Option<&'a str>,
+    pub(crate) triangle_rule: Option<&'a str>,
+    pub(crate) uv_interpolation: Option<&'a str>,
+    pub(crate) ignore_tags: bool,
+    pub(crate) precision: &'a str,
+    pub(crate) threads: i64,
+    pub(crate) no_uv: bool,
+    pub(crate) allow_large: bool,
+}
+
+impl RunOptions<'_, '_> {
+    /// The driver's job and option flags, or the refusal of a keyword (the command line's
+    /// checks of the same flags).
+    pub(crate) fn job(&self) -> Result<(SubdivideJob, OptionFlags)> {
+        let levels = whole_number(self.levels, "levels")?;
+        if levels < 0 {
+            return Err(Failure::Usage(format!(
+                "invalid levels: `{levels}` is negative"
+            )));
+        }
+        if levels > MAX_LEVELS {
+            return Err(Failure::Resource(format!(
+                "levels={levels}: real subdivision stops at level {MAX_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
+            )));
+        }
+        let threads = self.threads;
+        if !(0..=MAX_THREADS).contains(&threads) {
+            return Err(Failure::Usage(format!(
+                "invalid threads: `{threads}`: at most {MAX_THREADS} threads (0 uses every core)"
+            )));
+        }
+        let flags = OptionFlags::new(
+            named::<BoundaryInterpolation>(self.boundary, "boundary")?,
+            named::<CreaseMethod>(self.crease_method, "crease_method")?,
+            named::<TriangleRule>(self.triangle_rule, "triangle_rule")?,
+            self.ignore_tags,
+        );
+        let uv_interpolation =
+            named::<FaceVaryingInterpolation>(self.uv_interpolation, "uv_interpolation")?;
+        if self.no_uv && uv_interpolation.is_some() {
+            return Err(Failure::Usage(
+                "uv_interpolation and no_uv do not go together: no_uv refines no UVs".into(),
+            ));
+        }
+        let mut job = SubdivideJob::new(levels as u32);
+        job.threads = threads as usize;
+        job.allow_large = self.allow_large;
+        job.precision = match self.precision {
+            "f64" => Precision::F64,
+            "f32" => Precision::F32,
+            other => {
+                return Err(Failure::Usage(format!(
+                    "invalid precision `{other}`: expected \"f64\" or \"f32\""
+                )))
+            }
+        };
+        job.uvs = !self.no_uv;
+        job.uv_interpolation = uv_interpolation;
+        Ok((job, flags))
+    }
 }
 
 /// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64
@@ -253,6 +287,7 @@ fn run_command(
 fn _subcount(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<Mesh>()?;
+    m.add_class::<refinement::Refinement>()?;
     m.add_function(wrap_pyfunction!(read_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(write_mesh, m)?)?;
     m.add_function(wrap_pyfunction!(subdivide, m)?)?;

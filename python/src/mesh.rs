@@ -5,6 +5,7 @@ use halfedge::glam::{DVec2, DVec3};
 use halfedge::groups::Statement;
 use halfedge::uv::Uvs;
 use halfedge::PolygonMesh;
+use halfedge::Scalar;
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
@@ -319,7 +320,7 @@ impl Mesh {
 }
 
 /// Values as a read-only int32 array; `what` names them when one does not fit.
-fn int32s<'py>(
+pub(crate) fn int32s<'py>(
     py: Python<'py>,
     values: impl Iterator<Item = u64>,
     what: &str,
@@ -484,34 +485,45 @@ fn float_rows<const W: usize>(
     obj: &Bound<'_, PyAny>,
     name: &str,
 ) -> Result<Vec<[f64; W]>> {
-    let array = as_array(py, obj, name, "fiu", "numbers")?;
-    let numpy = PyModule::import(py, "numpy")?;
-    let array = numpy.call_method1("ascontiguousarray", (array, "float64"))?;
-    let array: PyReadonlyArrayDyn<'_, f64> = array.extract()?;
-    let shape = array.shape();
-    if shape.len() != 2 || shape[1] != W {
-        return Err(Failure::Input(format!(
-            "{name} has shape {}: expected (N, {W})",
-            shape_text(shape)
-        )));
-    }
-    let values = array
-        .as_slice()
-        .map_err(|e| Failure::Bug(format!("{name}: {e}")))?;
-    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(Failure::Input(format!(
-            "{name}[{}, {}] is {}: values must be finite",
-            i / W,
-            i % W,
-            python_float(values[i])
-        )));
-    }
+    let values = float_table::<f64>(py, obj, name, W)?;
     let rows = values.chunks_exact(W).map(|r| {
         let mut row = [0.0; W];
         row.copy_from_slice(r);
         row
     });
     Ok(rows.collect())
+}
+
+/// An `(N, width)` array of finite numbers as `T`, flattened row by row.
+pub(crate) fn float_table<T: Scalar + numpy::Element>(
+    py: Python<'_>,
+    obj: &Bound<'_, PyAny>,
+    name: &str,
+    width: usize,
+) -> Result<Vec<T>> {
+    let array = as_array(py, obj, name, "fiu", "numbers")?;
+    let numpy = PyModule::import(py, "numpy")?;
+    let array = numpy.call_method1("ascontiguousarray", (array, numpy::dtype::<T>(py)))?;
+    let array: PyReadonlyArrayDyn<'_, T> = array.extract()?;
+    let shape = array.shape();
+    if shape.len() != 2 || shape[1] != width {
+        return Err(Failure::Input(format!(
+            "{name} has shape {}: expected (N, {width})",
+            shape_text(shape)
+        )));
+    }
+    let values = array
+        .as_slice()
+        .map_err(|e| Failure::Bug(format!("{name}: {e}")))?;
+    if let Some(i) = values.iter().position(|x| !x.to_f64().is_finite()) {
+        return Err(Failure::Input(format!(
+            "{name}[{}, {}] is {}: values must be finite",
+            i / width,
+            i % width,
+            python_float(values[i].to_f64())
+        )));
+    }
+    Ok(values.to_vec())
 }
 
 /// A float as Python writes a non-finite one: `nan`, `inf`, `-inf`.
@@ -716,6 +728,16 @@ impl MeshArg {
         Err(Failure::Type(format!(
             "mesh must be a path, a subcount.Mesh or (positions, faces), not {type_name}"
         )))
+    }
+}
+
+impl MeshArg {
+    /// The mesh through the driver's checks and notes, with `flags` (a file is read).
+    pub(crate) fn load(self, flags: &driver::OptionFlags) -> driver::Result<driver::LoadedMesh> {
+        match self {
+            MeshArg::Path(path) => driver::load(&driver::MeshSource::File(path), flags),
+            MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, flags),
+        }
     }
 }
 

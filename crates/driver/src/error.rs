@@ -203,6 +203,12 @@ pub enum Error {
     /// Refining once (`f32`, frames) a scheme that runs on the raw face list.
     #[error("--precision f32 and --frames refine a manifold mesh once: this scheme runs on the raw face list (loop-general, catmull-clark-general, tri-split-N or a non-manifold mesh); use loop, catmull-clark or --precision f64")]
     RefineOnce,
+    /// A refinement to keep, asked of a scheme that runs on the raw face list.
+    #[error("{scheme} runs on the raw face list (loop-general, catmull-clark-general, tri-split-N or a non-manifold mesh), which keeps no refinement: use loop or catmull-clark")]
+    NoRefinement {
+        /// The scheme.
+        scheme: String,
+    },
     /// Counts too long to materialize ([`crate::limits::digits`]).
     #[error("the counts at level {level} would have about {digits:.3e} decimal digits ({bytes} per count); the limit is 10^7 digits: {hint}")]
     TooManyDigits {
@@ -255,7 +261,7 @@ impl Error {
             E::TableTooLarge { .. } | E::ClosedFormTooCostly { .. } => Kind::Guard,
             E::NotComposable { .. } | E::BoundaryNone { .. } => Kind::Usage,
             E::HolesNotNested { .. } | E::TriangleRule { .. } => Kind::Usage,
-            E::SchemeNotInFile { .. } | E::RefineOnce => Kind::Usage,
+            E::SchemeNotInFile { .. } | E::RefineOnce | E::NoRefinement { .. } => Kind::Usage,
             E::RefineOnceComposition { .. } => Kind::Usage,
             _ => Kind::Input,
         }

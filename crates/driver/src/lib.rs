@@ -43,6 +43,7 @@ pub mod limits;
 mod mesh;
 pub mod output;
 pub mod refined;
+pub mod refinement;
 mod scheme;
 pub mod subdivide;
 pub mod system;

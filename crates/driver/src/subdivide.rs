@@ -18,8 +18,8 @@ use std::time::{Duration, Instant};
 
 use halfedge::holes::HoleSet;
 use halfedge::io::ObjWriteOptions;
-use halfedge::subdivide::{self as sub, LevelDone, SubdivideOptions};
-use halfedge::tags::FaceVaryingInterpolation;
+use halfedge::subdivide::{self as sub, LevelDone, Sharpness, SubdivideOptions};
+use halfedge::tags::{FaceVaryingInterpolation, SubdivisionOptions};
 use halfedge::uv::{UvLayout, Uvs};
 use halfedge::{HalfEdgeMesh, PolygonMesh, Rule};
 use num_bigint::BigInt;
@@ -52,6 +52,9 @@ pub struct SubdivideJob {
     pub uvs: bool,
     /// The UV interpolation asked for, over the file's tag.
     pub uv_interpolation: Option<FaceVaryingInterpolation>,
+    /// Keep the refinement for evaluations to come ([`Prepared::refinement`]): guarded as a
+    /// refine-once run with frames; schemes on the raw face list are refused.
+    pub keep_refinement: bool,
 }
 
 impl SubdivideJob {
@@ -65,33 +68,34 @@ impl SubdivideJob {
             frames: 0,
             uvs: true,
             uv_interpolation: None,
+            keep_refinement: false,
         }
     }
 
     /// Whether the run refines once and evaluates into buffers.
     fn refine_once(&self) -> bool {
-        self.frames > 0 || self.precision == Precision::F32
+        self.frames > 0 || self.precision == Precision::F32 || self.keep_refinement
     }
 }
 
 /// A subdivision ready to run: its path chosen, its memory guarded, its input validated.
 #[derive(Debug)]
 pub struct Prepared<'m> {
-    loaded: &'m LoadedMesh,
-    job: SubdivideJob,
+    pub(crate) loaded: &'m LoadedMesh,
+    pub(crate) job: SubdivideJob,
     /// The scheme as it counts what is written.
-    chosen: Scheme,
-    rule: Rule,
-    holes: Option<HoleSet>,
-    face_list: bool,
-    layout: Option<UvLayout>,
-    last_faces: Option<usize>,
-    mesh: Option<HalfEdgeMesh>,
-    predicted: BigInt,
-    final_faces: u64,
+    pub(crate) chosen: Scheme,
+    pub(crate) rule: Rule,
+    pub(crate) holes: Option<HoleSet>,
+    pub(crate) face_list: bool,
+    pub(crate) layout: Option<UvLayout>,
+    pub(crate) last_faces: Option<usize>,
+    pub(crate) mesh: Option<HalfEdgeMesh>,
+    pub(crate) predicted: BigInt,
+    pub(crate) final_faces: u64,
     /// Refine once and evaluate into buffers: `--precision f32`, `--frames`, or vertex colors
     /// on a half-edge mesh (refined by the positions' refinement).
-    refine_once: bool,
+    pub(crate) refine_once: bool,
 }
 
 /// Chooses how `loaded` is subdivided by `choice` under `job` and guards its memory: the
@@ -146,7 +150,12 @@ pub fn prepare<'m>(
     }
     loaded.carry_notes(output, notes);
     if job.refine_once() && face_list {
-        return Err(Error::RefineOnce);
+        return Err(match job.keep_refinement {
+            true => Error::NoRefinement {
+                scheme: chosen.name().to_owned(),
+            },
+            false => Error::RefineOnce,
+        });
     }
     // Colors are refined with the positions' weights: by the refinement that computes the
     // positions (the raw face list places both linearly, in `subdivide_polygons`).
@@ -217,13 +226,15 @@ fn predicted_peak(
     let need = if refine_once {
         let bytes = job.precision.bytes();
         let creases = loaded.has_crease_rules(rule);
-        m::predicted_refinement_peak_bytes(rule, counts, levels, bytes, job.frames > 0, creases)
-            .and_then(|peak| match holes {
+        let frames = job.frames > 0 || job.keep_refinement;
+        m::predicted_refinement_peak_bytes(rule, counts, levels, bytes, frames, creases).and_then(
+            |peak| match holes {
                 true => m::refinement_hole_bytes(scheme, counts, levels, bytes)
                     .map(|holes| peak + holes)
                     .map_err(Into::into),
                 false => Ok(peak),
-            })
+            },
+        )
     } else {
         let levels_bytes = if loaded.has_crease_rules(rule) && !face_list {
             m::predicted_peak_bytes_with_creases(rule, counts, levels, last_faces)
@@ -268,6 +279,25 @@ fn predicted_peak(
 }
 
 impl Prepared<'_> {
+    /// The file's creases and corners and the resolved options, the UV interpolation among
+    /// them (the face-list subdividers place points linearly and read neither).
+    pub(crate) fn subdivision_inputs(
+        &self,
+        notes: Notes<'_>,
+    ) -> Result<(Option<Sharpness>, SubdivisionOptions)> {
+        let (loaded, rule) = (self.loaded, self.rule);
+        let (sharpness, mut options) = match &self.mesh {
+            Some(mesh) => loaded.crease_inputs(rule, mesh, notes)?,
+            None => (None, Default::default()),
+        };
+        if self.layout.is_some() {
+            let asked = self.job.uv_interpolation;
+            let mode = uv_interpolation(asked, loaded, rule, self.face_list, notes);
+            options = options.with_face_varying(mode);
+        }
+        Ok((sharpness, options))
+    }
+
     /// The scheme's name as it counts what is written (`loop-boundary` for `loop` on a mesh
     /// with boundary).
     pub fn scheme_name(&self) -> &str {
@@ -304,16 +334,7 @@ impl Prepared<'_> {
                 progress(done.level);
             }
         };
-        // The file's creases and corners and the resolved options (the face-list
-        // subdividers place points linearly and read neither).
-        let (sharpness, mut options) = match &self.mesh {
-            Some(mesh) => loaded.crease_inputs(rule, mesh, notes)?,
-            None => (None, Default::default()),
-        };
-        if self.layout.is_some() {
-            let mode = uv_interpolation(job.uv_interpolation, loaded, rule, self.face_list, notes);
-            options = options.with_face_varying(mode);
-        }
+        let (sharpness, options) = self.subdivision_inputs(notes)?;
         let mut opts = SubdivideOptions::default()
             .with_threads(job.threads)
             .with_progress(&progress)

@@ -435,14 +435,22 @@ impl PolygonMesh {
     /// mesh built from this one (which drops the others); `None` without colors.
     pub fn colors_of_referenced(&self) -> Option<Vec<[f64; 3]>> {
         let colors = self.colors()?;
-        let mut used = vec![false; colors.len()];
+        let kept = self.referenced_vertices().into_iter();
+        Some(kept.map(|v| colors[v as usize]).collect())
+    }
+
+    /// The vertices some face uses, in order: vertex `i` of the half-edge mesh built from
+    /// this one (which drops the others) is vertex `referenced_vertices()[i]` of this one.
+    pub fn referenced_vertices(&self) -> Vec<u32> {
+        let mut used = vec![false; self.n_vertices()];
         for &v in &self.face_indices {
             if let Some(u) = used.get_mut(v as usize) {
                 *u = true;
             }
         }
-        let kept = colors.iter().zip(&used).filter(|(_, &u)| u);
-        Some(kept.map(|(c, _)| *c).collect())
+        (0..used.len() as u32)
+            .filter(|&v| used[v as usize])
+            .collect()
     }
 
     /// Why the mesh has no [`colors`](Self::colors) although some vertices of its file have

@@ -22,13 +22,14 @@ from ._errors import (
     Warning,
 )
 from ._commands import at, density, fit, formula, schemes, stats, table, verify
-from ._subcount import Mesh, __version__, read_mesh, subdivide, write_mesh
+from ._subcount import Mesh, Refinement, __version__, read_mesh, subdivide, write_mesh
 
 __all__ = [
     "Error",
     "InputError",
     "Mesh",
     "MismatchError",
+    "Refinement",
     "ResourceError",
     "UsageError",
     "Warning",

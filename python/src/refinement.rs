@@ -1,0 +1,454 @@
+//! `subcount.Refinement`: refine the topology once, evaluate many times (OpenSubdiv's
+//! `TopologyRefiner` with `PrimvarRefiner::Interpolate`), through
+//! `driver::subdivide::prepare` and `Prepared::refinement` (the checks, guards, options and
+//! notes of `subdivide`); positions and UVs evaluated into numpy arrays, given (`out=`, written
+//! in place) or allocated, with the GIL released; stencils as a SciPy sparse matrix.
+
+use driver::refinement::KeptRefinement;
+use driver::SchemeChoice;
+use halfedge::Refinement as Refined;
+use halfedge::Scalar;
+use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+
+use crate::errors::{guarded, warn_notes, Failure, Result};
+use crate::mesh::{int32s, MeshArg};
+use crate::RunOptions;
+
+/// A mesh's topology refined once to a level, to evaluate positions (and UVs) many times:
+/// an animation's frames, a deformer's output, without topology work per frame.
+///
+/// Refinement(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
+/// uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False)
+///
+/// The keywords are subdivide()'s (no precision: evaluate() computes in the dtype of the
+/// points it is given). Schemes that run on the raw face list (loop-general,
+/// catmull-clark-general, tri-split-N or a non-manifold mesh) keep no refinement:
+/// subcount.UsageError.
+///
+/// >>> cube = subcount.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1],
+/// ...     [1, 1, 1], [0, 1, 1]], [4] * 6, [0, 3, 2, 1, 4, 5, 6, 7, 0, 1, 5, 4, 1, 2, 6, 5,
+/// ...     2, 3, 7, 6, 3, 0, 4, 7])
+/// >>> r = subcount.Refinement(cube, scheme="catmull-clark", levels=2)
+/// >>> r.n_vertices(), r.n_faces(), r.n_vertices(1)
+/// (98, 96, 26)
+/// >>> out = numpy.empty((r.n_vertices(), 3))
+/// >>> _ = r.evaluate(cube.positions * 2.0, out=out)     # a frame, written into out
+/// >>> bool(numpy.allclose(out, 2.0 * r.evaluate(cube.positions)))
+/// True
+/// >>> r.stencils().shape                                 # doctest: +SKIP
+/// (98, 8)
+#[pyclass(module = "subcount", frozen)]
+pub(crate) struct Refinement {
+    kept: KeptRefinement,
+    /// The vertices of the mesh (the columns of the stencils; rows of evaluate's points).
+    n_mesh_vertices: usize,
+    /// The memory guard is lifted (for the stencils too).
+    allow_large: bool,
+}
+
+#[pymethods]
+impl Refinement {
+    #[new]
+    #[pyo3(signature = (
+        mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
+        uv_interpolation=None, ignore_tags=false, threads=0, no_uv=false, allow_large=false
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        mesh: &Bound<'_, PyAny>,
+        scheme: String,
+        levels: &Bound<'_, PyAny>,
+        boundary: Option<&str>,
+        crease_method: Option<&str>,
+        triangle_rule: Option<&str>,
+        uv_interpolation: Option<&str>,
+        ignore_tags: bool,
+        threads: i64,
+        no_uv: bool,
+        allow_large: bool,
+    ) -> PyResult<Refinement> {
+        let mut notes = Vec::new();
+        let options = RunOptions {
+            levels,
+            boundary,
+            crease_method,
+            triangle_rule,
+            uv_interpolation,
+            ignore_tags,
+            precision: "f64",
+            threads,
+            no_uv,
+            allow_large,
+        };
+        let result = guarded(|| {
+            let (mut job, flags) = options.job()?;
+            job.keep_refinement = true;
+            let source = MeshArg::extract(py, mesh)?;
+            let choice = SchemeChoice::Builtin(scheme);
+            py.detach(|| {
+                guarded(|| {
+                    let loaded = source.load(&flags)?;
+                    let mut note = |n: String| notes.push(n);
+                    let prepared =
+                        driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
+                    let kept = prepared.refinement(&mut note)?;
+                    Ok(Refinement {
+                        kept,
+                        n_mesh_vertices: loaded.poly.n_vertices(),
+                        allow_large,
+                    })
+                })
+            })
+        });
+        warn_notes(py, &notes)?;
+        result.map_err(|f| f.into_pyerr(py))
+    }
+
+    /// The last level.
+    #[getter]
+    fn levels(&self) -> u32 {
+        self.refined().levels()
+    }
+
+    /// The scheme as it counts what is written ("loop-boundary" for "loop" on an open mesh).
+    #[getter]
+    fn scheme(&self) -> &str {
+        &self.kept.scheme
+    }
+
+    /// The vertices of a level (default: the last), those of holes included below the last.
+    #[pyo3(signature = (level=None))]
+    fn n_vertices(&self, level: Option<u32>) -> PyResult<usize> {
+        Ok(self.refined().n_vertices(self.level(level)?))
+    }
+
+    /// The faces of a level (default: the last; at the last, without holes).
+    #[pyo3(signature = (level=None))]
+    fn n_faces(&self, level: Option<u32>) -> PyResult<usize> {
+        Ok(self.refined().n_faces(self.level(level)?))
+    }
+
+    /// The UV values of a level (default: the last), 0 without UVs.
+    #[pyo3(signature = (level=None))]
+    fn n_uvs(&self, level: Option<u32>) -> PyResult<usize> {
+        let level = self.level(level)?;
+        Ok(match self.refined().has_uvs() {
+            true => self.refined().n_uvs(level),
+            false => 0,
+        })
+    }
+
+    /// The last level's face sizes, int32.
+    #[getter]
+    fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (offsets, _) = self.faces().map_err(|f| f.into_pyerr(py))?;
+        int32s(
+            py,
+            offsets.windows(2).map(|w| u64::from(w[1] - w[0])),
+            "a face's corners",
+        )
+    }
+
+    /// The last level's corners (vertex indices, face after face), int32.
+    #[getter]
+    fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let (_, corners) = self.faces().map_err(|f| f.into_pyerr(py))?;
+        int32s(py, corners.into_iter().map(u64::from), "a vertex index")
+    }
+
+    /// The UV value of each corner of the last level (indices into evaluate_uvs' rows),
+    /// int32, or None without UVs.
+    #[getter]
+    fn uv_indices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        if !self.refined().has_uvs() {
+            return Ok(None);
+        }
+        let refined = self.refined();
+        let mut indices = vec![0u32; refined.n_corners(refined.levels())];
+        let written = refined.write_uv_indices(&mut indices);
+        written.map_err(|e| Failure::from(driver::Error::from(e)).into_pyerr(py))?;
+        int32s(py, indices.into_iter().map(u64::from), "a UV index").map(Some)
+    }
+
+    /// The UV values evaluate_uvs() starts from by default (the mesh's texture coordinates,
+    /// one per value of its UV layout), (K, 2) float64, or None without UVs.
+    #[getter]
+    fn base_uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(uvs) = &self.kept.base_uvs else {
+            return Ok(None);
+        };
+        let flat: Vec<f64> = uvs.iter().flatten().copied().collect();
+        Ok(Some(
+            PyArray1::from_vec(py, flat)
+                .reshape([uvs.len(), 2])?
+                .into_any(),
+        ))
+    }
+
+    /// Evaluates the last level's positions from `points`, one row per vertex of the mesh
+    /// ((N, 3), float64 or float32: computed in that type), into `out` when given (C-contiguous,
+    /// writable, (n_vertices(), 3), the same dtype; written in place), else into a new array.
+    /// Returns the array written. The GIL is released while it works.
+    ///
+    /// Raises subcount.InputError for a wrong shape, a non-finite value or an unfit out,
+    /// TypeError for a non-numeric dtype or an out of another dtype.
+    #[pyo3(signature = (points, out=None))]
+    fn evaluate<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n_out = self.refined().n_vertices(self.refined().levels());
+        let work = || {
+            let f32 = is_float32(py, points)?;
+            let rows = (self.n_mesh_vertices, "vertex of the mesh");
+            match f32 {
+                true => self.evaluate_in::<f32>(py, points, out, rows, n_out, Stream::Positions),
+                false => self.evaluate_in::<f64>(py, points, out, rows, n_out, Stream::Positions),
+            }
+        };
+        guarded(work).map_err(|f| f.into_pyerr(py))
+    }
+
+    /// Evaluates the last level's UV values from `uvs` ((K, 2), one per value of the UV
+    /// layout, float64 or float32; default: base_uvs) into `out` as evaluate() does
+    /// ((n_uvs(), 2)); uv_indices names the value of each corner. subcount.UsageError without
+    /// UVs.
+    #[pyo3(signature = (uvs=None, out=None))]
+    fn evaluate_uvs<'py>(
+        &self,
+        py: Python<'py>,
+        uvs: Option<&Bound<'py, PyAny>>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let work = || {
+            let Some(base) = &self.kept.base_uvs else {
+                return Err(Failure::Usage(
+                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
+                ));
+            };
+            let default;
+            let uvs = match uvs {
+                Some(uvs) => uvs,
+                None => {
+                    default = self
+                        .base_uvs(py)?
+                        .unwrap_or_else(|| py.None().into_bound(py));
+                    &default
+                }
+            };
+            let n_out = self.refined().n_uvs(self.refined().levels());
+            let rows = (base.len(), "UV value of the layout");
+            match is_float32(py, uvs)? {
+                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, Stream::Uvs),
+                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, Stream::Uvs),
+            }
+        };
+        guarded(work).map_err(|f| f.into_pyerr(py))
+    }
+
+    /// The last level's vertices as weighted sums of the mesh's vertices: a
+    /// scipy.sparse.csr_array of shape (n_vertices(), N) (OpenSubdiv's StencilTable), so that
+    /// `r.stencils() @ points` equals `r.evaluate(points)` up to rounding. Needs SciPy. Refused
+    /// (subcount.ResourceError) beyond half the available memory unless the refinement was
+    /// made with allow_large; the icosphere rule (not linear) has none (subcount.InputError).
+    fn stencils<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let table = guarded(|| {
+            let refined = self.refined();
+            let sizes = refined.stencil_sizes().map_err(driver::Error::from)?;
+            let available = driver::system::available_bytes();
+            let limit = available.map_or(u128::MAX, |a| u128::from(a / 2));
+            if sizes.bytes() > limit && !self.allow_large {
+                return Err(Failure::Resource(format!(
+                    "the stencils need {} bytes, over half the available memory ({limit} bytes): make the Refinement with allow_large=True to lift the guard",
+                    sizes.bytes()
+                )));
+            }
+            py.detach(|| refined.stencils().map_err(driver::Error::from))
+                .map_err(Failure::from)
+        })
+        .map_err(|f| f.into_pyerr(py))?;
+        let columns: Vec<i64> = table
+            .indices()
+            .iter()
+            .map(|&i| i64::from(self.kept.base_vertices[i as usize]))
+            .collect();
+        let offsets: Vec<i64> = table.offsets().iter().map(|&o| i64::from(o)).collect();
+        let weights = PyArray1::from_slice(py, table.weights());
+        let sparse = PyModule::import(py, "scipy.sparse")?;
+        let shape = (table.len(), self.n_mesh_vertices);
+        let parts = (
+            weights,
+            PyArray1::from_vec(py, columns),
+            PyArray1::from_vec(py, offsets),
+        );
+        sparse.call_method1("csr_array", (parts, shape))
+    }
+
+    fn __repr__(&self) -> String {
+        let r = self.refined();
+        format!(
+            "subcount.Refinement({}, levels={}: {} vertices, {} faces)",
+            self.kept.scheme,
+            r.levels(),
+            r.n_vertices(r.levels()),
+            r.n_faces(r.levels())
+        )
+    }
+}
+
+/// What an evaluation refines.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Stream {
+    Positions,
+    Uvs,
+}
+
+impl Refinement {
+    fn refined(&self) -> &Refined {
+        &self.kept.refinement
+    }
+
+    /// A level from 0 to the last (default: the last), or UsageError.
+    fn level(&self, level: Option<u32>) -> Result<u32, PyErr> {
+        let last = self.refined().levels();
+        match level {
+            None => Ok(last),
+            Some(l) if l <= last => Ok(l),
+            Some(l) => Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "level {l} is beyond the refinement's last level {last}"
+            ))),
+        }
+    }
+
+    /// The last level's face offsets and corners (holes left out).
+    fn faces(&self) -> Result<(Vec<u32>, Vec<u32>)> {
+        let r = self.refined();
+        let (faces, corners) = (r.n_faces(r.levels()), r.n_corners(r.levels()));
+        let mut indices = vec![0u32; corners];
+        let degree = r.face_degree().filter(|d| matches!(d, 3 | 4));
+        let written = match degree {
+            Some(3) => r.write_triangles(&mut indices),
+            Some(_) => r.write_quads(&mut indices),
+            None => {
+                let mut offsets = vec![0u32; faces + 1];
+                r.write_polygons(&mut offsets, &mut indices)
+                    .map_err(driver::Error::from)?;
+                return Ok((offsets, indices));
+            }
+        };
+        written.map_err(driver::Error::from)?;
+        let d = degree.unwrap_or(3) as u32;
+        Ok(((0..=faces as u32).map(|f| f * d).collect(), indices))
+    }
+
+    /// Evaluates `stream` in `T` from `base` (`rows.0` rows, named `rows.1`) into `out` (or a
+    /// new array of `n_out` rows).
+    fn evaluate_in<'py, T: Scalar + Element>(
+        &self,
+        py: Python<'py>,
+        base: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
+        rows: (usize, &str),
+        n_out: usize,
+        stream: Stream,
+    ) -> Result<Bound<'py, PyAny>> {
+        let (name, width) = match stream {
+            Stream::Positions => ("points", 3),
+            Stream::Uvs => ("uvs", 2),
+        };
+        let values = crate::mesh::float_table::<T>(py, base, name, width)?;
+        if values.len() != rows.0 * width {
+            return Err(Failure::Input(format!(
+                "{name} has {} rows: expected one per {} ({} rows)",
+                values.len() / width,
+                rows.1,
+                rows.0
+            )));
+        }
+        // The refinement's base vertices are the mesh's vertices some face uses.
+        let gathered: Vec<T>;
+        let base: &[T] = match stream {
+            Stream::Positions if self.kept.base_vertices.len() != rows.0 => {
+                let kept = self.kept.base_vertices.iter().map(|&v| v as usize * width);
+                gathered = kept.flat_map(|i| values[i..i + width].to_vec()).collect();
+                &gathered
+            }
+            _ => &values,
+        };
+        let array = match out {
+            Some(out) => out_array::<T>(py, out, n_out, width)?,
+            None => PyArray2::<T>::zeros(py, [n_out, width], false),
+        };
+        {
+            let mut guard = array
+                .try_readwrite()
+                .map_err(|e| Failure::Input(format!("out cannot be written: {e}")))?;
+            let slice = guard
+                .as_slice_mut()
+                .map_err(|e| Failure::Input(format!("out is not C-contiguous: {e}")))?;
+            let refined = self.refined();
+            py.detach(|| match stream {
+                Stream::Positions => refined.evaluate_strided(base, width, slice),
+                Stream::Uvs => {
+                    let pairs: Vec<[T; 2]> = base.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
+                    let mut result = vec![[T::ZERO; 2]; n_out];
+                    let done = refined.evaluate_uvs(&pairs, &mut result);
+                    for (dst, src) in slice.chunks_exact_mut(2).zip(&result) {
+                        dst.copy_from_slice(src);
+                    }
+                    done
+                }
+            })
+            .map_err(driver::Error::from)?;
+        }
+        Ok(array.into_any())
+    }
+}
+
+/// Whether `array`'s dtype is float32 (everything else numeric evaluates in float64).
+fn is_float32(py: Python<'_>, array: &Bound<'_, PyAny>) -> Result<bool> {
+    let numpy = PyModule::import(py, "numpy")?;
+    let dtype = numpy.call_method1("asarray", (array,))?.getattr("dtype")?;
+    Ok(dtype.eq(numpy.getattr("float32")?)?)
+}
+
+/// The caller's `out`: a writable, C-contiguous `T` array of shape `(n, width)`.
+fn out_array<'py, T: Element>(
+    py: Python<'py>,
+    out: &Bound<'py, PyAny>,
+    n: usize,
+    width: usize,
+) -> Result<Bound<'py, PyArray2<T>>> {
+    let dtype = numpy::dtype::<T>(py);
+    let array = out.cast::<PyArray2<T>>().map_err(|_| {
+        let what = out
+            .getattr("dtype")
+            .and_then(|d| d.str().map(|s| s.to_string()))
+            .unwrap_or_else(|_| out.get_type().to_string());
+        let shape = out
+            .getattr("shape")
+            .map_or(String::new(), |s| s.to_string());
+        match out.getattr("ndim").and_then(|d| d.extract::<usize>()) {
+            Ok(2) => Failure::Type(format!("out must be a {dtype} array, not {what}")),
+            Ok(_) => Failure::Input(format!("out has shape {shape}: expected ({n}, {width})")),
+            Err(_) => Failure::Type(format!("out must be a numpy array, not {what}")),
+        }
+    })?;
+    let shape = array.shape();
+    if shape != [n, width] {
+        return Err(Failure::Input(format!(
+            "out has shape ({}, {}): expected ({n}, {width})",
+            shape[0], shape[1]
+        )));
+    }
+    if !array.is_c_contiguous() {
+        return Err(Failure::Input(
+            "out is not C-contiguous: pass numpy.empty(...) or an ascontiguousarray".into(),
+        ));
+    }
+    Ok(array.clone())
+}
