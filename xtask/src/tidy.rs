@@ -46,7 +46,7 @@ pub(crate) const LAYERS: &[(&str, &[&str])] = &[
     ("chart", &[]),
     ("testdata", &[]),
     ("recurrence", &[]),
-    ("schemes", &["recurrence"]),
+    ("schemes", &["recurrence", "decimal"]),
     ("halfedge", &["recurrence", "schemes"]),
     ("driver", &["recurrence", "schemes", "halfedge"]),
     (
