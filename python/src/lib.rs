@@ -239,7 +239,7 @@ impl RunOptions<'_, '_> {
 
 /// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64
 /// bits saturates (and is refused as out of range).
-fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
+pub(crate) fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
     let is_bool = obj.is_instance_of::<pyo3::types::PyBool>();
     if is_bool || !obj.is_instance_of::<PyInt>() {
         let type_name = obj.get_type().name()?.to_string();
@@ -253,8 +253,8 @@ fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
     }
 }
 
-/// Runs the command line `subcount ARGS` (the program name excluded) in this process, the
-/// mesh of `--mesh` replaced by `mesh` (a subcount.Mesh or (positions, faces)) when given; the
+/// Runs the command line `subcount ARGS` (the program name excluded) in this process, with
+/// `mesh` (a path: `--mesh PATH`; a subcount.Mesh or (positions, faces): in memory) when given; the
 /// GIL is released while it works. Returns (exit_code, stdout, notes, error): the command's
 /// exit code, what it printed, the notes it would have printed on stderr, and its error
 /// line's message. The package's `at`, `table`, ... build ARGS and read the JSON.

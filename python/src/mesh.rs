@@ -338,7 +338,7 @@ pub(crate) fn int32s<'py>(
 
 /// Marks an array read-only (`setflags(write=False)`): the mesh's arrays are copies, and
 /// writing into one would change nothing.
-fn read_only(array: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
+pub(crate) fn read_only(array: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
     let kwargs = PyDict::new(array.py());
     kwargs.set_item("write", false)?;
     array.call_method("setflags", (), Some(&kwargs))?;

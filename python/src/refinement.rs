@@ -36,7 +36,7 @@ use crate::RunOptions;
 /// >>> _ = r.evaluate(cube.positions * 2.0, out=out)     # a frame, written into out
 /// >>> bool(numpy.allclose(out, 2.0 * r.evaluate(cube.positions)))
 /// True
-/// >>> r.stencils().shape                                 # doctest: +SKIP
+/// >>> r.stencils().shape                                 # needs SciPy
 /// (98, 8)
 #[pyclass(module = "subcount", frozen)]
 pub(crate) struct Refinement {
@@ -120,20 +120,20 @@ impl Refinement {
 
     /// The vertices of a level (default: the last), those of holes included below the last.
     #[pyo3(signature = (level=None))]
-    fn n_vertices(&self, level: Option<u32>) -> PyResult<usize> {
-        Ok(self.refined().n_vertices(self.level(level)?))
+    fn n_vertices(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
+        Ok(self.refined().n_vertices(self.level(py, level)?))
     }
 
     /// The faces of a level (default: the last; at the last, without holes).
     #[pyo3(signature = (level=None))]
-    fn n_faces(&self, level: Option<u32>) -> PyResult<usize> {
-        Ok(self.refined().n_faces(self.level(level)?))
+    fn n_faces(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
+        Ok(self.refined().n_faces(self.level(py, level)?))
     }
 
     /// The UV values of a level (default: the last), 0 without UVs.
     #[pyo3(signature = (level=None))]
-    fn n_uvs(&self, level: Option<u32>) -> PyResult<usize> {
-        let level = self.level(level)?;
+    fn n_uvs(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
+        let level = self.level(py, level)?;
         Ok(match self.refined().has_uvs() {
             true => self.refined().n_uvs(level),
             false => 0,
@@ -313,14 +313,18 @@ impl Refinement {
     }
 
     /// A level from 0 to the last (default: the last), or UsageError.
-    fn level(&self, level: Option<u32>) -> Result<u32, PyErr> {
+    fn level(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<u32> {
         let last = self.refined().levels();
-        match level {
-            None => Ok(last),
-            Some(l) if l <= last => Ok(l),
-            Some(l) => Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "level {l} is beyond the refinement's last level {last}"
-            ))),
+        let Some(level) = level else {
+            return Ok(last);
+        };
+        let level = crate::whole_number(level, "level").map_err(|f| f.into_pyerr(py))?;
+        match u32::try_from(level) {
+            Ok(l) if l <= last => Ok(l),
+            _ => Err(Failure::Usage(format!(
+                "level {level} is not a level of the refinement (0 to {last})"
+            ))
+            .into_pyerr(py)),
         }
     }
 
@@ -392,7 +396,12 @@ impl Refinement {
                 .map_err(|e| Failure::Input(format!("out is not C-contiguous: {e}")))?;
             let refined = self.refined();
             py.detach(|| match stream {
-                Stream::Positions => refined.evaluate_strided(base, width, slice),
+                Stream::Positions => {
+                    // Rows of 3 in place: no packed copy of the input or the output.
+                    let (rows, _) = base.as_chunks::<3>();
+                    let (out_rows, _) = slice.as_chunks_mut::<3>();
+                    refined.evaluate(rows, out_rows)
+                }
                 Stream::Uvs => {
                     let pairs: Vec<[T; 2]> = base.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
                     let mut result = vec![[T::ZERO; 2]; n_out];

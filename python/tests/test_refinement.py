@@ -151,7 +151,7 @@ def test_out_is_written_in_place_and_checked():
         r.evaluate(p)
     with pytest.raises(TypeError):
         r.evaluate(positions.astype(str))
-    with pytest.raises(ValueError, match="beyond"):
+    with pytest.raises(subcount.UsageError, match="not a level"):
         r.n_vertices(3)
 
 

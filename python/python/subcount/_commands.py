@@ -48,11 +48,12 @@ def _run(args: List[str], mesh: Any = None) -> Any:
     report = json.loads(stdout, parse_int=_big_int) if stdout.strip() else None
     if code == 0:
         return report
-    failure = _ERRORS.get(code, _errors.Error)(error or f"the command ended with exit code {code}")
+    message = error or f"the command ended with exit code {code}"
     if code == 1:
-        # verify's levels, the one that differs included.
-        failure.report = report
-    raise failure
+        mismatch = _errors.MismatchError(message)
+        mismatch.report = report  # verify's levels, the one that differs included
+        raise mismatch
+    raise _ERRORS.get(code, _errors.Error)(message)
 
 
 def _levels(levels: Union[int, range], name: str = "levels") -> str:
@@ -254,7 +255,7 @@ def formula(
         )
     sympy = None
     if format == "sympy":
-        import sympy  # noqa: F811 (an optional dependency, imported when asked for)
+        import sympy  # type: ignore  # noqa: F811 (an optional, untyped dependency, imported when asked for)
     args = ["formula", "--format", "json" if format == "sympy" else format]
     memory = _source(
         args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,

@@ -16,6 +16,7 @@ subcount.Warning)``).
 """
 
 import builtins
+import typing
 
 
 class Error(Exception):
@@ -35,7 +36,12 @@ class ResourceError(Error, MemoryError):
 
 
 class MismatchError(Error):
-    """A real subdivision disagreed with the prediction (exit code 1)."""
+    """A real subdivision disagreed with the prediction (exit code 1).
+
+    ``report`` holds ``verify``'s levels (one dict per level, the differing one included).
+    """
+
+    report: "typing.Optional[typing.List[typing.Dict[str, typing.Any]]]" = None
 
 
 class Warning(builtins.UserWarning):  # noqa: A001 - the public name
