@@ -8,29 +8,27 @@
 
 mod errors;
 mod mesh;
+mod options;
 mod refinement;
 mod tags;
 
 use std::path::PathBuf;
 
-use driver::refined::Precision;
-use driver::subdivide::SubdivideJob;
-use driver::{MeshSource, OptionFlags, SchemeChoice};
+use driver::{MeshSource, OptionFlags};
 use halfedge::io::ObjWriteOptions;
-use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
 use pyo3::prelude::*;
-use pyo3::types::PyInt;
+use pyo3::types::{PyDict, PyInt};
 
 use crate::errors::{guarded, warn_notes, Failure, Result};
 use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
-use crate::tags::named;
+use crate::options::RunOptions;
 
 /// The most threads `threads=` may ask for (the command line's `--threads` limit).
-const MAX_THREADS: i64 = driver::limits::MAX_THREADS as i64;
+pub(crate) const MAX_THREADS: i64 = driver::limits::MAX_THREADS as i64;
 
 /// The last level real subdivision reaches (the command line's `--levels` limit: every rule
 /// at least doubles the faces per level, so no later level fits 32-bit indices).
-const MAX_LEVELS: i64 = driver::limits::MAX_REAL_LEVELS as i64;
+pub(crate) const MAX_LEVELS: i64 = driver::limits::MAX_REAL_LEVELS as i64;
 
 /// Reads a mesh file (OBJ, OFF or PLY) with its texture coordinates, vertex colors,
 /// materials, groups and OpenSubdiv tags, within the memory this process may use.
@@ -113,128 +111,27 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 ///
 /// >>> out = subcount.subdivide(m, scheme="catmull-clark", levels=2)  # doctest: +SKIP
 #[pyfunction]
-#[pyo3(signature = (
-    mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
-    uv_interpolation=None, ignore_tags=false, precision="f64", threads=0, no_uv=false,
-    allow_large=false
-))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(
+    signature = (mesh, *, scheme, levels, **options),
+    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False)"
+)]
 fn subdivide(
     py: Python<'_>,
     mesh: &Bound<'_, PyAny>,
     scheme: String,
     levels: &Bound<'_, PyAny>,
-    boundary: Option<&str>,
-    crease_method: Option<&str>,
-    triangle_rule: Option<&str>,
-    uv_interpolation: Option<&str>,
-    ignore_tags: bool,
-    precision: &str,
-    threads: i64,
-    no_uv: bool,
-    allow_large: bool,
+    options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Mesh> {
-    let mut notes = Vec::new();
-    let options = RunOptions {
-        levels,
-        boundary,
-        crease_method,
-        triangle_rule,
-        uv_interpolation,
-        ignore_tags,
-        precision,
-        threads,
-        no_uv,
-        allow_large,
-    };
-    let result = guarded(|| {
-        let (job, flags) = options.job()?;
-        let source = MeshArg::extract(py, mesh)?;
-        let choice = SchemeChoice::Builtin(scheme);
-        let f32 = job.precision == Precision::F32;
-        py.detach(|| {
-            guarded(|| {
-                let loaded = source.load(&flags)?;
-                let mut note = |n: String| notes.push(n);
-                let prepared = driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
-                let level = prepared.run(&|_| {}, &mut note)?;
-                Ok(Mesh {
-                    poly: level.into_polygon_mesh()?,
-                    label: ARRAYS_LABEL.to_owned(),
-                    f32,
-                })
-            })
+    let options = RunOptions::from_keywords(py, "subdivide", levels, options)?;
+    let f32 = options.precision == "f32";
+    options.prepared(py, mesh, scheme, |prepared, _, notes| {
+        let level = prepared.run(&|_| {}, notes)?;
+        Ok(Mesh {
+            poly: level.into_polygon_mesh()?,
+            label: ARRAYS_LABEL.to_owned(),
+            f32,
         })
-    });
-    // Notes come first, as the command line prints them before an error.
-    warn_notes(py, &notes)?;
-    result.map_err(|f| f.into_pyerr(py))
-}
-
-/// The keywords of `subdivide` and `Refinement`, as given.
-pub(crate) struct RunOptions<'a, 'py> {
-    pub(crate) levels: &'a Bound<'py, PyAny>,
-    pub(crate) boundary: Option<&'a str>,
-    pub(crate) crease_method: Option<&'a str>,
-    pub(crate) triangle_rule: Option<&'a str>,
-    pub(crate) uv_interpolation: Option<&'a str>,
-    pub(crate) ignore_tags: bool,
-    pub(crate) precision: &'a str,
-    pub(crate) threads: i64,
-    pub(crate) no_uv: bool,
-    pub(crate) allow_large: bool,
-}
-
-impl RunOptions<'_, '_> {
-    /// The driver's job and option flags, or the refusal of a keyword (the command line's
-    /// checks of the same flags).
-    pub(crate) fn job(&self) -> Result<(SubdivideJob, OptionFlags)> {
-        let levels = whole_number(self.levels, "levels")?;
-        if levels < 0 {
-            return Err(Failure::Usage(format!(
-                "invalid levels: `{levels}` is negative"
-            )));
-        }
-        if levels > MAX_LEVELS {
-            return Err(Failure::Resource(format!(
-                "levels={levels}: real subdivision stops at level {MAX_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
-            )));
-        }
-        let threads = self.threads;
-        if !(0..=MAX_THREADS).contains(&threads) {
-            return Err(Failure::Usage(format!(
-                "invalid threads: `{threads}`: at most {MAX_THREADS} threads (0 uses every core)"
-            )));
-        }
-        let flags = OptionFlags::new(
-            named::<BoundaryInterpolation>(self.boundary, "boundary")?,
-            named::<CreaseMethod>(self.crease_method, "crease_method")?,
-            named::<TriangleRule>(self.triangle_rule, "triangle_rule")?,
-            self.ignore_tags,
-        );
-        let uv_interpolation =
-            named::<FaceVaryingInterpolation>(self.uv_interpolation, "uv_interpolation")?;
-        if self.no_uv && uv_interpolation.is_some() {
-            return Err(Failure::Usage(
-                "uv_interpolation and no_uv do not go together: no_uv refines no UVs".into(),
-            ));
-        }
-        let mut job = SubdivideJob::new(levels as u32);
-        job.threads = threads as usize;
-        job.allow_large = self.allow_large;
-        job.precision = match self.precision {
-            "f64" => Precision::F64,
-            "f32" => Precision::F32,
-            other => {
-                return Err(Failure::Usage(format!(
-                    "invalid precision `{other}`: expected \"f64\" or \"f32\""
-                )))
-            }
-        };
-        job.uvs = !self.no_uv;
-        job.uv_interpolation = uv_interpolation;
-        Ok((job, flags))
-    }
+    })
 }
 
 /// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64

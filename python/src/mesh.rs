@@ -214,8 +214,7 @@ impl Mesh {
     /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
     #[getter]
     fn crease_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let values = self.poly.tags().creases().iter().map(|c| c.sharpness);
-        read_only(PyArray1::from_iter(py, values).into_any())
+        float32s(py, self.poly.tags().creases().iter().map(|c| c.sharpness))
     }
 
     /// The corner vertices (USD's cornerIndices), int32.
@@ -228,8 +227,7 @@ impl Mesh {
     /// The sharpness of each corner (USD's cornerSharpnesses), float32.
     #[getter]
     fn corner_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let values = self.poly.tags().corners().iter().map(|c| c.sharpness);
-        read_only(PyArray1::from_iter(py, values).into_any())
+        float32s(py, self.poly.tags().corners().iter().map(|c| c.sharpness))
     }
 
     /// The faces that are holes (USD's holeIndices), int32.
@@ -334,6 +332,14 @@ pub(crate) fn int32s<'py>(
         .into_pyerr(py)
     })?;
     read_only(PyArray1::from_vec(py, v).into_any())
+}
+
+/// Values as a read-only float32 array.
+fn float32s<'py>(
+    py: Python<'py>,
+    values: impl Iterator<Item = f32>,
+) -> PyResult<Bound<'py, PyAny>> {
+    read_only(PyArray1::from_iter(py, values).into_any())
 }
 
 /// Marks an array read-only (`setflags(write=False)`): the mesh's arrays are copies, and

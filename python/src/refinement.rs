@@ -5,15 +5,15 @@
 //! in place) or allocated, with the GIL released; stencils as a SciPy sparse matrix.
 
 use driver::refinement::KeptRefinement;
-use driver::SchemeChoice;
 use halfedge::Refinement as Refined;
 use halfedge::Scalar;
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
-use crate::errors::{guarded, warn_notes, Failure, Result};
-use crate::mesh::{int32s, MeshArg};
-use crate::RunOptions;
+use crate::errors::{guarded, Failure, Result};
+use crate::mesh::int32s;
+use crate::options::RunOptions;
 
 /// A mesh's topology refined once to a level, to evaluate positions (and UVs) many times:
 /// an animation's frames, a deformer's output, without topology work per frame.
@@ -50,60 +50,26 @@ pub(crate) struct Refinement {
 #[pymethods]
 impl Refinement {
     #[new]
-    #[pyo3(signature = (
-        mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
-        uv_interpolation=None, ignore_tags=false, threads=0, no_uv=false, allow_large=false
-    ))]
-    #[allow(clippy::too_many_arguments)]
+    #[pyo3(
+        signature = (mesh, *, scheme, levels, **options),
+        text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False)"
+    )]
     fn new(
         py: Python<'_>,
         mesh: &Bound<'_, PyAny>,
         scheme: String,
         levels: &Bound<'_, PyAny>,
-        boundary: Option<&str>,
-        crease_method: Option<&str>,
-        triangle_rule: Option<&str>,
-        uv_interpolation: Option<&str>,
-        ignore_tags: bool,
-        threads: i64,
-        no_uv: bool,
-        allow_large: bool,
+        options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Refinement> {
-        let mut notes = Vec::new();
-        let options = RunOptions {
-            levels,
-            boundary,
-            crease_method,
-            triangle_rule,
-            uv_interpolation,
-            ignore_tags,
-            precision: "f64",
-            threads,
-            no_uv,
-            allow_large,
-        };
-        let result = guarded(|| {
-            let (mut job, flags) = options.job()?;
-            job.keep_refinement = true;
-            let source = MeshArg::extract(py, mesh)?;
-            let choice = SchemeChoice::Builtin(scheme);
-            py.detach(|| {
-                guarded(|| {
-                    let loaded = source.load(&flags)?;
-                    let mut note = |n: String| notes.push(n);
-                    let prepared =
-                        driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
-                    let kept = prepared.refinement(&mut note)?;
-                    Ok(Refinement {
-                        kept,
-                        n_mesh_vertices: loaded.poly.n_vertices(),
-                        allow_large,
-                    })
-                })
+        let options = RunOptions::from_keywords(py, "Refinement", levels, options)?;
+        let allow_large = options.allow_large;
+        options.prepared(py, mesh, scheme, |prepared, loaded, notes| {
+            Ok(Refinement {
+                kept: prepared.refinement(notes)?,
+                n_mesh_vertices: loaded.poly.n_vertices(),
+                allow_large,
             })
-        });
-        warn_notes(py, &notes)?;
-        result.map_err(|f| f.into_pyerr(py))
+        })
     }
 
     /// The last level.
