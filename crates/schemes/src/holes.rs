@@ -206,17 +206,13 @@ mod tests {
 
     #[test]
     fn whole_minus_holes_equals_the_written_mesh_under_splits() {
-        // The octahedron with a closed cap of holes around vertex 0 and a single hole.
-        let oct: [[u32; 3]; 8] = [
-            [0, 1, 2],
-            [0, 2, 3],
-            [0, 3, 4],
-            [0, 4, 1],
-            [5, 2, 1],
-            [5, 3, 2],
-            [5, 4, 3],
-            [5, 1, 4],
-        ];
+        // The octahedron (faces 0-3 around apex 0, faces 4-7 around apex 5, the square 1-4
+        // between them) with a closed cap of holes around vertex 0 and a single hole.
+        let ring = |i: u32| 1 + i % 4;
+        let top = (0..4).map(|i| [0, ring(i), ring(i + 1)]);
+        let oct: Vec<[u32; 3]> = top
+            .chain((0..4).map(|i| [5, ring(i + 1), ring(i)]))
+            .collect();
         for (rule, scheme) in [
             (Rule::Loop, "loop-boundary"),
             (Rule::TriSplit(3), "tri-split-3"),

@@ -80,13 +80,9 @@ pub(crate) fn doo_sabin_with_boundary(
     positions: Vec<DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = *t;
-    let ne = t.ne() as u32;
-    let rank = boundary_ranks(&t)?;
+    let (t, ne, rank, mut b) = start_with_boundary(t, ctx, |h| (h, 2 * h))?;
     // The Chaikin point near the target of boundary half-edge h.
     let near_target = |h: u32| 2 * ne + rank[h as usize];
-    let mut b = Builder::new(ctx.expected)?;
-    face_faces(&t, &mut b, |h| (h, 2 * h));
     for e in 0..ne {
         let (mut h, mut tw) = (2 * e, 2 * e + 1);
         if t.is_boundary(h) {
@@ -106,13 +102,8 @@ pub(crate) fn doo_sabin_with_boundary(
             (tw, 2 * (2 * ne + tw)),
         ]);
     }
-    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
-    for v in 0..t.nv() as u32 {
-        ring.clear();
-        t.for_outgoing(v, |h| ring.push(h));
-        corners.clear();
-        let n = ring.len();
-        let first = ring[0];
+    vertex_faces(&t, &mut b, |ring, corners| {
+        let (n, first) = (ring.len(), ring[0]);
         if t.is_boundary(first) {
             // ring[0] is the outgoing boundary half-edge, ring[n - 1] the face half-edge whose
             // twin is the incoming one: Chaikin point near v on the incoming edge, the corners
@@ -128,8 +119,7 @@ pub(crate) fn doo_sabin_with_boundary(
                 corners.push((ring[(k + 1) % n], 2 * (2 * ne + ring[k]) + 1));
             }
         }
-        b.face(&corners);
-    }
+    });
     b.finish(positions, ctx)
 }
 
@@ -140,18 +130,9 @@ pub(crate) fn mid_edge_with_boundary(
     positions: Vec<DVec3>,
     ctx: &StepContext<'_>,
 ) -> Result<HalfEdgeMesh> {
-    let t = *t;
-    let ne = t.ne() as u32;
-    let rank = boundary_ranks(&t)?;
-    let mut b = Builder::new(ctx.expected)?;
-    face_faces(&t, &mut b, |h| (h >> 1, 2 * h));
-    let (mut ring, mut corners): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
-    for v in 0..t.nv() as u32 {
-        ring.clear();
-        t.for_outgoing(v, |h| ring.push(h));
-        corners.clear();
-        let n = ring.len();
-        let first = ring[0];
+    let (t, ne, rank, mut b) = start_with_boundary(t, ctx, |h| (h >> 1, 2 * h))?;
+    vertex_faces(&t, &mut b, |ring, corners| {
+        let (n, first) = (ring.len(), ring[0]);
         if t.is_boundary(first) {
             // The midpoint of the outgoing boundary edge, the kept vertex, the midpoint of the
             // incoming boundary edge, then the midpoints of the interior edges.
@@ -169,9 +150,23 @@ pub(crate) fn mid_edge_with_boundary(
                 corners.push((ring[(k + 1) % n] >> 1, 2 * (ring[k] ^ 1) + 1));
             }
         }
-        b.face(&corners);
-    }
+    });
     b.finish(positions, ctx)
+}
+
+/// The start of a step on a mesh with boundary: the edges, each boundary half-edge's rank
+/// ([`boundary_ranks`]) and a builder holding the face of each old face (`corner` as in
+/// [`face_faces`]).
+fn start_with_boundary<'a>(
+    t: &Topo<'a>,
+    ctx: &StepContext<'_>,
+    corner: impl Fn(u32) -> (u32, u32),
+) -> Result<(Topo<'a>, u32, Vec<u32>, Builder)> {
+    let t = *t;
+    let rank = boundary_ranks(&t)?;
+    let mut b = Builder::new(ctx.expected)?;
+    face_faces(&t, &mut b, corner);
+    Ok((t, t.ne() as u32, rank, b))
 }
 
 /// Emits the face of each old face, in order: its corner at old half-edge `h` is the
@@ -182,6 +177,24 @@ fn face_faces(t: &Topo<'_>, b: &mut Builder, corner: impl Fn(u32) -> (u32, u32))
         corners.clear();
         t.for_face(f, |h| corners.push(corner(h)));
         b.face(&corners);
+    }
+}
+
+/// Emits the face of each old vertex, in order: `corners` fills its corners from the vertex's
+/// outgoing half-edges (`ring`, in `Topo::for_outgoing`'s order; a boundary vertex's starts
+/// with its outgoing boundary half-edge).
+fn vertex_faces(
+    t: &Topo<'_>,
+    b: &mut Builder,
+    mut corners: impl FnMut(&[u32], &mut Vec<(u32, u32)>),
+) {
+    let (mut ring, mut face): (Vec<u32>, Vec<(u32, u32)>) = (Vec::new(), Vec::new());
+    for v in 0..t.nv() as u32 {
+        ring.clear();
+        t.for_outgoing(v, |h| ring.push(h));
+        face.clear();
+        corners(&ring, &mut face);
+        b.face(&face);
     }
 }
 
