@@ -6,6 +6,9 @@
 
 use driver::refinement::KeptRefinement;
 use halfedge::Refinement as Refined;
+use std::sync::Mutex;
+
+use halfedge::refine::Scratch;
 use halfedge::Scalar;
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -45,6 +48,27 @@ pub(crate) struct Refinement {
     n_mesh_vertices: usize,
     /// The memory guard is lifted (for the stencils too).
     allow_large: bool,
+    /// The intermediate levels' buffers of the last evaluation, per precision (kept between
+    /// frames: no allocation after the first; a concurrent call starts its own).
+    scratch64: Mutex<Option<Scratch<f64, 3>>>,
+    scratch32: Mutex<Option<Scratch<f32, 3>>>,
+}
+
+/// A precision whose evaluation buffers a [`Refinement`] keeps.
+trait Kept: Scalar + Element {
+    fn slot(r: &Refinement) -> &Mutex<Option<Scratch<Self, 3>>>;
+}
+
+impl Kept for f64 {
+    fn slot(r: &Refinement) -> &Mutex<Option<Scratch<f64, 3>>> {
+        &r.scratch64
+    }
+}
+
+impl Kept for f32 {
+    fn slot(r: &Refinement) -> &Mutex<Option<Scratch<f32, 3>>> {
+        &r.scratch32
+    }
 }
 
 #[pymethods]
@@ -68,6 +92,8 @@ impl Refinement {
                 kept: prepared.refinement(notes)?,
                 n_mesh_vertices: loaded.poly.n_vertices(),
                 allow_large,
+                scratch64: Mutex::new(None),
+                scratch32: Mutex::new(None),
             })
         })
     }
@@ -317,7 +343,7 @@ impl Refinement {
 
     /// Evaluates `stream` in `T` from `base` (`rows.0` rows, named `rows.1`) into `out` (or a
     /// new array of `n_out` rows).
-    fn evaluate_in<'py, T: Scalar + Element>(
+    fn evaluate_in<'py, T: Kept>(
         &self,
         py: Python<'py>,
         base: &Bound<'py, PyAny>,
@@ -363,10 +389,18 @@ impl Refinement {
             let refined = self.refined();
             py.detach(|| match stream {
                 Stream::Positions => {
-                    // Rows of 3 in place: no packed copy of the input or the output.
+                    // Rows of 3 in place (no packed copy of the input or the output), through
+                    // the buffers the last evaluation kept.
                     let (rows, _) = base.as_chunks::<3>();
                     let (out_rows, _) = slice.as_chunks_mut::<3>();
-                    refined.evaluate(rows, out_rows)
+                    let slot = T::slot(self);
+                    let kept = slot.lock().map_or(None, |mut s| s.take());
+                    let mut evaluator = refined.evaluator_with(kept.unwrap_or_default());
+                    let done = evaluator.evaluate(rows, out_rows);
+                    if let Ok(mut s) = slot.lock() {
+                        *s = Some(evaluator.into_scratch());
+                    }
+                    done
                 }
                 Stream::Uvs => {
                     let pairs: Vec<[T; 2]> = base.chunks_exact(2).map(|p| [p[0], p[1]]).collect();

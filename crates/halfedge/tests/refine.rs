@@ -219,6 +219,12 @@ fn levels_chain_to_the_last_level_and_evaluators_reuse_their_buffers() {
             direct != data,
             "{name} {rule}: the moved base changed nothing"
         );
+        // Its buffers handed to the next evaluator (a binding's object owning the
+        // refinement): the same bits.
+        let mut next = r.evaluator_with(evaluator.into_scratch());
+        next.evaluate(&base_of(&mesh), &mut direct)
+            .expect("evaluate");
+        assert!(direct == data, "{name} {rule}: after into_scratch");
     }
 }
 

@@ -22,10 +22,20 @@ impl Refinement {
 
     /// An evaluator of `[T; N]` data that keeps its intermediate levels between calls.
     pub fn evaluator<T: Scalar, const N: usize>(&self) -> Evaluator<'_, T, N> {
+        self.evaluator_with(Scratch::default())
+    }
+
+    /// An evaluator that starts from the buffers another one kept ([`Evaluator::into_scratch`]):
+    /// for a caller that cannot hold the evaluator's borrow of the refinement between calls
+    /// (a binding's object owning both), no allocation after the first call either.
+    pub fn evaluator_with<T: Scalar, const N: usize>(
+        &self,
+        scratch: Scratch<T, N>,
+    ) -> Evaluator<'_, T, N> {
         Evaluator {
             refinement: self,
-            scratch: [Vec::new(), Vec::new()],
-            full: Vec::new(),
+            scratch: scratch.levels,
+            full: scratch.full,
         }
     }
 
@@ -248,7 +258,33 @@ pub struct Evaluator<'r, T: Scalar, const N: usize> {
     full: Vec<[T; N]>,
 }
 
+/// The buffers an [`Evaluator`] keeps between calls, apart from its refinement
+/// ([`Evaluator::into_scratch`], [`Refinement::evaluator_with`]); any refinement's evaluator
+/// may take them (they grow to what it needs).
+#[derive(Debug)]
+pub struct Scratch<T: Scalar, const N: usize> {
+    levels: [Vec<[T; N]>; 2],
+    full: Vec<[T; N]>,
+}
+
+impl<T: Scalar, const N: usize> Default for Scratch<T, N> {
+    fn default() -> Self {
+        Scratch {
+            levels: [Vec::new(), Vec::new()],
+            full: Vec::new(),
+        }
+    }
+}
+
 impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
+    /// The buffers this evaluator keeps, to give the next one ([`Refinement::evaluator_with`]).
+    pub fn into_scratch(self) -> Scratch<T, N> {
+        Scratch {
+            levels: self.scratch,
+            full: self.full,
+        }
+    }
+
     /// As [`Refinement::evaluate`].
     ///
     /// # Errors

@@ -102,7 +102,7 @@ use std::sync::Arc;
 
 use schemes::MeshCounts;
 
-pub use self::evaluate::Evaluator;
+pub use self::evaluate::{Evaluator, Scratch};
 pub(crate) use self::oneshot::{one_shot, OneShot};
 pub use self::stencil::{StencilSizes, StencilTable};
 pub use super::data::Scalar;
