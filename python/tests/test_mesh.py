@@ -188,6 +188,38 @@ def test_subdivide_equals_cli_to_the_bit(tmp_path, scheme, shape, levels):
         assert_same_mesh(ours, expected)
 
 
+SHARED_MESHES = Path(os.environ.get("SUBCOUNT_MESHES", Path(__file__).resolve().parents[3] / "shared" / "meshes"))
+if not SHARED_MESHES.is_absolute():
+    SHARED_MESHES = Path(__file__).resolve().parents[2] / SHARED_MESHES
+
+
+@pytest.mark.parametrize(
+    "name,scheme",
+    [
+        ("osd_catmark_pawn.obj", "catmull-clark"),
+        ("osd_catmark_bishop.obj", "catmull-clark"),
+        ("fandisk_quads.obj", "catmull-clark"),
+        ("3holes.obj", "loop"),
+        ("eight_hole.obj", "loop"),
+        ("osd_loop_toroidal_tet.obj", "loop"),
+    ],
+)
+def test_subdivide_equals_cli_to_the_bit_on_shared_meshes(tmp_path, name, scheme):
+    """Tags, UVs and groups as read: positions, faces and UVs equal `subdivide -o` to the bit."""
+    path = SHARED_MESHES / name
+    if not path.exists():
+        pytest.skip(f"no shared mesh {path} (set SUBCOUNT_MESHES)")
+    for levels in (1, 2):
+        expected = cli_subdivide(path, tmp_path / "cli.obj", "--scheme", scheme, "--levels", levels)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", subcount.Warning)
+            ours = subcount.subdivide(path, scheme=scheme, levels=levels)
+        assert_same_mesh(ours, expected)
+        if expected.uvs is not None:
+            assert same_bits(ours.uvs, expected.uvs)
+            assert np.array_equal(ours.uv_indices, expected.uv_indices)
+
+
 def test_subdivide_options_and_f32_equal_cli(tmp_path):
     positions, faces = grid(4, 3)
     src = write_obj(tmp_path / "in.obj", positions, faces)
