@@ -51,6 +51,12 @@ end is printed with the tables).
    too) against the wall time of the process `subcount table --levels 8 --scheme loop --mesh F
    --format json` and `subcount stats --mesh F --format json` (subprocess.run around it).
 
+5. `--overhead` (alone): the issue's figure, (the Python wall time of `subdivide(...)` with the
+   creation of its arrays `positions`, `face_vertex_counts`, `face_vertex_indices` - the Rust
+   call's time) / the Rust call's time, where the Rust call's time is the library's work the
+   call reports with `timings=True` (`rust_s`: the detached call, freeing included), on Loop L3 of the
+   81,920-face icosphere and Loop L2 of armadillo, medians of --runs fresh processes.
+
 Machine facts (CPU model from /proc/cpuinfo, cores, memory, kernel, `uptime` before and after,
 UTC date, versions of Python, numpy, scipy, libigl, trimesh, subcount and the commit) are
 printed above the tables and written to --json with every run's figure.
@@ -147,15 +153,21 @@ def worker_fresh(path, levels):
     m = subcount.read_mesh(path)
     read_s = time.perf_counter() - t0
     c0, t0 = time.process_time(), time.perf_counter()
-    out = subcount.subdivide(m, scheme=SCHEME, levels=levels, threads=1)
+    out = subcount.subdivide(m, scheme=SCHEME, levels=levels, threads=1, timings=True)
     t1, c1 = time.perf_counter(), time.process_time()
     p = out.positions
     t2 = time.perf_counter()
     f = out.face_vertex_indices
     t3 = time.perf_counter()
+    c = out.face_vertex_counts
+    t4 = time.perf_counter()
+    # The Rust call's own time: the library's work between the arguments' conversion and the
+    # result (the issue's "Rust time"); the rest of the wall time is the binding's.
+    rust_s = out.timings["rust_s"]
     emit({"read_mesh_s": read_s, "call_s": t1 - t0, "cpu_s": c1 - c0, "positions_s": t2 - t1,
-          "face_vertex_indices_s": t3 - t2, "vertices": int(p.shape[0]),
-          "faces": int(f.shape[0] // 3), "threads": threads_now()})
+          "face_vertex_indices_s": t3 - t2, "face_vertex_counts_s": t4 - t3,
+          "rust_s": rust_s, "timings": out.timings, "vertices": int(p.shape[0]),
+          "faces": int(c.shape[0]), "threads": threads_now()})
 
 
 def worker_peer(tool, arrays, levels, runs):
@@ -245,6 +257,37 @@ def run_streaming(args, runs, limit):
             err.seek(0)
             error = (err.read().strip().splitlines() or ["exit code %s" % p.returncode])[-1]
     return rows, error, timed_out
+
+
+def binding_overhead(rows):
+    """The issue's overhead of one job: (the Python wall time of `subdivide(...)` including the
+    creation of its arrays - the Rust call's time) / the Rust call's time, from the medians."""
+    wall = med([r["call_s"] + r["positions_s"] + r["face_vertex_indices_s"]
+                + r["face_vertex_counts_s"] for r in rows])
+    rust = med([r["rust_s"] for r in rows])
+    return wall, rust, (wall - rust) / rust
+
+
+def overhead_only(args, subcount_bin, meshes_dir):
+    """`--overhead`: the issue's two jobs only (Loop L3 of the 81,920-face icosphere, Loop L2
+    of armadillo), fresh processes, a Markdown table."""
+    tmp = tempfile.mkdtemp(prefix="subcount-python-overhead-")
+    sphere = os.path.join(tmp, "icosphere6.obj")
+    subprocess.run([subcount_bin, "subdivide", "--base", "icosahedron", "--scheme", "icosphere",
+                    "--levels", "6", "-o", sphere], check=True, capture_output=True)
+    print("%s; %s" % (utc_now(), uptime()))
+    print()
+    print("| job | Python wall (call + arrays) | Rust call | overhead |")
+    print("|---|---:|---:|---:|")
+    for name, path, level in [("icosphere 81,920 faces, Loop L3", sphere, 3),
+                              ("armadillo, Loop L2", os.path.join(meshes_dir, "armadillo.obj"), 2)]:
+        if not os.path.exists(path):
+            print("| %s | (no %s) | | |" % (name, path))
+            continue
+        wall, rust, share = binding_overhead(run_fresh(path, level, args.runs))
+        print("| %s | %s ms | %s ms | %.1f %% |" % (name, ms(wall), ms(rust), 100 * share))
+    print()
+    print("%s; %s; medians of %d fresh processes" % (utc_now(), uptime(), args.runs))
 
 
 def run_fresh(mesh_path, levels, runs):
@@ -391,10 +434,15 @@ def main():
     ap.add_argument("--levels", default="1,2,3", help="Loop levels on the icosphere")
     ap.add_argument("--armadillo-levels", default="1,2", help="Loop levels on armadillo.obj")
     ap.add_argument("--json", help="also write every figure here")
+    ap.add_argument("--overhead", action="store_true",
+                    help="only the binding's overhead on the issue's two jobs (see binding_overhead)")
     args = ap.parse_args()
     if args.runs < 1 or args.frames < 1:
         ap.error("--runs and --frames must be positive")
     meshes_dir = args.meshes if os.path.isabs(args.meshes) else os.path.join(REPO, args.meshes)
+    if args.overhead:
+        overhead_only(args, args.subcount, meshes_dir)
+        return
 
     subcount = import_subcount()
     import numpy as np

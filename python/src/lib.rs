@@ -13,6 +13,7 @@ mod refinement;
 mod tags;
 
 use std::path::PathBuf;
+use std::time::Instant;
 
 use driver::{MeshSource, OptionFlags};
 use halfedge::io::ObjWriteOptions;
@@ -43,11 +44,7 @@ fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
         guarded(|| {
             let source = MeshSource::File(path);
             let loaded = driver::load(&source, &OptionFlags::default())?;
-            Ok(Mesh {
-                poly: loaded.poly,
-                label: source.label(),
-                f32: false,
-            })
+            Ok(Mesh::new_with(loaded.poly, source.label(), false))
         })
     });
     read.map_err(|f| f.into_pyerr(py))
@@ -76,7 +73,7 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
                 let flags = OptionFlags::default();
                 let loaded = match source {
                     MeshArg::Path(file) => driver::load(&MeshSource::File(file), &flags)?,
-                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, &flags)?,
+                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(poly, &label, &flags)?,
                 };
                 // What the output leaves out (PLY: materials and groups), as `-o` says it.
                 loaded.carry_notes(Some(&path), &mut |n| notes.push(n));
@@ -101,7 +98,8 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 /// triangle_rule ("catmark", "smooth"), uv_interpolation ("none", "corners-only",
 /// "corners-plus1", "corners-plus2", "boundaries", "all"), ignore_tags, precision ("f64" or
 /// "f32": float32 arrays), threads (0: every core), no_uv, allow_large (lift the memory
-/// guard). The GIL is released while it works.
+/// guard), timings (the result's `timings`: the seconds of each part of the call). The GIL is
+/// released while it works.
 ///
 /// Notes (tags not read, options a rule does not apply) are warned as subcount.Warning.
 /// Raises subcount.UsageError for a request that is wrong, subcount.InputError for a mesh
@@ -113,7 +111,7 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 #[pyfunction]
 #[pyo3(
     signature = (mesh, *, scheme, levels, **options),
-    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False)"
+    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False, timings=False)"
 )]
 fn subdivide(
     py: Python<'_>,
@@ -124,14 +122,20 @@ fn subdivide(
 ) -> PyResult<Mesh> {
     let options = RunOptions::from_keywords(py, "subdivide", levels, options)?;
     let f32 = options.precision == "f32";
-    options.prepared(py, mesh, scheme, |prepared, _, notes| {
+    let run = options.prepared(py, mesh, scheme, |prepared, _, notes, timings| {
+        // The memory guard and the subdivision.
+        let t = Instant::now();
         let level = prepared.run(&|_| {}, notes)?;
-        Ok(Mesh {
-            poly: level.into_polygon_mesh()?,
-            label: ARRAYS_LABEL.to_owned(),
-            f32,
-        })
-    })
+        timings.push(("subdivide_s", t.elapsed().as_secs_f64()));
+        let t = Instant::now();
+        let poly = level.into_polygon_mesh()?;
+        timings.push(("result_s", t.elapsed().as_secs_f64()));
+        Ok(poly)
+    });
+    let (poly, timings) = run?;
+    let mut mesh = Mesh::new_with(poly, ARRAYS_LABEL.to_owned(), f32);
+    mesh.timings = options.timings.then_some(timings);
+    Ok(mesh)
 }
 
 /// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64
@@ -169,7 +173,7 @@ fn run_command(
                 args.extend(["--mesh".into(), path.into_os_string()]);
                 None
             }
-            Some(MeshArg::Poly(poly, label)) => Some((*poly, label)),
+            Some(MeshArg::Poly(poly, label)) => Some((poly, label)),
             None => None,
         };
         py.detach(|| guarded(|| Ok(subcount_cli::run_captured(args, memory))))

@@ -6,6 +6,8 @@ use halfedge::groups::Statement;
 use halfedge::uv::Uvs;
 use halfedge::PolygonMesh;
 use halfedge::Scalar;
+use std::sync::{Arc, OnceLock};
+
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
@@ -55,11 +57,16 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 #[derive(Debug)]
 pub(crate) struct Mesh {
     /// The face list and what it carries.
-    pub(crate) poly: PolygonMesh,
+    pub(crate) poly: Arc<PolygonMesh>,
     /// How messages name it: its file's path, or [`ARRAYS_LABEL`].
     pub(crate) label: String,
     /// The values were computed in `f32` (widened exactly): the arrays are float32.
     pub(crate) f32: bool,
+    /// `subdivide(..., timings=True)`: the seconds of each part of the call.
+    pub(crate) timings: Option<Vec<(&'static str, f64)>>,
+    /// The arrays of `positions`, `face_vertex_counts` and `face_vertex_indices`, made on the
+    /// first access (read-only, so shared by every later one).
+    arrays: [OnceLock<Py<PyAny>>; 3],
 }
 
 #[pymethods]
@@ -122,22 +129,49 @@ impl Mesh {
     /// Vertex positions, (N, 3) float64 (float32 for an f32 result).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let flat = self.poly.positions.iter().flat_map(|p| p.to_array());
-        self.floats(py, flat, 3)
+        self.cached(py, 0, || {
+            let flat = self.poly.positions.iter().flat_map(|p| p.to_array());
+            self.floats(py, flat, 3)
+        })
     }
 
     /// The number of corners of each face, (F,) int32.
     #[getter]
     fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let counts = self.poly.face_offsets().windows(2).map(|w| w[1] - w[0]);
-        int32s(py, counts.map(|c| c as u64), "a face's corners")
+        self.cached(py, 1, || {
+            let counts: Vec<u32> = self
+                .poly
+                .face_offsets()
+                .windows(2)
+                .map(|w| u32::try_from(w[1] - w[0]).unwrap_or(u32::MAX))
+                .collect();
+            int32s(py, &counts, "a face's corners")
+        })
     }
 
     /// The vertex of each corner, face after face, int32.
     #[getter]
     fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let indices = self.poly.face_indices().iter().map(|&v| u64::from(v));
-        int32s(py, indices, "a vertex index")
+        self.cached(py, 2, || {
+            int32s(py, self.poly.face_indices(), "a vertex index")
+        })
+    }
+
+    /// With `subdivide(..., timings=True)`: the seconds of each part of the call, a dict
+    /// (`convert_s`: the arguments into the library's types, `load_s`: the mesh's checks and
+    /// options, `prepare_s`: the scheme, the memory guard and the half-edge mesh,
+    /// `subdivide_s`: the subdivision, `result_s`: the last level as a face list, `rust_s`: the
+    /// library's whole call, freeing included); else None.
+    #[getter]
+    fn timings<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(timings) = &self.timings else {
+            return Ok(None);
+        };
+        let dict = PyDict::new(py);
+        for (key, seconds) in timings {
+            dict.set_item(key, seconds)?;
+        }
+        Ok(Some(dict))
     }
 
     /// Texture coordinates, (K, 2), or None.
@@ -156,8 +190,7 @@ impl Mesh {
         let Some(uvs) = self.poly.uvs() else {
             return Ok(None);
         };
-        let corners = uvs.corners().iter().map(|&i| u64::from(i));
-        int32s(py, corners, "a texture-coordinate index").map(Some)
+        int32s(py, uvs.corners(), "a texture-coordinate index").map(Some)
     }
 
     /// Vertex colors, (N, 3), or None.
@@ -198,17 +231,15 @@ impl Mesh {
     #[getter]
     fn crease_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let creases = self.poly.tags().creases();
-        let ends = creases
-            .iter()
-            .flat_map(|c| [u64::from(c.a), u64::from(c.b)]);
-        int32s(py, ends, "a vertex index")
+        let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
+        int32s(py, &ends, "a vertex index")
     }
 
     /// The vertices of each crease chain: 2 per crease edge (USD's creaseLengths), int32.
     #[getter]
     fn crease_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let n = self.poly.tags().creases().len();
-        int32s(py, std::iter::repeat_n(2, n), "a crease length")
+        int32s(py, &vec![2; n], "a crease length")
     }
 
     /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
@@ -220,8 +251,14 @@ impl Mesh {
     /// The corner vertices (USD's cornerIndices), int32.
     #[getter]
     fn corner_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let corners = self.poly.tags().corners().iter();
-        int32s(py, corners.map(|c| u64::from(c.vertex)), "a vertex index")
+        let corners: Vec<u32> = self
+            .poly
+            .tags()
+            .corners()
+            .iter()
+            .map(|c| c.vertex)
+            .collect();
+        int32s(py, &corners, "a vertex index")
     }
 
     /// The sharpness of each corner (USD's cornerSharpnesses), float32.
@@ -233,8 +270,7 @@ impl Mesh {
     /// The faces that are holes (USD's holeIndices), int32.
     #[getter]
     fn hole_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let holes = self.poly.tags().holes().iter().map(|&f| u64::from(f));
-        int32s(py, holes, "a face index")
+        int32s(py, self.poly.tags().holes(), "a face index")
     }
 
     /// The mesh's own subdivision options (a file's tags), a dict of those it sets.
@@ -281,11 +317,33 @@ impl Mesh {
 impl Mesh {
     /// A mesh built from arrays.
     pub(crate) fn from_arrays(poly: PolygonMesh) -> Mesh {
+        Mesh::new_with(poly, ARRAYS_LABEL.to_owned(), false)
+    }
+
+    /// A mesh named `label` in messages, its values float32 when `f32`.
+    pub(crate) fn new_with(poly: impl Into<Arc<PolygonMesh>>, label: String, f32: bool) -> Mesh {
         Mesh {
-            poly,
-            label: ARRAYS_LABEL.to_owned(),
-            f32: false,
+            poly: poly.into(),
+            label,
+            f32,
+            timings: None,
+            arrays: Default::default(),
         }
+    }
+
+    /// Array `slot`, made by `make` on the first access.
+    fn cached<'py>(
+        &self,
+        py: Python<'py>,
+        slot: usize,
+        make: impl FnOnce() -> PyResult<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if let Some(array) = self.arrays[slot].get() {
+            return Ok(array.bind(py).clone());
+        }
+        let array = make()?;
+        let kept = self.arrays[slot].get_or_init(|| array.clone().unbind());
+        Ok(kept.bind(py).clone())
     }
 
     /// `(rows, width)` values as a read-only float64 (float32 for an f32 result) array.
@@ -320,18 +378,18 @@ impl Mesh {
 /// Values as a read-only int32 array; `what` names them when one does not fit.
 pub(crate) fn int32s<'py>(
     py: Python<'py>,
-    values: impl Iterator<Item = u64>,
+    values: &[u32],
     what: &str,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let v: std::result::Result<Vec<i32>, u64> =
-        values.map(|x| i32::try_from(x).map_err(|_| x)).collect();
-    let v = v.map_err(|x| {
-        Failure::Resource(format!(
+    if let Some(&x) = values.iter().max().filter(|&&x| x > i32::MAX as u32) {
+        return Err(Failure::Resource(format!(
             "{what} {x} does not fit the int32 arrays of subcount.Mesh"
         ))
-        .into_pyerr(py)
-    })?;
-    read_only(PyArray1::from_vec(py, v).into_any())
+        .into_pyerr(py));
+    }
+    // Every value fits: the same bytes, one copy.
+    let v: &[i32] = bytemuck::cast_slice(values);
+    read_only(PyArray1::from_slice(py, v).into_any())
 }
 
 /// Values as a read-only float32 array.
@@ -684,18 +742,15 @@ pub(crate) enum MeshArg {
     /// A file, read by the driver (`driver::load`).
     Path(std::path::PathBuf),
     /// A face list in memory, and how messages name it.
-    Poly(Box<PolygonMesh>, String),
+    Poly(Arc<PolygonMesh>, String),
 }
 
 impl MeshArg {
-    /// Reads the argument (a mesh's face list is copied: the `Mesh` stays as it is).
+    /// Reads the argument (a `Mesh`'s face list is shared, not copied: it never changes).
     pub(crate) fn extract(py: Python<'_>, obj: &Bound<'_, PyAny>) -> Result<MeshArg> {
         if let Ok(mesh) = obj.cast::<Mesh>() {
             let mesh = mesh.get();
-            return Ok(MeshArg::Poly(
-                Box::new(mesh.poly.clone()),
-                mesh.label.clone(),
-            ));
+            return Ok(MeshArg::Poly(Arc::clone(&mesh.poly), mesh.label.clone()));
         }
         if obj.is_instance_of::<PyString>() || is_path_like(py, obj)? {
             let path: std::path::PathBuf = obj.extract()?;
@@ -727,7 +782,7 @@ impl MeshArg {
                         arrays.polygon_mesh(py)?
                     }
                 };
-                return Ok(MeshArg::Poly(Box::new(poly), ARRAYS_LABEL.to_owned()));
+                return Ok(MeshArg::Poly(Arc::new(poly), ARRAYS_LABEL.to_owned()));
             }
         }
         let type_name = obj.get_type().name()?.to_string();
@@ -742,7 +797,7 @@ impl MeshArg {
     pub(crate) fn load(self, flags: &driver::OptionFlags) -> driver::Result<driver::LoadedMesh> {
         match self {
             MeshArg::Path(path) => driver::load(&driver::MeshSource::File(path), flags),
-            MeshArg::Poly(poly, label) => driver::load_polygon_mesh(*poly, &label, flags),
+            MeshArg::Poly(poly, label) => driver::load_polygon_mesh(poly, &label, flags),
         }
     }
 }

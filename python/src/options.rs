@@ -7,6 +7,8 @@ use driver::refined::Precision;
 use driver::subdivide::{Prepared, SubdivideJob};
 use driver::{LoadedMesh, Notes, OptionFlags, SchemeChoice};
 use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
+use std::time::Instant;
+
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 
@@ -30,7 +32,12 @@ pub(crate) struct RunOptions<'py> {
     pub(crate) allow_large: bool,
     /// Keep the refinement (`Refinement`): `SubdivideJob::keep_refinement`.
     keep_refinement: bool,
+    /// Time the parts of the call (`subdivide` only).
+    pub(crate) timings: bool,
 }
+
+/// The seconds of each part of a call, in order.
+pub(crate) type Timings = Vec<(&'static str, f64)>;
 
 impl<'py> RunOptions<'py> {
     /// The keywords of `function` (`subdivide`, or `Refinement`: no `precision`, the
@@ -55,6 +62,7 @@ impl<'py> RunOptions<'py> {
             no_uv: false,
             allow_large: false,
             keep_refinement: refinement,
+            timings: false,
         };
         let Some(keywords) = keywords else {
             return Ok(o);
@@ -86,6 +94,7 @@ impl<'py> RunOptions<'py> {
                 "threads" => o.threads = whole_number(value, "threads")?,
                 "no_uv" => o.no_uv = flag()?,
                 "allow_large" => o.allow_large = flag()?,
+                "timings" if !refinement => o.timings = flag()?,
                 _ => {
                     return Err(Failure::Type(format!(
                         "{function}() got an unexpected keyword argument '{key}'"
@@ -103,29 +112,42 @@ impl<'py> RunOptions<'py> {
 
     /// Loads `mesh` with the options, prepares the run of `scheme` (the driver's checks and
     /// memory guard) and hands it to `finish`, the GIL released; the notes become warnings
-    /// (before an error, as the command line prints them), failures exceptions.
+    /// (before an error, as the command line prints them), failures exceptions. `timings`
+    /// gets the seconds of the arguments' conversion (`convert_s`) and of the mesh's checks
+    /// (`load_s`); `finish` adds its own.
     pub(crate) fn prepared<R: Send>(
         &self,
         py: Python<'_>,
         mesh: &Bound<'_, PyAny>,
         scheme: String,
-        finish: impl FnOnce(Prepared<'_>, &LoadedMesh, Notes<'_>) -> Result<R> + Send,
-    ) -> PyResult<R> {
+        finish: impl FnOnce(Prepared<'_>, &LoadedMesh, Notes<'_>, &mut Timings) -> Result<R> + Send,
+    ) -> PyResult<(R, Timings)> {
         let mut notes = Vec::new();
+        let mut timings = Timings::new();
         let result = guarded(|| {
+            let t0 = Instant::now();
             let (job, flags) = self.job()?;
             let source = MeshArg::extract(py, mesh)?;
             let choice = SchemeChoice::Builtin(scheme);
-            py.detach(|| {
+            timings.push(("convert_s", t0.elapsed().as_secs_f64()));
+            let t1 = Instant::now();
+            let result = py.detach(|| {
                 guarded(|| {
                     let loaded = source.load(&flags)?;
+                    timings.push(("load_s", t1.elapsed().as_secs_f64()));
+                    let t2 = Instant::now();
                     let mut note = |n: String| notes.push(n);
                     let prepared =
                         driver::subdivide::prepare(&loaded, &choice, &job, None, &mut note)?;
-                    finish(prepared, &loaded, &mut note)
+                    timings.push(("prepare_s", t2.elapsed().as_secs_f64()));
+                    finish(prepared, &loaded, &mut note, &mut timings)
                 })
-            })
+            });
+            // The library's whole call, the freeing of the input and the levels included.
+            timings.push(("rust_s", t1.elapsed().as_secs_f64()));
+            result
         });
+        let result = result.map(|r| (r, timings));
         warn_notes(py, &notes)?;
         result.map_err(|f| f.into_pyerr(py))
     }

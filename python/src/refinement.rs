@@ -87,7 +87,7 @@ impl Refinement {
     ) -> PyResult<Refinement> {
         let options = RunOptions::from_keywords(py, "Refinement", levels, options)?;
         let allow_large = options.allow_large;
-        options.prepared(py, mesh, scheme, |prepared, loaded, notes| {
+        let run = options.prepared(py, mesh, scheme, |prepared, loaded, notes, _| {
             Ok(Refinement {
                 kept: prepared.refinement(notes)?,
                 n_mesh_vertices: loaded.poly.n_vertices(),
@@ -95,7 +95,8 @@ impl Refinement {
                 scratch64: Mutex::new(None),
                 scratch32: Mutex::new(None),
             })
-        })
+        });
+        run.map(|(refinement, _)| refinement)
     }
 
     /// The last level.
@@ -136,18 +137,15 @@ impl Refinement {
     #[getter]
     fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (offsets, _) = self.faces().map_err(|f| f.into_pyerr(py))?;
-        int32s(
-            py,
-            offsets.windows(2).map(|w| u64::from(w[1] - w[0])),
-            "a face's corners",
-        )
+        let counts: Vec<u32> = offsets.windows(2).map(|w| w[1] - w[0]).collect();
+        int32s(py, &counts, "a face's corners")
     }
 
     /// The last level's corners (vertex indices, face after face), int32.
     #[getter]
     fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let (_, corners) = self.faces().map_err(|f| f.into_pyerr(py))?;
-        int32s(py, corners.into_iter().map(u64::from), "a vertex index")
+        int32s(py, &corners, "a vertex index")
     }
 
     /// The UV value of each corner of the last level (indices into evaluate_uvs' rows),
@@ -161,7 +159,7 @@ impl Refinement {
         let mut indices = vec![0u32; refined.n_corners(refined.levels())];
         let written = refined.write_uv_indices(&mut indices);
         written.map_err(|e| Failure::from(driver::Error::from(e)).into_pyerr(py))?;
-        int32s(py, indices.into_iter().map(u64::from), "a UV index").map(Some)
+        int32s(py, &indices, "a UV index").map(Some)
     }
 
     /// The UV values evaluate_uvs() starts from by default (the mesh's texture coordinates,

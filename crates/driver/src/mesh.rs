@@ -15,6 +15,7 @@
 //! reads its mesh through [`load`] and counts what is written.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use halfedge::holes::HoleSet;
 use halfedge::io::ReadOptions;
@@ -87,8 +88,9 @@ impl OptionFlags {
 /// ([`resolve_options`]).
 #[derive(Debug)]
 pub struct LoadedMesh {
-    /// The face list and its tags.
-    pub poly: PolygonMesh,
+    /// The face list and its tags (shared: a front end that keeps the mesh hands it over
+    /// without a copy).
+    pub poly: Arc<PolygonMesh>,
     /// The resolved options.
     pub options: SubdivisionOptions,
     /// The options the user gave.
@@ -123,7 +125,7 @@ pub fn load(source: &MeshSource, flags: &OptionFlags) -> Result<LoadedMesh> {
         }
         MeshSource::Base(name) => halfedge::shapes::from_name_within(name, available)?,
     };
-    loaded(poly, source.label(), flags)
+    loaded(Arc::new(poly), source.label(), flags)
 }
 
 /// A mesh already in memory (a front end's arrays, a mesh read earlier) as [`load`] gives a
@@ -143,20 +145,22 @@ pub fn load(source: &MeshSource, flags: &OptionFlags) -> Result<LoadedMesh> {
 ///
 /// [`Error::AnalysisTooLarge`].
 pub fn load_polygon_mesh(
-    mut poly: PolygonMesh,
+    poly: impl Into<Arc<PolygonMesh>>,
     label: &str,
     flags: &OptionFlags,
 ) -> Result<LoadedMesh> {
+    let mut poly = poly.into();
     if flags.ignore_tags && !poly.tags().is_empty() {
-        // Empty tags name no vertex, face or edge: they always fit.
-        let cleared = poly.set_tags(Tags::default());
+        // Empty tags name no vertex, face or edge: they always fit. (A shared mesh is copied
+        // first: its owner keeps its tags.)
+        let cleared = Arc::make_mut(&mut poly).set_tags(Tags::default());
         debug_assert!(cleared.is_ok());
     }
     loaded(poly, label.to_owned(), flags)
 }
 
 /// The part of [`load`] after the read: the memory refusal, the notes, the options.
-fn loaded(poly: PolygonMesh, label: String, flags: &OptionFlags) -> Result<LoadedMesh> {
+fn loaded(poly: Arc<PolygonMesh>, label: String, flags: &OptionFlags) -> Result<LoadedMesh> {
     // Every command analyses the face list it read (counts, problems, a half-edge mesh):
     // refused here, before that analysis allocates, when it would not fit.
     let need = poly.heap_bytes() as u128 + halfedge::memory::face_list_analysis_bytes(&poly);

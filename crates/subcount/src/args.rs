@@ -353,7 +353,7 @@ pub(crate) struct MeshSource {
 }
 
 /// A mesh handed over in memory, and its label.
-pub(crate) type MemoryMesh = std::sync::Arc<(halfedge::PolygonMesh, String)>;
+pub(crate) type MemoryMesh = (std::sync::Arc<halfedge::PolygonMesh>, String);
 
 impl MeshSource {
     /// Whether a mesh is given (`--mesh`, `--base`, or one in memory).

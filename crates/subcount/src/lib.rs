@@ -83,7 +83,7 @@ pub struct Captured {
 /// requests are usage errors here.
 pub fn run_captured(
     args: impl IntoIterator<Item = OsString>,
-    mesh: Option<(halfedge::PolygonMesh, String)>,
+    mesh: Option<(std::sync::Arc<halfedge::PolygonMesh>, String)>,
 ) -> Captured {
     let argv = std::iter::once(OsString::from("subcount")).chain(args);
     let mut cli = match args::Cli::try_parse_from(argv) {
@@ -97,7 +97,7 @@ pub fn run_captured(
         }
     };
     if let Some(mesh) = mesh {
-        cli.command.set_memory_mesh(std::sync::Arc::new(mesh));
+        cli.command.set_memory_mesh(mesh);
     }
     let mut captured = Captured::default();
     let (result, notes) =

@@ -303,7 +303,7 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
     let source = match (&mesh.mesh, &mesh.base, &mesh.memory) {
         (Some(_), Some(_), _) => return Err(usage!("--mesh and --base cannot be used together")),
         (_, _, Some(memory)) => {
-            let (poly, label) = memory.as_ref();
+            let (poly, label) = memory;
             return Ok(Some(driver::load_polygon_mesh(
                 poly.clone(),
                 label,

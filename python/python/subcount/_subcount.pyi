@@ -118,6 +118,9 @@ class Mesh:
     @property
     def n_faces(self) -> int:
         """The number of faces."""
+    @property
+    def timings(self) -> dict[str, float] | None:
+        """With subdivide(..., timings=True): the seconds of each part of the call."""
     def __repr__(self) -> str: ...
 
 @final
@@ -211,6 +214,7 @@ def subdivide(
     threads: int = 0,
     no_uv: bool = False,
     allow_large: bool = False,
+    timings: bool = False,
 ) -> Mesh:
     """Subdivides a mesh as `subcount subdivide` does and returns the last level."""
 
