@@ -133,7 +133,7 @@ fn subdivide(
         Ok(poly)
     });
     let (poly, timings) = run?;
-    let mut mesh = Mesh::new_with(poly, ARRAYS_LABEL.to_owned(), f32);
+    let mut mesh = Mesh::handing_over(py, poly, ARRAYS_LABEL.to_owned(), f32)?;
     mesh.timings = options.timings.then_some(timings);
     Ok(mesh)
 }

@@ -2,10 +2,12 @@
 //! checks of arrays a user hands over (dtype, shape, finite values, indices in range).
 
 use halfedge::glam::{DVec2, DVec3};
+use halfedge::groups::FaceGroups;
 use halfedge::groups::Statement;
+use halfedge::tags::Tags;
 use halfedge::uv::Uvs;
-use halfedge::PolygonMesh;
 use halfedge::Scalar;
+use halfedge::{PolygonMesh, PolygonParts};
 use std::sync::{Arc, OnceLock};
 
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
@@ -57,7 +59,7 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 #[derive(Debug)]
 pub(crate) struct Mesh {
     /// The face list and what it carries.
-    pub(crate) poly: Arc<PolygonMesh>,
+    store: Store,
     /// How messages name it: its file's path, or [`ARRAYS_LABEL`].
     pub(crate) label: String,
     /// The values were computed in `f32` (widened exactly): the arrays are float32.
@@ -67,6 +69,21 @@ pub(crate) struct Mesh {
     /// The arrays of `positions`, `face_vertex_counts` and `face_vertex_indices`, made on the
     /// first access (read-only, so shared by every later one).
     arrays: [OnceLock<Py<PyAny>>; 3],
+}
+
+/// Where a [`Mesh`] keeps its face list.
+#[derive(Debug)]
+enum Store {
+    /// As the library's type (shared with it: handed over without a copy).
+    Whole(Arc<PolygonMesh>),
+    /// A result whose positions and corners numpy owns (moved, not copied: `Mesh::arrays`),
+    /// the rest kept here; the whole face list is put back together (a copy of the arrays)
+    /// when the library needs it again.
+    Handed {
+        rest: Box<PolygonParts>,
+        n_vertices: usize,
+        whole: OnceLock<Arc<PolygonMesh>>,
+    },
 }
 
 #[pymethods]
@@ -129,9 +146,24 @@ impl Mesh {
     /// Vertex positions, (N, 3) float64 (float32 for an f32 result).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.cached(py, 0, || {
-            let flat = self.poly.positions.iter().flat_map(|p| p.to_array());
-            self.floats(py, flat, 3)
+        self.cached(py, 0, || match &self.store {
+            Store::Whole(poly) if !self.f32 => {
+                // The same bytes, one copy.
+                let flat: &[f64] = bytemuck::cast_slice(&poly.positions);
+                let rows = poly.positions.len();
+                read_only(
+                    PyArray1::from_slice(py, flat)
+                        .reshape([rows, 3])?
+                        .into_any(),
+                )
+            }
+            Store::Whole(poly) => {
+                let flat = poly.positions.iter().flat_map(|p| p.to_array());
+                self.floats(py, flat, 3)
+            }
+            Store::Handed { .. } => {
+                Err(Failure::Bug("a result's positions are made with it".into()).into_pyerr(py))
+            }
         })
     }
 
@@ -139,21 +171,25 @@ impl Mesh {
     #[getter]
     fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         self.cached(py, 1, || {
-            let counts: Vec<u32> = self
-                .poly
+            // One pass into the array numpy takes (a face's corners fit i32: its corners are
+            // a slice of the int32 corners).
+            let counts: Vec<i32> = self
                 .face_offsets()
                 .windows(2)
-                .map(|w| u32::try_from(w[1] - w[0]).unwrap_or(u32::MAX))
+                .map(|w| (w[1] - w[0]).min(i32::MAX as usize) as i32)
                 .collect();
-            int32s(py, &counts, "a face's corners")
+            read_only(PyArray1::from_vec(py, counts).into_any())
         })
     }
 
     /// The vertex of each corner, face after face, int32.
     #[getter]
     fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.cached(py, 2, || {
-            int32s(py, self.poly.face_indices(), "a vertex index")
+        self.cached(py, 2, || match &self.store {
+            Store::Whole(poly) => int32s(py, poly.face_indices(), "a vertex index"),
+            Store::Handed { .. } => {
+                Err(Failure::Bug("a result's corners are made with it".into()).into_pyerr(py))
+            }
         })
     }
 
@@ -177,7 +213,7 @@ impl Mesh {
     /// Texture coordinates, (K, 2), or None.
     #[getter]
     fn uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(uvs) = self.poly.uvs() else {
+        let Some(uvs) = self.uvs_stored() else {
             return Ok(None);
         };
         let flat = uvs.coords().iter().flat_map(|v| v.to_array());
@@ -187,7 +223,7 @@ impl Mesh {
     /// The texture coordinate of each corner (an index into uvs), int32, or None.
     #[getter]
     fn uv_indices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(uvs) = self.poly.uvs() else {
+        let Some(uvs) = self.uvs_stored() else {
             return Ok(None);
         };
         int32s(py, uvs.corners(), "a texture-coordinate index").map(Some)
@@ -196,7 +232,7 @@ impl Mesh {
     /// Vertex colors, (N, 3), or None.
     #[getter]
     fn colors<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(colors) = self.poly.colors() else {
+        let Some(colors) = self.colors_stored() else {
             return Ok(None);
         };
         self.floats(py, colors.iter().flatten().copied(), 3)
@@ -219,7 +255,7 @@ impl Mesh {
     /// The material files the OBJ file names (`mtllib`), in file order.
     #[getter]
     fn mtllib(&self) -> Vec<String> {
-        let lines = self.poly.groups().map_or(&[][..], |g| g.mtllib());
+        let lines = self.groups_stored().map_or(&[][..], |g| g.mtllib());
         let names = lines.iter().flat_map(|line| {
             let rest = line.trim_start().strip_prefix("mtllib").unwrap_or(line);
             rest.split_whitespace().map(str::to_owned)
@@ -230,7 +266,7 @@ impl Mesh {
     /// The crease edges' vertices, one 2-vertex chain per edge (USD's creaseIndices), int32.
     #[getter]
     fn crease_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let creases = self.poly.tags().creases();
+        let creases = self.tags_stored().creases();
         let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
         int32s(py, &ends, "a vertex index")
     }
@@ -238,22 +274,21 @@ impl Mesh {
     /// The vertices of each crease chain: 2 per crease edge (USD's creaseLengths), int32.
     #[getter]
     fn crease_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let n = self.poly.tags().creases().len();
+        let n = self.tags_stored().creases().len();
         int32s(py, &vec![2; n], "a crease length")
     }
 
     /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
     #[getter]
     fn crease_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float32s(py, self.poly.tags().creases().iter().map(|c| c.sharpness))
+        float32s(py, self.tags_stored().creases().iter().map(|c| c.sharpness))
     }
 
     /// The corner vertices (USD's cornerIndices), int32.
     #[getter]
     fn corner_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         let corners: Vec<u32> = self
-            .poly
-            .tags()
+            .tags_stored()
             .corners()
             .iter()
             .map(|c| c.vertex)
@@ -264,51 +299,51 @@ impl Mesh {
     /// The sharpness of each corner (USD's cornerSharpnesses), float32.
     #[getter]
     fn corner_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float32s(py, self.poly.tags().corners().iter().map(|c| c.sharpness))
+        float32s(py, self.tags_stored().corners().iter().map(|c| c.sharpness))
     }
 
     /// The faces that are holes (USD's holeIndices), int32.
     #[getter]
     fn hole_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        int32s(py, self.poly.tags().holes(), "a face index")
+        int32s(py, self.tags_stored().holes(), "a face index")
     }
 
     /// The mesh's own subdivision options (a file's tags), a dict of those it sets.
     #[getter]
     fn options<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        options_dict(py, self.poly.tags())
+        options_dict(py, self.tags_stored())
     }
 
     /// The number of vertices.
     #[getter]
     fn n_vertices(&self) -> usize {
-        self.poly.n_vertices()
+        self.vertex_count()
     }
 
     /// The number of faces.
     #[getter]
     fn n_faces(&self) -> usize {
-        self.poly.n_faces()
+        self.face_count()
     }
 
     fn __repr__(&self) -> String {
         let mut extras = Vec::new();
-        if let Some(uvs) = self.poly.uvs() {
+        if let Some(uvs) = self.uvs_stored() {
             extras.push(format!(", {} uvs", uvs.coords().len()));
         }
-        if self.poly.colors().is_some() {
+        if self.colors_stored().is_some() {
             extras.push(", colors".to_owned());
         }
-        if self.poly.groups().is_some() {
+        if self.groups_stored().is_some() {
             extras.push(", groups".to_owned());
         }
-        if !self.poly.tags().is_empty() {
+        if !self.tags_stored().is_empty() {
             extras.push(", tags".to_owned());
         }
         format!(
             "subcount.Mesh({} vertices, {} faces{})",
-            self.poly.n_vertices(),
-            self.poly.n_faces(),
+            self.vertex_count(),
+            self.face_count(),
             extras.concat()
         )
     }
@@ -323,12 +358,138 @@ impl Mesh {
     /// A mesh named `label` in messages, its values float32 when `f32`.
     pub(crate) fn new_with(poly: impl Into<Arc<PolygonMesh>>, label: String, f32: bool) -> Mesh {
         Mesh {
-            poly: poly.into(),
+            store: Store::Whole(poly.into()),
             label,
             f32,
             timings: None,
             arrays: Default::default(),
         }
+    }
+
+    /// A result: its positions and corners handed to numpy without a copy (float64 results
+    /// whose corners fit int32; others as [`Mesh::new_with`]).
+    pub(crate) fn handing_over(
+        py: Python<'_>,
+        poly: PolygonMesh,
+        label: String,
+        f32: bool,
+    ) -> PyResult<Mesh> {
+        // The corners name vertices (the library's output): they fit int32 when the count does.
+        let fits = poly.n_vertices() <= i32::MAX as usize;
+        if f32 || !fits {
+            return Ok(Mesh::new_with(poly, label, f32));
+        }
+        let mut rest = poly.into_polygon_parts();
+        let n_vertices = rest.positions.len();
+        let positions =
+            bytemuck::allocation::try_cast_vec::<DVec3, f64>(std::mem::take(&mut rest.positions));
+        let corners =
+            bytemuck::allocation::try_cast_vec::<u32, i32>(std::mem::take(&mut rest.face_indices));
+        let (positions, corners) = match (positions, corners) {
+            (Ok(p), Ok(c)) => (p, c),
+            // The allocations do not fit the numpy types' (never for these types): copied.
+            (p, c) => {
+                rest.positions = bytemuck::allocation::cast_vec(
+                    p.unwrap_or_else(|(_, v)| bytemuck::cast_slice(&v).to_vec()),
+                );
+                rest.face_indices = bytemuck::cast_slice(
+                    &c.unwrap_or_else(|(_, v)| bytemuck::cast_slice(&v).to_vec()),
+                )
+                .to_vec();
+                let poly = PolygonMesh::from_polygon_parts(rest)
+                    .map_err(|e| Failure::Bug(e.to_string()).into_pyerr(py))?;
+                return Ok(Mesh::new_with(poly, label, f32));
+            }
+        };
+        let mesh = Mesh {
+            store: Store::Handed {
+                rest: Box::new(rest),
+                n_vertices,
+                whole: OnceLock::new(),
+            },
+            label,
+            f32,
+            timings: None,
+            arrays: Default::default(),
+        };
+        let positions = PyArray1::from_vec(py, positions)
+            .reshape([n_vertices, 3])?
+            .into_any();
+        let corners = PyArray1::from_vec(py, corners).into_any();
+        let _ = mesh.arrays[0].set(read_only(positions)?.unbind());
+        let _ = mesh.arrays[2].set(read_only(corners)?.unbind());
+        Ok(mesh)
+    }
+
+    /// The face list as the library takes it (a result's put back together once, from its
+    /// arrays).
+    pub(crate) fn shared(&self, py: Python<'_>) -> Result<Arc<PolygonMesh>> {
+        let (rest, whole) = match &self.store {
+            Store::Whole(poly) => return Ok(Arc::clone(poly)),
+            Store::Handed { rest, whole, .. } => (rest, whole),
+        };
+        if let Some(poly) = whole.get() {
+            return Ok(Arc::clone(poly));
+        }
+        let array = |slot: usize| self.arrays[slot].get().map(|a| a.bind(py).clone());
+        let (Some(positions), Some(corners)) = (array(0), array(2)) else {
+            return Err(Failure::Bug("a result's arrays are missing".into()));
+        };
+        let positions: PyReadonlyArrayDyn<'_, f64> = positions.extract()?;
+        let corners: PyReadonlyArrayDyn<'_, i32> = corners.extract()?;
+        let bug = |e: numpy::AsSliceError| Failure::Bug(e.to_string());
+        let mut parts = PolygonParts::clone(rest);
+        parts.positions = bytemuck::cast_slice(positions.as_slice().map_err(bug)?).to_vec();
+        parts.face_indices = bytemuck::cast_slice(corners.as_slice().map_err(bug)?).to_vec();
+        let poly =
+            PolygonMesh::from_polygon_parts(parts).map_err(|e| Failure::Bug(e.to_string()))?;
+        Ok(Arc::clone(whole.get_or_init(|| Arc::new(poly))))
+    }
+
+    fn uvs_stored(&self) -> Option<&Uvs> {
+        match &self.store {
+            Store::Whole(poly) => poly.uvs(),
+            Store::Handed { rest, .. } => rest.uvs.as_ref(),
+        }
+    }
+
+    fn colors_stored(&self) -> Option<&[[f64; 3]]> {
+        match &self.store {
+            Store::Whole(poly) => poly.colors(),
+            Store::Handed { rest, .. } => rest.colors.as_deref(),
+        }
+    }
+
+    fn groups_stored(&self) -> Option<&FaceGroups> {
+        match &self.store {
+            Store::Whole(poly) => poly.groups(),
+            Store::Handed { rest, .. } => rest.groups.as_ref(),
+        }
+    }
+
+    fn tags_stored(&self) -> &Tags {
+        match &self.store {
+            Store::Whole(poly) => poly.tags(),
+            Store::Handed { rest, .. } => &rest.tags,
+        }
+    }
+
+    fn face_offsets(&self) -> &[usize] {
+        match &self.store {
+            Store::Whole(poly) => poly.face_offsets(),
+            Store::Handed { rest, .. } => &rest.face_offsets,
+        }
+    }
+
+    fn vertex_count(&self) -> usize {
+        match &self.store {
+            Store::Whole(poly) => poly.n_vertices(),
+            Store::Handed { n_vertices, .. } => *n_vertices,
+        }
+    }
+
+    fn face_count(&self) -> usize {
+        self.face_offsets().len().saturating_sub(1)
     }
 
     /// Array `slot`, made by `make` on the first access.
@@ -368,9 +529,8 @@ impl Mesh {
 
     /// The value of `statement` per face, or `None` without groups.
     fn per_face(&self, statement: Statement) -> Option<Vec<Option<String>>> {
-        let groups = self.poly.groups()?;
-        let values =
-            (0..self.poly.n_faces()).map(|f| groups.value(f, statement).map(str::to_owned));
+        let groups = self.groups_stored()?;
+        let values = (0..self.face_count()).map(|f| groups.value(f, statement).map(str::to_owned));
         Some(values.collect())
     }
 }
@@ -750,7 +910,7 @@ impl MeshArg {
     pub(crate) fn extract(py: Python<'_>, obj: &Bound<'_, PyAny>) -> Result<MeshArg> {
         if let Ok(mesh) = obj.cast::<Mesh>() {
             let mesh = mesh.get();
-            return Ok(MeshArg::Poly(Arc::clone(&mesh.poly), mesh.label.clone()));
+            return Ok(MeshArg::Poly(mesh.shared(py)?, mesh.label.clone()));
         }
         if obj.is_instance_of::<PyString>() || is_path_like(py, obj)? {
             let path: std::path::PathBuf = obj.extract()?;

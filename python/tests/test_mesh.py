@@ -397,3 +397,20 @@ def test_a_warnings_filter_set_to_error_raises_the_note(tmp_path):
         warnings.simplefilter("error", subcount.Warning)
         with pytest.raises(subcount.Warning, match="vertexedit"):
             subcount.subdivide(src, scheme="catmull-clark", levels=1)
+
+
+def test_a_result_goes_back_to_the_library(tmp_path):
+    """A result hands its positions and corners to numpy without a copy; passed back (to
+    subdivide, write_mesh, stats, Refinement) it is the same mesh."""
+    once = subcount.subdivide(OCTAHEDRON, scheme="loop", levels=1)
+    assert not once.positions.flags.writeable and not once.face_vertex_indices.flags.writeable
+    twice = subcount.subdivide(once, scheme="loop", levels=1)
+    subcount.write_mesh(once, tmp_path / "once.obj")
+    assert_same_mesh(subcount.read_mesh(tmp_path / "once.obj"), once)
+    assert_same_mesh(twice, subcount.subdivide(tmp_path / "once.obj", scheme="loop", levels=1))
+    assert subcount.stats(once)["F"] == once.n_faces == 32
+    r = subcount.Refinement(once, scheme="loop", levels=1)
+    assert same_bits(r.evaluate(once.positions), twice.positions)
+    # The same arrays on every access.
+    assert once.positions is once.positions or np.shares_memory(once.positions, once.positions)
+    assert repr(once) == "subcount.Mesh(18 vertices, 32 faces)"

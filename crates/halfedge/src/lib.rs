@@ -113,7 +113,9 @@ pub use crate::error::{Error, FaceVertices, ParseError, Result};
 pub use crate::mesh::{
     EdgeId, FaceHalfedges, FaceId, HalfEdgeMesh, HalfedgeId, VertexId, VertexOutgoingHalfedges,
 };
-pub use crate::polygon::{ColorError, PartialColors, PolygonFaces, PolygonMesh, Uncarried};
+pub use crate::polygon::{
+    ColorError, PartialColors, PartsError, PolygonFaces, PolygonMesh, PolygonParts, Uncarried,
+};
 pub use crate::subdivide::refine::{self, Evaluator, Refinement, Scalar, StencilTable};
 pub use crate::subdivide::Rule;
 

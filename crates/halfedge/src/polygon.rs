@@ -1,8 +1,12 @@
 //! [`PolygonMesh`]: a raw face list, as read from a file, before any validation.
 
+mod parts;
+
 use std::collections::HashMap;
 
 use glam::DVec3;
+
+pub use self::parts::{PartsError, PolygonParts};
 
 use crate::groups::{FaceGroups, GroupsError};
 use crate::tags::{IgnoredTag, TagError, Tags};
