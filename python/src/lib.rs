@@ -6,6 +6,7 @@
 //! arrays and keywords into the driver's types and its errors into exceptions
 //! ([`errors`]).
 
+mod arrays;
 mod errors;
 mod mesh;
 mod options;

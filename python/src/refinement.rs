@@ -354,7 +354,7 @@ impl Refinement {
             Stream::Positions => ("points", 3),
             Stream::Uvs => ("uvs", 2),
         };
-        let values = crate::mesh::float_table::<T>(py, base, name, width)?;
+        let values = crate::arrays::float_table::<T>(py, base, name, width)?;
         if values.len() != rows.0 * width {
             return Err(Failure::Input(format!(
                 "{name} has {} rows: expected one per {} ({} rows)",

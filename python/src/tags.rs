@@ -14,8 +14,8 @@ use halfedge::PolygonMesh;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::arrays::{float_values, index_array};
 use crate::errors::{Failure, Result};
-use crate::mesh::{float_values, index_array};
 
 /// The keys of `options`, in the order `Mesh.options` lists them.
 const OPTION_KEYS: [&str; 4] = [
