@@ -11,8 +11,9 @@ use crate::uv::{PartialUvs, UvError, Uvs};
 
 /// Everything a [`PolygonMesh`] holds, as owned values ([`PolygonMesh::into_polygon_parts`],
 /// [`PolygonMesh::from_polygon_parts`]; [`PolygonMesh::into_parts`] gives the face list alone).
+/// A plain record: a field added with a new part of the mesh is a breaking change, as the
+/// part itself is.
 #[derive(Clone, Debug, Default)]
-#[non_exhaustive]
 pub struct PolygonParts {
     /// Vertex positions.
     pub positions: Vec<DVec3>,

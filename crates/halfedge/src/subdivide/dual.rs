@@ -312,6 +312,13 @@ fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
 }
 
 /// The number of boundary half-edges of `t`.
+/// What a dual rule's UV step starts from: the edges and faces, the boundary half-edges
+/// ([`n_boundary`]) and the seam edges' ranks ([`seam_ranks`]).
+fn uv_step_start(t: &Topo<'_>, cv: &[u32]) -> Result<(u32, u32, usize, Vec<u32>, usize)> {
+    let (seams, n_seams) = seam_ranks(t, cv)?;
+    Ok((t.ne() as u32, t.nf() as u32, n_boundary(t), seams, n_seams))
+}
+
 fn n_boundary(t: &Topo<'_>) -> usize {
     if t.is_closed() {
         0
@@ -337,10 +344,8 @@ pub(crate) fn doo_sabin_uv_step<'a>(
     cv: &'a [u32],
     n_values: usize,
 ) -> Result<CornerStep<'a>> {
-    let (ne, nf) = (t.ne() as u32, t.nf() as u32);
-    let nb = n_boundary(t);
+    let (ne, nf, nb, seams, n_seams) = uv_step_start(t, cv)?;
     let vertices = 2 * t.ne() + nb;
-    let (seams, n_seams) = seam_ranks(t, cv)?;
     let rows = vertices + 2 * n_seams;
     let mut table = WeightTable::with_room(rows, 4 * rows)?;
     let mut row = Vec::new();
@@ -447,9 +452,7 @@ pub(crate) fn mid_edge_uv_step<'a>(
     cv: &'a [u32],
     _n_values: usize,
 ) -> Result<CornerStep<'a>> {
-    let (ne, nf) = (t.ne() as u32, t.nf() as u32);
-    let nb = n_boundary(t);
-    let (seams, n_seams) = seam_ranks(t, cv)?;
+    let (ne, nf, nb, seams, n_seams) = uv_step_start(t, cv)?;
     let rows = t.ne() + n_seams + nb;
     let mut table = WeightTable::with_room(rows, 2 * rows)?;
     let mut row = Vec::new();
