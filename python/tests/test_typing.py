@@ -128,9 +128,20 @@ def test_the_stubs_type_check_uses_and_refuse_misuses_under_strict(tmp_path):
 @needs_mypy
 def test_the_stubs_themselves_pass_strict_mypy(tmp_path):
     code, output = run_mypy_module(
-        ["mypy", "--strict", "--no-incremental", str(PACKAGE_DIR / "_subcount.pyi")], tmp_path
+        # A copy: the installed file's folder is site-packages, which mypy would then take as
+        # a source root beside the installed libraries (it refuses the shadowed modules).
+        ["mypy", "--strict", "--no-incremental", str(stub_copy(tmp_path))], tmp_path
     )
     assert code == 0, output
+
+
+def stub_copy(tmp_path):
+    """The installed stub, copied into its own folder of `tmp_path`."""
+    folder = tmp_path / "stub"
+    folder.mkdir()
+    copy = folder / "_subcount.pyi"
+    copy.write_text((PACKAGE_DIR / "_subcount.pyi").read_text())
+    return copy
 
 
 # --- doctests ----------------------------------------------------------------------------
