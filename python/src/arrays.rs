@@ -40,7 +40,13 @@ impl Arrays<'_, '_> {
             Faces::Pair(counts, indices) => {
                 let counts = face_counts(py, counts)?;
                 let indices = integers(py, indices, "face_vertex_indices", 1)?;
-                let total: usize = counts.iter().sum();
+                let total = counts.iter().try_fold(0usize, |a, &c| a.checked_add(c));
+                let Some(total) = total else {
+                    return Err(Failure::Input(
+                        "face_vertex_counts add up to more corners than this machine can address"
+                            .into(),
+                    ));
+                };
                 if total != indices.values.len() {
                     return Err(Failure::Input(format!(
                         "face_vertex_counts add up to {total} corners, but face_vertex_indices has {}",
@@ -115,7 +121,7 @@ impl Arrays<'_, '_> {
 
 /// `numpy.asarray(obj)`, refusing a dtype whose kind is not in `kinds` (TypeError) and a
 /// ragged sequence (InputError).
-fn as_array<'py>(
+pub(crate) fn as_array<'py>(
     py: Python<'py>,
     obj: &Bound<'py, PyAny>,
     name: &str,
@@ -135,7 +141,9 @@ fn as_array<'py>(
     })?;
     let dtype = array.getattr("dtype")?;
     let kind: String = dtype.getattr("kind")?.extract()?;
-    if kind.len() != 1 || !kinds.contains(kind.as_str()) {
+    // An empty list is float64 to numpy: its emptiness is the error, said by the caller.
+    let empty = array.getattr("size")?.extract::<usize>()? == 0;
+    if !empty && (kind.len() != 1 || !kinds.contains(kind.as_str())) {
         let dtype_name = dtype.str()?.to_string();
         return Err(Failure::Type(format!(
             "{name} must hold {expected}, not {dtype_name}"

@@ -8,7 +8,7 @@ use halfedge::groups::{FaceGroups, Statement};
 use halfedge::tags::Tags;
 use halfedge::uv::Uvs;
 use halfedge::{PolygonMesh, PolygonParts};
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn};
+use numpy::{PyArray1, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 
@@ -42,7 +42,9 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 /// "uv_interpolation" and the command line's names as values ("edge-and-corner", ...);
 /// subdivide()'s keywords override them.
 ///
-/// The array properties are read-only copies: positions (N, 3) float64 (float32 for a result
+/// The array properties are read-only (numpy refuses to make them writable): a result's
+/// float64 positions and its corners are the library's own buffers handed over, the others
+/// copies made on the first access. positions (N, 3) float64 (float32 for a result
 /// of subdivide(..., precision="f32"), as uvs and colors then), face_vertex_counts and
 /// face_vertex_indices int32, uvs (K, 2) and uv_indices int32 or None, colors (N, 3) or None;
 /// materials and groups: a str or None per face, or None when the mesh has none; mtllib: the
@@ -149,12 +151,8 @@ impl Mesh {
             Store::Whole(poly) if !self.f32 => {
                 // The same bytes, one copy.
                 let flat: &[f64] = bytemuck::cast_slice(&poly.positions);
-                let rows = poly.positions.len();
-                read_only(
-                    PyArray1::from_slice(py, flat)
-                        .reshape([rows, 3])?
-                        .into_any(),
-                )
+                let flat = read_only(PyArray1::from_slice(py, flat).into_any())?;
+                rows(&flat, poly.positions.len(), 3)
             }
             Store::Whole(poly) => {
                 let flat = poly.positions.iter().flat_map(|p| p.to_array());
@@ -411,11 +409,12 @@ impl Mesh {
             timings: None,
             arrays: Default::default(),
         };
-        let positions = PyArray1::from_vec(py, positions)
-            .reshape([n_vertices, 3])?
-            .into_any();
+        // The buffer's own array is made read-only before the view: numpy then refuses to
+        // make either writable (the library reads them back, `Mesh::shared`).
+        let flat = read_only(PyArray1::from_vec(py, positions).into_any())?;
+        let positions = rows(&flat, n_vertices, 3)?;
         let corners = PyArray1::from_vec(py, corners).into_any();
-        let _ = mesh.arrays[0].set(read_only(positions)?.unbind());
+        let _ = mesh.arrays[0].set(positions.unbind());
         let _ = mesh.arrays[2].set(read_only(corners)?.unbind());
         Ok(mesh)
     }
@@ -513,17 +512,16 @@ impl Mesh {
         values: impl Iterator<Item = f64>,
         width: usize,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let array = if self.f32 {
+        let flat = if self.f32 {
             // Widened from f32: narrowing back is exact.
             let v: Vec<f32> = values.map(|x| x as f32).collect();
-            let rows = v.len() / width;
-            PyArray1::from_vec(py, v).reshape([rows, width])?.into_any()
+            PyArray1::from_vec(py, v).into_any()
         } else {
             let v: Vec<f64> = values.collect();
-            let rows = v.len() / width;
-            PyArray1::from_vec(py, v).reshape([rows, width])?.into_any()
+            PyArray1::from_vec(py, v).into_any()
         };
-        read_only(array)
+        let n = flat.len()? / width;
+        rows(&read_only(flat)?, n, width)
     }
 
     /// The value of `statement` per face, or `None` without groups.
@@ -559,6 +557,12 @@ fn float32s<'py>(
     read_only(PyArray1::from_iter(py, values).into_any())
 }
 
+/// A read-only flat array as `(n, width)` rows (a view of it, read-only too: numpy refuses to
+/// make it writable while its base is not).
+fn rows<'py>(flat: &Bound<'py, PyAny>, n: usize, width: usize) -> PyResult<Bound<'py, PyAny>> {
+    read_only(flat.call_method1("reshape", ((n, width),))?)
+}
+
 /// Marks an array read-only (`setflags(write=False)`): the mesh's arrays are copies, and
 /// writing into one would change nothing.
 pub(crate) fn read_only(array: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
@@ -592,7 +596,21 @@ impl MeshArg {
             if tuple.len() == 2 {
                 let positions = tuple.get_item(0)?;
                 let faces = tuple.get_item(1)?;
-                let pair = faces.cast::<PyTuple>().ok().filter(|t| t.len() == 2);
+                // A pair (counts, corners) is two 1-D sequences of different lengths (the
+                // corners outnumber the faces); ((0, 1, 2), (0, 2, 3)) is two triangles.
+                let numpy = PyModule::import(py, "numpy")?;
+                let length = |item: PyResult<Bound<'_, PyAny>>| -> Option<usize> {
+                    let item = item.ok()?;
+                    let ndim: usize = numpy.call_method1("ndim", (&item,)).ok()?.extract().ok()?;
+                    (ndim == 1).then(|| item.len().ok()).flatten()
+                };
+                let pair = faces.cast::<PyTuple>().ok().filter(|t| {
+                    t.len() == 2
+                        && matches!(
+                            (length(t.get_item(0)), length(t.get_item(1))),
+                            (Some(a), Some(b)) if a != b
+                        )
+                });
                 let poly = match pair {
                     Some(pair) => {
                         let (counts, indices) = (pair.get_item(0)?, pair.get_item(1)?);

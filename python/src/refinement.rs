@@ -193,7 +193,7 @@ impl Refinement {
     ) -> PyResult<Bound<'py, PyAny>> {
         let n_out = self.refined().n_vertices(self.refined().levels());
         let work = || {
-            let f32 = is_float32(py, points)?;
+            let f32 = is_float32(py, points, "points")?;
             let rows = (self.n_mesh_vertices, "vertex of the mesh");
             match f32 {
                 true => self.evaluate_in::<f32>(py, points, out, rows, n_out, Stream::Positions),
@@ -232,7 +232,7 @@ impl Refinement {
             };
             let n_out = self.refined().n_uvs(self.refined().levels());
             let rows = (base.len(), "UV value of the layout");
-            match is_float32(py, uvs)? {
+            match is_float32(py, uvs, "uvs")? {
                 true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, Stream::Uvs),
                 false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, Stream::Uvs),
             }
@@ -417,10 +417,10 @@ impl Refinement {
 }
 
 /// Whether `array`'s dtype is float32 (everything else numeric evaluates in float64).
-fn is_float32(py: Python<'_>, array: &Bound<'_, PyAny>) -> Result<bool> {
+fn is_float32(py: Python<'_>, array: &Bound<'_, PyAny>, name: &str) -> Result<bool> {
     let numpy = PyModule::import(py, "numpy")?;
-    let dtype = numpy.call_method1("asarray", (array,))?.getattr("dtype")?;
-    Ok(dtype.eq(numpy.getattr("float32")?)?)
+    let array = crate::arrays::as_array(py, array, name, "fiu", "numbers")?;
+    Ok(array.getattr("dtype")?.eq(numpy.getattr("float32")?)?)
 }
 
 /// The caller's `out`: a writable, C-contiguous `T` array of shape `(n, width)`.

@@ -411,6 +411,30 @@ def test_a_result_goes_back_to_the_library(tmp_path):
     assert subcount.stats(once)["F"] == once.n_faces == 32
     r = subcount.Refinement(once, scheme="loop", levels=1)
     assert same_bits(r.evaluate(once.positions), twice.positions)
-    # The same arrays on every access.
-    assert once.positions is once.positions or np.shares_memory(once.positions, once.positions)
+    # The same arrays on every access, and numpy refuses to make them (or their buffer's own
+    # array) writable: the library reads them back.
+    assert once.positions is once.positions
+    for array in (once.positions, once.positions.base, once.face_vertex_indices, once.face_vertex_counts):
+        with pytest.raises(ValueError):
+            array.setflags(write=True)
     assert repr(once) == "subcount.Mesh(18 vertices, 32 faces)"
+
+
+def test_hostile_arrays_and_arguments():
+    positions = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
+    # Counts whose sum wraps around 64 bits.
+    with pytest.raises(subcount.InputError, match="add up"):
+        subcount.Mesh(positions, np.array([2**64 - 1, 4], np.uint64), [0, 1, 2])
+    # Empty lists are empty meshes, not a wrong dtype.
+    with pytest.raises(subcount.InputError, match="empty"):
+        subcount.Mesh(positions, [], [])
+    with pytest.raises(subcount.InputError, match="faces"):
+        subcount.subdivide((positions, []), scheme="loop", levels=1)
+    # Tuples of tuples are faces; a (counts, corners) pair has lengths that differ.
+    square = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]
+    two = subcount.stats((square, ((0, 1, 2), (0, 2, 3))))
+    pair = subcount.stats((square, ((3, 3), (0, 1, 2, 0, 2, 3))))
+    assert two == pair and two["F"] == 2
+    # A mesh object and base= together, as --mesh and --base.
+    with pytest.raises(subcount.UsageError, match="--base"):
+        subcount.stats(subcount.Mesh(positions, [3], [0, 1, 2]), base="cube")

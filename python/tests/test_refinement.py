@@ -151,6 +151,8 @@ def test_out_is_written_in_place_and_checked():
         r.evaluate(p)
     with pytest.raises(TypeError):
         r.evaluate(positions.astype(str))
+    with pytest.raises(subcount.InputError, match="rectangular"):
+        r.evaluate([[0.0, 0.0, 0.0], [1.0, 2.0]])
     with pytest.raises(subcount.UsageError, match="not a level"):
         r.n_vertices(3)
 

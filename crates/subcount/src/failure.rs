@@ -85,11 +85,20 @@ pub(crate) fn print_note(note: String) {
     }
 }
 
-/// Runs `work`, keeping the notes it prints on this thread ([`print_note`]).
+/// Runs `work`, keeping the notes it prints on this thread ([`print_note`]); the capture
+/// before it is restored even when `work` panics.
 pub(crate) fn capturing_notes<T>(work: impl FnOnce() -> T) -> (T, Vec<String>) {
-    let outer = CAPTURED.with(|c| c.replace(Some(Vec::new())));
+    /// Puts the outer capture back when dropped.
+    struct Restore(Option<Vec<String>>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            let outer = self.0.take();
+            CAPTURED.with(|c| *c.borrow_mut() = outer);
+        }
+    }
+    let _restore = Restore(CAPTURED.with(|c| c.replace(Some(Vec::new()))));
     let result = work();
-    let notes = CAPTURED.with(|c| c.replace(outer)).unwrap_or_default();
+    let notes = CAPTURED.with(|c| c.borrow_mut().take()).unwrap_or_default();
     (result, notes)
 }
 

@@ -80,7 +80,8 @@ pub struct Captured {
 /// Runs the command line `args` (the program name excluded) as the binary would, with the
 /// mesh of `--mesh`/`--base` replaced by `mesh` (a face list in memory and how messages name
 /// it) when given; collects stdout and the notes instead of printing them. Help and version
-/// requests are usage errors here.
+/// requests are usage errors here. Not captured: `subdivide`'s lines about the file written
+/// and `--timings` (stderr), and `-o -` (the process's stdout).
 pub fn run_captured(
     args: impl IntoIterator<Item = OsString>,
     mesh: Option<(std::sync::Arc<halfedge::PolygonMesh>, String)>,

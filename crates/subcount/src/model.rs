@@ -301,7 +301,9 @@ pub(crate) fn load_mesh(mesh: &MeshSource) -> Result<Option<LoadedMesh>, Failure
         mesh.ignore_tags,
     );
     let source = match (&mesh.mesh, &mesh.base, &mesh.memory) {
-        (Some(_), Some(_), _) => return Err(usage!("--mesh and --base cannot be used together")),
+        (Some(_), Some(_), _) | (_, Some(_), Some(_)) => {
+            return Err(usage!("--mesh and --base cannot be used together"))
+        }
         (_, _, Some(memory)) => {
             let (poly, label) = memory;
             return Ok(Some(driver::load_polygon_mesh(

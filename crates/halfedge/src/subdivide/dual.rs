@@ -311,7 +311,6 @@ fn doo_sabin_point<V: Vector>(t: &Topo<'_>, src: &[V], h: u32) -> V {
     sum
 }
 
-/// The number of boundary half-edges of `t`.
 /// What a dual rule's UV step starts from: the edges and faces, the boundary half-edges
 /// ([`n_boundary`]) and the seam edges' ranks ([`seam_ranks`]).
 fn uv_step_start(t: &Topo<'_>, cv: &[u32]) -> Result<(u32, u32, usize, Vec<u32>, usize)> {
@@ -319,6 +318,7 @@ fn uv_step_start(t: &Topo<'_>, cv: &[u32]) -> Result<(u32, u32, usize, Vec<u32>,
     Ok((t.ne() as u32, t.nf() as u32, n_boundary(t), seams, n_seams))
 }
 
+/// The number of boundary half-edges of `t`.
 fn n_boundary(t: &Topo<'_>) -> usize {
     if t.is_closed() {
         0
