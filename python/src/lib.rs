@@ -143,12 +143,17 @@ fn subdivide(
 /// bits saturates (and is refused as out of range).
 pub(crate) fn whole_number(obj: &Bound<'_, PyAny>, name: &str) -> Result<i64> {
     let is_bool = obj.is_instance_of::<pyo3::types::PyBool>();
-    if is_bool || !obj.is_instance_of::<PyInt>() {
+    // An int, or an integer type that says it is one (`__index__`: numpy's int64, ...).
+    let int = match obj.is_instance_of::<PyInt>() {
+        true => Some(obj.clone()),
+        false => obj.call_method0("__index__").ok(),
+    };
+    let Some(obj) = int.filter(|_| !is_bool) else {
         let type_name = obj.get_type().name()?.to_string();
         return Err(Failure::Type(format!(
             "{name} must be an int, not {type_name}"
         )));
-    }
+    };
     match obj.extract::<i64>() {
         Ok(n) => Ok(n),
         Err(_) => Ok(if obj.lt(0)? { i64::MIN } else { i64::MAX }),

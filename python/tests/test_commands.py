@@ -235,3 +235,13 @@ def test_the_gil_is_released_during_a_command():
     during = [x for x in ticks if start < x < end]
     assert end - start > 0.05, "the command was too quick to tell"
     assert len(during) >= 3, (len(during), end - start)
+
+
+def test_numpy_integers_are_integers():
+    import numpy as np
+
+    assert subcount.table(np.int64(2)) == subcount.table(2)
+    assert subcount.at(np.int32(3), scheme="loop", counts={"V": np.int64(12), "E": 30, "F": 20})["F"] == 1280
+    out = subcount.subdivide(subcount.read_mesh(shared("osd_loop_icosahedron.obj")), scheme="loop", levels=np.int64(1))
+    assert out.n_faces == 80
+    assert subcount.density(level=2, base="icosahedron", boundary="edge")["V"] == 162

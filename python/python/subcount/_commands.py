@@ -10,6 +10,8 @@ dashes as underscores; a mesh is a path, a ``subcount.Mesh`` or ``(positions, fa
 from __future__ import annotations
 
 import json
+import numbers
+import operator
 import os
 import warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Union
@@ -62,15 +64,17 @@ def _levels(levels: Union[int, range], name: str = "levels") -> str:
         if levels.step != 1:
             raise _errors.UsageError(f"{name} must be a range of step 1, not {levels!r}")
         return f"{levels.start}..{levels.stop}"
-    if isinstance(levels, bool) or not isinstance(levels, int):
+    if isinstance(levels, bool) or not hasattr(levels, "__index__"):
         raise TypeError(f"{name} must be an int or a range, not {type(levels).__name__}")
-    return str(levels)
+    return str(operator.index(levels))
 
 
 def _text(value: Any, name: str) -> str:
     """A number or a str as the command line writes it (bool refused)."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+    if isinstance(value, bool) or not isinstance(value, (int, float, str, numbers.Number)):
         raise TypeError(f"{name} must be a number or a str, not {type(value).__name__}")
+    if hasattr(value, "__index__") and not isinstance(value, str):
+        return str(operator.index(value))  # numpy's integers too
     return str(value)
 
 
@@ -369,6 +373,10 @@ def density(
     counts: Optional[Union[str, Mapping[str, int]]] = None,
     mesh: Any = None,
     base: Optional[str] = None,
+    boundary: Optional[str] = None,
+    crease_method: Optional[str] = None,
+    triangle_rule: Optional[str] = None,
+    ignore_tags: bool = False,
 ) -> Dict[str, Any]:
     """The mean co-volume area at a level, or the level for a target area (the paper's eq. (1)):
     ``subcount density --format json``.
@@ -385,7 +393,8 @@ def density(
         args += ["--tau", _text(tau, "tau")]
     memory = _source(
         args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base,
+        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
+        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
     )
     return _run(args, memory)
 
