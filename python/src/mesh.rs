@@ -170,10 +170,12 @@ impl Mesh {
         self.cached(py, 1, || {
             // One pass into the array numpy takes (a face's corners fit i32: its corners are
             // a slice of the int32 corners).
-            let counts: Vec<i32> = self
-                .face_offsets()
-                .windows(2)
-                .map(|w| (w[1] - w[0]).min(i32::MAX as usize) as i32)
+            let offsets = self.face_offsets();
+            let (ends, starts) = (&offsets[1..], &offsets[..offsets.len() - 1]);
+            let counts: Vec<i32> = ends
+                .iter()
+                .zip(starts)
+                .map(|(&end, &start)| (end - start).min(i32::MAX as usize) as i32)
                 .collect();
             read_only(PyArray1::from_vec(py, counts).into_any())
         })
