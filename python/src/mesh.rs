@@ -81,8 +81,10 @@ enum Store {
     /// the rest kept here; the whole face list is put back together (a copy of the arrays)
     /// when the library needs it again.
     Handed {
+        /// Without positions, corners and face offsets (the counts' array holds the faces).
         rest: Box<PolygonParts>,
         n_vertices: usize,
+        n_faces: usize,
         whole: OnceLock<Arc<PolygonMesh>>,
     },
 }
@@ -170,7 +172,12 @@ impl Mesh {
         self.cached(py, 1, || {
             // One pass into the array numpy takes (a face's corners fit i32: its corners are
             // a slice of the int32 corners).
-            let offsets = self.face_offsets();
+            let Store::Whole(poly) = &self.store else {
+                return Err(
+                    Failure::Bug("a result's counts are made with it".into()).into_pyerr(py)
+                );
+            };
+            let offsets = poly.face_offsets();
             let (ends, starts) = (&offsets[1..], &offsets[..offsets.len() - 1]);
             let counts: Vec<i32> = ends
                 .iter()
@@ -375,11 +382,12 @@ impl Mesh {
     ) -> PyResult<Mesh> {
         // The corners name vertices (the library's output): they fit int32 when the count does.
         let fits = poly.n_vertices() <= i32::MAX as usize;
-        if f32 || !fits {
+        if f32 || !fits || std::mem::size_of::<usize>() != 8 {
             return Ok(Mesh::new_with(poly, label, f32));
         }
         let mut rest = poly.into_polygon_parts();
         let n_vertices = rest.positions.len();
+        let n_faces = rest.face_offsets.len().saturating_sub(1);
         let positions =
             bytemuck::allocation::try_cast_vec::<DVec3, f64>(std::mem::take(&mut rest.positions));
         let corners =
@@ -400,10 +408,17 @@ impl Mesh {
                 return Ok(Mesh::new_with(poly, label, f32));
             }
         };
+        // The face sizes are written over the face offsets' own buffer (no fresh memory), which
+        // numpy then owns as uint64, seen as int32 through a view.
+        let mut offsets = std::mem::take(&mut rest.face_offsets);
+        sizes_over_offsets(&mut offsets);
+        let sizes = bytemuck::allocation::try_cast_vec::<usize, u64>(offsets)
+            .map_err(|_| Failure::Bug("usize is not 64-bit".into()).into_pyerr(py))?;
         let mesh = Mesh {
             store: Store::Handed {
                 rest: Box::new(rest),
                 n_vertices,
+                n_faces,
                 whole: OnceLock::new(),
             },
             label,
@@ -416,7 +431,11 @@ impl Mesh {
         let flat = read_only(PyArray1::from_vec(py, positions).into_any())?;
         let positions = rows(&flat, n_vertices, 3)?;
         let corners = PyArray1::from_vec(py, corners).into_any();
+        let sizes = read_only(PyArray1::from_vec(py, sizes).into_any())?;
+        let slice = pyo3::types::PySlice::new(py, 0, n_faces as isize, 1);
+        let counts = sizes.call_method1("view", ("int32",))?.get_item(slice)?;
         let _ = mesh.arrays[0].set(positions.unbind());
+        let _ = mesh.arrays[1].set(read_only(counts)?.unbind());
         let _ = mesh.arrays[2].set(read_only(corners)?.unbind());
         Ok(mesh)
     }
@@ -432,15 +451,23 @@ impl Mesh {
             return Ok(Arc::clone(poly));
         }
         let array = |slot: usize| self.arrays[slot].get().map(|a| a.bind(py).clone());
-        let (Some(positions), Some(corners)) = (array(0), array(2)) else {
+        let (Some(positions), Some(counts), Some(corners)) = (array(0), array(1), array(2)) else {
             return Err(Failure::Bug("a result's arrays are missing".into()));
         };
         let positions: PyReadonlyArrayDyn<'_, f64> = positions.extract()?;
+        let counts: PyReadonlyArrayDyn<'_, i32> = counts.extract()?;
         let corners: PyReadonlyArrayDyn<'_, i32> = corners.extract()?;
         let bug = |e: numpy::AsSliceError| Failure::Bug(e.to_string());
         let mut parts = PolygonParts::clone(rest);
         parts.positions = bytemuck::cast_slice(positions.as_slice().map_err(bug)?).to_vec();
         parts.face_indices = bytemuck::cast_slice(corners.as_slice().map_err(bug)?).to_vec();
+        let counts = counts.as_slice().map_err(bug)?;
+        parts.face_offsets = std::iter::once(0)
+            .chain(counts.iter().scan(0usize, |end, &c| {
+                *end += c as usize;
+                Some(*end)
+            }))
+            .collect();
         let poly =
             PolygonMesh::from_polygon_parts(parts).map_err(|e| Failure::Bug(e.to_string()))?;
         Ok(Arc::clone(whole.get_or_init(|| Arc::new(poly))))
@@ -474,13 +501,6 @@ impl Mesh {
         }
     }
 
-    fn face_offsets(&self) -> &[usize] {
-        match &self.store {
-            Store::Whole(poly) => poly.face_offsets(),
-            Store::Handed { rest, .. } => &rest.face_offsets,
-        }
-    }
-
     fn vertex_count(&self) -> usize {
         match &self.store {
             Store::Whole(poly) => poly.n_vertices(),
@@ -489,7 +509,10 @@ impl Mesh {
     }
 
     fn face_count(&self) -> usize {
-        self.face_offsets().len().saturating_sub(1)
+        match &self.store {
+            Store::Whole(poly) => poly.n_faces(),
+            Store::Handed { n_faces, .. } => *n_faces,
+        }
     }
 
     /// Array `slot`, made by `make` on the first access.
@@ -557,6 +580,27 @@ fn float32s<'py>(
     values: impl Iterator<Item = f32>,
 ) -> PyResult<Bound<'py, PyAny>> {
     read_only(PyArray1::from_iter(py, values).into_any())
+}
+
+/// Writes each face's size (its corners, an `i32`: they are a slice of the int32 corners) over
+/// the face offsets' own bytes: size `f` goes to bytes `4f..4f + 4`, before every offset still
+/// to be read (offsets `f + 1` and on are bytes `8f + 8` and on), so one forward pass needs no
+/// other memory. 64-bit `usize` only.
+fn sizes_over_offsets(offsets: &mut [usize]) {
+    let bytes: &mut [u8] = bytemuck::cast_slice_mut(offsets);
+    let offset = |bytes: &[u8], k: usize| {
+        let mut word = [0u8; 8];
+        word.copy_from_slice(&bytes[8 * k..8 * k + 8]);
+        u64::from_ne_bytes(word)
+    };
+    let faces = (bytes.len() / 8).saturating_sub(1);
+    let mut start = if faces > 0 { offset(bytes, 0) } else { 0 };
+    for f in 0..faces {
+        let end = offset(bytes, f + 1);
+        let size = (end - start).min(i32::MAX as u64) as i32;
+        bytes[4 * f..4 * f + 4].copy_from_slice(&size.to_ne_bytes());
+        start = end;
+    }
 }
 
 /// A read-only flat array as `(n, width)` rows (a view of it, read-only too: numpy refuses to
