@@ -43,8 +43,8 @@ pub(crate) const ARRAYS_LABEL: &str = "<mesh>";
 /// subdivide()'s keywords override them.
 ///
 /// The array properties are read-only (numpy refuses to make them writable): a result's
-/// float64 positions and its corners are the library's own buffers handed over, the others
-/// copies made on the first access. positions (N, 3) float64 (float32 for a result
+/// float64 positions, face sizes and corners are the library's own buffers handed over, the
+/// others copies made on the first access. positions (N, 3) float64 (float32 for a result
 /// of subdivide(..., precision="f32"), as uvs and colors then), face_vertex_counts and
 /// face_vertex_indices int32, uvs (K, 2) and uv_indices int32 or None, colors (N, 3) or None;
 /// materials and groups: a str or None per face, or None when the mesh has none; mtllib: the
