@@ -27,6 +27,7 @@ pxr = pytest.importorskip("pxr")
 from pxr import Gf, Sdf, Usd, UsdGeom, Vt  # noqa: E402
 
 import subcount  # noqa: E402
+from test_mesh import grid as tri_grid  # noqa: E402  (the open triangle grid)
 
 SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN", "/work/main/target/debug/subcount")
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "python" / "usd_subdivide.py"
@@ -61,17 +62,6 @@ def quad_grid(w=3, h=3):
         for x in range(w):
             a = y * (w + 1) + x
             faces.append([a, a + 1, a + w + 2, a + w + 1])
-    return points, faces
-
-
-def tri_grid(w=3, h=2):
-    points = [[x * 0.7, y * 1.3, 0.1 * x * y + 0.05 * x * x] for y in range(h + 1) for x in range(w + 1)]
-    faces = []
-    for y in range(h):
-        for x in range(w):
-            a = y * (w + 1) + x
-            b, c, d = a + 1, a + w + 2, a + w + 1
-            faces += [[a, b, c], [a, c, d]]
     return points, faces
 
 

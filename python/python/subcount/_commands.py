@@ -42,12 +42,15 @@ def _big_int(text: str) -> int:
     return _big_int(text[:-low]) * 10**low + _big_int(text[-low:])
 
 
-def _run(args: List[str], mesh: Any = None) -> Any:
-    """Runs ``subcount ARGS``: warns its notes, raises its error, returns its JSON."""
+def _run(args: List[str], mesh: Any = None, text: bool = False) -> Any:
+    """Runs ``subcount ARGS``: warns its notes, raises its error, returns its JSON (its text
+    with ``text``)."""
     code, stdout, notes, error = run_command(args, mesh)
     for note in notes:
         warnings.warn(note, _errors.Warning, stacklevel=3)
-    report = json.loads(stdout, parse_int=_big_int) if stdout.strip() else None
+    if text and code == 0:
+        return stdout
+    report = json.loads(stdout, parse_int=_big_int) if stdout.strip() and not text else None
     if code == 0:
         return report
     message = error or f"the command ended with exit code {code}"
@@ -76,6 +79,19 @@ def _text(value: Any, name: str) -> str:
     if hasattr(value, "__index__") and not isinstance(value, str):
         return str(operator.index(value))  # numpy's integers too
     return str(value)
+
+
+# The keywords of a command's recurrence and initial state (the command line's `Source`
+# flags), taken by every counting command.
+_SOURCE_KEYWORDS = (
+    "scheme", "scheme_file", "matrix", "names", "init", "counts",
+    "mesh", "base", "boundary", "crease_method", "triangle_rule", "ignore_tags",
+)  # fmt: skip
+
+
+def _source_of(arguments: Mapping[str, Any]) -> Dict[str, Any]:
+    """The source keywords among a command's arguments (its ``locals()``)."""
+    return {key: arguments[key] for key in _SOURCE_KEYWORDS}
 
 
 def _source(
@@ -170,11 +186,7 @@ def at(
     200005
     """
     args = ["at", "--level", _text(level, "level"), "--format", "json"]
-    memory = _source(
-        args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
-        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
-    )
+    memory = _source(args, **_source_of(locals()))
     if summary:
         args.append("--summary")
     if allow_large:
@@ -210,11 +222,7 @@ def table(
     [1280, 5120]
     """
     args = ["table", "--levels", _levels(levels), "--format", "json"]
-    memory = _source(
-        args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
-        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
-    )
+    memory = _source(args, **_source_of(locals()))
     return _run(args, memory)
 
 
@@ -261,21 +269,10 @@ def formula(
     if format == "sympy":
         import sympy  # type: ignore  # noqa: F811 (an optional, untyped dependency, imported when asked for)
     args = ["formula", "--format", "json" if format == "sympy" else format]
-    memory = _source(
-        args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
-        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
-    )
+    memory = _source(args, **_source_of(locals()))
     if allow_large:
         args.append("--allow-large")
-    if format in ("text", "latex", "rust"):
-        code, stdout, notes, error = run_command(args, memory)
-        for note in notes:
-            warnings.warn(note, _errors.Warning, stacklevel=2)
-        if error is not None:
-            raise _ERRORS.get(code, _errors.Error)(error)
-        return stdout
-    report = _run(args, memory)
+    report = _run(args, memory, text=format in ("text", "latex", "rust"))
     if sympy is None:
         return report
     if report and "phase" in report[0]:
@@ -336,11 +333,7 @@ def fit(
     {'level': 6, 'V': 40962, 'E': 122880, 'F': 81920}
     """
     args = ["fit", "--format", "json"]
-    memory_mesh = _source(
-        args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
-        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
-    )
+    memory_mesh = _source(args, **_source_of(locals()))
     for flag, value in (
         ("--max-vertices", max_vertices),
         ("--max-edges", max_edges),
@@ -391,11 +384,7 @@ def density(
         args += ["--target-area", _text(target_area, "target_area")]
     if tau is not None:
         args += ["--tau", _text(tau, "tau")]
-    memory = _source(
-        args, scheme=scheme, scheme_file=scheme_file, matrix=matrix, names=names, init=init,
-        counts=counts, mesh=mesh, base=base, boundary=boundary, crease_method=crease_method,
-        triangle_rule=triangle_rule, ignore_tags=ignore_tags,
-    )
+    memory = _source(args, **_source_of(locals()))
     return _run(args, memory)
 
 
