@@ -27,6 +27,10 @@
 //                     corners-plus1); writes `vt u v` after the `v` lines and `f v/vt` faces
 //             --fvar-counts: with --fvar, print one JSON line of GetNumFVarValues at every
 //                     level 0..LEVEL instead of the mesh
+//             --limit: also PrimvarRefiner::Limit on the last level (refined with its full
+//                     topology): after the `v` lines, one `# limit px py pz ux uy uz vx vy vz`
+//                     line per vertex (limit position, first and second tangent), and with
+//                     --fvar one `# limituv u v` line per value (LimitFaceVarying)
 //
 // Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
 //   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
@@ -346,10 +350,11 @@ std::unique_ptr<Far::TopologyRefiner> createRefiner(Mesh const& mesh, Sdc::Schem
     return refiner;
 }
 
-// Uniform refinement to `level`; the last level's face-vertex lists are all either mode reads.
-void refine(Far::TopologyRefiner& refiner, int level) {
+// Uniform refinement to `level`; the last level's face-vertex lists are all either mode reads,
+// its full topology only for the limit (`full`).
+void refine(Far::TopologyRefiner& refiner, int level, bool full = false) {
     Far::TopologyRefiner::UniformOptions uniform(level);
-    uniform.fullTopologyInLastLevel = false;
+    uniform.fullTopologyInLastLevel = full;
     refiner.RefineUniform(uniform);
 }
 
@@ -410,7 +415,7 @@ Sdc::Options::TriangleSubdivision parseTriangleRule(std::string const& name) {
 int reference(int argc, char** argv) {
     // Options first: --tags, --crease-method M, --triangle-rule R, --fvar MODE, --fvar-counts;
     // a flag wins over the tag.
-    bool withTags = false, fvarCounts = false;
+    bool withTags = false, fvarCounts = false, limit = false;
     std::string creaseMethod, triangles, fvar;
     int at = 1;
     for (; at < argc && std::strncmp(argv[at], "--", 2) == 0; ++at) {
@@ -419,6 +424,8 @@ int reference(int argc, char** argv) {
             withTags = true;
         } else if (flag == "--fvar-counts") {
             fvarCounts = true;
+        } else if (flag == "--limit") {
+            limit = true;
         } else if ((flag == "--crease-method" || flag == "--triangle-rule" || flag == "--fvar") &&
                    at + 1 < argc) {
             (flag == "--crease-method" ? creaseMethod : flag == "--fvar" ? fvar : triangles) =
@@ -430,7 +437,7 @@ int reference(int argc, char** argv) {
     int rest = argc - at;
     if (rest < 3 || rest > 4) {
         fail(2, "usage: osd_driver [--tags] [--crease-method uniform|chaikin] "
-                "[--triangle-rule catmark|smooth] [--fvar none|corners-only|corners-plus1|"
+                "[--triangle-rule catmark|smooth] [--limit] [--fvar none|corners-only|corners-plus1|"
                 "corners-plus2|boundaries|all|tag [--fvar-counts]] loop|catmark|bilinear LEVEL "
                 "FILE.obj [edge-only|edge-and-corner|none]\n"
                 "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
@@ -473,7 +480,7 @@ int reference(int argc, char** argv) {
     }
 
     std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(mesh, scheme, sdcOptions, args[2]);
-    refine(*refiner, level);
+    refine(*refiner, level, limit);
 
     if (fvarCounts) {
         std::string line = std::string("{\"scheme\": \"") + args[0] + "\", \"level\": " +
@@ -513,6 +520,22 @@ int reference(int argc, char** argv) {
         }
         out += '\n';
     }
+    Far::PrimvarRefinerReal<double> primvar(*refiner);
+    if (limit) {
+        int n = last.GetNumVertices();
+        std::vector<Point> position(n), tangent1(n), tangent2(n);
+        primvar.Limit(src, position, tangent1, tangent2);
+        for (int v = 0; v < n; ++v) {
+            out += "# limit";
+            for (Point const* p : {&position[v], &tangent1[v], &tangent2[v]}) {
+                for (double c : {p->x, p->y, p->z}) {
+                    out += ' ';
+                    put(c);
+                }
+            }
+            out += '\n';
+        }
+    }
     if (withUvs) {
         std::vector<Uv> uvs(refiner->GetNumFVarValuesTotal(0));
         std::copy(mesh.uvs.begin(), mesh.uvs.end(), uvs.begin());
@@ -523,6 +546,17 @@ int reference(int argc, char** argv) {
             out += ' ';
             put(uvSrc[i].v);
             out += '\n';
+        }
+        if (limit) {
+            std::vector<Uv> limitUvs(last.GetNumFVarValues(0));
+            primvar.LimitFaceVarying(uvSrc, limitUvs, 0);
+            for (Uv const& uv : limitUvs) {
+                out += "# limituv ";
+                put(uv.u);
+                out += ' ';
+                put(uv.v);
+                out += '\n';
+            }
         }
     }
     for (int f = 0; f < last.GetNumFaces(); ++f) {

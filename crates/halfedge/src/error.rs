@@ -653,6 +653,29 @@ pub enum Error {
         /// The other.
         b: u32,
     },
+    /// The limit surface asked of a rule without limit masks (OpenSubdiv has them for Loop and
+    /// Catmull-Clark).
+    #[error("the limit surface is computed under Loop and Catmull-Clark, not {rule}")]
+    LimitNotSupported {
+        /// The rule.
+        rule: String,
+    },
+    /// Catmull-Clark's limit masks at a level with a face that is not a quad (level 0 of a
+    /// mesh with other faces): OpenSubdiv's masks weigh the corner opposite the vertex in
+    /// each face, which only a quad has.
+    #[error(
+        "face {face} has {sides} sides: Catmull-Clark's limit masks need quads around a vertex \
+         (every face after one level is one; evaluate the limit at level 1 or more)"
+    )]
+    LimitNeedsQuads {
+        /// The face.
+        face: u32,
+        /// Its number of sides.
+        sides: usize,
+    },
+    /// The limit surface asked of a refinement built without it.
+    #[error("the refinement was built without the limit surface (SubdivideOptions::limit)")]
+    NoLimit,
     /// Creases, corners or crease options for a rule that has no crease rules.
     #[error("creases apply to Loop and Catmull-Clark, not {rule} ({what} given)")]
     CreasesNotSupported {

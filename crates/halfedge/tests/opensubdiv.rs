@@ -36,6 +36,7 @@
 //! `--fvar-counts` on every shared mesh with UVs in `uv_count_reference`.
 
 mod fvar_reference;
+mod limit_reference;
 mod osd_support;
 mod uv_count_reference;
 

@@ -69,6 +69,13 @@ pub struct SubdivideOptions<'a> {
     /// ([`FaceListLevel::base_faces`], 4 bytes a face; OpenSubdiv's
     /// `InterpolateFaceUniform`). Off by default.
     pub base_faces: bool,
+    /// Keep the limit surface of the last level ([`Refinement::evaluate_limit`]: positions
+    /// and tangents by OpenSubdiv's limit masks), Loop and Catmull-Clark only. Only
+    /// [`Refinement::new`] reads it. Off by default.
+    ///
+    /// [`Refinement::new`]: crate::Refinement::new
+    /// [`Refinement::evaluate_limit`]: crate::Refinement::evaluate_limit
+    pub limit: bool,
 }
 
 impl Default for SubdivideOptions<'_> {
@@ -84,6 +91,7 @@ impl Default for SubdivideOptions<'_> {
             uvs: None,
             descriptor: true,
             base_faces: false,
+            limit: false,
         }
     }
 }
@@ -106,6 +114,8 @@ impl<'a> SubdivideOptions<'a> {
         with_descriptor(descriptor: bool);
         /// Sets [`SubdivideOptions::base_faces`].
         with_base_faces(base_faces: bool);
+        /// Sets [`SubdivideOptions::limit`].
+        with_limit(limit: bool);
     }
 
     /// Sets [`SubdivideOptions::preallocate`], which is ignored.
@@ -134,6 +144,7 @@ impl std::fmt::Debug for SubdivideOptions<'_> {
             .field("uvs", &self.uvs.map(|u| u.n_values()))
             .field("descriptor", &self.descriptor)
             .field("base_faces", &self.base_faces)
+            .field("limit", &self.limit)
             .finish()
     }
 }

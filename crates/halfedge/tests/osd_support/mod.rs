@@ -110,7 +110,7 @@ pub(crate) struct Running {
 impl Running {
     /// What the driver wrote to stdout, once it has finished successfully; panics, with the
     /// command and the driver's stderr, when it fails.
-    fn stdout(self) -> (Vec<u8>, String) {
+    pub(crate) fn stdout(self) -> (Vec<u8>, String) {
         let output = self
             .child
             .wait_with_output()

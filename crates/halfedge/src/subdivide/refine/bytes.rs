@@ -27,7 +27,8 @@ impl Refinement {
             .as_ref()
             .map_or(0, |w| 4 * w.kept.len() + w.holes.len());
         let uvs = self.uvs.as_ref().map_or(0, |u| u.heap_bytes());
-        levels + polygons + written + uvs + 4 * self.base_degrees.len()
+        let limit = self.limit.as_ref().map_or(0, limit::LimitTable::heap_bytes);
+        levels + polygons + written + uvs + limit + 4 * self.base_degrees.len()
     }
 
     /// The bytes [`Refinement::new`] would keep for `rule` at `levels` on a mesh with

@@ -302,6 +302,60 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
             }
             return Ok(());
         }
+        let whole = r.computed_vertices(levels);
+        if r.written.is_some() {
+            reserve(&mut self.full, whole)?;
+            let mut full = std::mem::take(&mut self.full);
+            self.levels_into(base, &mut full[..whole])?;
+            r.gather(&full[..whole], out);
+            self.full = full;
+        } else {
+            self.levels_into(base, out)?;
+        }
+        Ok(())
+    }
+
+    /// The limit surface of `base`, as [`Refinement::evaluate_limit`], the last level in
+    /// the evaluator's buffers.
+    ///
+    /// # Errors
+    ///
+    /// As [`Refinement::evaluate_limit`].
+    pub fn evaluate_limit(
+        &mut self,
+        base: &[[T; N]],
+        position: &mut [[T; N]],
+        tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+    ) -> Result<()> {
+        let r = self.refinement;
+        let table = r.limit_table()?;
+        let levels = r.levels;
+        check_len("base", r.base_vertices(), base.len())?;
+        let n = r.n_vertices(levels);
+        check_len("limit position", n, position.len())?;
+        if let Some((a, b)) = &tangents {
+            check_len("limit tangent", n, a.len())?;
+            check_len("limit tangent", n, b.len())?;
+        }
+        let rows = r.limit_rows();
+        if levels == 0 {
+            r.run(|| table.apply(base, rows, position, tangents));
+            return Ok(());
+        }
+        let whole = r.computed_vertices(levels);
+        reserve(&mut self.full, whole)?;
+        let mut full = std::mem::take(&mut self.full);
+        self.levels_into(base, &mut full[..whole])?;
+        r.run(|| table.apply(&full[..whole], rows, position, tangents));
+        self.full = full;
+        Ok(())
+    }
+
+    /// Refines `base` level by level (the intermediate levels in the evaluator's buffers)
+    /// into `last`, the whole last level (`levels >= 1`).
+    fn levels_into(&mut self, base: &[[T; N]], last: &mut [[T; N]]) -> Result<()> {
+        let r = self.refinement;
+        let levels = r.levels;
         let need = |parity: u32| {
             (1..levels)
                 .filter(|s| s % 2 == parity)
@@ -313,11 +367,6 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
         reserve(a, need(1))?;
         reserve(b, need(0))?;
         let (a, b): (&mut [[T; N]], &mut [[T; N]]) = (a, b);
-        let whole = r.computed_vertices(levels);
-        if r.written.is_some() {
-            reserve(&mut self.full, whole)?;
-        }
-        let full = &mut self.full;
         r.run(|| {
             // Odd levels go to `a`, even ones to `b`.
             for s in 1..levels {
@@ -335,12 +384,7 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
                 l if (l - 1) % 2 == 1 => &a[..m],
                 _ => &b[..m],
             };
-            if r.written.is_some() {
-                r.fill_level(levels, input, &mut full[..whole]);
-                r.gather(&full[..whole], out);
-            } else {
-                r.fill_level(levels, input, out);
-            }
+            r.fill_level(levels, input, last);
         });
         Ok(())
     }

@@ -142,6 +142,9 @@ impl Refinement {
                 (_, Next::Mesh(m)) => Built::Mesh(m),
             };
             let nt = next.topo();
+            if let Some(walk) = self.limit_walk.as_mut() {
+                walk.push(&t, &nt, s == levels)?;
+            }
             if let Some(creases) = self.creases.as_mut() {
                 // The child's sharpness, when a level follows.
                 if s < levels {

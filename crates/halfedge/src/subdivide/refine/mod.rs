@@ -93,6 +93,7 @@ pub(crate) mod creases;
 mod evaluate;
 pub mod face_varying;
 mod levels;
+pub(crate) mod limit;
 pub(crate) mod oneshot;
 mod stencil;
 mod tables;
@@ -236,6 +237,10 @@ pub struct Refinement {
     /// The base faces' degrees under Catmull-Clark (the children of the first level), for
     /// [`Refinement::base_faces`]; empty under the other rules.
     base_degrees: Vec<u32>,
+    /// With [`SubdivideOptions::limit`]: the last level's limit masks, and the walk that
+    /// builds them while the levels are refined.
+    limit: Option<limit::LimitTable>,
+    limit_walk: Option<limit::LimitWalk>,
 }
 
 /// The written part of the last level of a refinement with holes: its face list is
@@ -427,7 +432,10 @@ impl Refinement {
         plan.scheme.initial_state(&counts)?;
         super::check_mesh(&plan, mesh)?;
         let creases = creases()?;
-        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.split))?;
+        // The limit needs the last level's topology: built even where its faces could be
+        // written from the level before.
+        let limit = opts.limit.then(|| limit::scheme_of(rule)).transpose()?;
+        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.split) || limit.is_some())?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
         let written = match holes {
@@ -470,10 +478,15 @@ impl Refinement {
             step_b: None,
             fast: None,
         });
+        if let Some(scheme) = limit {
+            let walk = limit::LimitWalk::new(&base, scheme, refinement.creases.as_ref(), levels)?;
+            refinement.limit_walk = Some(walk);
+        }
         let run = |r: &mut Refinement| {
             r.refine_levels(mesh, &planned, opts, Retain::All, &mut |_, _| Ok(()))
         };
         refinement.install(run)?;
+        refinement.limit = refinement.limit_walk.take().and_then(limit::LimitWalk::into_table);
         if let (Some(holes), Some(predicted)) = (holes, written) {
             refinement.keep_written(mesh, holes, &predicted)?;
         }
@@ -515,6 +528,8 @@ impl Refinement {
             written: None,
             uvs: None,
             base_degrees: Vec::new(),
+            limit: None,
+            limit_walk: None,
         })
     }
 

@@ -96,6 +96,7 @@
 //! OpenSubdiv for `cargo test` alone.
 
 pub(crate) mod crease;
+pub(crate) mod limit;
 pub(crate) mod masks;
 pub(crate) mod sharpness;
 

@@ -6,8 +6,7 @@
 
 mod level;
 
-pub(crate) use self::level::{boundary_first, ccw_ring};
-use self::level::{LevelBuilder, LevelSharpness};
+pub(crate) use self::level::{boundary_first, ccw_ring, LevelBuilder, LevelSharpness};
 use crate::subdivide::sdc::masks::Scheme;
 use crate::subdivide::sdc::sharpness::Sharpness;
 use crate::subdivide::topo::Topo;
@@ -256,6 +255,13 @@ impl Creases {
             self.levels.resize_with(level + 2, || None);
         }
         self.levels[level + 1] = Some(next);
+    }
+
+    /// What a limit walk starts from (`refine/limit.rs`): the options, the linear
+    /// interpolation and the base level's sharpness, while it is kept.
+    pub(crate) fn walk_start(&self) -> Option<(SubdivisionOptions, Linear, LevelSharpness)> {
+        let base = self.levels.first()?.as_ref()?;
+        Some((self.options, self.linear, base.clone()))
     }
 
     /// Sets the bytes a refinement may keep for each level's tables (entry `s`: level `s`,

@@ -1,0 +1,411 @@
+//! The limit surface at a refinement's last level, as OpenSubdiv's `PrimvarRefiner::Limit`:
+//! each vertex's limit position and two limit tangents as weights of the level's vertices
+//! (a [`LimitTable`]), by the limit masks of [`sdc`](crate::subdivide::sdc)'s `limit.rs`
+//! under the vertex's rule at that level.
+//!
+//! The masks' weights are listed from a vertex's leading edge, and OpenSubdiv's leading edge
+//! comes from its numbering of every level (`Vtr`), which is not `halfedge`'s. A
+//! [`LimitWalk`] follows the refinement level by level and keeps, in `halfedge`'s half-edges,
+//! what decides it in OpenSubdiv ([`Order`]): each vertex's leading edge, each edge's first
+//! face and each face's first corner. At level 0 they are those of the face list (a vertex's
+//! first face is its lowest-numbered one, a boundary vertex leads with the boundary edge its
+//! face follows, an edge's first face is its lowest-numbered); each later level takes them
+//! from its parent by `Vtr`'s rules for the children of vertices, edges and faces (the
+//! refinements `QuadRefinement` and `TriRefinement`):
+//!
+//! - the child of a vertex leads with the child of the parent's leading edge;
+//! - the child of an edge leads towards the end the edge runs to in its first face;
+//! - the child of a face (Catmull-Clark) leads towards the midpoint of the face's last side;
+//! - the two halves of an edge have for first face the child of the edge's first face next to
+//!   them; an edge inside a parent face the child face at the corner it leaves from;
+//! - a child face starts at the child of its corner's vertex, except the children of quads
+//!   (rotated so that child `j` starts `j` corners on) and Loop's other three.
+//!
+//! So the tangents are OpenSubdiv's, direction and length, at every level
+//! (`tests/opensubdiv.rs`).
+
+use crate::subdivide::sdc::crease::vertex_rule_of;
+use crate::subdivide::sdc::limit::LimitMasks;
+use crate::subdivide::sdc::masks::Scheme;
+use crate::subdivide::topo::Topo;
+use crate::tags::{SubdivisionOptions, INFINITELY_SHARP};
+use crate::{Error, Result};
+
+use super::creases::{boundary_first, ccw_ring, Creases, LevelBuilder, LevelSharpness, Linear};
+use super::Scalar;
+use crate::mesh::INVALID;
+
+/// OpenSubdiv's order of one level, in `halfedge`'s half-edges.
+#[derive(Clone, Debug, Default)]
+struct Order {
+    /// Per vertex: its leading outgoing half-edge (`INVALID` for a vertex in no edge).
+    first: Vec<u32>,
+    /// Per edge: its half-edge in the edge's first face.
+    edge_first: Vec<u32>,
+    /// Per face: its half-edge from its first corner.
+    face_first: Vec<u32>,
+}
+
+impl Order {
+    /// The order of a base level.
+    fn base(t: &Topo<'_>) -> Order {
+        let first = (0..t.nv() as u32)
+            .map(|v| {
+                if t.vertex_halfedge(v) == INVALID {
+                    return INVALID;
+                }
+                boundary_first(t, v).unwrap_or_else(|| {
+                    let mut best = t.vertex_halfedge(v);
+                    t.for_outgoing(v, |h| {
+                        if t.face(h) < t.face(best) {
+                            best = h;
+                        }
+                    });
+                    best
+                })
+            })
+            .collect();
+        let edge_first = (0..t.ne() as u32)
+            .map(|e| {
+                let (h, g) = (2 * e, 2 * e + 1);
+                // INVALID (no face) is the largest u32: a face wins.
+                if t.face(h) <= t.face(g) {
+                    h
+                } else {
+                    g
+                }
+            })
+            .collect();
+        let face_first = (0..t.nf() as u32).map(|f| t.face_halfedge(f)).collect();
+        Order {
+            first,
+            edge_first,
+            face_first,
+        }
+    }
+
+    /// The order of `child`, refined from `t` (this order) by `scheme`: child vertices
+    /// numbered as the builders number them (vertex `v`, edge `nv + e`, face `nv + ne + f`).
+    fn child(&self, t: &Topo<'_>, child: &Topo<'_>, scheme: Scheme) -> Result<Order> {
+        let (nv, ne) = (t.nv() as u32, t.ne() as u32);
+        let mid = |h: u32| nv + (h >> 1);
+        let centre = |f: u32| nv + ne + f;
+        let find = |from: u32, to: u32| -> Result<u32> {
+            let mut found = INVALID;
+            child.for_outgoing(from, |h| {
+                if child.target(h) == to {
+                    found = h;
+                }
+            });
+            if found == INVALID {
+                return Err(Error::InvalidOutput {
+                    scheme: "limit".into(),
+                    level: 0,
+                    what: format!("no child edge from vertex {from} to vertex {to}"),
+                });
+            }
+            Ok(found)
+        };
+        let mut order = Order {
+            first: vec![INVALID; child.nv()],
+            edge_first: vec![INVALID; child.ne()],
+            face_first: vec![INVALID; child.nf()],
+        };
+        for v in 0..nv {
+            let h = self.first[v as usize];
+            if h != INVALID {
+                order.first[v as usize] = find(v, mid(h))?;
+            }
+        }
+        for e in 0..ne {
+            // Edge `e` runs a -> b in its first face.
+            let h = self.edge_first[e as usize];
+            let (a, b, m) = (t.source(h), t.target(h), mid(h));
+            order.first[m as usize] = find(m, b)?;
+            for (x, y) in [(a, m), (m, b)] {
+                let g = find(x, y)?;
+                order.edge_first[(g >> 1) as usize] = g;
+            }
+        }
+        let mut corners = Vec::new();
+        for f in 0..t.nf() as u32 {
+            corners.clear();
+            let mut h = self.face_first[f as usize];
+            loop {
+                corners.push(h);
+                h = t.next(h);
+                if h == self.face_first[f as usize] {
+                    break;
+                }
+            }
+            let n = corners.len();
+            let mut starts = [(0, 0); 4];
+            match scheme {
+                Scheme::CatmullClark => {
+                    let c = centre(f);
+                    let last = corners[n - 1];
+                    order.first[c as usize] = find(c, mid(last))?;
+                    for (j, &h) in corners.iter().enumerate() {
+                        // The edge from the side's midpoint to the centre: first in child j.
+                        let g = find(mid(h), c)?;
+                        order.edge_first[(g >> 1) as usize] = g;
+                        let (v, next, prev) = (t.source(h), mid(h), mid(corners[(j + n - 1) % n]));
+                        let start = match (n, j) {
+                            (4, 1) => (prev, v),
+                            (4, 2) => (c, prev),
+                            (4, 3) => (next, c),
+                            _ => (v, next),
+                        };
+                        let g = find(start.0, start.1)?;
+                        order.face_first[child.face(g) as usize] = g;
+                    }
+                }
+                Scheme::Loop => {
+                    let e = [mid(corners[0]), mid(corners[1]), mid(corners[2])];
+                    for (j, &h) in corners.iter().enumerate() {
+                        let g = find(mid(h), mid(corners[(j + 2) % 3]))?;
+                        order.edge_first[(g >> 1) as usize] = g;
+                    }
+                    starts[0] = (t.source(corners[0]), e[0]);
+                    starts[1] = (e[0], t.source(corners[1]));
+                    starts[2] = (e[2], e[1]);
+                    starts[3] = (e[1], e[2]);
+                    for &(x, y) in &starts {
+                        let g = find(x, y)?;
+                        order.face_first[child.face(g) as usize] = g;
+                    }
+                }
+            }
+        }
+        Ok(order)
+    }
+}
+
+/// Every vertex of a level as its limit position and two limit tangents: row `i` is
+/// `Σ weights[k][m] * level[indices[k]]` for `k` in `offsets[i]..offsets[i + 1]`, `m` 0 for
+/// the position, 1 and 2 for the tangents (OpenSubdiv's order: face weights, edge weights,
+/// the vertex's own last).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(crate) struct LimitTable {
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<[f64; 3]>,
+}
+
+impl LimitTable {
+    /// The number of rows (the level's vertices).
+    pub(crate) fn len(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// The bytes of the table's arrays.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        4 * self.offsets.capacity() + 4 * self.indices.capacity() + 24 * self.weights.capacity()
+    }
+
+    /// Row `i`: its indices and their (position, tangent, tangent) weights.
+    pub(crate) fn row(&self, i: usize) -> (&[u32], &[[f64; 3]]) {
+        let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        (&self.indices[a..b], &self.weights[a..b])
+    }
+
+    /// The limit of `level` (one entry per row's vertex) at the rows `rows` (all when
+    /// `None`) into `position` and, when given, the tangents; the buffers have one entry per
+    /// row written.
+    pub(crate) fn apply<T: Scalar, const N: usize>(
+        &self,
+        level: &[[T; N]],
+        rows: Option<&[u32]>,
+        position: &mut [[T; N]],
+        mut tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+    ) {
+        let n = rows.map_or(self.len(), <[u32]>::len);
+        for k in 0..n {
+            let i = rows.map_or(k, |r| r[k] as usize);
+            let (indices, weights) = self.row(i);
+            let mut p = [T::ZERO; N];
+            for (&j, w) in indices.iter().zip(weights) {
+                let x = &level[j as usize];
+                let w0 = T::from_f64(w[0]);
+                for c in 0..N {
+                    p[c] = p[c] + w0 * x[c];
+                }
+            }
+            position[k] = p;
+            if let Some((t1, t2)) = tangents.as_mut() {
+                let (mut a, mut b) = ([T::ZERO; N], [T::ZERO; N]);
+                for (&j, w) in indices.iter().zip(weights) {
+                    let x = &level[j as usize];
+                    let (w1, w2) = (T::from_f64(w[1]), T::from_f64(w[2]));
+                    for c in 0..N {
+                        a[c] = a[c] + w1 * x[c];
+                        b[c] = b[c] + w2 * x[c];
+                    }
+                }
+                t1[k] = a;
+                t2[k] = b;
+            }
+        }
+    }
+
+    /// The limit masks of every vertex of level `t` in `order`, its sharpness `sharp` (`None`:
+    /// boundary edges infinitely sharp, nothing else).
+    fn build(t: &Topo<'_>, order: &Order, sharp: Option<&LevelSharpness>, scheme: Scheme) -> Result<LimitTable> {
+        let nv = t.nv();
+        let mut table = LimitTable {
+            offsets: Vec::with_capacity(nv + 1),
+            indices: Vec::new(),
+            weights: Vec::new(),
+        };
+        table.offsets.push(0);
+        let (mut ring, mut edges) = (Vec::new(), Vec::new());
+        let mut masks = LimitMasks::default();
+        for v in 0..nv as u32 {
+            let first = order.first[v as usize];
+            if first == INVALID {
+                table.indices.push(v);
+                table.weights.push([1.0, 0.0, 0.0]);
+                table.offsets.push(table.indices.len() as u32);
+                continue;
+            }
+            ccw_ring(t, v, first, &mut ring);
+            edges.clear();
+            edges.extend(ring.iter().map(|&h| match sharp {
+                Some(s) => s.edges[(h >> 1) as usize],
+                None if t.is_boundary_edge(h >> 1) => INFINITELY_SHARP,
+                None => 0.0,
+            }));
+            let faces = ring.iter().filter(|&&h| !t.is_boundary(h)).count();
+            let vertex = sharp.map_or(0.0, |s| s.vertices[v as usize]);
+            masks.set(scheme, vertex_rule_of(vertex, &edges), &edges, faces);
+            let [p, t1, t2] = [&masks.position, &masks.tangent1, &masks.tangent2];
+            let n_faces = p.faces.len().max(t1.faces.len());
+            for (i, &h) in ring.iter().take(n_faces).enumerate() {
+                let f = t.face(h);
+                if t.face_degree(f) != 4 {
+                    return Err(Error::LimitNeedsQuads {
+                        face: f,
+                        sides: t.face_degree(f),
+                    });
+                }
+                let at = |m: &crate::subdivide::sdc::masks::Mask| m.faces.get(i).copied().unwrap_or(0.0);
+                table.indices.push(t.target(t.next(h)));
+                table.weights.push([at(p), at(t1), at(t2)]);
+            }
+            for (i, &h) in ring.iter().enumerate() {
+                let at = |m: &crate::subdivide::sdc::masks::Mask| m.edges.get(i).copied().unwrap_or(0.0);
+                table.indices.push(t.target(h));
+                table.weights.push([at(p), at(t1), at(t2)]);
+            }
+            table.indices.push(v);
+            table.weights.push([p.vertex, t1.vertex, t2.vertex]);
+            let end = u32::try_from(table.indices.len()).map_err(|_| Error::IndexOverflow {
+                what: "limit entries",
+                count: table.indices.len() as u128,
+            })?;
+            table.offsets.push(end);
+        }
+        Ok(table)
+    }
+}
+
+/// Follows a refinement level by level (`Refinement::refine_levels` calls
+/// [`LimitWalk::push`] with each level and its parent) and builds the [`LimitTable`] of the
+/// last one.
+#[derive(Debug)]
+pub(crate) struct LimitWalk {
+    scheme: Scheme,
+    /// The crease rules' options and linear interpolation, and the current level's sharpness.
+    creases: Option<(SubdivisionOptions, Linear, LevelSharpness)>,
+    order: Order,
+    table: Option<LimitTable>,
+}
+
+impl LimitWalk {
+    /// A walk from the base level `t` under `scheme` and the crease rules `creases` (their
+    /// base sharpness), the table built at once when `levels` is 0.
+    pub(crate) fn new(t: &Topo<'_>, scheme: Scheme, creases: Option<&Creases>, levels: u32) -> Result<LimitWalk> {
+        let mut walk = LimitWalk {
+            scheme,
+            creases: creases.and_then(Creases::walk_start),
+            order: Order::base(t),
+            table: None,
+        };
+        if levels == 0 {
+            walk.table = Some(walk.table_of(t)?);
+        }
+        Ok(walk)
+    }
+
+    fn table_of(&self, t: &Topo<'_>) -> Result<LimitTable> {
+        let sharp = self.creases.as_ref().map(|(_, _, s)| s);
+        LimitTable::build(t, &self.order, sharp, self.scheme)
+    }
+
+    /// Level `child` refined from `parent` (the walk's current level); `last` builds the
+    /// table.
+    pub(crate) fn push(&mut self, parent: &Topo<'_>, child: &Topo<'_>, last: bool) -> Result<()> {
+        self.order = self.order.child(parent, child, self.scheme)?;
+        if let Some((options, linear, sharp)) = &self.creases {
+            let next = LevelBuilder::new(*parent, sharp, self.scheme, options, *linear).child_sharpness(child);
+            if let Some(c) = self.creases.as_mut() {
+                c.2 = next;
+            }
+        }
+        if last {
+            self.table = Some(self.table_of(child)?);
+        }
+        Ok(())
+    }
+
+    /// The table of the last level, once built.
+    pub(crate) fn into_table(self) -> Option<LimitTable> {
+        self.table
+    }
+}
+
+/// The crease-aware scheme of `rule`, the one the limit masks are written for.
+pub(crate) fn scheme_of(rule: crate::Rule) -> Result<Scheme> {
+    Scheme::of(rule).ok_or_else(|| Error::LimitNotSupported {
+        rule: rule.to_string(),
+    })
+}
+
+impl super::Refinement {
+    /// Whether the refinement keeps the limit surface ([`SubdivideOptions::limit`]).
+    ///
+    /// [`SubdivideOptions::limit`]: crate::subdivide::SubdivideOptions::limit
+    pub fn has_limit(&self) -> bool {
+        self.limit.is_some()
+    }
+
+    /// The limit surface of `base` at the last level's vertices (its written ones, with
+    /// holes): refines `base` to the last level, then applies OpenSubdiv's limit masks
+    /// (`PrimvarRefiner::Limit`) into `position` and, when given, the two tangents, each with
+    /// `n_vertices(levels)` entries. Any per-vertex data works (colors: the same masks).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoLimit`] for a refinement built without [`SubdivideOptions::limit`];
+    /// [`Error::BufferSize`]; [`Error::AllocationFailed`].
+    ///
+    /// [`SubdivideOptions::limit`]: crate::subdivide::SubdivideOptions::limit
+    pub fn evaluate_limit<T: Scalar, const N: usize>(
+        &self,
+        base: &[[T; N]],
+        position: &mut [[T; N]],
+        tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+    ) -> Result<()> {
+        self.evaluator().evaluate_limit(base, position, tangents)
+    }
+
+    /// The limit table, or [`Error::NoLimit`].
+    pub(super) fn limit_table(&self) -> Result<&LimitTable> {
+        self.limit.as_ref().ok_or(Error::NoLimit)
+    }
+
+    /// The rows of the limit table that are written (with holes), else `None` (all).
+    pub(super) fn limit_rows(&self) -> Option<&[u32]> {
+        self.written.as_ref().map(|w| w.kept.as_slice())
+    }
+}
