@@ -54,6 +54,7 @@ impl Kind {
         match e {
             E::Scheme(inner) => Kind::of_scheme_error(inner),
             E::NoSubdivision { .. } | E::NotComposable { .. } => Kind::Usage,
+            E::LimitNotSupported { .. } | E::LimitNeedsQuads { .. } | E::NoLimit => Kind::Usage,
             E::CreasesNotSupported { .. } => Kind::Input,
             _ if e.is_resource_limit() => Kind::Guard,
             E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
@@ -241,6 +242,12 @@ pub enum Error {
         /// The estimated cost.
         cost: f64,
     },
+    /// The limit surface (`--limit`, `--normals limit`) asked of a scheme without limit masks.
+    #[error("--limit and --normals limit use OpenSubdiv's limit masks, which loop, loop-boundary and catmull-clark have (and scheme files whose topology is one of them) on a manifold mesh; {scheme} has none")]
+    NoLimit {
+        /// The scheme (or composition).
+        scheme: String,
+    },
     /// Refining once asked of a composition.
     #[error("--precision f32 and --frames refine one scheme once; {plan} is a composition: use --precision f64")]
     RefineOnceComposition {
@@ -262,7 +269,7 @@ impl Error {
             E::NotComposable { .. } | E::BoundaryNone { .. } => Kind::Usage,
             E::HolesNotNested { .. } | E::TriangleRule { .. } => Kind::Usage,
             E::SchemeNotInFile { .. } | E::RefineOnce | E::NoRefinement { .. } => Kind::Usage,
-            E::RefineOnceComposition { .. } => Kind::Usage,
+            E::RefineOnceComposition { .. } | E::NoLimit { .. } => Kind::Usage,
             _ => Kind::Input,
         }
     }

@@ -54,6 +54,8 @@ struct Buffers<T> {
     uvs: Option<(Vec<[T; 2]>, Vec<u32>)>,
     colors: Option<Vec<[T; 3]>>,
     groups: Option<halfedge::groups::FaceGroups>,
+    /// The limit tangents, when the normals written are the limit surface's.
+    tangents: Option<(Vec<[T; 3]>, Vec<[T; 3]>)>,
     /// The rule and level, for messages.
     scheme: String,
     level: u32,
@@ -83,6 +85,9 @@ impl<T: Scalar> Buffers<T> {
         }
         if let Some(groups) = &self.groups {
             mesh = mesh.with_groups(groups);
+        }
+        if let Some((first, second)) = &self.tangents {
+            mesh = mesh.with_tangents(first, second);
         }
         crate::output::write_mesh_buffers_file(&mesh, path, options)
     }
@@ -199,6 +204,10 @@ pub struct RefineOnce<'a> {
     pub colors: Option<&'a [[f64; 3]]>,
     /// The groups of the mesh's faces, given to each output face from its base face.
     pub groups: Option<&'a halfedge::groups::FaceGroups>,
+    /// Write the limit surface (positions, colors, UVs) in place of the last level's points.
+    pub limit: bool,
+    /// Keep the limit tangents, for the normals written.
+    pub limit_normals: bool,
 }
 
 /// Refines `run.mesh` by its rule to its last level once, evaluates its positions in
@@ -270,9 +279,12 @@ fn run_in<T: Scalar>(
         as_read,
         colors,
         groups,
+        limit,
+        limit_normals,
     } = *run;
     let t0 = Instant::now();
-    let refinement = Refinement::new(mesh, rule, levels, opts)?;
+    let with_limit = opts.with_limit(limit || limit_normals);
+    let refinement = Refinement::new(mesh, rule, levels, &with_limit)?;
     let built = Instant::now();
     let refine_topology = built - t0;
     let uv_topology = clock.since_surface(t0, built);
@@ -318,7 +330,18 @@ fn run_in<T: Scalar>(
     let mut evaluator = refinement.evaluator::<T, 3>();
     let mut out = vec![[T::ZERO; 3]; n];
     let t = Instant::now();
-    evaluator.evaluate(&base, &mut out)?;
+    // The limit surface's tangents, when its normals are written; its positions in place of
+    // the last level's with `limit`.
+    let mut tangents = limit_normals.then(|| (vec![[T::ZERO; 3]; n], vec![[T::ZERO; 3]; n]));
+    if limit {
+        evaluator.evaluate_limit(&base, &mut out, pair(&mut tangents))?;
+    } else {
+        evaluator.evaluate(&base, &mut out)?;
+        if limit_normals {
+            let mut position = vec![[T::ZERO; 3]; n];
+            evaluator.evaluate_limit(&base, &mut position, pair(&mut tangents))?;
+        }
+    }
     let first_evaluation = t.elapsed();
     refuse_non_finite(&out, rule, levels)?;
     // The UVs: refined by the same refinement into caller-owned buffers.
@@ -382,6 +405,9 @@ fn run_in<T: Scalar>(
         None => None,
     };
     let evaluate_median = (frames > 0).then(|| -> halfedge::Result<Duration> {
+        // The frames' own tangents: the ones written are the unmoved evaluation's.
+        let mut frame_tangents =
+            (limit && limit_normals).then(|| (vec![[T::ZERO; 3]; n], vec![[T::ZERO; 3]; n]));
         let (mut moved, mut scratch) = (base.clone(), vec![[T::ZERO; 3]; n]);
         let step = perturbation_step(mesh);
         let mut times = Vec::with_capacity(frames as usize);
@@ -389,7 +415,12 @@ fn run_in<T: Scalar>(
             // Cycled, so the base never drifts more than 64 steps from where it was.
             perturb(&base, &mut moved, step * f64::from(frame % 64 + 1));
             let t = Instant::now();
-            evaluator.evaluate(&moved, &mut scratch)?;
+            match limit {
+                true => {
+                    evaluator.evaluate_limit(&moved, &mut scratch, pair(&mut frame_tangents))?
+                }
+                false => evaluator.evaluate(&moved, &mut scratch)?,
+            }
             times.push(t.elapsed());
         }
         times.sort();
@@ -407,6 +438,7 @@ fn run_in<T: Scalar>(
         uvs: uvs.map(|(values, corners, _)| (values, corners)),
         colors,
         groups,
+        tangents,
         scheme: rule.to_string(),
         level: levels,
     };
@@ -420,6 +452,13 @@ fn run_in<T: Scalar>(
     })
 }
 
+/// The two buffers of `tangents` as the mutable slices an evaluation writes.
+fn pair<T>(tangents: &mut Option<(Vec<T>, Vec<T>)>) -> Option<(&mut [T], &mut [T])> {
+    tangents
+        .as_mut()
+        .map(|(a, b)| (a.as_mut_slice(), b.as_mut_slice()))
+}
+
 /// The colors of the last level: `base` (one per vertex of the mesh) refined with the
 /// positions' weights ([`Refinement::evaluate_attributes`]: under the icosphere rule those
 /// before the projection onto the sphere); refused as positions are when not finite.
@@ -431,7 +470,12 @@ fn refined_colors<T: Scalar>(
     let levels = run.levels;
     let base: Vec<[T; 3]> = base.iter().map(|c| c.map(T::from_f64)).collect();
     let mut out = vec![[T::ZERO; 3]; refinement.n_vertices(levels)];
-    refinement.evaluate_attributes(run.mesh, &base, &mut out)?;
+    match run.limit {
+        // The limit of the colors: the positions' limit masks (affine: an affine color field
+        // stays the same function of the limit positions).
+        true => refinement.evaluate_limit(&base, &mut out, None)?,
+        false => refinement.evaluate_attributes(run.mesh, &base, &mut out)?,
+    }
     let origin = format!("computed in {}", type_name::<T>());
     halfedge::subdivide::check_colors((&run.rule.to_string(), levels), &out, &origin)?;
     Ok(out)

@@ -55,6 +55,11 @@ pub struct SubdivideJob {
     /// Keep the refinement for evaluations to come ([`Prepared::refinement`]): guarded as a
     /// refine-once run with frames; schemes on the raw face list are refused.
     pub keep_refinement: bool,
+    /// Write the limit surface (positions, colors, UVs) instead of the last level's points:
+    /// OpenSubdiv's limit masks, Loop and Catmull-Clark (refines once).
+    pub limit: bool,
+    /// Write the limit surface's normals (from its tangents) as the normals (refines once).
+    pub limit_normals: bool,
 }
 
 impl SubdivideJob {
@@ -69,12 +74,22 @@ impl SubdivideJob {
             uvs: true,
             uv_interpolation: None,
             keep_refinement: false,
+            limit: false,
+            limit_normals: false,
         }
     }
 
     /// Whether the run refines once and evaluates into buffers.
     fn refine_once(&self) -> bool {
-        self.frames > 0 || self.precision == Precision::F32 || self.keep_refinement
+        self.frames > 0
+            || self.precision == Precision::F32
+            || self.keep_refinement
+            || self.wants_limit()
+    }
+
+    /// Whether the run computes the limit surface (its positions or its normals).
+    fn wants_limit(&self) -> bool {
+        self.limit || self.limit_normals
     }
 }
 
@@ -149,6 +164,11 @@ pub fn prepare<'m>(
         face_list = false;
     }
     loaded.carry_notes(output, notes);
+    if job.wants_limit() && (face_list || !matches!(rule, Rule::Loop | Rule::CatmullClark)) {
+        return Err(Error::NoLimit {
+            scheme: chosen.name().to_owned(),
+        });
+    }
     if job.refine_once() && face_list {
         return Err(match job.keep_refinement {
             true => Error::NoRefinement {
@@ -227,14 +247,18 @@ fn predicted_peak(
         let bytes = job.precision.bytes();
         let creases = loaded.has_crease_rules(rule);
         let frames = job.frames > 0 || job.keep_refinement;
-        m::predicted_refinement_peak_bytes(rule, counts, levels, bytes, frames, creases).and_then(
-            |peak| match holes {
+        let limit = match job.wants_limit() {
+            true => m::predicted_limit_bytes(rule, counts, levels, bytes),
+            false => Ok(BigInt::from(0)),
+        };
+        let peak = m::predicted_refinement_peak_bytes(rule, counts, levels, bytes, frames, creases);
+        peak.and_then(|peak| Ok(peak + limit?))
+            .and_then(|peak| match holes {
                 true => m::refinement_hole_bytes(scheme, counts, levels, bytes)
                     .map(|holes| peak + holes)
                     .map_err(Into::into),
                 false => Ok(peak),
-            },
-        )
+            })
     } else {
         let levels_bytes = if loaded.has_crease_rules(rule) && !face_list {
             m::predicted_peak_bytes_with_creases(rule, counts, levels, last_faces)
@@ -374,6 +398,8 @@ impl Prepared<'_> {
                     as_read: as_read.as_ref(),
                     colors: colors.as_deref(),
                     groups,
+                    limit: job.limit,
+                    limit_normals: job.limit_normals,
                 };
                 refined::run(&run, job.precision).map(Output::Refined)
             }

@@ -101,6 +101,38 @@ where
     sums
 }
 
+/// The unit normal of the limit surface from its two limit tangents `tu` and `tv`
+/// ([`Refinement::evaluate_limit`](crate::Refinement::evaluate_limit)): `tu × tv` normalized,
+/// flipped where needed so that it does not point against `area` (the area-weighted normal of
+/// the vertex, [`vertex_normals`]); `area` itself where the tangents are degenerate
+/// (`|tu × tv| < 1e-12 |tu| |tv|`, or not finite: a corner whose tangents are parallel).
+/// Never NaN when `area` is not.
+///
+/// ```
+/// use halfedge::glam::DVec3;
+/// use halfedge::normals::limit_normal;
+/// assert_eq!(limit_normal(DVec3::X, DVec3::Y, DVec3::Z), DVec3::Z);
+/// // Against the area normal: flipped.
+/// assert_eq!(limit_normal(DVec3::Y, DVec3::X, DVec3::Z), DVec3::Z);
+/// // Parallel tangents: the area normal.
+/// assert_eq!(limit_normal(DVec3::X, 2.0 * DVec3::X, DVec3::Y), DVec3::Y);
+/// ```
+pub fn limit_normal(tu: DVec3, tv: DVec3, area: DVec3) -> DVec3 {
+    let cross = tu.cross(tv);
+    let length = cross.length();
+    let degenerate =
+        !(length.is_finite() && length > 0.0) || length < 1e-12 * tu.length() * tv.length();
+    if degenerate {
+        return area;
+    }
+    let n = cross / length;
+    if n.dot(area) < 0.0 {
+        -n
+    } else {
+        n
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -174,10 +174,24 @@ pub(crate) struct SubdivideArgs {
     /// has them.
     #[arg(long)]
     pub(crate) no_uv: bool,
-    /// Write area-weighted vertex normals of the output as vn lines (faces v/vt/vn, or v//vn
-    /// without UVs).
+    /// Write vertex normals as vn lines (faces v/vt/vn, or v//vn without UVs): area
+    /// (--normals alone) weighs the faces written; limit gives the limit surface's normals
+    /// (loop, catmull-clark).
+    #[arg(long, value_enum, value_name = "KIND", num_args = 0..=1, default_missing_value = "area")]
+    pub(crate) normals: Option<Normals>,
+    /// Write the limit surface (OpenSubdiv's limit masks: positions, UVs, colors) instead of
+    /// the last level's points (loop, loop-boundary, catmull-clark).
     #[arg(long)]
-    pub(crate) normals: bool,
+    pub(crate) limit: bool,
+}
+
+/// `subdivide --normals`.
+#[derive(ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Normals {
+    /// Area-weighted normals of the faces written.
+    Area,
+    /// The limit surface's normals (from its two limit tangents).
+    Limit,
 }
 
 /// `subdivide --precision`.

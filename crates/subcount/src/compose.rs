@@ -56,6 +56,10 @@ pub(crate) fn subdivide(
         args.scheme.scheme = Some(first.scheme().name().to_owned());
         return crate::mesh::subdivide(args, out);
     }
+    if args.limit || args.normals == Some(crate::args::Normals::Limit) {
+        let scheme = plan.name();
+        return Err(driver::Error::NoLimit { scheme }.into());
+    }
     if args.frames > 0 || args.precision == Precision::F32 {
         let plan = plan.name();
         return Err(driver::Error::RefineOnceComposition { plan }.into());
@@ -71,7 +75,7 @@ pub(crate) fn subdivide(
     if let Some(path) = &args.output {
         let options = ObjWriteOptions::default()
             .with_uvs(last.uvs().is_some())
-            .with_normals(args.normals);
+            .with_normals(args.normals.is_some());
         driver::output::write_polygon_mesh_file(last, path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();

@@ -441,7 +441,7 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         // of the output with --normals.
         let options = ObjWriteOptions::default()
             .with_uvs(result.uvs().is_some())
-            .with_normals(args.normals);
+            .with_normals(args.normals.is_some());
         result.write(path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();
@@ -508,5 +508,7 @@ pub(crate) fn subdivide_job(args: &SubdivideArgs, levels: u32) -> driver::subdiv
     job.frames = args.frames;
     job.uvs = !args.no_uv;
     job.uv_interpolation = args.uv_interpolation;
+    job.limit = args.limit;
+    job.limit_normals = args.normals == Some(crate::args::Normals::Limit);
     job
 }

@@ -133,6 +133,9 @@ pub struct MeshBuffers<'a, T> {
     pub colors: Option<&'a [[T; 3]]>,
     /// The faces' materials, objects, groups and smoothing groups, one face per face.
     pub groups: Option<&'a FaceGroups>,
+    /// Limit tangents, two per position: the normals written are then the limit normals
+    /// ([`normals::limit_normal`]), not the area-weighted ones.
+    pub tangents: Option<(&'a [[T; 3]], &'a [[T; 3]])>,
 }
 
 impl<'a, T> MeshBuffers<'a, T> {
@@ -144,7 +147,14 @@ impl<'a, T> MeshBuffers<'a, T> {
             uvs: None,
             colors: None,
             groups: None,
+            tangents: None,
         }
+    }
+
+    /// With limit tangents, two per position ([`MeshBuffers::tangents`]).
+    pub fn with_tangents(mut self, first: &'a [[T; 3]], second: &'a [[T; 3]]) -> Self {
+        self.tangents = Some((first, second));
+        self
     }
 
     /// With texture coordinates.
@@ -174,9 +184,32 @@ impl<'a, T> MeshBuffers<'a, T> {
         let uvs = self.uvs.filter(|_| options.uvs);
         let list = MeshBuffers { uvs, ..*self }.checked_faces()?;
         let positions = self.positions;
+        if let Some((a, b)) = self
+            .tangents
+            .filter(|(a, b)| a.len() != positions.len() || b.len() != positions.len())
+        {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "{} and {} tangents for {} positions",
+                    a.len(),
+                    b.len(),
+                    positions.len()
+                ),
+            ));
+        }
         let normals = options.normals.then(|| {
             let position = |v: u32| DVec3::from_array(positions[v as usize].map(T::to_f64));
-            normals::vertex_normals_by(positions.len(), position, &list)
+            let area = normals::vertex_normals_by(positions.len(), position, &list);
+            match self.tangents {
+                Some((a, b)) => {
+                    let d = |x: &[T; 3]| DVec3::from_array(x.map(T::to_f64));
+                    (area.iter().zip(a.iter().zip(b)))
+                        .map(|(&n, (u, v))| normals::limit_normal(d(u), d(v), n))
+                        .collect()
+                }
+                None => area,
+            }
         });
         Ok(Written { list, uvs, normals })
     }

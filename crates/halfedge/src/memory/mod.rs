@@ -36,7 +36,7 @@ mod refinement;
 mod uv;
 
 pub use self::carried::{carried_bytes, Carrying};
-pub use self::refinement::predicted_refinement_peak_bytes;
+pub use self::refinement::{predicted_limit_bytes, predicted_refinement_peak_bytes};
 pub use self::uv::predicted_uv_bytes;
 
 /// Bytes per vertex: a `DVec3` position (24) and one outgoing half-edge (`u32`, 4).

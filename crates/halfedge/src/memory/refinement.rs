@@ -3,6 +3,35 @@
 
 use super::*;
 
+/// What the limit surface adds to [`predicted_refinement_peak_bytes`]
+/// ([`SubdivideOptions::limit`](crate::subdivide::SubdivideOptions::limit)): the last level's
+/// connectivity, built for its vertex rings (4 bytes per vertex and face, 32 per edge), the
+/// limit table (4 bytes per vertex, 28 per entry: Loop `V + 2E` entries, Catmull-Clark
+/// `V + 2E + 4F`) and the whole last level, the limit positions and two tangents in
+/// `scalar_bytes` per coordinate.
+///
+/// # Errors
+///
+/// [`Error::Scheme`](crate::Error::Scheme) when the rule does not apply.
+pub fn predicted_limit_bytes(
+    rule: crate::Rule,
+    counts: &MeshCounts,
+    levels: u32,
+    scalar_bytes: usize,
+) -> crate::Result<BigInt> {
+    let scheme = rule.scheme_for(counts)?;
+    let c = scheme.counts_at(counts, u64::from(levels))?;
+    let (v, e, f) = (&c.vertices, &c.edges, &c.faces);
+    let connectivity = v * 4u32 + e * 32u32 + f * 4u32;
+    let faces = match rule {
+        crate::Rule::CatmullClark => f * 4u32,
+        _ => BigInt::from(0),
+    };
+    let table = v * 4u32 + (v + e * 2u32 + faces) * 28u32;
+    let buffers = v * (4 * 3 * scalar_bytes);
+    Ok(connectivity + table + buffers)
+}
+
 /// The peak of refining once ([`crate::Refinement`]) by `rule` to `levels` and evaluating
 /// positions of `scalar_bytes` per coordinate into caller buffers: [`PROCESS_BYTES`], the
 /// input's face list and the transients of building its half-edge mesh

@@ -43,7 +43,13 @@ impl Worst {
 
 /// The driver's last level with `--limit`: the refined level (its vertices in no face taken
 /// out, as `halfedge` drops them) and each vertex's limit.
-fn theirs(flags: &[&str], scheme: Osd, level: u32, path: &Path, boundary: &str) -> (PolygonMesh, Vec<Limit>) {
+fn theirs(
+    flags: &[&str],
+    scheme: Osd,
+    level: u32,
+    path: &Path,
+    boundary: &str,
+) -> (PolygonMesh, Vec<Limit>) {
     let mut all = vec!["--limit"];
     all.extend_from_slice(flags);
     let (stdout, what) = opensubdiv_with(&all, scheme, level, path, Some(boundary)).stdout();
@@ -62,7 +68,11 @@ fn theirs(flags: &[&str], scheme: Osd, level: u32, path: &Path, boundary: &str) 
         .collect();
     let mesh = io::read_obj_from(stdout.as_slice(), "osd_driver output")
         .unwrap_or_else(|e| panic!("{what} wrote an unreadable OBJ: {e}"));
-    assert_eq!(limits.len(), mesh.n_vertices(), "{what}: one limit line per vertex");
+    assert_eq!(
+        limits.len(),
+        mesh.n_vertices(),
+        "{what}: one limit line per vertex"
+    );
     let mut used = vec![false; mesh.n_vertices()];
     for &v in mesh.face_indices() {
         used[v as usize] = true;
@@ -152,9 +162,17 @@ fn compare_limit(
         Ok(found) => found,
     };
     if matches!(scheme, Osd::Catmark) && level == 0 && non_quad.is_some() {
-        return Err(format!("{at}: a face that is not a quad, yet the limit was computed"));
+        return Err(format!(
+            "{at}: a face that is not a quad, yet the limit was computed"
+        ));
     }
-    let flags = ["--tags", "--crease-method", method, "--triangle-rule", triangles];
+    let flags = [
+        "--tags",
+        "--crease-method",
+        method,
+        "--triangle-rule",
+        triangles,
+    ];
     let (theirs_mesh, theirs_limit) = theirs(&flags, scheme, level, &base.path, boundary);
     let diagonal = bounding_box_diagonal(&base.polygons.positions);
     let to_ours = osd_support::correspondence(&theirs_mesh, &ours_mesh, 1e-12 * diagonal)
@@ -169,7 +187,11 @@ fn compare_limit(
             .fold(0.0, f64::max);
         let (n_theirs, n_ours) = (limit[1].cross(limit[2]), mine[1].cross(mine[2]));
         let degenerate = n_theirs.length() <= 1e-12 * limit[1].length() * limit[2].length();
-        let normal = if degenerate { 0.0 } else { angle(n_theirs, n_ours) };
+        let normal = if degenerate {
+            0.0
+        } else {
+            angle(n_theirs, n_ours)
+        };
         if position > 1e-12 || tangent > TANGENT_TOLERANCE || normal > NORMAL_TOLERANCE {
             return Err(format!(
                 "{at}: OpenSubdiv vertex {v} (halfedge {i}): position {} vs {} ({position:.2e} \
@@ -189,7 +211,10 @@ fn compare_limit(
 
 /// Runs `cases` at `levels` (those within [`MAX_LIMIT_FACES`]), prints the worst agreement
 /// and fails with every disagreement; returns the number of comparisons and of refusals.
-fn check_limits(cases: &[(&Base, Osd, &Tags, SubdivisionOptions)], levels: &[u32]) -> (usize, usize) {
+fn check_limits(
+    cases: &[(&Base, Osd, &Tags, SubdivisionOptions)],
+    levels: &[u32],
+) -> (usize, usize) {
     driver();
     let (mut failures, mut worst) = (Vec::new(), Worst::default());
     let (mut compared, mut refused) = (0, 0);

@@ -118,6 +118,9 @@ pub(crate) struct FvarLevel {
     pub(crate) mesh: PolygonMesh,
     /// The faces OpenSubdiv tags as holes (the driver's `# hole F` comments), ascending.
     pub(crate) holes: Vec<usize>,
+    /// With the driver's `--limit`: the limit of every value (`LimitFaceVarying`, its
+    /// `# limituv u v` comments), in the values' order.
+    pub(crate) limit: Vec<DVec2>,
 }
 
 impl FvarLevel {
@@ -219,7 +222,21 @@ impl FvarLevel {
         FvarLevel {
             mesh,
             holes: Vec::new(),
+            limit: Vec::new(),
         }
+    }
+
+    /// The level with the limit of its values in place of the values (the driver ran with
+    /// `--limit`); panics without them.
+    // Used by `tests/opensubdiv_uv.rs` only.
+    #[allow(dead_code)]
+    pub(crate) fn with_limit_values(mut self) -> FvarLevel {
+        let corners = self.corner_values().to_vec();
+        assert_eq!(self.limit.len(), self.values().len(), "one limit per value");
+        let limit = std::mem::take(&mut self.limit);
+        let uvs = Uvs::new(limit, corners).expect("the same values");
+        self.mesh.set_uvs(Some(uvs)).expect("one value per corner");
+        self
     }
 }
 
@@ -232,6 +249,7 @@ pub(crate) fn parse_fvar_obj(text: &str) -> Result<FvarLevel, String> {
     let mut faces: Vec<Vec<u32>> = Vec::new();
     let mut corners: Vec<u32> = Vec::new();
     let mut holes: Vec<usize> = Vec::new();
+    let mut limit: Vec<DVec2> = Vec::new();
     let numbers = |words: std::str::SplitWhitespace<'_>, at: &str| -> Result<Vec<f64>, String> {
         words
             .map(|w| w.parse::<f64>().map_err(|e| format!("{at}: '{w}': {e}")))
@@ -254,6 +272,16 @@ pub(crate) fn parse_fvar_obj(text: &str) -> Result<FvarLevel, String> {
                 .parse()
                 .map_err(|e| format!("{at}: hole face '{face}': {e}"))?;
             holes.push(f);
+            continue;
+        }
+        if let Some(uv) = line.strip_prefix("# limituv ") {
+            match numbers(uv.split_whitespace(), &at)?.as_slice() {
+                &[u, v] => limit.push(DVec2::new(u, v)),
+                other => return Err(format!("{at}: a limit UV has {} numbers", other.len())),
+            }
+            continue;
+        }
+        if line.starts_with("# limit ") {
             continue;
         }
         let mut words = line.split_whitespace();
@@ -292,7 +320,7 @@ pub(crate) fn parse_fvar_obj(text: &str) -> Result<FvarLevel, String> {
     let mut mesh = PolygonMesh::from_faces(positions, faces);
     let uvs = Uvs::new(values, corners).map_err(|e| e.to_string())?;
     mesh.set_uvs(Some(uvs)).map_err(|e| e.to_string())?;
-    Ok(FvarLevel { mesh, holes })
+    Ok(FvarLevel { mesh, holes, limit })
 }
 
 /// What `--fvar-counts` prints.

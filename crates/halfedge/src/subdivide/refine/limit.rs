@@ -24,7 +24,7 @@
 //! So the tangents are OpenSubdiv's, direction and length, at every level
 //! (`tests/opensubdiv.rs`).
 
-use crate::subdivide::sdc::crease::vertex_rule_of;
+use crate::subdivide::sdc::crease::{vertex_rule_of, VertexRule};
 use crate::subdivide::sdc::limit::LimitMasks;
 use crate::subdivide::sdc::masks::Scheme;
 use crate::subdivide::topo::Topo;
@@ -44,6 +44,8 @@ struct Order {
     edge_first: Vec<u32>,
     /// Per face: its half-edge from its first corner.
     face_first: Vec<u32>,
+    /// Per edge, for a face-varying channel: whether it lies along a seam.
+    seams: Option<Vec<bool>>,
 }
 
 impl Order {
@@ -81,6 +83,7 @@ impl Order {
             first,
             edge_first,
             face_first,
+            seams: None,
         }
     }
 
@@ -110,6 +113,7 @@ impl Order {
             first: vec![INVALID; child.nv()],
             edge_first: vec![INVALID; child.ne()],
             face_first: vec![INVALID; child.nf()],
+            seams: self.seams.as_ref().map(|_| vec![false; child.ne()]),
         };
         for v in 0..nv {
             let h = self.first[v as usize];
@@ -122,9 +126,14 @@ impl Order {
             let h = self.edge_first[e as usize];
             let (a, b, m) = (t.source(h), t.target(h), mid(h));
             order.first[m as usize] = find(m, b)?;
+            let seam = self.seams.as_ref().is_some_and(|s| s[e as usize]);
             for (x, y) in [(a, m), (m, b)] {
                 let g = find(x, y)?;
                 order.edge_first[(g >> 1) as usize] = g;
+                if let (true, Some(seams)) = (seam, order.seams.as_mut()) {
+                    // The halves of a seam lie along it.
+                    seams[(g >> 1) as usize] = true;
+                }
             }
         }
         let mut corners = Vec::new();
@@ -250,7 +259,13 @@ impl LimitTable {
 
     /// The limit masks of every vertex of level `t` in `order`, its sharpness `sharp` (`None`:
     /// boundary edges infinitely sharp, nothing else).
-    fn build(t: &Topo<'_>, order: &Order, sharp: Option<&LevelSharpness>, scheme: Scheme) -> Result<LimitTable> {
+    fn build(
+        t: &Topo<'_>,
+        order: &Order,
+        sharp: Option<&LevelSharpness>,
+        linear: Linear,
+        scheme: Scheme,
+    ) -> Result<LimitTable> {
         let nv = t.nv();
         let mut table = LimitTable {
             offsets: Vec::with_capacity(nv + 1),
@@ -262,7 +277,14 @@ impl LimitTable {
         let mut masks = LimitMasks::default();
         for v in 0..nv as u32 {
             let first = order.first[v as usize];
-            if first == INVALID {
+            // A face-varying channel interpolated linearly keeps its values (everywhere, or on
+            // its boundary), as OpenSubdiv's linear channels and corner values do.
+            let linear = match linear {
+                Linear::All => true,
+                Linear::Boundaries => t.is_boundary_vertex(v),
+                Linear::Nothing => false,
+            };
+            if first == INVALID || linear {
                 table.indices.push(v);
                 table.weights.push([1.0, 0.0, 0.0]);
                 table.offsets.push(table.indices.len() as u32);
@@ -277,7 +299,21 @@ impl LimitTable {
             }));
             let faces = ring.iter().filter(|&&h| !t.is_boundary(h)).count();
             let vertex = sharp.map_or(0.0, |s| s.vertices[v as usize]);
-            masks.set(scheme, vertex_rule_of(vertex, &edges), &edges, faces);
+            let rule = vertex_rule_of(vertex, &edges);
+            masks.set(scheme, rule, &edges, faces);
+            let on_seam = order
+                .seams
+                .as_ref()
+                .is_some_and(|s| ring.iter().any(|&h| s[(h >> 1) as usize]));
+            if on_seam && rule == VertexRule::Crease {
+                // A value along a seam (mismatched in OpenSubdiv's face-varying channel): its
+                // crease mask in OpenSubdiv's `f32` constants (`LimitFaceVarying`).
+                let p = &mut masks.position;
+                p.vertex = f64::from(2.0f32 / 3.0f32);
+                for w in p.edges.iter_mut().filter(|w| **w != 0.0) {
+                    *w = f64::from(1.0f32 / 6.0f32);
+                }
+            }
             let [p, t1, t2] = [&masks.position, &masks.tangent1, &masks.tangent2];
             let n_faces = p.faces.len().max(t1.faces.len());
             for (i, &h) in ring.iter().take(n_faces).enumerate() {
@@ -288,12 +324,14 @@ impl LimitTable {
                         sides: t.face_degree(f),
                     });
                 }
-                let at = |m: &crate::subdivide::sdc::masks::Mask| m.faces.get(i).copied().unwrap_or(0.0);
+                let at =
+                    |m: &crate::subdivide::sdc::masks::Mask| m.faces.get(i).copied().unwrap_or(0.0);
                 table.indices.push(t.target(t.next(h)));
                 table.weights.push([at(p), at(t1), at(t2)]);
             }
             for (i, &h) in ring.iter().enumerate() {
-                let at = |m: &crate::subdivide::sdc::masks::Mask| m.edges.get(i).copied().unwrap_or(0.0);
+                let at =
+                    |m: &crate::subdivide::sdc::masks::Mask| m.edges.get(i).copied().unwrap_or(0.0);
                 table.indices.push(t.target(h));
                 table.weights.push([at(p), at(t1), at(t2)]);
             }
@@ -323,12 +361,22 @@ pub(crate) struct LimitWalk {
 
 impl LimitWalk {
     /// A walk from the base level `t` under `scheme` and the crease rules `creases` (their
-    /// base sharpness), the table built at once when `levels` is 0.
-    pub(crate) fn new(t: &Topo<'_>, scheme: Scheme, creases: Option<&Creases>, levels: u32) -> Result<LimitWalk> {
+    /// base sharpness), the table built at once when `levels` is 0; `seams` marks the edges
+    /// of a face-varying channel along its seams (their values take `LimitFaceVarying`'s
+    /// crease mask).
+    pub(crate) fn new(
+        t: &Topo<'_>,
+        scheme: Scheme,
+        creases: Option<&Creases>,
+        levels: u32,
+        seams: Option<Vec<bool>>,
+    ) -> Result<LimitWalk> {
+        let mut order = Order::base(t);
+        order.seams = seams;
         let mut walk = LimitWalk {
             scheme,
             creases: creases.and_then(Creases::walk_start),
-            order: Order::base(t),
+            order,
             table: None,
         };
         if levels == 0 {
@@ -339,7 +387,8 @@ impl LimitWalk {
 
     fn table_of(&self, t: &Topo<'_>) -> Result<LimitTable> {
         let sharp = self.creases.as_ref().map(|(_, _, s)| s);
-        LimitTable::build(t, &self.order, sharp, self.scheme)
+        let linear = self.creases.as_ref().map_or(Linear::Nothing, |c| c.1);
+        LimitTable::build(t, &self.order, sharp, linear, self.scheme)
     }
 
     /// Level `child` refined from `parent` (the walk's current level); `last` builds the
@@ -347,7 +396,8 @@ impl LimitWalk {
     pub(crate) fn push(&mut self, parent: &Topo<'_>, child: &Topo<'_>, last: bool) -> Result<()> {
         self.order = self.order.child(parent, child, self.scheme)?;
         if let Some((options, linear, sharp)) = &self.creases {
-            let next = LevelBuilder::new(*parent, sharp, self.scheme, options, *linear).child_sharpness(child);
+            let next = LevelBuilder::new(*parent, sharp, self.scheme, options, *linear)
+                .child_sharpness(child);
             if let Some(c) = self.creases.as_mut() {
                 c.2 = next;
             }
@@ -407,5 +457,27 @@ impl super::Refinement {
     /// The rows of the limit table that are written (with holes), else `None` (all).
     pub(super) fn limit_rows(&self) -> Option<&[u32]> {
         self.written.as_ref().map(|w| w.kept.as_slice())
+    }
+}
+
+impl super::Refinement {
+    /// The limit of the UV values `base` (one per value of the layout) at the last level, into
+    /// `out` (`n_uvs(levels)` entries, numbered as [`Refinement::evaluate_uvs`] numbers them):
+    /// OpenSubdiv's `LimitFaceVarying`, the layout's own limit masks (a value inside its
+    /// layout takes its vertex's masks, a value along a seam or the boundary the crease mask
+    /// along it or stays, a corner stays; under `all` every value stays, under `boundaries`
+    /// every boundary value).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoUvs`] without a layout; [`Error::NoLimit`] for a refinement built without
+    /// [`SubdivideOptions::limit`](crate::subdivide::SubdivideOptions::limit);
+    /// [`Error::BufferSize`] (`uv base`, `uv out`); [`Error::AllocationFailed`].
+    ///
+    /// [`Refinement::evaluate_uvs`]: super::Refinement::evaluate_uvs
+    pub fn evaluate_limit_uvs<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
+        self.limit_table()?;
+        self.run(|| uvs.evaluate_limit(base, out))
     }
 }

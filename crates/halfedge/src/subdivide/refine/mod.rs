@@ -404,7 +404,7 @@ impl Refinement {
             face_varying::channel_kind(rule)?;
         }
         let creases = || Creases::new(mesh, rule, opts.sharpness, &opts.subdivision);
-        let mut refinement = Refinement::with_creases(mesh, rule, levels, opts, creases)?;
+        let mut refinement = Refinement::with_creases(mesh, rule, levels, opts, creases, None)?;
         if let Some(layout) = opts.uvs {
             refinement.uvs = Some(Box::new(face_varying::UvChannel::new(
                 mesh,
@@ -419,13 +419,15 @@ impl Refinement {
     }
 
     /// [`Refinement::new`] with the crease rules given (a face-varying channel's own), and
-    /// no UVs.
+    /// no UVs; `seams` marks the edges of a face-varying channel along its seams, for its
+    /// limit (`limit::LimitWalk::new`).
     fn with_creases(
         mesh: &HalfEdgeMesh,
         rule: Rule,
         levels: u32,
         opts: &SubdivideOptions<'_>,
         creases: impl FnOnce() -> Result<Option<Creases>>,
+        seams: Option<Vec<bool>>,
     ) -> Result<Refinement> {
         let counts = mesh.counts();
         let plan = super::plan(rule, &counts)?;
@@ -435,7 +437,12 @@ impl Refinement {
         // The limit needs the last level's topology: built even where its faces could be
         // written from the level before.
         let limit = opts.limit.then(|| limit::scheme_of(rule)).transpose()?;
-        let planned = plan_sizes(&plan, &counts, levels, !direct(plan.split) || limit.is_some())?;
+        let planned = plan_sizes(
+            &plan,
+            &counts,
+            levels,
+            !direct(plan.split) || limit.is_some(),
+        )?;
         // With holes, what is written is known (and checked to fit) before anything is built.
         let holes = crate::holes::active(opts.holes, rule, mesh.n_faces())?;
         let written = match holes {
@@ -479,14 +486,18 @@ impl Refinement {
             fast: None,
         });
         if let Some(scheme) = limit {
-            let walk = limit::LimitWalk::new(&base, scheme, refinement.creases.as_ref(), levels)?;
+            let creases = refinement.creases.as_ref();
+            let walk = limit::LimitWalk::new(&base, scheme, creases, levels, seams)?;
             refinement.limit_walk = Some(walk);
         }
         let run = |r: &mut Refinement| {
             r.refine_levels(mesh, &planned, opts, Retain::All, &mut |_, _| Ok(()))
         };
         refinement.install(run)?;
-        refinement.limit = refinement.limit_walk.take().and_then(limit::LimitWalk::into_table);
+        refinement.limit = refinement
+            .limit_walk
+            .take()
+            .and_then(limit::LimitWalk::into_table);
         if let (Some(holes), Some(predicted)) = (holes, written) {
             refinement.keep_written(mesh, holes, &predicted)?;
         }

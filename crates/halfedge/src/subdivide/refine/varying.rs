@@ -82,18 +82,20 @@ impl Refinement {
         let split = super::super::plan(rule, &mesh.counts())?.split;
         let none = || Ok(None);
         match split {
-            Split::Tri(2) => Refinement::with_creases(mesh, Rule::Midpoint, levels, &plain, none),
+            Split::Tri(2) => {
+                Refinement::with_creases(mesh, Rule::Midpoint, levels, &plain, none, None)
+            }
             Split::Tri(n) => {
-                Refinement::with_creases(mesh, Rule::TriSplit(n), levels, &plain, none)
+                Refinement::with_creases(mesh, Rule::TriSplit(n), levels, &plain, none, None)
             }
             Split::Quad => {
                 // Every vertex a corner and every edge point a midpoint: bilinear.
                 let (edges, vertices) = (vec![0.0; mesh.n_edges()], vec![0.0; mesh.n_vertices()]);
                 let rule = Rule::CatmullClark;
                 let options = SubdivisionOptions::default();
-                Refinement::with_creases(mesh, rule, levels, &plain, || {
-                    Creases::for_channel(mesh, rule, &edges, &vertices, &options, Linear::All)
-                })
+                let creases =
+                    || Creases::for_channel(mesh, rule, &edges, &vertices, &options, Linear::All);
+                Refinement::with_creases(mesh, rule, levels, &plain, creases, None)
             }
             Split::Sqrt3 { .. } | Split::DualCorners | Split::DualEdges => {
                 Err(Error::NoSubdivision {

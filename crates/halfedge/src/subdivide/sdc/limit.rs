@@ -34,7 +34,13 @@ pub(crate) struct LimitMasks {
 impl LimitMasks {
     /// Sets the masks of a vertex of rule `rule` with `sharpness.len()` edges (their
     /// sharpness at the level, in ring order) and `faces` faces.
-    pub(crate) fn set(&mut self, scheme: Scheme, rule: VertexRule, sharpness: &[f32], faces: usize) {
+    pub(crate) fn set(
+        &mut self,
+        scheme: Scheme,
+        rule: VertexRule,
+        sharpness: &[f32],
+        faces: usize,
+    ) {
         let edges = sharpness.len();
         for mask in [&mut self.position, &mut self.tangent1, &mut self.tangent2] {
             mask.vertex = 0.0;
@@ -277,7 +283,10 @@ mod tests {
                         continue;
                     }
                     let m = masks(scheme, rule, sharpness, faces);
-                    assert!((sum(&m.position) - 1.0).abs() < 1e-14, "{scheme:?} {rule:?} {n}");
+                    assert!(
+                        (sum(&m.position) - 1.0).abs() < 1e-14,
+                        "{scheme:?} {rule:?} {n}"
+                    );
                     assert!(sum(&m.tangent1).abs() < 1e-13, "{scheme:?} {rule:?} {n}");
                     assert!(sum(&m.tangent2).abs() < 1e-13, "{scheme:?} {rule:?} {n}");
                     assert_eq!(m.tangent1.edges.len(), m.tangent2.edges.len());

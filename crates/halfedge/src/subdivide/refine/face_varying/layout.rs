@@ -406,10 +406,34 @@ impl LayoutChannel {
         let channel_opts = SubdivideOptions {
             threads: opts.threads,
             subdivision: opts.subdivision,
+            limit: opts.limit,
             ..SubdivideOptions::default()
         };
-        let refinement =
-            Refinement::with_creases(&layout_mesh, channel, levels, &channel_opts, || {
+        // For the limit: the channel's edges along seams (a boundary of the layout inside the
+        // surface), whose values OpenSubdiv's LimitFaceVarying treats as mismatched.
+        let seams = opts.limit.then(|| {
+            let mut seams = vec![false; lt.ne()];
+            for f in 0..t.nf() as u32 {
+                let mut surface = Vec::new();
+                t.for_face(f, |h| surface.push(h));
+                let mut k = 0;
+                lt.for_face(f, |h| {
+                    if let Some(&s) = surface.get(k) {
+                        if lt.is_boundary(h ^ 1) && !t.is_boundary(s ^ 1) {
+                            seams[(h >> 1) as usize] = true;
+                        }
+                    }
+                    k += 1;
+                });
+            }
+            seams
+        });
+        let refinement = Refinement::with_creases(
+            &layout_mesh,
+            channel,
+            levels,
+            &channel_opts,
+            || {
                 if smooth {
                     Creases::for_channel(
                         &layout_mesh,
@@ -422,7 +446,9 @@ impl LayoutChannel {
                 } else {
                     Ok(None)
                 }
-            })?;
+            },
+            seams,
+        )?;
         // The OpenSubdiv value of each sibling (levels 1 and after), numbered after the
         // layout's values: a sibling that starts a value gets the next number.
         // The other rules refine the layout as a mesh: one value per (vertex, vt) pair.
@@ -575,6 +601,17 @@ impl LayoutChannel {
     }
 
     pub(crate) fn evaluate<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        self.values(base, out, false)
+    }
+
+    /// The layout's values at the last level (`limit`: their limit, the layout's own limit
+    /// masks, as `LimitFaceVarying`), numbered as written.
+    pub(crate) fn values<T: Scalar>(
+        &self,
+        base: &[[T; 2]],
+        out: &mut [[T; 2]],
+        limit: bool,
+    ) -> Result<()> {
         let r = &self.refinement;
         let levels = r.levels;
         check_len("uv base", self.n_values, base.len())?;
@@ -589,19 +626,26 @@ impl LayoutChannel {
             extended = e;
             &extended[..]
         };
+        if limit {
+            r.limit_table()?;
+        }
+        let refine = |dst: &mut [[T; 2]]| match limit {
+            true => r.evaluate_limit(input, dst, None),
+            false => r.evaluate(input, dst),
+        };
         match &self.merged {
-            None if levels == 0 => out.copy_from_slice(input),
-            None => r.evaluate(input, out)?,
+            None if levels == 0 && !limit => out.copy_from_slice(input),
+            None => refine(out)?,
             Some(merged) => {
                 let mut full = crate::subdivide::alloc::filled(
                     [T::ZERO; 2],
                     r.n_vertices(levels),
                     "uv level",
                 )?;
-                if levels == 0 {
+                if levels == 0 && !limit {
                     full.copy_from_slice(input);
                 } else {
-                    r.evaluate(input, &mut full)?;
+                    refine(&mut full)?;
                 }
                 for (&m, x) in merged.iter().zip(&full) {
                     if let Some(o) = out.get_mut(m as usize) {

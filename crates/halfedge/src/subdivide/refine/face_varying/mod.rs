@@ -436,6 +436,18 @@ impl UvChannel {
         }
     }
 
+    /// The limit of the values (the layout refined as a mesh only).
+    pub(crate) fn evaluate_limit<T: Scalar>(
+        &self,
+        base: &[[T; 2]],
+        out: &mut [[T; 2]],
+    ) -> Result<()> {
+        match self {
+            UvChannel::Layout(c) => c.values(base, out, true),
+            UvChannel::Corners(_) => Err(Error::NoLimit),
+        }
+    }
+
     pub(crate) fn write_indices(&self, out: &mut [u32], expected: usize) -> Result<()> {
         match self {
             UvChannel::Layout(c) => c.write_indices(out, expected),
