@@ -359,12 +359,16 @@ fn run_in<T: Scalar>(
             let beyond = format!("the input value, beyond the range of {}", type_name::<T>());
             halfedge::subdivide::check_uvs(&scheme, 0, &base, &beyond)?;
             let mut values = vec![[T::ZERO; 2]; refinement.n_uvs(levels)];
-            refinement.evaluate_uvs(&base, &mut values)?;
+            match limit {
+                true => refinement.evaluate_limit_uvs(&base, &mut values)?,
+                false => refinement.evaluate_uvs(&base, &mut values)?,
+            }
             let computed = format!("computed in {}", type_name::<T>());
             halfedge::subdivide::check_uvs(&scheme, levels, &values, &computed)?;
             let mut corners = vec![0u32; refinement.n_corners(levels)];
             refinement.write_uv_indices(&mut corners)?;
-            if let Some(read) = as_read {
+            // Level 0 writes the file's UVs as read, except their limit.
+            if let Some(read) = as_read.filter(|_| !limit) {
                 if read.corners().len() != corners.len() {
                     return Err(halfedge::Error::UvLayoutMismatch {
                         reason: format!(

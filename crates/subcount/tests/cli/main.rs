@@ -9,6 +9,7 @@ mod hostile;
 mod hostile3;
 mod hostile_dual;
 mod level_zero;
+mod limit;
 mod matrix;
 mod meshes;
 mod plot;
