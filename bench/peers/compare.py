@@ -48,7 +48,11 @@ cycles), as a fraction of the bounding-box diagonal.
 
 When `subcount subdivide --help` lists --frames, subcount also runs with --frames N --threads 1
 and its "refine_topology_s" and "evaluate_s" are reported next to OpenSubdiv's RefineUniform and
-per-frame Interpolate (ratios to them: above 1, subcount is faster).
+per-frame Interpolate (ratios to them: above 1, subcount is faster). When it lists --limit too,
+the Loop and Catmull-Clark jobs add the per-frame limit surface: OpenSubdiv's Interpolate +
+PrimvarRefiner::Limit (positions and both tangents; `osd_driver --time ... limit`, the last level
+refined with full topology) against `subcount subdivide --limit --normals limit --frames N`'s
+evaluate_s, single thread.
 
 The load average at the start and the end is printed with the table: on a shared machine wall
 times are only comparable within one run.
@@ -257,12 +261,14 @@ def run_openmesh(binary, scheme, levels, path, reps):
 OSD_SCHEMES = {"loop": "loop", "catmull-clark": "catmark"}
 
 
-def run_osd_timing(command, scheme, levels, path, reps, frames):
+def run_osd_timing(command, scheme, levels, path, reps, frames, limit=False):
     """`osd_driver --time` or `opensubdiv-rs-peer time` (`command`): one process, REPS one-shot
-    runs, then FRAMES evaluations on the last run's refiner."""
+    runs, then FRAMES evaluations on the last run's refiner (with `limit`, each followed by
+    OpenSubdiv's Limit with both tangents: frame_limit_s)."""
     args = list(command)
     try:
-        p = subprocess.run(args + [OSD_SCHEMES[scheme], str(levels), path, str(reps), str(frames)],
+        p = subprocess.run(args + [OSD_SCHEMES[scheme], str(levels), path, str(reps), str(frames)]
+                           + (["limit"] if limit else []),
                            capture_output=True, text=True, timeout=WORKER_TIMEOUT_S)
     except subprocess.TimeoutExpired:
         return {"error": "no result within %d s" % WORKER_TIMEOUT_S}
@@ -295,10 +301,31 @@ def run_osdrs_accuracy(osd, osdrs, scheme, levels, path, tmp):
             os.remove(reference)
 
 
-def subcount_has_frames(subcount):
-    """Whether this subcount's `subdivide` takes --frames (refine_topology_s, evaluate_s)."""
+def subcount_has_frames(subcount, flag="--frames"):
+    """Whether this subcount's `subdivide` takes `flag` (--frames: refine_topology_s,
+    evaluate_s; --limit: the limit surface)."""
     p = subprocess.run([subcount, "subdivide", "--help"], capture_output=True, text=True)
-    return p.returncode == 0 and "--frames" in p.stdout
+    return p.returncode == 0 and flag in p.stdout
+
+
+def limit_rows(label, osd_limit, sub_limit, frames):
+    """Per-frame limit surface: OpenSubdiv's Interpolate + Limit (positions and both tangents)
+    on a refiner built once, against `subcount subdivide --limit --normals limit --frames N`'s
+    evaluate_s (the levels and the limit table, positions and tangents), single thread."""
+    out = []
+    if "error" in osd_limit or "error" in sub_limit:
+        err = osd_limit.get("error") or sub_limit.get("error")
+        return [(label, "limit per frame", "error: " + err[:60], "", "", "", "")]
+    both = [a + b for a, b in zip(osd_limit["frame_interpolate_s"], osd_limit["frame_limit_s"])]
+    ours = statistics.median(sub_limit["evaluate_s"])
+    for what, ts in (("opensubdiv Interpolate + Limit per frame", both),
+                     ("opensubdiv Limit alone per frame", osd_limit["frame_limit_s"]),
+                     ("subcount-1t --limit --normals limit evaluate_s", sub_limit["evaluate_s"])):
+        med = statistics.median(ts)
+        ratio = "%.2fx" % (med / ours) if ours > 0 else ""
+        out.append((label, what + " (%d frames)" % frames, "%.4f" % med,
+                    "%.4f-%.4f" % (min(ts), max(ts)), "%d vertices" % osd_limit["vertices"], "", ratio))
+    return out
 
 
 def run_subcount_frames(subcount, args, reps, frames):
@@ -453,6 +480,7 @@ def main():
             return a.osdrs
         osdrs = ensure_built(a.osdrs, build_osdrs, "opensubdiv-rs-peer")
     frames_flag = subcount_has_frames(a.subcount)
+    limit_flag = frames_flag and subcount_has_frames(a.subcount, "--limit")
     start_load = load_average()
     started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     tmp = tempfile.mkdtemp(prefix="subcount-peers-")
@@ -512,6 +540,16 @@ def main():
                 rows.append((label, "subcount-1t --frames", "error: " + sub_frames["error"][:60],
                              "", "", "", ""))
                 sub_frames = None
+        if limit_flag and osd and any(t == "opensubdiv" for t, _ in results):
+            osd_limit = run_osd_timing([osd, "--time"], scheme, levels, path, 1, a.frames, limit=True)
+            sub_limit = run_subcount_frames(
+                a.subcount, ["--mesh", path, "--scheme", scheme, "--levels", str(levels),
+                             "--threads", "1", "--limit", "--normals", "limit"], a.reps, a.frames)
+            raw.append({"job": label, "tool": "opensubdiv limit", **osd_limit})
+            raw.append({"job": label, "tool": "subcount-1t --limit", **sub_limit})
+            limit_extra = limit_rows(label, osd_limit, sub_limit, a.frames)
+        else:
+            limit_extra = []
         for tool, r in results:
             raw.append({"job": label, "tool": tool, **r})
             if "error" in r:
@@ -537,6 +575,7 @@ def main():
                 rows.append((label, "subcount-1t --frames %d %s" % (a.frames, what), "%.3f" % med,
                              "%.3f-%.3f" % (min(ts), max(ts)), "%d / %s" % (ours["faces"], rate),
                              "", ""))
+        rows.extend(limit_extra)
 
     if python is not None and (not a.only or a.only in "cc-quad counts flint"):
         print("running exact counts ...", file=sys.stderr)

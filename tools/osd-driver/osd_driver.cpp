@@ -32,12 +32,14 @@
 //                     line per vertex (limit position, first and second tangent), and with
 //                     --fvar one `# limituv u v` line per value (LimitFaceVarying)
 //
-// Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES]]
+// Usage: osd_driver --time SCHEME LEVEL FILE.obj [REPS [FRAMES [limit]]]
 //   times the same work (VTX_BOUNDARY_EDGE_ONLY) and prints one JSON line (see README.md):
 //   REPS (default 3) one-shot runs, each timing TopologyRefinerFactory::Create, RefineUniform
 //   and the level-by-level Interpolate into a fresh buffer separately, then FRAMES (default 0)
 //   evaluations of the positions on the last run's refiner, the base positions perturbed
-//   before each (untimed), the buffer reused.
+//   before each (untimed), the buffer reused; with `limit`, the last level refined with its
+//   full topology and each frame followed by Limit (positions and both tangents, into kept
+//   buffers), timed apart (frame_limit_s).
 //
 // Errors go to stderr, one line, with exit status 1 (bad input) or 2 (usage).
 
@@ -614,9 +616,11 @@ void printList(char const* key, std::vector<double> const& values) {
 
 // --time: the peer of `subcount subdivide --timings [--frames N]` in bench/peers/compare.py.
 int timing(int argc, char** argv) {
-    if (argc < 5 || argc > 7) {
-        fail(2, "usage: osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
+    if (argc < 5 || argc > 8) {
+        fail(2, "usage: osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES [limit]]]");
     }
+    bool limit = argc > 7 && std::strcmp(argv[7], "limit") == 0;
+    if (argc > 7 && !limit) fail(2, std::string("unknown timing mode '") + argv[7] + "' (limit)");
     Sdc::SchemeType scheme = parseScheme(argv[2]);
     int level = parseLevel(argv[3]);
     char const* path = argv[4];
@@ -627,7 +631,7 @@ int timing(int argc, char** argv) {
     if (scheme == Sdc::SCHEME_LOOP) requireTriangles(mesh, path);
 
     using Clock = std::chrono::steady_clock;
-    std::vector<double> createS, refineS, interpolateS, frameS;
+    std::vector<double> createS, refineS, interpolateS, frameS, limitS;
     int vertices = 0, faces = 0;
     double checksum = 0.0;
     for (int rep = 0; rep < reps; ++rep) {
@@ -638,7 +642,7 @@ int timing(int argc, char** argv) {
         createS.push_back(since(start));
 
         start = Clock::now();
-        refine(*refiner, level);
+        refine(*refiner, level, limit);
         refineS.push_back(since(start));
 
         // A fresh buffer, as a caller's: `new Point[n]` leaves the pages untouched, so the first
@@ -660,6 +664,13 @@ int timing(int argc, char** argv) {
         if (lastRep) {
             // Per-frame evaluation on the refiner built once: the base positions moved by a
             // small deterministic amount (not timed), then every level interpolated again.
+            std::vector<Point> position, tangent1, tangent2;
+            if (limit) {
+                position.resize(vertices);
+                tangent1.resize(vertices);
+                tangent2.resize(vertices);
+            }
+            Far::PrimvarRefinerReal<double> primvar(*refiner);
             for (int frame = 0; frame < frames; ++frame) {
                 double amount = 1e-6 * static_cast<double>(frame + 1);
                 for (size_t v = 0; v < mesh.points.size(); ++v) {
@@ -671,6 +682,12 @@ int timing(int argc, char** argv) {
                 last = interpolate(*refiner, points.get());
                 frameS.push_back(since(start));
                 checksum += last[0].x;
+                if (limit) {
+                    start = Clock::now();
+                    primvar.Limit(last, position, tangent1, tangent2);
+                    limitS.push_back(since(start));
+                    checksum += position[0].x + tangent1[0].y + tangent2[0].z;
+                }
             }
             break;
         }
@@ -685,6 +702,7 @@ int timing(int argc, char** argv) {
     printList("refine_s", refineS);
     printList("interpolate_s", interpolateS);
     printList("frame_interpolate_s", frameS);
+    if (limit) printList("frame_limit_s", limitS);
     std::printf(", \"peak_rss_bytes\": %ld, \"checksum\": %.17g}\n", long(usage.ru_maxrss) * 1024L,
                 checksum);
     if (std::fflush(stdout) != 0) fail(1, "cannot write to stdout");

@@ -45,7 +45,8 @@ impl Prepared<'_> {
         let (sharpness, options) = self.subdivision_inputs(notes)?;
         let mut opts = SubdivideOptions::default()
             .with_threads(self.job.threads)
-            .with_subdivision(options);
+            .with_subdivision(options)
+            .with_limit(self.job.limit || self.job.limit_normals);
         if let Some(sharpness) = &sharpness {
             opts = opts.with_sharpness(sharpness);
         }

@@ -3,6 +3,8 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use crate::text::escape_controls;
+
 /// A `Result` whose error defaults to this crate's [`Error`].
 pub type Result<T = (), E = Error> = std::result::Result<T, E>;
 
@@ -653,24 +655,19 @@ pub enum Error {
         /// The other.
         b: u32,
     },
-    /// The limit surface asked of a rule without limit masks (OpenSubdiv has them for Loop and
-    /// Catmull-Clark).
+    /// The limit surface asked of a rule without limit masks (Loop and Catmull-Clark have them).
     #[error("the limit surface is computed under Loop and Catmull-Clark, not {rule}")]
     LimitNotSupported {
         /// The rule.
         rule: String,
     },
-    /// Catmull-Clark's limit masks at a level with a face that is not a quad (level 0 of a
-    /// mesh with other faces): OpenSubdiv's masks weigh the corner opposite the vertex in
-    /// each face, which only a quad has.
-    #[error(
-        "face {face} has {sides} sides: Catmull-Clark's limit masks need quads around a vertex \
-         (every face after one level is one; evaluate the limit at level 1 or more)"
-    )]
+    /// Catmull-Clark's limit masks next to a face that is not a quad (level 0 only): they weigh
+    /// the corner opposite the vertex in each face (`face`, of `sides` sides).
+    #[error("face {face} has {sides} sides: Catmull-Clark's limit masks need quads around a vertex (every face after one level is one; evaluate the limit at level 1 or more)")]
     LimitNeedsQuads {
         /// The face.
         face: u32,
-        /// Its number of sides.
+        /// Its sides.
         sides: usize,
     },
     /// The limit surface asked of a refinement built without it.
@@ -781,31 +778,4 @@ impl Error {
             _ => None,
         }
     }
-}
-
-/// `text` with every control character (`char::is_control`: C0, DEL, C1) escaped as Rust's
-/// `escape_debug` writes it (`\u{1b}`, `\t`, `\n`, `\r`, `\0`), everything else as it is:
-/// the one escape of text from a file (a token, a tag name, a file name) before it is
-/// echoed in a message, so that `ESC[2J` in a file cannot clear the terminal. Idempotent on
-/// its own output, which has no control characters.
-///
-/// ```
-/// use halfedge::io::escape_controls;
-/// assert_eq!(escape_controls("\u{1b}[2Jevil"), "\\u{1b}[2Jevil");
-/// assert_eq!(escape_controls("tab\there"), "tab\\there");
-/// assert_eq!(escape_controls("plain `ok` é"), "plain `ok` é");
-/// ```
-pub fn escape_controls(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.chars().any(char::is_control) {
-        return std::borrow::Cow::Borrowed(text);
-    }
-    let mut out = String::with_capacity(text.len() + 8);
-    for c in text.chars() {
-        if c.is_control() {
-            out.extend(c.escape_debug());
-        } else {
-            out.push(c);
-        }
-    }
-    std::borrow::Cow::Owned(out)
 }

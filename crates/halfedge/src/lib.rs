@@ -104,6 +104,7 @@ pub mod shapes;
 pub mod stats;
 pub mod subdivide;
 pub mod tags;
+mod text;
 pub mod uv;
 
 pub use crate::memory::{BYTES_PER_EDGE, BYTES_PER_FACE, BYTES_PER_VERTEX};

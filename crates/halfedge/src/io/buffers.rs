@@ -13,7 +13,9 @@ use crate::{normals, Scalar};
 /// ([`PolygonMesh::uvs`](crate::PolygonMesh::uvs), or [`UvBuffers`]) gets its `vt` lines, each value once, and faces
 /// `f v/vt`; a mesh without them is written as without this option. With
 /// [`normals`](Self::normals) (off by default), the writer computes area-weighted vertex
-/// normals of the faces written ([`crate::normals::vertex_normals`]) and writes one `vn` per
+/// normals of the faces written ([`crate::normals::vertex_normals`]; the limit surface's
+/// normals, [`crate::normals::limit_normal`], for a [`MeshBuffers`] with
+/// [`tangents`](MeshBuffers::tangents)) and writes one `vn` per
 /// vertex, after the `vt` lines, and faces `f v/vt/vn` (or `f v//vn` without texture
 /// coordinates), the `vn` index being the vertex's.
 ///
@@ -29,7 +31,8 @@ use crate::{normals, Scalar};
 pub struct ObjWriteOptions {
     /// Write the mesh's texture coordinates, when it has some (default `true`).
     pub uvs: bool,
-    /// Write area-weighted vertex normals (default `false`).
+    /// Write vertex normals: area-weighted, or the limit normals of a [`MeshBuffers`] with
+    /// tangents (default `false`).
     pub normals: bool,
 }
 

@@ -194,8 +194,8 @@ pub use self::write::{
     write_buffers_obj, write_buffers_obj_with, write_mesh_buffers_obj, write_obj, write_obj_with,
     write_polygon_obj, write_polygon_obj_with,
 };
+pub use crate::text::escape_controls;
 
-pub use crate::error::escape_controls;
 use std::io::{BufRead, Read};
 use std::path::Path;
 

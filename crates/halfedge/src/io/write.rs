@@ -194,7 +194,8 @@ pub fn write_buffers_obj<T: Scalar>(
 /// [`ObjWriteOptions::uvs`]) the values are written as `vt` lines, in `T`'s shortest text
 /// like the positions, and the faces as `f v/vt`; with [`ObjWriteOptions::normals`], the
 /// area-weighted vertex normals of the faces ([`crate::normals::vertex_normals_by`], in
-/// `f64`, written in `T`) as `vn` lines and `f v/vt/vn` or `f v//vn`. Without either, the
+/// `f64`, written in `T`; the limit normals with [`MeshBuffers::tangents`]) as `vn` lines and
+/// `f v/vt/vn` or `f v//vn`. Without either, the
 /// text is [`write_buffers_obj`]'s.
 ///
 /// # Errors

@@ -118,9 +118,29 @@ fn ours(
         .map(|w| indices[w[0] as usize..w[1] as usize].to_vec())
         .collect();
     let mesh = PolygonMesh::from_faces(refined.into_iter().map(DVec3::from_array).collect(), faces);
-    let limits = (0..n)
+    let limits: Vec<Limit> = (0..n)
         .map(|i| [p[i], t1[i], t2[i]].map(DVec3::from_array))
         .collect();
+    if level <= 2 {
+        // The limit stencils give the same surface, to rounding.
+        let stencils = r.limit_stencils()?;
+        let diagonal = bounding_box_diagonal(&base.polygons.positions);
+        for (m, table) in [&stencils.position, &stencils.tangent1, &stencils.tangent2]
+            .into_iter()
+            .enumerate()
+        {
+            let mut out = vec![[0.0; 3]; n];
+            table.apply(&points, &mut out)?;
+            for (i, x) in out.iter().enumerate() {
+                let d = DVec3::from_array(*x).distance(limits[i][m]);
+                assert!(
+                    d <= 1e-12 * diagonal,
+                    "{} level {level}: limit stencil {m} of vertex {i} is {d:e} away",
+                    base.file
+                );
+            }
+        }
+    }
     Ok((mesh, limits))
 }
 

@@ -9,7 +9,8 @@ use crate::Scalar;
 /// Writes a mesh from caller-owned buffers as binary little-endian PLY: the vertex element
 /// (`x y z` as `double`, or `float` when `T` is `f32`; the colors as `uchar` when every
 /// component is in `[0, 1]` (rounded `c * 255`), else as `float`, as MeshLab writes them; with
-/// [`ObjWriteOptions::normals`], `nx ny nz`, the area-weighted vertex normals of the faces;
+/// [`ObjWriteOptions::normals`], `nx ny nz`, the area-weighted vertex normals of the faces
+/// (the limit normals with [`MeshBuffers::tangents`](crate::io::MeshBuffers::tangents));
 /// with [`ObjWriteOptions::uvs`] and texture coordinates without seams (one UV value per
 /// vertex across its corners), `s t`, 0 at vertices no face uses) and the face element
 /// (`vertex_indices`, an `int` per corner after a `uchar` count, `uint` for a face of more

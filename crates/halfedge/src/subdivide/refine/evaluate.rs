@@ -216,12 +216,18 @@ impl Refinement {
     }
 
     /// Level `level` from `src` into a new vector (the stencils' sparse sums).
-    pub(super) fn collect_level<V: Vector>(&self, level: u32, src: &[V]) -> Result<Vec<V>> {
+    /// `whole`: the whole last level, also its vertices holes leave unwritten.
+    pub(super) fn collect_level<V: Vector>(
+        &self,
+        level: u32,
+        src: &[V],
+        whole: bool,
+    ) -> Result<Vec<V>> {
         match self.before(level) {
             Some(before) => {
                 let n = self.computed_vertices(level);
                 let full = self.values_after(&before, src, n, "stencils")?;
-                Ok(if level == self.levels {
+                Ok(if level == self.levels && !whole {
                     self.written_of(full)
                 } else {
                     full
@@ -339,14 +345,16 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
         }
         let rows = r.limit_rows();
         if levels == 0 {
-            r.run(|| table.apply(base, rows, position, tangents));
+            let parallel = r.threads != 1;
+            r.run(|| table.apply(base, rows, position, tangents, parallel));
             return Ok(());
         }
         let whole = r.computed_vertices(levels);
         reserve(&mut self.full, whole)?;
         let mut full = std::mem::take(&mut self.full);
         self.levels_into(base, &mut full[..whole])?;
-        r.run(|| table.apply(&full[..whole], rows, position, tangents));
+        let parallel = r.threads != 1;
+        r.run(|| table.apply(&full[..whole], rows, position, tangents, parallel));
         self.full = full;
         Ok(())
     }

@@ -23,6 +23,18 @@
 //!
 //! So the tangents are OpenSubdiv's, direction and length, at every level
 //! (`tests/opensubdiv.rs`).
+//!
+//! # Evaluating it
+//!
+//! With [`SubdivideOptions::limit`](crate::subdivide::SubdivideOptions::limit) (Loop and Catmull-Clark) the refinement also keeps the
+//! limit masks of its last level (OpenSubdiv's `PrimvarRefiner::Limit`):
+//! [`Refinement::evaluate_limit`](super::Refinement::evaluate_limit) gives every vertex's limit position and two limit tangents
+//! (any per-vertex data: colors too), [`Refinement::evaluate_limit_uvs`](super::Refinement::evaluate_limit_uvs) the limit of the UVs
+//! (`LimitFaceVarying`), [`Refinement::limit_stencils`](super::Refinement::limit_stencils) the same as stencils over the base
+//! vertices (`LimitStencilTable`); [`normals::limit_normal`](crate::normals::limit_normal)
+//! turns the tangents into the surface's normals.
+//!
+//!
 
 use crate::subdivide::sdc::crease::{vertex_rule_of, VertexRule};
 use crate::subdivide::sdc::limit::LimitMasks;
@@ -191,15 +203,21 @@ impl Order {
 }
 
 /// Every vertex of a level as its limit position and two limit tangents: row `i` is
-/// `Σ weights[k][m] * level[indices[k]]` for `k` in `offsets[i]..offsets[i + 1]`, `m` 0 for
-/// the position, 1 and 2 for the tangents (OpenSubdiv's order: face weights, edge weights,
-/// the vertex's own last).
+/// `Σ w[k][m] * level[indices[k]]` for `k` in `offsets[i]..offsets[i + 1]`, `m` 0 for the
+/// position, 1 and 2 for the tangents (OpenSubdiv's order: face weights, edge weights, the
+/// vertex's own last), `w` the row's mask: `weights[masks[i]..]`, as long as the row. Rows
+/// share their masks (a smooth vertex's depends on its valence alone), so an evaluation
+/// streams the indices, not a weight per entry.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct LimitTable {
     offsets: Vec<u32>,
     indices: Vec<u32>,
+    masks: Vec<u32>,
     weights: Vec<[f64; 3]>,
 }
+
+/// Rows per task of a parallel evaluation.
+const ROWS_PER_TASK: usize = 1 << 12;
 
 impl LimitTable {
     /// The number of rows (the level's vertices).
@@ -209,51 +227,74 @@ impl LimitTable {
 
     /// The bytes of the table's arrays.
     pub(crate) fn heap_bytes(&self) -> usize {
-        4 * self.offsets.capacity() + 4 * self.indices.capacity() + 24 * self.weights.capacity()
+        4 * (self.offsets.capacity() + self.indices.capacity() + self.masks.capacity())
+            + 24 * self.weights.capacity()
     }
 
     /// Row `i`: its indices and their (position, tangent, tangent) weights.
     pub(crate) fn row(&self, i: usize) -> (&[u32], &[[f64; 3]]) {
         let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-        (&self.indices[a..b], &self.weights[a..b])
+        let m = self.masks[i] as usize;
+        (&self.indices[a..b], &self.weights[m..m + (b - a)])
     }
 
     /// The limit of `level` (one entry per row's vertex) at the rows `rows` (all when
-    /// `None`) into `position` and, when given, the tangents; the buffers have one entry per
-    /// row written.
+    /// `None`) into `position` and, when given, the tangents, one entry per row written; in
+    /// parallel chunks of rows when `parallel` (the same values).
     pub(crate) fn apply<T: Scalar, const N: usize>(
         &self,
         level: &[[T; N]],
         rows: Option<&[u32]>,
         position: &mut [[T; N]],
-        mut tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+        tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+        parallel: bool,
     ) {
-        let n = rows.map_or(self.len(), <[u32]>::len);
-        for k in 0..n {
-            let i = rows.map_or(k, |r| r[k] as usize);
-            let (indices, weights) = self.row(i);
-            let mut p = [T::ZERO; N];
-            for (&j, w) in indices.iter().zip(weights) {
-                let x = &level[j as usize];
-                let w0 = T::from_f64(w[0]);
-                for c in 0..N {
-                    p[c] = p[c] + w0 * x[c];
-                }
-            }
-            position[k] = p;
-            if let Some((t1, t2)) = tangents.as_mut() {
-                let (mut a, mut b) = ([T::ZERO; N], [T::ZERO; N]);
-                for (&j, w) in indices.iter().zip(weights) {
-                    let x = &level[j as usize];
-                    let (w1, w2) = (T::from_f64(w[1]), T::from_f64(w[2]));
-                    for c in 0..N {
-                        a[c] = a[c] + w1 * x[c];
-                        b[c] = b[c] + w2 * x[c];
+        use rayon::prelude::*;
+        let row_of = |k: usize| rows.map_or(k, |r| r[k] as usize);
+        // Rows `from..` into the chunks `p` (and `t`).
+        let fill =
+            |from: usize, p: &mut [[T; N]], t: Option<(&mut [[T; N]], &mut [[T; N]])>| match t {
+                None => {
+                    for (k, out) in p.iter_mut().enumerate() {
+                        let (indices, weights) = self.row(row_of(from + k));
+                        let mut acc = [T::ZERO; N];
+                        for (&j, w) in indices.iter().zip(weights) {
+                            let (x, w) = (&level[j as usize], T::from_f64(w[0]));
+                            for c in 0..N {
+                                acc[c] = acc[c] + w * x[c];
+                            }
+                        }
+                        *out = acc;
                     }
                 }
-                t1[k] = a;
-                t2[k] = b;
-            }
+                Some((t1, t2)) => {
+                    for (k, ((out, u), v)) in p.iter_mut().zip(t1).zip(t2).enumerate() {
+                        let (indices, weights) = self.row(row_of(from + k));
+                        let mut acc = [[T::ZERO; N]; 3];
+                        for (&j, w) in indices.iter().zip(weights) {
+                            let x = &level[j as usize];
+                            for (m, sum) in acc.iter_mut().enumerate() {
+                                let w = T::from_f64(w[m]);
+                                for c in 0..N {
+                                    sum[c] = sum[c] + w * x[c];
+                                }
+                            }
+                        }
+                        [*out, *u, *v] = acc;
+                    }
+                }
+            };
+        if !parallel || position.len() < 4 * ROWS_PER_TASK {
+            fill(0, position, tangents);
+            return;
+        }
+        let chunks = position.par_chunks_mut(ROWS_PER_TASK).enumerate();
+        match tangents {
+            None => chunks.for_each(|(i, p)| fill(i * ROWS_PER_TASK, p, None)),
+            Some((t1, t2)) => chunks
+                .zip(t1.par_chunks_mut(ROWS_PER_TASK))
+                .zip(t2.par_chunks_mut(ROWS_PER_TASK))
+                .for_each(|(((i, p), u), v)| fill(i * ROWS_PER_TASK, p, Some((u, v)))),
         }
     }
 
@@ -270,9 +311,13 @@ impl LimitTable {
         let mut table = LimitTable {
             offsets: Vec::with_capacity(nv + 1),
             indices: Vec::new(),
+            masks: Vec::with_capacity(nv),
             weights: Vec::new(),
         };
         table.offsets.push(0);
+        // Each distinct mask once, found by its weights' bits.
+        let mut known: std::collections::HashMap<Vec<u64>, u32> = Default::default();
+        let mut row: Vec<[f64; 3]> = Vec::new();
         let (mut ring, mut edges) = (Vec::new(), Vec::new());
         let mut masks = LimitMasks::default();
         for v in 0..nv as u32 {
@@ -284,10 +329,11 @@ impl LimitTable {
                 Linear::Boundaries => t.is_boundary_vertex(v),
                 Linear::Nothing => false,
             };
+            row.clear();
             if first == INVALID || linear {
                 table.indices.push(v);
-                table.weights.push([1.0, 0.0, 0.0]);
-                table.offsets.push(table.indices.len() as u32);
+                row.push([1.0, 0.0, 0.0]);
+                table.push_row(&row, &mut known)?;
                 continue;
             }
             ccw_ring(t, v, first, &mut ring);
@@ -327,23 +373,47 @@ impl LimitTable {
                 let at =
                     |m: &crate::subdivide::sdc::masks::Mask| m.faces.get(i).copied().unwrap_or(0.0);
                 table.indices.push(t.target(t.next(h)));
-                table.weights.push([at(p), at(t1), at(t2)]);
+                row.push([at(p), at(t1), at(t2)]);
             }
             for (i, &h) in ring.iter().enumerate() {
                 let at =
                     |m: &crate::subdivide::sdc::masks::Mask| m.edges.get(i).copied().unwrap_or(0.0);
                 table.indices.push(t.target(h));
-                table.weights.push([at(p), at(t1), at(t2)]);
+                row.push([at(p), at(t1), at(t2)]);
             }
             table.indices.push(v);
-            table.weights.push([p.vertex, t1.vertex, t2.vertex]);
-            let end = u32::try_from(table.indices.len()).map_err(|_| Error::IndexOverflow {
-                what: "limit entries",
-                count: table.indices.len() as u128,
-            })?;
-            table.offsets.push(end);
+            row.push([p.vertex, t1.vertex, t2.vertex]);
+            table.push_row(&row, &mut known)?;
         }
         Ok(table)
+    }
+
+    /// Ends the row whose indices were pushed, its mask `row` (shared with an earlier row of
+    /// the same weights, bit for bit).
+    fn push_row(
+        &mut self,
+        row: &[[f64; 3]],
+        known: &mut std::collections::HashMap<Vec<u64>, u32>,
+    ) -> Result<()> {
+        let overflow = |count: usize| Error::IndexOverflow {
+            what: "limit entries",
+            count: count as u128,
+        };
+        let key: Vec<u64> = row.iter().flatten().map(|w| w.to_bits()).collect();
+        let start = match known.get(&key) {
+            Some(&start) => start,
+            None => {
+                let start =
+                    u32::try_from(self.weights.len()).map_err(|_| overflow(self.weights.len()))?;
+                self.weights.extend_from_slice(row);
+                known.insert(key, start);
+                start
+            }
+        };
+        self.masks.push(start);
+        let end = u32::try_from(self.indices.len()).map_err(|_| overflow(self.indices.len()))?;
+        self.offsets.push(end);
+        Ok(())
     }
 }
 
@@ -439,6 +509,30 @@ impl super::Refinement {
     /// [`Error::NoLimit`] for a refinement built without [`SubdivideOptions::limit`];
     /// [`Error::BufferSize`]; [`Error::AllocationFailed`].
     ///
+    /// ```
+    /// use halfedge::refine::Refinement;
+    /// use halfedge::subdivide::SubdivideOptions;
+    /// use halfedge::{shapes, HalfEdgeMesh, Rule};
+    ///
+    /// let cube = HalfEdgeMesh::try_from(&shapes::cube())?;
+    /// let base: Vec<[f64; 3]> = cube.positions().iter().map(|p| p.to_array()).collect();
+    /// let opts = SubdivideOptions::default().with_limit(true);
+    /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &opts)?;
+    /// let n = r.n_vertices(2);
+    /// let (mut limit, mut du, mut dv) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+    /// r.evaluate_limit(&base, &mut limit, Some((&mut du, &mut dv)))?;
+    /// // Vertex 0 (a corner of the cube) at level 2 and its limit: where level 8 has it by now.
+    /// let deep = Refinement::new(&cube, Rule::CatmullClark, 8, &SubdivideOptions::default())?;
+    /// let mut far = vec![[0.0; 3]; deep.n_vertices(8)];
+    /// deep.evaluate(&base, &mut far)?;
+    /// let gap = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+    /// assert!(gap(limit[0], far[0]) < 1e-4);
+    /// // Without the option there is no limit to evaluate.
+    /// let plain = Refinement::new(&cube, Rule::CatmullClark, 2, &SubdivideOptions::default())?;
+    /// assert!(plain.evaluate_limit(&base, &mut limit, None).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    ///
     /// [`SubdivideOptions::limit`]: crate::subdivide::SubdivideOptions::limit
     pub fn evaluate_limit<T: Scalar, const N: usize>(
         &self,
@@ -479,5 +573,81 @@ impl super::Refinement {
         let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
         self.limit_table()?;
         self.run(|| uvs.evaluate_limit(base, out))
+    }
+}
+
+/// The limit surface as stencils over the base vertices (OpenSubdiv's `LimitStencilTable`):
+/// one [`StencilTable`](super::StencilTable) for the limit positions and one for each limit
+/// tangent, a row per vertex of the last level (the written ones, with holes), in the order
+/// of [`Refinement::evaluate_limit`](super::Refinement::evaluate_limit)'s output. For GPU-style
+/// evaluation: `position.apply(base, out)` gives the limit positions, and so on.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct LimitStencils {
+    /// The limit positions.
+    pub position: super::StencilTable,
+    /// The first limit tangents.
+    pub tangent1: super::StencilTable,
+    /// The second limit tangents.
+    pub tangent2: super::StencilTable,
+}
+
+impl super::Refinement {
+    /// The limit surface as stencils over the base vertices ([`LimitStencils`]): the
+    /// refinement's stencils of the whole last level ([`Refinement::stencils`]) combined by
+    /// the limit masks; applied to the base positions they give
+    /// [`Refinement::evaluate_limit`]'s results up to rounding (the sums run in another order).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoLimit`] for a refinement built without
+    /// [`SubdivideOptions::limit`](crate::subdivide::SubdivideOptions::limit);
+    /// [`Error::IndexOverflow`] beyond `u32` entries; [`Error::AllocationFailed`].
+    ///
+    /// [`Refinement::stencils`]: super::Refinement::stencils
+    /// [`Refinement::evaluate_limit`]: super::Refinement::evaluate_limit
+    pub fn limit_stencils(&self) -> Result<LimitStencils> {
+        use super::Sparse;
+        let table = self.limit_table()?;
+        let whole = self.last_level_sums(Sparse::unit, true)?;
+        let rows = self.limit_rows();
+        let n = rows.map_or(table.len(), <[u32]>::len);
+        let mut sums: [Vec<Sparse>; 3] = Default::default();
+        let mut terms: Vec<(u32, f64)> = Vec::new();
+        for k in 0..n {
+            let i = rows.map_or(k, |r| r[k] as usize);
+            let (indices, weights) = table.row(i);
+            for (m, out) in sums.iter_mut().enumerate() {
+                terms.clear();
+                for (&j, w) in indices.iter().zip(weights) {
+                    if w[m] != 0.0 {
+                        terms.extend(whole[j as usize].0.iter().map(|&(v, x)| (v, w[m] * x)));
+                    }
+                }
+                terms.sort_unstable_by_key(|t| t.0);
+                let mut row: Vec<(u32, f64)> = Vec::with_capacity(terms.len());
+                for &(v, x) in &terms {
+                    match row.last_mut() {
+                        Some(last) if last.0 == v => last.1 += x,
+                        _ => row.push((v, x)),
+                    }
+                }
+                row.retain(|t| t.1 != 0.0);
+                out.push(Sparse(row));
+            }
+        }
+        let n0 = self.base_vertices();
+        let [p, t1, t2] = sums.map(|rows| {
+            let sizes = super::StencilSizes {
+                rows: rows.len(),
+                entries: rows.iter().map(|r| r.0.len()).sum(),
+            };
+            super::StencilTable::from_sums(&rows, n0, sizes, &self.name, self.levels)
+        });
+        Ok(LimitStencils {
+            position: p?,
+            tangent1: t1?,
+            tangent2: t2?,
+        })
     }
 }

@@ -37,6 +37,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! # The limit surface
+//!
+//! With [`SubdivideOptions::limit`] the refinement keeps its last level's limit masks:
+//! [`Refinement::evaluate_limit`], [`Refinement::evaluate_limit_uvs`],
+//! [`Refinement::limit_stencils`] (an example at the first; `refine/limit.rs` has the design).
+//!
 //! # Same results as the one-shot subdivision
 //!
 //! The one-shot subdivision is a refinement: [`subdivide`](super::subdivide),
@@ -104,6 +110,7 @@ use std::sync::Arc;
 use schemes::MeshCounts;
 
 pub use self::evaluate::{Evaluator, Scratch};
+pub use self::limit::LimitStencils;
 pub(crate) use self::oneshot::{one_shot, OneShot};
 pub use self::stencil::{StencilSizes, StencilTable};
 pub use super::data::Scalar;
@@ -699,45 +706,6 @@ impl Refinement {
     /// rules, 4 for Catmull-Clark from level 1 on).
     pub fn face_degree(&self) -> Option<usize> {
         self.face_degree
-    }
-
-    /// Whether the refinement refines UVs ([`SubdivideOptions::uvs`]; [`face_varying`]).
-    pub fn has_uvs(&self) -> bool {
-        self.uvs.is_some()
-    }
-
-    /// The UV values of level `level` (`0..=levels`; 0 beyond the last level, and without
-    /// UVs): level 0 is the layout's values, the last level's are the values its written
-    /// faces use (with holes, fewer than the level has). Known when the refinement is built.
-    pub fn n_uvs(&self, level: u32) -> usize {
-        self.uvs.as_ref().map_or(0, |u| u.n_uvs(level))
-    }
-
-    /// Refines the UV values `base` (one per value of the layout,
-    /// [`UvLayout::values`](crate::uv::UvLayout::values)) to the last level, into `out`
-    /// (`n_uvs(levels)` entries), by the face-varying rules of [`face_varying`].
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv base`, `uv out`);
-    /// [`Error::AllocationFailed`].
-    pub fn evaluate_uvs<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
-        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
-        self.run(|| uvs.evaluate(base, out))
-    }
-
-    /// Writes the UV value of every face corner of the last level (`n_corners(levels)`
-    /// entries), face after face in the order of [`Refinement::write_triangles`],
-    /// [`write_quads`](Refinement::write_quads) and [`write_polygons`](Refinement::write_polygons)
-    /// (with holes, the written faces only): index `i` names entry `i` of
-    /// [`Refinement::evaluate_uvs`]' output.
-    ///
-    /// # Errors
-    ///
-    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv indices`).
-    pub fn write_uv_indices(&self, out: &mut [u32]) -> Result<()> {
-        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
-        uvs.write_indices(out, self.n_corners(self.levels))
     }
 }
 

@@ -217,7 +217,7 @@ impl Refinement {
     /// [`Error::IndexOverflow`] beyond `u32` entries; [`Error::AllocationFailed`].
     pub fn stencils(&self) -> Result<StencilTable> {
         let sizes = self.stencil_sizes()?;
-        let current = self.last_level_sums(Sparse::unit)?;
+        let current = self.last_level_sums(Sparse::unit, false)?;
         let n0 = self.base_vertices();
         StencilTable::from_sums(&current, n0, sizes, &self.name, self.levels)
     }
@@ -250,7 +250,7 @@ impl Refinement {
                 reason: "the sphere projection",
             });
         }
-        let current = self.last_level_sums(Support::unit)?;
+        let current = self.last_level_sums(Support::unit, false)?;
         Ok(StencilSizes {
             rows: current.len(),
             entries: current.iter().map(|r| r.0.len()).sum(),
@@ -259,13 +259,17 @@ impl Refinement {
 
     /// The written vertices of the last level as sums `V` of the base vertices (`unit(i)` is
     /// base vertex `i`), level by level through the rules' kernels.
-    fn last_level_sums<V: Vector>(&self, unit: impl Fn(u32) -> V) -> Result<Vec<V>> {
+    pub(super) fn last_level_sums<V: Vector>(
+        &self,
+        unit: impl Fn(u32) -> V,
+        whole: bool,
+    ) -> Result<Vec<V>> {
         let n0 = self.base_vertices() as u32;
         let mut current: Vec<V> = (0..n0).map(unit).collect();
         for s in 1..=self.levels {
-            current = self.run(|| self.collect_level(s, &current))?;
+            current = self.run(|| self.collect_level(s, &current, whole))?;
         }
-        if self.levels == 0 {
+        if self.levels == 0 && !whole {
             current = self.written_of(current);
         }
         Ok(current)

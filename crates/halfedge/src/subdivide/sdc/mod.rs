@@ -75,7 +75,9 @@
 //! neighbourhood, with no mesh and no level (`cargo xtask tidy` refuses a file here that
 //! names the topology or the refinement). `crease.rs` is the `f32` sharpness arithmetic
 //! (vertex rules, uniform and Chaikin decay, fractional weights), `masks.rs` the vertex and
-//! edge masks of Loop and Catmull-Clark, `sharpness.rs` the [`Sharpness`] type. Above it, the
+//! edge masks of Loop and Catmull-Clark, `limit.rs` their limit masks (`ComputeVertexLimitMask`
+//! with both tangents, scaled as OpenSubdiv scales them; `refine/limit.rs` applies them),
+//! `sharpness.rs` the [`Sharpness`] type. Above it, the
 //! topology layer resolves tags on a mesh (`subdivide/sharpness.rs`: [`Sharpness::from_tags`])
 //! and the refinement layer applies the rules level by level (`refine/creases/`: each
 //! level's `LevelSharpness`, the `LevelBuilder` that walks its topology into a sparse

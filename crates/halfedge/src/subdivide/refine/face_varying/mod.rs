@@ -455,3 +455,45 @@ impl UvChannel {
         }
     }
 }
+
+/// The UVs of a refinement: through its channel.
+impl Refinement {
+    /// Whether the refinement refines UVs ([`SubdivideOptions::uvs`](crate::subdivide::SubdivideOptions::uvs); [`face_varying`](self)).
+    pub fn has_uvs(&self) -> bool {
+        self.uvs.is_some()
+    }
+
+    /// The UV values of level `level` (`0..=levels`; 0 beyond the last level, and without
+    /// UVs): level 0 is the layout's values, the last level's are the values its written
+    /// faces use (with holes, fewer than the level has). Known when the refinement is built.
+    pub fn n_uvs(&self, level: u32) -> usize {
+        self.uvs.as_ref().map_or(0, |u| u.n_uvs(level))
+    }
+
+    /// Refines the UV values `base` (one per value of the layout,
+    /// [`UvLayout::values`](crate::uv::UvLayout::values)) to the last level, into `out`
+    /// (`n_uvs(levels)` entries), by the face-varying rules of [`face_varying`](self).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv base`, `uv out`);
+    /// [`Error::AllocationFailed`].
+    pub fn evaluate_uvs<T: Scalar>(&self, base: &[[T; 2]], out: &mut [[T; 2]]) -> Result<()> {
+        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
+        self.run(|| uvs.evaluate(base, out))
+    }
+
+    /// Writes the UV value of every face corner of the last level (`n_corners(levels)`
+    /// entries), face after face in the order of [`Refinement::write_triangles`],
+    /// [`write_quads`](Refinement::write_quads) and [`write_polygons`](Refinement::write_polygons)
+    /// (with holes, the written faces only): index `i` names entry `i` of
+    /// [`Refinement::evaluate_uvs`]' output.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::NoUvs`] without a layout; [`Error::BufferSize`] (`uv indices`).
+    pub fn write_uv_indices(&self, out: &mut [u32]) -> Result<()> {
+        let uvs = self.uvs.as_ref().ok_or(Error::NoUvs)?;
+        uvs.write_indices(out, self.n_corners(self.levels))
+    }
+}
