@@ -41,6 +41,9 @@ enum LevelBuffers {
     F64(Buffers<f64>),
 }
 
+/// Two per-vertex buffers: the limit tangents.
+type Pair<T> = (Vec<[T; 3]>, Vec<[T; 3]>);
+
 /// The buffers a refine-once run evaluated into: positions, faces (of one degree, or with
 /// offsets), UVs, colors and groups.
 #[derive(Debug)]
@@ -55,7 +58,7 @@ struct Buffers<T> {
     colors: Option<Vec<[T; 3]>>,
     groups: Option<halfedge::groups::FaceGroups>,
     /// The limit tangents, when the normals written are the limit surface's.
-    tangents: Option<(Vec<[T; 3]>, Vec<[T; 3]>)>,
+    tangents: Option<Pair<T>>,
     /// The rule and level, for messages.
     scheme: String,
     level: u32,
@@ -457,7 +460,9 @@ fn run_in<T: Scalar>(
 }
 
 /// The two buffers of `tangents` as the mutable slices an evaluation writes.
-fn pair<T>(tangents: &mut Option<(Vec<T>, Vec<T>)>) -> Option<(&mut [T], &mut [T])> {
+fn pair<T: Scalar>(
+    tangents: &mut Option<Pair<T>>,
+) -> Option<halfedge::refine::TangentsMut<'_, T, 3>> {
     tangents
         .as_mut()
         .map(|(a, b)| (a.as_mut_slice(), b.as_mut_slice()))

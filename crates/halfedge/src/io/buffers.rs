@@ -109,6 +109,10 @@ pub struct UvBuffers<'a, T> {
     pub corners: &'a [u32],
 }
 
+/// Limit tangents in caller-owned buffers (first, second), one per position
+/// ([`MeshBuffers::tangents`]).
+pub type TangentBuffers<'a, T> = (&'a [[T; 3]], &'a [[T; 3]]);
+
 /// A mesh in caller-owned buffers, as the writers take it: positions and faces, and
 /// optionally texture coordinates, vertex colors and per-face groups.
 ///
@@ -138,7 +142,7 @@ pub struct MeshBuffers<'a, T> {
     pub groups: Option<&'a FaceGroups>,
     /// Limit tangents, two per position: the normals written are then the limit normals
     /// ([`normals::limit_normal`]), not the area-weighted ones.
-    pub tangents: Option<(&'a [[T; 3]], &'a [[T; 3]])>,
+    pub tangents: Option<TangentBuffers<'a, T>>,
 }
 
 impl<'a, T> MeshBuffers<'a, T> {

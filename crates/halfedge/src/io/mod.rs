@@ -184,7 +184,7 @@ mod off;
 mod ply;
 mod write;
 
-pub use self::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
+pub use self::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, TangentBuffers, UvBuffers};
 pub use self::obj::{read_obj, read_obj_from, read_obj_from_with, read_obj_with};
 pub use self::off::{read_off, read_off_from};
 pub use self::ply::{

@@ -216,6 +216,10 @@ pub(crate) struct LimitTable {
     weights: Vec<[f64; 3]>,
 }
 
+/// The caller's buffers of the two limit tangents (first, second), one entry per vertex, as
+/// [`Refinement::evaluate_limit`](super::Refinement::evaluate_limit) writes them.
+pub type TangentsMut<'a, T, const N: usize> = (&'a mut [[T; N]], &'a mut [[T; N]]);
+
 /// Rows per task of a parallel evaluation.
 const ROWS_PER_TASK: usize = 1 << 12;
 
@@ -246,44 +250,43 @@ impl LimitTable {
         level: &[[T; N]],
         rows: Option<&[u32]>,
         position: &mut [[T; N]],
-        tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+        tangents: Option<TangentsMut<'_, T, N>>,
         parallel: bool,
     ) {
         use rayon::prelude::*;
         let row_of = |k: usize| rows.map_or(k, |r| r[k] as usize);
         // Rows `from..` into the chunks `p` (and `t`).
-        let fill =
-            |from: usize, p: &mut [[T; N]], t: Option<(&mut [[T; N]], &mut [[T; N]])>| match t {
-                None => {
-                    for (k, out) in p.iter_mut().enumerate() {
-                        let (indices, weights) = self.row(row_of(from + k));
-                        let mut acc = [T::ZERO; N];
-                        for (&j, w) in indices.iter().zip(weights) {
-                            let (x, w) = (&level[j as usize], T::from_f64(w[0]));
+        let fill = |from: usize, p: &mut [[T; N]], t: Option<TangentsMut<'_, T, N>>| match t {
+            None => {
+                for (k, out) in p.iter_mut().enumerate() {
+                    let (indices, weights) = self.row(row_of(from + k));
+                    let mut acc = [T::ZERO; N];
+                    for (&j, w) in indices.iter().zip(weights) {
+                        let (x, w) = (&level[j as usize], T::from_f64(w[0]));
+                        for c in 0..N {
+                            acc[c] = acc[c] + w * x[c];
+                        }
+                    }
+                    *out = acc;
+                }
+            }
+            Some((t1, t2)) => {
+                for (k, ((out, u), v)) in p.iter_mut().zip(t1).zip(t2).enumerate() {
+                    let (indices, weights) = self.row(row_of(from + k));
+                    let mut acc = [[T::ZERO; N]; 3];
+                    for (&j, w) in indices.iter().zip(weights) {
+                        let x = &level[j as usize];
+                        for (m, sum) in acc.iter_mut().enumerate() {
+                            let w = T::from_f64(w[m]);
                             for c in 0..N {
-                                acc[c] = acc[c] + w * x[c];
+                                sum[c] = sum[c] + w * x[c];
                             }
                         }
-                        *out = acc;
                     }
+                    [*out, *u, *v] = acc;
                 }
-                Some((t1, t2)) => {
-                    for (k, ((out, u), v)) in p.iter_mut().zip(t1).zip(t2).enumerate() {
-                        let (indices, weights) = self.row(row_of(from + k));
-                        let mut acc = [[T::ZERO; N]; 3];
-                        for (&j, w) in indices.iter().zip(weights) {
-                            let x = &level[j as usize];
-                            for (m, sum) in acc.iter_mut().enumerate() {
-                                let w = T::from_f64(w[m]);
-                                for c in 0..N {
-                                    sum[c] = sum[c] + w * x[c];
-                                }
-                            }
-                        }
-                        [*out, *u, *v] = acc;
-                    }
-                }
-            };
+            }
+        };
         if !parallel || position.len() < 4 * ROWS_PER_TASK {
             fill(0, position, tangents);
             return;
@@ -538,7 +541,7 @@ impl super::Refinement {
         &self,
         base: &[[T; N]],
         position: &mut [[T; N]],
-        tangents: Option<(&mut [[T; N]], &mut [[T; N]])>,
+        tangents: Option<TangentsMut<'_, T, N>>,
     ) -> Result<()> {
         self.evaluator().evaluate_limit(base, position, tangents)
     }
