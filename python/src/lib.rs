@@ -99,8 +99,9 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 /// triangle_rule ("catmark", "smooth"), uv_interpolation ("none", "corners-only",
 /// "corners-plus1", "corners-plus2", "boundaries", "all"), ignore_tags, precision ("f64" or
 /// "f32": float32 arrays), threads (0: every core), no_uv, allow_large (lift the memory
-/// guard), timings (the result's `timings`: the seconds of each part of the call). The GIL is
-/// released while it works.
+/// guard), timings (the result's `timings`: the seconds of each part of the call), limit (the
+/// limit surface: positions, UVs and colors by OpenSubdiv's limit masks, loop and
+/// catmull-clark). The GIL is released while it works.
 ///
 /// Notes (tags not read, options a rule does not apply) are warned as subcount.Warning.
 /// Raises subcount.UsageError for a request that is wrong, subcount.InputError for a mesh
@@ -112,7 +113,7 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 #[pyfunction]
 #[pyo3(
     signature = (mesh, *, scheme, levels, **options),
-    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False, timings=False)"
+    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False, timings=False, limit=False)"
 )]
 fn subdivide(
     py: Python<'_>,

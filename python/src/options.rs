@@ -32,6 +32,8 @@ pub(crate) struct RunOptions<'py> {
     pub(crate) allow_large: bool,
     /// Keep the refinement (`Refinement`): `SubdivideJob::keep_refinement`.
     keep_refinement: bool,
+    /// The limit surface (`--limit`): `subdivide` writes it, `Refinement` keeps its masks.
+    limit: bool,
     /// Time the parts of the call (`subdivide` only).
     pub(crate) timings: bool,
 }
@@ -62,6 +64,7 @@ impl<'py> RunOptions<'py> {
             no_uv: false,
             allow_large: false,
             keep_refinement: refinement,
+            limit: false,
             timings: false,
         };
         let Some(keywords) = keywords else {
@@ -94,6 +97,7 @@ impl<'py> RunOptions<'py> {
                 "threads" => o.threads = whole_number(value, "threads")?,
                 "no_uv" => o.no_uv = flag()?,
                 "allow_large" => o.allow_large = flag()?,
+                "limit" => o.limit = flag()?,
                 "timings" if !refinement => o.timings = flag()?,
                 _ => {
                     return Err(Failure::Type(format!(
@@ -202,6 +206,7 @@ impl<'py> RunOptions<'py> {
         job.uvs = !self.no_uv;
         job.uv_interpolation = uv_interpolation;
         job.keep_refinement = self.keep_refinement;
+        job.limit = self.limit;
         Ok((job, flags))
     }
 }

@@ -22,10 +22,12 @@ use crate::options::RunOptions;
 /// an animation's frames, a deformer's output, without topology work per frame.
 ///
 /// Refinement(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
-/// uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False)
+/// uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False,
+/// limit=False)
 ///
 /// The keywords are subdivide()'s (no precision: evaluate() computes in the dtype of the
-/// points it is given). Schemes that run on the raw face list (loop-general,
+/// points it is given); limit=True also keeps the limit surface's masks (loop, catmull-clark:
+/// evaluate_limit(), evaluate_limit_uvs()). Schemes that run on the raw face list (loop-general,
 /// catmull-clark-general, tri-split-N or a non-manifold mesh) keep no refinement:
 /// subcount.UsageError.
 ///
@@ -76,7 +78,7 @@ impl Refinement {
     #[new]
     #[pyo3(
         signature = (mesh, *, scheme, levels, **options),
-        text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False)"
+        text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False, limit=False)"
     )]
     fn new(
         py: Python<'_>,
@@ -97,6 +99,12 @@ impl Refinement {
             })
         });
         run.map(|(refinement, _)| refinement)
+    }
+
+    /// Whether the refinement keeps the limit surface (made with limit=True).
+    #[getter]
+    fn limit(&self) -> bool {
+        self.refined().has_limit()
     }
 
     /// The last level.
@@ -214,30 +222,55 @@ impl Refinement {
         uvs: Option<&Bound<'py, PyAny>>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        self.uvs_of(py, uvs, out, Stream::Uvs)
+    }
+
+    /// The limit surface at the last level's vertices (OpenSubdiv's limit masks; the
+    /// Refinement made with limit=True), from `points` as evaluate() takes them, into `out`
+    /// as evaluate() writes it; with tangents=True, returns (positions, tangent1, tangent2),
+    /// three (n_vertices(), 3) arrays (the tangents scaled as OpenSubdiv scales them; their
+    /// cross product is the surface's normal). subcount.UsageError without limit=True.
+    ///
+    /// >>> quad = subcount.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [4], [0, 1, 2, 3])
+    /// >>> r = subcount.Refinement(quad, scheme="catmull-clark", levels=1, limit=True)
+    /// >>> p, du, dv = r.evaluate_limit(quad.positions, tangents=True)
+    /// >>> p[8].tolist()                                      # the centre (the face's child) stays
+    /// [0.5, 0.5, 0.0]
+    /// >>> numpy.cross(du[8], dv[8]).tolist()                 # the normal, up
+    /// [0.0, 0.0, 30.25]
+    #[pyo3(signature = (points, out=None, tangents=false))]
+    fn evaluate_limit<'py>(
+        &self,
+        py: Python<'py>,
+        points: &Bound<'py, PyAny>,
+        out: Option<&Bound<'py, PyAny>>,
+        tangents: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let n_out = self.refined().n_vertices(self.refined().levels());
         let work = || {
-            let Some(base) = &self.kept.base_uvs else {
-                return Err(Failure::Usage(
-                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
-                ));
-            };
-            let default;
-            let uvs = match uvs {
-                Some(uvs) => uvs,
-                None => {
-                    default = self
-                        .base_uvs(py)?
-                        .unwrap_or_else(|| py.None().into_bound(py));
-                    &default
-                }
-            };
-            let n_out = self.refined().n_uvs(self.refined().levels());
-            let rows = (base.len(), "UV value of the layout");
-            match is_float32(py, uvs, "uvs")? {
-                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, Stream::Uvs),
-                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, Stream::Uvs),
+            self.require_limit()?;
+            let rows = (self.n_mesh_vertices, "vertex of the mesh");
+            let stream = Stream::Limit(tangents);
+            match is_float32(py, points, "points")? {
+                true => self.evaluate_in::<f32>(py, points, out, rows, n_out, stream),
+                false => self.evaluate_in::<f64>(py, points, out, rows, n_out, stream),
             }
         };
         guarded(work).map_err(|f| f.into_pyerr(py))
+    }
+
+    /// The limit of the UV values (OpenSubdiv's LimitFaceVarying), from `uvs` as
+    /// evaluate_uvs() takes them (default: base_uvs), into `out` as it writes them.
+    /// subcount.UsageError without limit=True or without UVs.
+    #[pyo3(signature = (uvs=None, out=None))]
+    fn evaluate_limit_uvs<'py>(
+        &self,
+        py: Python<'py>,
+        uvs: Option<&Bound<'py, PyAny>>,
+        out: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+        self.uvs_of(py, uvs, out, Stream::LimitUvs)
     }
 
     /// The last level's vertices as weighted sums of the mesh's vertices: a
@@ -295,9 +328,57 @@ impl Refinement {
 enum Stream {
     Positions,
     Uvs,
+    /// The limit surface, with its tangents when `true`.
+    Limit(bool),
+    /// The limit of the UVs.
+    LimitUvs,
 }
 
 impl Refinement {
+    /// UsageError unless the refinement keeps the limit surface.
+    fn require_limit(&self) -> Result<()> {
+        match self.refined().has_limit() {
+            true => Ok(()),
+            false => Err(Failure::Usage(
+                "this refinement has no limit surface: make it with limit=True".into(),
+            )),
+        }
+    }
+
+    /// evaluate_uvs() and evaluate_limit_uvs(): `stream` says which.
+    fn uvs_of<'py>(
+        &self,
+        py: Python<'py>,
+        uvs: Option<&Bound<'py, PyAny>>,
+        out: Option<&Bound<'py, PyAny>>,
+        stream: Stream,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let work = || {
+            let Some(base) = &self.kept.base_uvs else {
+                return Err(Failure::Usage(
+                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
+                ));
+            };
+            let default;
+            let uvs = match uvs {
+                Some(uvs) => uvs,
+                None => {
+                    default = self
+                        .base_uvs(py)?
+                        .unwrap_or_else(|| py.None().into_bound(py));
+                    &default
+                }
+            };
+            let n_out = self.refined().n_uvs(self.refined().levels());
+            let rows = (base.len(), "UV value of the layout");
+            match is_float32(py, uvs, "uvs")? {
+                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, stream),
+                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
+            }
+        };
+        guarded(work).map_err(|f| f.into_pyerr(py))
+    }
+
     fn refined(&self) -> &Refined {
         &self.kept.refinement
     }
@@ -351,8 +432,8 @@ impl Refinement {
         stream: Stream,
     ) -> Result<Bound<'py, PyAny>> {
         let (name, width) = match stream {
-            Stream::Positions => ("points", 3),
-            Stream::Uvs => ("uvs", 2),
+            Stream::Positions | Stream::Limit(_) => ("points", 3),
+            Stream::Uvs | Stream::LimitUvs => ("uvs", 2),
         };
         let values = crate::arrays::float_table::<T>(py, base, name, width)?;
         if values.len() != rows.0 * width {
@@ -366,7 +447,7 @@ impl Refinement {
         // The refinement's base vertices are the mesh's vertices some face uses.
         let gathered: Vec<T>;
         let base: &[T] = match stream {
-            Stream::Positions if self.kept.base_vertices.len() != rows.0 => {
+            Stream::Positions | Stream::Limit(_) if self.kept.base_vertices.len() != rows.0 => {
                 let kept = self.kept.base_vertices.iter().map(|&v| v as usize * width);
                 gathered = kept.flat_map(|i| values[i..i + width].to_vec()).collect();
                 &gathered
@@ -377,7 +458,26 @@ impl Refinement {
             Some(out) => out_array::<T>(py, out, n_out, width)?,
             None => PyArray2::<T>::zeros(py, [n_out, width], false),
         };
+        let tangents = match stream {
+            Stream::Limit(true) => {
+                Some([(); 2].map(|_| PyArray2::<T>::zeros(py, [n_out, 3], false)))
+            }
+            _ => None,
+        };
         {
+            let mut tangent_guards = match &tangents {
+                Some([a, b]) => Some((a.readwrite(), b.readwrite())),
+                None => None,
+            };
+            let tangent_slices = match tangent_guards.as_mut() {
+                Some((a, b)) => Some((
+                    a.as_slice_mut()
+                        .map_err(|e| Failure::Input(e.to_string()))?,
+                    b.as_slice_mut()
+                        .map_err(|e| Failure::Input(e.to_string()))?,
+                )),
+                None => None,
+            };
             let mut guard = array
                 .try_readwrite()
                 .map_err(|e| Failure::Input(format!("out cannot be written: {e}")))?;
@@ -386,7 +486,7 @@ impl Refinement {
                 .map_err(|e| Failure::Input(format!("out is not C-contiguous: {e}")))?;
             let refined = self.refined();
             py.detach(|| match stream {
-                Stream::Positions => {
+                Stream::Positions | Stream::Limit(_) => {
                     // Rows of 3 in place (no packed copy of the input or the output), through
                     // the buffers the last evaluation kept.
                     let (rows, _) = base.as_chunks::<3>();
@@ -394,16 +494,26 @@ impl Refinement {
                     let slot = T::slot(self);
                     let kept = slot.lock().map_or(None, |mut s| s.take());
                     let mut evaluator = refined.evaluator_with(kept.unwrap_or_default());
-                    let done = evaluator.evaluate(rows, out_rows);
+                    let done = match stream {
+                        Stream::Limit(_) => {
+                            let tangents = tangent_slices
+                                .map(|(a, b)| (a.as_chunks_mut::<3>().0, b.as_chunks_mut::<3>().0));
+                            evaluator.evaluate_limit(rows, out_rows, tangents)
+                        }
+                        _ => evaluator.evaluate(rows, out_rows),
+                    };
                     if let Ok(mut s) = slot.lock() {
                         *s = Some(evaluator.into_scratch());
                     }
                     done
                 }
-                Stream::Uvs => {
+                Stream::Uvs | Stream::LimitUvs => {
                     let pairs: Vec<[T; 2]> = base.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
                     let mut result = vec![[T::ZERO; 2]; n_out];
-                    let done = refined.evaluate_uvs(&pairs, &mut result);
+                    let done = match stream {
+                        Stream::LimitUvs => refined.evaluate_limit_uvs(&pairs, &mut result),
+                        _ => refined.evaluate_uvs(&pairs, &mut result),
+                    };
                     for (dst, src) in slice.chunks_exact_mut(2).zip(&result) {
                         dst.copy_from_slice(src);
                     }
@@ -412,7 +522,10 @@ impl Refinement {
             })
             .map_err(driver::Error::from)?;
         }
-        Ok(array.into_any())
+        match tangents {
+            Some([a, b]) => Ok((array, a, b).into_pyobject(py)?.into_any()),
+            None => Ok(array.into_any()),
+        }
     }
 }
 

@@ -142,7 +142,11 @@ class Refinement:
         threads: int = 0,
         no_uv: bool = False,
         allow_large: bool = False,
+        limit: bool = False,
     ) -> Refinement: ...
+    @property
+    def limit(self) -> bool:
+        """Whether the refinement keeps the limit surface (made with limit=True)."""
     @property
     def levels(self) -> int:
         """The last level."""
@@ -187,6 +191,49 @@ class Refinement:
     def evaluate_uvs(
         self, uvs: npt.ArrayLike | None = None, out: npt.NDArray[np.float64] | None = None
     ) -> npt.NDArray[np.float64]: ...
+    # evaluate_limit() as evaluate(); with tangents=True, (positions, tangent1, tangent2).
+    @overload
+    def evaluate_limit(
+        self,
+        points: npt.NDArray[np.float32],
+        out: npt.NDArray[np.float32] | None = None,
+        tangents: Literal[False] = False,
+    ) -> npt.NDArray[np.float32]: ...
+    @overload
+    def evaluate_limit(
+        self,
+        points: npt.ArrayLike,
+        out: npt.NDArray[np.float64] | None = None,
+        tangents: Literal[False] = False,
+    ) -> npt.NDArray[np.float64]: ...
+    @overload
+    def evaluate_limit(
+        self,
+        points: npt.NDArray[np.float32],
+        out: npt.NDArray[np.float32] | None = None,
+        *,
+        tangents: Literal[True],
+    ) -> tuple[
+        npt.NDArray[np.float32], npt.NDArray[np.float32], npt.NDArray[np.float32]
+    ]: ...
+    @overload
+    def evaluate_limit(
+        self,
+        points: npt.ArrayLike,
+        out: npt.NDArray[np.float64] | None = None,
+        *,
+        tangents: Literal[True],
+    ) -> tuple[
+        npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]
+    ]: ...
+    @overload
+    def evaluate_limit_uvs(
+        self, uvs: npt.NDArray[np.float32], out: npt.NDArray[np.float32] | None = None
+    ) -> npt.NDArray[np.float32]: ...
+    @overload
+    def evaluate_limit_uvs(
+        self, uvs: npt.ArrayLike | None = None, out: npt.NDArray[np.float64] | None = None
+    ) -> npt.NDArray[np.float64]: ...
     def stencils(self) -> Any:
         """The last level's vertices as weighted sums of the mesh's vertices: a
         ``scipy.sparse.csr_array`` of shape (n_vertices(), N). (Typed ``Any``: SciPy is an
@@ -215,6 +262,7 @@ def subdivide(
     no_uv: bool = False,
     allow_large: bool = False,
     timings: bool = False,
+    limit: bool = False,
 ) -> Mesh:
     """Subdivides a mesh as `subcount subdivide` does and returns the last level."""
 
