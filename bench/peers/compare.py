@@ -301,7 +301,7 @@ def run_osdrs_accuracy(osd, osdrs, scheme, levels, path, tmp):
             os.remove(reference)
 
 
-def subcount_has_frames(subcount, flag="--frames"):
+def subcount_has_flag(subcount, flag):
     """Whether this subcount's `subdivide` takes `flag` (--frames: refine_topology_s,
     evaluate_s; --limit: the limit surface)."""
     p = subprocess.run([subcount, "subdivide", "--help"], capture_output=True, text=True)
@@ -479,8 +479,8 @@ def main():
                             "--target-dir", target_dir], check=True)
             return a.osdrs
         osdrs = ensure_built(a.osdrs, build_osdrs, "opensubdiv-rs-peer")
-    frames_flag = subcount_has_frames(a.subcount)
-    limit_flag = frames_flag and subcount_has_frames(a.subcount, "--limit")
+    frames_flag = subcount_has_flag(a.subcount, "--frames")
+    limit_flag = frames_flag and subcount_has_flag(a.subcount, "--limit")
     start_load = load_average()
     started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     tmp = tempfile.mkdtemp(prefix="subcount-peers-")

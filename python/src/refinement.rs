@@ -233,10 +233,10 @@ impl Refinement {
     ///
     /// >>> quad = subcount.Mesh([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], [4], [0, 1, 2, 3])
     /// >>> r = subcount.Refinement(quad, scheme="catmull-clark", levels=1, limit=True)
-    /// >>> p, du, dv = r.evaluate_limit(quad.positions, tangents=True)
+    /// >>> p, t1, t2 = r.evaluate_limit(quad.positions, tangents=True)
     /// >>> p[8].tolist()                                      # the centre (the face's child) stays
     /// [0.5, 0.5, 0.0]
-    /// >>> numpy.cross(du[8], dv[8]).tolist()                 # the normal, up
+    /// >>> numpy.cross(t1[8], t2[8]).tolist()                 # the normal, up
     /// [0.0, 0.0, 30.25]
     #[pyo3(signature = (points, out=None, tangents=false))]
     fn evaluate_limit<'py>(

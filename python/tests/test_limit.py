@@ -68,7 +68,7 @@ def test_no_limit_is_refused_as_the_cli_refuses_it(tmp_path):
     with pytest.raises(subcount.UsageError, match="limit=True"):
         subcount.Refinement(src, scheme="catmull-clark", levels=1).evaluate_limit(np.asarray(CUBE[0], float))
     tri = write_obj(tmp_path / "tri.obj", *OCTAHEDRON)
-    with pytest.raises(subcount.UsageError, match="need quads"):
+    with pytest.raises(subcount.InputError, match="face 0 has 3 sides"):
         subcount.subdivide(tri, scheme="catmull-clark", levels=0, limit=True)
     with pytest.raises(TypeError, match="limit must be a bool"):
         subcount.subdivide(src, scheme="catmull-clark", levels=1, limit="yes")

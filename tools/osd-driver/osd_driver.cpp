@@ -442,7 +442,7 @@ int reference(int argc, char** argv) {
                 "[--triangle-rule catmark|smooth] [--limit] [--fvar none|corners-only|corners-plus1|"
                 "corners-plus2|boundaries|all|tag [--fvar-counts]] loop|catmark|bilinear LEVEL "
                 "FILE.obj [edge-only|edge-and-corner|none]\n"
-                "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES]]");
+                "       osd_driver --time loop|catmark|bilinear LEVEL FILE.obj [REPS [FRAMES [limit]]]");
     }
     bool withUvs = !fvar.empty();
     int fvarMode = withUvs ? parseFvarMode(fvar) : 0;

@@ -54,7 +54,7 @@ impl Kind {
         match e {
             E::Scheme(inner) => Kind::of_scheme_error(inner),
             E::NoSubdivision { .. } | E::NotComposable { .. } => Kind::Usage,
-            E::LimitNotSupported { .. } | E::LimitNeedsQuads { .. } | E::NoLimit => Kind::Usage,
+            E::LimitNotSupported { .. } | E::NoLimit => Kind::Usage,
             E::CreasesNotSupported { .. } => Kind::Input,
             _ if e.is_resource_limit() => Kind::Guard,
             E::PredictionMismatch { .. } | E::InvalidOutput { .. } | E::BrokenInvariant { .. } => {
@@ -244,7 +244,7 @@ pub enum Error {
     },
     /// The limit surface (`--limit`, `--normals limit`) asked of a scheme without limit masks.
     #[error("--limit and --normals limit use OpenSubdiv's limit masks, which loop, loop-boundary and catmull-clark have (and scheme files whose topology is one of them) on a manifold mesh; {scheme} has none")]
-    NoLimit {
+    LimitNotSupported {
         /// The scheme (or composition).
         scheme: String,
     },
@@ -269,7 +269,7 @@ impl Error {
             E::NotComposable { .. } | E::BoundaryNone { .. } => Kind::Usage,
             E::HolesNotNested { .. } | E::TriangleRule { .. } => Kind::Usage,
             E::SchemeNotInFile { .. } | E::RefineOnce | E::NoRefinement { .. } => Kind::Usage,
-            E::RefineOnceComposition { .. } | E::NoLimit { .. } => Kind::Usage,
+            E::RefineOnceComposition { .. } | E::LimitNotSupported { .. } => Kind::Usage,
             _ => Kind::Input,
         }
     }

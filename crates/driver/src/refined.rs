@@ -462,7 +462,7 @@ fn run_in<T: Scalar>(
 /// The two buffers of `tangents` as the mutable slices an evaluation writes.
 fn pair<T: Scalar>(
     tangents: &mut Option<Pair<T>>,
-) -> Option<halfedge::refine::TangentsMut<'_, T, 3>> {
+) -> Option<halfedge::refine::TangentBuffersMut<'_, T, 3>> {
     tangents
         .as_mut()
         .map(|(a, b)| (a.as_mut_slice(), b.as_mut_slice()))

@@ -165,7 +165,7 @@ pub fn prepare<'m>(
     }
     loaded.carry_notes(output, notes);
     if job.wants_limit() && (face_list || !matches!(rule, Rule::Loop | Rule::CatmullClark)) {
-        return Err(Error::NoLimit {
+        return Err(Error::LimitNotSupported {
             scheme: chosen.name().to_owned(),
         });
     }

@@ -661,8 +661,8 @@ pub enum Error {
         /// The rule.
         rule: String,
     },
-    /// Catmull-Clark's limit masks next to a face that is not a quad (level 0 only): they weigh
-    /// the corner opposite the vertex in each face (`face`, of `sides` sides).
+    /// Catmull-Clark's limit masks next to a face that is not a quad (level 0 only, so `face`
+    /// is a face of the input, of `sides` sides): they weigh the corner opposite the vertex.
     #[error("face {face} has {sides} sides: Catmull-Clark's limit masks need quads around a vertex (every face after one level is one; evaluate the limit at level 1 or more)")]
     LimitNeedsQuads {
         /// The face.
@@ -770,7 +770,8 @@ impl Error {
             Error::VertexOutOfRange { face, .. }
             | Error::FaceTooSmall { face, .. }
             | Error::RepeatedVertex { face, .. }
-            | Error::NonOrientable { face, .. } => Some(*face),
+            | Error::NonOrientable { face, .. }
+            | Error::LimitNeedsQuads { face, .. } => Some(*face),
             Error::DuplicateFace { second, .. } | Error::InconsistentOrientation { second, .. } => {
                 Some(*second)
             }

@@ -101,11 +101,11 @@ where
     sums
 }
 
-/// The unit normal of the limit surface from its two limit tangents `tu` and `tv`
-/// ([`Refinement::evaluate_limit`](crate::Refinement::evaluate_limit)): `tu × tv` normalized,
+/// The unit normal of the limit surface from its two limit tangents `t1` and `t2`
+/// ([`Refinement::evaluate_limit`](crate::Refinement::evaluate_limit)): `t1 × t2` normalized,
 /// flipped where needed so that it does not point against `area` (the area-weighted normal of
 /// the vertex, [`vertex_normals`]); `area` itself where the tangents are degenerate
-/// (`|tu × tv| < 1e-12 |tu| |tv|`, or not finite: a corner whose tangents are parallel).
+/// (`|t1 × t2| < 1e-12 |t1| |t2|`, or not finite: a corner whose tangents are parallel).
 /// Never NaN when `area` is not.
 ///
 /// ```
@@ -117,11 +117,11 @@ where
 /// // Parallel tangents: the area normal.
 /// assert_eq!(limit_normal(DVec3::X, 2.0 * DVec3::X, DVec3::Y), DVec3::Y);
 /// ```
-pub fn limit_normal(tu: DVec3, tv: DVec3, area: DVec3) -> DVec3 {
-    let cross = tu.cross(tv);
+pub fn limit_normal(t1: DVec3, t2: DVec3, area: DVec3) -> DVec3 {
+    let cross = t1.cross(t2);
     let length = cross.length();
     let degenerate =
-        !(length.is_finite() && length > 0.0) || length < 1e-12 * tu.length() * tv.length();
+        !(length.is_finite() && length > 0.0) || length < 1e-12 * t1.length() * t2.length();
     if degenerate {
         return area;
     }

@@ -58,7 +58,7 @@ pub(crate) fn subdivide(
     }
     if args.limit || args.normals == Some(crate::args::Normals::Limit) {
         let scheme = plan.name();
-        return Err(driver::Error::NoLimit { scheme }.into());
+        return Err(driver::Error::LimitNotSupported { scheme }.into());
     }
     if args.frames > 0 || args.precision == Precision::F32 {
         let plan = plan.name();

@@ -6,9 +6,9 @@ use super::*;
 /// What the limit surface adds to [`predicted_refinement_peak_bytes`]
 /// ([`SubdivideOptions::limit`](crate::subdivide::SubdivideOptions::limit)): the last level's
 /// connectivity, built for its vertex rings (4 bytes per vertex and face, 32 per edge), the
-/// limit table (4 bytes per vertex, 28 per entry: Loop `V + 2E` entries, Catmull-Clark
-/// `V + 2E + 4F`) and the whole last level, the limit positions and two tangents in
-/// `scalar_bytes` per coordinate.
+/// limit table (8 bytes per vertex, 4 per entry: Loop `V + 2E` entries, Catmull-Clark
+/// `V + 2E + 4F`; its masks are shared) and the whole last level, the limit positions and
+/// two tangents in `scalar_bytes` per coordinate.
 ///
 /// # Errors
 ///
@@ -27,7 +27,7 @@ pub fn predicted_limit_bytes(
         crate::Rule::CatmullClark => f * 4u32,
         _ => BigInt::from(0),
     };
-    let table = v * 4u32 + (v + e * 2u32 + faces) * 28u32;
+    let table = v * 8u32 + (v + e * 2u32 + faces) * 4u32;
     let buffers = v * (4 * 3 * scalar_bytes);
     Ok(connectivity + table + buffers)
 }

@@ -366,6 +366,7 @@ pub(super) fn refined_uvs(
         progress: None,
         holes: None,
         uvs: None,
+        limit: false,
         ..*opts
     };
     let refined = run_levels(&layout_plan, &flat, levels, &layout_opts, |_, _| Ok(()))?;

@@ -229,7 +229,11 @@ fn stage_face_list(
         level.carry_groups(groups)?;
     }
     if let Some(base) = current.colors_of_referenced() {
-        let plain = SubdivideOptions { uvs: None, ..*opts };
+        let plain = SubdivideOptions {
+            uvs: None,
+            limit: false,
+            ..*opts
+        };
         let refinement = crate::Refinement::new(he, rule, n, &plain)?;
         let mut colors = vec![[0.0f64; 3]; refinement.n_vertices(n)];
         refinement.evaluate_attributes(he, &base, &mut colors)?;

@@ -9,6 +9,7 @@
 //! refused (`Error::LimitNeedsQuads`), where OpenSubdiv weighs a corner of no meaning.
 
 use super::*;
+use halfedge::holes::HoleSet;
 use halfedge::Error;
 
 /// A level is compared when its output has at most this many faces.
@@ -42,13 +43,15 @@ impl Worst {
 }
 
 /// The driver's last level with `--limit`: the refined level (its vertices in no face taken
-/// out, as `halfedge` drops them) and each vertex's limit.
+/// out, as `halfedge` drops them, and with `holes` the faces it tags as holes and the vertices
+/// only they use) and each vertex's limit.
 fn theirs(
     flags: &[&str],
     scheme: Osd,
     level: u32,
     path: &Path,
     boundary: &str,
+    holes: bool,
 ) -> (PolygonMesh, Vec<Limit>) {
     let mut all = vec!["--limit"];
     all.extend_from_slice(flags);
@@ -66,12 +69,24 @@ fn theirs(
             [0, 3, 6].map(|k| DVec3::new(x[k], x[k + 1], x[k + 2]))
         })
         .collect();
-    let mesh = io::read_obj_from(stdout.as_slice(), "osd_driver output")
+    let all = io::read_obj_from(stdout.as_slice(), "osd_driver output")
         .unwrap_or_else(|e| panic!("{what} wrote an unreadable OBJ: {e}"));
     assert_eq!(
         limits.len(),
-        mesh.n_vertices(),
+        all.n_vertices(),
         "{what}: one limit line per vertex"
+    );
+    let hole_faces: std::collections::HashSet<usize> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("# hole "))
+        .map(|f| f.trim().parse().expect("a face index"))
+        .collect();
+    assert!(!holes || !hole_faces.is_empty(), "{what}: no hole listed");
+    let mesh = PolygonMesh::from_faces(
+        all.positions.clone(),
+        (0..all.n_faces())
+            .filter(|f| !holes || !hole_faces.contains(f))
+            .map(|f| all.face(f).to_vec()),
     );
     let mut used = vec![false; mesh.n_vertices()];
     for &v in mesh.face_indices() {
@@ -99,10 +114,14 @@ fn ours(
         Osd::Catmark => Rule::CatmullClark,
     };
     let sharpness = Sharpness::from_tags_of(&base.polygons, &base.mesh, tags)?;
-    let opts = SubdivideOptions::default()
+    let holes = HoleSet::new(base.mesh.n_faces(), tags.holes().iter().copied())?;
+    let mut opts = SubdivideOptions::default()
         .with_sharpness(&sharpness)
         .with_subdivision(options)
         .with_limit(true);
+    if uses_holes(tags, options) {
+        opts = opts.with_holes(&holes);
+    }
     let r = Refinement::new(&base.mesh, rule, level, &opts)?;
     let points: Vec<[f64; 3]> = base.mesh.positions().iter().map(|p| p.to_array()).collect();
     let n = r.n_vertices(level);
@@ -142,6 +161,13 @@ fn ours(
         }
     }
     Ok((mesh, limits))
+}
+
+/// Whether a comparison leaves the tags' holes out on both sides: under every boundary mode
+/// but `none`, where OpenSubdiv also tags every face at a boundary vertex as a hole (the
+/// other comparisons keep the whole level: holes move no vertex).
+fn uses_holes(tags: &Tags, options: SubdivisionOptions) -> bool {
+    !tags.holes().is_empty() && options.boundary != BoundaryInterpolation::None
 }
 
 /// The angle between two vectors.
@@ -193,7 +219,8 @@ fn compare_limit(
         "--triangle-rule",
         triangles,
     ];
-    let (theirs_mesh, theirs_limit) = theirs(&flags, scheme, level, &base.path, boundary);
+    let holes = uses_holes(tags, options);
+    let (theirs_mesh, theirs_limit) = theirs(&flags, scheme, level, &base.path, boundary, holes);
     let diagonal = bounding_box_diagonal(&base.polygons.positions);
     let to_ours = osd_support::correspondence(&theirs_mesh, &ours_mesh, 1e-12 * diagonal)
         .map_err(|e| format!("{at}: {e}"))?;

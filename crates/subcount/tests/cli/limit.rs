@@ -216,7 +216,11 @@ fn normals_alone_stay_area_weighted_and_limit_normals_need_no_limit() {
 #[test]
 fn uvs_and_colors_are_written_at_the_limit_too() {
     let (_d, grid) = file("grid.obj", GRID);
-    for (scheme, levels) in [("catmull-clark", 1), ("catmull-clark", 2)] {
+    for (scheme, levels) in [
+        ("catmull-clark", 0),
+        ("catmull-clark", 1),
+        ("catmull-clark", 2),
+    ] {
         let text = subdivided(&grid, scheme, levels, &["--limit"]);
         let written = read(&text);
         let lib = library(&grid, Rule::CatmullClark, levels);
@@ -233,16 +237,55 @@ fn uvs_and_colors_are_written_at_the_limit_too() {
             }
         }
     }
-    // With a hole: the written vertices' limit, the same as without it.
+    // With a hole: the written vertices' limit is the whole grid's at the same vertex (matched
+    // by the last level's points, which a hole does not move either).
     let (_d2, holed) = file("holed.obj", &format!("{GRID}t hole 1/0/0 3\n"));
+    let points = |path: &str| read(&subdivided(path, "catmull-clark", 2, &[])).positions;
+    let (whole_points, part_points) = (points(&grid), points(&holed));
     let whole = read(&subdivided(&grid, "catmull-clark", 2, &["--limit"]));
     let part = read(&subdivided(&holed, "catmull-clark", 2, &["--limit"]));
     assert!(part.n_vertices() < whole.n_vertices());
-    for p in &part.positions {
-        assert!(
-            whole.positions.contains(p),
-            "{p} is a limit position of the whole grid"
-        );
+    assert_eq!(part.n_vertices(), part_points.len());
+    for (v, p) in part_points.iter().enumerate() {
+        let w = whole_points
+            .iter()
+            .position(|q| q == p)
+            .expect("a written vertex is a vertex of the whole grid");
+        assert_eq!(part.positions[v], whole.positions[w], "vertex {v}");
+    }
+}
+
+#[test]
+fn the_limit_is_the_same_for_every_thread_count() {
+    // Levels of more than 16,384 vertices: the rows are evaluated in parallel chunks.
+    for (base, scheme, levels) in [("cube", "catmull-clark", "6"), ("icosahedron", "loop", "6")] {
+        let run = |threads: &str| {
+            let dir = tempfile::tempdir().expect("a temporary folder");
+            let out = dir.path().join("out.obj");
+            let out = out.to_str().expect("UTF-8 path").to_owned();
+            let args = [
+                "subdivide",
+                "--base",
+                base,
+                "--scheme",
+                scheme,
+                "--levels",
+                levels,
+                "--limit",
+                "--normals",
+                "limit",
+                "--threads",
+                threads,
+                "-o",
+                &out,
+            ];
+            let run = subcount(&args);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            std::fs::read(&out).expect("written")
+        };
+        let one = run("1");
+        assert!(read(std::str::from_utf8(&one).expect("text")).n_vertices() > 16_384);
+        assert!(one == run("2"), "{scheme}: --threads 1 and 2 differ");
     }
 }
 
@@ -288,7 +331,7 @@ fn the_limit_is_refused_where_there_are_no_limit_masks() {
         "0",
         "--limit",
     ];
-    fails(&args, 2, "need quads");
+    fails(&args, 3, "tri.obj: line 9: face 0 has 3 sides");
     // Loop's other name and scheme files that run Loop or Catmull-Clark have it, giving its
     // limit; one that runs √3 has not.
     let expected = subdivided(&tri, "loop", 1, &["--limit"]);

@@ -331,7 +331,7 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
         &mut self,
         base: &[[T; N]],
         position: &mut [[T; N]],
-        tangents: Option<super::limit::TangentsMut<'_, T, N>>,
+        tangents: Option<super::limit::TangentBuffersMut<'_, T, N>>,
     ) -> Result<()> {
         let r = self.refinement;
         let table = r.limit_table()?;

@@ -142,13 +142,20 @@ impl Refinement {
                 (_, Next::Mesh(m)) => Built::Mesh(m),
             };
             let nt = next.topo();
-            if let Some(walk) = self.limit_walk.as_mut() {
-                walk.push(&t, &nt, s == levels)?;
-            }
             if let Some(creases) = self.creases.as_mut() {
-                // The child's sharpness, when a level follows.
-                if s < levels {
+                // The child's sharpness, when a level follows (or the limit reads it).
+                if s < levels || self.limit_walk.is_some() {
                     creases.push_child(s as usize - 1, &t, &nt);
+                }
+            }
+            if let Some(walk) = self.limit_walk.as_mut() {
+                walk.push(&t, &nt)?;
+                if s == levels {
+                    let sharp = self.creases.as_ref().and_then(|c| c.level(s as usize));
+                    walk.finish(&nt, sharp)?;
+                    if let Some(creases) = self.creases.as_mut() {
+                        creases.release(s as usize);
+                    }
                 }
             }
             let size = [nt.nv(), nt.ne(), nt.nf()];

@@ -40,10 +40,10 @@ use crate::subdivide::sdc::crease::{vertex_rule_of, VertexRule};
 use crate::subdivide::sdc::limit::LimitMasks;
 use crate::subdivide::sdc::masks::Scheme;
 use crate::subdivide::topo::Topo;
-use crate::tags::{SubdivisionOptions, INFINITELY_SHARP};
+use crate::tags::INFINITELY_SHARP;
 use crate::{Error, Result};
 
-use super::creases::{boundary_first, ccw_ring, Creases, LevelBuilder, LevelSharpness, Linear};
+use super::creases::{boundary_first, ccw_ring, Creases, LevelSharpness, Linear};
 use super::Scalar;
 use crate::mesh::INVALID;
 
@@ -101,7 +101,7 @@ impl Order {
 
     /// The order of `child`, refined from `t` (this order) by `scheme`: child vertices
     /// numbered as the builders number them (vertex `v`, edge `nv + e`, face `nv + ne + f`).
-    fn child(&self, t: &Topo<'_>, child: &Topo<'_>, scheme: Scheme) -> Result<Order> {
+    fn child(&self, t: &Topo<'_>, child: &Topo<'_>, scheme: Scheme, level: u32) -> Result<Order> {
         let (nv, ne) = (t.nv() as u32, t.ne() as u32);
         let mid = |h: u32| nv + (h >> 1);
         let centre = |f: u32| nv + ne + f;
@@ -114,9 +114,9 @@ impl Order {
             });
             if found == INVALID {
                 return Err(Error::InvalidOutput {
-                    scheme: "limit".into(),
-                    level: 0,
-                    what: format!("no child edge from vertex {from} to vertex {to}"),
+                    scheme: scheme.name().into(),
+                    level,
+                    what: format!("the limit's walk: no edge from vertex {from} to vertex {to}"),
                 });
             }
             Ok(found)
@@ -214,11 +214,13 @@ pub(crate) struct LimitTable {
     indices: Vec<u32>,
     masks: Vec<u32>,
     weights: Vec<[f64; 3]>,
+    /// The bits of the row being pushed (a buffer reused while the table is built).
+    key: Vec<u64>,
 }
 
 /// The caller's buffers of the two limit tangents (first, second), one entry per vertex, as
 /// [`Refinement::evaluate_limit`](super::Refinement::evaluate_limit) writes them.
-pub type TangentsMut<'a, T, const N: usize> = (&'a mut [[T; N]], &'a mut [[T; N]]);
+pub type TangentBuffersMut<'a, T, const N: usize> = (&'a mut [[T; N]], &'a mut [[T; N]]);
 
 /// Rows per task of a parallel evaluation.
 const ROWS_PER_TASK: usize = 1 << 12;
@@ -250,13 +252,13 @@ impl LimitTable {
         level: &[[T; N]],
         rows: Option<&[u32]>,
         position: &mut [[T; N]],
-        tangents: Option<TangentsMut<'_, T, N>>,
+        tangents: Option<TangentBuffersMut<'_, T, N>>,
         parallel: bool,
     ) {
         use rayon::prelude::*;
         let row_of = |k: usize| rows.map_or(k, |r| r[k] as usize);
         // Rows `from..` into the chunks `p` (and `t`).
-        let fill = |from: usize, p: &mut [[T; N]], t: Option<TangentsMut<'_, T, N>>| match t {
+        let fill = |from: usize, p: &mut [[T; N]], t: Option<TangentBuffersMut<'_, T, N>>| match t {
             None => {
                 for (k, out) in p.iter_mut().enumerate() {
                     let (indices, weights) = self.row(row_of(from + k));
@@ -316,6 +318,7 @@ impl LimitTable {
             indices: Vec::new(),
             masks: Vec::with_capacity(nv),
             weights: Vec::new(),
+            key: Vec::new(),
         };
         table.offsets.push(0);
         // Each distinct mask once, found by its weights' bits.
@@ -388,6 +391,7 @@ impl LimitTable {
             row.push([p.vertex, t1.vertex, t2.vertex]);
             table.push_row(&row, &mut known)?;
         }
+        table.key = Vec::new();
         Ok(table)
     }
 
@@ -402,17 +406,21 @@ impl LimitTable {
             what: "limit entries",
             count: count as u128,
         };
-        let key: Vec<u64> = row.iter().flatten().map(|w| w.to_bits()).collect();
-        let start = match known.get(&key) {
-            Some(&start) => start,
+        let mut key = std::mem::take(&mut self.key);
+        key.clear();
+        key.extend(row.iter().flatten().map(|w| w.to_bits()));
+        let found = known.get(key.as_slice()).copied();
+        let start = match found {
+            Some(start) => start,
             None => {
                 let start =
                     u32::try_from(self.weights.len()).map_err(|_| overflow(self.weights.len()))?;
                 self.weights.extend_from_slice(row);
-                known.insert(key, start);
+                known.insert(key.clone(), start);
                 start
             }
         };
+        self.key = key;
         self.masks.push(start);
         let end = u32::try_from(self.indices.len()).map_err(|_| overflow(self.indices.len()))?;
         self.offsets.push(end);
@@ -421,22 +429,24 @@ impl LimitTable {
 }
 
 /// Follows a refinement level by level (`Refinement::refine_levels` calls
-/// [`LimitWalk::push`] with each level and its parent) and builds the [`LimitTable`] of the
-/// last one.
+/// [`LimitWalk::push`] with each level and its parent, then [`LimitWalk::finish`] with the
+/// last level and its sharpness, which the refinement's `Creases` computed) and builds the
+/// [`LimitTable`] of the last one.
 #[derive(Debug)]
 pub(crate) struct LimitWalk {
     scheme: Scheme,
-    /// The crease rules' options and linear interpolation, and the current level's sharpness.
-    creases: Option<(SubdivisionOptions, Linear, LevelSharpness)>,
+    /// A face-varying channel's linear interpolation.
+    linear: Linear,
     order: Order,
+    /// The level the order is of (for messages).
+    level: u32,
     table: Option<LimitTable>,
 }
 
 impl LimitWalk {
-    /// A walk from the base level `t` under `scheme` and the crease rules `creases` (their
-    /// base sharpness), the table built at once when `levels` is 0; `seams` marks the edges
-    /// of a face-varying channel along its seams (their values take `LimitFaceVarying`'s
-    /// crease mask).
+    /// A walk from the base level `t` under `scheme` and the crease rules `creases`, the
+    /// table built at once when `levels` is 0; `seams` marks the edges of a face-varying
+    /// channel along its seams (their values take `LimitFaceVarying`'s crease mask).
     pub(crate) fn new(
         t: &Topo<'_>,
         scheme: Scheme,
@@ -448,36 +458,29 @@ impl LimitWalk {
         order.seams = seams;
         let mut walk = LimitWalk {
             scheme,
-            creases: creases.and_then(Creases::walk_start),
+            linear: creases.map_or(Linear::Nothing, Creases::linear),
             order,
+            level: 0,
             table: None,
         };
         if levels == 0 {
-            walk.table = Some(walk.table_of(t)?);
+            walk.finish(t, creases.and_then(|c| c.level(0)))?;
         }
         Ok(walk)
     }
 
-    fn table_of(&self, t: &Topo<'_>) -> Result<LimitTable> {
-        let sharp = self.creases.as_ref().map(|(_, _, s)| s);
-        let linear = self.creases.as_ref().map_or(Linear::Nothing, |c| c.1);
-        LimitTable::build(t, &self.order, sharp, linear, self.scheme)
+    /// Level `child` refined from `parent` (the walk's current level).
+    pub(crate) fn push(&mut self, parent: &Topo<'_>, child: &Topo<'_>) -> Result<()> {
+        self.level += 1;
+        self.order = self.order.child(parent, child, self.scheme, self.level)?;
+        Ok(())
     }
 
-    /// Level `child` refined from `parent` (the walk's current level); `last` builds the
-    /// table.
-    pub(crate) fn push(&mut self, parent: &Topo<'_>, child: &Topo<'_>, last: bool) -> Result<()> {
-        self.order = self.order.child(parent, child, self.scheme)?;
-        if let Some((options, linear, sharp)) = &self.creases {
-            let next = LevelBuilder::new(*parent, sharp, self.scheme, options, *linear)
-                .child_sharpness(child);
-            if let Some(c) = self.creases.as_mut() {
-                c.2 = next;
-            }
-        }
-        if last {
-            self.table = Some(self.table_of(child)?);
-        }
+    /// Builds the table of the walk's current level `t`, of sharpness `sharp` (`None`: no
+    /// crease rules, boundary edges infinitely sharp).
+    pub(crate) fn finish(&mut self, t: &Topo<'_>, sharp: Option<&LevelSharpness>) -> Result<()> {
+        let table = LimitTable::build(t, &self.order, sharp, self.linear, self.scheme);
+        self.table = Some(table?);
         Ok(())
     }
 
@@ -522,8 +525,8 @@ impl super::Refinement {
     /// let opts = SubdivideOptions::default().with_limit(true);
     /// let r = Refinement::new(&cube, Rule::CatmullClark, 2, &opts)?;
     /// let n = r.n_vertices(2);
-    /// let (mut limit, mut du, mut dv) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
-    /// r.evaluate_limit(&base, &mut limit, Some((&mut du, &mut dv)))?;
+    /// let (mut limit, mut t1, mut t2) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+    /// r.evaluate_limit(&base, &mut limit, Some((&mut t1, &mut t2)))?;
     /// // Vertex 0 (a corner of the cube) at level 2 and its limit: where level 8 has it by now.
     /// let deep = Refinement::new(&cube, Rule::CatmullClark, 8, &SubdivideOptions::default())?;
     /// let mut far = vec![[0.0; 3]; deep.n_vertices(8)];
@@ -541,7 +544,7 @@ impl super::Refinement {
         &self,
         base: &[[T; N]],
         position: &mut [[T; N]],
-        tangents: Option<TangentsMut<'_, T, N>>,
+        tangents: Option<TangentBuffersMut<'_, T, N>>,
     ) -> Result<()> {
         self.evaluator().evaluate_limit(base, position, tangents)
     }

@@ -110,7 +110,7 @@ use std::sync::Arc;
 use schemes::MeshCounts;
 
 pub use self::evaluate::{Evaluator, Scratch};
-pub use self::limit::{LimitStencils, TangentsMut};
+pub use self::limit::{LimitStencils, TangentBuffersMut};
 pub(crate) use self::oneshot::{one_shot, OneShot};
 pub use self::stencil::{StencilSizes, StencilTable};
 pub use super::data::Scalar;

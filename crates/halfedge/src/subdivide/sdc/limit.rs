@@ -170,12 +170,18 @@ impl LimitMasks {
         }
     }
 
-    /// The smooth (and dart) masks at a vertex of `valence` faces.
+    /// The smooth (and dart) masks at a vertex of `valence` faces (OpenSubdiv's constants at
+    /// the regular valences, its formulas elsewhere).
     fn smooth(&mut self, scheme: Scheme, valence: usize) {
+        self.smooth_by(scheme, valence, true);
+    }
+
+    /// [`LimitMasks::smooth`], by the general formulas at every valence unless `regular`.
+    fn smooth_by(&mut self, scheme: Scheme, valence: usize, regular: bool) {
         let n = valence as f64;
         match scheme {
             Scheme::Loop => {
-                let (v, e) = if valence == 6 {
+                let (v, e) = if regular && valence == 6 {
                     (0.5, 1.0 / 12.0)
                 } else {
                     let inverse = 1.0 / n;
@@ -187,7 +193,7 @@ impl LimitMasks {
                 };
                 self.position.vertex = v;
                 self.position.edges.fill(e);
-                if valence == 6 {
+                if regular && valence == 6 {
                     let half = 0.5 * ROOT3;
                     self.tangent1
                         .edges
@@ -212,7 +218,7 @@ impl LimitMasks {
                 for mask in [&mut self.position, &mut self.tangent1, &mut self.tangent2] {
                     mask.faces.resize(valence, 0.0);
                 }
-                let (v, e, f) = if valence == 4 {
+                let (v, e, f) = if regular && valence == 4 {
                     (4.0 / 9.0, 1.0 / 9.0, 1.0 / 36.0)
                 } else {
                     let f = 1.0 / (n * (n + 5.0));
@@ -223,7 +229,7 @@ impl LimitMasks {
                 self.position.edges.fill(e);
                 self.position.faces.fill(f);
                 let (t1, t2) = (&mut self.tangent1, &mut self.tangent2);
-                if valence == 4 {
+                if regular && valence == 4 {
                     t1.edges.copy_from_slice(&[4.0, 0.0, -4.0, 0.0]);
                     t1.faces.copy_from_slice(&[1.0, -1.0, -1.0, 1.0]);
                     t2.edges.copy_from_slice(&[0.0, 4.0, 0.0, -4.0]);
@@ -292,6 +298,37 @@ mod tests {
                     assert_eq!(m.tangent1.edges.len(), m.tangent2.edges.len());
                     assert_eq!(m.tangent1.faces.len(), m.tangent2.faces.len());
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn the_regular_constants_are_the_general_formulas_there() {
+        for (scheme, valence) in [(Scheme::Loop, 6), (Scheme::CatmullClark, 4)] {
+            let (mut special, mut general) = (LimitMasks::default(), LimitMasks::default());
+            for (m, regular) in [(&mut special, true), (&mut general, false)] {
+                m.set(scheme, VertexRule::Smooth, &vec![0.0; valence], valence);
+                m.smooth_by(scheme, valence, regular);
+            }
+            let pairs = [
+                (&special.position, &general.position),
+                (&special.tangent1, &general.tangent1),
+                (&special.tangent2, &general.tangent2),
+            ];
+            for (a, b) in pairs {
+                assert!((a.vertex - b.vertex).abs() < 1e-15, "{scheme:?}");
+                for (x, y) in a
+                    .edges
+                    .iter()
+                    .zip(&b.edges)
+                    .chain(a.faces.iter().zip(&b.faces))
+                {
+                    assert!((x - y).abs() < 1e-14, "{scheme:?}: {x} vs {y}");
+                }
+                assert_eq!(
+                    (a.edges.len(), a.faces.len()),
+                    (b.edges.len(), b.faces.len())
+                );
             }
         }
     }

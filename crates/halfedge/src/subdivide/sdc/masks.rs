@@ -51,6 +51,14 @@ pub(crate) enum Scheme {
 }
 
 impl Scheme {
+    /// The rule's name.
+    pub(crate) fn name(self) -> &'static str {
+        match self {
+            Scheme::Loop => "loop",
+            Scheme::CatmullClark => "catmull-clark",
+        }
+    }
+
     /// The crease-aware scheme of `rule`: Loop and Catmull-Clark have one, other rules none.
     pub(crate) fn of(rule: crate::Rule) -> Option<Scheme> {
         match rule {

@@ -6,7 +6,8 @@
 
 mod level;
 
-pub(crate) use self::level::{boundary_first, ccw_ring, LevelBuilder, LevelSharpness};
+use self::level::LevelBuilder;
+pub(crate) use self::level::{boundary_first, ccw_ring, LevelSharpness};
 use crate::subdivide::sdc::masks::Scheme;
 use crate::subdivide::sdc::sharpness::Sharpness;
 use crate::subdivide::topo::Topo;
@@ -257,11 +258,15 @@ impl Creases {
         self.levels[level + 1] = Some(next);
     }
 
-    /// What a limit walk starts from (`refine/limit.rs`): the options, the linear
-    /// interpolation and the base level's sharpness, while it is kept.
-    pub(crate) fn walk_start(&self) -> Option<(SubdivisionOptions, Linear, LevelSharpness)> {
-        let base = self.levels.first()?.as_ref()?;
-        Some((self.options, self.linear, base.clone()))
+    /// The sharpness of level `level`, while it is kept (the limit's walk reads the last
+    /// level's: `refine/limit.rs`).
+    pub(crate) fn level(&self, level: usize) -> Option<&LevelSharpness> {
+        self.levels.get(level)?.as_ref()
+    }
+
+    /// What the rules interpolate linearly.
+    pub(crate) fn linear(&self) -> Linear {
+        self.linear
     }
 
     /// Sets the bytes a refinement may keep for each level's tables (entry `s`: level `s`,

@@ -384,16 +384,25 @@ impl LayoutChannel {
             polygon.push_face(&face);
         }
         let layout_mesh = HalfEdgeMesh::try_from_polygon_mesh(&polygon)?;
-        // Its edges' sharpness: the surface's, through corresponding half-edges.
+        // Its edges' sharpness: the surface's, through corresponding half-edges; for the
+        // limit, its edges along seams (a boundary of the layout inside the surface), whose
+        // values OpenSubdiv's LimitFaceVarying treats as mismatched.
         let lt = Topo::new(&layout_mesh);
         let mut edge_sharpness = vec![0.0f32; lt.ne()];
+        let mut seams = opts.limit.then(|| vec![false; lt.ne()]);
+        let mut surface = Vec::new();
         for f in 0..t.nf() as u32 {
-            let mut surface = Vec::new();
+            surface.clear();
             t.for_face(f, |h| surface.push(h));
             let mut k = 0;
             lt.for_face(f, |h| {
                 if let Some(&s) = surface.get(k) {
                     edge_sharpness[(h >> 1) as usize] = surface_edges(s >> 1);
+                    if let Some(seams) = seams.as_mut() {
+                        if lt.is_boundary(h ^ 1) && !t.is_boundary(s ^ 1) {
+                            seams[(h >> 1) as usize] = true;
+                        }
+                    }
                 }
                 k += 1;
             });
@@ -409,25 +418,6 @@ impl LayoutChannel {
             limit: opts.limit,
             ..SubdivideOptions::default()
         };
-        // For the limit: the channel's edges along seams (a boundary of the layout inside the
-        // surface), whose values OpenSubdiv's LimitFaceVarying treats as mismatched.
-        let seams = opts.limit.then(|| {
-            let mut seams = vec![false; lt.ne()];
-            for f in 0..t.nf() as u32 {
-                let mut surface = Vec::new();
-                t.for_face(f, |h| surface.push(h));
-                let mut k = 0;
-                lt.for_face(f, |h| {
-                    if let Some(&s) = surface.get(k) {
-                        if lt.is_boundary(h ^ 1) && !t.is_boundary(s ^ 1) {
-                            seams[(h >> 1) as usize] = true;
-                        }
-                    }
-                    k += 1;
-                });
-            }
-            seams
-        });
         let refinement = Refinement::with_creases(
             &layout_mesh,
             channel,

@@ -339,6 +339,12 @@ pub(crate) fn refined_uvs(
     opts: &SubdivideOptions<'_>,
 ) -> Result<crate::uv::Uvs> {
     let base: Vec<[f64; 2]> = layout.values().iter().map(|v| v.to_array()).collect();
+    // The one-shot subdivision writes refined values: no limit (only `Refinement::new` reads
+    // `SubdivideOptions::limit`).
+    let opts = &SubdivideOptions {
+        limit: false,
+        ..*opts
+    };
     let (values, indices) = match channel_kind(rule)? {
         ChannelKind::Layout(_) => {
             let channel = LayoutChannel::new(mesh, layout, rule, levels, opts)?;
@@ -444,7 +450,13 @@ impl UvChannel {
     ) -> Result<()> {
         match self {
             UvChannel::Layout(c) => c.values(base, out, true),
-            UvChannel::Corners(_) => Err(Error::NoLimit),
+            // Unreachable: the rules of the corner channel have no limit masks, and a
+            // refinement refuses the limit before it builds its channel.
+            UvChannel::Corners(_) => Err(Error::InvalidOutput {
+                scheme: "uv limit".into(),
+                level: 0,
+                what: "a corner channel has no limit masks".into(),
+            }),
         }
     }
 
