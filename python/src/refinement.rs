@@ -465,10 +465,9 @@ impl Refinement {
             _ => None,
         };
         {
-            let mut tangent_guards = match &tangents {
-                Some([a, b]) => Some((a.readwrite(), b.readwrite())),
-                None => None,
-            };
+            let mut tangent_guards = tangents
+                .as_ref()
+                .map(|[a, b]| (a.readwrite(), b.readwrite()));
             let tangent_slices = match tangent_guards.as_mut() {
                 Some((a, b)) => Some((
                     a.as_slice_mut()
