@@ -27,7 +27,7 @@ use crate::options::RunOptions;
 ///
 /// The keywords are subdivide()'s (no precision: evaluate() computes in the dtype of the
 /// points it is given); limit=True also keeps the limit surface's masks (loop, catmull-clark:
-/// evaluate_limit(), evaluate_limit_uvs()). Schemes that run on the raw face list (loop-general,
+/// evaluate_limit(), evaluate_uvs(limit=True)). Schemes that run on the raw face list (loop-general,
 /// catmull-clark-general, tri-split-N or a non-manifold mesh) keep no refinement:
 /// subcount.UsageError.
 ///
@@ -199,30 +199,50 @@ impl Refinement {
         points: &Bound<'py, PyAny>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let n_out = self.refined().n_vertices(self.refined().levels());
-        let work = || {
-            let f32 = is_float32(py, points, "points")?;
-            let rows = (self.n_mesh_vertices, "vertex of the mesh");
-            match f32 {
-                true => self.evaluate_in::<f32>(py, points, out, rows, n_out, Stream::Positions),
-                false => self.evaluate_in::<f64>(py, points, out, rows, n_out, Stream::Positions),
-            }
-        };
-        guarded(work).map_err(|f| f.into_pyerr(py))
+        self.points_of(py, (points, out), Stream::Positions)
     }
 
     /// Evaluates the last level's UV values from `uvs` ((K, 2), one per value of the UV
     /// layout, float64 or float32; default: base_uvs) into `out` as evaluate() does
-    /// ((n_uvs(), 2)); uv_indices names the value of each corner. subcount.UsageError without
-    /// UVs.
-    #[pyo3(signature = (uvs=None, out=None))]
+    /// ((n_uvs(), 2)); uv_indices names the value of each corner; limit=True gives their limit
+    /// instead (OpenSubdiv's LimitFaceVarying; the Refinement made with limit=True).
+    /// subcount.UsageError without UVs (or without limit=True for their limit).
+    #[pyo3(signature = (uvs=None, out=None, limit=false))]
     fn evaluate_uvs<'py>(
         &self,
         py: Python<'py>,
         uvs: Option<&Bound<'py, PyAny>>,
         out: Option<&Bound<'py, PyAny>>,
+        limit: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.uvs_of(py, uvs, out, Stream::Uvs)
+        if limit {
+            guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+        }
+        let stream = if limit { Stream::LimitUvs } else { Stream::Uvs };
+        let work = || {
+            let Some(base) = &self.kept.base_uvs else {
+                return Err(Failure::Usage(
+                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
+                ));
+            };
+            let default;
+            let uvs = match uvs {
+                Some(uvs) => uvs,
+                None => {
+                    default = self
+                        .base_uvs(py)?
+                        .unwrap_or_else(|| py.None().into_bound(py));
+                    &default
+                }
+            };
+            let n_out = self.refined().n_uvs(self.refined().levels());
+            let rows = (base.len(), "UV value of the layout");
+            match is_float32(py, uvs, "uvs")? {
+                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, stream),
+                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
+            }
+        };
+        guarded(work).map_err(|f| f.into_pyerr(py))
     }
 
     /// The limit surface at the last level's vertices (OpenSubdiv's limit masks; the
@@ -246,31 +266,8 @@ impl Refinement {
         out: Option<&Bound<'py, PyAny>>,
         tangents: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let n_out = self.refined().n_vertices(self.refined().levels());
-        let work = || {
-            self.require_limit()?;
-            let rows = (self.n_mesh_vertices, "vertex of the mesh");
-            let stream = Stream::Limit(tangents);
-            match is_float32(py, points, "points")? {
-                true => self.evaluate_in::<f32>(py, points, out, rows, n_out, stream),
-                false => self.evaluate_in::<f64>(py, points, out, rows, n_out, stream),
-            }
-        };
-        guarded(work).map_err(|f| f.into_pyerr(py))
-    }
-
-    /// The limit of the UV values (OpenSubdiv's LimitFaceVarying), from `uvs` as
-    /// evaluate_uvs() takes them (default: base_uvs), into `out` as it writes them.
-    /// subcount.UsageError without limit=True or without UVs.
-    #[pyo3(signature = (uvs=None, out=None))]
-    fn evaluate_limit_uvs<'py>(
-        &self,
-        py: Python<'py>,
-        uvs: Option<&Bound<'py, PyAny>>,
-        out: Option<&Bound<'py, PyAny>>,
-    ) -> PyResult<Bound<'py, PyAny>> {
         guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
-        self.uvs_of(py, uvs, out, Stream::LimitUvs)
+        self.points_of(py, (points, out), Stream::Limit(tangents))
     }
 
     /// The last level's vertices as weighted sums of the mesh's vertices: a
@@ -345,35 +342,19 @@ impl Refinement {
         }
     }
 
-    /// evaluate_uvs() and evaluate_limit_uvs(): `stream` says which.
-    fn uvs_of<'py>(
+    /// evaluate() and evaluate_limit(): `stream` says which.
+    fn points_of<'py>(
         &self,
         py: Python<'py>,
-        uvs: Option<&Bound<'py, PyAny>>,
-        out: Option<&Bound<'py, PyAny>>,
+        (points, out): (&Bound<'py, PyAny>, Option<&Bound<'py, PyAny>>),
         stream: Stream,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let n_out = self.refined().n_vertices(self.refined().levels());
         let work = || {
-            let Some(base) = &self.kept.base_uvs else {
-                return Err(Failure::Usage(
-                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
-                ));
-            };
-            let default;
-            let uvs = match uvs {
-                Some(uvs) => uvs,
-                None => {
-                    default = self
-                        .base_uvs(py)?
-                        .unwrap_or_else(|| py.None().into_bound(py));
-                    &default
-                }
-            };
-            let n_out = self.refined().n_uvs(self.refined().levels());
-            let rows = (base.len(), "UV value of the layout");
-            match is_float32(py, uvs, "uvs")? {
-                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, stream),
-                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
+            let rows = (self.n_mesh_vertices, "vertex of the mesh");
+            match is_float32(py, points, "points")? {
+                true => self.evaluate_in::<f32>(py, points, out, rows, n_out, stream),
+                false => self.evaluate_in::<f64>(py, points, out, rows, n_out, stream),
             }
         };
         guarded(work).map_err(|f| f.into_pyerr(py))

@@ -1,6 +1,6 @@
 """The limit surface from Python: subdivide(limit=True) is `subdivide --limit -o` to the bit,
 Refinement(limit=True).evaluate_limit() is the same surface with its tangents (their cross
-product the normals `--normals limit` writes), evaluate_limit_uvs() the limit UVs written,
+product the normals `--normals limit` writes), evaluate_uvs(limit=True) the limit UVs written,
 and schemes without limit masks are refused as the CLI refuses them."""
 
 import warnings
@@ -35,7 +35,7 @@ def test_the_limit_of_a_tagged_mesh_with_uvs(tmp_path):
         r = subcount.Refinement(path, scheme="catmull-clark", levels=2, limit=True)
     assert_same_mesh(ours, expected)
     assert same_bits(ours.uvs, expected.uvs)
-    assert same_bits(r.evaluate_limit_uvs(), expected.uvs)
+    assert same_bits(r.evaluate_uvs(limit=True), expected.uvs)
     m = subcount.read_mesh(path)
     out = np.empty((r.n_vertices(), 3))
     assert r.evaluate_limit(m.positions, out=out) is not None

@@ -183,13 +183,20 @@ class Refinement:
     def evaluate(
         self, points: npt.ArrayLike, out: npt.NDArray[np.float64] | None = None
     ) -> npt.NDArray[np.float64]: ...
+    # evaluate_uvs(limit=True): their limit (LimitFaceVarying).
     @overload
     def evaluate_uvs(
-        self, uvs: npt.NDArray[np.float32], out: npt.NDArray[np.float32] | None = None
+        self,
+        uvs: npt.NDArray[np.float32],
+        out: npt.NDArray[np.float32] | None = None,
+        limit: bool = False,
     ) -> npt.NDArray[np.float32]: ...
     @overload
     def evaluate_uvs(
-        self, uvs: npt.ArrayLike | None = None, out: npt.NDArray[np.float64] | None = None
+        self,
+        uvs: npt.ArrayLike | None = None,
+        out: npt.NDArray[np.float64] | None = None,
+        limit: bool = False,
     ) -> npt.NDArray[np.float64]: ...
     # evaluate_limit() as evaluate(); with tangents=True, (positions, tangent1, tangent2).
     @overload
@@ -226,14 +233,6 @@ class Refinement:
     ) -> tuple[
         npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]
     ]: ...
-    @overload
-    def evaluate_limit_uvs(
-        self, uvs: npt.NDArray[np.float32], out: npt.NDArray[np.float32] | None = None
-    ) -> npt.NDArray[np.float32]: ...
-    @overload
-    def evaluate_limit_uvs(
-        self, uvs: npt.ArrayLike | None = None, out: npt.NDArray[np.float64] | None = None
-    ) -> npt.NDArray[np.float64]: ...
     def stencils(self) -> Any:
         """The last level's vertices as weighted sums of the mesh's vertices: a
         ``scipy.sparse.csr_array`` of shape (n_vertices(), N). (Typed ``Any``: SciPy is an

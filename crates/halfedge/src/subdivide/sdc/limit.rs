@@ -97,11 +97,7 @@ impl LimitMasks {
                 t1.edges[a] = 1.5;
                 t1.edges[b] = -1.5;
                 match interior {
-                    0 => {
-                        t2.vertex = -6.0;
-                        t2.edges[a] = 3.0;
-                        t2.edges[b] = 3.0;
-                    }
+                    0 => one_face(t2, ends),
                     1 => {
                         t2.vertex = -3.0;
                         t2.edges[a + 1] = 3.0;
@@ -132,11 +128,7 @@ impl LimitMasks {
                 t1.edges[a] = 0.5;
                 t1.edges[b] = -0.5;
                 match interior {
-                    0 => {
-                        t2.vertex = -6.0;
-                        t2.edges[a] = 3.0;
-                        t2.edges[b] = 3.0;
-                    }
+                    0 => one_face(t2, ends),
                     1 => {
                         t2.vertex = -4.0 / 6.0;
                         t2.edges[a] = -1.0 / 6.0;
@@ -256,6 +248,14 @@ impl LimitMasks {
             }
         }
     }
+}
+
+/// The cross tangent of a crease vertex of one face (both schemes): the average of the two
+/// crease edges' differences, scaled by 3.
+fn one_face(t2: &mut Mask, [a, b]: [usize; 2]) {
+    t2.vertex = -6.0;
+    t2.edges[a] = 3.0;
+    t2.edges[b] = 3.0;
 }
 
 #[cfg(test)]
