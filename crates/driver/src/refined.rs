@@ -339,10 +339,13 @@ fn run_in<T: Scalar>(
     if limit {
         evaluator.evaluate_limit(&base, &mut out, pair(&mut tangents))?;
     } else {
-        evaluator.evaluate(&base, &mut out)?;
         if limit_normals {
+            // The last level's points and the limit's tangents from one refinement.
             let mut position = vec![[T::ZERO; 3]; n];
-            evaluator.evaluate_limit(&base, &mut position, pair(&mut tangents))?;
+            let tangents = pair(&mut tangents);
+            evaluator.evaluate_with_limit(&base, &mut out, &mut position, tangents)?;
+        } else {
+            evaluator.evaluate(&base, &mut out)?;
         }
     }
     let first_evaluation = t.elapsed();

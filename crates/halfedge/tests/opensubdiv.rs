@@ -761,29 +761,47 @@ fn all_modes() -> Vec<SubdivisionOptions> {
 #[test]
 #[ignore = "needs the OpenSubdiv driver"]
 fn crease_rules_match_opensubdiv_on_generated_grids() {
-    let quads = Generated::new("quads", bumpy_grid(4, false), grid_tags());
-    let triangles = Generated::new("triangles", bumpy_grid(4, true), grid_tags());
-    let star = Generated::new("star", bumpy_grid(4, false), star_tags());
-    let star_tri = Generated::new("star-tri", bumpy_grid(4, true), star_tags());
+    let grids = generated_grids("");
+    check_creased(&grid_cases(&grids), &[1, 2, 3]);
+}
+
+/// The generated grids of the crease and limit comparisons, their files named from `prefix`:
+/// quads and triangles with [`grid_tags`], both with [`star_tags`], quads with holes too.
+fn generated_grids(prefix: &str) -> [Generated; 5] {
     let mut with_holes = grid_tags();
     for f in [0, 5, 6, 10, 9] {
         with_holes.add_hole(f);
     }
-    let holes = Generated::new("holes", bumpy_grid(4, false), with_holes);
+    [
+        ("quads", false, grid_tags()),
+        ("triangles", true, grid_tags()),
+        ("star", false, star_tags()),
+        ("star-tri", true, star_tags()),
+        ("holes", false, with_holes),
+    ]
+    .map(|(name, triangles, tags)| {
+        Generated::new(&format!("{prefix}{name}"), bumpy_grid(4, triangles), tags)
+    })
+}
+
+/// Every comparison of [`generated_grids`]: each boundary mode and crease method,
+/// Catmull-Clark on every grid, Loop on the triangle ones.
+fn grid_cases(grids: &[Generated; 5]) -> Vec<(&Base, Osd, &Tags, SubdivisionOptions)> {
+    let [quads, triangles, star, star_tri, holes] = grids;
     let mut cases = Vec::new();
     for options in all_modes() {
         for (g, scheme) in [
-            (&quads, Osd::Catmark),
-            (&triangles, Osd::Catmark),
-            (&triangles, Osd::Loop),
-            (&star, Osd::Catmark),
-            (&star_tri, Osd::Loop),
-            (&holes, Osd::Catmark),
+            (quads, Osd::Catmark),
+            (triangles, Osd::Catmark),
+            (triangles, Osd::Loop),
+            (star, Osd::Catmark),
+            (star_tri, Osd::Loop),
+            (holes, Osd::Catmark),
         ] {
             cases.push((&g.base, scheme, &g.tags, options));
         }
     }
-    check_creased(&cases, &[1, 2, 3]);
+    cases
 }
 
 /// Closed meshes: a cube (Catmull-Clark) and an icosahedron (Loop and Catmull-Clark) with a

@@ -47,21 +47,10 @@ struct Compared {
 }
 
 /// Refines `mesh` (written to `path` for the driver) by `scheme` to `level` under `mode`
-/// (with `sharpness` and `holes` when given) and compares with OpenSubdiv.
+/// (with the file's sharpness and holes when `sharpness`) and compares its UVs with
+/// OpenSubdiv's, or with `limit` their limit (`LimitFaceVarying`, the driver's `--limit`)
+/// against [`Refinement::evaluate_limit_uvs`].
 fn compare(
-    path: &Path,
-    mesh: &PolygonMesh,
-    scheme: Osd,
-    level: u32,
-    mode: FaceVaryingInterpolation,
-    sharpness: bool,
-) -> Compared {
-    compare_values(path, mesh, scheme, level, mode, sharpness, false)
-}
-
-/// [`compare`], or with `limit` the limit of the UVs (`LimitFaceVarying`, the driver's
-/// `--limit`) against [`Refinement::evaluate_limit_uvs`].
-fn compare_values(
     path: &Path,
     mesh: &PolygonMesh,
     scheme: Osd,
@@ -206,7 +195,7 @@ fn shared_meshes_match_opensubdiv_in_every_mode() {
             };
             for &level in levels {
                 let start = std::time::Instant::now();
-                let c = compare(&path, &mesh, scheme, level, mode, false);
+                let c = compare(&path, &mesh, scheme, level, mode, false, false);
                 eprintln!(
                     "{file} L{level} {}: {:.1e} {:?}",
                     mode.name(),
@@ -307,11 +296,12 @@ fn grid_obj(n: u32, triangles: bool, extra: &str) -> String {
     text
 }
 
-#[test]
-#[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER)"]
-fn grids_with_seams_creases_and_holes_match_opensubdiv() {
+/// Compares every grid variant (Catmull-Clark on quads, Loop on triangles; edge,
+/// edge-and-corner, Chaikin), every mode, at `levels`, the UVs or with `limit` their limit, to
+/// 1e-12 of the UV box; returns the worst error. The files go to a folder named from `what`.
+fn compare_grids(what: &str, levels: std::ops::RangeInclusive<u32>, limit: bool) -> f64 {
     driver();
-    let dir = std::env::temp_dir().join(format!("halfedge-opensubdiv-uv-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("halfedge-osd-{what}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary folder");
     let mut worst = 0.0f64;
     for (scheme, triangles) in [(Osd::Catmark, false), (Osd::Loop, true)] {
@@ -325,15 +315,22 @@ fn grids_with_seams_creases_and_holes_match_opensubdiv() {
             let mesh = read_with_uvs(&path);
             assert!(mesh.tags().holes().len() == 2, "the grid has its holes");
             for &mode in FaceVaryingInterpolation::ALL {
-                for level in 1..=2 {
-                    let c = compare(&path, &mesh, scheme, level, mode, true);
+                for level in levels.clone() {
+                    let c = compare(&path, &mesh, scheme, level, mode, true, limit);
                     worst = worst.max(c.worst);
                 }
             }
         }
     }
-    eprintln!("worst corner error on the grids: {worst:.1e} of the UV box");
     std::fs::remove_dir_all(&dir).ok();
+    worst
+}
+
+#[test]
+#[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER)"]
+fn grids_with_seams_creases_and_holes_match_opensubdiv() {
+    let worst = compare_grids("uv", 1..=2, false);
+    eprintln!("worst corner error on the grids: {worst:.1e} of the UV box");
 }
 
 /// The limit of the UVs (`LimitFaceVarying`) on every shared mesh with `vt`, every mode,
@@ -353,7 +350,7 @@ fn the_limit_of_uvs_matches_opensubdiv_on_shared_meshes() {
         let top = if mesh.n_corners() > 5000 { 1 } else { 3 };
         for &mode in FaceVaryingInterpolation::ALL {
             for level in 1..=top {
-                let c = compare_values(&path, &mesh, scheme, level, mode, false, true);
+                let c = compare(&path, &mesh, scheme, level, mode, false, true);
                 eprintln!("{file} L{level} {} limit: {:.1e}", mode.name(), c.worst);
                 compared += 1;
             }
@@ -367,27 +364,6 @@ fn the_limit_of_uvs_matches_opensubdiv_on_shared_meshes() {
 #[test]
 #[ignore = "needs the OpenSubdiv driver (SUBCOUNT_OSD_DRIVER)"]
 fn the_limit_of_uvs_matches_opensubdiv_on_grids() {
-    driver();
-    let dir = std::env::temp_dir().join(format!("halfedge-osd-uv-limit-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("a temporary folder");
-    let mut worst = 0.0f64;
-    for (scheme, triangles) in [(Osd::Catmark, false), (Osd::Loop, true)] {
-        for (boundary, extra) in [
-            ("edge", ""),
-            ("edge-and-corner", "t interpolateboundary 1/0/0 1\n"),
-            ("chaikin", "t creasemethod 0/0/1 chaikin\n"),
-        ] {
-            let path = dir.join(format!("grid_{scheme:?}_{boundary}.obj"));
-            std::fs::write(&path, grid_obj(6, triangles, extra)).expect("written");
-            let mesh = read_with_uvs(&path);
-            for &mode in FaceVaryingInterpolation::ALL {
-                for level in 1..=3 {
-                    let c = compare_values(&path, &mesh, scheme, level, mode, true, true);
-                    worst = worst.max(c.worst);
-                }
-            }
-        }
-    }
+    let worst = compare_grids("uv-limit", 1..=3, true);
     eprintln!("worst limit UV error on the grids: {worst:.1e} of the UV box");
-    std::fs::remove_dir_all(&dir).ok();
 }

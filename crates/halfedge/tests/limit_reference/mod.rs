@@ -324,28 +324,8 @@ fn the_limit_matches_opensubdiv_on_every_shared_mesh() {
 #[test]
 #[ignore = "needs the OpenSubdiv driver"]
 fn the_limit_matches_opensubdiv_on_generated_grids() {
-    let quads = Generated::new("limit-quads", bumpy_grid(4, false), grid_tags());
-    let triangles = Generated::new("limit-triangles", bumpy_grid(4, true), grid_tags());
-    let star = Generated::new("limit-star", bumpy_grid(4, false), star_tags());
-    let star_tri = Generated::new("limit-star-tri", bumpy_grid(4, true), star_tags());
-    let mut with_holes = grid_tags();
-    for f in [0, 5, 6, 10, 9] {
-        with_holes.add_hole(f);
-    }
-    let holes = Generated::new("limit-holes", bumpy_grid(4, false), with_holes);
-    let mut cases = Vec::new();
-    for options in all_modes() {
-        for (g, scheme) in [
-            (&quads, Osd::Catmark),
-            (&triangles, Osd::Catmark),
-            (&triangles, Osd::Loop),
-            (&star, Osd::Catmark),
-            (&star_tri, Osd::Loop),
-            (&holes, Osd::Catmark),
-        ] {
-            cases.push((&g.base, scheme, &g.tags, options));
-        }
-    }
+    let grids = generated_grids("limit-");
+    let cases = grid_cases(&grids);
     let (compared, refused) = check_limits(&cases, &[0, 1, 2, 3]);
     // The triangle grid under Catmull-Clark at level 0, in every mode.
     assert_eq!(refused, all_modes().len());

@@ -333,28 +333,65 @@ impl<T: Scalar, const N: usize> Evaluator<'_, T, N> {
         position: &mut [[T; N]],
         tangents: Option<super::limit::TangentBuffersMut<'_, T, N>>,
     ) -> Result<()> {
+        self.limit_into(base, None, position, tangents)
+    }
+
+    /// [`Refinement::evaluate`] into `points` and [`Refinement::evaluate_limit`] into
+    /// `position` (and the tangents) from one refinement of the levels: the last level's
+    /// points and the surface's limit (its normals) of the same frame.
+    ///
+    /// # Errors
+    ///
+    /// As [`Refinement::evaluate_limit`]; [`Error::BufferSize`] for `points`.
+    pub fn evaluate_with_limit(
+        &mut self,
+        base: &[[T; N]],
+        points: &mut [[T; N]],
+        position: &mut [[T; N]],
+        tangents: Option<super::limit::TangentBuffersMut<'_, T, N>>,
+    ) -> Result<()> {
+        self.limit_into(base, Some(points), position, tangents)
+    }
+
+    /// The limit of `base`, and the last level's written points into `points` when given.
+    fn limit_into(
+        &mut self,
+        base: &[[T; N]],
+        points: Option<&mut [[T; N]]>,
+        position: &mut [[T; N]],
+        tangents: Option<super::limit::TangentBuffersMut<'_, T, N>>,
+    ) -> Result<()> {
         let r = self.refinement;
         let table = r.limit_table()?;
         let levels = r.levels;
         check_len("base", r.base_vertices(), base.len())?;
         let n = r.n_vertices(levels);
         check_len("limit position", n, position.len())?;
+        if let Some(points) = &points {
+            check_len("out", n, points.len())?;
+        }
         if let Some((a, b)) = &tangents {
             check_len("limit tangent", n, a.len())?;
             check_len("limit tangent", n, b.len())?;
         }
         let rows = r.limit_rows();
-        if levels == 0 {
-            let parallel = r.threads != 1;
-            r.run(|| table.apply(base, rows, position, tangents, parallel));
-            return Ok(());
-        }
-        let whole = r.computed_vertices(levels);
-        reserve(&mut self.full, whole)?;
-        let mut full = std::mem::take(&mut self.full);
-        self.levels_into(base, &mut full[..whole])?;
         let parallel = r.threads != 1;
-        r.run(|| table.apply(&full[..whole], rows, position, tangents, parallel));
+        let whole = r.computed_vertices(levels);
+        let mut full = std::mem::take(&mut self.full);
+        let level = if levels == 0 {
+            base
+        } else {
+            reserve(&mut full, whole)?;
+            self.levels_into(base, &mut full[..whole])?;
+            &full[..whole]
+        };
+        if let Some(points) = points {
+            match r.written {
+                Some(_) => r.gather(level, points),
+                None => points.copy_from_slice(level),
+            }
+        }
+        r.run(|| table.apply(level, rows, position, tangents, parallel));
         self.full = full;
         Ok(())
     }

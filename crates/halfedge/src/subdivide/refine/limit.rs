@@ -657,3 +657,43 @@ impl super::Refinement {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::holes::HoleSet;
+    use crate::subdivide::SubdivideOptions;
+    use crate::{shapes, HalfEdgeMesh, Refinement, Rule};
+
+    /// One refinement of the levels gives the last level's points and the limit, each to the
+    /// bit of its own evaluation, with holes too.
+    #[test]
+    fn points_and_limit_together_equal_each_alone() {
+        let cube = HalfEdgeMesh::try_from(&shapes::cube()).expect("a cube");
+        let base: Vec<[f64; 3]> = cube.positions().iter().map(|p| p.to_array()).collect();
+        let holes = HoleSet::new(cube.n_faces(), [2]).expect("a hole");
+        for holed in [false, true] {
+            for levels in 0..=2 {
+                let mut opts = SubdivideOptions::default().with_limit(true);
+                if holed {
+                    opts = opts.with_holes(&holes);
+                }
+                let r = Refinement::new(&cube, Rule::CatmullClark, levels, &opts).expect("built");
+                let n = r.n_vertices(levels);
+                let zero = || vec![[0.0; 3]; n];
+                let (mut points, mut limit, mut t1, mut t2) = (zero(), zero(), zero(), zero());
+                r.evaluator()
+                    .evaluate_with_limit(&base, &mut points, &mut limit, Some((&mut t1, &mut t2)))
+                    .expect("evaluated");
+                let (mut p, mut l, mut u, mut v) = (zero(), zero(), zero(), zero());
+                r.evaluate(&base, &mut p).expect("points");
+                r.evaluate_limit(&base, &mut l, Some((&mut u, &mut v)))
+                    .expect("limit");
+                assert_eq!(
+                    (points, limit, t1, t2),
+                    (p, l, u, v),
+                    "holes {holed}, level {levels}"
+                );
+            }
+        }
+    }
+}
