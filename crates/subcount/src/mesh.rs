@@ -32,9 +32,16 @@ pub(crate) fn stats(args: StatsArgs, out: &mut impl Write) -> Result<u8, Failure
     let poly = &loaded.poly;
     // Present only when the file has tags: an untagged mesh's output is what it always was.
     let tags = poly.has_tags().then(|| tag_summary(loaded.tags(), poly));
-    let counts = halfedge::stats::face_list_counts(poly);
-    let problems = halfedge::stats::face_list_problems(poly);
-    let validation = loaded.validate().err();
+    let report = halfedge::stats::face_list_report(poly);
+    // The half-edge mesh is built only for the message of a mesh the scan shows invalid.
+    let validation = if report.is_valid() {
+        None
+    } else {
+        loaded.validate().err()
+    };
+    let halfedge::stats::FaceListReport {
+        counts, problems, ..
+    } = report;
     // A face that repeats a vertex is refused on every path, so no scheme applies.
     let applicable = if problems.faces_with_repeated_vertex > 0 {
         Vec::new()

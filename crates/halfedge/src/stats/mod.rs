@@ -31,6 +31,8 @@ use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};
 
 use crate::mesh::{FaceId, HalfEdgeMesh};
+
+mod scan;
 use crate::polygon::PolygonMesh;
 
 /// The statistics of a raw face list, counted as it is by [`MeshCounts::from_face_list`]
@@ -55,7 +57,16 @@ use crate::polygon::PolygonMesh;
 /// assert_eq!((c.components, c.boundary_loops, c.euler_characteristic), (1, 1, 1));
 /// ```
 pub fn face_list_counts(mesh: &PolygonMesh) -> MeshCounts {
-    MeshCounts::from_face_list(mesh.faces(), mesh.n_vertices())
+    match scan::scan(
+        mesh.face_offsets(),
+        mesh.face_indices(),
+        mesh.n_vertices(),
+        false,
+        |_| true,
+    ) {
+        Some(scanned) => scanned.counts,
+        None => MeshCounts::from_face_list(mesh.faces(), mesh.n_vertices()),
+    }
 }
 
 /// The statistics of the mesh's UV layout ([`schemes::uv::UvCounts`]: values, layout edges
@@ -219,6 +230,89 @@ impl MeshProblems {
 /// assert!(!problems.is_manifold());
 /// ```
 pub fn face_list_problems(mesh: &PolygonMesh) -> MeshProblems {
+    face_list_report(mesh).problems
+}
+
+/// [`face_list_counts`] and [`face_list_problems`] in one scan of the faces, and whether
+/// [`HalfEdgeMesh::try_from_polygon_mesh`] accepts the mesh: what `subcount stats` reports.
+///
+/// # Example
+///
+/// ```
+/// use halfedge::{shapes, stats};
+///
+/// let report = stats::face_list_report(&shapes::grid(3, 2)?);
+/// assert_eq!((report.counts.faces, report.counts.boundary_loops), (12, 1));
+/// assert!(report.problems.is_empty() && report.is_valid());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn face_list_report(mesh: &PolygonMesh) -> FaceListReport {
+    let positions = &mesh.positions;
+    let scanned = scan::scan(
+        mesh.face_offsets(),
+        mesh.face_indices(),
+        mesh.n_vertices(),
+        true,
+        |v| positions[v].is_finite(),
+    );
+    let Some(scan::Scanned {
+        counts,
+        problems: Some(mut problems),
+        finite,
+    }) = scanned
+    else {
+        // Indices without positions, or sizes beyond the scan's: the reference counts.
+        return FaceListReport {
+            counts: MeshCounts::from_face_list(mesh.faces(), mesh.n_vertices()),
+            problems: reference_problems(mesh),
+            valid: HalfEdgeMesh::try_from_polygon_mesh(mesh).is_ok(),
+        };
+    };
+    if problems.faces_with_repeated_vertex > 0 {
+        // Faces of different degrees can then share a vertex set: the reference search.
+        let (indices, offsets) = (mesh.face_indices(), mesh.face_offsets());
+        let face = |f: usize| &indices[offsets[f]..offsets[f + 1]];
+        problems.duplicate_faces = duplicate_faces(mesh.n_faces(), &face).count;
+    }
+    // What `build` checks, in terms of the scan: sizes, faces of three corners or more,
+    // finite used positions and no defect (a non-orientable surface has a flipped edge in
+    // any orientation).
+    let limit = u64::from(crate::mesh::INVALID);
+    let valid = problems.is_empty()
+        && finite
+        && counts.faces_by_degree.range(..3).next().is_none()
+        && (mesh.n_faces() as u64) < limit
+        && (mesh.n_vertices() as u64) < limit
+        && 2 * counts.corners < limit;
+    FaceListReport {
+        counts,
+        problems,
+        valid,
+    }
+}
+
+/// The statistics and the defects of a face list ([`face_list_report`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct FaceListReport {
+    /// [`face_list_counts`].
+    pub counts: MeshCounts,
+    /// [`face_list_problems`].
+    pub problems: MeshProblems,
+    valid: bool,
+}
+
+impl FaceListReport {
+    /// Whether [`HalfEdgeMesh::try_from_polygon_mesh`] accepts the mesh (so a caller that
+    /// only needs its verdict builds nothing; one that needs the error builds it).
+    pub fn is_valid(&self) -> bool {
+        self.valid
+    }
+}
+
+/// The defect counts by the reference algorithm (a sort of every side and of every link
+/// node): where the scan does not apply, and the tests' oracle.
+fn reference_problems(mesh: &PolygonMesh) -> MeshProblems {
     let indices = mesh.face_indices();
     let offsets = mesh.face_offsets();
     let n_faces = mesh.n_faces();
@@ -347,6 +441,13 @@ fn mix(v: u32) -> u64 {
     z ^ (z >> 31)
 }
 
+/// A hash of a sorted, deduplicated vertex set.
+fn set_hash(set: &[u32]) -> u64 {
+    set.iter().fold(set.len() as u64, |h, &v| {
+        h.wrapping_mul(0x100_0000_01b3).wrapping_add(mix(v))
+    })
+}
+
 /// Finds the faces on equal vertex sets in `O(H log H)`: faces are sorted by a hash of their
 /// set, and only faces of equal hash are compared, by sorting their sets (so a file of
 /// identical faces costs one sort, not a comparison of every pair).
@@ -361,13 +462,7 @@ pub(crate) fn duplicate_faces<'a>(
         s
     };
     let mut sets: Vec<(u64, u32)> = (0..n_faces as u32)
-        .map(|f| {
-            let set = distinct_set(f);
-            let hash = set.iter().fold(set.len() as u64, |h, &v| {
-                h.wrapping_mul(0x100_0000_01b3).wrapping_add(mix(v))
-            });
-            (hash, f)
-        })
+        .map(|f| (set_hash(&distinct_set(f)), f))
         .collect();
     sets.sort_unstable();
     let mut found = DuplicateFaces {
