@@ -102,39 +102,25 @@ pub(crate) fn build(
     // 3. Faces on the same vertex set.
     check_duplicate_faces(n_faces, &face)?;
 
-    // 4. Edges: sort the corners by undirected vertex pair. The tag is `2 * corner + dir`,
-    // with dir = 1 when the corner's edge runs from the larger vertex to the smaller.
-    let mut entries: Vec<(u64, u32)> = Vec::with_capacity(n_corners);
-    for f in 0..n_faces {
-        let (start, end) = (offsets[f], offsets[f + 1]);
-        for c in start..end {
-            let a = indices[c];
-            let b = indices[if c + 1 == end { start } else { c + 1 }];
-            let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-            entries.push((key, (c as u32) << 1 | u32::from(a > b)));
-        }
-    }
-    entries.sort_unstable();
+    // 4. Edges: the corners' sides in the order of their undirected vertex pair, then tag
+    // ([`Sides`]). The tag is `2 * corner + dir`, with dir = 1 when the corner's edge runs
+    // from the larger vertex to the smaller.
+    let sides = Sides::new(nv, offsets, indices);
     let face_of_corner = |c: u32| offsets.partition_point(|&o| o <= c as usize) - 1;
 
     let mut n_edges = 0usize;
     let mut first_flipped: Option<usize> = None;
-    let mut i = 0;
-    while i < entries.len() {
-        let key = entries[i].0;
-        let mut j = i + 1;
-        while j < entries.len() && entries[j].0 == key {
-            j += 1;
-        }
-        match j - i {
+    let mut at = 0;
+    for (key, run) in sides.edges() {
+        match run.len() {
             1 => {}
             2 => {
-                if entries[i].1 & 1 == entries[i + 1].1 & 1 && first_flipped.is_none() {
-                    first_flipped = Some(i);
+                if run[0].1 & 1 == run[1].1 & 1 && first_flipped.is_none() {
+                    first_flipped = Some(at);
                 }
             }
             count => {
-                let faces: Vec<u32> = entries[i..j]
+                let faces: Vec<u32> = run
                     .iter()
                     .map(|&(_, tag)| face_of_corner(tag >> 1) as u32)
                     .collect();
@@ -147,9 +133,10 @@ pub(crate) fn build(
             }
         }
         n_edges += 1;
-        i = j;
+        at += run.len();
     }
     if let Some(first) = first_flipped {
+        let entries = sides.entries();
         return Err(orientation_error(&entries, first, n_faces, &face_of_corner));
     }
 
@@ -161,20 +148,14 @@ pub(crate) fn build(
     let mut halfedge_next = vec![INVALID; nh];
     let mut halfedge_prev = vec![INVALID; nh];
     let mut corner_halfedge = vec![0u32; n_corners];
-    let mut e = 0u32;
-    let mut i = 0;
-    while i < entries.len() {
-        let key = entries[i].0;
+    for (e, (key, run)) in (0u32..).zip(sides.edges()) {
         halfedge_vertex[2 * e as usize] = remap[(key as u32) as usize];
         halfedge_vertex[2 * e as usize + 1] = remap[(key >> 32) as usize];
-        while i < entries.len() && entries[i].0 == key {
-            let tag = entries[i].1;
+        for &(_, tag) in run {
             corner_halfedge[(tag >> 1) as usize] = 2 * e + (tag & 1);
-            i += 1;
         }
-        e += 1;
     }
-    drop(entries);
+    drop(sides);
     let mut vertex_halfedge = vec![INVALID; old_of_new.len()];
     let mut face_halfedge = Vec::with_capacity(n_faces);
     for f in 0..n_faces {
@@ -261,6 +242,71 @@ pub(crate) fn build(
         HalfEdgeMesh::from_raw_parts(new_positions, vertex_halfedge, halfedges, face_halfedge);
     mesh.unreferenced_vertices = unreferenced;
     Ok(mesh)
+}
+
+/// Every corner's side, bucketed by its smaller vertex and sorted within the bucket by
+/// (larger vertex, tag): the order of one sort of `(undirected pair, tag)` over all sides,
+/// in linear time and 8 bytes per side (a bucket holds a vertex's few edges).
+struct Sides {
+    /// Where each vertex's bucket starts in `ends`.
+    start: Vec<u32>,
+    /// `(larger vertex, tag)`.
+    ends: Vec<(u32, u32)>,
+}
+
+impl Sides {
+    /// `offsets`/`indices` index `nv` vertices with fewer than `2^31` corners (checked).
+    fn new(nv: usize, offsets: &[usize], indices: &[u32]) -> Sides {
+        let n_faces = offsets.len().saturating_sub(1);
+        let side = |f: usize, c: usize| {
+            let (start, end) = (offsets[f], offsets[f + 1]);
+            let (a, b) = (
+                indices[c],
+                indices[if c + 1 == end { start } else { c + 1 }],
+            );
+            (a.min(b), a.max(b), (c as u32) << 1 | u32::from(a > b))
+        };
+        let mut start = vec![0u32; nv + 1];
+        for f in 0..n_faces {
+            for c in offsets[f]..offsets[f + 1] {
+                start[side(f, c).0 as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut ends = vec![(0u32, 0u32); indices.len()];
+        for f in 0..n_faces {
+            for c in offsets[f]..offsets[f + 1] {
+                let (small, large, tag) = side(f, c);
+                let slot = &mut fill[small as usize];
+                ends[*slot as usize] = (large, tag);
+                *slot += 1;
+            }
+        }
+        drop(fill);
+        for v in 0..nv {
+            ends[start[v] as usize..start[v + 1] as usize].sort_unstable();
+        }
+        Sides { start, ends }
+    }
+
+    /// Each edge's key `(smaller << 32) | larger` and sides, in sorted order.
+    fn edges(&self) -> impl Iterator<Item = (u64, &[(u32, u32)])> {
+        self.start.windows(2).enumerate().flat_map(|(a, w)| {
+            self.ends[w[0] as usize..w[1] as usize]
+                .chunk_by(|x, y| x.0 == y.0)
+                .map(move |run| (((a as u64) << 32) | u64::from(run[0].0), run))
+        })
+    }
+
+    /// The sides as `(key, tag)` in order (for the orientation error).
+    fn entries(&self) -> Vec<(u64, u32)> {
+        self.edges()
+            .flat_map(|(key, run)| run.iter().map(move |&(_, tag)| (key, tag)))
+            .collect()
+    }
 }
 
 /// Refuses faces on one vertex set ([`Error::DuplicateFace`], naming the smallest such pair):

@@ -30,7 +30,7 @@
 use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};
 
-use crate::mesh::{FaceId, HalfEdgeMesh};
+use crate::mesh::{HalfEdgeMesh, INVALID};
 
 mod scan;
 use crate::polygon::PolygonMesh;
@@ -448,29 +448,95 @@ fn set_hash(set: &[u32]) -> u64 {
     })
 }
 
-/// Finds the faces on equal vertex sets in `O(H log H)`: faces are sorted by a hash of their
-/// set, and only faces of equal hash are compared, by sorting their sets (so a file of
-/// identical faces costs one sort, not a comparison of every pair).
+/// Finds the faces on equal vertex sets in linear time: two such faces have the same
+/// smallest vertex, so the faces are bucketed by it (a counting sort) and, within a bucket,
+/// sorted by a hash of their set; only faces of equal hash have their sets compared (so a
+/// file of identical faces costs one sort, not a comparison of every pair). Indices far
+/// beyond the face count (a raw list's stray index) sort all faces by hash instead.
 pub(crate) fn duplicate_faces<'a>(
     n_faces: usize,
     face: &impl Fn(usize) -> &'a [u32],
 ) -> DuplicateFaces {
+    let least = |f: usize| face(f).iter().copied().min().unwrap_or(0);
+    let mut found = DuplicateFaces {
+        count: 0,
+        first_pair: None,
+    };
+    let top = (0..n_faces).map(least).max().unwrap_or(0) as usize;
+    let mut keyed: Vec<(u64, u32)> = Vec::new();
+    if top > 4 * n_faces + 1024 {
+        keyed.extend((0..n_faces as u32).map(|f| (face_hash(face(f as usize)), f)));
+        same_sets(&mut keyed, face, &mut found);
+        return found;
+    }
+    let mut start = vec![0u32; top + 2];
+    for f in 0..n_faces {
+        start[least(f) as usize + 1] += 1;
+    }
+    for v in 0..=top {
+        start[v + 1] += start[v];
+    }
+    let mut order = vec![0u32; n_faces];
+    let mut fill = start.clone();
+    for f in 0..n_faces {
+        let slot = &mut fill[least(f) as usize];
+        order[*slot as usize] = f as u32;
+        *slot += 1;
+    }
+    drop(fill);
+    for bucket in start.windows(2) {
+        let bucket = &order[bucket[0] as usize..bucket[1] as usize];
+        if bucket.len() > 1 {
+            keyed.clear();
+            keyed.extend(bucket.iter().map(|&f| (face_hash(face(f as usize)), f)));
+            same_sets(&mut keyed, face, &mut found);
+        }
+    }
+    found
+}
+
+/// The hash of a face's set of distinct vertices (whatever their order and repeats); faces of
+/// up to 16 corners are sorted on the stack.
+pub(super) fn face_hash(face: &[u32]) -> u64 {
+    let mut small = [0u32; 16];
+    let mut large = Vec::new();
+    let set: &mut [u32] = if face.len() <= small.len() {
+        small[..face.len()].copy_from_slice(face);
+        &mut small[..face.len()]
+    } else {
+        large.extend_from_slice(face);
+        &mut large
+    };
+    set.sort_unstable();
+    let mut distinct = 0;
+    for i in 0..set.len() {
+        if i == 0 || set[i] != set[i - 1] {
+            set[distinct] = set[i];
+            distinct += 1;
+        }
+    }
+    set_hash(&set[..distinct])
+}
+
+/// Counts the faces of `keyed` (hash, face) on the set of another, comparing sets only
+/// within a hash, and keeps the smallest pair.
+fn same_sets<'a>(
+    keyed: &mut [(u64, u32)],
+    face: &impl Fn(usize) -> &'a [u32],
+    found: &mut DuplicateFaces,
+) {
     let distinct_set = |f: u32| {
         let mut s = face(f as usize).to_vec();
         s.sort_unstable();
         s.dedup();
         s
     };
-    let mut sets: Vec<(u64, u32)> = (0..n_faces as u32)
-        .map(|f| (set_hash(&distinct_set(f)), f))
-        .collect();
-    sets.sort_unstable();
-    let mut found = DuplicateFaces {
-        count: 0,
-        first_pair: None,
-    };
+    keyed.sort_unstable();
     // Sorted by hash: a run of one hash holds every face with that set (and any collision).
-    for run in sets.chunk_by(|x, y| x.0 == y.0).filter(|run| run.len() > 1) {
+    for run in keyed
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter(|run| run.len() > 1)
+    {
         // Sorted by set, then by face: each run of one set starts with its two smallest faces.
         let mut group: Vec<(Vec<u32>, u32)> =
             run.iter().map(|&(_, f)| (distinct_set(f), f)).collect();
@@ -484,7 +550,6 @@ pub(crate) fn duplicate_faces<'a>(
             found.first_pair = Some(found.first_pair.map_or(candidate, |p| p.min(candidate)));
         }
     }
-    found
 }
 
 /// The genus of a manifold, orientable surface with these counts: `(2C - chi - b) / 2` (the
@@ -514,10 +579,11 @@ pub fn genus(counts: &MeshCounts) -> Option<u64> {
 }
 
 impl HalfEdgeMesh {
-    /// The statistics of this mesh ([`schemes::MeshCounts`]), counted from its faces by
-    /// [`MeshCounts::from_face_list`] like every other face list. They equal
-    /// [`face_list_counts`] of the face list the mesh was built from, whose unused vertices
-    /// the mesh dropped and reports in `unreferenced_vertices`.
+    /// The statistics of this mesh ([`schemes::MeshCounts`]), read off its half-edges in
+    /// linear time: they equal [`MeshCounts::from_face_list`] of its faces (the rules' one
+    /// definition; the tests check it), and [`face_list_counts`] of the face list the mesh
+    /// was built from, whose unused vertices the mesh dropped and reports in
+    /// `unreferenced_vertices`.
     ///
     /// # Example
     ///
@@ -528,11 +594,62 @@ impl HalfEdgeMesh {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn counts(&self) -> MeshCounts {
-        let faces = (0..self.n_faces() as u32).map(|f| self.face_vertices(FaceId(f)).map(|v| v.0));
+        // Read off the structure in one pass per array (no sort): a valid mesh has no
+        // non-manifold edge, each edge is two half-edges, a boundary half-edge has no face.
+        let (nh, nv) = (self.n_halfedges(), self.n_vertices());
+        let boundary: Vec<u32> = (0..nh as u32)
+            .filter(|&h| self.halfedge_face[h as usize] == INVALID)
+            .collect();
+        let mut faces_by_degree = std::collections::BTreeMap::new();
+        for f in 0..self.n_faces() {
+            let start = self.face_halfedge[f];
+            let (mut h, mut degree) = (self.halfedge_next[start as usize], 1u32);
+            while h != start {
+                h = self.halfedge_next[h as usize];
+                degree += 1;
+            }
+            *faces_by_degree.entry(degree).or_insert(0) += 1;
+        }
+        // Boundary loops: the cycles of `next` through the boundary half-edges.
+        let mut seen = vec![false; nh];
+        let mut boundary_loops = 0;
+        for &start in &boundary {
+            if !seen[start as usize] {
+                boundary_loops += 1;
+                let mut h = start;
+                while !seen[h as usize] {
+                    seen[h as usize] = true;
+                    h = self.halfedge_next[h as usize];
+                }
+            }
+        }
+        drop(seen);
+        let mut sets = DisjointSets::new(nv);
+        for e in 0..nh / 2 {
+            sets.union(self.halfedge_vertex[2 * e], self.halfedge_vertex[2 * e + 1]);
+        }
+        let used = |v: usize| self.vertex_halfedge[v] != INVALID;
+        let vertices = (0..nv).filter(|&v| used(v)).count() as u64;
+        let components = (0..nv)
+            .filter(|&v| used(v) && sets.find(v as u32) == v as u32)
+            .count() as u64;
+        let (edges, boundary_edges) = ((nh / 2) as u64, boundary.len() as u64);
+        let faces = self.n_faces() as u64;
+        let chi = i128::from(vertices) - i128::from(edges) + i128::from(faces);
         MeshCounts {
+            vertices,
+            edges,
+            interior_edges: edges - boundary_edges,
+            boundary_edges,
+            nonmanifold_edges: 0,
+            faces,
+            corners: nh as u64 - boundary_edges,
+            faces_by_degree,
+            boundary_loops,
+            components,
+            euler_characteristic: i64::try_from(chi).unwrap_or(i64::MAX),
             // The mesh keeps only the vertices its faces use, and how many it dropped.
             unreferenced_vertices: self.unreferenced_vertices,
-            ..MeshCounts::from_face_list(faces, self.n_vertices())
         }
     }
 

@@ -143,7 +143,7 @@ fn scan_in_ranges(
             if acc.dedupe_faces && k != 3 && k > 0 {
                 let least = face.iter().copied().min().unwrap_or(0);
                 if least >= lo32 && least < hi32 {
-                    others.push((set_hash(face, &mut scratch), f as u32));
+                    others.push((super::face_hash(face), f as u32));
                 }
             }
         }
@@ -211,15 +211,6 @@ fn has_repeat(face: &[u32], scratch: &mut Vec<u32>) -> bool {
             scratch.windows(2).any(|w| w[0] == w[1])
         }
     }
-}
-
-/// The hash of a face's vertex set (the face has no repeated vertex), as the reference
-/// search's: the same sets hash the same whatever their order.
-fn set_hash(face: &[u32], scratch: &mut Vec<u32>) -> u64 {
-    scratch.clear();
-    scratch.extend_from_slice(face);
-    scratch.sort_unstable();
-    super::set_hash(scratch)
 }
 
 /// Faces beyond the first on each vertex set among `list` (hash, face), comparing sets
@@ -485,12 +476,40 @@ mod tests {
             problems.duplicate_faces = expected.duplicate_faces;
         }
         assert_eq!(problems, expected, "{faces:?}");
-        let report = super::super::face_list_report(&mesh);
+        // Duplicates by definition: faces whose set of distinct vertices an earlier face has.
+        let set = |f: &Vec<u32>| {
+            let mut s = f.clone();
+            s.sort_unstable();
+            s.dedup();
+            s
+        };
+        let naive = (0..faces.len())
+            .filter(|&g| (0..g).any(|f| set(&faces[f]) == set(&faces[g])))
+            .count() as u64;
+        assert_eq!(expected.duplicate_faces, naive, "{faces:?}");
+        let first = (0..faces.len())
+            .flat_map(|g| (0..g).map(move |f| (f as u32, g as u32)))
+            .filter(|&(f, g)| set(&faces[f as usize]) == set(&faces[g as usize]))
+            .min();
+        let face = |f: usize| faces[f].as_slice();
         assert_eq!(
-            report.is_valid(),
-            HalfEdgeMesh::try_from_polygon_mesh(&mesh).is_ok(),
-            "{faces:?} {nan:?}"
+            super::super::duplicate_faces(faces.len(), &face).first_pair,
+            first
         );
+        let report = super::super::face_list_report(&mesh);
+        let built = HalfEdgeMesh::try_from_polygon_mesh(&mesh);
+        assert_eq!(report.is_valid(), built.is_ok(), "{faces:?} {nan:?}");
+        if let Ok(built) = built {
+            // The half-edge mesh reads the same counts off its structure.
+            let own_faces = (0..built.n_faces() as u32)
+                .map(|f| built.face_vertices(crate::mesh::FaceId(f)).map(|v| v.0));
+            let own = MeshCounts {
+                unreferenced_vertices: reference.unreferenced_vertices,
+                ..MeshCounts::from_face_list(own_faces, built.n_vertices())
+            };
+            assert_eq!(built.counts(), own, "{faces:?}");
+            assert_eq!(built.counts(), reference, "{faces:?}");
+        }
         assert_eq!((report.counts, report.problems), (reference, expected));
     }
 
