@@ -99,13 +99,24 @@ pub(crate) fn build(
     drop(mark);
     let unreferenced = (nv - old_of_new.len()) as u64;
 
-    // 3. Faces on the same vertex set.
-    check_duplicate_faces(n_faces, &face)?;
-
-    // 4. Edges: the corners' sides in the order of their undirected vertex pair, then tag
+    // 3. The corners' sides in the order of their undirected vertex pair, then tag
     // ([`Sides`]). The tag is `2 * corner + dir`, with dir = 1 when the corner's edge runs
-    // from the larger vertex to the smaller.
+    // from the larger vertex to the smaller. Faces on the same vertex set: across the edges
+    // they share, or by their sets.
     let sides = Sides::new(nv, offsets, indices);
+    match duplicates_across_edges(&sides, offsets, indices) {
+        Some(Some((first, second))) => {
+            return Err(Error::DuplicateFace {
+                first,
+                second,
+                vertices: FaceVertices(face(first as usize).to_vec()),
+            })
+        }
+        Some(None) => {}
+        None => check_duplicate_faces(n_faces, &face)?,
+    }
+
+    // 4. Edges: non-manifold, then flipped.
     let face_of_corner = |c: u32| offsets.partition_point(|&o| o <= c as usize) - 1;
 
     let mut n_edges = 0usize;
@@ -307,6 +318,45 @@ impl Sides {
             .flat_map(|(key, run)| run.iter().map(move |&(_, tag)| (key, tag)))
             .collect()
     }
+}
+
+/// The smallest pair of faces on one vertex set, found across the edges they share: in a mesh
+/// of only triangles or only quads (without repeated vertices), two faces on one vertex set
+/// share an edge (any two of a triangle's vertices make an edge; two 4-cycles through the
+/// same 4 vertices share two edges), so only faces across an edge are compared. `None` where
+/// that does not hold (mixed or larger faces) or an edge has more than 8 sides (a pile of
+/// copies): the search by sets decides.
+fn duplicates_across_edges(
+    sides: &Sides,
+    offsets: &[usize],
+    indices: &[u32],
+) -> Option<Option<(u32, u32)>> {
+    let k = *offsets.get(1)?;
+    if !(k == 3 || k == 4) || offsets.windows(2).any(|w| w[1] - w[0] != k) {
+        return None;
+    }
+    let set = |f: usize| {
+        let mut s = [0u32; 4];
+        s[..k].copy_from_slice(&indices[k * f..k * f + k]);
+        s[..k].sort_unstable();
+        s
+    };
+    let mut first: Option<(u32, u32)> = None;
+    for (_, run) in sides.edges().filter(|(_, run)| run.len() > 1) {
+        if run.len() > 8 {
+            return None;
+        }
+        for (i, a) in run.iter().enumerate() {
+            for b in &run[i + 1..] {
+                let (f, g) = ((a.1 >> 1) as usize / k, (b.1 >> 1) as usize / k);
+                if f != g && set(f) == set(g) {
+                    let pair = (f.min(g) as u32, f.max(g) as u32);
+                    first = Some(first.map_or(pair, |p| p.min(pair)));
+                }
+            }
+        }
+    }
+    Some(first)
 }
 
 /// Refuses faces on one vertex set ([`Error::DuplicateFace`], naming the smallest such pair):

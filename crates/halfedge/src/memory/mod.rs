@@ -210,8 +210,13 @@ pub fn halfedge_build_bytes(counts: &MeshCounts) -> BigInt {
 /// assert_eq!(read_extra_bytes(&halfedge::shapes::cube()), 0);
 /// ```
 pub fn read_extra_bytes(poly: &PolygonMesh) -> u128 {
-    let referenced = crate::stats::face_list_counts(poly).vertices;
-    let unreferenced = (poly.positions.len() as u64).saturating_sub(referenced);
+    let mut used = vec![false; poly.positions.len()];
+    for &v in poly.face_indices() {
+        if let Some(u) = used.get_mut(v as usize) {
+            *u = true;
+        }
+    }
+    let unreferenced = used.iter().filter(|&&u| !u).count() as u64;
     let uvs = poly.uvs().map_or(0, |u| {
         16 * u.coords().len() as u128 + 4 * u.corners().len() as u128
     });

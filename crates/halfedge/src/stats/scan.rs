@@ -452,6 +452,21 @@ mod tests {
         )
     }
 
+    /// Only triangles or only quads, without repeated vertices, over few vertices: many
+    /// copies and flips (validation compares them across edges).
+    fn uniform() -> impl Strategy<Value = (Vec<Vec<u32>>, usize, Option<usize>)> {
+        (3usize..5, 4u32..9).prop_flat_map(|(k, n)| {
+            let face = Just((0..n).collect::<Vec<u32>>())
+                .prop_shuffle()
+                .prop_map(move |v| v[..k].to_vec());
+            (
+                prop::collection::vec(face, 0..12),
+                Just(n as usize),
+                Just(None),
+            )
+        })
+    }
+
     fn check(faces: &[Vec<u32>], n: usize, nan: Option<usize>, chunk: usize) {
         let mut positions = vec![DVec3::ZERO; n];
         if let Some(v) = nan {
@@ -496,6 +511,17 @@ mod tests {
             super::super::duplicate_faces(faces.len(), &face).first_pair,
             first
         );
+        // Validation names the smallest pair when nothing comes before duplicates.
+        let clean = faces
+            .iter()
+            .all(|f| f.len() >= 3 && set(f).len() == f.len());
+        if clean && nan.is_none() {
+            let named = match HalfEdgeMesh::try_from_polygon_mesh(&mesh) {
+                Err(crate::Error::DuplicateFace { first, second, .. }) => Some((first, second)),
+                _ => None,
+            };
+            assert_eq!(named, first, "{faces:?}");
+        }
         let report = super::super::face_list_report(&mesh);
         let built = HalfEdgeMesh::try_from_polygon_mesh(&mesh);
         assert_eq!(report.is_valid(), built.is_ok(), "{faces:?} {nan:?}");
@@ -518,6 +544,11 @@ mod tests {
 
         #[test]
         fn the_scan_counts_what_the_reference_counts((faces, n, nan) in face_list(), chunk in 1usize..40) {
+            check(&faces, n, nan, chunk);
+        }
+
+        #[test]
+        fn the_scan_counts_uniform_faces_as_the_reference((faces, n, nan) in uniform(), chunk in 1usize..40) {
             check(&faces, n, nan, chunk);
         }
 
