@@ -101,72 +101,64 @@ pub(crate) fn build(
 
     // 3. The corners' sides in the order of their undirected vertex pair, then tag
     // ([`Sides`]). The tag is `2 * corner + dir`, with dir = 1 when the corner's edge runs
-    // from the larger vertex to the smaller. Faces on the same vertex set: across the edges
-    // they share, or by their sets.
+    // from the larger vertex to the smaller.
     let sides = Sides::new(nv, offsets, indices);
-    match duplicates_across_edges(&sides, offsets, indices) {
-        Some(Some((first, second))) => {
-            return Err(Error::DuplicateFace {
-                first,
-                second,
-                vertices: FaceVertices(face(first as usize).to_vec()),
-            })
-        }
-        Some(None) => {}
-        None => check_duplicate_faces(n_faces, &face)?,
-    }
 
-    // 4. Edges: non-manifold, then flipped.
-    let face_of_corner = |c: u32| offsets.partition_point(|&o| o <= c as usize) - 1;
-
-    let mut n_edges = 0usize;
-    let mut first_flipped: Option<usize> = None;
+    // 4. One pass over the edges, numbered in sorted order: half-edge 2e runs from the
+    // smaller vertex to the larger one, 2e + 1 back, and each corner takes the one of its
+    // direction. The pass also notes the first of each problem, reported in the documented
+    // order after it: faces on one vertex set (compared across the edges they share, or
+    // searched by their sets), a non-manifold edge, a flipped one.
+    let mut found = EdgeProblems::new(offsets);
+    let mut halfedge_vertex: Vec<u32> = Vec::with_capacity(2 * n_corners);
+    let mut corner_halfedge = vec![0u32; n_corners];
     let mut at = 0;
     for (key, run) in sides.edges() {
-        match run.len() {
-            1 => {}
-            2 => {
-                if run[0].1 & 1 == run[1].1 & 1 && first_flipped.is_none() {
-                    first_flipped = Some(at);
-                }
-            }
-            count => {
-                let faces: Vec<u32> = run
-                    .iter()
-                    .map(|&(_, tag)| face_of_corner(tag >> 1) as u32)
-                    .collect();
-                return Err(Error::NonManifoldEdge {
-                    a: (key >> 32) as u32,
-                    b: key as u32,
-                    count,
-                    faces: FaceVertices(faces),
-                });
-            }
-        }
-        n_edges += 1;
-        at += run.len();
-    }
-    if let Some(first) = first_flipped {
-        let entries = sides.entries();
-        return Err(orientation_error(&entries, first, n_faces, &face_of_corner));
-    }
-
-    // 5. Half-edges: edges are numbered in sorted order; half-edge 2e runs from the smaller
-    // vertex to the larger one, 2e + 1 back, and each corner takes the one of its direction.
-    let nh = 2 * n_edges;
-    let mut halfedge_vertex = vec![0u32; nh];
-    let mut halfedge_face = vec![INVALID; nh];
-    let mut halfedge_next = vec![INVALID; nh];
-    let mut halfedge_prev = vec![INVALID; nh];
-    let mut corner_halfedge = vec![0u32; n_corners];
-    for (e, (key, run)) in (0u32..).zip(sides.edges()) {
-        halfedge_vertex[2 * e as usize] = remap[(key as u32) as usize];
-        halfedge_vertex[2 * e as usize + 1] = remap[(key >> 32) as usize];
+        let e = (halfedge_vertex.len() / 2) as u32;
+        halfedge_vertex.push(remap[(key as u32) as usize]);
+        halfedge_vertex.push(remap[(key >> 32) as usize]);
         for &(_, tag) in run {
             corner_halfedge[(tag >> 1) as usize] = 2 * e + (tag & 1);
         }
+        if run.len() > 1 {
+            found.edge(key, run, at, indices);
+        }
+        at += run.len();
+    }
+    let face_of_corner = |c: u32| offsets.partition_point(|&o| o <= c as usize) - 1;
+    let duplicate = match found.by_sets {
+        true => crate::stats::duplicate_faces(n_faces, &face).first_pair,
+        false => found.duplicate,
+    };
+    if let Some((first, second)) = duplicate {
+        return Err(Error::DuplicateFace {
+            first,
+            second,
+            vertices: FaceVertices(face(first as usize).to_vec()),
+        });
+    }
+    if let Some((key, tags)) = found.nonmanifold {
+        return Err(Error::NonManifoldEdge {
+            a: (key >> 32) as u32,
+            b: key as u32,
+            count: tags.len(),
+            faces: FaceVertices(
+                tags.iter()
+                    .map(|&t| face_of_corner(t >> 1) as u32)
+                    .collect(),
+            ),
+        });
+    }
+    if let Some(first) = found.flipped {
+        let entries = sides.entries();
+        return Err(orientation_error(&entries, first, n_faces, &face_of_corner));
     }
     drop(sides);
+    halfedge_vertex.shrink_to_fit();
+    let nh = halfedge_vertex.len();
+    let mut halfedge_face = vec![INVALID; nh];
+    let mut halfedge_next = vec![INVALID; nh];
+    let mut halfedge_prev = vec![INVALID; nh];
     let mut vertex_halfedge = vec![INVALID; old_of_new.len()];
     let mut face_halfedge = Vec::with_capacity(n_faces);
     for f in 0..n_faces {
@@ -320,43 +312,73 @@ impl Sides {
     }
 }
 
-/// The smallest pair of faces on one vertex set, found across the edges they share: in a mesh
-/// of only triangles or only quads (without repeated vertices), two faces on one vertex set
-/// share an edge (any two of a triangle's vertices make an edge; two 4-cycles through the
-/// same 4 vertices share two edges), so only faces across an edge are compared. `None` where
-/// that does not hold (mixed or larger faces) or an edge has more than 8 sides (a pile of
-/// copies): the search by sets decides.
-fn duplicates_across_edges(
-    sides: &Sides,
-    offsets: &[usize],
-    indices: &[u32],
-) -> Option<Option<(u32, u32)>> {
-    let k = *offsets.get(1)?;
-    if !(k == 3 || k == 4) || offsets.windows(2).any(|w| w[1] - w[0] != k) {
-        return None;
-    }
-    let set = |f: usize| {
-        let mut s = [0u32; 4];
-        s[..k].copy_from_slice(&indices[k * f..k * f + k]);
-        s[..k].sort_unstable();
-        s
-    };
-    let mut first: Option<(u32, u32)> = None;
-    for (_, run) in sides.edges().filter(|(_, run)| run.len() > 1) {
-        if run.len() > 8 {
-            return None;
+/// The first problems of the edges, in the order [`build`] reports them.
+///
+/// Duplicates are found across edges in a mesh of only triangles or only quads (without
+/// repeated vertices): two faces on one vertex set share an edge there (any two of a
+/// triangle's vertices make an edge; two 4-cycles through the same 4 vertices share two
+/// edges), so only faces across an edge are compared, and the smallest such pair is the
+/// smallest pair of the search by sets. Mixed or larger faces, or an edge of more than 8
+/// sides (a pile of copies), leave it to that search (`by_sets`).
+struct EdgeProblems {
+    /// The faces' common degree, 3 or 4.
+    degree: usize,
+    by_sets: bool,
+    duplicate: Option<(u32, u32)>,
+    /// The first non-manifold edge: its key and its sides' tags.
+    nonmanifold: Option<(u64, Vec<u32>)>,
+    /// Where the first flipped edge's sides start, in the sorted order.
+    flipped: Option<usize>,
+}
+
+impl EdgeProblems {
+    fn new(offsets: &[usize]) -> EdgeProblems {
+        let degree = offsets.get(1).copied().unwrap_or(0);
+        let uniform = offsets.windows(2).all(|w| w[1] - w[0] == degree);
+        EdgeProblems {
+            degree,
+            by_sets: !(uniform && (degree == 3 || degree == 4)),
+            duplicate: None,
+            nonmanifold: None,
+            flipped: None,
         }
+    }
+
+    /// An edge of `run.len() >= 2` sides whose sides start at `at`.
+    fn edge(&mut self, key: u64, run: &[(u32, u32)], at: usize, indices: &[u32]) {
+        if run.len() == 2 {
+            if run[0].1 & 1 == run[1].1 & 1 && self.flipped.is_none() {
+                self.flipped = Some(at);
+            }
+        } else if self.nonmanifold.is_none() {
+            self.nonmanifold = Some((key, run.iter().map(|&(_, tag)| tag).collect()));
+        }
+        if self.by_sets {
+            return;
+        }
+        if run.len() > 8 {
+            self.by_sets = true;
+            return;
+        }
+        let k = self.degree;
+        let corners = |f: usize| &indices[k * f..k * f + k];
+        let sum = |f: usize| corners(f).iter().map(|&v| u64::from(v)).sum::<u64>();
+        let set = |f: usize| {
+            let mut s = [0u32; 4];
+            s[..k].copy_from_slice(corners(f));
+            s[..k].sort_unstable();
+            s
+        };
         for (i, a) in run.iter().enumerate() {
             for b in &run[i + 1..] {
                 let (f, g) = ((a.1 >> 1) as usize / k, (b.1 >> 1) as usize / k);
-                if f != g && set(f) == set(g) {
+                if f != g && sum(f) == sum(g) && set(f) == set(g) {
                     let pair = (f.min(g) as u32, f.max(g) as u32);
-                    first = Some(first.map_or(pair, |p| p.min(pair)));
+                    self.duplicate = Some(self.duplicate.map_or(pair, |p| p.min(pair)));
                 }
             }
         }
     }
-    Some(first)
 }
 
 /// Refuses faces on one vertex set ([`Error::DuplicateFace`], naming the smallest such pair):

@@ -765,13 +765,12 @@ fn timings_print_one_line_with_five_keys() {
     // Loop writes its last level straight into a face list: the input (12, 30, 20) and level
     // 2 (162, 480, 320) as half-edge meshes (28 bytes per vertex, 32 per edge, 4 per face),
     // level 3 as positions (642 x 24), face offsets (1,281 x 8) and corners (3,840 x 4); with
-    // the process (6 MiB), the input face list (12 positions, 21 offsets, 60 corners), the
-    // arrays that build its half-edge mesh (20 bytes per corner, 8 per vertex) and level 1
-    // (42, 120, 80), freed but still resident.
+    // the process (6 MiB), the input face list (12 positions, 21 offsets, 60 corners) and
+    // level 1 (42, 120, 80), freed but still resident (the arrays that build the input's
+    // half-edge mesh count at level 0 only).
     let half_edge = |v: u64, e: u64, f: u64| 28 * v + 32 * e + 4 * f;
     let face_list = 24 * 642 + 8 * 1281 + 4 * 3 * 1280;
-    let build = 20 * 60 + 8 * 12;
-    let process = (6 << 20) + (24 * 12 + 8 * 21 + 4 * 60) + build + half_edge(42, 120, 80);
+    let process = (6 << 20) + (24 * 12 + 8 * 21 + 4 * 60) + half_edge(42, 120, 80);
     assert_eq!(
         v["predicted_peak_bytes"].as_u64(),
         Some(process + half_edge(12, 30, 20) + half_edge(162, 480, 320) + face_list)
