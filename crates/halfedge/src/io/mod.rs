@@ -178,7 +178,10 @@
 //! (`-o out.stl` is a usage error): `driver::output::unwritten_mesh_format`.
 
 mod buffers;
+mod float;
+mod lines;
 mod obj;
+mod obj_extras;
 mod obj_tags;
 mod off;
 mod ply;
@@ -196,8 +199,10 @@ pub use self::write::{
 };
 pub use crate::text::escape_controls;
 
-use std::io::{BufRead, Read};
+use std::io::Read;
 use std::path::Path;
+
+use self::lines::Place;
 
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
@@ -397,7 +402,7 @@ impl Budget {
 
     /// Refuses once `mesh` and `extra` bytes (the reader's other lists: tags, texture
     /// coordinates, forward references) occupy more than the budget.
-    fn check<R>(self, mesh: &PolygonMesh, extra: usize, lines: &Lines<R>) -> Result<()> {
+    fn check(self, mesh: &PolygonMesh, extra: usize, lines: &Place) -> Result<()> {
         if mesh.heap_bytes() as u128 + extra as u128 > u128::from(self.bytes) {
             return Err(self.refused(lines));
         }
@@ -410,7 +415,7 @@ impl Budget {
     }
 
     /// The refusal of the mesh read so far, where the reader got to.
-    fn refused<R>(self, lines: &Lines<R>) -> Error {
+    fn refused(self, lines: &Place) -> Error {
         Error::MeshTooLarge {
             file: lines.name.clone(),
             line: lines.line,
@@ -422,113 +427,10 @@ impl Budget {
 /// Room for `additional` more elements in a reader's growing list: a refused allocation (an
 /// address-space limit tighter than the budget saw) is [`Error::AllocationFailed`] naming the
 /// file and line, never an abort.
-fn grow<T, R>(list: &mut Vec<T>, additional: usize, lines: &Lines<R>) -> Result<()> {
+fn grow<T>(list: &mut Vec<T>, additional: usize, lines: &Place) -> Result<()> {
     list.try_reserve(additional).map_err(|e| {
         lines.allocation_failed(additional as u128 * std::mem::size_of::<T>() as u128, e)
     })
-}
-
-/// Reads lines as bytes, tracks line numbers, strips comments, rejects binary data and joins
-/// backslash continuations.
-struct Lines<R> {
-    reader: R,
-    name: String,
-    buf: Vec<u8>,
-    text: String,
-    line: u64,
-}
-
-impl<R> Lines<R> {
-    /// A refused allocation of `bytes` more bytes while reading this line.
-    fn allocation_failed(&self, bytes: u128, e: std::collections::TryReserveError) -> Error {
-        Error::AllocationFailed {
-            what: format!("the mesh read from {} (line {})", self.name, self.line),
-            bytes,
-            reason: e.to_string(),
-        }
-    }
-
-    fn error(&self, kind: ParseError) -> Error {
-        Error::Parse {
-            file: self.name.clone(),
-            line: self.line,
-            kind,
-        }
-    }
-}
-
-impl<R: BufRead> Lines<R> {
-    fn new(reader: R, name: &str) -> Self {
-        Lines {
-            reader,
-            name: escape_controls(name).into_owned(),
-            buf: Vec::new(),
-            text: String::new(),
-            line: 0,
-        }
-    }
-
-    /// Reads the next line (comment removed) into `self.text`; false at the end.
-    /// `self.line` is its number (the first physical line of a continued line).
-    fn next_line(&mut self) -> Result<bool> {
-        self.text.clear();
-        let mut first = true;
-        loop {
-            self.buf.clear();
-            // Read at most one byte past the limit, so a huge line (or a binary file without
-            // newlines) is refused after a bounded read instead of being buffered whole.
-            let room = MAX_LINE_BYTES.saturating_sub(self.text.len()) + 1;
-            let n = (&mut self.reader)
-                .take(room as u64)
-                .read_until(b'\n', &mut self.buf)
-                .map_err(|source| Error::Io {
-                    path: self.name.clone().into(),
-                    source,
-                })?;
-            if n == 0 {
-                if first {
-                    return Ok(false);
-                }
-                break;
-            }
-            if first {
-                self.line += 1;
-            }
-            if self.text.len() + self.buf.len() > MAX_LINE_BYTES {
-                return Err(self.error(ParseError::LineTooLong {
-                    limit: MAX_LINE_BYTES,
-                }));
-            }
-            if self.buf.contains(&0) {
-                return Err(self.error(ParseError::NotText));
-            }
-            let Ok(s) = std::str::from_utf8(&self.buf) else {
-                return Err(self.error(ParseError::NotText));
-            };
-            // A UTF-8 byte-order mark (what some Windows editors put first) is not part of
-            // the first statement: without this, `\u{feff}v` is an unknown keyword and the
-            // first line would be skipped silently.
-            let s = if self.line == 1 && first {
-                s.strip_prefix('\u{feff}').unwrap_or(s)
-            } else {
-                s
-            };
-            let s = s.split('#').next().unwrap_or("");
-            let s = s.trim_end();
-            first = false;
-            match s.strip_suffix('\\') {
-                Some(head) => {
-                    self.text.push_str(head);
-                    self.text.push(' ');
-                }
-                None => {
-                    self.text.push_str(s);
-                    break;
-                }
-            }
-        }
-        Ok(true)
-    }
 }
 
 /// Shortens a token for an error message, its control characters escaped.
@@ -544,9 +446,9 @@ fn shorten(token: &str) -> String {
 
 /// The next `N` tokens of a line, each read by `parse`; a line with fewer is the error
 /// `missing(found)`.
-fn parse_values<'a, const N: usize, R>(
+fn parse_values<'a, const N: usize>(
     tokens: &mut impl Iterator<Item = &'a str>,
-    lines: &Lines<R>,
+    lines: &Place,
     parse: fn(&str) -> std::result::Result<f64, ParseError>,
     missing: fn(usize) -> ParseError,
 ) -> Result<[f64; N]> {
@@ -561,9 +463,9 @@ fn parse_values<'a, const N: usize, R>(
 }
 
 /// A vertex position: the next three tokens of a line, finite coordinates.
-fn parse_position<'a, R>(
+fn parse_position<'a>(
     tokens: &mut impl Iterator<Item = &'a str>,
-    lines: &Lines<R>,
+    lines: &Place,
 ) -> Result<glam::DVec3> {
     let missing = |found| ParseError::MissingCoordinates { found };
     parse_values(tokens, lines, parse_coordinate, missing).map(glam::DVec3::from_array)
@@ -571,7 +473,7 @@ fn parse_position<'a, R>(
 
 /// Parses a finite coordinate.
 fn parse_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
-    match token.parse::<f64>() {
+    match float::parse_f64(token) {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err(ParseError::NonFiniteCoordinate {
             token: shorten(token),

@@ -2,20 +2,22 @@
 //! statements (`mtllib`, `usemtl`, `o`, `g`, `s`); every other kind of line counted as not
 //! carried.
 
-use std::io::BufRead;
+use std::io::{BufRead, Read};
 use std::path::Path;
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 
-use super::{
-    grow, parse_coordinate, parse_position, parse_values, shorten, Budget, Lines, ReadOptions,
+use super::lines::{LineSource, Place, Words, CHUNK};
+use super::obj_extras::{
+    index_prefix, parse_index, parse_tex_coordinate, push_element, Extras, UvReader,
 };
-use crate::error::{Error, ParseError, Result};
-use crate::groups::{GroupsReader, Statement};
-use crate::polygon::{PartialColors, PolygonMesh, ReadColors, Uncarried};
-use crate::uv::{PartialUvs, Uvs};
-
 use super::obj_tags::{TagFailure, TagReader};
+use super::{grow, parse_coordinate, Budget, ReadOptions};
+use crate::error::{Error, ParseError, Result};
+use crate::groups::Statement;
+use crate::polygon::PolygonMesh;
+
+mod plain;
 
 /// Reads an OBJ file as a face list, keeping polygons (no triangulation) and every `v` line
 /// (used or not) in file order.
@@ -135,445 +137,293 @@ pub(crate) fn read_obj_within(
     budget: Budget,
     options: &ReadOptions,
 ) -> Result<PolygonMesh> {
-    let mut lines = Lines::new(reader, name);
-    let mut mesh = PolygonMesh::default();
-    let mut tags = TagReader::default();
-    let mut corners: Vec<u32> = Vec::new();
-    let mut uv = UvReader::default();
-    // The `vt` of the corners of one face line that have one.
-    let mut face_vts: Vec<u32> = Vec::new();
-    // Positive indices beyond the vertices read so far (line, index), each larger than every
-    // earlier one: the first of them beyond the file's count is the file's first bad forward
-    // reference (an earlier, smaller one is within it). A file of faces before their vertices
-    // keeps a few entries, not one per corner.
-    let mut forward: Vec<(u64, i64)> = Vec::new();
-    let mut extras = Extras::default();
-    // Every list the reader grows besides the mesh counts against the budget.
-    let extra = |tags: &TagReader, uv: &UvReader, forward: &[(u64, i64)], scratch: usize| {
-        tags.heap_bytes() + uv.heap_bytes() + std::mem::size_of_val(forward) + scratch
-    };
-    let extra = |tags: &TagReader, uv: &UvReader, e: &Extras, f: &[(u64, i64)], s: usize| {
-        extra(tags, uv, f, s) + e.heap_bytes()
-    };
+    read_obj_in_chunks(reader, name, budget, options, CHUNK)
+}
+
+/// [`read_obj_within`] reading `chunk` bytes at a time.
+pub(super) fn read_obj_in_chunks(
+    reader: impl Read,
+    name: &str,
+    budget: Budget,
+    options: &ReadOptions,
+    chunk: usize,
+) -> Result<PolygonMesh> {
+    let mut source = LineSource::with_chunk(reader, chunk);
+    let mut at = Place::new(name);
+    let mut obj = ObjReader::new(budget, *options);
     loop {
-        if !lines.next_line()? {
-            break;
+        if let Some((text, pos)) = source.in_place() {
+            obj.plain_lines(text, pos, &mut at)?;
         }
-        let line = lines.text.as_str();
-        let mut tokens = line.split_ascii_whitespace();
-        let Some(keyword) = tokens.next() else {
-            continue;
+        let Some(line) = source.next_line(&mut at)? else {
+            break;
         };
-        // The per-line lists (bounded by the line's length) count as what they hold.
-        let scratch = 4 * (corners.capacity() + face_vts.capacity());
+        obj.statement(line, &at)?;
+    }
+    obj.finish(&at)
+}
+
+/// The OBJ reader's state: the mesh and every list read so far.
+struct ObjReader {
+    budget: Budget,
+    options: ReadOptions,
+    mesh: PolygonMesh,
+    tags: TagReader,
+    /// The corners of the face line being read.
+    corners: Vec<u32>,
+    uv: UvReader,
+    /// The `vt` of the corners of one face line that have one.
+    face_vts: Vec<u32>,
+    /// Positive indices beyond the vertices read so far (line, index), each larger than every
+    /// earlier one: the first of them beyond the file's count is the file's first bad forward
+    /// reference (an earlier, smaller one is within it). A file of faces before their vertices
+    /// keeps a few entries, not one per corner.
+    forward: Vec<(u64, i64)>,
+    extras: Extras,
+}
+
+impl ObjReader {
+    fn new(budget: Budget, options: ReadOptions) -> ObjReader {
+        ObjReader {
+            budget,
+            options,
+            mesh: PolygonMesh::default(),
+            tags: TagReader::default(),
+            corners: Vec::new(),
+            uv: UvReader::default(),
+            face_vts: Vec::new(),
+            forward: Vec::new(),
+            extras: Extras::default(),
+        }
+    }
+
+    /// Every list the reader grows besides the mesh, which counts against the budget; the
+    /// per-line lists (bounded by the line's length) count as what they hold.
+    fn extra(&self) -> usize {
+        self.tags.heap_bytes()
+            + self.uv.heap_bytes()
+            + std::mem::size_of_val(self.forward.as_slice())
+            + 4 * (self.corners.capacity() + self.face_vts.capacity())
+            + self.extras.heap_bytes()
+    }
+
+    fn check(&self, at: &Place) -> Result<()> {
+        self.budget.check(&self.mesh, self.extra(), at)
+    }
+
+    /// Reads one line (comment removed, continuations joined), line `at.line`.
+    fn statement(&mut self, line: &str, at: &Place) -> Result<()> {
+        let mut words = Words::new(line);
+        let Some(keyword) = words.next() else {
+            return Ok(());
+        };
         match keyword {
             "v" => {
-                let position = parse_position(&mut tokens, &lines)?;
-                push_element(&mut mesh.positions, position, "vertices", &lines)?;
-                extras.vertex(tokens, &lines)?;
-                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
+                let missing = |found| ParseError::MissingCoordinates { found };
+                let xyz = words.values::<3>(at, parse_coordinate, missing)?;
+                let position = DVec3::from_array(xyz);
+                push_element(&mut self.mesh.positions, position, "vertices", at)?;
+                self.extras.vertex(words, at)?;
+                self.check(at)
             }
+            "f" => self.face(words, at),
             "vt" => {
                 let missing = |found| ParseError::MissingTexCoords { found };
-                let st = parse_values(&mut tokens, &lines, parse_tex_coordinate, missing)?;
-                push_element(
-                    &mut uv.coords,
-                    DVec2::from_array(st),
-                    "texture coordinates",
-                    &lines,
-                )?;
-                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
+                let st = words.values::<2>(at, parse_tex_coordinate, missing)?;
+                let coords = &mut self.uv.coords;
+                push_element(coords, DVec2::from_array(st), "texture coordinates", at)?;
+                self.check(at)
             }
-            "f" => {
-                corners.clear();
-                face_vts.clear();
-                let count = mesh.positions.len() as u64;
-                for (k, token) in tokens.enumerate() {
-                    let mut fields = token.split('/');
-                    let field = fields.next().unwrap_or("");
-                    let index = parse_index(field).map_err(|kind| lines.error(kind))?;
-                    let resolved = if index < 0 {
-                        let back = index.unsigned_abs();
-                        if back > count {
-                            let kind = ParseError::IndexOutOfRange {
-                                index,
-                                vertices: count,
-                            };
-                            return Err(lines.error(kind));
-                        }
-                        count - back
-                    } else {
-                        if index as u64 > count && forward.last().map_or(true, |&(_, i)| index > i)
-                        {
-                            grow(&mut forward, 1, &lines)?;
-                            forward.push((lines.line, index));
-                        }
-                        index as u64 - 1
-                    };
-                    grow(&mut corners, 1, &lines)?;
-                    corners.push(resolved as u32);
-                    match fields.next() {
-                        Some(vt) if !vt.is_empty() => {
-                            let t = uv.resolve(vt, k + 1, &lines)?;
-                            grow(&mut face_vts, 1, &lines)?;
-                            face_vts.push(t);
-                        }
-                        _ => {}
-                    }
-                }
-                if corners.len() < 3 {
-                    let kind = ParseError::FaceTooSmall {
-                        corners: corners.len(),
-                    };
-                    return Err(lines.error(kind));
-                }
-                let scratch = 4 * (corners.capacity() + face_vts.capacity());
-                // The face's corners, offset and line, and its corners' vt.
-                let adding =
-                    (corners.len() + face_vts.len()) * 4 + std::mem::size_of::<usize>() + 8;
-                if budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch))
-                    < adding as u128
-                {
-                    return Err(budget.refused(&lines));
-                }
-                mesh.try_push_face_from_line(&corners, lines.line)
-                    .map_err(|e| lines.allocation_failed(adding as u128, e))?;
-                extras
-                    .groups
-                    .face()
-                    .map_err(|e| lines.allocation_failed(4, e))?;
-                uv.push_face(&face_vts, corners.len(), &lines)?;
-                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
-            }
-            "t" if options.tags => {
-                let room = budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch));
-                tags.read(tokens, lines.line, room)
+            "t" if self.options.tags => {
+                let room = self.budget.room(&self.mesh, self.extra());
+                let tokens = words.rest().split_ascii_whitespace();
+                self.tags
+                    .read(tokens, at.line, room)
                     .map_err(|failure| match failure {
-                        TagFailure::Parse(kind) => lines.error(kind),
-                        TagFailure::OverBudget => budget.refused(&lines),
+                        TagFailure::Parse(kind) => at.error(kind),
+                        TagFailure::OverBudget => self.budget.refused(at),
                         TagFailure::Allocation { bytes, error } => {
-                            lines.allocation_failed(bytes, error)
+                            at.allocation_failed(bytes, error)
                         }
                     })?;
-                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
+                self.check(at)
             }
-            "t" => {}
+            "t" => Ok(()),
             "mtllib" => {
-                let room = budget.room(&mesh, extra(&tags, &uv, &extras, &forward, scratch));
+                let room = self.budget.room(&self.mesh, self.extra());
                 if room < (line.len() + 64) as u128 {
-                    return Err(budget.refused(&lines));
+                    return Err(self.budget.refused(at));
                 }
-                extras
-                    .groups
+                self.extras
                     .mtllib(line.trim())
-                    .map_err(|e| lines.allocation_failed(line.len() as u128, e))?;
+                    .map_err(|e| at.allocation_failed(line.len() as u128, e))
             }
             other => {
                 match Statement::of_keyword(other) {
-                    Some(statement) => extras.groups.statement(statement, tokens),
-                    None => extras.uncarried(other),
+                    Some(statement) => self.extras.statement(statement, words),
+                    None => self.extras.uncarried(other),
                 }
-                budget.check(&mesh, extra(&tags, &uv, &extras, &forward, scratch), &lines)?;
+                self.check(at)
             }
         }
     }
-    let count = mesh.positions.len() as u64;
-    let vertex_error = forward
-        .iter()
-        .find(|&&(_, index)| index as u64 > count)
-        .map(|&(line, index)| {
-            let kind = ParseError::IndexOutOfRange {
-                index,
-                vertices: count,
-            };
-            (line, kind)
-        });
-    // The first bad forward reference in the file, a vertex's before a vt's on one line.
-    let error = match (vertex_error, uv.forward_error()) {
-        (Some(v), Some(t)) => Some(if t.0 < v.0 { t } else { v }),
-        (v, t) => v.or(t),
-    };
-    if let Some((line, kind)) = error {
-        return Err(Error::Parse {
-            file: lines.name.clone(),
-            line,
-            kind,
-        });
-    }
-    if mesh.n_faces() == 0 {
-        return Err(Error::NoFaces {
-            file: lines.name.clone(),
-        });
-    }
-    tags.finish(&mut mesh)
-        .map_err(|(line, kind)| Error::Parse {
-            file: lines.name.clone(),
-            line,
-            kind,
-        })?;
-    let (uvs, partial) = uv.finish();
-    mesh.set_read_uvs(uvs, partial);
-    let vertices = mesh.n_vertices();
-    let (colors, groups, uncarried) = extras.finish(vertices);
-    mesh.set_read_extras(colors, groups, uncarried);
-    Ok(mesh)
-}
 
-/// What the OBJ reader keeps besides positions, faces, texture coordinates and tags: vertex
-/// colors, the grouping statements, and the kinds of lines no output carries.
-#[derive(Default)]
-struct Extras {
-    /// The colors of the `v` lines so far, while every one has `r g b` (else empty).
-    colors: Vec<[f64; 3]>,
-    /// The `v` lines with a color, and whether one had a count of values other than 3, 4 or 6.
-    with_colors: usize,
-    vertices: usize,
-    odd: bool,
-    groups: GroupsReader,
-    uncarried: std::collections::HashMap<String, u64>,
-}
-
-impl Extras {
-    fn heap_bytes(&self) -> usize {
-        let uncarried: usize = self.uncarried.keys().map(|k| k.capacity() + 48).sum();
-        24 * self.colors.capacity() + self.groups.heap_bytes() + uncarried
-    }
-
-    /// Reads the values of a `v` line after its position: none, `w`, or `r g b`.
-    fn vertex<'a, R>(
-        &mut self,
-        mut rest: impl Iterator<Item = &'a str> + Clone,
-        lines: &Lines<R>,
-    ) -> Result<()> {
-        // Counted without collecting: this runs once per `v` line.
-        let count = rest.clone().take(4).count();
-        let all_so_far = self.with_colors == self.vertices;
-        self.vertices += 1;
-        match count {
-            3 => {
-                let missing = |found| ParseError::MissingCoordinates { found };
-                let rgb = parse_values::<3, R>(&mut rest, lines, parse_color, missing)?;
-                self.with_colors += 1;
-                if all_so_far {
-                    grow(&mut self.colors, 1, lines)?;
-                    self.colors.push(rgb);
-                }
+    /// Reads an `f` line's corners (the words after `f`).
+    fn face(&mut self, mut words: Words<'_>, at: &Place) -> Result<()> {
+        self.corners.clear();
+        self.face_vts.clear();
+        let count = self.mesh.positions.len() as u64;
+        let slash = |t: &str| t.bytes().position(|b| b == b'/');
+        let mut corner = 0;
+        loop {
+            let ahead = words.ahead();
+            if ahead.is_empty() {
+                break;
             }
-            n => {
-                self.odd |= n > 1;
-                self.colors = Vec::new();
+            corner += 1;
+            // The fields `v`, `v/vt`, `v/vt/vn`, `v//vn`: a plain vertex index is read in
+            // place, the rest of the word only when there is one.
+            let (index, vt) = match index_prefix(ahead) {
+                Some((index, n)) if words.take_word(n) => (index, None),
+                Some((index, n)) if ahead[n] == b'/' => {
+                    let word = words.next().unwrap_or_default();
+                    let rest = &word[n + 1..];
+                    (index, Some(&rest[..slash(rest).unwrap_or(rest.len())]))
+                }
+                _ => {
+                    let word = words.next().unwrap_or_default();
+                    let (field, vt) = match slash(word) {
+                        None => (word, None),
+                        Some(i) => {
+                            let rest = &word[i + 1..];
+                            (&word[..i], Some(&rest[..slash(rest).unwrap_or(rest.len())]))
+                        }
+                    };
+                    (parse_index(field).map_err(|kind| at.error(kind))?, vt)
+                }
+            };
+            self.corner(index, count, at)?;
+            match vt {
+                Some(vt) if !vt.is_empty() => {
+                    let t = self.uv.resolve(vt, corner, at)?;
+                    grow(&mut self.face_vts, 1, at)?;
+                    self.face_vts.push(t);
+                }
+                _ => {}
             }
         }
-        Ok(())
+        self.end_face(at)
     }
 
-    /// Counts a line no output carries.
-    fn uncarried(&mut self, keyword: &str) {
-        let keyword = shorten(keyword);
-        *self.uncarried.entry(keyword).or_insert(0) += 1;
-    }
-
-    fn finish(
-        self,
-        vertices: usize,
-    ) -> (
-        ReadColors,
-        Option<crate::groups::FaceGroups>,
-        Vec<Uncarried>,
-    ) {
-        let colors = if self.with_colors == vertices && vertices > 0 {
-            (Some(self.colors), None)
-        } else if self.with_colors > 0 || self.odd {
-            let partial = PartialColors {
-                with_colors: self.with_colors,
-                vertices,
-            };
-            (None, Some(partial))
-        } else {
-            (None, None)
-        };
-        let mut uncarried: Vec<Uncarried> = self
-            .uncarried
-            .into_iter()
-            .map(|(keyword, count)| Uncarried {
-                what: format!("{keyword} lines"),
-                count,
-            })
-            .collect();
-        uncarried.sort_by(|a, b| a.what.cmp(&b.what));
-        (colors, self.groups.finish(), uncarried)
-    }
-}
-
-/// Parses a finite color value.
-pub(super) fn parse_color(token: &str) -> std::result::Result<f64, ParseError> {
-    parse_coordinate(token).map_err(|kind| match kind {
-        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
-            token,
-            expected: "vertex color",
-        },
-        kind => kind,
-    })
-}
-
-/// The texture coordinates read so far and the `vt` of the face corners.
-#[derive(Default)]
-struct UvReader {
-    /// The `vt` lines.
-    coords: Vec<DVec2>,
-    /// The `vt` of every corner so far, while every corner so far has one (else empty).
-    vts: Vec<u32>,
-    /// The corners read so far, and those of them with a `vt`.
-    corners: usize,
-    with_vt: usize,
-    /// Positive `vt` indices beyond the `vt` lines read so far (line, corner, index), each
-    /// larger than every earlier one: the first of them beyond the file's count is the
-    /// file's first bad forward reference (an earlier, smaller one is within it).
-    forward: Vec<(u64, usize, i64)>,
-}
-
-impl UvReader {
-    fn heap_bytes(&self) -> usize {
-        std::mem::size_of_val(self.coords.as_slice())
-            + std::mem::size_of_val(self.vts.as_slice())
-            + std::mem::size_of_val(self.forward.as_slice())
-    }
-
-    /// The 0-based `vt` of a corner's `vt` field (corner `corner` of the face on the line
-    /// `lines` is at).
-    fn resolve<R>(&mut self, field: &str, corner: usize, lines: &Lines<R>) -> Result<u32> {
-        let index = parse_index(field).map_err(|e| {
-            lines.error(match e {
-                ParseError::IndexTooLarge { token } => {
-                    ParseError::TexCoordIndexTooLarge { corner, token }
-                }
-                _ => ParseError::InvalidTexCoordIndex {
-                    corner,
-                    token: shorten(field),
-                },
-            })
-        })?;
-        let count = self.coords.len() as u64;
-        if index < 0 {
+    /// Adds a face's corner of vertex index `index` (1-based, or negative counting back from
+    /// the `count` vertices read so far).
+    #[inline(always)]
+    fn corner(&mut self, index: i64, count: u64, at: &Place) -> Result<()> {
+        let resolved = if index < 0 {
             let back = index.unsigned_abs();
             if back > count {
-                return Err(lines.error(ParseError::TexCoordIndexOutOfRange {
-                    corner,
+                let kind = ParseError::IndexOutOfRange {
                     index,
-                    count,
-                }));
+                    vertices: count,
+                };
+                return Err(at.error(kind));
             }
-            return Ok((count - back) as u32);
-        }
-        if index as u64 > count && self.forward.last().map_or(true, |&(_, _, i)| index > i) {
-            grow(&mut self.forward, 1, lines)?;
-            self.forward.push((lines.line, corner, index));
-        }
-        Ok(index as u32 - 1)
-    }
-
-    /// Records a face of `corners` corners whose corners with a `vt` have `vts`.
-    fn push_face<R>(&mut self, vts: &[u32], corners: usize, lines: &Lines<R>) -> Result<()> {
-        let all_so_far = self.with_vt == self.corners;
-        self.with_vt += vts.len();
-        self.corners += corners;
-        if all_so_far && vts.len() == corners {
-            grow(&mut self.vts, vts.len(), lines)?;
-            self.vts.extend_from_slice(vts);
-        } else if !self.vts.is_empty() {
-            self.vts = Vec::new();
-        }
+            count - back
+        } else {
+            if index as u64 > count && self.forward.last().map_or(true, |&(_, i)| index > i) {
+                grow(&mut self.forward, 1, at)?;
+                self.forward.push((at.line, index));
+            }
+            index as u64 - 1
+        };
+        grow(&mut self.corners, 1, at)?;
+        self.corners.push(resolved as u32);
         Ok(())
     }
 
-    /// The first corner naming a `vt` beyond the file's, with its line.
-    fn forward_error(&self) -> Option<(u64, ParseError)> {
-        let count = self.coords.len() as u64;
-        self.forward
+    /// Adds the face whose corners (and their `vt`) were read.
+    fn end_face(&mut self, at: &Place) -> Result<()> {
+        if self.corners.len() < 3 {
+            let kind = ParseError::FaceTooSmall {
+                corners: self.corners.len(),
+            };
+            return Err(at.error(kind));
+        }
+        // The face's corners, offset and line, and its corners' vt.
+        let adding =
+            (self.corners.len() + self.face_vts.len()) * 4 + std::mem::size_of::<usize>() + 8;
+        if self.budget.room(&self.mesh, self.extra()) < adding as u128 {
+            return Err(self.budget.refused(at));
+        }
+        self.mesh
+            .try_push_face_from_line(&self.corners, at.line)
+            .map_err(|e| at.allocation_failed(adding as u128, e))?;
+        self.extras.face().map_err(|e| at.allocation_failed(4, e))?;
+        self.uv.push_face(&self.face_vts, self.corners.len(), at)?;
+        if !self.extras.grouped() {
+            // Nothing grew by more than `adding`, which the budget had room for: the mesh by
+            // the corners, the offset and the line (16 bytes), the texture coordinates by
+            // the face's `vt` at most; the groups (which grow by their capacity) not at all.
+            return Ok(());
+        }
+        self.check(at)
+    }
+
+    /// The mesh, once the file is read: the first bad forward reference, no faces and the
+    /// tags' problems are errors.
+    fn finish(self, at: &Place) -> Result<PolygonMesh> {
+        let ObjReader {
+            mut mesh,
+            tags,
+            uv,
+            forward,
+            extras,
+            ..
+        } = self;
+        let count = mesh.positions.len() as u64;
+        let vertex_error = forward
             .iter()
-            .find(|&&(_, _, index)| index as u64 > count)
-            .map(|&(line, corner, index)| {
-                let kind = ParseError::TexCoordIndexOutOfRange {
-                    corner,
+            .find(|&&(_, index)| index as u64 > count)
+            .map(|&(line, index)| {
+                let kind = ParseError::IndexOutOfRange {
                     index,
-                    count,
+                    vertices: count,
                 };
                 (line, kind)
-            })
-    }
-
-    /// The mesh's texture coordinates (every corner has a `vt`), or the record of a file
-    /// where only some corners have one; neither when no corner has one (`vt` lines or not).
-    fn finish(self) -> (Option<Uvs>, Option<PartialUvs>) {
-        if self.with_vt == 0 {
-            (None, None)
-        } else if self.with_vt == self.corners {
-            (Some(Uvs::from_read(self.coords, self.vts)), None)
-        } else {
-            let partial = PartialUvs {
-                with_vt: self.with_vt,
-                corners: self.corners,
-            };
-            (None, Some(partial))
+            });
+        // The first bad forward reference in the file, a vertex's before a vt's on one line.
+        let error = match (vertex_error, uv.forward_error()) {
+            (Some(v), Some(t)) => Some(if t.0 < v.0 { t } else { v }),
+            (v, t) => v.or(t),
+        };
+        let parse_error = |(line, kind)| Error::Parse {
+            file: at.name.clone(),
+            line,
+            kind,
+        };
+        if let Some(error) = error {
+            return Err(parse_error(error));
         }
+        if mesh.n_faces() == 0 {
+            return Err(Error::NoFaces {
+                file: at.name.clone(),
+            });
+        }
+        tags.finish(&mut mesh).map_err(parse_error)?;
+        let (uvs, partial) = uv.finish();
+        mesh.set_read_uvs(uvs, partial);
+        let vertices = mesh.n_vertices();
+        let (colors, groups, uncarried) = extras.finish(vertices);
+        mesh.set_read_extras(colors, groups, uncarried);
+        Ok(mesh)
     }
-}
-
-/// Appends `item` to `list`, the file's `what` (vertices or texture coordinates): at most
-/// `u32::MAX - 1` of them, so that an index and `INVALID` fit `u32`.
-fn push_element<T, R>(
-    list: &mut Vec<T>,
-    item: T,
-    what: &'static str,
-    lines: &Lines<R>,
-) -> Result<()> {
-    if list.len() >= u32::MAX as usize - 1 {
-        return Err(Error::TooManyElements {
-            what,
-            count: list.len() as u64 + 1,
-        });
-    }
-    grow(list, 1, lines)?;
-    list.push(item);
-    Ok(())
-}
-
-/// Parses a finite texture coordinate.
-fn parse_tex_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
-    parse_coordinate(token).map_err(|kind| match kind {
-        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
-            token,
-            expected: "texture coordinate",
-        },
-        kind => kind,
-    })
-}
-
-/// Parses an OBJ vertex index: a non-zero integer whose magnitude fits `u32`.
-fn parse_index(field: &str) -> std::result::Result<i64, ParseError> {
-    let digits = field.strip_prefix(['-', '+']).unwrap_or(field);
-    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return Err(ParseError::InvalidNumber {
-            token: shorten(field),
-            expected: "vertex index",
-        });
-    }
-    let too_large = || ParseError::IndexTooLarge {
-        token: shorten(field),
-    };
-    let index: i64 = field.parse().map_err(|_| too_large())?;
-    if index == 0 {
-        return Err(ParseError::IndexZero);
-    }
-    if index.unsigned_abs() >= u64::from(u32::MAX) {
-        return Err(too_large());
-    }
-    Ok(index)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::lines::testing::{outcome, Rng, Trickle};
+    use crate::uv::Uvs;
     use glam::DVec3;
 
     #[test]
@@ -784,5 +634,78 @@ mod tests {
             err.to_string(),
             "t.obj: line 9: face index 0 is not valid (OBJ indices start at 1)"
         );
+    }
+
+    /// An OBJ file from random statements, valid or not.
+    fn random_obj(rng: &mut Rng) -> Vec<u8> {
+        const LINES: &[&str] = &[
+            "v 0 0 0\n",
+            "v 1 0 0\n",
+            "v 0 1 0\n",
+            "v 0.35165546140493487 -2.5 1e3\n",
+            "v 1 2 3 0.5 0.5 0.5\n",
+            "v 1 2\n",
+            "v 1 2 x\n",
+            "v\t1\t2\t3\t\n",
+            "v 1 2 3\r\n",
+            "f 1 2 3\n",
+            "f -1 -2 -3\n",
+            "f 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17\n",
+            "f 1/1 2/2 3/3\n",
+            "f 1//1 2//1 3//1\n",
+            "f 1 2\n",
+            "f 1 2 0\n",
+            "f 9 8 7\n",
+            "f 1 2 \\\n3\n",
+            "vt 0 0\n",
+            "vt 0.5\n",
+            "g a\n",
+            "usemtl m\n",
+            "s 1\n",
+            "vn 0 0 1\n",
+            "t crease 2/1/0 0 1 10\n",
+            "# comment\n",
+            "\n",
+            "  v 1 1 1\n",
+            "f 1 2 3 # c\n",
+            "f +1 02 3\n",
+            "f 1 2 99999999999999999999\n",
+            "v 1 2 3\x0b\n",
+            "f 1 2 3\x0c\n",
+            "f 1\x0b2 3\n",
+            "v 1 2 3",
+            "\0\n",
+            "\u{a0}\n",
+        ];
+        let mut text = Vec::new();
+        for _ in 0..rng.below(30) {
+            text.extend_from_slice(LINES[rng.below(LINES.len())].as_bytes());
+        }
+        text
+    }
+
+    #[test]
+    fn every_chunk_size_reads_the_same_obj() {
+        let mut rng = Rng(0x5eed_0f0b_1234_9876);
+        for _ in 0..3000 {
+            let text = random_obj(&mut rng);
+            for budget in [Budget { bytes: u64::MAX }, Budget { bytes: 300 }] {
+                let options = ReadOptions::default();
+                let whole = outcome(read_obj_within(text.as_slice(), "t.obj", budget, &options));
+                for chunk in [1, 3, 16, 100] {
+                    let read =
+                        read_obj_in_chunks(text.as_slice(), "t.obj", budget, &options, chunk);
+                    assert_eq!(
+                        outcome(read),
+                        whole,
+                        "{:?} {chunk}",
+                        String::from_utf8_lossy(&text)
+                    );
+                }
+                let trickle = Trickle::new(&text, 7, None);
+                let read = read_obj_in_chunks(trickle, "t.obj", budget, &options, 5);
+                assert_eq!(outcome(read), whole);
+            }
+        }
     }
 }

@@ -3,7 +3,8 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use super::{grow, parse_position, shorten, Budget, Lines, ReadOptions};
+use super::lines::{LineSource, Place};
+use super::{grow, parse_position, shorten, Budget, ReadOptions};
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::{PartialColors, PolygonMesh};
 
@@ -63,19 +64,19 @@ pub(crate) fn read_off_within(
     name: &str,
     budget: Budget,
 ) -> Result<PolygonMesh> {
-    let mut lines = Lines::new(reader, name);
+    let mut source = LineSource::new(reader);
+    let mut lines = Place::new(name);
     let malformed = |what: String| ParseError::Malformed { what };
 
     // Header keyword, possibly followed by the counts.
     let mut counts: Vec<String> = Vec::new();
     let (colored, normals);
     loop {
-        if !lines.next_line()? {
+        let Some(line) = source.next_line(&mut lines)? else {
             return Err(Error::NoFaces {
                 file: lines.name.clone(),
             });
-        }
-        let line = lines.text.as_str();
+        };
         let mut tokens = line.split_ascii_whitespace();
         let Some(keyword) = tokens.next() else {
             continue;
@@ -93,12 +94,11 @@ pub(crate) fn read_off_within(
         break;
     }
     while counts.is_empty() {
-        if !lines.next_line()? {
+        let Some(line) = source.next_line(&mut lines)? else {
             return Err(lines.error(ParseError::UnexpectedEnd {
                 what: "no vertex and face counts".into(),
             }));
-        }
-        let line = lines.text.as_str();
+        };
         counts.extend(line.split_ascii_whitespace().map(str::to_string));
     }
     if counts.len() < 2 {
@@ -122,11 +122,10 @@ pub(crate) fn read_off_within(
     let _ = mesh.try_reserve_faces(cap(n_faces, 8), 0);
     let (mut colors, mut with_colors): (Vec<[f64; 3]>, usize) = (Vec::new(), 0);
     while mesh.positions.len() < n_vertices as usize {
-        if !lines.next_line()? {
+        let Some(line) = source.next_line(&mut lines)? else {
             let what = format!("{} of {n_vertices} vertices read", mesh.positions.len());
             return Err(lines.error(ParseError::UnexpectedEnd { what }));
-        }
-        let line = lines.text.as_str();
+        };
         let mut tokens = line.split_ascii_whitespace().peekable();
         if tokens.peek().is_none() {
             continue;
@@ -141,10 +140,10 @@ pub(crate) fn read_off_within(
             if rgb.len() == 3 {
                 with_colors += 1;
                 let missing = |found| ParseError::MissingCoordinates { found };
-                let rgb = super::parse_values::<3, _>(
+                let rgb = super::parse_values::<3>(
                     &mut rgb.into_iter(),
                     &lines,
-                    super::obj::parse_color,
+                    super::obj_extras::parse_color,
                     missing,
                 )?;
                 if all_so_far {
@@ -159,11 +158,10 @@ pub(crate) fn read_off_within(
     }
     let mut corners: Vec<u32> = Vec::new();
     while mesh.n_faces() < n_faces as usize {
-        if !lines.next_line()? {
+        let Some(line) = source.next_line(&mut lines)? else {
             let what = format!("{} of {n_faces} faces read", mesh.n_faces());
             return Err(lines.error(ParseError::UnexpectedEnd { what }));
-        }
-        let line = lines.text.as_str();
+        };
         let mut tokens = line.split_ascii_whitespace();
         let Some(first) = tokens.next() else { continue };
         let degree = first.parse::<u32>().map_err(|_| {

@@ -1,11 +1,12 @@
 //! The PLY data: elements read in ASCII or binary, faces, colors and texture coordinates.
 
 use std::collections::HashMap;
-use std::io::{BufRead, Read};
+use std::io::BufRead;
 
 use glam::{DVec2, DVec3};
 
 use super::super::{shorten, Budget};
+use super::binary::{Bytes, Layout};
 use super::*;
 use crate::error::{Error, ParseError, Result};
 use crate::polygon::PolygonMesh;
@@ -118,6 +119,8 @@ pub(super) struct Body<R> {
     /// The corners and texture coordinates of the face being read.
     pub(super) corners: Vec<u32>,
     pub(super) texcoord: Vec<f64>,
+    /// Binary data: what is read ahead.
+    pub(super) bytes: Bytes,
 }
 
 /// Where a value is: an element and its index, and the property.
@@ -153,6 +156,7 @@ impl<R: BufRead> Body<R> {
             face_uvs: FaceUvs::default(),
             corners: Vec::new(),
             texcoord: Vec::new(),
+            bytes: Bytes::default(),
         }
     }
 
@@ -206,17 +210,22 @@ impl<R: BufRead> Body<R> {
     /// Refuses once `used() + adding` bytes outgrow the budget.
     pub(super) fn check(&self, adding: u128) -> Result<()> {
         if self.used() + adding > u128::from(self.budget.bytes) {
-            let line = match self.big_endian {
-                None => self.source.line,
-                Some(_) => self.data_line,
-            };
-            return Err(Error::MeshTooLarge {
-                file: self.source.file.clone(),
-                line,
-                limit: self.budget.bytes,
-            });
+            return Err(self.too_large());
         }
         Ok(())
+    }
+
+    /// The refusal of what was read beyond the budget, where the reader got to.
+    pub(super) fn too_large(&self) -> Error {
+        let line = match self.big_endian {
+            None => self.source.line,
+            Some(_) => self.data_line,
+        };
+        Error::MeshTooLarge {
+            file: self.source.file.clone(),
+            line,
+            limit: self.budget.bytes,
+        }
     }
 
     /// Starts an element: ASCII data reads its line (blank lines are skipped).
@@ -290,15 +299,13 @@ impl<R: BufRead> Body<R> {
                 (value, Some((a, b)))
             }
             Some(big_endian) => {
-                let mut bytes = [0u8; 8];
-                let bytes = &mut bytes[..ty.size()];
-                if let Err(e) = self.source.reader.read_exact(bytes) {
-                    return Err(match e.kind() {
-                        std::io::ErrorKind::UnexpectedEof => self.truncated(at, Some(property)),
-                        _ => self.source.io(e),
+                if !self.bytes.fill(&mut self.source.reader, ty.size()) {
+                    return Err(match self.bytes.failure() {
+                        Some(e) => self.source.io(e),
+                        None => self.truncated(at, Some(property)),
                     });
                 }
-                (ty.decode(bytes, big_endian), None)
+                (ty.decode(self.bytes.take(ty.size()), big_endian), None)
             }
         };
         if finite && !value.is_finite() {
@@ -346,8 +353,8 @@ impl<R: BufRead> Body<R> {
 
     /// Skips up to `n` bytes of binary data; the bytes skipped.
     pub(super) fn skip_bytes(&mut self, n: u64) -> Result<u64> {
-        let mut data = (&mut self.source.reader).take(n);
-        std::io::copy(&mut data, &mut std::io::sink()).map_err(|e| self.source.io(e))
+        let skipped = self.bytes.skip(&mut self.source.reader, n);
+        skipped.map_err(|e| self.source.io(e))
     }
 
     /// Skips a property's value or list, checking it.
@@ -422,7 +429,17 @@ impl<R: BufRead> Body<R> {
         if uvs {
             let _ = self.vertex_uvs.try_reserve_exact(room(16));
         }
-        for index in 0..element.count {
+        // Binary records of scalars are read whole while all their bytes are there.
+        let first = match self
+            .big_endian
+            .and_then(|b| Some((Layout::of(element)?, b)))
+        {
+            Some((layout, big_endian)) => {
+                self.vertex_records(element, &layout, big_endian, (colors, uvs))?
+            }
+            None => 0,
+        };
+        for index in first..element.count {
             let at = At { element, index };
             self.begin(at)?;
             let (mut p, mut c, mut t) = ([0.0; 3], [0.0; 3], [0.0; 2]);
@@ -442,23 +459,37 @@ impl<R: BufRead> Body<R> {
                 }
             }
             self.end(at)?;
-            let adding = 24 + if colors { 24 } else { 0 } + if uvs { 16 } else { 0 };
-            self.check(adding)?;
-            let refused = |body: &Self, e| body.allocation_failed(at, adding, e);
-            self.positions
+            self.push_vertex(at, p, (colors, c), (uvs, t))?;
+        }
+        Ok(())
+    }
+
+    /// Keeps a vertex read: its position, and its color and texture coordinate when the
+    /// element has them.
+    #[inline]
+    pub(super) fn push_vertex(
+        &mut self,
+        at: At<'_>,
+        p: [f64; 3],
+        (colors, c): (bool, [f64; 3]),
+        (uvs, t): (bool, [f64; 2]),
+    ) -> Result<()> {
+        let adding = 24 + if colors { 24 } else { 0 } + if uvs { 16 } else { 0 };
+        self.check(adding)?;
+        let refused = |body: &Self, e| body.allocation_failed(at, adding, e);
+        self.positions
+            .try_reserve(1)
+            .map_err(|e| refused(self, e))?;
+        self.positions.push(DVec3::from_array(p));
+        if colors {
+            self.colors.try_reserve(1).map_err(|e| refused(self, e))?;
+            self.colors.push(c);
+        }
+        if uvs {
+            self.vertex_uvs
                 .try_reserve(1)
                 .map_err(|e| refused(self, e))?;
-            self.positions.push(DVec3::from_array(p));
-            if colors {
-                self.colors.try_reserve(1).map_err(|e| refused(self, e))?;
-                self.colors.push(c);
-            }
-            if uvs {
-                self.vertex_uvs
-                    .try_reserve(1)
-                    .map_err(|e| refused(self, e))?;
-                self.vertex_uvs.push(DVec2::from_array(t));
-            }
+            self.vertex_uvs.push(DVec2::from_array(t));
         }
         Ok(())
     }
@@ -466,7 +497,17 @@ impl<R: BufRead> Body<R> {
     /// Reads the face element: corners, and texture coordinates if it has `texcoord`.
     pub(super) fn faces(&mut self, element: &Element) -> Result<()> {
         let texcoord = element.properties.iter().find(|p| p.role == Role::TexCoord);
-        for index in 0..element.count {
+        // Binary faces of only a list of corners are read whole while their bytes are there.
+        let first = match (self.big_endian, element.properties.as_slice()) {
+            (Some(big_endian), [p]) => match (p.shape, p.role) {
+                (Shape::List { count, item }, Role::Indices) => {
+                    self.corner_lists(element, (count, item), big_endian)?
+                }
+                _ => 0,
+            },
+            _ => 0,
+        };
+        for index in first..element.count {
             let at = At { element, index };
             self.begin(at)?;
             let line = self.source.line;
@@ -481,6 +522,12 @@ impl<R: BufRead> Body<R> {
                                 corners: n as usize,
                             };
                             return Err(self.error(at, None, kind));
+                        }
+                        // Binary corners are read whole (when all their bytes are there).
+                        if let Some(big_endian) = self.big_endian {
+                            if self.corner_list(item, n, big_endian, at)? {
+                                continue;
+                            }
                         }
                         for _ in 0..n {
                             let value = self.scalar(item, at, property, false)?;

@@ -52,6 +52,7 @@ impl Type {
         }
     }
 
+    #[inline]
     pub(super) fn size(self) -> usize {
         match self {
             Type::I8 | Type::U8 => 1,
@@ -67,6 +68,7 @@ impl Type {
 
     /// The value of `bytes` (exactly [`size`](Self::size) of them): every PLY type is exact
     /// in `f64`.
+    #[inline(always)]
     pub(super) fn decode(self, bytes: &[u8], big_endian: bool) -> f64 {
         macro_rules! decode {
             ($t:ty, $n:literal) => {{
@@ -89,6 +91,33 @@ impl Type {
             Type::F32 => decode!(f32, 4),
             Type::F64 => decode!(f64, 8),
         }
+    }
+
+    /// The value of `bytes` (at least [`size`](Self::size) of them) of an integer type, as
+    /// [`decode`](Self::decode) reads it (every PLY integer is exact in `f64`); `None` for
+    /// `float` and `double`.
+    #[inline(always)]
+    pub(super) fn decode_int(self, bytes: &[u8], big_endian: bool) -> Option<i64> {
+        macro_rules! decode {
+            ($t:ty, $n:literal) => {{
+                let mut a = [0u8; $n];
+                a.copy_from_slice(&bytes[..$n]);
+                i64::from(if big_endian {
+                    <$t>::from_be_bytes(a)
+                } else {
+                    <$t>::from_le_bytes(a)
+                })
+            }};
+        }
+        Some(match self {
+            Type::I8 => decode!(i8, 1),
+            Type::U8 => decode!(u8, 1),
+            Type::I16 => decode!(i16, 2),
+            Type::U16 => decode!(u16, 2),
+            Type::I32 => decode!(i32, 4),
+            Type::U32 => decode!(u32, 4),
+            Type::F32 | Type::F64 => return None,
+        })
     }
 
     /// The value of an ASCII token: an integer in the type's range, or a float read in the

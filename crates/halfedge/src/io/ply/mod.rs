@@ -1,8 +1,10 @@
 //! PLY reading (`ascii`, `binary_little_endian`, `binary_big_endian` 1.0) and writing
 //! (`binary_little_endian` 1.0): positions, faces, vertex colors and texture coordinates.
 
+mod binary;
 mod body;
 mod header;
+mod records;
 mod write;
 
 use self::body::*;
@@ -110,6 +112,7 @@ pub(crate) fn read_ply_within(
 mod tests {
     use super::*;
     use crate::error::Error;
+    use crate::io::lines::testing::{outcome, Trickle};
     use glam::DVec2;
 
     const HEAD: &str = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\
@@ -377,5 +380,133 @@ mod tests {
                 .to_string(),
             "t.ply: face 1, property `texcoord`: coordinate `nan` is not finite"
         );
+    }
+
+    /// A binary PLY of a few faces, `big_endian` or not, its corners as `int`.
+    fn binary_ply(big_endian: bool, faces: &[&[i32]], positions: &[[f64; 3]]) -> Vec<u8> {
+        let format = if big_endian {
+            "binary_big_endian"
+        } else {
+            "binary_little_endian"
+        };
+        let mut bytes = format!(
+            "ply\nformat {format} 1.0\nelement vertex {}\nproperty double x\nproperty double y\n\
+             property double z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n\
+             element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+            positions.len(),
+            faces.len()
+        )
+        .into_bytes();
+        for (i, p) in positions.iter().enumerate() {
+            for x in p {
+                bytes.extend(if big_endian {
+                    x.to_be_bytes()
+                } else {
+                    x.to_le_bytes()
+                });
+            }
+            bytes.extend([i as u8, 2 * i as u8, 255]);
+        }
+        for face in faces {
+            bytes.push(face.len() as u8);
+            for &v in *face {
+                bytes.extend(if big_endian {
+                    v.to_be_bytes()
+                } else {
+                    v.to_le_bytes()
+                });
+            }
+        }
+        bytes
+    }
+
+    #[test]
+    fn a_list_longer_than_what_is_read_whole_is_read_value_by_value() {
+        let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let long: Vec<i32> = (0..20_000).map(|i| i % 3).collect();
+        let bytes = binary_ply(false, &[&[0, 1, 2], &long], &positions);
+        let bytes = String::from_utf8_lossy(&bytes)
+            .replace("list uchar int", "list int int")
+            .into_bytes();
+        // The count of a face as `int`: rebuild the data with four-byte counts.
+        let header_end = bytes
+            .windows(11)
+            .position(|w| w == b"end_header\n")
+            .unwrap()
+            + 11;
+        let mut data = bytes[..header_end].to_vec();
+        for p in positions {
+            for x in p {
+                data.extend(x.to_le_bytes());
+            }
+            data.extend([0, 0, 255]);
+        }
+        for face in [&[0, 1, 2][..], &long] {
+            data.extend((face.len() as i32).to_le_bytes());
+            for &v in face {
+                data.extend(v.to_le_bytes());
+            }
+        }
+        let mesh = read_ply_from(data.as_slice(), "long.ply").expect("valid");
+        assert_eq!(
+            mesh.face(1),
+            long.iter().map(|&v| v as u32).collect::<Vec<_>>()
+        );
+        let cut = &data[..data.len() - 10];
+        assert_eq!(
+            read_ply_from(cut, "long.ply").unwrap_err().to_string(),
+            "long.ply: face 1, property `vertex_indices`: the file ends early: the header declares 2 `face` elements"
+        );
+    }
+
+    #[test]
+    fn binary_ply_reads_the_same_however_its_bytes_come() {
+        let positions = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, f64::NAN],
+        ];
+        let cases: &[&[&[i32]]] = &[
+            &[&[0, 1, 2], &[2, 1, 0, 1]],
+            &[&[0, 1, 2], &[2, 1, 7]],
+            &[&[0, 1, 2], &[2, -1, 0]],
+            &[&[0, 1], &[0, 1, 2]],
+            &[&[0, 1, 2, 0, 1, 2, 0, 1, 2], &[0, 1, 2], &[0, 1, 2, 0, 1]],
+        ];
+        for big_endian in [false, true] {
+            for faces in cases {
+                for vertices in [3, 4] {
+                    let bytes = binary_ply(big_endian, faces, &positions[..vertices]);
+                    for cut in (0..=bytes.len()).rev() {
+                        let data = &bytes[..cut];
+                        for budget in [u64::MAX, 300, 180] {
+                            let budget = Budget { bytes: budget };
+                            let whole = outcome(read_ply_within(data, "t.ply", budget));
+                            let trickle = std::io::BufReader::with_capacity(
+                                2,
+                                Trickle::new(data, cut as u64, None),
+                            );
+                            let read = read_ply_within(trickle, "t.ply", budget);
+                            assert_eq!(outcome(read), whole, "{cut}");
+                        }
+                        // A read error at `cut`: what the data up to it gives (an error before
+                        // the cut), or the read error; never the end of the data.
+                        let unlimited = Budget { bytes: u64::MAX };
+                        let failing = std::io::BufReader::with_capacity(
+                            2,
+                            Trickle::new(&bytes, 3, Some(cut)),
+                        );
+                        let read = read_ply_within(failing, "t.ply", unlimited);
+                        let ended = read_ply_within(data, "t.ply", unlimited);
+                        if cut < bytes.len() && !matches!(read, Err(Error::Io { .. })) {
+                            let message = outcome(ended);
+                            assert!(!message.contains("ends early"), "{cut}: {message}");
+                            assert_eq!(outcome(read), message, "{cut}");
+                        }
+                    }
+                }
+            }
+        }
     }
 }
