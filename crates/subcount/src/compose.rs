@@ -75,7 +75,8 @@ pub(crate) fn subdivide(
     if let Some(path) = &args.output {
         let options = ObjWriteOptions::default()
             .with_uvs(last.uvs().is_some())
-            .with_normals(args.normals.is_some());
+            .with_normals(args.normals.is_some())
+            .with_threads(args.threads);
         driver::output::write_polygon_mesh_file(last, path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();

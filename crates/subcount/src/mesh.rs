@@ -448,7 +448,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
         // of the output with --normals.
         let options = ObjWriteOptions::default()
             .with_uvs(result.uvs().is_some())
-            .with_normals(args.normals.is_some());
+            .with_normals(args.normals.is_some())
+            .with_threads(args.threads);
         result.write(path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();

@@ -23,8 +23,8 @@ use crate::{normals, Scalar};
 /// use halfedge::io::ObjWriteOptions;
 /// let options = ObjWriteOptions::default();
 /// assert!(options.uvs && !options.normals);
-/// let options = options.with_normals(true).with_uvs(false);
-/// assert!(!options.uvs && options.normals);
+/// let options = options.with_normals(true).with_uvs(false).with_threads(2);
+/// assert!(!options.uvs && options.normals && options.threads == 2);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -34,13 +34,19 @@ pub struct ObjWriteOptions {
     /// Write vertex normals: area-weighted, or the limit normals of a [`MeshBuffers`] with
     /// tangents (default `false`).
     pub normals: bool,
+    /// Threads formatting the text (OBJ) or the records (PLY), in chunks written in order: 1
+    /// (the default) the calling thread, 0 rayon's current pool (the one the call runs in,
+    /// else the global one), `n >= 2` a pool of `n` threads. The bytes written are the same
+    /// for every value.
+    pub threads: usize,
 }
 
 impl ObjWriteOptions {
-    /// Texture coordinates written, no normals (the default).
+    /// Texture coordinates written, no normals, on the calling thread (the default).
     pub const DEFAULT: ObjWriteOptions = ObjWriteOptions {
         uvs: true,
         normals: false,
+        threads: 1,
     };
 
     with_setters! {
@@ -48,6 +54,8 @@ impl ObjWriteOptions {
         with_uvs(uvs: bool);
         /// These options with [`normals`](Self::normals) set to `normals`.
         with_normals(normals: bool);
+        /// These options with [`threads`](Self::threads) set to `threads`.
+        with_threads(threads: usize);
     }
 }
 
@@ -79,23 +87,120 @@ pub enum FaceBuffers<'a> {
 }
 
 impl<'a> FaceBuffers<'a> {
-    /// The faces as slices; `None` when the buffers do not describe faces (a degree of 0 or
-    /// not dividing the length, offsets that decrease or leave the indices).
-    pub(crate) fn faces(&self) -> Option<Vec<&'a [u32]>> {
+    /// The faces, checked to be faces: `None` when the buffers do not describe faces (a
+    /// degree of 0 or not dividing the length, offsets that do not start at 0, end at the
+    /// last index and increase).
+    pub(crate) fn faces(&self) -> Option<FaceList<'a>> {
         match *self {
             FaceBuffers::Uniform { degree, indices } => (degree > 0 && indices.len() % degree == 0)
-                .then(|| indices.chunks_exact(degree).collect()),
-            FaceBuffers::Polygons { offsets, indices } => {
-                let whole = offsets.first() == Some(&0)
-                    && offsets.last().map(|&l| l as usize) == Some(indices.len());
-                let faces: Option<Vec<&'a [u32]>> = offsets
-                    .windows(2)
-                    .map(|w| indices.get(w[0] as usize..w[1] as usize))
-                    .collect();
-                faces.filter(|f| whole && f.iter().all(|f| !f.is_empty()))
+                .then_some(FaceList::Uniform { degree, indices }),
+            FaceBuffers::Polygons { offsets, indices } => (offsets.first() == Some(&0)
+                && offsets.last().map(|&l| l as usize) == Some(indices.len())
+                && offsets.windows(2).all(|w| w[0] < w[1]))
+            .then_some(FaceList::Offsets32 { offsets, indices }),
+        }
+    }
+}
+
+/// Faces whose buffers are known to be faces ([`FaceBuffers::faces`], a
+/// [`PolygonMesh`](crate::PolygonMesh)'s): each face's corners by index, without a list of
+/// slices.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FaceList<'a> {
+    /// `indices.len() / degree` faces of `degree > 0` corners.
+    Uniform { degree: usize, indices: &'a [u32] },
+    /// Face `f` is `indices[offsets[f]..offsets[f + 1]]`, offsets increasing from 0 to the
+    /// length.
+    Offsets32 {
+        offsets: &'a [u32],
+        indices: &'a [u32],
+    },
+    /// The same with a face list's offsets.
+    Offsets {
+        offsets: &'a [usize],
+        indices: &'a [u32],
+    },
+}
+
+impl<'a> FaceList<'a> {
+    /// A face list's faces.
+    pub(crate) fn of_polygon_mesh(mesh: &'a crate::PolygonMesh) -> FaceList<'a> {
+        FaceList::Offsets {
+            offsets: mesh.face_offsets(),
+            indices: mesh.face_indices(),
+        }
+    }
+
+    /// The number of faces.
+    pub(crate) fn len(&self) -> usize {
+        match *self {
+            FaceList::Uniform { degree, indices } => indices.len() / degree,
+            FaceList::Offsets32 { offsets, .. } => offsets.len() - 1,
+            FaceList::Offsets { offsets, .. } => offsets.len() - 1,
+        }
+    }
+
+    /// All the corners, face after face.
+    pub(crate) fn indices(&self) -> &'a [u32] {
+        match *self {
+            FaceList::Uniform { indices, .. }
+            | FaceList::Offsets32 { indices, .. }
+            | FaceList::Offsets { indices, .. } => indices,
+        }
+    }
+
+    /// Face `f`'s corners.
+    #[inline]
+    pub(crate) fn face(&self, f: usize) -> &'a [u32] {
+        &self.indices()[self.first_corner(f)..self.first_corner(f + 1)]
+    }
+
+    /// The index of face `f`'s first corner among [`indices`](Self::indices) (`f` up to
+    /// the number of faces: the end of the last).
+    #[inline]
+    pub(crate) fn first_corner(&self, f: usize) -> usize {
+        match *self {
+            FaceList::Uniform { degree, .. } => f * degree,
+            FaceList::Offsets32 { offsets, .. } => offsets[f] as usize,
+            FaceList::Offsets { offsets, .. } => offsets[f],
+        }
+    }
+
+    /// The faces in order.
+    pub(crate) fn iter(&self) -> impl ExactSizeIterator<Item = &'a [u32]> + 'a {
+        let list = *self;
+        (0..list.len()).map(move |f| list.face(f))
+    }
+
+    /// The most corners of a face (0 without faces).
+    pub(crate) fn max_degree(&self) -> usize {
+        match *self {
+            FaceList::Uniform { degree, indices } if !indices.is_empty() => degree,
+            FaceList::Uniform { .. } => 0,
+            FaceList::Offsets32 { offsets, .. } => offsets
+                .windows(2)
+                .map(|w| (w[1] - w[0]) as usize)
+                .max()
+                .unwrap_or(0),
+            FaceList::Offsets { offsets, .. } => {
+                offsets.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0)
             }
         }
     }
+}
+
+/// The first of `values` not below `bound`, with its index: a vectorised pass for the usual
+/// answer (none), the search only when there is one.
+fn first_at_least(values: &[u32], bound: usize) -> Option<(usize, u32)> {
+    let max = values.iter().copied().fold(0, u32::max);
+    if values.is_empty() || (max as usize) < bound {
+        return None;
+    }
+    values
+        .iter()
+        .copied()
+        .enumerate()
+        .find(|&(_, v)| v as usize >= bound)
 }
 
 /// Texture coordinates in caller-owned buffers (what a face-varying evaluation writes): the UV
@@ -207,7 +312,7 @@ impl<'a, T> MeshBuffers<'a, T> {
         }
         let normals = options.normals.then(|| {
             let position = |v: u32| DVec3::from_array(positions[v as usize].map(T::to_f64));
-            let area = normals::vertex_normals_by(positions.len(), position, &list);
+            let area = normals::vertex_normals_by(positions.len(), position, list.iter());
             match self.tangents {
                 Some((a, b)) => {
                     let d = |x: &[T; 3]| DVec3::from_array(x.map(T::to_f64));
@@ -221,67 +326,75 @@ impl<'a, T> MeshBuffers<'a, T> {
         Ok(Written { list, uvs, normals })
     }
 
-    /// The faces as slices, checked against the positions, the UVs, the colors and the
-    /// groups ([`std::io::ErrorKind::InvalidInput`] naming the mismatch).
-    pub(crate) fn checked_faces(&self) -> std::io::Result<Vec<&'a [u32]>> {
-        let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    /// The faces, checked against the positions, the UVs, the colors and the groups
+    /// ([`std::io::ErrorKind::InvalidInput`] naming the mismatch).
+    pub(crate) fn checked_faces(&self) -> std::io::Result<FaceList<'a>> {
         let faces = self.faces;
-        let list = faces
-            .faces()
-            .ok_or_else(|| invalid(format!("inconsistent face buffers: {faces:?}")))?;
-        let positions = self.positions;
-        if let Some(&v) = list
-            .iter()
-            .flat_map(|f| f.iter())
-            .find(|&&v| v as usize >= positions.len())
-        {
-            return Err(invalid(format!(
-                "a face uses vertex {v}, but there are {} positions",
-                positions.len()
-            )));
-        }
-        if let Some(colors) = self.colors.filter(|c| c.len() != positions.len()) {
-            return Err(invalid(format!(
-                "{} colors for {} positions",
-                colors.len(),
-                positions.len()
-            )));
-        }
-        if let Some(groups) = self.groups.filter(|g| g.n_faces() != list.len()) {
-            return Err(invalid(format!(
-                "groups of {} faces for {} faces",
-                groups.n_faces(),
-                list.len()
-            )));
-        }
-        if let Some(uv) = &self.uvs {
-            let corners: usize = list.iter().map(|f| f.len()).sum();
-            if uv.corners.len() != corners {
-                return Err(invalid(format!(
-                    "{} texture-coordinate corners for {corners} face corners",
-                    uv.corners.len()
-                )));
-            }
-            if let Some((corner, &t)) = uv
-                .corners
-                .iter()
-                .enumerate()
-                .find(|(_, &t)| t as usize >= uv.values.len())
-            {
-                return Err(invalid(format!(
-                    "face corner {corner} uses UV value {t}, but there are {}",
-                    uv.values.len()
-                )));
-            }
-        }
+        let list = faces.faces().ok_or_else(|| {
+            let what = format!("inconsistent face buffers: {faces:?}");
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, what)
+        })?;
+        let uvs = self.uvs.as_ref().map(|u| (u.corners, u.values.len()));
+        check_faces(
+            list,
+            self.positions.len(),
+            self.colors.map(<[_]>::len),
+            self.groups,
+            uvs,
+        )?;
         Ok(list)
     }
+}
+
+/// Checks faces against `positions` positions, `colors` colors, the groups and the UVs (a
+/// value per corner, and the number of values): [`std::io::ErrorKind::InvalidInput`]
+/// naming the first mismatch.
+pub(crate) fn check_faces(
+    list: FaceList<'_>,
+    positions: usize,
+    colors: Option<usize>,
+    groups: Option<&FaceGroups>,
+    uvs: Option<(&[u32], usize)>,
+) -> std::io::Result<()> {
+    let invalid = |what: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, what);
+    if let Some((_, v)) = first_at_least(list.indices(), positions) {
+        return Err(invalid(format!(
+            "a face uses vertex {v}, but there are {positions} positions"
+        )));
+    }
+    if let Some(colors) = colors.filter(|&c| c != positions) {
+        return Err(invalid(format!(
+            "{colors} colors for {positions} positions"
+        )));
+    }
+    if let Some(groups) = groups.filter(|g| g.n_faces() != list.len()) {
+        return Err(invalid(format!(
+            "groups of {} faces for {} faces",
+            groups.n_faces(),
+            list.len()
+        )));
+    }
+    if let Some((uv_corners, values)) = uvs {
+        let corners = list.indices().len();
+        if uv_corners.len() != corners {
+            return Err(invalid(format!(
+                "{} texture-coordinate corners for {corners} face corners",
+                uv_corners.len()
+            )));
+        }
+        if let Some((corner, t)) = first_at_least(uv_corners, values) {
+            return Err(invalid(format!(
+                "face corner {corner} uses UV value {t}, but there are {values}"
+            )));
+        }
+    }
+    Ok(())
 }
 
 /// What the writers write of a [`MeshBuffers`] under their options.
 pub(crate) struct Written<'a, T> {
     /// The faces, checked.
-    pub(crate) list: Vec<&'a [u32]>,
+    pub(crate) list: FaceList<'a>,
     /// The UVs, when asked for.
     pub(crate) uvs: Option<UvBuffers<'a, T>>,
     /// Area-weighted vertex normals, when asked for.

@@ -1,22 +1,39 @@
 //! OBJ writing into any [`Write`]: half-edge meshes, face lists and caller-owned buffers.
 //! Files (atomic replacement, `-`, signals) are the front ends' (`driver::output`).
+//!
+//! The text is formatted in chunks of lines ([`chunks`]), in parallel with
+//! [`ObjWriteOptions::threads`], each coordinate by [`float_text`] (std's `{:?}` text, byte
+//! for byte, faster): the same bytes for every thread count.
 
-use std::io::{BufWriter, Write};
+pub(crate) mod chunks;
+pub(crate) mod float_text;
+
+use std::io::Write;
+use std::ops::Range;
 
 use glam::DVec3;
 
-use super::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers, Written};
+use self::chunks::ChunkWriter;
+use self::float_text::{push, push_u64};
+use super::buffers::{FaceBuffers, FaceList, MeshBuffers, ObjWriteOptions, UvBuffers, Written};
 use crate::groups::{FaceGroups, Statement};
-use crate::mesh::HalfEdgeMesh;
+use crate::mesh::{FaceId, HalfEdgeMesh};
 use crate::normals;
 use crate::polygon::PolygonMesh;
 use crate::Scalar;
+
+/// `v` and `vt` lines per chunk (about half a megabyte of `f64` text).
+const VERTEX_CHUNK: usize = 1 << 13;
+
+/// `f` lines per chunk.
+const FACE_CHUNK: usize = 1 << 14;
 
 /// Writes a mesh as OBJ text: one `v x y z` line per vertex, then one `f` line per face
 /// (1-based indices, n-gons kept), nothing else.
 ///
 /// Coordinates are written with Rust's shortest round-trip formatting, so reading the file
-/// back gives the same `f64` values. The writer is wrapped in a `BufWriter` by this function.
+/// back gives the same `f64` values. The text goes to the writer in chunks of about half a
+/// megabyte: it needs no `BufWriter`.
 ///
 /// # Errors
 ///
@@ -58,18 +75,22 @@ pub fn write_obj_with(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let faces = || mesh.faces().map(|f| mesh.face_vertices(f).map(|v| v.0));
     let normals = options.normals.then(|| {
-        let lists = faces().map(|f| f.collect::<Vec<u32>>());
+        let lists = mesh
+            .faces()
+            .map(|f| mesh.face_vertices(f).map(|v| v.0).collect::<Vec<_>>());
         normals::vertex_normals(mesh.positions(), lists)
     });
-    write_coordinates(
-        mesh.positions().iter().map(|p| [&p.x, &p.y, &p.z]),
-        None::<TexCoords<'_, f64, std::iter::Empty<[&f64; 2]>>>,
-        normals.as_deref(),
-        (faces(), Carried::default()),
-        writer,
-    )
+    let positions = mesh.positions();
+    let text = ObjText {
+        positions: (positions.len(), |i: usize| positions[i].to_array()),
+        colors: None,
+        texcoords: None::<TexCoords<'_, NoUv, fn(usize) -> usize>>,
+        normals: normals.as_deref(),
+        faces: HalfEdgeFaces(mesh),
+        groups: None,
+    };
+    text.write(writer, options.threads)
 }
 
 /// Writes a face list as OBJ text, like [`write_obj`] (every position is written, used or
@@ -126,9 +147,14 @@ pub fn write_polygon_obj_with(
     let uvs = mesh
         .uvs()
         .filter(|u| options.uvs && u.corners().len() == mesh.n_corners());
-    let texcoords = uvs.map(|u| TexCoords {
-        values: u.coords().iter().map(|c| [&c.x, &c.y]),
-        corners: u.corners(),
+    let offsets = mesh.face_offsets();
+    let texcoords = uvs.map(|u| {
+        let coords = u.coords();
+        TexCoords {
+            values: (coords.len(), move |i: usize| coords[i].to_array()),
+            corners: u.corners(),
+            first_corner: move |f: usize| offsets[f],
+        }
     });
     let normals = options
         .normals
@@ -150,17 +176,16 @@ pub fn write_polygon_obj_with(
             groups.n_faces()
         )));
     }
-    let carried = Carried {
+    let positions = &mesh.positions;
+    let text = ObjText {
+        positions: (positions.len(), |i: usize| positions[i].to_array()),
         colors: mesh.colors(),
+        texcoords,
+        normals: normals.as_deref(),
+        faces: FaceList::of_polygon_mesh(mesh),
         groups: mesh.groups(),
     };
-    write_coordinates(
-        mesh.positions.iter().map(|p| [&p.x, &p.y, &p.z]),
-        texcoords,
-        normals.as_deref(),
-        (mesh.faces().map(|f| f.iter().copied()), carried),
-        writer,
-    )
+    text.write(writer, options.threads)
 }
 
 /// Writes positions and faces from caller-owned buffers as OBJ text, like
@@ -242,144 +267,211 @@ pub fn write_mesh_buffers_obj<T: Scalar>(
     let Written { list, uvs, normals } = mesh.prepare_write(options)?;
     let positions = mesh.positions;
     let texcoords = uvs.map(|u| TexCoords {
-        values: u.values.iter().map(|[s, t]| [s, t]),
+        values: (u.values.len(), move |i: usize| u.values[i]),
         corners: u.corners,
+        first_corner: move |f: usize| list.first_corner(f),
     });
-    let carried = Carried {
+    let text = ObjText {
+        positions: (positions.len(), |i: usize| positions[i]),
         colors: mesh.colors,
+        texcoords,
+        normals: normals.as_deref(),
+        faces: list,
         groups: mesh.groups,
     };
-    write_coordinates(
-        positions.iter().map(|[x, y, z]| [x, y, z]),
-        texcoords,
-        normals.as_deref(),
-        (list.iter().map(|f| f.iter().copied()), carried),
-        writer,
-    )
+    text.write(writer, options.threads)
 }
 
-/// What a mesh carries into the text besides its geometry: a color per vertex (written on
-/// its `v` line), the groups of its faces (a statement line before each face whose value
+/// The faces [`ObjText`] writes, by index.
+trait Faces: Sync {
+    /// The number of faces.
+    fn len(&self) -> usize;
+    /// Face `f`'s vertices (0-based).
+    fn corners(&self, f: usize) -> impl Iterator<Item = u32> + '_;
+}
+
+impl Faces for FaceList<'_> {
+    fn len(&self) -> usize {
+        FaceList::len(self)
+    }
+
+    #[inline]
+    fn corners(&self, f: usize) -> impl Iterator<Item = u32> + '_ {
+        self.face(f).iter().copied()
+    }
+}
+
+/// A half-edge mesh's faces, each from its half-edge cycle.
+struct HalfEdgeFaces<'a>(&'a HalfEdgeMesh);
+
+impl Faces for HalfEdgeFaces<'_> {
+    fn len(&self) -> usize {
+        self.0.n_faces()
+    }
+
+    #[inline]
+    fn corners(&self, f: usize) -> impl Iterator<Item = u32> + '_ {
+        self.0.face_vertices(FaceId(f as u32)).map(|v| v.0)
+    }
+}
+
+/// The texture coordinates [`ObjText`] writes: the number of values and value `i`, the value
+/// of each face corner (checked by the caller), and where face `f`'s corners start among
+/// them.
+struct TexCoords<'a, V, C> {
+    values: (usize, V),
+    corners: &'a [u32],
+    first_corner: C,
+}
+
+/// The type of absent texture coordinates.
+type NoUv = fn(usize) -> [f64; 2];
+
+/// A mesh as the one OBJ text writer takes it: the number of positions and position `i`,
+/// a color per vertex (written on its `v` line), texture coordinates, normals (written in
+/// `T`), the faces, and their groups (a statement line before each face whose value
 /// differs from the face written before, the `mtllib` lines before the first `v`).
-struct Carried<'a, T> {
+struct ObjText<'a, T, P, V, C, F> {
+    positions: (usize, P),
     colors: Option<&'a [[T; 3]]>,
+    texcoords: Option<TexCoords<'a, V, C>>,
+    normals: Option<&'a [DVec3]>,
+    faces: F,
     groups: Option<&'a FaceGroups>,
 }
 
-impl<T> Default for Carried<'_, T> {
-    fn default() -> Self {
-        Carried {
-            colors: None,
-            groups: None,
-        }
+/// Appends `v` and then ` x y z` (each coordinate's shortest round-trip text, std's `{:?}`).
+#[inline]
+fn push_values<T: Scalar>(out: &mut Vec<u8>, values: &[T]) {
+    for &x in values {
+        out.push(b' ');
+        push(out, x);
     }
 }
 
-/// The texture coordinates [`write_coordinates`] writes: the values, and the value of each
-/// face corner (checked by the caller).
-struct TexCoords<'a, T: 'a, U: Iterator<Item = [&'a T; 2]>> {
-    values: U,
-    corners: &'a [u32],
-}
-
-/// The one OBJ text writer: `v` lines with each coordinate's shortest round-trip text
-/// (`Debug` of `f32`/`f64`), the `vt` lines of `texcoords`, the `vn` lines of `normals` (in
-/// `T`), then 1-based `f` lines: `f v`, `f v/vt`, `f v//vn` or `f v/vt/vn`.
-fn write_coordinates<'p, T, P, U, F, I>(
-    positions: P,
-    texcoords: Option<TexCoords<'p, T, U>>,
-    normals: Option<&[DVec3]>,
-    (faces, carried): (F, Carried<'_, T>),
-    writer: impl Write,
-) -> std::io::Result<()>
+impl<T, P, V, C, F> ObjText<'_, T, P, V, C, F>
 where
-    T: Scalar + 'p,
-    P: Iterator<Item = [&'p T; 3]>,
-    U: Iterator<Item = [&'p T; 2]>,
-    F: Iterator<Item = I>,
-    I: Iterator<Item = u32>,
+    T: Scalar,
+    P: Fn(usize) -> [T; 3] + Sync,
+    V: Fn(usize) -> [T; 2] + Sync,
+    C: Fn(usize) -> usize + Sync,
+    F: Faces,
 {
-    let mut w = BufWriter::with_capacity(1 << 16, writer);
-    if let Some(groups) = carried.groups {
-        for line in groups.mtllib() {
-            writeln!(w, "{line}")?;
-        }
-    }
-    match carried.colors {
-        None => {
-            for [x, y, z] in positions {
-                writeln!(w, "v {x:?} {y:?} {z:?}")?;
+    /// Writes the text: the `mtllib` lines, `v` lines, the `vt` lines of the texture
+    /// coordinates, the `vn` lines of the normals (in `T`), then 1-based `f` lines: `f v`,
+    /// `f v/vt`, `f v//vn` or `f v/vt/vn`, each section in chunks on `threads`
+    /// ([`ObjWriteOptions::threads`]).
+    fn write(&self, writer: impl Write, threads: usize) -> std::io::Result<()> {
+        let (n, position) = &self.positions;
+        let n_uvs = self.texcoords.as_ref().map_or(0, |t| t.values.0);
+        let n_normals = self.normals.map_or(0, <[DVec3]>::len);
+        let items = n + n_uvs + n_normals + self.faces.len();
+        let mut w = ChunkWriter::new(writer, threads, items)?;
+        if let Some(groups) = self.groups {
+            let mut head = Vec::new();
+            for line in groups.mtllib() {
+                head.extend_from_slice(line.as_bytes());
+                head.push(b'\n');
             }
+            w.write_all(&head)?;
         }
-        Some(colors) => {
-            for ([x, y, z], [r, g, b]) in positions.zip(colors) {
-                writeln!(w, "v {x:?} {y:?} {z:?} {r:?} {g:?} {b:?}")?;
+        w.section(*n, VERTEX_CHUNK, |range, out| {
+            for i in range {
+                out.push(b'v');
+                push_values(out, &position(i));
+                if let Some(colors) = self.colors {
+                    push_values(out, &colors[i]);
+                }
+                out.push(b'\n');
             }
+        })?;
+        if let Some(TexCoords { values, .. }) = &self.texcoords {
+            w.section(values.0, VERTEX_CHUNK, |range, out| {
+                for i in range {
+                    out.extend_from_slice(b"vt");
+                    push_values(out, &(values.1)(i));
+                    out.push(b'\n');
+                }
+            })?;
         }
+        if let Some(normals) = self.normals {
+            w.section(normals.len(), VERTEX_CHUNK, |range, out| {
+                for n in &normals[range] {
+                    out.extend_from_slice(b"vn");
+                    push_values(out, &n.to_array().map(T::from_f64));
+                    out.push(b'\n');
+                }
+            })?;
+        }
+        w.section(self.faces.len(), FACE_CHUNK, |range, out| {
+            self.face_lines(range, out);
+        })?;
+        w.flush()
     }
-    let mut vts: &[u32] = &[];
-    if let Some(TexCoords { values, corners }) = texcoords {
-        for [s, t] in values {
-            writeln!(w, "vt {s:?} {t:?}")?;
-        }
-        vts = corners;
-    }
-    if let Some(normals) = normals {
-        for n in normals {
-            let [x, y, z] = n.to_array().map(T::from_f64);
-            writeln!(w, "vn {x:?} {y:?} {z:?}")?;
-        }
-    }
-    let with_normals = normals.is_some();
-    let mut vts = vts.iter();
-    let mut class = None;
-    for (f, face) in faces.enumerate() {
-        if let Some(groups) = carried.groups {
-            write_statements(&mut w, groups, &mut class, f)?;
-        }
-        w.write_all(b"f")?;
-        for v in face {
-            let v = u64::from(v) + 1;
-            match (vts.next(), with_normals) {
-                (None, false) => write!(w, " {v}")?,
-                (None, true) => write!(w, " {v}//{v}")?,
-                (Some(t), false) => write!(w, " {v}/{}", u64::from(*t) + 1)?,
-                (Some(t), true) => write!(w, " {v}/{}/{v}", u64::from(*t) + 1)?,
+
+    /// The `f` lines of faces `range`, with the statement lines before them.
+    fn face_lines(&self, range: Range<usize>, out: &mut Vec<u8>) {
+        let with_normals = self.normals.is_some();
+        let mut vts = self
+            .texcoords
+            .as_ref()
+            .map(|t| t.corners[(t.first_corner)(range.start)..].iter());
+        // The class of the face written before.
+        let mut class = range
+            .start
+            .checked_sub(1)
+            .and_then(|f| self.groups?.class(f));
+        for f in range {
+            if let Some(groups) = self.groups {
+                push_statements(out, groups, &mut class, f);
             }
+            out.push(b'f');
+            for v in self.faces.corners(f) {
+                let v = u64::from(v) + 1;
+                out.push(b' ');
+                push_u64(out, v);
+                match (vts.as_mut().and_then(Iterator::next), with_normals) {
+                    (None, false) => {}
+                    (None, true) => {
+                        out.extend_from_slice(b"//");
+                        push_u64(out, v);
+                    }
+                    (Some(&t), normal) => {
+                        out.push(b'/');
+                        push_u64(out, u64::from(t) + 1);
+                        if normal {
+                            out.push(b'/');
+                            push_u64(out, v);
+                        }
+                    }
+                }
+            }
+            out.push(b'\n');
         }
-        w.write_all(b"\n")?;
     }
-    w.flush()
 }
 
 /// The statement lines before face `f`: those whose value differs from the face written
 /// before (`class`, updated).
-fn write_statements(
-    w: &mut impl Write,
-    groups: &FaceGroups,
-    class: &mut Option<u32>,
-    f: usize,
-) -> std::io::Result<()> {
+fn push_statements(out: &mut Vec<u8>, groups: &FaceGroups, class: &mut Option<u32>, f: usize) {
     let Some(now) = groups.class(f) else {
-        return Ok(());
+        return;
     };
     if *class == Some(now) {
-        return Ok(());
+        return;
     }
     for statement in Statement::ALL {
-        match groups.change(*class, now, statement) {
-            None => {}
-            Some(value) => {
-                let value = value.unwrap_or(statement.unset());
-                match value.is_empty() {
-                    true => writeln!(w, "{}", statement.keyword())?,
-                    false => writeln!(w, "{} {value}", statement.keyword())?,
-                }
+        if let Some(value) = groups.change(*class, now, statement) {
+            let value = value.unwrap_or(statement.unset());
+            out.extend_from_slice(statement.keyword().as_bytes());
+            if !value.is_empty() {
+                out.push(b' ');
+                out.extend_from_slice(value.as_bytes());
             }
+            out.push(b'\n');
         }
     }
     *class = Some(now);
-    Ok(())
 }
 
 #[cfg(test)]

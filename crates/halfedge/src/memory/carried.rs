@@ -14,8 +14,8 @@ pub struct Carrying {
     /// bytes; `None`: a refinement of their own (the one-shot half-edge path, a composition's
     /// stage).
     pub refinement_scalar: Option<usize>,
-    /// The output is PLY, whose writer holds a copy of the positions, 32-bit offsets and a
-    /// slice per face.
+    /// The output is PLY, whose writer holds a value per vertex of the UVs, if any (records
+    /// are formatted in chunks of a few megabytes, not counted).
     pub ply: bool,
 }
 
@@ -28,7 +28,7 @@ pub struct Carrying {
 ///   level (3 scalars a vertex), and under the icosphere rule a varying refinement (the
 ///   midpoint rule's); otherwise a refinement of their own
 ///   ([`super::predicted_refinement_peak_bytes`]);
-/// - a PLY output: the writer's copies (24 bytes a vertex, 20 a face, 32 an edge for UVs).
+/// - a PLY output: the UVs as one value per vertex (32 bytes an edge bounds them).
 ///
 /// # Errors
 ///
@@ -66,7 +66,7 @@ pub fn carried_bytes(
         } else {
             BigInt::from(0)
         };
-        bytes += &last.vertices * 24u32 + &last.faces * 20u32 + 4u32 + uvs;
+        bytes += uvs;
     }
     Ok(bytes)
 }

@@ -1,10 +1,19 @@
 //! Binary little-endian PLY writing.
 
-use std::io::{BufWriter, Write};
+use std::io::Write;
 
-use super::super::buffers::{FaceBuffers, MeshBuffers, ObjWriteOptions, UvBuffers};
+use glam::DVec3;
+
+use super::super::buffers::{check_faces, FaceList, MeshBuffers, ObjWriteOptions, UvBuffers};
+use super::super::write::chunks::ChunkWriter;
 use crate::polygon::PolygonMesh;
-use crate::Scalar;
+use crate::{normals, Scalar};
+
+/// Vertex records per chunk (at least 12 bytes each).
+const VERTEX_CHUNK: usize = 1 << 15;
+
+/// Face records per chunk (at least 13 bytes each).
+const FACE_CHUNK: usize = 1 << 16;
 
 /// Writes a mesh from caller-owned buffers as binary little-endian PLY: the vertex element
 /// (`x y z` as `double`, or `float` when `T` is `f32`; the colors as `uchar` when every
@@ -42,117 +51,152 @@ pub fn write_mesh_buffers_ply<T: Scalar>(
 ) -> std::io::Result<()> {
     let super::super::buffers::Written { list, uvs, normals } = mesh.prepare_write(options)?;
     let positions = mesh.positions;
-    let vertex_uvs = uvs.and_then(|u| per_vertex_uvs(&u, &list, positions.len()));
-    let face_uvs = uvs.filter(|_| vertex_uvs.is_none());
-    let byte_colors = mesh.colors.map(|colors| {
-        colors
-            .iter()
-            .flatten()
-            .all(|c| (0.0..=1.0).contains(&c.to_f64()))
-    });
-    let degree = list.iter().map(|f| f.len()).max().unwrap_or(0);
-    let wide_texcoord = degree > 127;
-    if face_uvs.is_some() && u32::try_from(2 * degree).is_err() {
-        let what = format!("a face of {degree} corners has too many texture coordinates for PLY");
-        return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, what));
-    }
-
-    let float = if std::mem::size_of::<T>() == 4 {
-        "float"
-    } else {
-        "double"
+    let ply = Ply {
+        positions: (positions.len(), |v: usize| positions[v]),
+        colors: mesh.colors,
+        normals,
+        uvs,
+        list,
     };
-    let mut w = BufWriter::with_capacity(1 << 16, writer);
-    write!(
-        w,
-        "ply\nformat binary_little_endian 1.0\ncomment subcount\nelement vertex {}\n",
-        positions.len()
-    )?;
-    for name in ["x", "y", "z"] {
-        writeln!(w, "property {float} {name}")?;
-    }
-    if let Some(bytes) = byte_colors {
-        let ty = if bytes { "uchar" } else { "float" };
-        for name in ["red", "green", "blue"] {
-            writeln!(w, "property {ty} {name}")?;
-        }
-    }
-    if normals.is_some() {
-        for name in ["nx", "ny", "nz"] {
-            writeln!(w, "property {float} {name}")?;
-        }
-    }
-    if vertex_uvs.is_some() {
-        writeln!(w, "property {float} s\nproperty {float} t")?;
-    }
-    writeln!(w, "element face {}", list.len())?;
-    let count = if degree > 255 { "uint" } else { "uchar" };
-    // Indices beyond `i32::MAX` (more than 2^31 vertices) need `uint`.
-    let wide_index = positions.len() > i32::MAX as usize + 1;
-    let index = if wide_index { "uint" } else { "int" };
-    writeln!(w, "property list {count} {index} vertex_indices")?;
-    if face_uvs.is_some() {
-        let count = if wide_texcoord { "uint" } else { "uchar" };
-        writeln!(w, "property list {count} {float} texcoord")?;
-    }
-    writeln!(w, "end_header")?;
+    ply.write(writer, options.threads)
+}
 
-    for (v, p) in positions.iter().enumerate() {
-        for &x in p {
-            put(&mut w, x)?;
+/// A mesh as the PLY writer takes it, checked: the number of positions and position `v`,
+/// colors, normals, UVs (values and a value per corner) and faces.
+struct Ply<'a, T, P> {
+    positions: (usize, P),
+    colors: Option<&'a [[T; 3]]>,
+    normals: Option<Vec<DVec3>>,
+    uvs: Option<UvBuffers<'a, T>>,
+    list: FaceList<'a>,
+}
+
+impl<T: Scalar, P: Fn(usize) -> [T; 3] + Sync> Ply<'_, T, P> {
+    /// Writes the header and the records ([`write_mesh_buffers_ply`]), in chunks on
+    /// `threads` ([`ObjWriteOptions::threads`]).
+    fn write(self, writer: impl Write, threads: usize) -> std::io::Result<()> {
+        let Ply {
+            positions: (n_positions, position),
+            colors,
+            normals,
+            uvs,
+            list,
+        } = self;
+        let vertex_uvs = uvs.and_then(|u| per_vertex_uvs(&u, list, n_positions));
+        let face_uvs = uvs.filter(|_| vertex_uvs.is_none());
+        let byte_colors = colors.map(|colors| {
+            colors
+                .iter()
+                .flatten()
+                .all(|c| (0.0..=1.0).contains(&c.to_f64()))
+        });
+        let degree = list.max_degree();
+        let wide_texcoord = degree > 127;
+        if face_uvs.is_some() && u32::try_from(2 * degree).is_err() {
+            let what =
+                format!("a face of {degree} corners has too many texture coordinates for PLY");
+            return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, what));
         }
-        match (mesh.colors, byte_colors) {
-            (Some(colors), Some(true)) => {
-                let rgb = colors[v].map(|c| (c.to_f64().clamp(0.0, 1.0) * 255.0).round() as u8);
-                w.write_all(&rgb)?;
-            }
-            (Some(colors), _) => {
-                for &c in &colors[v] {
-                    w.write_all(&(c.to_f64() as f32).to_le_bytes())?;
-                }
-            }
-            (None, _) => {}
-        }
-        if let Some(normals) = &normals {
-            for n in normals[v].to_array() {
-                put(&mut w, T::from_f64(n))?;
-            }
-        }
-        if let Some(uvs) = &vertex_uvs {
-            for &t in &uvs[v] {
-                put(&mut w, t)?;
-            }
-        }
-    }
-    let mut corner = 0;
-    for face in &list {
-        let k = face.len();
-        if degree > 255 {
-            w.write_all(&(k as u32).to_le_bytes())?;
+
+        let float = if std::mem::size_of::<T>() == 4 {
+            "float"
         } else {
-            w.write_all(&[k as u8])?;
+            "double"
+        };
+        let mut header = b"ply\nformat binary_little_endian 1.0\ncomment subcount\n".to_vec();
+        writeln!(header, "element vertex {n_positions}")?;
+        for name in ["x", "y", "z"] {
+            writeln!(header, "property {float} {name}")?;
         }
-        for &v in *face {
-            match wide_index {
-                true => w.write_all(&v.to_le_bytes())?,
-                false => w.write_all(&(v as i32).to_le_bytes())?,
+        if let Some(bytes) = byte_colors {
+            let ty = if bytes { "uchar" } else { "float" };
+            for name in ["red", "green", "blue"] {
+                writeln!(header, "property {ty} {name}")?;
             }
         }
-        if let Some(uvs) = &face_uvs {
-            if wide_texcoord {
-                w.write_all(&(2 * k as u32).to_le_bytes())?;
-            } else {
-                w.write_all(&[2 * k as u8])?;
+        if normals.is_some() {
+            for name in ["nx", "ny", "nz"] {
+                writeln!(header, "property {float} {name}")?;
             }
-            for &t in &uvs.corners[corner..corner + k] {
-                for &x in &uvs.values[t as usize] {
-                    put(&mut w, x)?;
+        }
+        if vertex_uvs.is_some() {
+            writeln!(header, "property {float} s\nproperty {float} t")?;
+        }
+        writeln!(header, "element face {}", list.len())?;
+        let count = if degree > 255 { "uint" } else { "uchar" };
+        // Indices beyond `i32::MAX` (more than 2^31 vertices) need `uint` (the same bytes).
+        let wide_index = n_positions > i32::MAX as usize + 1;
+        let index = if wide_index { "uint" } else { "int" };
+        writeln!(header, "property list {count} {index} vertex_indices")?;
+        if face_uvs.is_some() {
+            let count = if wide_texcoord { "uint" } else { "uchar" };
+            writeln!(header, "property list {count} {float} texcoord")?;
+        }
+        writeln!(header, "end_header")?;
+
+        let items = n_positions + list.len();
+        let mut w = ChunkWriter::new(writer, threads, items)?;
+        w.write_all(&header)?;
+        w.section(n_positions, VERTEX_CHUNK, |range, out| {
+            for v in range {
+                for x in position(v) {
+                    put(out, x);
+                }
+                match (colors, byte_colors) {
+                    (Some(colors), Some(true)) => {
+                        let rgb =
+                            colors[v].map(|c| (c.to_f64().clamp(0.0, 1.0) * 255.0).round() as u8);
+                        out.extend_from_slice(&rgb);
+                    }
+                    (Some(colors), _) => {
+                        for &c in &colors[v] {
+                            out.extend_from_slice(&(c.to_f64() as f32).to_le_bytes());
+                        }
+                    }
+                    (None, _) => {}
+                }
+                if let Some(normals) = &normals {
+                    for n in normals[v].to_array() {
+                        put(out, T::from_f64(n));
+                    }
+                }
+                if let Some(uvs) = &vertex_uvs {
+                    for &t in &uvs[v] {
+                        put(out, t);
+                    }
                 }
             }
-        }
-        corner += k;
+        })?;
+        w.section(list.len(), FACE_CHUNK, |range, out| {
+            for f in range {
+                let face = list.face(f);
+                let k = face.len();
+                if degree > 255 {
+                    out.extend_from_slice(&(k as u32).to_le_bytes());
+                } else {
+                    out.push(k as u8);
+                }
+                // An `int` index below 2^31 and a `uint` have the same bytes.
+                for &v in face {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
+                if let Some(uvs) = &face_uvs {
+                    if wide_texcoord {
+                        out.extend_from_slice(&(2 * k as u32).to_le_bytes());
+                    } else {
+                        out.push(2 * k as u8);
+                    }
+                    let corner = list.first_corner(f);
+                    for &t in &uvs.corners[corner..corner + k] {
+                        for &x in &uvs.values[t as usize] {
+                            put(out, x);
+                        }
+                    }
+                }
+            }
+        })?;
+        w.flush()
     }
-    w.flush()
 }
 
 /// Writes a face list as binary PLY, as [`write_mesh_buffers_ply`] writes buffers: every
@@ -179,53 +223,58 @@ pub fn write_polygon_ply(
     writer: impl Write,
     options: &ObjWriteOptions,
 ) -> std::io::Result<()> {
-    let positions: Vec<[f64; 3]> = mesh.positions.iter().map(|p| p.to_array()).collect();
-    let offsets: Vec<u32> = mesh
-        .face_offsets()
-        .iter()
-        .map(|&o| u32::try_from(o))
-        .collect::<std::result::Result<_, _>>()
-        .map_err(|_| {
-            let what = format!(
-                "{} face corners do not fit 32-bit offsets",
-                mesh.n_corners()
-            );
-            std::io::Error::new(std::io::ErrorKind::InvalidInput, what)
-        })?;
-    let faces = FaceBuffers::Polygons {
-        offsets: &offsets,
-        indices: mesh.face_indices(),
-    };
+    if u32::try_from(mesh.n_corners()).is_err() {
+        let what = format!(
+            "{} face corners do not fit 32-bit offsets",
+            mesh.n_corners()
+        );
+        return Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, what));
+    }
+    let list = FaceList::of_polygon_mesh(mesh);
     let uvs = mesh
         .uvs()
         .filter(|u| options.uvs && u.corners().len() == mesh.n_corners());
     let values: Vec<[f64; 2]> = uvs.map_or(Vec::new(), |u| {
         u.coords().iter().map(|c| c.to_array()).collect()
     });
-    let mut buffers = MeshBuffers::new(&positions, faces);
-    if let Some(u) = uvs {
-        buffers = buffers.with_uvs(UvBuffers {
-            values: &values,
-            corners: u.corners(),
-        });
-    }
-    if let Some(colors) = mesh.colors() {
-        buffers = buffers.with_colors(colors);
-    }
-    write_mesh_buffers_ply(&buffers, writer, options)
+    let uvs = uvs.map(|u| UvBuffers {
+        values: &values,
+        corners: u.corners(),
+    });
+    let positions = &mesh.positions;
+    let colors = mesh.colors();
+    let uv_counts = uvs.map(|u| (u.corners, u.values.len()));
+    check_faces(
+        list,
+        positions.len(),
+        colors.map(<[_]>::len),
+        None,
+        uv_counts,
+    )?;
+    let normals = options
+        .normals
+        .then(|| normals::vertex_normals(positions, mesh.faces()));
+    let ply = Ply {
+        positions: (positions.len(), |v: usize| positions[v].to_array()),
+        colors,
+        normals,
+        uvs,
+        list,
+    };
+    ply.write(writer, options.threads)
 }
 
 /// A UV value per vertex when every vertex's corners agree on theirs (bit for bit), `0, 0`
 /// at vertices no face uses; `None` when some vertex has two (a seam).
 pub(super) fn per_vertex_uvs<T: Scalar>(
     uvs: &UvBuffers<'_, T>,
-    faces: &[&[u32]],
+    faces: FaceList<'_>,
     n_vertices: usize,
 ) -> Option<Vec<[T; 2]>> {
     const UNUSED: u32 = u32::MAX;
     let bits = |t: u32| uvs.values[t as usize].map(|x| x.to_f64().to_bits());
     let mut value = vec![UNUSED; n_vertices];
-    for (&v, &t) in faces.iter().flat_map(|f| f.iter()).zip(uvs.corners) {
+    for (&v, &t) in faces.indices().iter().zip(uvs.corners) {
         let first = &mut value[v as usize];
         if *first == UNUSED {
             *first = t;
@@ -244,11 +293,12 @@ pub(super) fn per_vertex_uvs<T: Scalar>(
     )
 }
 
-/// Writes `x` little-endian, as `f32` or `f64` like `T`.
-pub(super) fn put<T: Scalar>(w: &mut impl Write, x: T) -> std::io::Result<()> {
+/// Appends `x` little-endian, as `f32` or `f64` like `T`.
+#[inline]
+fn put<T: Scalar>(out: &mut Vec<u8>, x: T) {
     if std::mem::size_of::<T>() == 4 {
-        w.write_all(&(x.to_f64() as f32).to_le_bytes())
+        out.extend_from_slice(&(x.to_f64() as f32).to_le_bytes());
     } else {
-        w.write_all(&x.to_f64().to_le_bytes())
+        out.extend_from_slice(&x.to_f64().to_le_bytes());
     }
 }
