@@ -4,7 +4,6 @@
 use std::io::Write;
 use std::time::Instant;
 
-use halfedge::io::ObjWriteOptions;
 use num_bigint::BigInt;
 use schemes::Plan;
 
@@ -73,10 +72,7 @@ pub(crate) fn subdivide(
     let last = &composed.mesh;
     let t2 = Instant::now();
     if let Some(path) = &args.output {
-        let options = ObjWriteOptions::default()
-            .with_uvs(last.uvs().is_some())
-            .with_normals(args.normals.is_some())
-            .with_threads(args.threads);
+        let options = crate::mesh::write_options(&args, last.uvs().is_some());
         driver::output::write_polygon_mesh_file(last, path, &options)?;
     }
     let write_s = t2.elapsed().as_secs_f64();

@@ -406,6 +406,15 @@ pub(crate) fn refuse_unwritten_format(output: Option<&std::path::Path>) -> Resul
     Ok(())
 }
 
+/// How `subdivide` writes its output: UVs when `uvs`, normals with `--normals`, formatted on
+/// `--threads`.
+pub(crate) fn write_options(args: &SubdivideArgs, uvs: bool) -> ObjWriteOptions {
+    ObjWriteOptions::default()
+        .with_uvs(uvs)
+        .with_normals(args.normals.is_some())
+        .with_threads(args.threads)
+}
+
 pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8, Failure> {
     let levels = real_levels(&args.levels)?;
     refuse_unwritten_format(args.output.as_deref())?;
@@ -444,13 +453,8 @@ pub(crate) fn subdivide(args: SubdivideArgs, out: &mut impl Write) -> Result<u8,
     }
     let t2 = Instant::now();
     if let Some(path) = &args.output {
-        // UVs only when refined (a level-0 copy of the face list keeps the file's), normals
-        // of the output with --normals.
-        let options = ObjWriteOptions::default()
-            .with_uvs(result.uvs().is_some())
-            .with_normals(args.normals.is_some())
-            .with_threads(args.threads);
-        result.write(path, &options)?;
+        // UVs only when refined (a level-0 copy of the face list keeps the file's).
+        result.write(path, &write_options(&args, result.uvs().is_some()))?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let [v, e, f] = result.counts();

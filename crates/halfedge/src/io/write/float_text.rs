@@ -107,61 +107,42 @@ pub(crate) trait Float: Copy + std::fmt::Debug + zmij::Float {
     fn odd_mantissa(self) -> Option<(u64, i32)>;
 }
 
-impl Float for f64 {
-    const MAX_DIGITS: u32 = 17;
+/// `Float` for a type with `MAX_DIGITS`, its unsigned bits, the fraction's width and the
+/// exponent of its smallest subnormal.
+macro_rules! float_impl {
+    ($t:ty, $digits:expr, $fraction:expr, $exponent_mask:expr, $subnormal:expr) => {
+        impl Float for $t {
+            const MAX_DIGITS: u32 = $digits;
 
-    #[inline]
-    fn exponential(self) -> bool {
-        let abs = self.abs();
-        (abs != 0.0 && abs < 1e-4) || abs >= 1e16
-    }
+            #[inline]
+            fn exponential(self) -> bool {
+                let abs = self.abs();
+                (abs != 0.0 && abs < 1e-4) || abs >= 1e16
+            }
 
-    #[inline]
-    fn finite(self) -> bool {
-        self.is_finite()
-    }
+            #[inline]
+            fn finite(self) -> bool {
+                self.is_finite()
+            }
 
-    #[inline]
-    fn odd_mantissa(self) -> Option<(u64, i32)> {
-        let bits = self.to_bits();
-        let biased = ((bits >> 52) & 0x7ff) as i32;
-        let fraction = bits & ((1 << 52) - 1);
-        let (mantissa, exponent) = match biased {
-            0 => (fraction, -1074),
-            _ => (fraction | 1 << 52, biased - 1075),
-        };
-        let zeros = mantissa.trailing_zeros();
-        (mantissa != 0).then(|| (mantissa >> zeros, exponent + zeros as i32))
-    }
+            #[inline]
+            fn odd_mantissa(self) -> Option<(u64, i32)> {
+                let bits = self.to_bits();
+                let biased = ((bits >> $fraction) & $exponent_mask) as i32;
+                let fraction = bits & ((1 << $fraction) - 1);
+                let (mantissa, exponent) = match biased {
+                    0 => (fraction, $subnormal),
+                    _ => (fraction | 1 << $fraction, biased + $subnormal - 1),
+                };
+                let zeros = mantissa.trailing_zeros();
+                (mantissa != 0).then(|| (u64::from(mantissa >> zeros), exponent + zeros as i32))
+            }
+        }
+    };
 }
 
-impl Float for f32 {
-    const MAX_DIGITS: u32 = 9;
-
-    #[inline]
-    fn exponential(self) -> bool {
-        let abs = self.abs();
-        (abs != 0.0 && abs < 1e-4) || abs >= 1e16
-    }
-
-    #[inline]
-    fn finite(self) -> bool {
-        self.is_finite()
-    }
-
-    #[inline]
-    fn odd_mantissa(self) -> Option<(u64, i32)> {
-        let bits = self.to_bits();
-        let biased = ((bits >> 23) & 0xff) as i32;
-        let fraction = bits & ((1 << 23) - 1);
-        let (mantissa, exponent) = match biased {
-            0 => (fraction, -149),
-            _ => (fraction | 1 << 23, biased - 150),
-        };
-        let zeros = mantissa.trailing_zeros();
-        (mantissa != 0).then(|| (u64::from(mantissa >> zeros), exponent + zeros as i32))
-    }
-}
+float_impl!(f64, 17, 52, 0x7ff, -1074);
+float_impl!(f32, 9, 23, 0xff, -149);
 
 /// `5^k` for every `k` whose power is below `10^18`, and one more.
 const POW5: [u64; 27] = {
