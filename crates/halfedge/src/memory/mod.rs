@@ -203,8 +203,9 @@ pub fn halfedge_build_bytes(counts: &MeshCounts) -> BigInt {
 /// [`PolygonMesh::bytes_for`] counts from its statistics (what [`predicted_peak_bytes`]
 /// counts for the input): the file line of each face (8 bytes), positions no face uses (24
 /// each), its UVs, `vt` and the `vt` of each corner (16 and 4 bytes), its vertex colors (24
-/// bytes a vertex) and its groups ([`crate::groups::FaceGroups::heap_bytes`], 4 bytes a face
-/// and the names). The caller adds it to a prediction made from the counts alone.
+/// bytes a vertex), its groups ([`crate::groups::FaceGroups::heap_bytes`], 4 bytes a face
+/// and the names) and the reader's buffers (2 MiB, when read from an OBJ file). The caller
+/// adds it to a prediction made from the counts alone.
 ///
 /// ```
 /// use halfedge::memory::read_extra_bytes;
@@ -224,8 +225,22 @@ pub fn read_extra_bytes(poly: &PolygonMesh) -> u128 {
     });
     let colors = poly.colors().map_or(0, |c| 24 * c.len() as u128);
     let groups = poly.groups().map_or(0, |g| g.heap_bytes() as u128);
-    8 * poly.face_lines_len() as u128 + 24 * u128::from(unreferenced) + uvs + colors + groups
+    // A file read leaves the reader's chunk buffers behind (1 MiB of lines and the line
+    // being assembled across chunks).
+    let reader = match poly.face_lines_len() {
+        0 => 0,
+        _ => READ_BUFFER_BYTES,
+    };
+    8 * poly.face_lines_len() as u128
+        + 24 * u128::from(unreferenced)
+        + uvs
+        + colors
+        + groups
+        + reader
 }
+
+/// The buffers an OBJ read holds beside the face list ([`read_extra_bytes`]).
+const READ_BUFFER_BYTES: u128 = 2 << 20;
 
 /// [`predicted_peak_bytes`] of `rule`'s counting scheme ([`Rule::scheme_for`](crate::Rule::scheme_for))
 /// when the one-shot subdivision runs under crease rules (a sharpness or options that change
