@@ -61,7 +61,7 @@ pub fn read_obj_with(path: impl AsRef<Path>, options: &ReadOptions) -> Result<Po
 /// The `vn` field is not read (normals are not carried). When every face corner names a `vt`,
 /// the mesh has [`uvs`](PolygonMesh::uvs); when only some do, it has none and
 /// [`partial_uvs`](PolygonMesh::partial_uvs) says how many do; `vt` lines no corner uses are
-/// kept (counted by [`Uvs::unreferenced`]). `mtllib`, `usemtl`, `o`, `g` and `s` become the
+/// kept (counted by [`Uvs::unreferenced`](crate::uv::Uvs::unreferenced)). `mtllib`, `usemtl`, `o`, `g` and `s` become the
 /// mesh's [`groups`](PolygonMesh::groups) ([`crate::groups`]). Comments (`#`), blank lines
 /// and backslash line continuations are skipped; OpenSubdiv's tags
 /// (`t NAME nInts/nFloats/nStrings ints floats strings`) become the mesh's
