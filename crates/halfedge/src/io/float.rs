@@ -37,15 +37,7 @@ pub(super) fn prefix(bytes: &[u8]) -> Option<(f64, usize)> {
     // The digits before the point one at a time (a coordinate has few), those after it
     // eight at a time.
     let mut w = 0u64;
-    let mut i = 0;
-    while let Some(&b) = s.get(i) {
-        let digit = b.wrapping_sub(b'0');
-        if digit > 9 {
-            break;
-        }
-        w = w.wrapping_mul(10).wrapping_add(u64::from(digit));
-        i += 1;
-    }
+    let mut i = one_by_one(s, 0, &mut w);
     let whole = i;
     let mut fraction = 0;
     if s.get(i) == Some(&b'.') {
@@ -97,6 +89,13 @@ fn digits(s: &[u8], mut i: usize, w: &mut u64) -> usize {
             return i;
         }
     }
+    one_by_one(s, i, w)
+}
+
+/// Reads the digits of `s` from `i` on one at a time into `w` (`w = 10 w + digit`,
+/// wrapping); the index after them.
+#[inline]
+pub(super) fn one_by_one(s: &[u8], mut i: usize, w: &mut u64) -> usize {
     while let Some(&b) = s.get(i) {
         let digit = b.wrapping_sub(b'0');
         if digit > 9 {
@@ -249,6 +248,7 @@ const POWERS_OF_FIVE: [(u64, u64); 27] = [
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::lines::testing::Rng;
 
     fn same(token: &str) {
         let std = token.parse::<f64>();
@@ -260,20 +260,11 @@ mod tests {
         }
     }
 
-    /// A small deterministic generator (xorshift).
-    struct Rng(u64);
-
-    impl Rng {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
-
-        fn below(&mut self, n: u64) -> u64 {
-            self.next() % n
-        }
+    /// The number of leading digits of `eight` and their value, read by std.
+    fn as_std_reads(eight: &[u8; 8]) -> (usize, u64) {
+        let n = eight.iter().take_while(|b| b.is_ascii_digit()).count();
+        let text = std::str::from_utf8(&eight[..n]).expect("ASCII digits");
+        (n, text.parse().unwrap_or(0))
     }
 
     #[test]
@@ -293,12 +284,7 @@ mod tests {
             let mut eight = [b' '; 8];
             let bytes = text.as_bytes();
             eight[..bytes.len().min(8)].copy_from_slice(&bytes[..bytes.len().min(8)]);
-            let n = eight.iter().take_while(|b| b.is_ascii_digit()).count();
-            let value = std::str::from_utf8(&eight[..n])
-                .unwrap()
-                .parse()
-                .unwrap_or(0);
-            assert_eq!(leading_digits(&eight), (n, value), "{text:?}");
+            assert_eq!(leading_digits(&eight), as_std_reads(&eight), "{text:?}");
         }
         let mut rng = Rng(0x5851_f42d_4c95_7f2d);
         for _ in 0..200_000 {
@@ -306,12 +292,7 @@ mod tests {
                 0 => b,
                 _ => b'0' + b % 10,
             });
-            let n = eight.iter().take_while(|b| b.is_ascii_digit()).count();
-            let value = std::str::from_utf8(&eight[..n])
-                .unwrap()
-                .parse()
-                .unwrap_or(0);
-            assert_eq!(leading_digits(&eight), (n, value), "{eight:?}");
+            assert_eq!(leading_digits(&eight), as_std_reads(&eight), "{eight:?}");
         }
     }
 
@@ -405,9 +386,9 @@ mod tests {
         let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
         let alphabet = b"0123456789012345678901234567890123456789.-+e";
         for _ in 0..400_000 {
-            let len = 1 + rng.below(30) as usize;
+            let len = 1 + rng.below(30);
             let token: String = (0..len)
-                .map(|_| alphabet[rng.below(alphabet.len() as u64) as usize] as char)
+                .map(|_| alphabet[rng.below(alphabet.len())] as char)
                 .collect();
             same(&token);
         }
@@ -418,15 +399,15 @@ mod tests {
         let mut rng = Rng(0x2545_f491_4f6c_dd1d);
         for _ in 0..400_000 {
             // Digits before and after the point, a sign, leading zeros.
-            let whole = rng.below(22) as usize;
-            let fraction = rng.below(30) as usize;
+            let whole = rng.below(22);
+            let fraction = rng.below(30);
             let mut token = String::new();
             match rng.below(3) {
                 0 => token.push('-'),
                 1 => token.push('+'),
                 _ => {}
             }
-            let zeros = rng.below(4) as usize;
+            let zeros = rng.below(4);
             for k in 0..whole {
                 let d = if k < zeros { 0 } else { rng.below(10) };
                 token.push(char::from(b'0' + d as u8));
@@ -454,7 +435,7 @@ mod tests {
         // the point; and the doubles next to them.
         for j in 0..5 {
             for _ in 0..50_000 {
-                let k = (1u64 << 52) + rng.below(1 << 52);
+                let k = (1u64 << 52) + rng.below(1 << 52) as u64;
                 let base = k as f64 / f64::from(1u32 << j);
                 let half = 0.5 / f64::from(1u32 << j);
                 let text = format!("{:.*}", j + 1, base + half / 2.0);

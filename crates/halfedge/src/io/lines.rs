@@ -423,14 +423,7 @@ impl<'a> Words<'a> {
         parse: fn(&str) -> std::result::Result<f64, ParseError>,
         missing: fn(usize) -> ParseError,
     ) -> Result<[f64; N]> {
-        let mut values = [0.0f64; N];
-        for (i, slot) in values.iter_mut().enumerate() {
-            match self.next_value(parse) {
-                None => return Err(at.error(missing(i))),
-                Some(value) => *slot = value.map_err(|kind| at.error(kind))?,
-            }
-        }
-        Ok(values)
+        super::values_from(|| self.next_value(parse), at, missing)
     }
 }
 
@@ -439,19 +432,25 @@ impl<'a> Iterator for Words<'a> {
 
     #[inline]
     fn next(&mut self) -> Option<&'a str> {
-        let bytes = self.line.as_bytes();
-        let mut i = self.pos;
-        while i < bytes.len() && bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        let start = i;
-        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        self.pos = i;
         // Both ends are an ASCII byte or an end of the line: char boundaries.
-        (i > start).then(|| &self.line[start..i])
+        next_word(self.line.as_bytes(), &mut self.pos).map(|(start, end)| &self.line[start..end])
     }
+}
+
+/// The next whitespace-separated word of `bytes` from `*pos` on, as a range; `*pos` moves
+/// past it (to the end when there is none).
+#[inline]
+pub(super) fn next_word(bytes: &[u8], pos: &mut usize) -> Option<(usize, usize)> {
+    let mut i = *pos;
+    while i < bytes.len() && bytes[i].is_ascii_whitespace() {
+        i += 1;
+    }
+    let start = i;
+    while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+        i += 1;
+    }
+    *pos = i;
+    (i > start).then_some((start, i))
 }
 
 /// What the readers' tests share: a random generator, and a reader that hands out its bytes

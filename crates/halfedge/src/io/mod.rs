@@ -452,12 +452,23 @@ fn parse_values<'a, const N: usize>(
     parse: fn(&str) -> std::result::Result<f64, ParseError>,
     missing: fn(usize) -> ParseError,
 ) -> Result<[f64; N]> {
+    values_from(|| tokens.next().map(parse), lines, missing)
+}
+
+/// The next `N` values of a line, each from `next` (`None` at the line's end); a line with
+/// fewer is the error `missing(found)`.
+#[inline]
+fn values_from<const N: usize>(
+    mut next: impl FnMut() -> Option<std::result::Result<f64, ParseError>>,
+    lines: &Place,
+    missing: fn(usize) -> ParseError,
+) -> Result<[f64; N]> {
     let mut values = [0.0f64; N];
     for (i, slot) in values.iter_mut().enumerate() {
-        let Some(token) = tokens.next() else {
-            return Err(lines.error(missing(i)));
-        };
-        *slot = parse(token).map_err(|kind| lines.error(kind))?;
+        match next() {
+            None => return Err(lines.error(missing(i))),
+            Some(value) => *slot = value.map_err(|kind| lines.error(kind))?,
+        }
     }
     Ok(values)
 }
@@ -473,6 +484,12 @@ fn parse_position<'a>(
 
 /// Parses a finite coordinate.
 fn parse_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
+    parse_finite(token, "coordinate")
+}
+
+/// Parses a finite number, `expected` naming what it is in the error of a token that is no
+/// number.
+fn parse_finite(token: &str, expected: &'static str) -> std::result::Result<f64, ParseError> {
     match float::parse_f64(token) {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(_) => Err(ParseError::NonFiniteCoordinate {
@@ -480,7 +497,7 @@ fn parse_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
         }),
         Err(_) => Err(ParseError::InvalidNumber {
             token: shorten(token),
-            expected: "coordinate",
+            expected,
         }),
     }
 }

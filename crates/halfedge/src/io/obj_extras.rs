@@ -5,7 +5,7 @@
 use glam::DVec2;
 
 use super::lines::Place;
-use super::{grow, parse_coordinate, parse_values, shorten};
+use super::{grow, parse_finite, parse_values, shorten};
 use crate::error::{Error, ParseError, Result};
 use crate::groups::{GroupsReader, Statement};
 use crate::polygon::{PartialColors, ReadColors, Uncarried};
@@ -161,13 +161,7 @@ impl Extras {
 
 /// Parses a finite color value.
 pub(super) fn parse_color(token: &str) -> std::result::Result<f64, ParseError> {
-    parse_coordinate(token).map_err(|kind| match kind {
-        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
-            token,
-            expected: "vertex color",
-        },
-        kind => kind,
-    })
+    parse_finite(token, "vertex color")
 }
 
 /// The texture coordinates read so far and the `vt` of the face corners.
@@ -294,13 +288,7 @@ pub(super) fn push_element<T>(
 
 /// Parses a finite texture coordinate.
 pub(super) fn parse_tex_coordinate(token: &str) -> std::result::Result<f64, ParseError> {
-    parse_coordinate(token).map_err(|kind| match kind {
-        ParseError::InvalidNumber { token, .. } => ParseError::InvalidNumber {
-            token,
-            expected: "texture coordinate",
-        },
-        kind => kind,
-    })
+    parse_finite(token, "texture coordinate")
 }
 
 /// Parses an OBJ vertex index: a non-zero integer whose magnitude fits `u32`.
@@ -342,20 +330,10 @@ pub(super) fn index_prefix(bytes: &[u8]) -> Option<(i64, usize)> {
 /// The digits at the start of `bytes` one at a time, at most 18 (no overflow): their value
 /// and number; `None` when more follow.
 fn longer_index(bytes: &[u8]) -> Option<(i64, usize)> {
-    let mut value = 0i64;
-    let mut i = 0;
-    while let Some(&b) = bytes.get(i) {
-        let digit = b.wrapping_sub(b'0');
-        if digit > 9 {
-            break;
-        }
-        if i == 18 {
-            return None;
-        }
-        value = value * 10 + i64::from(digit);
-        i += 1;
-    }
-    Some((value, i))
+    let mut value = 0u64;
+    let digits = super::float::one_by_one(bytes, 0, &mut value);
+    // At most 18 digits: below 10^18, no wrap.
+    (digits <= 18).then_some((value as i64, digits))
 }
 
 /// [`parse_index`], every case checked in turn.

@@ -260,17 +260,7 @@ impl<R: BufRead> Body<R> {
 
     /// The next whitespace-separated token of the ASCII line, as a range of `text`.
     pub(super) fn token(&mut self) -> Option<(usize, usize)> {
-        let bytes = self.text.as_bytes();
-        let mut i = self.pos;
-        while i < bytes.len() && bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        let start = i;
-        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
-            i += 1;
-        }
-        self.pos = i;
-        (i > start).then_some((start, i))
+        crate::io::lines::next_word(self.text.as_bytes(), &mut self.pos)
     }
 
     /// The next value, of type `ty`, of `property`; with `finite`, a NaN or infinite value is
@@ -476,6 +466,20 @@ impl<R: BufRead> Body<R> {
     ) -> Result<()> {
         let adding = 24 + if colors { 24 } else { 0 } + if uvs { 16 } else { 0 };
         self.check(adding)?;
+        self.store_vertex(at, adding, p, (colors, c), (uvs, t))
+    }
+
+    /// Keeps a vertex whose `adding` bytes the budget has been checked for: its position,
+    /// and its color and UV when the element has them.
+    #[inline]
+    pub(super) fn store_vertex(
+        &mut self,
+        at: At<'_>,
+        adding: u128,
+        p: [f64; 3],
+        (colors, c): (bool, [f64; 3]),
+        (uvs, t): (bool, [f64; 2]),
+    ) -> Result<()> {
         let refused = |body: &Self, e| body.allocation_failed(at, adding, e);
         self.positions
             .try_reserve(1)

@@ -23,6 +23,19 @@ pub(super) enum Type {
     F64,
 }
 
+/// The first `$n` bytes of `$bytes` as a `$t` in the file's byte order, converted to `$to`.
+macro_rules! decode_as {
+    ($to:ty, $t:ty, $n:literal, $bytes:expr, $big_endian:expr) => {{
+        let mut a = [0u8; $n];
+        a.copy_from_slice(&$bytes[..$n]);
+        <$to>::from(if $big_endian {
+            <$t>::from_be_bytes(a)
+        } else {
+            <$t>::from_le_bytes(a)
+        })
+    }};
+}
+
 impl Type {
     pub(super) fn parse(name: &str) -> Option<Type> {
         Some(match name {
@@ -70,26 +83,11 @@ impl Type {
     /// in `f64`.
     #[inline(always)]
     pub(super) fn decode(self, bytes: &[u8], big_endian: bool) -> f64 {
-        macro_rules! decode {
-            ($t:ty, $n:literal) => {{
-                let mut a = [0u8; $n];
-                a.copy_from_slice(&bytes[..$n]);
-                f64::from(if big_endian {
-                    <$t>::from_be_bytes(a)
-                } else {
-                    <$t>::from_le_bytes(a)
-                })
-            }};
-        }
         match self {
-            Type::I8 => decode!(i8, 1),
-            Type::U8 => decode!(u8, 1),
-            Type::I16 => decode!(i16, 2),
-            Type::U16 => decode!(u16, 2),
-            Type::I32 => decode!(i32, 4),
-            Type::U32 => decode!(u32, 4),
-            Type::F32 => decode!(f32, 4),
-            Type::F64 => decode!(f64, 8),
+            Type::F32 => decode_as!(f64, f32, 4, bytes, big_endian),
+            Type::F64 => decode_as!(f64, f64, 8, bytes, big_endian),
+            // Integers (`decode_int` is `Some` for each) fit in 32 bits: exact in `f64`.
+            _ => self.decode_int(bytes, big_endian).unwrap_or_default() as f64,
         }
     }
 
@@ -98,24 +96,13 @@ impl Type {
     /// `float` and `double`.
     #[inline(always)]
     pub(super) fn decode_int(self, bytes: &[u8], big_endian: bool) -> Option<i64> {
-        macro_rules! decode {
-            ($t:ty, $n:literal) => {{
-                let mut a = [0u8; $n];
-                a.copy_from_slice(&bytes[..$n]);
-                i64::from(if big_endian {
-                    <$t>::from_be_bytes(a)
-                } else {
-                    <$t>::from_le_bytes(a)
-                })
-            }};
-        }
         Some(match self {
-            Type::I8 => decode!(i8, 1),
-            Type::U8 => decode!(u8, 1),
-            Type::I16 => decode!(i16, 2),
-            Type::U16 => decode!(u16, 2),
-            Type::I32 => decode!(i32, 4),
-            Type::U32 => decode!(u32, 4),
+            Type::I8 => decode_as!(i64, i8, 1, bytes, big_endian),
+            Type::U8 => decode_as!(i64, u8, 1, bytes, big_endian),
+            Type::I16 => decode_as!(i64, i16, 2, bytes, big_endian),
+            Type::U16 => decode_as!(i64, u16, 2, bytes, big_endian),
+            Type::I32 => decode_as!(i64, i32, 4, bytes, big_endian),
+            Type::U32 => decode_as!(i64, u32, 4, bytes, big_endian),
             Type::F32 | Type::F64 => return None,
         })
     }

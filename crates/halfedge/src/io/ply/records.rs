@@ -6,8 +6,6 @@
 //! ending early names the property it cuts short; a read error is returned when the bytes it
 //! withheld are asked for.
 
-use glam::{DVec2, DVec3};
-
 use super::binary::{Layout, BATCH, MAX_WHOLE};
 use super::body::{At, Body, Faces};
 use super::header::{Element, Type};
@@ -58,21 +56,7 @@ impl<R: std::io::BufRead> Body<R> {
                     return Err(self.too_large());
                 }
                 used += adding;
-                let refused = |body: &Self, e| body.allocation_failed(at, adding, e);
-                self.positions
-                    .try_reserve(1)
-                    .map_err(|e| refused(self, e))?;
-                self.positions.push(DVec3::from_array(p));
-                if colors {
-                    self.colors.try_reserve(1).map_err(|e| refused(self, e))?;
-                    self.colors.push(c);
-                }
-                if uvs {
-                    self.vertex_uvs
-                        .try_reserve(1)
-                        .map_err(|e| refused(self, e))?;
-                    self.vertex_uvs.push(DVec2::from_array(t));
-                }
+                self.store_vertex(at, adding, p, (colors, c), (uvs, t))?;
                 index += 1;
             }
         }

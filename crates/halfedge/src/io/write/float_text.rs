@@ -298,23 +298,12 @@ fn lay_out(out: &mut Vec<u8>, text: &[u8], exponential: bool, lowest_bit: Option
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::lines::testing::Rng;
 
     fn ours<F: Float>(x: F) -> String {
         let mut out = Vec::new();
         push_float(&mut out, x);
         String::from_utf8(out).expect("ASCII")
-    }
-
-    /// A seeded xorshift generator.
-    struct Bits(u64);
-
-    impl Bits {
-        fn next(&mut self) -> u64 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 7;
-            self.0 ^= self.0 << 17;
-            self.0
-        }
     }
 
     fn check_f64(x: f64) {
@@ -325,11 +314,32 @@ mod tests {
         assert_eq!(ours(x), format!("{x:?}"), "f32 bits {:#010x}", x.to_bits());
     }
 
+    /// `1e{k}` for `k` in `range`, its negative and a few multiples, in `T`.
+    fn decades<T>(range: std::ops::Range<i32>) -> Vec<T>
+    where
+        T: std::str::FromStr + Copy + From<f32> + std::ops::Neg<Output = T>,
+        T: std::ops::Mul<Output = T> + std::ops::Div<Output = T>,
+        T::Err: std::fmt::Debug,
+    {
+        let t = T::from;
+        range
+            .flat_map(|k| {
+                let x: T = format!("1e{k}").parse().expect("a float");
+                [x, -x, x * t(1.5), x * t(3.0), x * t(7.0) / t(9.0)]
+            })
+            .collect()
+    }
+
+    /// `bits` and the bit patterns next to it (wrapping).
+    fn around(bits: u64) -> [u64; 3] {
+        [bits, bits.wrapping_add(1), bits.wrapping_sub(1)]
+    }
+
     /// Random bit patterns of both types, and random values in the ranges meshes have
     /// (coordinates near 1, f32 values of a few digits that tie often), equal to std's.
     #[test]
     fn matches_std_on_random_bits() {
-        let mut bits = Bits(0x9e37_79b9_7f4a_7c15);
+        let mut bits = Rng(0x9e37_79b9_7f4a_7c15);
         for _ in 0..1_000_000 {
             let b = bits.next();
             check_f64(f64::from_bits(b));
@@ -385,18 +395,9 @@ mod tests {
             f64::INFINITY,
             f64::NEG_INFINITY,
         ];
-        for k in -330..310 {
-            let x: f64 = format!("1e{k}").parse().expect("a float");
-            f64s.extend([x, -x, x * 1.5, x * 3.0, x * 7.0 / 9.0]);
-        }
-        for x in f64s.iter().copied() {
-            for b in [
-                x.to_bits(),
-                x.to_bits().wrapping_add(1),
-                x.to_bits().wrapping_sub(1),
-            ] {
-                check_f64(f64::from_bits(b));
-            }
+        f64s.extend(decades::<f64>(-330..310));
+        for b in f64s.iter().flat_map(|x| around(x.to_bits())) {
+            check_f64(f64::from_bits(b));
         }
         let mut f32s = vec![
             // A tie between `-30619.062` (`zmij`) and `-30619.063` (std).
@@ -411,18 +412,10 @@ mod tests {
             f32::INFINITY,
             f32::NEG_INFINITY,
         ];
-        for k in -46..39 {
-            let x: f32 = format!("1e{k}").parse().expect("a float");
-            f32s.extend([x, -x, x * 1.5, x * 3.0, x * 7.0 / 9.0]);
-        }
-        for x in f32s {
-            for b in [
-                x.to_bits(),
-                x.to_bits().wrapping_add(1),
-                x.to_bits().wrapping_sub(1),
-            ] {
-                check_f32(f32::from_bits(b));
-            }
+        f32s.extend(decades::<f32>(-46..39));
+        for b in f32s.iter().flat_map(|x| around(x.to_bits().into())) {
+            // The low 32 bits: the f32 neighbours, wrapping as in `u32`.
+            check_f32(f32::from_bits(b as u32));
         }
         // Every subnormal f32 with a short mantissa, every f32 of a few integer bits.
         for m in (0..1u32 << 23).step_by(4099) {
@@ -475,7 +468,7 @@ mod tests {
             for t in 0..threads {
                 s.spawn(move || {
                     let (mut out, mut std) = (Vec::new(), String::new());
-                    let mut bits = Bits(0x9e37_79b9_7f4a_7c15 ^ (t + 1).wrapping_mul(0xff51_afd7));
+                    let mut bits = Rng(0x9e37_79b9_7f4a_7c15 ^ (t + 1).wrapping_mul(0xff51_afd7));
                     for _ in 0..total / threads / 3 {
                         let b = bits.next();
                         let near = (b & 0x800f_ffff_ffff_ffff) | ((1003 + (b >> 52) % 40) << 52);
@@ -508,7 +501,7 @@ mod tests {
                 p.saturating_mul(7) - 3,
             ]);
         }
-        let mut bits = Bits(7);
+        let mut bits = Rng(7);
         numbers.extend((0..10_000).map(|_| bits.next() >> (bits.next() % 64)));
         for n in numbers {
             let mut out = b"f ".to_vec();
