@@ -752,6 +752,67 @@ fn every_error_names_the_file_and_where() {
         let err = io::read_ply_from(input.as_bytes(), "m.ply").unwrap_err();
         assert_eq!(err.to_string(), *expected, "{input:?}");
     }
+    // Binary records read by the loops of the common layouts (`x y z` of one float type,
+    // little-endian; a `uchar` count of `int` or `uint` corners): the same errors.
+    for (ty, size) in [("float", 4), ("double", 8)] {
+        for (coordinate, name) in ["x", "y", "z"].iter().enumerate() {
+            for (bad, text) in [(f64::NAN, "NaN"), (f64::NEG_INFINITY, "-inf")] {
+                let mut data = Vec::new();
+                for k in 0..3 * 3 {
+                    let value = if k == 3 + coordinate {
+                        bad
+                    } else {
+                        (k % 2) as f64
+                    };
+                    match size {
+                        4 => data.extend((value as f32).to_le_bytes()),
+                        _ => data.extend(value.to_le_bytes()),
+                    }
+                }
+                let head = v.replace("float", ty);
+                let file = [
+                    format!("ply\nformat binary_little_endian 1.0\n{head}{f}end_header\n")
+                        .into_bytes(),
+                    data,
+                ]
+                .concat();
+                let err = io::read_ply_from(&file[..], "m.ply").unwrap_err();
+                assert_eq!(
+                    err.to_string(),
+                    format!(
+                        "m.ply: vertex 1, property `{name}`: coordinate `{text}` is not finite"
+                    ),
+                    "{ty}"
+                );
+            }
+        }
+    }
+    for (ty, index, message) in [
+        ("int", -1i64, "vertex index -1"),
+        ("uint", 3, "vertex index 3"),
+        ("uint", 1 << 31, "vertex index 2147483648"),
+    ] {
+        let mut data: Vec<u8> = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+            .iter()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        data.push(3);
+        for corner in [0, index, 1] {
+            data.extend((corner as u32).to_le_bytes());
+        }
+        let head = format!("{v}{}", f.replace("uchar int", &format!("uchar {ty}")));
+        let file = [
+            format!("ply\nformat binary_little_endian 1.0\n{head}end_header\n").into_bytes(),
+            data,
+        ]
+        .concat();
+        let err = io::read_ply_from(&file[..], "m.ply").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!("m.ply: face 0: {message} is out of range (the file has 3 vertices)"),
+            "{ty}"
+        );
+    }
     // Binary data cut short.
     let bytes = write(&shapes::cube(), &ObjWriteOptions::default());
     let cut = &bytes[..bytes.len() - 3];

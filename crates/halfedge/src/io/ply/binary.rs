@@ -114,6 +114,18 @@ impl Layout {
 pub(super) type Vertex = ([f64; 3], [f64; 3], [f64; 2]);
 
 impl Layout {
+    /// The type of the coordinates when a record is `x y z` of one float type and nothing
+    /// else, in that order.
+    pub(super) fn xyz(&self) -> Option<Type> {
+        let [(0, ty, Role::Position(0)), (b, ty1, Role::Position(1)), (c, ty2, Role::Position(2))] =
+            self.fields[..]
+        else {
+            return None;
+        };
+        let floats = matches!(ty, Type::F32 | Type::F64) && ty1 == ty && ty2 == ty;
+        (floats && b == ty.size() && c == 2 * ty.size()).then_some(ty)
+    }
+
     /// The values of a record: the vertex, or the first value (in the order of the
     /// properties) that is not finite, with its property's index.
     #[inline]

@@ -471,7 +471,7 @@ impl<R: BufRead> Body<R> {
 
     /// Keeps a vertex whose `adding` bytes the budget has been checked for: its position,
     /// and its color and UV when the element has them.
-    #[inline]
+    #[inline(always)]
     pub(super) fn store_vertex(
         &mut self,
         at: At<'_>,

@@ -6,7 +6,7 @@
 //! ending early names the property it cuts short; a read error is returned when the bytes it
 //! withheld are asked for.
 
-use super::binary::{Layout, BATCH, MAX_WHOLE};
+use super::binary::{Layout, Vertex, BATCH, MAX_WHOLE};
 use super::body::{At, Body, Faces};
 use super::header::{Element, Type};
 use super::MAX_LIST_ITEMS;
@@ -20,9 +20,32 @@ impl<R: std::io::BufRead> Body<R> {
         element: &Element,
         layout: &Layout,
         big_endian: bool,
-        (colors, uvs): (bool, bool),
+        extras: (bool, bool),
     ) -> Result<u64> {
+        // The common records (`x y z` alone, little-endian) get a loop of their own.
         let stride = layout.stride;
+        match (layout.xyz(), big_endian) {
+            (Some(Type::F64), false) => {
+                self.vertex_records_by(element, stride, extras, xyz::<8, f64>)
+            }
+            (Some(Type::F32), false) => {
+                self.vertex_records_by(element, stride, extras, xyz::<4, f32>)
+            }
+            _ => self.vertex_records_by(element, stride, extras, |record| {
+                layout.read(record, big_endian)
+            }),
+        }
+    }
+
+    /// [`vertex_records`](Self::vertex_records) of `stride` bytes each, read by `read`.
+    #[inline(always)]
+    fn vertex_records_by(
+        &mut self,
+        element: &Element,
+        stride: usize,
+        (colors, uvs): (bool, bool),
+        read: impl Fn(&[u8]) -> std::result::Result<Vertex, (usize, f64)>,
+    ) -> Result<u64> {
         // What each vertex adds to `used()` (its lists grow by their lengths); nothing else
         // changes while the element is read.
         let adding = 24 + if colors { 24 } else { 0 } + if uvs { 16 } else { 0 };
@@ -41,7 +64,7 @@ impl<R: std::io::BufRead> Body<R> {
             for _ in 0..batch {
                 let at = At { element, index };
                 let record = &self.bytes.buf[self.bytes.pos..self.bytes.pos + stride];
-                let (p, c, t) = match layout.read(record, big_endian) {
+                let (p, c, t) = match read(record) {
                     Ok(vertex) => vertex,
                     Err((i, value)) => {
                         let property = &element.properties[i];
@@ -72,10 +95,30 @@ impl<R: std::io::BufRead> Body<R> {
         (count, item): (Type, Type),
         big_endian: bool,
     ) -> Result<u64> {
-        let (count_size, item_size) = (count.size(), item.size());
+        // The list's count and items are integers (the header says so). The common layouts
+        // (a `uchar` count, `int` or `uint` corners, little-endian) get a loop of their own.
+        let any = |ty: Type| move |bytes: &[u8]| ty.decode_int(bytes, big_endian).unwrap_or(-1);
+        let uint8 = |bytes: &[u8]| i64::from(bytes[0]);
+        let int32 = |bytes: &[u8]| i64::from(i32::from_le_bytes(first_four(bytes)));
+        let uint32 = |bytes: &[u8]| i64::from(u32::from_le_bytes(first_four(bytes)));
+        let sizes = (count.size(), item.size());
+        match (count, item, big_endian) {
+            (Type::U8, Type::I32, false) => self.corner_lists_by(element, sizes, (uint8, int32)),
+            (Type::U8, Type::U32, false) => self.corner_lists_by(element, sizes, (uint8, uint32)),
+            _ => self.corner_lists_by(element, sizes, (any(count), any(item))),
+        }
+    }
+
+    /// [`corner_lists`](Self::corner_lists) with the count and the items of each list, of
+    /// `count_size` and `item_size` bytes, read by `count_int` and `item_int` (-1 for none).
+    #[inline(always)]
+    fn corner_lists_by(
+        &mut self,
+        element: &Element,
+        (count_size, item_size): (usize, usize),
+        (count_int, item_int): (impl Fn(&[u8]) -> i64, impl Fn(&[u8]) -> i64),
+    ) -> Result<u64> {
         let limit = u128::from(self.budget.bytes);
-        // The list's count and items are integers (the header says so).
-        let int = |ty: Type, bytes: &[u8]| ty.decode_int(bytes, big_endian).unwrap_or(-1);
         // `used()` but the corner list's capacity (which grows as the list fills), kept as
         // the faces grow: nothing else changes while the element is read.
         let mut used = self.used() - 4 * self.corners.capacity() as u128;
@@ -84,7 +127,7 @@ impl<R: std::io::BufRead> Body<R> {
             if !self.bytes.fill(&mut self.source.reader, count_size) {
                 return Ok(index);
             }
-            let n = int(count, &self.bytes.buf[self.bytes.pos..]);
+            let n = count_int(&self.bytes.buf[self.bytes.pos..]);
             if !(3..=MAX_LIST_ITEMS as i64).contains(&n) || n as usize * item_size > MAX_WHOLE {
                 // The count's error, or a long list: read one value at a time.
                 return Ok(index);
@@ -106,7 +149,7 @@ impl<R: std::io::BufRead> Body<R> {
                 // The corner list does not grow: one test of the budget for every corner, and
                 // the corners go to the mesh without it.
                 for k in 0..n {
-                    let index = int(item, &data[k * item_size..]);
+                    let index = item_int(&data[k * item_size..]);
                     if index < 0 || index as u64 >= self.vertices {
                         let kind = ParseError::VertexIndexOutOfRange {
                             index,
@@ -128,13 +171,15 @@ impl<R: std::io::BufRead> Body<R> {
                 if let Err(e) = reserved {
                     return Err(self.allocation_failed(at, adding, e));
                 }
-                let corners = data.chunks_exact(item_size).map(|b| int(item, b) as u32);
-                indices.extend(corners);
+                // Checked above: every corner is a vertex index, and there is room for them.
+                for b in data.chunks_exact(item_size) {
+                    indices.push(item_int(b) as u32);
+                }
                 offsets.push(indices.len());
             } else {
                 for k in 0..n {
                     let offset = self.bytes.pos + k * item_size;
-                    let index = int(item, &self.bytes.buf[offset..]);
+                    let index = item_int(&self.bytes.buf[offset..]);
                     if index < 0 || index as u64 >= self.vertices {
                         let kind = ParseError::VertexIndexOutOfRange {
                             index,
@@ -206,5 +251,49 @@ impl<R: std::io::BufRead> Body<R> {
         }
         self.bytes.pos += n * size;
         Ok(true)
+    }
+}
+
+/// The first four bytes of `bytes` (at least four).
+#[inline(always)]
+fn first_four(bytes: &[u8]) -> [u8; 4] {
+    let mut four = [0u8; 4];
+    four.copy_from_slice(&bytes[..4]);
+    four
+}
+
+/// A record of three little-endian coordinates of `N` bytes each, as [`Layout::read`] reads
+/// it.
+#[inline(always)]
+fn xyz<const N: usize, T: Into<f64> + LittleEndian<N>>(
+    record: &[u8],
+) -> std::result::Result<Vertex, (usize, f64)> {
+    let mut p = [0.0; 3];
+    for (i, slot) in p.iter_mut().enumerate() {
+        let mut bytes = [0u8; N];
+        bytes.copy_from_slice(&record[i * N..(i + 1) * N]);
+        let value: f64 = T::from_le(bytes).into();
+        if !value.is_finite() {
+            return Err((i, value));
+        }
+        *slot = value;
+    }
+    Ok((p, [0.0; 3], [0.0; 2]))
+}
+
+/// A float type read from its little-endian bytes.
+trait LittleEndian<const N: usize> {
+    fn from_le(bytes: [u8; N]) -> Self;
+}
+
+impl LittleEndian<4> for f32 {
+    fn from_le(bytes: [u8; 4]) -> f32 {
+        f32::from_le_bytes(bytes)
+    }
+}
+
+impl LittleEndian<8> for f64 {
+    fn from_le(bytes: [u8; 8]) -> f64 {
+        f64::from_le_bytes(bytes)
     }
 }
