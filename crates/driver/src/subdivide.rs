@@ -134,8 +134,8 @@ pub fn prepare<'m>(
     let poly = &loaded.poly;
     loaded.refuse_degenerate_faces()?;
     // A scheme that runs on the half-edge mesh whenever the mesh is valid has it built now and
-    // reads the counts off it (the same numbers as a scan of the face list, in a third of the
-    // time); an invalid mesh is counted by the scan and refused where it always was.
+    // takes the counts its build made (the same numbers as a scan of the face list, at no
+    // cost); an invalid mesh is counted by the scan and refused where it always was.
     let early = runs_on_half_edges(choice).then(|| loaded.validate());
     let counts = match &early {
         Some(Ok(mesh)) => mesh.counts(),
