@@ -126,8 +126,8 @@ pub(crate) fn build(
 
     // 4. One pass over the edges, numbered in sorted order: half-edge 2e runs from the
     // smaller vertex to the larger one, 2e + 1 back, and each corner takes the one of its
-    // direction; `corner_of` holds each half-edge's corner (`INVALID` on the boundary), the
-    // boundary half-edges are listed and the components joined. The pass also notes the
+    // direction; `corner_of` holds each half-edge's corner (`INVALID` on the boundary) and
+    // the boundary half-edges are listed. The pass also notes the
     // first of each problem, reported in the documented order after it: faces on one vertex
     // set (compared across the edges they share, or searched by their sets), a non-manifold
     // edge, a flipped one.
@@ -137,7 +137,6 @@ pub(crate) fn build(
     let mut corner_of: Vec<u32> = Vec::with_capacity(2 * n_corners);
     let mut corner_halfedge = vec![0u32; n_corners];
     let mut boundary: Vec<u32> = Vec::new();
-    let mut components = Components::new(n_used);
     let mut at = 0;
     for small in 0..nv {
         let bucket = sides.bucket(small);
@@ -158,7 +157,6 @@ pub(crate) fn build(
             if run.len() == 1 {
                 boundary.push(2 * e + 1 - (run[0][1] & 1));
             }
-            components.join(a, b);
         }
         found.bucket(small as u32, bucket, at);
         at += bucket.len();
@@ -200,7 +198,9 @@ pub(crate) fn build(
     let mut halfedge_face = corner_of;
     halfedge_face.shrink_to_fit();
     let nh = halfedge_vertex.len();
-    let mut halfedge_next = sides.ends.into_flattened();
+    let Sides { start, ends } = sides;
+    let components = Components::count(start, n_used, &halfedge_vertex);
+    let mut halfedge_next = ends.into_flattened();
     halfedge_next.truncate(nh);
     halfedge_next.shrink_to_fit();
     let mut halfedge_prev = vec![0u32; nh];
@@ -320,7 +320,7 @@ pub(crate) fn build(
         corners: nh as u64 - boundary_edges,
         faces_by_degree: degrees.by_degree,
         boundary_loops,
-        components: (n_used - components.merged) as u64,
+        components: components as u64,
         euler_characteristic: i64::try_from(chi).unwrap_or(i64::MAX),
         unreferenced_vertices: unreferenced as u64,
     };
@@ -368,18 +368,27 @@ impl Degrees {
 }
 
 /// The components, joined edge by edge (a union-find whose roots are the least vertices
-/// of their sets, with path halving): the vertices less the joins that merged two.
+/// of their sets, with path halving).
 struct Components {
     parent: Vec<u32>,
     merged: usize,
 }
 
 impl Components {
-    fn new(n: usize) -> Components {
-        Components {
-            parent: (0..n as u32).collect(),
+    /// The components of `n` vertices joined by the edges of `halfedge_vertex` (two entries
+    /// an edge): the vertices less the joins that merged two. `buffer`'s memory (the sides'
+    /// bucket starts, one more than the vertices) is reused for the union-find.
+    fn count(mut buffer: Vec<u32>, n: usize, halfedge_vertex: &[u32]) -> usize {
+        buffer.clear();
+        buffer.extend(0..n as u32);
+        let mut sets = Components {
+            parent: buffer,
             merged: 0,
+        };
+        for edge in halfedge_vertex.chunks_exact(2) {
+            sets.join(edge[0], edge[1]);
         }
+        n - sets.merged
     }
 
     fn root(&mut self, mut x: u32) -> u32 {
@@ -402,6 +411,9 @@ impl Components {
         }
     }
 }
+
+/// Buckets of up to this many sides are sorted by insertion.
+const SORTED_BY_INSERTION: usize = 32;
 
 /// Every corner's side `[larger vertex, tag]`, bucketed by its smaller vertex; a bucket is
 /// sorted (by larger vertex, then tag) when the edge pass takes it. The buckets in order
@@ -455,7 +467,21 @@ impl Sides {
     /// The sides of the edges whose smaller vertex is `v`, sorted.
     fn bucket(&mut self, v: usize) -> &[[u32; 2]] {
         let bucket = &mut self.ends[self.start[v] as usize..self.start[v + 1] as usize];
-        bucket.sort_unstable();
+        if bucket.len() > SORTED_BY_INSERTION {
+            bucket.sort_unstable();
+            return bucket;
+        }
+        // The tags were placed in increasing order: sorting by the larger vertex, stably,
+        // sorts by both.
+        for i in 1..bucket.len() {
+            let side = bucket[i];
+            let mut j = i;
+            while j > 0 && bucket[j - 1][0] > side[0] {
+                bucket[j] = bucket[j - 1];
+                j -= 1;
+            }
+            bucket[j] = side;
+        }
         bucket
     }
 
@@ -512,17 +538,36 @@ fn link_faces(
     }
 }
 
+/// The larger vertex of the other side at the bucket's vertex of the quad of the side `tag`,
+/// when that side is in `bucket` too (the vertex is smaller than both its neighbours in the
+/// quad).
+fn other_side(bucket: &[[u32; 2]], tag: u32) -> Option<u32> {
+    const K: usize = 4;
+    let c = (tag >> 1) as usize;
+    let (base, i) = (c / K * K, c % K);
+    // From the bucket's vertex (dir 0), the other side is the previous corner's, toward
+    // it (dir 1); toward it, the next corner's, from it.
+    let other = match tag & 1 {
+        0 => 2 * (base + (i + K - 1) % K) + 1,
+        _ => 2 * (base + (i + 1) % K),
+    } as u32;
+    bucket.iter().find(|&&[_, t]| t == other).map(|&[z, _]| z)
+}
+
 /// The first problems of the edges, in the order [`build`] reports them.
 ///
 /// Duplicates are found across edges in a mesh of only triangles or only quads (without
 /// repeated vertices): two faces on one vertex set share an edge at the set's smallest
 /// vertex `m`, and each has two sides in `m`'s bucket (any two of a triangle's vertices make
 /// an edge; two 4-cycles through the same 4 vertices share an edge at each vertex). So only
-/// faces across an edge of a bucket where both have two sides can be duplicates: two
-/// triangles are when they share two of the bucket's edges, which the bucket shows without
-/// reading the faces; two quads are compared. An edge of three to eight sides has all its
-/// faces compared. Mixed or larger faces, or an edge of more than 8 sides (a pile of
-/// copies), leave it to the search by sets (`by_sets`), which finds the same smallest pair.
+/// faces across an edge of a bucket where both have two sides can be duplicates, which the
+/// bucket tells without reading the faces: two triangles are when they share two of the
+/// bucket's edges; two quads are when `m` is the smallest vertex of both and their vertices
+/// across from `m` (`far`, noted before the pass) and their other neighbours of `m` (in the
+/// bucket) are the same two. An edge of three to eight sides, or of a bucket of more than
+/// [`SCANNED_BUCKET`] sides, has its faces compared. Mixed or larger faces, or an edge of
+/// more than 8 sides (a pile of copies), leave it to the search by sets (`by_sets`), which
+/// finds the same smallest pair.
 struct EdgeProblems<'a> {
     /// The faces' common degree, 3 or 4.
     degree: usize,
@@ -533,18 +578,30 @@ struct EdgeProblems<'a> {
     nonmanifold: Option<(u64, Vec<u32>)>,
     /// Where the first flipped edge's sides start, in the sorted order.
     flipped: Option<usize>,
+    /// For quads, each face's vertex across from its smallest.
+    far: Vec<u32>,
     /// The pairs of triangles across an edge of two sides, bucket by bucket, as
     /// `(first << 32) | second` (one 8-byte word: a store the sort's load can take over).
     pairs: Vec<u64>,
 }
 
 /// Buckets beyond this many sides have their quads compared across every edge of two sides
-/// (rather than looking for each one's other side in the bucket).
+/// (rather than looking for their other sides in the bucket).
 const SCANNED_BUCKET: usize = 32;
 
 impl<'a> EdgeProblems<'a> {
     fn new(uniform: Option<usize>, indices: &'a [u32]) -> EdgeProblems<'a> {
         let degree = uniform.unwrap_or(0);
+        let far = match degree {
+            4 => indices
+                .chunks_exact(4)
+                .map(|q| {
+                    let least = (1..4).fold(0, |i, j| if q[j] < q[i] { j } else { i });
+                    q[(least + 2) % 4]
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
         EdgeProblems {
             degree,
             indices,
@@ -552,6 +609,7 @@ impl<'a> EdgeProblems<'a> {
             duplicate: None,
             nonmanifold: None,
             flipped: None,
+            far,
             pairs: Vec::new(),
         }
     }
@@ -568,7 +626,7 @@ impl<'a> EdgeProblems<'a> {
                         self.flipped = Some(at);
                     }
                     if !self.by_sets {
-                        self.across(bucket, run);
+                        self.across(small, bucket, run);
                     }
                 }
                 _ => {
@@ -601,32 +659,25 @@ impl<'a> EdgeProblems<'a> {
         self.pairs.clear();
     }
 
-    /// The faces across an edge of two sides (`run`) of `bucket`.
-    fn across(&mut self, bucket: &[[u32; 2]], run: &[[u32; 2]]) {
+    /// The faces across an edge of two sides (`run`) of the bucket of vertex `small`.
+    fn across(&mut self, small: u32, bucket: &[[u32; 2]], run: &[[u32; 2]]) {
         let (f, g) = (self.face(run[0][1]), self.face(run[1][1]));
         if self.degree == 3 {
             self.pairs
                 .push(u64::from(f.min(g)) << 32 | u64::from(f.max(g)));
-        } else if bucket.len() > SCANNED_BUCKET
-            || (self.has_other_side(bucket, run[0][1]) && self.has_other_side(bucket, run[1][1]))
-        {
+        } else if bucket.len() > SCANNED_BUCKET {
             self.compare(f, g);
+        } else if let (Some(zf), Some(zg)) =
+            (other_side(bucket, run[0][1]), other_side(bucket, run[1][1]))
+        {
+            // Quads through `small`, the edge's vertex and their other neighbours of `small`
+            // (`zf`, `zg`): on one set when their vertices across from `small` complete it,
+            // `small` being the smallest of both.
+            let (of, og) = (self.far[f as usize], self.far[g as usize]);
+            if of != small && og != small && ((zf, of) == (zg, og) || (zf, of) == (og, zg)) {
+                self.found((f.min(g), f.max(g)));
+            }
         }
-    }
-
-    /// Whether the face of the side `tag` has its other side at the bucket's vertex in the
-    /// bucket too (that vertex is smaller than both its neighbours in the face).
-    fn has_other_side(&self, bucket: &[[u32; 2]], tag: u32) -> bool {
-        let k = self.degree;
-        let c = (tag >> 1) as usize;
-        let (base, i) = (c / k * k, c % k);
-        // From the bucket's vertex (dir 0), the other side is the previous corner's, toward
-        // it (dir 1); toward it, the next corner's, from it.
-        let other = match tag & 1 {
-            0 => 2 * (base + (i + k - 1) % k) + 1,
-            _ => 2 * (base + (i + 1) % k),
-        } as u32;
-        bucket.iter().any(|&[_, t]| t == other)
     }
 
     fn face(&self, tag: u32) -> u32 {
