@@ -90,28 +90,29 @@ pub(crate) fn build(
     // 2. Referenced vertices, renumbered in order (no table when every vertex is); non-finite
     // coordinates.
     let unreferenced = last.iter().filter(|&&l| l == 0).count();
-    let mut remap = match unreferenced {
-        0 => Vec::new(),
-        _ => vec![INVALID; nv],
-    };
-    let mut new_positions = Vec::with_capacity(nv - unreferenced);
-    for (v, (&l, &p)) in last.iter().zip(positions).enumerate() {
-        if l == 0 {
-            continue;
-        }
-        if !p.is_finite() {
-            return Err(Error::NonFiniteCoordinate {
-                vertex: v as u32,
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
-        if let Some(new) = remap.get_mut(v) {
-            *new = new_positions.len() as u32;
-        }
-        new_positions.push(p);
+    let used = |v: usize| unreferenced == 0 || last[v] != 0;
+    if let Some(v) = (0..nv).find(|&v| used(v) && !positions[v].is_finite()) {
+        let p = positions[v];
+        return Err(Error::NonFiniteCoordinate {
+            vertex: v as u32,
+            x: p.x,
+            y: p.y,
+            z: p.z,
+        });
     }
+    let mut remap = Vec::new();
+    let new_positions = match unreferenced {
+        0 => positions.to_vec(),
+        _ => {
+            remap = vec![INVALID; nv];
+            let mut kept = Vec::with_capacity(nv - unreferenced);
+            for (v, &p) in positions.iter().enumerate().filter(|&(v, _)| used(v)) {
+                remap[v] = kept.len() as u32;
+                kept.push(p);
+            }
+            kept
+        }
+    };
     let n_used = new_positions.len();
     let renumber = |v: u32| remap.get(v as usize).copied().unwrap_or(v);
     let old_number = |new: u32| match remap.is_empty() {
@@ -210,17 +211,25 @@ pub(crate) fn build(
         Some(4) => link_uniform::<4>(&corner_halfedge, links),
         _ => link_faces(&corner_halfedge, offsets, links),
     }
-    // A vertex's half-edge is its last corner's (a boundary vertex's is replaced in step 6).
-    let mut vertex_halfedge: Vec<u32> = last
-        .iter()
-        .filter(|&&l| l != 0)
-        .map(|&l| corner_halfedge[l as usize - 1])
-        .collect();
-    let face_halfedge: Vec<u32> = offsets[..n_faces]
-        .iter()
-        .map(|&o| corner_halfedge[o])
-        .collect();
-    drop((corner_halfedge, last));
+    // A vertex's half-edge is its last corner's (a boundary vertex's is replaced in step 6), a
+    // face's its first corner's: written over `last` and `corner_halfedge` in place (entry
+    // `i` is read from `i` or after).
+    let mut vertex_halfedge = last;
+    let mut w = 0;
+    for v in 0..nv {
+        if vertex_halfedge[v] != 0 {
+            vertex_halfedge[w] = corner_halfedge[vertex_halfedge[v] as usize - 1];
+            w += 1;
+        }
+    }
+    vertex_halfedge.truncate(w);
+    vertex_halfedge.shrink_to_fit();
+    let mut face_halfedge = corner_halfedge;
+    for (f, &o) in offsets[..n_faces].iter().enumerate() {
+        face_halfedge[f] = face_halfedge[o];
+    }
+    face_halfedge.truncate(n_faces);
+    face_halfedge.shrink_to_fit();
 
     // 6. Boundary loops: link each boundary half-edge to the boundary half-edge leaving its
     // target. A vertex with two outgoing boundary half-edges has two fans.
