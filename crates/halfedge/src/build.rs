@@ -128,10 +128,9 @@ pub(crate) fn build(
     // 4. One pass over the edges, numbered in sorted order: half-edge 2e runs from the
     // smaller vertex to the larger one, 2e + 1 back, and each corner takes the one of its
     // direction; `corner_of` holds each half-edge's corner (`INVALID` on the boundary) and
-    // the boundary half-edges are listed. The pass also notes the
-    // first of each problem, reported in the documented order after it: faces on one vertex
-    // set (compared across the edges they share, or searched by their sets), a non-manifold
-    // edge, a flipped one.
+    // the boundary half-edges are listed. The pass also notes the first of each problem,
+    // reported in the documented order after it: faces on one vertex set (compared across
+    // the edges they share, or searched by their sets), a non-manifold edge, a flipped one.
     let uniform = degrees.uniform();
     let mut found = EdgeProblems::new(uniform, indices);
     let mut halfedge_vertex: Vec<u32> = Vec::with_capacity(2 * n_corners);
@@ -281,15 +280,16 @@ pub(crate) fn build(
 
     // 7. One fan per vertex: the rotation around each vertex must reach all its half-edges.
     // Every rotation is a cycle of the vertex's outgoing half-edges, so they all do exactly
-    // when the rotations' lengths add up to the half-edges; otherwise the first vertex short
-    // of its degree is reported.
-    let fan = |v: usize| -> Result<usize> {
+    // when the rotations' lengths add up to the half-edges; otherwise the vertices are
+    // walked again in order against their degrees, and the first one short of its degree
+    // (or whose rotation does not close within it) is reported.
+    let fan = |v: usize, most: usize| -> Result<usize> {
         let start = vertex_halfedge[v];
         let (mut h, mut count) = (start, 0);
         loop {
             count += 1;
             let p = halfedge_prev[h as usize];
-            if p == INVALID || count > nh {
+            if p == INVALID || count > most {
                 return Err(Error::BrokenInvariant {
                     what: format!("rotation around vertex {v} does not close"),
                 });
@@ -300,17 +300,14 @@ pub(crate) fn build(
             }
         }
     };
-    let mut reached = 0;
-    for v in 0..n_used {
-        reached += fan(v)?;
-    }
-    if reached < nh {
+    let reached = (0..n_used).try_fold(0, |sum, v| fan(v, nh).map(|count| sum + count));
+    if reached.ok() != Some(nh) {
         let mut out_degree = vec![0usize; n_used];
         for h in 0..nh {
             out_degree[halfedge_vertex[h ^ 1] as usize] += 1;
         }
         for (v, &degree) in out_degree.iter().enumerate() {
-            if fan(v)? < degree {
+            if fan(v, degree)? < degree {
                 return Err(non_manifold_vertex(old_number(v as u32), n_faces, &face));
             }
         }
@@ -1002,6 +999,30 @@ mod tests {
         let face: Vec<u32> = mesh.face_vertices(crate::FaceId(0)).map(|v| v.0).collect();
         assert_eq!(face, [0, 1, 2]);
         assert_eq!(mesh.counts().unreferenced_vertices, 3);
+    }
+
+    #[test]
+    fn the_counts_of_the_build_are_those_of_the_structure() {
+        // Closed, with boundary and holes, mixed degrees, quads, unused vertices, two parts.
+        let names = [
+            "icosahedron",
+            "grid:3x2",
+            "mixed",
+            "torus:2",
+            "quad-grid:3x3",
+        ];
+        let mut meshes: Vec<PolygonMesh> = names
+            .iter()
+            .chain(&["icosahedron-holes:3", "cube"])
+            .map(|name| crate::shapes::from_name(name).expect("shape"))
+            .collect();
+        let two = [[0u32, 1, 2], [3, 5, 4], [6, 7, 8], [6, 8, 9]];
+        meshes.push(PolygonMesh::from_faces(points(11), two));
+        for poly in &meshes {
+            let mesh = HalfEdgeMesh::try_from(poly).expect("valid");
+            assert_eq!(mesh.counts(), mesh.structure_counts(), "{poly:?}");
+            assert_eq!(mesh.counts(), crate::stats::face_list_counts(poly));
+        }
     }
 
     #[test]
