@@ -26,9 +26,9 @@
 //! `schemes::MeshCounts::from_face_list`, the one owner of the statistics) and
 //! `HalfEdgeMesh::counts` (the same numbers: counted by the build of a mesh built from a face
 //! list, else read off the half-edges; the tests compare both with the face list's);
-//! `face_list_problems` counts every defect at
-//! once, and its duplicate-face search (hash, then a sort of equal-hash faces: `n log n` on a file
-//! of identical faces) is the one validation uses too.
+//! `face_list_problems` counts every defect at once, and its duplicate-face search (hash, then
+//! a sort of equal-hash faces: `n log n` on a file of identical faces) is the one validation
+//! uses too.
 
 use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};
@@ -459,10 +459,10 @@ pub fn genus(counts: &MeshCounts) -> Option<u64> {
 
 impl HalfEdgeMesh {
     /// The statistics of this mesh ([`schemes::MeshCounts`]): counted by the build of a
-    /// mesh built from a face list, else read off its half-edges in linear time. They equal [`MeshCounts::from_face_list`] of its faces (the rules' one
-    /// definition; the tests check it), and [`face_list_counts`] of the face list the mesh
-    /// was built from, whose unused vertices the mesh dropped and reports in
-    /// `unreferenced_vertices`.
+    /// mesh built from a face list, else read off its half-edges in linear time. They equal
+    /// [`MeshCounts::from_face_list`] of its faces (the rules' one definition; the tests
+    /// check it), and [`face_list_counts`] of the face list the mesh was built from, whose
+    /// unused vertices the mesh dropped and reports in `unreferenced_vertices`.
     ///
     /// # Example
     ///
