@@ -132,11 +132,15 @@ pub fn prepare<'m>(
     notes: Notes<'_>,
 ) -> Result<Prepared<'m>> {
     let poly = &loaded.poly;
-    loaded.refuse_degenerate_faces()?;
     // A scheme that runs on the half-edge mesh whenever the mesh is valid has it built now and
-    // reads the counts off it (the same numbers as a scan of the face list, in a third of the
-    // time); an invalid mesh is counted by the scan and refused where it always was.
+    // takes the counts its build made (the same numbers as a scan of the face list, at no
+    // cost); an invalid mesh is counted by the scan and refused where it always was. A mesh
+    // the build accepted has no face with a repeated vertex: the scan for one, which comes
+    // first on every path, is left to the others.
     let early = runs_on_half_edges(choice).then(|| loaded.validate());
+    if !matches!(early, Some(Ok(_))) {
+        loaded.refuse_degenerate_faces()?;
+    }
     let counts = match &early {
         Some(Ok(mesh)) => mesh.counts(),
         _ => halfedge::stats::face_list_counts(poly),

@@ -1,14 +1,20 @@
 //! Validating construction of a [`HalfEdgeMesh`] from a face list.
 //!
-//! Edges are matched by sorting the face corners by their undirected vertex pair (one
-//! `sort_unstable` over `(u64, u32)` pairs), which is fast, uses no hashing and makes every
-//! numbering and every reported error deterministic. Checks run in a fixed order and the first
-//! problem found is reported: face sizes, indices and repeated vertices (face by face),
-//! non-finite coordinates, faces on the same vertex set, non-manifold edges, orientation
-//! (a flipped face or a non-orientable surface), non-manifold vertices.
+//! Edges are matched by bucketing the faces' sides by their smaller vertex (a counting sort)
+//! and sorting each bucket, a vertex's few sides, by (larger vertex, corner): linear time, no
+//! hashing, and every numbering and every reported error deterministic. Checks run in a fixed
+//! order and the first problem found is reported: face sizes, indices and repeated vertices
+//! (face by face), non-finite coordinates, faces on the same vertex set, non-manifold edges,
+//! orientation (a flipped face or a non-orientable surface), non-manifold vertices.
+//!
+//! The passes also count what [`HalfEdgeMesh::counts`] reports (faces by degree, boundary
+//! edges and loops, components), which the mesh keeps: a mesh read from a file is counted
+//! by its build, not walked again.
+
+use std::collections::BTreeMap;
 
 use glam::DVec3;
-use schemes::DisjointSets;
+use schemes::{DisjointSets, MeshCounts};
 
 use crate::descriptor::Descriptor;
 use crate::error::{Error, FaceVertices, Result};
@@ -44,10 +50,13 @@ pub(crate) fn build(
     }
     let face = |f: usize| &indices[offsets[f]..offsets[f + 1]];
 
-    // 1. Face by face: size, range, repeated vertices. `mark[v]` = last face using v.
-    let mut mark = vec![INVALID; nv];
-    for f in 0..n_faces {
-        let vertices = face(f);
+    // 1. Face by face: size, range, repeated vertices. `last[v]` = 1 + the last corner at v
+    // (0: no face uses v); the sides are counted by their smaller vertex for step 3.
+    let mut last = vec![0u32; nv];
+    let mut counted = vec![0u32; nv + 2];
+    let mut degrees = Degrees::default();
+    for (f, w) in offsets.windows(2).enumerate() {
+        let (first, vertices) = (w[0], &indices[w[0]..w[1]]);
         let describe = || FaceVertices(vertices.to_vec());
         if vertices.len() < 3 {
             return Err(Error::FaceTooSmall {
@@ -64,66 +73,93 @@ pub(crate) fn build(
                 n_vertices: nv,
             });
         }
-        for &v in vertices {
-            if mark[v as usize] == f as u32 {
+        for (c, &v) in (first..).zip(vertices) {
+            if last[v as usize] as usize > first {
                 return Err(Error::RepeatedVertex {
                     face: f as u32,
                     vertices: describe(),
                     vertex: v,
                 });
             }
-            mark[v as usize] = f as u32;
+            last[v as usize] = c as u32 + 1;
         }
+        Sides::count(&mut counted, vertices);
+        degrees.add(vertices.len());
     }
 
-    // 2. Referenced vertices, renumbered in order; non-finite coordinates.
-    let mut remap = vec![INVALID; nv];
-    let mut old_of_new: Vec<u32> = Vec::with_capacity(nv);
-    let mut new_positions = Vec::with_capacity(nv);
-    for (v, (&m, &p)) in mark.iter().zip(positions).enumerate() {
-        if m == INVALID {
-            continue;
-        }
-        if !p.is_finite() {
-            return Err(Error::NonFiniteCoordinate {
-                vertex: v as u32,
-                x: p.x,
-                y: p.y,
-                z: p.z,
-            });
-        }
-        remap[v] = old_of_new.len() as u32;
-        old_of_new.push(v as u32);
-        new_positions.push(p);
+    // 2. Referenced vertices, renumbered in order (no table when every vertex is); non-finite
+    // coordinates.
+    let unreferenced = last.iter().filter(|&&l| l == 0).count();
+    let used = |v: usize| unreferenced == 0 || last[v] != 0;
+    if let Some(v) = (0..nv).find(|&v| used(v) && !positions[v].is_finite()) {
+        let p = positions[v];
+        return Err(Error::NonFiniteCoordinate {
+            vertex: v as u32,
+            x: p.x,
+            y: p.y,
+            z: p.z,
+        });
     }
-    drop(mark);
-    let unreferenced = (nv - old_of_new.len()) as u64;
+    let mut remap = Vec::new();
+    let new_positions = match unreferenced {
+        0 => positions.to_vec(),
+        _ => {
+            remap = vec![INVALID; nv];
+            let mut kept = Vec::with_capacity(nv - unreferenced);
+            for (v, &p) in positions.iter().enumerate().filter(|&(v, _)| used(v)) {
+                remap[v] = kept.len() as u32;
+                kept.push(p);
+            }
+            kept
+        }
+    };
+    let n_used = new_positions.len();
+    let renumber = |v: u32| remap.get(v as usize).copied().unwrap_or(v);
+    let old_number = |new: u32| match remap.is_empty() {
+        true => new,
+        false => remap.iter().position(|&n| n == new).unwrap_or(0) as u32,
+    };
 
-    // 3. The corners' sides in the order of their undirected vertex pair, then tag
-    // ([`Sides`]). The tag is `2 * corner + dir`, with dir = 1 when the corner's edge runs
-    // from the larger vertex to the smaller.
-    let sides = Sides::new(nv, offsets, indices);
+    // 3. The corners' sides, bucketed by smaller vertex ([`Sides`]). The tag is
+    // `2 * corner + dir`, with dir = 1 when the corner's edge runs from the larger vertex to
+    // the smaller.
+    let mut sides = Sides::new(counted, offsets, indices);
 
     // 4. One pass over the edges, numbered in sorted order: half-edge 2e runs from the
     // smaller vertex to the larger one, 2e + 1 back, and each corner takes the one of its
-    // direction. The pass also notes the first of each problem, reported in the documented
-    // order after it: faces on one vertex set (compared across the edges they share, or
-    // searched by their sets), a non-manifold edge, a flipped one.
-    let mut found = EdgeProblems::new(offsets);
+    // direction; `corner_of` holds each half-edge's corner (`INVALID` on the boundary) and
+    // the boundary half-edges are listed. The pass also notes the first of each problem,
+    // reported in the documented order after it: faces on one vertex set (compared across
+    // the edges they share, or searched by their sets), a non-manifold edge, a flipped one.
+    let uniform = degrees.uniform();
+    let mut found = EdgeProblems::new(uniform, indices);
     let mut halfedge_vertex: Vec<u32> = Vec::with_capacity(2 * n_corners);
+    let mut corner_of: Vec<u32> = Vec::with_capacity(2 * n_corners);
     let mut corner_halfedge = vec![0u32; n_corners];
+    let mut boundary: Vec<u32> = Vec::new();
     let mut at = 0;
-    for (key, run) in sides.edges() {
-        let e = (halfedge_vertex.len() / 2) as u32;
-        halfedge_vertex.push(remap[(key as u32) as usize]);
-        halfedge_vertex.push(remap[(key >> 32) as usize]);
-        for &(_, tag) in run {
-            corner_halfedge[(tag >> 1) as usize] = 2 * e + (tag & 1);
+    for small in 0..nv {
+        let bucket = sides.bucket(small);
+        let a = renumber(small as u32);
+        for run in bucket.chunk_by(|x, y| x[0] == y[0]) {
+            let e = (halfedge_vertex.len() / 2) as u32;
+            let b = renumber(run[0][0]);
+            halfedge_vertex.extend([b, a]);
+            let (mut from_small, mut from_large) = (INVALID, INVALID);
+            for &[_, tag] in run {
+                corner_halfedge[(tag >> 1) as usize] = 2 * e + (tag & 1);
+                match tag & 1 {
+                    0 => from_small = tag >> 1,
+                    _ => from_large = tag >> 1,
+                }
+            }
+            corner_of.extend([from_small, from_large]);
+            if run.len() == 1 {
+                boundary.push(2 * e + 1 - (run[0][1] & 1));
+            }
         }
-        if run.len() > 1 {
-            found.edge(key, run, at, indices);
-        }
-        at += run.len();
+        found.bucket(small as u32, bucket, at);
+        at += bucket.len();
     }
     let face_of_corner = |c: u32| offsets.partition_point(|&o| o <= c as usize) - 1;
     let duplicate = match found.by_sets {
@@ -153,231 +189,525 @@ pub(crate) fn build(
         let entries = sides.entries();
         return Err(orientation_error(&entries, first, n_faces, &face_of_corner));
     }
-    drop(sides);
+
+    // 5. Each half-edge's face, next and previous: in half-edge order when the faces have
+    // one degree (the corners around its corner are at known places), else face by face.
+    // The sides' buffer, two `u32` a corner, is reused for `next` (`nh` is at most twice the
+    // corners), every entry of which is written here or in step 6.
     halfedge_vertex.shrink_to_fit();
+    let mut halfedge_face = corner_of;
+    halfedge_face.shrink_to_fit();
     let nh = halfedge_vertex.len();
-    let mut halfedge_face = vec![INVALID; nh];
-    let mut halfedge_next = vec![INVALID; nh];
-    let mut halfedge_prev = vec![INVALID; nh];
-    let mut vertex_halfedge = vec![INVALID; old_of_new.len()];
-    let mut face_halfedge = Vec::with_capacity(n_faces);
-    for f in 0..n_faces {
-        let (start, end) = (offsets[f], offsets[f + 1]);
-        face_halfedge.push(corner_halfedge[start]);
-        for c in start..end {
-            let h = corner_halfedge[c] as usize;
-            let n = corner_halfedge[if c + 1 == end { start } else { c + 1 }];
-            halfedge_face[h] = f as u32;
-            halfedge_next[h] = n;
-            halfedge_prev[n as usize] = h as u32;
-            vertex_halfedge[remap[indices[c] as usize] as usize] = h as u32;
+    let Sides { start, ends } = sides;
+    let components = Components::count(start, n_used, &halfedge_vertex);
+    let mut halfedge_next = ends.into_flattened();
+    halfedge_next.truncate(nh);
+    halfedge_next.shrink_to_fit();
+    let mut halfedge_prev = vec![0u32; nh];
+    let links = (&mut halfedge_face, &mut halfedge_next, &mut halfedge_prev);
+    match uniform {
+        Some(3) => link_uniform::<3>(&corner_halfedge, links),
+        Some(4) => link_uniform::<4>(&corner_halfedge, links),
+        _ => link_faces(&corner_halfedge, offsets, links),
+    }
+    // A vertex's half-edge is its last corner's (a boundary vertex's is replaced in step 6), a
+    // face's its first corner's: written over `last` and `corner_halfedge` in place (entry
+    // `i` is read from `i` or after).
+    let mut vertex_halfedge = last;
+    let mut w = 0;
+    for v in 0..nv {
+        if vertex_halfedge[v] != 0 {
+            vertex_halfedge[w] = corner_halfedge[vertex_halfedge[v] as usize - 1];
+            w += 1;
         }
     }
-    drop(corner_halfedge);
+    vertex_halfedge.truncate(w);
+    vertex_halfedge.shrink_to_fit();
+    let mut face_halfedge = corner_halfedge;
+    for (f, &o) in offsets[..n_faces].iter().enumerate() {
+        face_halfedge[f] = face_halfedge[o];
+    }
+    face_halfedge.truncate(n_faces);
+    face_halfedge.shrink_to_fit();
 
     // 6. Boundary loops: link each boundary half-edge to the boundary half-edge leaving its
     // target. A vertex with two outgoing boundary half-edges has two fans.
-    let mut out_boundary = vec![INVALID; old_of_new.len()];
-    let mut pinched: Option<u32> = None;
-    for h in 0..nh {
-        if halfedge_face[h] != INVALID {
-            continue;
+    let mut boundary_loops = 0;
+    if !boundary.is_empty() {
+        let from = |h: u32| halfedge_vertex[h as usize ^ 1] as usize;
+        let mut out_boundary = vec![INVALID; n_used];
+        let mut pinched: Option<u32> = None;
+        for &h in &boundary {
+            if out_boundary[from(h)] != INVALID {
+                let v = from(h) as u32;
+                pinched = Some(pinched.map_or(v, |p| p.min(v)));
+            } else {
+                out_boundary[from(h)] = h;
+            }
         }
-        let from = halfedge_vertex[h ^ 1] as usize;
-        if out_boundary[from] != INVALID {
-            let old = old_of_new[from];
-            pinched = Some(pinched.map_or(old, |p| p.min(old)));
-        } else {
-            out_boundary[from] = h as u32;
+        if let Some(vertex) = pinched {
+            return Err(non_manifold_vertex(old_number(vertex), n_faces, &face));
+        }
+        for &h in &boundary {
+            let n = out_boundary[halfedge_vertex[h as usize] as usize];
+            if n == INVALID {
+                return Err(Error::BrokenInvariant {
+                    what: format!("boundary half-edge {h} has no successor"),
+                });
+            }
+            halfedge_next[h as usize] = n;
+            halfedge_prev[n as usize] = h;
+        }
+        for (vh, &b) in vertex_halfedge.iter_mut().zip(&out_boundary) {
+            if b != INVALID {
+                *vh = b;
+            }
+        }
+        // The cycles of `next` through the boundary, each boundary half-edge known by the
+        // vertex it leaves.
+        let mut seen = vec![false; n_used];
+        for &h in &boundary {
+            if !seen[from(h)] {
+                boundary_loops += 1;
+                let mut g = h;
+                while !seen[from(g)] {
+                    seen[from(g)] = true;
+                    g = halfedge_next[g as usize];
+                }
+            }
         }
     }
-    if let Some(vertex) = pinched {
-        return Err(non_manifold_vertex(vertex, n_faces, &face));
-    }
-    for h in 0..nh {
-        if halfedge_face[h] != INVALID {
-            continue;
-        }
-        let n = out_boundary[halfedge_vertex[h] as usize];
-        if n == INVALID {
-            return Err(Error::BrokenInvariant {
-                what: format!("boundary half-edge {h} has no successor"),
-            });
-        }
-        halfedge_next[h] = n;
-        halfedge_prev[n as usize] = h as u32;
-    }
-    for (vh, &b) in vertex_halfedge.iter_mut().zip(&out_boundary) {
-        if b != INVALID {
-            *vh = b;
-        }
-    }
-    drop(out_boundary);
 
     // 7. One fan per vertex: the rotation around each vertex must reach all its half-edges.
-    let mut out_degree = vec![0u32; old_of_new.len()];
-    for h in 0..nh {
-        out_degree[halfedge_vertex[h ^ 1] as usize] += 1;
-    }
-    for (v, (&start, &degree)) in vertex_halfedge.iter().zip(&out_degree).enumerate() {
-        let mut h = start;
-        let mut count = 0u32;
+    // Every rotation is a cycle of the vertex's outgoing half-edges, so they all do exactly
+    // when the rotations' lengths add up to the half-edges; otherwise the vertices are
+    // walked again in order against their degrees, and the first one short of its degree
+    // (or whose rotation does not close within it) is reported.
+    let fan = |v: usize, most: usize| -> Result<usize> {
+        let start = vertex_halfedge[v];
+        let (mut h, mut count) = (start, 0);
         loop {
             count += 1;
             let p = halfedge_prev[h as usize];
-            if p == INVALID || count > degree {
+            if p == INVALID || count > most {
                 return Err(Error::BrokenInvariant {
                     what: format!("rotation around vertex {v} does not close"),
                 });
             }
             h = p ^ 1;
             if h == start {
-                break;
+                return Ok(count);
             }
         }
-        if count < degree {
-            return Err(non_manifold_vertex(old_of_new[v], n_faces, &face));
+    };
+    let reached = (0..n_used).try_fold(0, |sum, v| fan(v, nh).map(|count| sum + count));
+    if reached.ok() != Some(nh) {
+        let mut out_degree = vec![0usize; n_used];
+        for h in 0..nh {
+            out_degree[halfedge_vertex[h ^ 1] as usize] += 1;
+        }
+        for (v, &degree) in out_degree.iter().enumerate() {
+            if fan(v, degree)? < degree {
+                return Err(non_manifold_vertex(old_number(v as u32), n_faces, &face));
+            }
         }
     }
 
+    let boundary_edges = boundary.len() as u64;
+    let edges = (nh / 2) as u64;
+    let chi = n_used as i128 - i128::from(edges) + n_faces as i128;
+    let counts = MeshCounts {
+        vertices: n_used as u64,
+        edges,
+        interior_edges: edges - boundary_edges,
+        boundary_edges,
+        nonmanifold_edges: 0,
+        faces: n_faces as u64,
+        corners: nh as u64 - boundary_edges,
+        faces_by_degree: degrees.by_degree,
+        boundary_loops,
+        components: components as u64,
+        euler_characteristic: i64::try_from(chi).unwrap_or(i64::MAX),
+        unreferenced_vertices: unreferenced as u64,
+    };
     let halfedges = [halfedge_vertex, halfedge_face, halfedge_next, halfedge_prev];
     let mut mesh =
         HalfEdgeMesh::from_raw_parts(new_positions, vertex_halfedge, halfedges, face_halfedge);
-    mesh.unreferenced_vertices = unreferenced;
+    mesh.unreferenced_vertices = unreferenced as u64;
+    mesh.set_counts(counts);
     Ok(mesh)
 }
 
-/// Every corner's side, bucketed by its smaller vertex and sorted within the bucket by
-/// (larger vertex, tag): the order of one sort of `(undirected pair, tag)` over all sides,
-/// in linear time and 8 bytes per side (a bucket holds a vertex's few edges).
+/// The faces by degree, counted face by face in runs of one degree.
+#[derive(Default)]
+struct Degrees {
+    by_degree: BTreeMap<u32, u64>,
+    /// The degree of the last faces counted and how many there are not yet in `by_degree`.
+    run: (u32, u64),
+}
+
+impl Degrees {
+    fn add(&mut self, degree: usize) {
+        let degree = degree as u32;
+        if self.run.0 != degree {
+            self.flush();
+            self.run.0 = degree;
+        }
+        self.run.1 += 1;
+    }
+
+    fn flush(&mut self) {
+        if self.run.1 > 0 {
+            *self.by_degree.entry(self.run.0).or_insert(0) += self.run.1;
+            self.run.1 = 0;
+        }
+    }
+
+    /// Flushes the last run; the faces' one degree, if they have one.
+    fn uniform(&mut self) -> Option<usize> {
+        self.flush();
+        match self.by_degree.len() {
+            1 => self.by_degree.keys().next().map(|&k| k as usize),
+            _ => None,
+        }
+    }
+}
+
+/// The components, joined edge by edge (a union-find whose roots are the least vertices
+/// of their sets, with path halving).
+struct Components {
+    parent: Vec<u32>,
+    merged: usize,
+}
+
+impl Components {
+    /// The components of `n` vertices joined by the edges of `halfedge_vertex` (two entries
+    /// an edge): the vertices less the joins that merged two. `buffer`'s memory (the sides'
+    /// bucket starts, one more than the vertices) is reused for the union-find.
+    fn count(mut buffer: Vec<u32>, n: usize, halfedge_vertex: &[u32]) -> usize {
+        buffer.clear();
+        buffer.extend(0..n as u32);
+        let mut sets = Components {
+            parent: buffer,
+            merged: 0,
+        };
+        for edge in halfedge_vertex.chunks_exact(2) {
+            sets.join(edge[0], edge[1]);
+        }
+        n - sets.merged
+    }
+
+    fn root(&mut self, mut x: u32) -> u32 {
+        loop {
+            let p = self.parent[x as usize];
+            let grand = self.parent[p as usize];
+            if grand == p {
+                return p;
+            }
+            self.parent[x as usize] = grand;
+            x = grand;
+        }
+    }
+
+    fn join(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.root(a), self.root(b));
+        if ra != rb {
+            self.parent[ra.max(rb) as usize] = ra.min(rb);
+            self.merged += 1;
+        }
+    }
+}
+
+/// Buckets of up to this many sides are sorted by insertion.
+const SORTED_BY_INSERTION: usize = 32;
+
+/// Every corner's side `[larger vertex, tag]`, bucketed by its smaller vertex; a bucket is
+/// sorted (by larger vertex, then tag) when the edge pass takes it. The buckets in order
+/// are the order of one sort of `(undirected pair, tag)` over all sides, in linear time and
+/// 8 bytes per side (a bucket holds a vertex's few edges).
 struct Sides {
-    /// Where each vertex's bucket starts in `ends`.
+    /// Where each vertex's bucket starts in `ends` (and the last one ends).
     start: Vec<u32>,
-    /// `(larger vertex, tag)`.
-    ends: Vec<(u32, u32)>,
+    /// `[larger vertex, tag]`.
+    ends: Vec<[u32; 2]>,
 }
 
 impl Sides {
-    /// `offsets`/`indices` index `nv` vertices with fewer than `2^31` corners (checked).
-    fn new(nv: usize, offsets: &[usize], indices: &[u32]) -> Sides {
-        let n_faces = offsets.len().saturating_sub(1);
-        let side = |f: usize, c: usize| {
-            let (start, end) = (offsets[f], offsets[f + 1]);
-            let (a, b) = (
-                indices[c],
-                indices[if c + 1 == end { start } else { c + 1 }],
-            );
-            (a.min(b), a.max(b), (c as u32) << 1 | u32::from(a > b))
-        };
-        let mut start = vec![0u32; nv + 1];
-        for f in 0..n_faces {
-            for c in offsets[f]..offsets[f + 1] {
-                start[side(f, c).0 as usize + 1] += 1;
-            }
+    /// Counts the sides of a face by smaller vertex `v`, in `counted[v + 2]`.
+    fn count(counted: &mut [u32], vertices: &[u32]) {
+        let mut a = vertices[vertices.len() - 1];
+        for &b in vertices {
+            counted[a.min(b) as usize + 2] += 1;
+            a = b;
         }
-        for v in 0..nv {
-            start[v + 1] += start[v];
+    }
+
+    /// The sides of the faces `offsets`/`indices` (fewer than `2^31` corners, checked),
+    /// counted by [`Sides::count`] into `counted` (two more entries than vertices).
+    fn new(mut counted: Vec<u32>, offsets: &[usize], indices: &[u32]) -> Sides {
+        // A counting sort: `counted[v + 1]` becomes where bucket v starts, then, as its
+        // sides are placed, where it ends, which is where bucket v + 1 starts.
+        for i in 2..counted.len() {
+            counted[i] += counted[i - 1];
         }
-        let mut fill = start.clone();
-        let mut ends = vec![(0u32, 0u32); indices.len()];
-        for f in 0..n_faces {
-            for c in offsets[f]..offsets[f + 1] {
-                let (small, large, tag) = side(f, c);
-                let slot = &mut fill[small as usize];
-                ends[*slot as usize] = (large, tag);
+        let mut ends = vec![[0u32; 2]; indices.len()];
+        for w in offsets.windows(2) {
+            let (start, end) = (w[0], w[1]);
+            for c in start..end {
+                let (a, b) = (
+                    indices[c],
+                    indices[if c + 1 == end { start } else { c + 1 }],
+                );
+                let slot = &mut counted[a.min(b) as usize + 1];
+                ends[*slot as usize] = [a.max(b), (c as u32) << 1 | u32::from(a > b)];
                 *slot += 1;
             }
         }
-        drop(fill);
-        for v in 0..nv {
-            ends[start[v] as usize..start[v + 1] as usize].sort_unstable();
+        counted.pop();
+        Sides {
+            start: counted,
+            ends,
         }
-        Sides { start, ends }
     }
 
-    /// Each edge's key `(smaller << 32) | larger` and sides, in sorted order.
-    fn edges(&self) -> impl Iterator<Item = (u64, &[(u32, u32)])> {
-        self.start.windows(2).enumerate().flat_map(|(a, w)| {
-            self.ends[w[0] as usize..w[1] as usize]
-                .chunk_by(|x, y| x.0 == y.0)
-                .map(move |run| (((a as u64) << 32) | u64::from(run[0].0), run))
-        })
+    /// The sides of the edges whose smaller vertex is `v`, sorted.
+    fn bucket(&mut self, v: usize) -> &[[u32; 2]] {
+        let bucket = &mut self.ends[self.start[v] as usize..self.start[v + 1] as usize];
+        if bucket.len() > SORTED_BY_INSERTION {
+            bucket.sort_unstable();
+            return bucket;
+        }
+        // The tags were placed in increasing order: sorting by the larger vertex, stably,
+        // sorts by both.
+        for i in 1..bucket.len() {
+            let side = bucket[i];
+            let mut j = i;
+            while j > 0 && bucket[j - 1][0] > side[0] {
+                bucket[j] = bucket[j - 1];
+                j -= 1;
+            }
+            bucket[j] = side;
+        }
+        bucket
     }
 
-    /// The sides as `(key, tag)` in order (for the orientation error).
+    /// The sides as `(key, tag)` in order, key `(smaller << 32) | larger` (for the
+    /// orientation error, once every bucket is sorted).
     fn entries(&self) -> Vec<(u64, u32)> {
-        self.edges()
-            .flat_map(|(key, run)| run.iter().map(move |&(_, tag)| (key, tag)))
-            .collect()
+        let mut entries = Vec::with_capacity(self.ends.len());
+        for (small, w) in self.start.windows(2).enumerate() {
+            let bucket = &self.ends[w[0] as usize..w[1] as usize];
+            let key = |large: u32| ((small as u64) << 32) | u64::from(large);
+            entries.extend(bucket.iter().map(|&[large, tag]| (key(large), tag)));
+        }
+        entries
     }
+}
+
+/// Step 5 for faces of `K` corners each, in half-edge order: `face` holds each half-edge's
+/// corner (`INVALID` on the boundary), replaced by its face; the corners before and after it
+/// are in the same face, so their half-edges are read from one place.
+fn link_uniform<const K: usize>(
+    corner_halfedge: &[u32],
+    (face, next, prev): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<u32>),
+) {
+    for ((f, n), p) in face.iter_mut().zip(next.iter_mut()).zip(prev.iter_mut()) {
+        if *f == INVALID {
+            (*n, *p) = (INVALID, INVALID);
+            continue;
+        }
+        let c = *f as usize;
+        let (of, i) = (c / K, c % K);
+        *n = corner_halfedge[of * K + (i + 1) % K];
+        *p = corner_halfedge[of * K + (i + K - 1) % K];
+        *f = of as u32;
+    }
+}
+
+/// Step 5 face by face (faces of several degrees): `face` and `next` of each face's
+/// half-edges, and `prev` of the half-edges after them. The boundary half-edges are left to
+/// step 6.
+fn link_faces(
+    corner_halfedge: &[u32],
+    offsets: &[usize],
+    (face, next, prev): (&mut Vec<u32>, &mut Vec<u32>, &mut Vec<u32>),
+) {
+    for (f, w) in offsets.windows(2).enumerate() {
+        let (start, end) = (w[0], w[1]);
+        for c in start..end {
+            let h = corner_halfedge[c] as usize;
+            let n = corner_halfedge[if c + 1 == end { start } else { c + 1 }];
+            face[h] = f as u32;
+            next[h] = n;
+            prev[n as usize] = h as u32;
+        }
+    }
+}
+
+/// The larger vertex of the other side at the bucket's vertex of the quad of the side `tag`,
+/// when that side is in `bucket` too (the vertex is smaller than both its neighbours in the
+/// quad).
+fn other_side(bucket: &[[u32; 2]], tag: u32) -> Option<u32> {
+    const K: usize = 4;
+    let c = (tag >> 1) as usize;
+    let (base, i) = (c / K * K, c % K);
+    // From the bucket's vertex (dir 0), the other side is the previous corner's, toward
+    // it (dir 1); toward it, the next corner's, from it.
+    let other = match tag & 1 {
+        0 => 2 * (base + (i + K - 1) % K) + 1,
+        _ => 2 * (base + (i + 1) % K),
+    } as u32;
+    bucket.iter().find(|&&[_, t]| t == other).map(|&[z, _]| z)
 }
 
 /// The first problems of the edges, in the order [`build`] reports them.
 ///
 /// Duplicates are found across edges in a mesh of only triangles or only quads (without
-/// repeated vertices): two faces on one vertex set share an edge there (any two of a
-/// triangle's vertices make an edge; two 4-cycles through the same 4 vertices share two
-/// edges), so only faces across an edge are compared, and the smallest such pair is the
-/// smallest pair of the search by sets. Mixed or larger faces, or an edge of more than 8
-/// sides (a pile of copies), leave it to that search (`by_sets`).
-struct EdgeProblems {
+/// repeated vertices): two faces on one vertex set share an edge at the set's smallest
+/// vertex `m`, and each has two sides in `m`'s bucket (any two of a triangle's vertices make
+/// an edge; two 4-cycles through the same 4 vertices share an edge at each vertex). So only
+/// faces across an edge of a bucket where both have two sides can be duplicates, which the
+/// bucket tells without reading the faces: two triangles are when they share two of the
+/// bucket's edges; two quads are when `m` is the smallest vertex of both and their vertices
+/// across from `m` (`far`, noted before the pass) and their other neighbours of `m` (in the
+/// bucket) are the same two. An edge of three to eight sides, or of a bucket of more than
+/// [`SCANNED_BUCKET`] sides, has its faces compared. Mixed or larger faces, or an edge of
+/// more than 8 sides (a pile of copies), leave it to the search by sets (`by_sets`), which
+/// finds the same smallest pair.
+struct EdgeProblems<'a> {
     /// The faces' common degree, 3 or 4.
     degree: usize,
+    indices: &'a [u32],
     by_sets: bool,
     duplicate: Option<(u32, u32)>,
     /// The first non-manifold edge: its key and its sides' tags.
     nonmanifold: Option<(u64, Vec<u32>)>,
     /// Where the first flipped edge's sides start, in the sorted order.
     flipped: Option<usize>,
+    /// For quads, each face's vertex across from its smallest.
+    far: Vec<u32>,
+    /// The pairs of triangles across an edge of two sides, bucket by bucket, as
+    /// `(first << 32) | second` (one 8-byte word: a store the sort's load can take over).
+    pairs: Vec<u64>,
 }
 
-impl EdgeProblems {
-    fn new(offsets: &[usize]) -> EdgeProblems {
-        let degree = offsets.get(1).copied().unwrap_or(0);
-        let uniform = offsets.windows(2).all(|w| w[1] - w[0] == degree);
+/// Buckets beyond this many sides have their quads compared across every edge of two sides
+/// (rather than looking for their other sides in the bucket).
+const SCANNED_BUCKET: usize = 32;
+
+impl<'a> EdgeProblems<'a> {
+    fn new(uniform: Option<usize>, indices: &'a [u32]) -> EdgeProblems<'a> {
+        let degree = uniform.unwrap_or(0);
+        let far = match degree {
+            4 => indices
+                .chunks_exact(4)
+                .map(|q| {
+                    let least = (1..4).fold(0, |i, j| if q[j] < q[i] { j } else { i });
+                    q[(least + 2) % 4]
+                })
+                .collect(),
+            _ => Vec::new(),
+        };
         EdgeProblems {
             degree,
-            by_sets: !(uniform && (degree == 3 || degree == 4)),
+            indices,
+            by_sets: !(degree == 3 || degree == 4),
             duplicate: None,
             nonmanifold: None,
             flipped: None,
+            far,
+            pairs: Vec::new(),
         }
     }
 
-    /// An edge of `run.len() >= 2` sides whose sides start at `at`.
-    fn edge(&mut self, key: u64, run: &[(u32, u32)], at: usize, indices: &[u32]) {
-        if run.len() == 2 {
-            if run[0].1 & 1 == run[1].1 & 1 && self.flipped.is_none() {
-                self.flipped = Some(at);
+    /// The sides of the edges whose smaller vertex is `small`, sorted, starting at `at` in
+    /// the sorted order.
+    fn bucket(&mut self, small: u32, bucket: &[[u32; 2]], at: usize) {
+        let mut at = at;
+        for run in bucket.chunk_by(|x, y| x[0] == y[0]) {
+            match run.len() {
+                1 => {}
+                2 => {
+                    if run[0][1] & 1 == run[1][1] & 1 && self.flipped.is_none() {
+                        self.flipped = Some(at);
+                    }
+                    if !self.by_sets {
+                        self.across(small, bucket, run);
+                    }
+                }
+                _ => {
+                    if self.nonmanifold.is_none() {
+                        let key = (u64::from(small) << 32) | u64::from(run[0][0]);
+                        self.nonmanifold = Some((key, run.iter().map(|&[_, tag]| tag).collect()));
+                    }
+                    if run.len() > 8 {
+                        self.by_sets = true;
+                    }
+                    if !self.by_sets {
+                        for (i, a) in run.iter().enumerate() {
+                            for b in &run[i + 1..] {
+                                self.compare(self.face(a[1]), self.face(b[1]));
+                            }
+                        }
+                    }
+                }
             }
-        } else if self.nonmanifold.is_none() {
-            self.nonmanifold = Some((key, run.iter().map(|&(_, tag)| tag).collect()));
+            at += run.len();
         }
-        if self.by_sets {
-            return;
+        // Two triangles across two of the bucket's edges are on one vertex set.
+        if self.pairs.len() > 1 {
+            self.pairs.sort_unstable();
+            let twice = self.pairs.windows(2).find(|w| w[0] == w[1]).map(|w| w[0]);
+            if let Some(pair) = twice {
+                self.found(((pair >> 32) as u32, pair as u32));
+            }
         }
-        if run.len() > 8 {
-            self.by_sets = true;
-            return;
+        self.pairs.clear();
+    }
+
+    /// The faces across an edge of two sides (`run`) of the bucket of vertex `small`.
+    fn across(&mut self, small: u32, bucket: &[[u32; 2]], run: &[[u32; 2]]) {
+        let (f, g) = (self.face(run[0][1]), self.face(run[1][1]));
+        if self.degree == 3 {
+            self.pairs
+                .push(u64::from(f.min(g)) << 32 | u64::from(f.max(g)));
+        } else if bucket.len() > SCANNED_BUCKET {
+            self.compare(f, g);
+        } else if let (Some(zf), Some(zg)) =
+            (other_side(bucket, run[0][1]), other_side(bucket, run[1][1]))
+        {
+            // Quads through `small`, the edge's vertex and their other neighbours of `small`
+            // (`zf`, `zg`): on one set when their vertices across from `small` complete it,
+            // `small` being the smallest of both.
+            let (of, og) = (self.far[f as usize], self.far[g as usize]);
+            if of != small && og != small && ((zf, of) == (zg, og) || (zf, of) == (og, zg)) {
+                self.found((f.min(g), f.max(g)));
+            }
         }
+    }
+
+    fn face(&self, tag: u32) -> u32 {
+        (tag >> 1) / self.degree as u32
+    }
+
+    /// Compares faces `f` and `g` by their vertex sets.
+    fn compare(&mut self, f: u32, g: u32) {
         let k = self.degree;
-        let corners = |f: usize| &indices[k * f..k * f + k];
-        let sum = |f: usize| corners(f).iter().map(|&v| u64::from(v)).sum::<u64>();
-        let set = |f: usize| {
+        let corners = |f: u32| &self.indices[k * f as usize..k * f as usize + k];
+        let sum = |f: u32| corners(f).iter().map(|&v| u64::from(v)).sum::<u64>();
+        let set = |f: u32| {
             let mut s = [0u32; 4];
             s[..k].copy_from_slice(corners(f));
             s[..k].sort_unstable();
             s
         };
-        for (i, a) in run.iter().enumerate() {
-            for b in &run[i + 1..] {
-                let (f, g) = ((a.1 >> 1) as usize / k, (b.1 >> 1) as usize / k);
-                if f != g && sum(f) == sum(g) && set(f) == set(g) {
-                    let pair = (f.min(g) as u32, f.max(g) as u32);
-                    self.duplicate = Some(self.duplicate.map_or(pair, |p| p.min(pair)));
-                }
-            }
+        if f != g && sum(f) == sum(g) && set(f) == set(g) {
+            self.found((f.min(g), f.max(g)));
         }
+    }
+
+    fn found(&mut self, pair: (u32, u32)) {
+        self.duplicate = Some(self.duplicate.map_or(pair, |p| p.min(pair)));
     }
 }
 
@@ -669,6 +999,30 @@ mod tests {
         let face: Vec<u32> = mesh.face_vertices(crate::FaceId(0)).map(|v| v.0).collect();
         assert_eq!(face, [0, 1, 2]);
         assert_eq!(mesh.counts().unreferenced_vertices, 3);
+    }
+
+    #[test]
+    fn the_counts_of_the_build_are_those_of_the_structure() {
+        // Closed, with boundary and holes, mixed degrees, quads, unused vertices, two parts.
+        let names = [
+            "icosahedron",
+            "grid:3x2",
+            "mixed",
+            "torus:2",
+            "quad-grid:3x3",
+        ];
+        let mut meshes: Vec<PolygonMesh> = names
+            .iter()
+            .chain(&["icosahedron-holes:3", "cube"])
+            .map(|name| crate::shapes::from_name(name).expect("shape"))
+            .collect();
+        let two = [[0u32, 1, 2], [3, 5, 4], [6, 7, 8], [6, 8, 9]];
+        meshes.push(PolygonMesh::from_faces(points(11), two));
+        for poly in &meshes {
+            let mesh = HalfEdgeMesh::try_from(poly).expect("valid");
+            assert_eq!(mesh.counts(), mesh.structure_counts(), "{poly:?}");
+            assert_eq!(mesh.counts(), crate::stats::face_list_counts(poly));
+        }
     }
 
     #[test]

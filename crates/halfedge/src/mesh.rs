@@ -15,6 +15,7 @@
 //! circulators never spin.
 
 use glam::DVec3;
+use schemes::MeshCounts;
 
 use crate::descriptor::Descriptor;
 use crate::error::{Error, Result};
@@ -126,6 +127,9 @@ pub struct HalfEdgeMesh {
     pub(crate) unreferenced_vertices: u64,
     /// What the mesh's file says about its subdivision (`TryFrom<&PolygonMesh>`).
     pub(crate) descriptor: Option<Box<Descriptor>>,
+    /// The counts of a mesh built from a face list, counted by its build
+    /// ([`HalfEdgeMesh::counts`] returns them).
+    pub(crate) counts: Option<Box<MeshCounts>>,
 }
 
 impl HalfEdgeMesh {
@@ -143,6 +147,12 @@ impl HalfEdgeMesh {
     ///
     pub fn set_descriptor(&mut self, descriptor: Option<Descriptor>) {
         self.descriptor = descriptor.map(Box::new);
+    }
+
+    /// Keeps `counts` as the mesh's [`HalfEdgeMesh::counts`]: those of its structure, counted
+    /// as it was built.
+    pub(crate) fn set_counts(&mut self, counts: MeshCounts) {
+        self.counts = Some(Box::new(counts));
     }
 
     /// Assembles a mesh from its arrays without validating them (for subdivision output, which
@@ -170,6 +180,7 @@ impl HalfEdgeMesh {
             face_halfedge,
             unreferenced_vertices: 0,
             descriptor: None,
+            counts: None,
         };
         debug_assert!(
             mesh.check_invariants().is_ok(),

@@ -185,9 +185,11 @@ pub fn predicted_peak_bytes(
 
 /// The transient arrays of building the input's half-edge mesh from its face list (the
 /// crate's `build.rs`), alive next to the face list and the half-edge arrays: each corner's
-/// side (8 bytes) and half-edge (4), and per vertex its bucket's start and fill and the
-/// renumbering both ways (16). Freed once the mesh is built; [`predicted_peak_bytes`] counts
-/// them at level 0 (or the face list written, if larger). Without them `subdivide --levels 0` of a 314 MB quad grid
+/// side (8 bytes) and half-edge (4), and per vertex its bucket's start (then its
+/// component), its last corner, its new number and, in a mesh of quads (about as many faces
+/// as vertices), a face's vertex across from its smallest (16). Freed once the mesh is
+/// built; [`predicted_peak_bytes`] counts them at level 0 (or the face list written, if
+/// larger). Without them `subdivide --levels 0` of a 314 MB quad grid
 /// peaked at 2.2 times the prediction.
 ///
 /// ```

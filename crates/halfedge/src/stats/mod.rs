@@ -1,9 +1,10 @@
 //! Mesh statistics ([`schemes::MeshCounts`]) of face lists and half-edge meshes.
 //!
-//! Both [`face_list_counts`] (any face list, including the non-manifold meshes that
-//! [`HalfEdgeMesh`] refuses) and [`HalfEdgeMesh::counts`] (a valid mesh) count through
-//! [`MeshCounts::from_face_list`], the one implementation, which `schemes` owns and documents;
-//! this module adds the defect counts ([`face_list_problems`]) and the genus.
+//! [`face_list_counts`] (any face list, including the non-manifold meshes that
+//! [`HalfEdgeMesh`] refuses) counts through [`MeshCounts::from_face_list`], the one
+//! definition, which `schemes` owns and documents; [`HalfEdgeMesh::counts`] (a valid mesh)
+//! gives the same numbers off the half-edge structure. This module adds the defect counts
+//! ([`face_list_problems`]) and the genus.
 //!
 //! # Example
 //!
@@ -21,11 +22,13 @@
 //!
 //! # Design notes (moved from ARCHITECTURE.md)
 //!
-//! `stats.rs`: `face_list_counts` (works on any face list) and `HalfEdgeMesh::counts`, both thin
-//! calls of `schemes::MeshCounts::from_face_list`, the one owner of the statistics (the half-edge
-//! mesh adds only the number of vertices it dropped); `face_list_problems` counts every defect at
-//! once, and its duplicate-face search (hash, then a sort of equal-hash faces: `n log n` on a file
-//! of identical faces) is the one validation uses too.
+//! `stats.rs`: `face_list_counts` (works on any face list, through
+//! `schemes::MeshCounts::from_face_list`, the one owner of the statistics) and
+//! `HalfEdgeMesh::counts` (the same numbers: counted by the build of a mesh built from a face
+//! list, else read off the half-edges; the tests compare both with the face list's);
+//! `face_list_problems` counts every defect at once, and its duplicate-face search (hash, then
+//! a sort of equal-hash faces: `n log n` on a file of identical faces) is the one validation
+//! uses too.
 
 use schemes::uv::UvCounts;
 use schemes::{DisjointSets, MeshCounts};
@@ -455,11 +458,11 @@ pub fn genus(counts: &MeshCounts) -> Option<u64> {
 }
 
 impl HalfEdgeMesh {
-    /// The statistics of this mesh ([`schemes::MeshCounts`]), read off its half-edges in
-    /// linear time: they equal [`MeshCounts::from_face_list`] of its faces (the rules' one
-    /// definition; the tests check it), and [`face_list_counts`] of the face list the mesh
-    /// was built from, whose unused vertices the mesh dropped and reports in
-    /// `unreferenced_vertices`.
+    /// The statistics of this mesh ([`schemes::MeshCounts`]): counted by the build of a
+    /// mesh built from a face list, else read off its half-edges in linear time. They equal
+    /// [`MeshCounts::from_face_list`] of its faces (the rules' one definition; the tests
+    /// check it), and [`face_list_counts`] of the face list the mesh was built from, whose
+    /// unused vertices the mesh dropped and reports in `unreferenced_vertices`.
     ///
     /// # Example
     ///
@@ -470,6 +473,15 @@ impl HalfEdgeMesh {
     /// # Ok::<(), Box<dyn std::error::Error>>(())
     /// ```
     pub fn counts(&self) -> MeshCounts {
+        match &self.counts {
+            Some(counts) => MeshCounts::clone(counts),
+            None => self.structure_counts(),
+        }
+    }
+
+    /// [`HalfEdgeMesh::counts`] read off the half-edge arrays (what a mesh built from a face
+    /// list keeps from its build).
+    pub(crate) fn structure_counts(&self) -> MeshCounts {
         // Read off the structure in one pass per array (no sort): a valid mesh has no
         // non-manifold edge, each edge is two half-edges, a boundary half-edge has no face.
         let (nh, nv) = (self.n_halfedges(), self.n_vertices());
