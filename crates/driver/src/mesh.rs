@@ -372,8 +372,9 @@ impl LoadedMesh {
         })
     }
 
-    /// Refuses a face that uses a vertex twice (on every path, before any counting: such a
-    /// face makes the counts meaningless), naming the mesh, the line and the face.
+    /// Refuses a face that uses a vertex twice (such a face makes the counts meaningless),
+    /// naming the mesh, the line and the face: before any counting of the face list, and
+    /// before the half-edge build's own error when that build refuses the mesh.
     ///
     /// # Errors
     ///

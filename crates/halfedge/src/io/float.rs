@@ -435,7 +435,7 @@ mod tests {
         // the point; and the doubles next to them.
         for j in 0..5 {
             for _ in 0..50_000 {
-                let k = (1u64 << 52) + rng.below(1 << 52) as u64;
+                let k = (1u64 << 52) + rng.next() % (1 << 52);
                 let base = k as f64 / f64::from(1u32 << j);
                 let half = 0.5 / f64::from(1u32 << j);
                 let text = format!("{:.*}", j + 1, base + half / 2.0);

@@ -327,8 +327,8 @@ pub(super) fn index_prefix(bytes: &[u8]) -> Option<(i64, usize)> {
     ))
 }
 
-/// The digits at the start of `bytes` one at a time, at most 18 (no overflow): their value
-/// and number; `None` when more follow.
+/// The digits at the start of `bytes`, read one at a time: their value and number when
+/// they are at most 18 (below 10^18, no wrap), `None` for more.
 fn longer_index(bytes: &[u8]) -> Option<(i64, usize)> {
     let mut value = 0u64;
     let digits = super::float::one_by_one(bytes, 0, &mut value);

@@ -3,7 +3,7 @@
 //! [`face_list_counts`] (any face list, including the non-manifold meshes that
 //! [`HalfEdgeMesh`] refuses) counts through [`MeshCounts::from_face_list`], the one
 //! definition, which `schemes` owns and documents; [`HalfEdgeMesh::counts`] (a valid mesh)
-//! gives the same numbers off the half-edge structure. This module adds the defect counts
+//! gives the same numbers, counted by the build as it links the half-edges. This module adds the defect counts
 //! ([`face_list_problems`]) and the genus.
 //!
 //! # Example

@@ -796,11 +796,15 @@ fn every_error_names_the_file_and_where() {
             .iter()
             .flat_map(|x| x.to_le_bytes())
             .collect();
-        data.push(3);
-        for corner in [0, index, 1] {
-            data.extend((corner as u32).to_le_bytes());
+        // A good face first: the bad one is read on the loop whose corner list has room.
+        for corners in [[0, 1, 2], [0, index, 1]] {
+            data.push(3);
+            for corner in corners {
+                data.extend((corner as u32).to_le_bytes());
+            }
         }
-        let head = format!("{v}{}", f.replace("uchar int", &format!("uchar {ty}")));
+        let faces = f.replace("face 1", "face 2");
+        let head = format!("{v}{}", faces.replace("uchar int", &format!("uchar {ty}")));
         let file = [
             format!("ply\nformat binary_little_endian 1.0\n{head}end_header\n").into_bytes(),
             data,
@@ -809,7 +813,7 @@ fn every_error_names_the_file_and_where() {
         let err = io::read_ply_from(&file[..], "m.ply").unwrap_err();
         assert_eq!(
             err.to_string(),
-            format!("m.ply: face 0: {message} is out of range (the file has 3 vertices)"),
+            format!("m.ply: face 1: {message} is out of range (the file has 3 vertices)"),
             "{ty}"
         );
     }

@@ -157,3 +157,48 @@ impl Layout {
 
 /// The vertices read whole at a time.
 pub(super) const BATCH: u64 = 1024;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::ply::header::{Kind, Property};
+
+    fn layout(properties: &[(Type, Role)]) -> Option<Type> {
+        let property = |&(ty, role): &(Type, Role)| Property {
+            name: String::new(),
+            label: String::new(),
+            shape: Shape::Scalar(ty),
+            line: 0,
+            role,
+        };
+        let element = Element {
+            label: "vertex".into(),
+            kind: Kind::Vertex,
+            count: 1,
+            line: 0,
+            properties: properties.iter().map(property).collect(),
+        };
+        Layout::of(&element)?.xyz()
+    }
+
+    /// The records the loop of their own reads: `x y z` of one float type, nothing else.
+    #[test]
+    fn only_x_y_z_of_one_float_type_is_xyz() {
+        let p = Role::Position;
+        let xyz = |ty| [(ty, p(0)), (ty, p(1)), (ty, p(2))];
+        assert_eq!(layout(&xyz(Type::F32)), Some(Type::F32));
+        assert_eq!(layout(&xyz(Type::F64)), Some(Type::F64));
+        assert_eq!(layout(&xyz(Type::I32)), None);
+        let (f, d) = (Type::F32, Type::F64);
+        assert_eq!(layout(&[(f, p(2)), (f, p(1)), (f, p(0))]), None);
+        assert_eq!(layout(&[(f, p(0)), (d, p(1)), (f, p(2))]), None);
+        assert_eq!(layout(&[(f, p(0)), (f, p(1))]), None);
+        let mut more = xyz(Type::F32).to_vec();
+        more.push((Type::U8, Role::Color(0)));
+        assert_eq!(layout(&more), None);
+        assert_eq!(
+            layout(&[(f, Role::Skip), (f, p(0)), (f, p(1)), (f, p(2))]),
+            None
+        );
+    }
+}
