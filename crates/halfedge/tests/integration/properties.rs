@@ -253,3 +253,34 @@ fn duplicate_triangles_name_the_smallest_pair_on_every_path() {
     }
     assert_eq!(built.to_string(), split.to_string());
 }
+
+/// Quads on one vertex set are duplicates whatever their cycle (`0 1 2 3` and `0 2 1 3`
+/// share no edge in the same direction), also among 41 quads around one vertex (the pair
+/// shares edges in that vertex's crowded bucket and in quiet ones: either finds it).
+#[test]
+fn duplicate_quads_are_found_whatever_their_cycle() {
+    let p = vec![DVec3::ZERO, DVec3::X, DVec3::ONE, DVec3::Y];
+    let mesh = PolygonMesh::from_faces(p, [[0u32, 1, 2, 3], [0, 2, 1, 3]]);
+    match HalfEdgeMesh::try_from(&mesh).unwrap_err() {
+        Error::DuplicateFace { first, second, .. } => assert_eq!((first, second), (0, 1)),
+        other => panic!("{other}"),
+    }
+    // A fan of 40 quads around vertex 0 (a closed strip of a cone), one of them repeated
+    // with its cycle reversed at the end.
+    let n = 40u32;
+    let mut positions = vec![DVec3::Z];
+    for k in 0..2 * n {
+        let angle = std::f64::consts::TAU * f64::from(k) / f64::from(2 * n);
+        positions.push(DVec3::new(angle.cos(), angle.sin(), 0.0));
+    }
+    let ring = |k: u32| 1 + k % (2 * n);
+    let mut faces: Vec<[u32; 4]> = (0..n)
+        .map(|k| [0, ring(2 * k), ring(2 * k + 1), ring(2 * k + 2)])
+        .collect();
+    faces.push([0, ring(16), ring(15), ring(14)]);
+    let mesh = PolygonMesh::from_faces(positions, faces);
+    match HalfEdgeMesh::try_from(&mesh).unwrap_err() {
+        Error::DuplicateFace { first, second, .. } => assert_eq!((first, second), (7, n)),
+        other => panic!("{other}"),
+    }
+}
