@@ -241,6 +241,23 @@ struct Buffers32 {
 }
 
 impl Buffers32 {
+    /// `source` with its positions and texture coordinates these `f32` values, widened
+    /// (exactly).
+    fn widened(&self, source: &PolygonMesh) -> PolygonMesh {
+        let mut widened = source.clone();
+        widened.positions = (self.positions.iter())
+            .map(|p| DVec3::from_array(p.map(f64::from)))
+            .collect();
+        let coords = (self.values.iter())
+            .map(|v| DVec2::new(f64::from(v[0]), f64::from(v[1])))
+            .collect();
+        let corners = source.uvs().expect("UVs").corners().to_vec();
+        widened
+            .set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
+            .expect("a value per corner");
+        widened
+    }
+
     fn new(mesh: &PolygonMesh) -> Buffers32 {
         let f32s = |v: [f64; 3]| v.map(|x| x as f32);
         let positions: Vec<[f32; 3]> = mesh.positions.iter().map(|p| f32s(p.to_array())).collect();
@@ -285,17 +302,7 @@ fn f32_buffers_are_written_in_f32_on_every_thread_count() {
     let buffers = Buffers32::new(&source);
     let mesh = buffers.mesh(&source);
     // The reference: the same mesh with the `f32` values widened (exactly).
-    let mut widened = source.clone();
-    widened.positions = (buffers.positions.iter())
-        .map(|p| DVec3::from_array(p.map(f64::from)))
-        .collect();
-    let coords = (buffers.values.iter())
-        .map(|v| DVec2::new(f64::from(v[0]), f64::from(v[1])))
-        .collect();
-    let corners = source.uvs().expect("UVs").corners().to_vec();
-    widened
-        .set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
-        .expect("a value per corner");
+    let mut widened = buffers.widened(&source);
     let colors = buffers.colors.iter().map(|c| c.map(f64::from)).collect();
     widened
         .set_colors(Some(colors))
@@ -400,17 +407,7 @@ fn ply_bytes_are_the_values_bytes_on_every_thread_count() {
     }
     // `f32` buffers: positions and texture coordinates as `float`.
     let buffers = Buffers32::new(&mesh);
-    let mut widened = mesh.clone();
-    widened.positions = (buffers.positions.iter())
-        .map(|p| DVec3::from_array(p.map(f64::from)))
-        .collect();
-    let coords = (buffers.values.iter())
-        .map(|v| DVec2::new(f64::from(v[0]), f64::from(v[1])))
-        .collect();
-    let corners = mesh.uvs().expect("UVs").corners().to_vec();
-    widened
-        .set_uvs(Some(Uvs::new(coords, corners).expect("in range")))
-        .expect("a value per corner");
+    let widened = buffers.widened(&mesh);
     let f32_bytes = |x: f64| (x as f32).to_le_bytes().to_vec();
     let written = on_every_thread_count(
         |out, options| write_mesh_buffers_ply(&buffers.mesh(&mesh), out, options),
