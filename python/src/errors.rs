@@ -102,6 +102,15 @@ fn one_line(error: &(dyn std::error::Error + 'static)) -> String {
     halfedge::io::escape_controls(&message.replace('\n', " ")).into_owned()
 }
 
+/// The body of a Python entry point (every `#[pyfunction]` and every method and getter of a
+/// `#[pymethods]` block is one, `python/tests/test_typing.py` checks the sources): a panic
+/// anywhere in it is raised as `subcount.Error` with its message, never as PyO3's
+/// `PanicException` (a panic is a bug in subcount).
+pub(crate) fn entry<T>(py: Python<'_>, body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    catch_unwind(AssertUnwindSafe(body))
+        .unwrap_or_else(|payload| Err(bug(payload.as_ref()).into_pyerr(py)))
+}
+
 /// Runs `work`, turning a panic into [`Failure::Bug`].
 pub(crate) fn guarded<T>(work: impl FnOnce() -> Result<T>) -> Result<T> {
     catch_unwind(AssertUnwindSafe(work)).unwrap_or_else(|payload| Err(bug(payload.as_ref())))
@@ -147,6 +156,18 @@ mod tests {
         }
         let fine = guarded(|| Ok(3));
         assert!(matches!(fine, Ok(3)));
+    }
+
+    #[test]
+    fn a_panic_in_an_entry_point_is_an_error_not_an_unwind() {
+        Python::initialize();
+        Python::attach(|py| {
+            // The class lookup needs the package (absent here): the error is then the
+            // lookup's; either way the panic stops at `entry`.
+            let caught = entry::<()>(py, || panic!("the index {} is out of bounds", 7));
+            assert!(caught.is_err());
+            assert_eq!(entry(py, || Ok(5)).ok(), Some(5));
+        });
     }
 
     #[test]

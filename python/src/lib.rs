@@ -21,16 +21,9 @@ use halfedge::io::ObjWriteOptions;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt};
 
-use crate::errors::{guarded, warn_notes, Failure, Result};
+use crate::errors::{entry, guarded, warn_notes, Failure, Result};
 use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
 use crate::options::RunOptions;
-
-/// The most threads `threads=` may ask for (the command line's `--threads` limit).
-pub(crate) const MAX_THREADS: i64 = driver::limits::MAX_THREADS as i64;
-
-/// The last level real subdivision reaches (the command line's `--levels` limit: every rule
-/// at least doubles the faces per level, so no later level fits 32-bit indices).
-pub(crate) const MAX_LEVELS: i64 = driver::limits::MAX_REAL_LEVELS as i64;
 
 /// Reads a mesh file (OBJ, OFF or PLY) with its texture coordinates, vertex colors,
 /// materials, groups and OpenSubdiv tags, within the memory this process may use.
@@ -41,14 +34,16 @@ pub(crate) const MAX_LEVELS: i64 = driver::limits::MAX_REAL_LEVELS as i64;
 /// >>> m = subcount.read_mesh("pawn.obj")  # doctest: +SKIP
 #[pyfunction]
 fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
-    let read = py.detach(|| {
-        guarded(|| {
-            let source = MeshSource::File(path);
-            let loaded = driver::load(&source, &OptionFlags::default())?;
-            Ok(Mesh::new_with(loaded.poly, source.label(), false))
-        })
-    });
-    read.map_err(|f| f.into_pyerr(py))
+    entry(py, || {
+        let read = py.detach(|| {
+            guarded(|| {
+                let source = MeshSource::File(path);
+                let loaded = driver::load(&source, &OptionFlags::default())?;
+                Ok(Mesh::new_with(loaded.poly, source.label(), false))
+            })
+        });
+        read.map_err(|f| f.into_pyerr(py))
+    })
 }
 
 /// Writes a mesh as OBJ, or as binary PLY for a name ending in .ply, replacing the file
@@ -60,33 +55,37 @@ fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 /// subcount.UsageError.
 #[pyfunction]
 fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<()> {
-    let mut notes = Vec::new();
-    let written = guarded(|| {
-        if let Some(ext) = driver::output::unwritten_mesh_format(&path) {
-            return Err(Failure::Usage(format!(
-                "{}: write_mesh does not write {ext} files; it writes OBJ and PLY (name the file .obj or .ply)",
-                halfedge::io::escape_controls(&path.display().to_string())
-            )));
-        }
-        let source = MeshArg::extract(py, mesh)?;
-        py.detach(|| {
-            guarded(|| {
-                let flags = OptionFlags::default();
-                let loaded = match source {
-                    MeshArg::Path(file) => driver::load(&MeshSource::File(file), &flags)?,
-                    MeshArg::Poly(poly, label) => driver::load_polygon_mesh(poly, &label, &flags)?,
-                };
-                // What the output leaves out (PLY: materials and groups), as `-o` says it.
-                loaded.carry_notes(Some(&path), &mut |n| notes.push(n));
-                let poly = &loaded.poly;
-                let options = ObjWriteOptions::default().with_uvs(poly.uvs().is_some());
-                driver::output::write_polygon_mesh_file(poly, &path, &options)?;
-                Ok(())
+    entry(py, || {
+        let mut notes = Vec::new();
+        let written = guarded(|| {
+            if let Some(ext) = driver::output::unwritten_mesh_format(&path) {
+                return Err(Failure::Usage(format!(
+                    "{}: write_mesh does not write {ext} files; it writes OBJ and PLY (name the file .obj or .ply)",
+                    halfedge::io::escape_controls(&path.display().to_string())
+                )));
+            }
+            let source = MeshArg::extract(py, mesh)?;
+            py.detach(|| {
+                guarded(|| {
+                    let flags = OptionFlags::default();
+                    let loaded = match source {
+                        MeshArg::Path(file) => driver::load(&MeshSource::File(file), &flags)?,
+                        MeshArg::Poly(poly, label) => {
+                            driver::load_polygon_mesh(poly, &label, &flags)?
+                        }
+                    };
+                    // What the output leaves out (PLY: materials and groups), as `-o` says it.
+                    loaded.carry_notes(Some(&path), &mut |n| notes.push(n));
+                    let poly = &loaded.poly;
+                    let options = ObjWriteOptions::default().with_uvs(poly.uvs().is_some());
+                    driver::output::write_polygon_mesh_file(poly, &path, &options)?;
+                    Ok(())
+                })
             })
-        })
-    });
-    warn_notes(py, &notes)?;
-    written.map_err(|f| f.into_pyerr(py))
+        });
+        warn_notes(py, &notes)?;
+        written.map_err(|f| f.into_pyerr(py))
+    })
 }
 
 /// Subdivides a mesh as `subcount subdivide` does and returns the last level (positions
@@ -94,7 +93,8 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 ///
 /// mesh: a path, a subcount.Mesh, or (positions, faces) with faces an (F, k) integer array
 /// or a tuple (face_vertex_counts, face_vertex_indices). The options are the command line's
-/// flags: scheme (a built-in name: loop, catmull-clark, sqrt3, ...), levels (0 to 64),
+/// flags: scheme (a built-in name: loop, catmull-clark, sqrt3, ...) or scheme_file (a scheme
+/// file, as --scheme-file; with scheme too, scheme must be the file's name), levels (0 to 64),
 /// boundary ("edge", "edge-and-corner", "none"), crease_method ("uniform", "chaikin"),
 /// triangle_rule ("catmark", "smooth"), uv_interpolation ("none", "corners-only",
 /// "corners-plus1", "corners-plus2", "boundaries", "all"), ignore_tags, precision ("f64" or
@@ -112,32 +112,34 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
 /// >>> out = subcount.subdivide(m, scheme="catmull-clark", levels=2)  # doctest: +SKIP
 #[pyfunction]
 #[pyo3(
-    signature = (mesh, *, scheme, levels, **options),
-    text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False, timings=False, limit=False)"
+    signature = (mesh, *, scheme=None, levels, **options),
+    text_signature = "(mesh, *, scheme=None, levels, scheme_file=None, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, precision='f64', threads=0, no_uv=False, allow_large=False, timings=False, limit=False)"
 )]
 fn subdivide(
     py: Python<'_>,
     mesh: &Bound<'_, PyAny>,
-    scheme: String,
+    scheme: Option<String>,
     levels: &Bound<'_, PyAny>,
     options: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Mesh> {
-    let options = RunOptions::from_keywords(py, "subdivide", levels, options)?;
-    let f32 = options.precision == "f32";
-    let run = options.prepared(py, mesh, scheme, |prepared, _, notes, timings| {
-        // The memory guard and the subdivision.
-        let t = Instant::now();
-        let level = prepared.run(&|_| {}, notes)?;
-        timings.push(("subdivide_s", t.elapsed().as_secs_f64()));
-        let t = Instant::now();
-        let poly = level.into_polygon_mesh()?;
-        timings.push(("result_s", t.elapsed().as_secs_f64()));
-        Ok(poly)
-    });
-    let (poly, timings) = run?;
-    let mut mesh = Mesh::handing_over(py, poly, ARRAYS_LABEL.to_owned(), f32)?;
-    mesh.timings = options.timings.then_some(timings);
-    Ok(mesh)
+    entry(py, || {
+        let options = RunOptions::from_keywords(py, "subdivide", levels, options)?;
+        let f32 = options.precision == "f32";
+        let run = options.prepared(py, mesh, scheme, |prepared, _, notes, timings| {
+            // The memory guard and the subdivision.
+            let t = Instant::now();
+            let level = prepared.run(&|_| {}, notes)?;
+            timings.push(("subdivide_s", t.elapsed().as_secs_f64()));
+            let t = Instant::now();
+            let poly = level.into_polygon_mesh()?;
+            timings.push(("result_s", t.elapsed().as_secs_f64()));
+            Ok(poly)
+        });
+        let (poly, timings) = run?;
+        let mut mesh = Mesh::handing_over(py, poly, ARRAYS_LABEL.to_owned(), f32)?;
+        mesh.timings = options.timings.then_some(timings);
+        Ok(mesh)
+    })
 }
 
 /// A whole number argument (a Python int, not a bool): TypeError otherwise; one beyond 64
@@ -173,21 +175,23 @@ fn run_command(
     args: Vec<std::ffi::OsString>,
     mesh: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(u8, String, Vec<String>, Option<String>)> {
-    let result = guarded(|| {
-        let mut args = args;
-        let memory = match mesh.map(|m| MeshArg::extract(py, m)).transpose()? {
-            Some(MeshArg::Path(path)) => {
-                args.extend(["--mesh".into(), path.into_os_string()]);
-                None
-            }
-            Some(MeshArg::Poly(poly, label)) => Some((poly, label)),
-            None => None,
-        };
-        py.detach(|| guarded(|| Ok(subcount_cli::run_captured(args, memory))))
-    });
-    let captured = result.map_err(|f| f.into_pyerr(py))?;
-    let stdout = String::from_utf8_lossy(&captured.stdout).into_owned();
-    Ok((captured.exit_code, stdout, captured.notes, captured.error))
+    entry(py, || {
+        let result = guarded(|| {
+            let mut args = args;
+            let memory = match mesh.map(|m| MeshArg::extract(py, m)).transpose()? {
+                Some(MeshArg::Path(path)) => {
+                    args.extend(["--mesh".into(), path.into_os_string()]);
+                    None
+                }
+                Some(MeshArg::Poly(poly, label)) => Some((poly, label)),
+                None => None,
+            };
+            py.detach(|| guarded(|| Ok(subcount_cli::run_captured(args, memory))))
+        });
+        let captured = result.map_err(|f| f.into_pyerr(py))?;
+        let stdout = String::from_utf8_lossy(&captured.stdout).into_owned();
+        Ok((captured.exit_code, stdout, captured.notes, captured.error))
+    })
 }
 
 /// Exact subdivision counts and OpenSubdiv-grade subdivision (the Rust core of `subcount`).

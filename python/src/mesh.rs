@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 
 use crate::arrays::{Arrays, Faces};
-use crate::errors::{guarded, Failure, Result};
+use crate::errors::{entry, guarded, Failure, Result};
 use crate::tags::{options_dict, TagArrays};
 
 /// How messages name a mesh built from arrays (a file's mesh is named by its path).
@@ -114,88 +114,96 @@ impl Mesh {
         hole_indices: Option<&Bound<'_, PyAny>>,
         options: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Mesh> {
-        let built = guarded(|| {
-            let arrays = Arrays {
-                positions,
-                faces: Faces::Pair(face_vertex_counts, face_vertex_indices),
-                uvs: match (uvs, uv_indices) {
-                    (Some(u), Some(i)) => Some((u, i)),
-                    (None, None) => None,
-                    _ => {
-                        return Err(Failure::Usage(
-                            "uvs and uv_indices go together: give both or neither".into(),
-                        ))
-                    }
-                },
-                colors,
-            };
-            let mut poly = arrays.polygon_mesh(py)?;
-            let tags = TagArrays {
-                crease_indices,
-                crease_lengths,
-                crease_sharpnesses,
-                corner_indices,
-                corner_sharpnesses,
-                hole_indices,
-                options,
-            };
-            tags.apply(py, &mut poly)?;
-            Ok(poly)
-        });
-        let poly = built.map_err(|f| f.into_pyerr(py))?;
-        Ok(Mesh::from_arrays(poly))
+        entry(py, || {
+            let built = guarded(|| {
+                let arrays = Arrays {
+                    positions,
+                    faces: Faces::Pair(face_vertex_counts, face_vertex_indices),
+                    uvs: match (uvs, uv_indices) {
+                        (Some(u), Some(i)) => Some((u, i)),
+                        (None, None) => None,
+                        _ => {
+                            return Err(Failure::Usage(
+                                "uvs and uv_indices go together: give both or neither".into(),
+                            ))
+                        }
+                    },
+                    colors,
+                };
+                let mut poly = arrays.polygon_mesh(py)?;
+                let tags = TagArrays {
+                    crease_indices,
+                    crease_lengths,
+                    crease_sharpnesses,
+                    corner_indices,
+                    corner_sharpnesses,
+                    hole_indices,
+                    options,
+                };
+                tags.apply(py, &mut poly)?;
+                Ok(poly)
+            });
+            let poly = built.map_err(|f| f.into_pyerr(py))?;
+            Ok(Mesh::from_arrays(poly))
+        })
     }
 
     /// Vertex positions, (N, 3) float64 (float32 for an f32 result).
     #[getter]
     fn positions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.cached(py, 0, || match &self.store {
-            Store::Whole(poly) if !self.f32 => {
-                // The same bytes, one copy.
-                let flat: &[f64] = bytemuck::cast_slice(&poly.positions);
-                let flat = read_only(PyArray1::from_slice(py, flat).into_any())?;
-                rows(&flat, poly.positions.len(), 3)
-            }
-            Store::Whole(poly) => {
-                let flat = poly.positions.iter().flat_map(|p| p.to_array());
-                self.floats(py, flat, 3)
-            }
-            Store::Handed { .. } => {
-                Err(Failure::Bug("a result's positions are made with it".into()).into_pyerr(py))
-            }
+        entry(py, || {
+            self.cached(py, 0, || match &self.store {
+                Store::Whole(poly) if !self.f32 => {
+                    // The same bytes, one copy.
+                    let flat: &[f64] = bytemuck::cast_slice(&poly.positions);
+                    let flat = read_only(PyArray1::from_slice(py, flat).into_any())?;
+                    rows(&flat, poly.positions.len(), 3)
+                }
+                Store::Whole(poly) => {
+                    let flat = poly.positions.iter().flat_map(|p| p.to_array());
+                    self.floats(py, flat, 3)
+                }
+                Store::Handed { .. } => {
+                    Err(Failure::Bug("a result's positions are made with it".into()).into_pyerr(py))
+                }
+            })
         })
     }
 
     /// The number of corners of each face, (F,) int32.
     #[getter]
     fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.cached(py, 1, || {
-            // One pass into the array numpy takes (a face's corners fit i32: its corners are
-            // a slice of the int32 corners).
-            let Store::Whole(poly) = &self.store else {
-                return Err(
-                    Failure::Bug("a result's counts are made with it".into()).into_pyerr(py)
-                );
-            };
-            let offsets = poly.face_offsets();
-            let (ends, starts) = (&offsets[1..], &offsets[..offsets.len() - 1]);
-            let counts: Vec<i32> = ends
-                .iter()
-                .zip(starts)
-                .map(|(&end, &start)| (end - start).min(i32::MAX as usize) as i32)
-                .collect();
-            read_only(PyArray1::from_vec(py, counts).into_any())
+        entry(py, || {
+            self.cached(py, 1, || {
+                // One pass into the array numpy takes (a face's corners fit i32: its corners are
+                // a slice of the int32 corners).
+                let Store::Whole(poly) = &self.store else {
+                    return Err(
+                        Failure::Bug("a result's counts are made with it".into()).into_pyerr(py)
+                    );
+                };
+                let offsets = poly.face_offsets();
+                let (ends, starts) = (&offsets[1..], &offsets[..offsets.len() - 1]);
+                let counts: Vec<i32> = ends
+                    .iter()
+                    .zip(starts)
+                    .map(|(&end, &start)| (end - start).min(i32::MAX as usize) as i32)
+                    .collect();
+                read_only(PyArray1::from_vec(py, counts).into_any())
+            })
         })
     }
 
     /// The vertex of each corner, face after face, int32.
     #[getter]
     fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        self.cached(py, 2, || match &self.store {
-            Store::Whole(poly) => int32s(py, poly.face_indices(), "a vertex index"),
-            Store::Handed { .. } => {
-                Err(Failure::Bug("a result's corners are made with it".into()).into_pyerr(py))
-            }
+        entry(py, || {
+            self.cached(py, 2, || match &self.store {
+                Store::Whole(poly) => int32s(py, poly.face_indices(), "a vertex index"),
+                Store::Handed { .. } => {
+                    Err(Failure::Bug("a result's corners are made with it".into()).into_pyerr(py))
+                }
+            })
         })
     }
 
@@ -206,152 +214,176 @@ impl Mesh {
     /// library's whole call, freeing included); else None.
     #[getter]
     fn timings<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
-        let Some(timings) = &self.timings else {
-            return Ok(None);
-        };
-        let dict = PyDict::new(py);
-        for (key, seconds) in timings {
-            dict.set_item(key, seconds)?;
-        }
-        Ok(Some(dict))
+        entry(py, || {
+            let Some(timings) = &self.timings else {
+                return Ok(None);
+            };
+            let dict = PyDict::new(py);
+            for (key, seconds) in timings {
+                dict.set_item(key, seconds)?;
+            }
+            Ok(Some(dict))
+        })
     }
 
     /// Texture coordinates, (K, 2), or None.
     #[getter]
     fn uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(uvs) = self.uvs_stored() else {
-            return Ok(None);
-        };
-        let flat = uvs.coords().iter().flat_map(|v| v.to_array());
-        self.floats(py, flat, 2).map(Some)
+        entry(py, || {
+            let Some(uvs) = self.uvs_stored() else {
+                return Ok(None);
+            };
+            let flat = uvs.coords().iter().flat_map(|v| v.to_array());
+            self.floats(py, flat, 2).map(Some)
+        })
     }
 
     /// The texture coordinate of each corner (an index into uvs), int32, or None.
     #[getter]
     fn uv_indices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(uvs) = self.uvs_stored() else {
-            return Ok(None);
-        };
-        int32s(py, uvs.corners(), "a texture-coordinate index").map(Some)
+        entry(py, || {
+            let Some(uvs) = self.uvs_stored() else {
+                return Ok(None);
+            };
+            int32s(py, uvs.corners(), "a texture-coordinate index").map(Some)
+        })
     }
 
     /// Vertex colors, (N, 3), or None.
     #[getter]
     fn colors<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(colors) = self.colors_stored() else {
-            return Ok(None);
-        };
-        self.floats(py, colors.iter().flatten().copied(), 3)
-            .map(Some)
+        entry(py, || {
+            let Some(colors) = self.colors_stored() else {
+                return Ok(None);
+            };
+            self.floats(py, colors.iter().flatten().copied(), 3)
+                .map(Some)
+        })
     }
 
     /// Each face's material (`usemtl`), a str or None, or None when the mesh has none.
     #[getter]
-    fn materials(&self) -> Option<Vec<Option<String>>> {
-        self.per_face(Statement::Material)
+    fn materials(&self, py: Python<'_>) -> PyResult<Option<Vec<Option<String>>>> {
+        entry(py, || Ok(self.per_face(Statement::Material)))
     }
 
     /// Each face's groups (`g`, the names as written), a str or None, or None when the mesh
     /// has none.
     #[getter]
-    fn groups(&self) -> Option<Vec<Option<String>>> {
-        self.per_face(Statement::Group)
+    fn groups(&self, py: Python<'_>) -> PyResult<Option<Vec<Option<String>>>> {
+        entry(py, || Ok(self.per_face(Statement::Group)))
     }
 
     /// The material files the OBJ file names (`mtllib`), in file order.
     #[getter]
-    fn mtllib(&self) -> Vec<String> {
-        let lines = self.groups_stored().map_or(&[][..], |g| g.mtllib());
-        let names = lines.iter().flat_map(|line| {
-            let rest = line.trim_start().strip_prefix("mtllib").unwrap_or(line);
-            rest.split_whitespace().map(str::to_owned)
-        });
-        names.collect()
+    fn mtllib(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        entry(py, || {
+            let lines = self.groups_stored().map_or(&[][..], |g| g.mtllib());
+            let names = lines.iter().flat_map(|line| {
+                let rest = line.trim_start().strip_prefix("mtllib").unwrap_or(line);
+                rest.split_whitespace().map(str::to_owned)
+            });
+            Ok(names.collect())
+        })
     }
 
     /// The crease edges' vertices, one 2-vertex chain per edge (USD's creaseIndices), int32.
     #[getter]
     fn crease_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let creases = self.tags_stored().creases();
-        let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
-        int32s(py, &ends, "a vertex index")
+        entry(py, || {
+            let creases = self.tags_stored().creases();
+            let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
+            int32s(py, &ends, "a vertex index")
+        })
     }
 
     /// The vertices of each crease chain: 2 per crease edge (USD's creaseLengths), int32.
     #[getter]
     fn crease_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let n = self.tags_stored().creases().len();
-        int32s(py, &vec![2; n], "a crease length")
+        entry(py, || {
+            let n = self.tags_stored().creases().len();
+            int32s(py, &vec![2; n], "a crease length")
+        })
     }
 
     /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
     #[getter]
     fn crease_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float32s(py, self.tags_stored().creases().iter().map(|c| c.sharpness))
+        entry(py, || {
+            float32s(py, self.tags_stored().creases().iter().map(|c| c.sharpness))
+        })
     }
 
     /// The corner vertices (USD's cornerIndices), int32.
     #[getter]
     fn corner_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let corners: Vec<u32> = self
-            .tags_stored()
-            .corners()
-            .iter()
-            .map(|c| c.vertex)
-            .collect();
-        int32s(py, &corners, "a vertex index")
+        entry(py, || {
+            let corners: Vec<u32> = self
+                .tags_stored()
+                .corners()
+                .iter()
+                .map(|c| c.vertex)
+                .collect();
+            int32s(py, &corners, "a vertex index")
+        })
     }
 
     /// The sharpness of each corner (USD's cornerSharpnesses), float32.
     #[getter]
     fn corner_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float32s(py, self.tags_stored().corners().iter().map(|c| c.sharpness))
+        entry(py, || {
+            float32s(py, self.tags_stored().corners().iter().map(|c| c.sharpness))
+        })
     }
 
     /// The faces that are holes (USD's holeIndices), int32.
     #[getter]
     fn hole_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        int32s(py, self.tags_stored().holes(), "a face index")
+        entry(py, || {
+            int32s(py, self.tags_stored().holes(), "a face index")
+        })
     }
 
     /// The mesh's own subdivision options (a file's tags), a dict of those it sets.
     #[getter]
     fn options<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        options_dict(py, self.tags_stored())
+        entry(py, || options_dict(py, self.tags_stored()))
     }
 
     /// The number of vertices.
     #[getter]
-    fn n_vertices(&self) -> usize {
-        self.vertex_count()
+    fn n_vertices(&self, py: Python<'_>) -> PyResult<usize> {
+        entry(py, || Ok(self.vertex_count()))
     }
 
     /// The number of faces.
     #[getter]
-    fn n_faces(&self) -> usize {
-        self.face_count()
+    fn n_faces(&self, py: Python<'_>) -> PyResult<usize> {
+        entry(py, || Ok(self.face_count()))
     }
 
-    fn __repr__(&self) -> String {
-        let mut extras = Vec::new();
-        if let Some(uvs) = self.uvs_stored() {
-            extras.push(format!(", {} uvs", uvs.coords().len()));
-        }
-        if self.colors_stored().is_some() {
-            extras.push(", colors".to_owned());
-        }
-        if self.groups_stored().is_some() {
-            extras.push(", groups".to_owned());
-        }
-        if !self.tags_stored().is_empty() {
-            extras.push(", tags".to_owned());
-        }
-        format!(
-            "subcount.Mesh({} vertices, {} faces{})",
-            self.vertex_count(),
-            self.face_count(),
-            extras.concat()
-        )
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        entry(py, || {
+            let mut extras = Vec::new();
+            if let Some(uvs) = self.uvs_stored() {
+                extras.push(format!(", {} uvs", uvs.coords().len()));
+            }
+            if self.colors_stored().is_some() {
+                extras.push(", colors".to_owned());
+            }
+            if self.groups_stored().is_some() {
+                extras.push(", groups".to_owned());
+            }
+            if !self.tags_stored().is_empty() {
+                extras.push(", tags".to_owned());
+            }
+            Ok(format!(
+                "subcount.Mesh({} vertices, {} faces{})",
+                self.vertex_count(),
+                self.face_count(),
+                extras.concat()
+            ))
+        })
     }
 }
 

@@ -7,6 +7,7 @@ use driver::refined::Precision;
 use driver::subdivide::{Prepared, SubdivideJob};
 use driver::{LoadedMesh, Notes, OptionFlags, SchemeChoice};
 use halfedge::tags::{BoundaryInterpolation, CreaseMethod, FaceVaryingInterpolation, TriangleRule};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use pyo3::prelude::*;
@@ -15,11 +16,14 @@ use pyo3::types::{PyBool, PyDict};
 use crate::errors::{guarded, warn_notes, Failure, Result};
 use crate::mesh::MeshArg;
 use crate::tags::named;
-use crate::{whole_number, MAX_LEVELS, MAX_THREADS};
+use crate::whole_number;
+use driver::limits;
 
 /// The keywords of a run, with their defaults.
 pub(crate) struct RunOptions<'py> {
     levels: &'py Bound<'py, PyAny>,
+    /// A scheme file (`--scheme-file`), beside or instead of the scheme's name.
+    scheme_file: Option<PathBuf>,
     boundary: Option<String>,
     crease_method: Option<String>,
     triangle_rule: Option<String>,
@@ -54,6 +58,7 @@ impl<'py> RunOptions<'py> {
         let refinement = function == "Refinement";
         let mut o = RunOptions {
             levels,
+            scheme_file: None,
             boundary: None,
             crease_method: None,
             triangle_rule: None,
@@ -86,6 +91,14 @@ impl<'py> RunOptions<'py> {
                 }
             };
             match key {
+                "scheme_file" if !value.is_none() => {
+                    o.scheme_file = Some(value.extract::<PathBuf>().map_err(|_| {
+                        Failure::Type(format!(
+                            "{function}(): scheme_file must be a str, an os.PathLike or None"
+                        ))
+                    })?);
+                }
+                "scheme_file" => o.scheme_file = None,
                 "boundary" => o.boundary = text()?,
                 "crease_method" => o.crease_method = text()?,
                 "triangle_rule" => o.triangle_rule = text()?,
@@ -123,7 +136,7 @@ impl<'py> RunOptions<'py> {
         &self,
         py: Python<'_>,
         mesh: &Bound<'_, PyAny>,
-        scheme: String,
+        scheme: Option<String>,
         finish: impl FnOnce(Prepared<'_>, &LoadedMesh, Notes<'_>, &mut Timings) -> Result<R> + Send,
     ) -> PyResult<(R, Timings)> {
         let mut notes = Vec::new();
@@ -132,7 +145,13 @@ impl<'py> RunOptions<'py> {
             let t0 = Instant::now();
             let (job, flags) = self.job()?;
             let source = MeshArg::extract(py, mesh)?;
-            let choice = SchemeChoice::Builtin(scheme);
+            let choice =
+                SchemeChoice::from_options(scheme, self.scheme_file.clone()).ok_or_else(|| {
+                    Failure::Usage(
+                        "give scheme= (a built-in scheme's name) or scheme_file= (a scheme file)"
+                            .into(),
+                    )
+                })?;
             timings.push(("convert_s", t0.elapsed().as_secs_f64()));
             let t1 = Instant::now();
             let result = py.detach(|| {
@@ -165,15 +184,15 @@ impl<'py> RunOptions<'py> {
                 "invalid levels: `{levels}` is negative"
             )));
         }
-        if levels > MAX_LEVELS {
-            return Err(Failure::Resource(format!(
-                "levels={levels}: real subdivision stops at level {MAX_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
-            )));
+        if let Some(why) = limits::levels_refusal(levels as u64) {
+            return Err(Failure::Resource(format!("levels={levels}: {why}")));
         }
         let threads = self.threads;
-        if !(0..=MAX_THREADS).contains(&threads) {
+        // A negative count is refused with the range's reason too.
+        let refusal = limits::threads_refusal(u64::try_from(threads).unwrap_or(u64::MAX));
+        if let Some(why) = refusal {
             return Err(Failure::Usage(format!(
-                "invalid threads: `{threads}`: at most {MAX_THREADS} threads (0 uses every core)"
+                "invalid threads: `{threads}`: {why}"
             )));
         }
         let flags = OptionFlags::new(

@@ -14,16 +14,16 @@ use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{guarded, Failure, Result};
+use crate::errors::{entry, guarded, Failure, Result};
 use crate::mesh::int32s;
 use crate::options::RunOptions;
 
 /// A mesh's topology refined once to a level, to evaluate positions (and UVs) many times:
 /// an animation's frames, a deformer's output, without topology work per frame.
 ///
-/// Refinement(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None,
-/// uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False,
-/// limit=False)
+/// Refinement(mesh, *, scheme=None, levels, scheme_file=None, boundary=None,
+/// crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0,
+/// no_uv=False, allow_large=False, limit=False)
 ///
 /// The keywords are subdivide()'s (no precision: evaluate() computes in the dtype of the
 /// points it is given); limit=True also keeps the limit surface's masks (loop, catmull-clark:
@@ -77,112 +77,124 @@ impl Kept for f32 {
 impl Refinement {
     #[new]
     #[pyo3(
-        signature = (mesh, *, scheme, levels, **options),
-        text_signature = "(mesh, *, scheme, levels, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False, limit=False)"
+        signature = (mesh, *, scheme=None, levels, **options),
+        text_signature = "(mesh, *, scheme=None, levels, scheme_file=None, boundary=None, crease_method=None, triangle_rule=None, uv_interpolation=None, ignore_tags=False, threads=0, no_uv=False, allow_large=False, limit=False)"
     )]
     fn new(
         py: Python<'_>,
         mesh: &Bound<'_, PyAny>,
-        scheme: String,
+        scheme: Option<String>,
         levels: &Bound<'_, PyAny>,
         options: Option<&Bound<'_, PyDict>>,
     ) -> PyResult<Refinement> {
-        let options = RunOptions::from_keywords(py, "Refinement", levels, options)?;
-        let allow_large = options.allow_large;
-        let run = options.prepared(py, mesh, scheme, |prepared, loaded, notes, _| {
-            Ok(Refinement {
-                kept: prepared.refinement(notes)?,
-                n_mesh_vertices: loaded.poly.n_vertices(),
-                allow_large,
-                scratch64: Mutex::new(None),
-                scratch32: Mutex::new(None),
-            })
-        });
-        run.map(|(refinement, _)| refinement)
+        entry(py, || {
+            let options = RunOptions::from_keywords(py, "Refinement", levels, options)?;
+            let allow_large = options.allow_large;
+            let run = options.prepared(py, mesh, scheme, |prepared, loaded, notes, _| {
+                Ok(Refinement {
+                    kept: prepared.refinement(notes)?,
+                    n_mesh_vertices: loaded.poly.n_vertices(),
+                    allow_large,
+                    scratch64: Mutex::new(None),
+                    scratch32: Mutex::new(None),
+                })
+            });
+            run.map(|(refinement, _)| refinement)
+        })
     }
 
     /// Whether the refinement keeps the limit surface (made with limit=True).
     #[getter]
-    fn limit(&self) -> bool {
-        self.refined().has_limit()
+    fn limit(&self, py: Python<'_>) -> PyResult<bool> {
+        entry(py, || Ok(self.refined().has_limit()))
     }
 
     /// The last level.
     #[getter]
-    fn levels(&self) -> u32 {
-        self.refined().levels()
+    fn levels(&self, py: Python<'_>) -> PyResult<u32> {
+        entry(py, || Ok(self.refined().levels()))
     }
 
     /// The scheme as it counts what is written ("loop-boundary" for "loop" on an open mesh).
     #[getter]
-    fn scheme(&self) -> &str {
-        &self.kept.scheme
+    fn scheme(&self, py: Python<'_>) -> PyResult<String> {
+        entry(py, || Ok(self.kept.scheme.clone()))
     }
 
     /// The vertices of a level (default: the last), those of holes included below the last.
     #[pyo3(signature = (level=None))]
     fn n_vertices(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
-        Ok(self.refined().n_vertices(self.level(py, level)?))
+        entry(py, || Ok(self.refined().n_vertices(self.level(py, level)?)))
     }
 
     /// The faces of a level (default: the last; at the last, without holes).
     #[pyo3(signature = (level=None))]
     fn n_faces(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
-        Ok(self.refined().n_faces(self.level(py, level)?))
+        entry(py, || Ok(self.refined().n_faces(self.level(py, level)?)))
     }
 
     /// The UV values of a level (default: the last), 0 without UVs.
     #[pyo3(signature = (level=None))]
     fn n_uvs(&self, py: Python<'_>, level: Option<&Bound<'_, PyAny>>) -> PyResult<usize> {
-        let level = self.level(py, level)?;
-        Ok(match self.refined().has_uvs() {
-            true => self.refined().n_uvs(level),
-            false => 0,
+        entry(py, || {
+            let level = self.level(py, level)?;
+            Ok(match self.refined().has_uvs() {
+                true => self.refined().n_uvs(level),
+                false => 0,
+            })
         })
     }
 
     /// The last level's face sizes, int32.
     #[getter]
     fn face_vertex_counts<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let (offsets, _) = self.faces().map_err(|f| f.into_pyerr(py))?;
-        let counts: Vec<u32> = offsets.windows(2).map(|w| w[1] - w[0]).collect();
-        int32s(py, &counts, "a face's corners")
+        entry(py, || {
+            let (offsets, _) = self.faces().map_err(|f| f.into_pyerr(py))?;
+            let counts: Vec<u32> = offsets.windows(2).map(|w| w[1] - w[0]).collect();
+            int32s(py, &counts, "a face's corners")
+        })
     }
 
     /// The last level's corners (vertex indices, face after face), int32.
     #[getter]
     fn face_vertex_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let (_, corners) = self.faces().map_err(|f| f.into_pyerr(py))?;
-        int32s(py, &corners, "a vertex index")
+        entry(py, || {
+            let (_, corners) = self.faces().map_err(|f| f.into_pyerr(py))?;
+            int32s(py, &corners, "a vertex index")
+        })
     }
 
     /// The UV value of each corner of the last level (indices into evaluate_uvs' rows),
     /// int32, or None without UVs.
     #[getter]
     fn uv_indices<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        if !self.refined().has_uvs() {
-            return Ok(None);
-        }
-        let refined = self.refined();
-        let mut indices = vec![0u32; refined.n_corners(refined.levels())];
-        let written = refined.write_uv_indices(&mut indices);
-        written.map_err(|e| Failure::from(driver::Error::from(e)).into_pyerr(py))?;
-        int32s(py, &indices, "a UV index").map(Some)
+        entry(py, || {
+            if !self.refined().has_uvs() {
+                return Ok(None);
+            }
+            let refined = self.refined();
+            let mut indices = vec![0u32; refined.n_corners(refined.levels())];
+            let written = refined.write_uv_indices(&mut indices);
+            written.map_err(|e| Failure::from(driver::Error::from(e)).into_pyerr(py))?;
+            int32s(py, &indices, "a UV index").map(Some)
+        })
     }
 
     /// The UV values evaluate_uvs() starts from by default (the mesh's texture coordinates,
     /// one per value of its UV layout), (K, 2) float64, or None without UVs.
     #[getter]
     fn base_uvs<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        let Some(uvs) = &self.kept.base_uvs else {
-            return Ok(None);
-        };
-        let flat: Vec<f64> = uvs.iter().flatten().copied().collect();
-        Ok(Some(
-            PyArray1::from_vec(py, flat)
-                .reshape([uvs.len(), 2])?
-                .into_any(),
-        ))
+        entry(py, || {
+            let Some(uvs) = &self.kept.base_uvs else {
+                return Ok(None);
+            };
+            let flat: Vec<f64> = uvs.iter().flatten().copied().collect();
+            Ok(Some(
+                PyArray1::from_vec(py, flat)
+                    .reshape([uvs.len(), 2])?
+                    .into_any(),
+            ))
+        })
     }
 
     /// Evaluates the last level's positions from `points`, one row per vertex of the mesh
@@ -199,7 +211,7 @@ impl Refinement {
         points: &Bound<'py, PyAny>,
         out: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        self.points_of(py, (points, out), Stream::Positions)
+        entry(py, || self.points_of(py, (points, out), Stream::Positions))
     }
 
     /// Evaluates the last level's UV values from `uvs` ((K, 2), one per value of the UV
@@ -215,34 +227,36 @@ impl Refinement {
         out: Option<&Bound<'py, PyAny>>,
         limit: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        if limit {
-            guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
-        }
-        let stream = if limit { Stream::LimitUvs } else { Stream::Uvs };
-        let work = || {
-            let Some(base) = &self.kept.base_uvs else {
-                return Err(Failure::Usage(
-                    "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
-                ));
-            };
-            let default;
-            let uvs = match uvs {
-                Some(uvs) => uvs,
-                None => {
-                    default = self
-                        .base_uvs(py)?
-                        .unwrap_or_else(|| py.None().into_bound(py));
-                    &default
+        entry(py, || {
+            if limit {
+                guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+            }
+            let stream = if limit { Stream::LimitUvs } else { Stream::Uvs };
+            let work = || {
+                let Some(base) = &self.kept.base_uvs else {
+                    return Err(Failure::Usage(
+                        "this refinement has no UVs (the mesh has none, no_uv=True, or the scheme has no face-varying rule)".into(),
+                    ));
+                };
+                let default;
+                let uvs = match uvs {
+                    Some(uvs) => uvs,
+                    None => {
+                        default = self
+                            .base_uvs(py)?
+                            .unwrap_or_else(|| py.None().into_bound(py));
+                        &default
+                    }
+                };
+                let n_out = self.refined().n_uvs(self.refined().levels());
+                let rows = (base.len(), "UV value of the layout");
+                match is_float32(py, uvs, "uvs")? {
+                    true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, stream),
+                    false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
                 }
             };
-            let n_out = self.refined().n_uvs(self.refined().levels());
-            let rows = (base.len(), "UV value of the layout");
-            match is_float32(py, uvs, "uvs")? {
-                true => self.evaluate_in::<f32>(py, uvs, out, rows, n_out, stream),
-                false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
-            }
-        };
-        guarded(work).map_err(|f| f.into_pyerr(py))
+            guarded(work).map_err(|f| f.into_pyerr(py))
+        })
     }
 
     /// The limit surface at the last level's vertices (OpenSubdiv's limit masks; the
@@ -266,8 +280,10 @@ impl Refinement {
         out: Option<&Bound<'py, PyAny>>,
         tangents: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
-        guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
-        self.points_of(py, (points, out), Stream::Limit(tangents))
+        entry(py, || {
+            guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+            self.points_of(py, (points, out), Stream::Limit(tangents))
+        })
     }
 
     /// The last level's vertices as weighted sums of the mesh's vertices: a
@@ -276,47 +292,51 @@ impl Refinement {
     /// (subcount.ResourceError) beyond half the available memory unless the refinement was
     /// made with allow_large; the icosphere rule (not linear) has none (subcount.InputError).
     fn stencils<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        let table = guarded(|| {
-            let refined = self.refined();
-            let sizes = refined.stencil_sizes().map_err(driver::Error::from)?;
-            let available = driver::system::available_bytes();
-            let limit = available.map_or(u128::MAX, |a| u128::from(a / 2));
-            if sizes.bytes() > limit && !self.allow_large {
-                return Err(Failure::Resource(format!(
-                    "the stencils need {} bytes, over half the available memory ({limit} bytes): make the Refinement with allow_large=True to lift the guard",
-                    sizes.bytes()
-                )));
-            }
-            py.detach(|| refined.stencils().map_err(driver::Error::from))
-                .map_err(Failure::from)
+        entry(py, || {
+            let table = guarded(|| {
+                let refined = self.refined();
+                let sizes = refined.stencil_sizes().map_err(driver::Error::from)?;
+                let available = driver::system::available_bytes();
+                let limit = available.map_or(u128::MAX, |a| u128::from(a / 2));
+                if sizes.bytes() > limit && !self.allow_large {
+                    return Err(Failure::Resource(format!(
+                        "the stencils need {} bytes, over half the available memory ({limit} bytes): make the Refinement with allow_large=True to lift the guard",
+                        sizes.bytes()
+                    )));
+                }
+                py.detach(|| refined.stencils().map_err(driver::Error::from))
+                    .map_err(Failure::from)
+            })
+            .map_err(|f| f.into_pyerr(py))?;
+            let columns: Vec<i64> = table
+                .indices()
+                .iter()
+                .map(|&i| i64::from(self.kept.base_vertices[i as usize]))
+                .collect();
+            let offsets: Vec<i64> = table.offsets().iter().map(|&o| i64::from(o)).collect();
+            let weights = PyArray1::from_slice(py, table.weights());
+            let sparse = PyModule::import(py, "scipy.sparse")?;
+            let shape = (table.len(), self.n_mesh_vertices);
+            let parts = (
+                weights,
+                PyArray1::from_vec(py, columns),
+                PyArray1::from_vec(py, offsets),
+            );
+            sparse.call_method1("csr_array", (parts, shape))
         })
-        .map_err(|f| f.into_pyerr(py))?;
-        let columns: Vec<i64> = table
-            .indices()
-            .iter()
-            .map(|&i| i64::from(self.kept.base_vertices[i as usize]))
-            .collect();
-        let offsets: Vec<i64> = table.offsets().iter().map(|&o| i64::from(o)).collect();
-        let weights = PyArray1::from_slice(py, table.weights());
-        let sparse = PyModule::import(py, "scipy.sparse")?;
-        let shape = (table.len(), self.n_mesh_vertices);
-        let parts = (
-            weights,
-            PyArray1::from_vec(py, columns),
-            PyArray1::from_vec(py, offsets),
-        );
-        sparse.call_method1("csr_array", (parts, shape))
     }
 
-    fn __repr__(&self) -> String {
-        let r = self.refined();
-        format!(
-            "subcount.Refinement({}, levels={}: {} vertices, {} faces)",
-            self.kept.scheme,
-            r.levels(),
-            r.n_vertices(r.levels()),
-            r.n_faces(r.levels())
-        )
+    fn __repr__(&self, py: Python<'_>) -> PyResult<String> {
+        entry(py, || {
+            let r = self.refined();
+            Ok(format!(
+                "subcount.Refinement({}, levels={}: {} vertices, {} faces)",
+                self.kept.scheme,
+                r.levels(),
+                r.n_vertices(r.levels()),
+                r.n_faces(r.levels())
+            ))
+        })
     }
 }
 

@@ -1,10 +1,12 @@
 """The mesh side of the Python package: read/write, subdivide against the CLI, errors, notes.
 
-The CLI binary is $SUBCOUNT_BIN (default: /work/main/target/debug/subcount, built by
-`cargo build -p subcount`); every input is generated here, in tmp_path.
+The CLI binary is $SUBCOUNT_BIN (default: the repository's target/debug/subcount, under
+$CARGO_TARGET_DIR when set, built by `cargo build -p subcount`); every input is generated here,
+in tmp_path.
 """
 
 import os
+import re
 import subprocess
 import threading
 import time
@@ -16,7 +18,10 @@ import pytest
 
 import subcount
 
-SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN", "/work/main/target/debug/subcount")
+REPO = Path(__file__).resolve().parents[2]
+SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN") or str(
+    Path(os.environ.get("CARGO_TARGET_DIR") or REPO / "target") / "debug" / "subcount"
+)
 
 # An octahedron (closed triangles), a cube (closed quads), an open 3x2 triangle grid with a
 # crease-free boundary, and a mixed triangle/quad mesh (a house: a cube with a roof).
@@ -236,6 +241,38 @@ def test_subdivide_options_and_f32_equal_cli(tmp_path):
     assert_same_mesh(one, two)
 
 
+SCHEME_FILES = Path(__file__).resolve().parents[2] / "examples" / "schemes"
+
+
+def test_a_scheme_file_subdivides_as_the_cli(tmp_path):
+    """scheme_file= is --scheme-file: alone or beside the file's own name, with the CLI's bits
+    (subdivide and Refinement), and the CLI's refusals."""
+    positions, faces = grid(3, 3)
+    src = write_obj(tmp_path / "in.obj", positions, faces)
+    triangles_cc = SCHEME_FILES / "catmull-clark-triangles.toml"
+    loop_boundary = SCHEME_FILES / "loop-boundary.toml"
+    for file, name in ((triangles_cc, None), (loop_boundary, "my-loop-boundary")):
+        flags = ["--scheme-file", file, *(["--scheme", name] if name else []), "--levels", 2]
+        expected = cli_subdivide(src, tmp_path / "cli.obj", *flags)
+        ours = subcount.subdivide(src, scheme=name, scheme_file=file, levels=2)
+        assert_same_mesh(ours, expected)
+        r = subcount.Refinement(src, scheme_file=str(file), levels=2)
+        assert same_bits(r.evaluate(np.asarray(positions, float)), expected.positions)
+    # The name must be the file's, as --scheme with --scheme-file; one of the two is needed.
+    cli_run = cli("subdivide", "--mesh", src, "--scheme", "loop", "--scheme-file", loop_boundary, "--levels", 1,
+                  "-o", tmp_path / "no.obj")
+    with pytest.raises(subcount.Error) as e:
+        subcount.subdivide(src, scheme="loop", scheme_file=loop_boundary, levels=1)
+    assert cli_run.returncode != 0 and str(e.value) in cli_run.stderr, (str(e.value), cli_run.stderr)
+    assert isinstance(e.value, {2: subcount.UsageError, 3: subcount.InputError}[cli_run.returncode])
+    with pytest.raises(subcount.UsageError, match="give scheme= .* or scheme_file="):
+        subcount.subdivide(src, levels=1)
+    with pytest.raises(subcount.InputError, match="nope.toml"):
+        subcount.Refinement(src, scheme_file=tmp_path / "nope.toml", levels=1)
+    with pytest.raises(TypeError, match="scheme_file must be"):
+        subcount.subdivide(src, scheme_file=3, levels=1)
+
+
 def test_subdivide_carries_groups_colors_and_uvs_as_the_cli(tmp_path):
     src = tmp_path / "house.obj"
     src.write_text(GROUPED_OBJ)
@@ -294,6 +331,43 @@ def test_exception_hierarchy():
     assert isinstance(subcount.__version__, str)
 
 
+def entry_points(source):
+    """(name, first line of the body) of every `#[pyfunction]` and every fn of a `#[pymethods]`
+    block in a Rust source of the bindings (rustfmt's layout)."""
+    lines = source.split("\n")
+    found, in_methods, pending = [], False, False
+    for i, line in enumerate(lines):
+        if line.startswith("#[pymethods]"):
+            in_methods = True
+        elif in_methods and line == "}":
+            in_methods = False
+        elif line.startswith("#[pyfunction]"):
+            pending = True
+        indent = "    " if in_methods else ""
+        start = re.match(rf"^{indent}(?:pub(?:\(crate\))? )?fn (\w+)", line)
+        if start and (in_methods or pending):
+            pending = False
+            j = i
+            while not lines[j].rstrip().endswith("{"):
+                j += 1
+            found.append((start.group(1), lines[j + 1].strip()))
+    return found
+
+
+def test_every_entry_point_raises_a_panic_as_error():
+    """A Rust panic would be a bug; PyO3 would raise it as its `PanicException` (not an
+    `Exception`), so the body of every function, method and getter Python can call runs in
+    `errors::entry`, which raises it as `subcount.Error` with the panic's message."""
+    src = Path(__file__).resolve().parents[1] / "src"
+    checked = []
+    for path in sorted(src.glob("*.rs")):
+        for name, first in entry_points(path.read_text()):
+            assert first.startswith("entry(py, ||"), f"{path.name}: {name} does not run in entry(): {first}"
+            checked.append(name)
+    # read_mesh, write_mesh, subdivide, run_command, Mesh's and Refinement's methods and getters.
+    assert len(checked) >= 40 and {"subdivide", "stencils", "positions", "__repr__"} <= set(checked), checked
+
+
 def test_usage_errors(tmp_path):
     src = write_obj(tmp_path / "in.obj", *OCTAHEDRON)
     with pytest.raises(subcount.UsageError) as e:
@@ -344,6 +418,32 @@ def test_input_errors(tmp_path):
         subcount.Mesh(positions, [2], [0, 1])
     with pytest.raises(subcount.InputError, match="add up to"):
         subcount.Mesh(positions, [3, 3], [0, 1, 2])
+    with pytest.raises(subcount.InputError, match=r"face_vertex_counts\[1\] = -3 is negative"):
+        subcount.Mesh(positions, [3, -3], [0, 1, 2])
+    # The arrays beside the faces: UVs, their corners, colors, tags.
+    counts, corners = [3] * 8, np.ravel(faces)
+    uvs = np.zeros((4, 2))
+    with pytest.raises(subcount.InputError, match=r"uv_indices has 23 entries for 24 corners"):
+        subcount.Mesh(positions, counts, corners, uvs=uvs, uv_indices=np.zeros(23, int))
+    with pytest.raises(subcount.InputError, match=r"uv_indices\[9\] = 4 is out of range: uvs has 4"):
+        subcount.Mesh(positions, counts, corners, uvs=uvs, uv_indices=[0] * 9 + [4] + [0] * 14)
+    with pytest.raises(subcount.InputError, match=r"uv_indices\[2\] = -1 is negative"):
+        subcount.Mesh(positions, counts, corners, uvs=uvs, uv_indices=[0, 0, -1] + [0] * 21)
+    nan_uvs = uvs.copy()
+    nan_uvs[3, 1] = np.nan
+    with pytest.raises(subcount.InputError, match=r"uvs\[3, 1\] is nan"):
+        subcount.Mesh(positions, counts, corners, uvs=nan_uvs, uv_indices=np.zeros(24, int))
+    with pytest.raises(subcount.InputError, match=r"colors has 5 rows for 6 vertices"):
+        subcount.Mesh(positions, counts, corners, colors=np.zeros((5, 3)))
+    with pytest.raises(subcount.InputError, match=r"colors\[0, 0\] is inf"):
+        subcount.Mesh(positions, counts, corners, colors=[[np.inf, 0, 0]] + [[0, 0, 0]] * 5)
+    for sharpness, what in ((np.nan, "nan"), (-1.0, "-1")):
+        with pytest.raises(subcount.InputError, match=r"crease_sharpnesses\[0\]") as e:
+            subcount.Mesh(positions, counts, corners, crease_indices=[0, 2], crease_lengths=[2],
+                          crease_sharpnesses=[sharpness])
+        assert what in str(e.value).lower(), str(e.value)
+        with pytest.raises(subcount.InputError, match=r"corner_sharpnesses\[0\]"):
+            subcount.Mesh(positions, counts, corners, corner_indices=[1], corner_sharpnesses=[sharpness])
     with pytest.raises(TypeError, match="positions"):
         subcount.Mesh([["a", "b", "c"]], [3], [0, 0, 0])
     with pytest.raises(TypeError, match="face_vertex_indices"):

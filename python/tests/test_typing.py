@@ -240,7 +240,7 @@ def test_help_renders_the_package():
         assert word in text, word
     assert f"VERSION\n    {subcount.__version__}\n" in text
     # The compiled classes and functions show their signatures.
-    assert "subdivide(mesh, *, scheme, levels" in text
+    assert "subdivide(mesh, *, scheme=None, levels, scheme_file=None" in text
     assert "evaluate(self, /, points, out=None)" in text
 
 

@@ -9,7 +9,7 @@ subcount's float64 result, compared to the CLI's float64 OBJ to the bit; the wri
 holds point3f/texCoord2f (the schema's types), compared to the float32 cast of that result to
 the bit.
 
-The CLI binary is $SUBCOUNT_BIN (default: /work/main/target/debug/subcount); tests that need it
+The CLI binary is $SUBCOUNT_BIN (as in test_mesh.py); tests that need it
 skip without it. Every input is generated in tmp_path.
 """
 
@@ -27,9 +27,9 @@ pxr = pytest.importorskip("pxr")
 from pxr import Gf, Sdf, Usd, UsdGeom, Vt  # noqa: E402
 
 import subcount  # noqa: E402
+from test_mesh import SUBCOUNT_BIN  # noqa: E402
 from test_mesh import grid as tri_grid  # noqa: E402  (the open triangle grid)
 
-SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN", "/work/main/target/debug/subcount")
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "python" / "usd_subdivide.py"
 
 

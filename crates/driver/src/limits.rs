@@ -15,6 +15,21 @@ pub const MAX_REAL_LEVELS: u32 = 64;
 /// Most threads a front end may ask for (`--threads`, `threads=`; 0 uses every core).
 pub const MAX_THREADS: usize = 256;
 
+/// Why a real subdivision to `levels` is refused (a guard's refusal: `--levels`, `levels=`),
+/// or `None` up to [`MAX_REAL_LEVELS`]; each front end names its own option before it.
+pub fn levels_refusal(levels: u64) -> Option<String> {
+    (levels > u64::from(MAX_REAL_LEVELS)).then(|| {
+        format!("real subdivision stops at level {MAX_REAL_LEVELS} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)")
+    })
+}
+
+/// Why `threads` is refused (`--threads`, `threads=`: a usage error), or `None` from 0 (every
+/// core) to [`MAX_THREADS`]; each front end names its own option before it.
+pub fn threads_refusal(threads: u64) -> Option<String> {
+    (threads > MAX_THREADS as u64)
+        .then(|| format!("at most {MAX_THREADS} threads (0 uses every core)"))
+}
+
 /// Most decimal digits a count may have without `--allow-large`.
 pub const MAX_DIGITS: f64 = 1e7;
 /// Most decimal digits a table (all rows and columns together) may hold.

@@ -49,6 +49,23 @@ pub enum SchemeChoice {
 }
 
 impl SchemeChoice {
+    /// The scheme of a front end's two options, a built-in `name` (`--scheme`, `scheme=`) and
+    /// a scheme `file` (`--scheme-file`, `scheme_file=`; with a name too, the name must be the
+    /// file's); `None` when neither is given (each front end words that refusal).
+    ///
+    /// ```
+    /// use driver::SchemeChoice;
+    /// assert_eq!(SchemeChoice::from_options(Some("loop".into()), None), Some(SchemeChoice::Builtin("loop".into())));
+    /// assert_eq!(SchemeChoice::from_options(None, None), None);
+    /// ```
+    pub fn from_options(name: Option<String>, file: Option<PathBuf>) -> Option<SchemeChoice> {
+        match (file, name) {
+            (Some(path), name) => Some(SchemeChoice::File { path, name }),
+            (None, Some(name)) => Some(SchemeChoice::Builtin(name)),
+            (None, None) => None,
+        }
+    }
+
     /// Whether this is a custom scheme (a file).
     pub fn is_custom(&self) -> bool {
         matches!(self, SchemeChoice::File { .. })

@@ -20,18 +20,16 @@ macro_rules! named_parser {
     };
 }
 
-/// The most threads `--threads` may ask for. Each thread costs a stack and a start-up, and
-/// the geometry passes gain nothing past the number of cores: without a cap, `--threads
-/// 100000` spent minutes starting threads (or failed after 20 s).
-pub(crate) const MAX_THREADS: usize = driver::limits::MAX_THREADS;
-
-/// Parses `--threads`: a whole number from 0 (all cores) to [`MAX_THREADS`].
+/// Parses `--threads`: a whole number from 0 (all cores) to
+/// [`driver::limits::MAX_THREADS`] (each thread costs a stack and a start-up, and the geometry
+/// passes gain nothing past the number of cores: without a cap, `--threads 100000` spent
+/// minutes starting threads).
 fn parse_threads(text: &str) -> Result<usize, String> {
     let n: usize = text.parse().map_err(|e| format!("{e}"))?;
-    if n > MAX_THREADS {
-        return Err(format!("at most {MAX_THREADS} threads (0 uses every core)"));
+    match driver::limits::threads_refusal(n as u64) {
+        Some(why) => Err(why),
+        None => Ok(n),
     }
-    Ok(n)
 }
 
 /// How big will a subdivision surface be? Exact counts, closed forms and real subdivision.

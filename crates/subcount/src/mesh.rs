@@ -267,16 +267,13 @@ impl TagSummary {
 /// indexed by 32-bit integers (and its exact counts would take long to compute).
 pub(crate) fn real_levels(text: &str) -> Result<u32, Failure> {
     let levels = parse_levels_count(text)?;
-    let max = driver::limits::MAX_REAL_LEVELS;
-    if levels > max {
-        return Err(Failure::new(
+    match driver::limits::levels_refusal(levels.into()) {
+        Some(why) => Err(Failure::new(
             Kind::Guard,
-            anyhow::anyhow!(
-                "--levels {levels}: real subdivision stops at level {max} (every rule at least doubles the faces per level, so no later level fits 32-bit indices)"
-            ),
-        ));
+            anyhow::anyhow!("--levels {levels}: {why}"),
+        )),
+        None => Ok(levels),
     }
-    Ok(levels)
 }
 
 /// The last level `verify` checks: `--levels`, or the highest level whose predicted face
@@ -294,14 +291,8 @@ pub(crate) fn verify_levels(args: &VerifyArgs, plan: &Plan, x0: &[BigInt]) -> Re
 
 /// The scheme of `--scheme` or `--scheme-file` ([`driver::SchemeChoice`]).
 pub(crate) fn scheme_choice(choice: &SchemeChoice) -> Result<driver::SchemeChoice, Failure> {
-    match (&choice.scheme_file, &choice.scheme) {
-        (Some(path), name) => Ok(driver::SchemeChoice::File {
-            path: path.clone(),
-            name: name.clone(),
-        }),
-        (None, Some(name)) => Ok(driver::SchemeChoice::Builtin(name.clone())),
-        (None, None) => Err(usage!("give --scheme NAME or --scheme-file FILE")),
-    }
+    driver::SchemeChoice::from_options(choice.scheme.clone(), choice.scheme_file.clone())
+        .ok_or_else(|| usage!("give --scheme NAME or --scheme-file FILE"))
 }
 
 pub(crate) use crate::failure::print_note;
