@@ -258,7 +258,7 @@ def formula(
     V(s) = V0 + (4^s - 1)/3 * E0
     E(s) = 4^s * E0
     <BLANKLINE>
-    >>> subcount.formula(scheme="loop", format="sympy")["E"]         # doctest: +SKIP
+    >>> subcount.formula(scheme="loop", format="sympy")["E"]         # needs SymPy
     4**s*E0
     """
     if format not in _FORMULA_FORMATS:
