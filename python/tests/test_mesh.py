@@ -331,41 +331,94 @@ def test_exception_hierarchy():
     assert isinstance(subcount.__version__, str)
 
 
+ATTRIBUTE = re.compile(r"^\s*#\[(?:pyo3::)?(pymethods|pyfunction)\b")
+FN = re.compile(r"^(\s*)(?:pub(?:\([\w:]+\))?\s+)?(?:const\s+|async\s+|unsafe\s+|extern\s+\S+\s+)*fn\s+(\w+)")
+
+
 def entry_points(source):
-    """(name, first line of the body) of every `#[pyfunction]` and every fn of a `#[pymethods]`
-    block in a Rust source of the bindings (rustfmt's layout)."""
+    """(name, body lines) of every `#[pyfunction]` and every fn of a `#[pymethods]` block in a
+    Rust source of the bindings, as `cargo fmt` lays them out (`.ci/run` checks the layout):
+    the signature ends with a line ending in `{`, the body closes at the fn's indentation."""
     lines = source.split("\n")
-    found, in_methods, pending = [], False, False
+    found, block_indent, pending = [], None, False
     for i, line in enumerate(lines):
-        if line.startswith("#[pymethods]"):
-            in_methods = True
-        elif in_methods and line == "}":
-            in_methods = False
-        elif line.startswith("#[pyfunction]"):
+        attribute = ATTRIBUTE.match(line)
+        if attribute and attribute.group(1) == "pymethods":
+            block_indent = len(line) - len(line.lstrip())
+            continue
+        if attribute:
             pending = True
-        indent = "    " if in_methods else ""
-        start = re.match(rf"^{indent}(?:pub(?:\(crate\))? )?fn (\w+)", line)
-        if start and (in_methods or pending):
-            pending = False
-            j = i
-            while not lines[j].rstrip().endswith("{"):
-                j += 1
-            found.append((start.group(1), lines[j + 1].strip()))
+            continue
+        if block_indent is not None and line == " " * block_indent + "}":
+            block_indent = None
+        start = FN.match(line)
+        if not start or not (pending or block_indent is not None):
+            continue
+        pending = False
+        indent = start.group(1)
+        j = i
+        while not lines[j].rstrip().endswith("{"):
+            assert "}" not in lines[j].split("//")[0], f"a one-line fn body: {lines[j]!r}"
+            j += 1
+        k = j + 1
+        while lines[k] != indent + "}":
+            k += 1
+        found.append((start.group(2), indent, lines[j + 1:k]))
     return found
 
 
 def test_every_entry_point_raises_a_panic_as_error():
     """A Rust panic would be a bug; PyO3 would raise it as its `PanicException` (not an
-    `Exception`), so the body of every function, method and getter Python can call runs in
-    `errors::entry`, which raises it as `subcount.Error` with the panic's message."""
+    `Exception`), so the whole body of every function, method and getter Python can call is
+    one `errors::entry(py, || ...)` expression, which raises it as `subcount.Error` with the
+    panic's message."""
     src = Path(__file__).resolve().parents[1] / "src"
     checked = []
     for path in sorted(src.glob("*.rs")):
-        for name, first in entry_points(path.read_text()):
-            assert first.startswith("entry(py, ||"), f"{path.name}: {name} does not run in entry(): {first}"
+        for name, indent, body in entry_points(path.read_text()):
+            where = f"{path.name}: {name}"
+            assert body and body[0].startswith(indent + "    entry(py, ||"), f"{where} does not run in entry(): {body[:1]}"
+            # One expression: nothing else at the body's own indentation.
+            top = [line for line in body if line.startswith(indent + "    ") and not line.startswith(indent + "     ")]
+            assert top == [body[0]] or top == [body[0], body[-1]], f"{where}: more than entry(): {top}"
+            assert body[-1].rstrip().endswith(")"), f"{where}: more than entry(): {body[-1]}"
             checked.append(name)
     # read_mesh, write_mesh, subdivide, run_command, Mesh's and Refinement's methods and getters.
-    assert len(checked) >= 40 and {"subdivide", "stencils", "positions", "__repr__"} <= set(checked), checked
+    assert len(checked) >= 41 and {"subdivide", "stencils", "positions", "__repr__"} <= set(checked), checked
+
+
+def test_the_entry_point_check_sees_what_it_checks():
+    """The parser above finds attribute forms and qualifiers it must not miss, and refuses a
+    body that is more than one entry() expression."""
+    source = """\
+#[pyo3::pyfunction(signature = (a, *, b=None))]
+pub(crate) fn one(py: Python<'_>, a: u32) -> PyResult<u32> {
+    entry(py, || Ok(a))
+}
+
+#[pyfunction]
+fn two(py: Python<'_>) -> PyResult<u32> {
+    let x = 3;
+    entry(py, || Ok(x))
+}
+
+#[pymethods]
+impl Thing {
+    #[staticmethod]
+    fn three(
+        py: Python<'_>,
+    ) -> PyResult<u32> {
+        entry(py, || {
+            Ok(3)
+        })
+    }
+}
+"""
+    found = {name: (indent, body) for name, indent, body in entry_points(source)}
+    assert set(found) == {"one", "two", "three"}, found
+    indent, body = found["two"]
+    top = [line for line in body if line.startswith(indent + "    ") and not line.startswith(indent + "     ")]
+    assert len(top) == 2 and not top[0].strip().startswith("entry("), top
 
 
 def test_usage_errors(tmp_path):

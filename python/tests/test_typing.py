@@ -238,7 +238,8 @@ def test_every_docstring_example_runs(tmp_path, monkeypatch):
     names = sorted(t.name for t in tests)
     # The Rust docstrings (classes of the compiled module) and the Python ones are all here.
     docstrings = {t.docstring for t in tests}
-    for obj in (subcount, subcount.Mesh, subcount.Refinement, subcount.table, subcount.verify):
+    for obj in (subcount, subcount.Mesh, subcount.Refinement, subcount.table, subcount.verify,
+                subcount.read_mesh, subcount.subdivide):
         assert obj.__doc__ in docstrings, (obj, names)
     report = io.StringIO()
     runner = doctest.DocTestRunner(optionflags=DOCTEST_FLAGS)
