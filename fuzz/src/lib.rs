@@ -178,14 +178,19 @@ fn mesh_work(loaded: halfedge::Result<PolygonMesh>) -> u64 {
     work
 }
 
+/// `data` as UTF-8 text parsed by `parse`, or `None` when either fails (the harnesses count
+/// that as one unit of work).
+fn utf8_parsed<T, E>(data: &[u8], parse: impl FnOnce(&str) -> Result<T, E>) -> Option<T> {
+    std::str::from_utf8(data)
+        .ok()
+        .and_then(|text| parse(text).ok())
+}
+
 /// Parses bytes (as UTF-8) as a scheme TOML file; when that succeeds, evaluates the scheme at
 /// a few levels from an all-ones state, runs `fit` against a few budgets, and computes the
 /// closed form of a small recurrence.
 pub fn scheme_toml(data: &[u8]) -> u64 {
-    let Ok(text) = std::str::from_utf8(data) else {
-        return 1;
-    };
-    let Ok(scheme) = Scheme::from_toml(text) else {
+    let Some(scheme) = utf8_parsed(data, Scheme::from_toml) else {
         return 1;
     };
     let mut work = scheme.dim() as u64;
@@ -220,10 +225,7 @@ pub fn scheme_toml(data: &[u8]) -> u64 {
 /// Parses text as an `--matrix` argument; when that succeeds and the matrix is at most
 /// [`MAX_DIM`] square, builds its recurrence, its closed form, and evaluates both ways.
 pub fn matrix(data: &[u8]) -> u64 {
-    let Ok(text) = std::str::from_utf8(data) else {
-        return 1;
-    };
-    let Ok(m) = IntMatrix::parse(text) else {
+    let Some(m) = utf8_parsed(data, IntMatrix::parse) else {
         return 1;
     };
     if m.dim() > MAX_DIM {

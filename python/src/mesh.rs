@@ -290,58 +290,37 @@ impl Mesh {
     /// The crease edges' vertices, one 2-vertex chain per edge (USD's creaseIndices), int32.
     #[getter]
     fn crease_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            let creases = self.tags_stored().creases();
-            let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
-            int32s(py, &ends, "a vertex index")
-        })
+        entry(py, || self.tag_array(py, TagArray::CreaseIndices))
     }
 
     /// The vertices of each crease chain: 2 per crease edge (USD's creaseLengths), int32.
     #[getter]
     fn crease_lengths<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            let n = self.tags_stored().creases().len();
-            int32s(py, &vec![2; n], "a crease length")
-        })
+        entry(py, || self.tag_array(py, TagArray::CreaseLengths))
     }
 
     /// The sharpness of each crease edge (USD's creaseSharpnesses), float32.
     #[getter]
     fn crease_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            float32s(py, self.tags_stored().creases().iter().map(|c| c.sharpness))
-        })
+        entry(py, || self.tag_array(py, TagArray::CreaseSharpnesses))
     }
 
     /// The corner vertices (USD's cornerIndices), int32.
     #[getter]
     fn corner_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            let corners: Vec<u32> = self
-                .tags_stored()
-                .corners()
-                .iter()
-                .map(|c| c.vertex)
-                .collect();
-            int32s(py, &corners, "a vertex index")
-        })
+        entry(py, || self.tag_array(py, TagArray::CornerIndices))
     }
 
     /// The sharpness of each corner (USD's cornerSharpnesses), float32.
     #[getter]
     fn corner_sharpnesses<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            float32s(py, self.tags_stored().corners().iter().map(|c| c.sharpness))
-        })
+        entry(py, || self.tag_array(py, TagArray::CornerSharpnesses))
     }
 
     /// The faces that are holes (USD's holeIndices), int32.
     #[getter]
     fn hole_indices<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        entry(py, || {
-            int32s(py, self.tags_stored().holes(), "a face index")
-        })
+        entry(py, || self.tag_array(py, TagArray::HoleIndices))
     }
 
     /// The mesh's own subdivision options (a file's tags), a dict of those it sets.
@@ -523,6 +502,27 @@ impl Mesh {
         match &self.store {
             Store::Whole(poly) => poly.groups(),
             Store::Handed { rest, .. } => rest.groups.as_ref(),
+        }
+    }
+
+    /// One of the tags' arrays under USD's name (read back: one 2-vertex chain per crease
+    /// edge, with its own sharpness).
+    fn tag_array<'py>(&self, py: Python<'py>, array: TagArray) -> PyResult<Bound<'py, PyAny>> {
+        let tags = self.tags_stored();
+        let (creases, corners) = (tags.creases(), tags.corners());
+        match array {
+            TagArray::CreaseIndices => {
+                let ends: Vec<u32> = creases.iter().flat_map(|c| [c.a, c.b]).collect();
+                int32s(py, &ends, "a vertex index")
+            }
+            TagArray::CreaseLengths => int32s(py, &vec![2; creases.len()], "a crease length"),
+            TagArray::CreaseSharpnesses => float32s(py, creases.iter().map(|c| c.sharpness)),
+            TagArray::CornerIndices => {
+                let vertices: Vec<u32> = corners.iter().map(|c| c.vertex).collect();
+                int32s(py, &vertices, "a vertex index")
+            }
+            TagArray::CornerSharpnesses => float32s(py, corners.iter().map(|c| c.sharpness)),
+            TagArray::HoleIndices => int32s(py, tags.holes(), "a face index"),
         }
     }
 
@@ -734,4 +734,15 @@ impl MeshArg {
 fn is_path_like(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<bool> {
     let path_like = PyModule::import(py, "os")?.getattr("PathLike")?;
     obj.is_instance(&path_like)
+}
+
+/// The tags' arrays a `Mesh` shows under USD's names.
+#[derive(Clone, Copy)]
+enum TagArray {
+    CreaseIndices,
+    CreaseLengths,
+    CreaseSharpnesses,
+    CornerIndices,
+    CornerSharpnesses,
+    HoleIndices,
 }
