@@ -21,7 +21,7 @@ use halfedge::io::ObjWriteOptions;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyInt};
 
-use crate::errors::{entry, guarded, warn_notes, Failure, Result};
+use crate::errors::{attempt, entry, warn_notes, Failure, Result};
 use crate::mesh::{Mesh, MeshArg, ARRAYS_LABEL};
 use crate::options::RunOptions;
 
@@ -38,7 +38,7 @@ use crate::options::RunOptions;
 fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
     entry(py, || {
         let read = py.detach(|| {
-            guarded(|| {
+            attempt(|| {
                 let source = MeshSource::File(path);
                 let loaded = driver::load(&source, &OptionFlags::default())?;
                 Ok(Mesh::new_with(loaded.poly, source.label(), false))
@@ -59,7 +59,7 @@ fn read_mesh(py: Python<'_>, path: PathBuf) -> PyResult<Mesh> {
 fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResult<()> {
     entry(py, || {
         let mut notes = Vec::new();
-        let written = guarded(|| {
+        let written = attempt(|| {
             if let Some(ext) = driver::output::unwritten_mesh_format(&path) {
                 return Err(Failure::Usage(format!(
                     "{}: write_mesh does not write {ext} files; it writes OBJ and PLY (name the file .obj or .ply)",
@@ -68,7 +68,7 @@ fn write_mesh(py: Python<'_>, mesh: &Bound<'_, PyAny>, path: PathBuf) -> PyResul
             }
             let source = MeshArg::extract(py, mesh)?;
             py.detach(|| {
-                guarded(|| {
+                attempt(|| {
                     let flags = OptionFlags::default();
                     let loaded = match source {
                         MeshArg::Path(file) => driver::load(&MeshSource::File(file), &flags)?,
@@ -180,7 +180,7 @@ fn run_command(
     mesh: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<(u8, String, Vec<String>, Option<String>)> {
     entry(py, || {
-        let result = guarded(|| {
+        let result = attempt(|| {
             let mut args = args;
             let memory = match mesh.map(|m| MeshArg::extract(py, m)).transpose()? {
                 Some(MeshArg::Path(path)) => {
@@ -190,7 +190,7 @@ fn run_command(
                 Some(MeshArg::Poly(poly, label)) => Some((poly, label)),
                 None => None,
             };
-            py.detach(|| guarded(|| Ok(subcount_cli::run_captured(args, memory))))
+            py.detach(|| attempt(|| Ok(subcount_cli::run_captured(args, memory))))
         });
         let captured = result.map_err(|f| f.into_pyerr(py))?;
         let stdout = String::from_utf8_lossy(&captured.stdout).into_owned();

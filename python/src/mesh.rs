@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString, PyTuple};
 
 use crate::arrays::{Arrays, Faces};
-use crate::errors::{entry, guarded, Failure, Result};
+use crate::errors::{attempt, entry, Failure, Result};
 use crate::tags::{options_dict, TagArrays};
 
 /// How messages name a mesh built from arrays (a file's mesh is named by its path).
@@ -115,7 +115,7 @@ impl Mesh {
         options: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<Mesh> {
         entry(py, || {
-            let built = guarded(|| {
+            let built = attempt(|| {
                 let arrays = Arrays {
                     positions,
                     faces: Faces::Pair(face_vertex_counts, face_vertex_indices),

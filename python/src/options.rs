@@ -13,7 +13,7 @@ use std::time::Instant;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 
-use crate::errors::{guarded, warn_notes, Failure, Result};
+use crate::errors::{attempt, warn_notes, Failure, Result};
 use crate::mesh::MeshArg;
 use crate::tags::named;
 use crate::whole_number;
@@ -141,7 +141,7 @@ impl<'py> RunOptions<'py> {
     ) -> PyResult<(R, Timings)> {
         let mut notes = Vec::new();
         let mut timings = Timings::new();
-        let result = guarded(|| {
+        let result = attempt(|| {
             let t0 = Instant::now();
             let (job, flags) = self.job()?;
             let source = MeshArg::extract(py, mesh)?;
@@ -155,7 +155,7 @@ impl<'py> RunOptions<'py> {
             timings.push(("convert_s", t0.elapsed().as_secs_f64()));
             let t1 = Instant::now();
             let result = py.detach(|| {
-                guarded(|| {
+                attempt(|| {
                     let loaded = source.load(&flags)?;
                     timings.push(("load_s", t1.elapsed().as_secs_f64()));
                     let t2 = Instant::now();

@@ -14,7 +14,7 @@ use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::errors::{entry, guarded, Failure, Result};
+use crate::errors::{attempt, entry, Failure, Result};
 use crate::mesh::int32s;
 use crate::options::RunOptions;
 
@@ -229,7 +229,7 @@ impl Refinement {
     ) -> PyResult<Bound<'py, PyAny>> {
         entry(py, || {
             if limit {
-                guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+                attempt(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
             }
             let stream = if limit { Stream::LimitUvs } else { Stream::Uvs };
             let work = || {
@@ -255,7 +255,7 @@ impl Refinement {
                     false => self.evaluate_in::<f64>(py, uvs, out, rows, n_out, stream),
                 }
             };
-            guarded(work).map_err(|f| f.into_pyerr(py))
+            attempt(work).map_err(|f| f.into_pyerr(py))
         })
     }
 
@@ -281,7 +281,7 @@ impl Refinement {
         tangents: bool,
     ) -> PyResult<Bound<'py, PyAny>> {
         entry(py, || {
-            guarded(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
+            attempt(|| self.require_limit()).map_err(|f| f.into_pyerr(py))?;
             self.points_of(py, (points, out), Stream::Limit(tangents))
         })
     }
@@ -293,7 +293,7 @@ impl Refinement {
     /// made with allow_large; the icosphere rule (not linear) has none (subcount.InputError).
     fn stencils<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         entry(py, || {
-            let table = guarded(|| {
+            let table = attempt(|| {
                 let refined = self.refined();
                 let sizes = refined.stencil_sizes().map_err(driver::Error::from)?;
                 let available = driver::system::available_bytes();
@@ -377,7 +377,7 @@ impl Refinement {
                 false => self.evaluate_in::<f64>(py, points, out, rows, n_out, stream),
             }
         };
-        guarded(work).map_err(|f| f.into_pyerr(py))
+        attempt(work).map_err(|f| f.into_pyerr(py))
     }
 
     fn refined(&self) -> &Refined {

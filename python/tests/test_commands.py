@@ -6,23 +6,17 @@ are $SUBCOUNT_MESHES (default: ../shared/meshes beside the repository).
 """
 
 import json
-import os
 import sys
 import threading
 import time
 import warnings
-from pathlib import Path
 
 import pytest
 
 import subcount
 from subcount._commands import _big_int
+from test_mesh import SHARED_MESHES as MESHES
 from test_mesh import cli
-
-REPO = Path(__file__).resolve().parents[2]
-MESHES = Path(os.environ.get("SUBCOUNT_MESHES", REPO.parent / "shared" / "meshes"))
-if not MESHES.is_absolute():
-    MESHES = REPO / MESHES
 
 BASES = ["icosahedron", "cube", "mixed", "grid:3x2", "quad-grid:2x2", "icosahedron-holes:2"]
 SCHEMES = [s["name"] for s in subcount.schemes()]

@@ -19,6 +19,11 @@ import pytest
 import subcount
 
 REPO = Path(__file__).resolve().parents[2]
+# The shared meshes: $SUBCOUNT_MESHES (relative to the repository root), else ../shared/meshes
+# beside the repository.
+SHARED_MESHES = Path(os.environ.get("SUBCOUNT_MESHES") or REPO.parent / "shared" / "meshes")
+if not SHARED_MESHES.is_absolute():
+    SHARED_MESHES = REPO / SHARED_MESHES
 SUBCOUNT_BIN = os.environ.get("SUBCOUNT_BIN") or str(
     Path(os.environ.get("CARGO_TARGET_DIR") or REPO / "target") / "debug" / "subcount"
 )
@@ -193,9 +198,6 @@ def test_subdivide_equals_cli_to_the_bit(tmp_path, scheme, shape, levels):
         assert_same_mesh(ours, expected)
 
 
-SHARED_MESHES = Path(os.environ.get("SUBCOUNT_MESHES", Path(__file__).resolve().parents[3] / "shared" / "meshes"))
-if not SHARED_MESHES.is_absolute():
-    SHARED_MESHES = Path(__file__).resolve().parents[2] / SHARED_MESHES
 
 
 @pytest.mark.parametrize(

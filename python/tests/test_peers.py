@@ -37,18 +37,13 @@ missing. Vertices are matched by position with a KD-tree (scipy, which libigl re
 """
 
 import functools
-import os
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import subcount
 
-REPO = Path(__file__).resolve().parents[2]
-MESHES = Path(os.environ.get("SUBCOUNT_MESHES") or REPO.parent / "shared" / "meshes")
-if not MESHES.is_absolute():
-    MESHES = REPO / MESHES
+from test_mesh import SHARED_MESHES as MESHES
 
 TOL = 1e-12  # relative to the bounding-box diagonal of the input mesh
 LEVELS = [1, 2, 3]

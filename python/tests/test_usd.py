@@ -14,7 +14,6 @@ skip without it. Every input is generated in tmp_path.
 """
 
 import importlib.util
-import os
 import subprocess
 import sys
 import warnings
