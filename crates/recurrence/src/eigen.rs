@@ -449,7 +449,12 @@ fn roots_of_square_free(f: &[BigInt]) -> Vec<Eigenvalue> {
         for j in partners {
             let (sum, prod) = (zi + numeric[j], zi * numeric[j]);
             let tol = 1e-6 * (1.0 + sum.norm().max(prod.norm()));
-            if sum.im.abs() > tol || prod.im.abs() > tol {
+            // The pair's sum and product must be integers, not just round to ones: two roots
+            // of different factors can round to another factor's coefficients (-5.14 and
+            // 0.646, roots of x^2 + 3x - 11 and x^2 + 4x - 3, round to the latter's -4, -3).
+            let off = |x: f64| (x - x.round()).abs();
+            if sum.im.abs() > tol || prod.im.abs() > tol || off(sum.re) > tol || off(prod.re) > tol
+            {
                 continue;
             }
             let (Some(s), Some(p)) = (
@@ -583,6 +588,26 @@ mod tests {
         assert_eq!(
             eig("[[0, 0, 1], [1, 0, 0], [0, 1, 0]]"),
             owned(&[("1", 1), ("-1/2+1/2*sqrt(-3)", 1), ("-1/2-1/2*sqrt(-3)", 1)])
+        );
+    }
+
+    /// Two irrational quadratic factors, (x^2 + 3x - 11)(x^2 + 4x - 3): a root of each
+    /// (-5.14 and 0.646) sum and multiply to about -4.49 and -3.32, which round to the second
+    /// factor's coefficients; the pair must not be taken for it (found by the property test
+    /// `numeric_eigenvalues_agree_with_exact_ones`).
+    #[test]
+    fn roots_of_two_factors_are_not_paired_by_rounding() {
+        let e = eig("[[-1, -1, -2, 3], [0, -4, 3, -4], [-1, 0, -4, 3], [-1, 0, 3, 2]]");
+        let mut names: Vec<&str> = e.iter().map(|(name, _)| name.as_str()).collect();
+        names.sort_unstable();
+        assert_eq!(
+            names,
+            [
+                "-2+sqrt(7)",
+                "-2-sqrt(7)",
+                "-3/2+1/2*sqrt(53)",
+                "-3/2-1/2*sqrt(53)"
+            ]
         );
     }
 
